@@ -1,0 +1,150 @@
+"""The ``velpoly`` command: the only place that prints or exits.
+
+Exit status: 0 done; 2 the input is wrong; 3 the pose cannot be assembled
+or is singular (FORMAT.md section 3). Errors are one line
+``error: FILE: WHERE: WHAT`` and a hint; ``--debug`` shows the traceback.
+"""
+from __future__ import annotations
+
+import argparse
+import json
+import sys
+
+from .errors import InputError, VelpolyError
+
+__all__ = ["main", "build_parser"]
+
+SHEETS = ("velocity", "acceleration", "poles", "full")
+STYLES = ("textbook", "slides")
+
+
+def build_parser() -> argparse.ArgumentParser:
+    p = argparse.ArgumentParser(prog="velpoly", description="Graphical kinematics of planar mechanisms: "
+                                "velocity and acceleration polygons, instant centres, textbook figures.")
+    p.add_argument("--version", action="version", version="velpoly " + _version())
+    p.add_argument("--debug", action="store_true", help="show the traceback of an error")
+    sub = p.add_subparsers(dest="command", metavar="COMMAND")
+
+    s = sub.add_parser("solve", help="analytic positions, velocities, accelerations, poles")
+    s.add_argument("file")
+    s.add_argument("--angle", type=float, help="driver angle in degrees (absolute)")
+    s.add_argument("--json", action="store_true", help="print the JSON results (FORMAT.md section 2)")
+    s.add_argument("--format", choices=("text", "markdown", "latex", "csv"), default="text",
+                   help="table style of the readable output")
+
+    d = sub.add_parser("draw", help="textbook figure(s): SVG, PNG or PDF by the output's suffix")
+    d.add_argument("file")
+    d.add_argument("-o", "--output", help="output file (default: FILE's name with .svg)")
+    d.add_argument("--sheet", choices=SHEETS, default="full")
+    d.add_argument("--steps", action="store_true", help="one construction step a frame (multi-page PDF "
+                   "or numbered SVG/PNG files)")
+    d.add_argument("--angle", type=float, help="driver angle in degrees (absolute)")
+    d.add_argument("--style", choices=STYLES, default="textbook")
+
+    w = sub.add_parser("sweep", help="a whole driver cycle: plots and a table")
+    w.add_argument("file")
+    w.add_argument("--step", type=float, default=1.0, help="driver step in degrees (default 1)")
+    w.add_argument("-o", "--output", help="plot file (SVG, PNG or PDF)")
+    w.add_argument("--csv", help="CSV file of every quantity over the cycle")
+    w.add_argument("--points", help="comma-separated points whose speeds to plot (default: all)")
+    w.add_argument("--centrodes", metavar="LINK", help="draw the fixed and moving centrodes of this link")
+    w.add_argument("--gif", help="animated GIF of the mechanism with its velocity polygon")
+    w.add_argument("--style", choices=STYLES, default="textbook")
+
+    e = sub.add_parser("demo", help="the main job on a built-in example, no file needed")
+    e.add_argument("-o", "--output", default="out", help="output folder (default: out/)")
+    e.add_argument("--style", choices=STYLES, default="textbook")
+
+    g = sub.add_parser("gallery", help="rebuild the gallery's figures and README")
+    g.add_argument("-o", "--output", default=None, help="output folder (default: gallery/)")
+    return p
+
+
+def _version() -> str:
+    from . import __version__
+    return __version__
+
+
+def _load_and_solve(args):
+    from . import load, solve
+    m = load(args.file)
+    return m, solve(m, angle=args.angle)
+
+
+def cmd_solve(args) -> int:
+    from .report import solution_report
+    _, sol = _load_and_solve(args)
+    if args.json:
+        print(json.dumps(sol.to_dict(), indent=2, allow_nan=False))
+    else:
+        print(solution_report(sol, args.format), end="")
+    for w in sol.warnings:
+        print(f"warning: {sol.mechanism.source}: {w}", file=sys.stderr)
+    return 0
+
+
+def cmd_draw(args) -> int:
+    from pathlib import Path
+    _, sol = _load_and_solve(args)
+    out = Path(args.output) if args.output else Path(Path(args.file).stem + ".svg")
+    if out.suffix.lower() not in (".svg", ".png", ".pdf"):
+        raise InputError(f"unknown figure type {out.suffix or '(none)'!r}", where="-o", file=str(out),
+                         hint="end the output's name with .svg, .png or .pdf")
+    from .render import draw_to_file
+    written = draw_to_file(sol, out, sheet=args.sheet, style=args.style, steps=args.steps)
+    for path in written:
+        print(path)
+    return 0
+
+
+def cmd_sweep(args) -> int:
+    from .cycle import sweep_command
+    return sweep_command(args)
+
+
+def cmd_demo(args) -> int:
+    from .gallery import demo_command
+    return demo_command(args)
+
+
+def cmd_gallery(args) -> int:
+    from .gallery import gallery_command
+    return gallery_command(args)
+
+
+COMMANDS = {"solve": cmd_solve, "draw": cmd_draw, "sweep": cmd_sweep, "demo": cmd_demo, "gallery": cmd_gallery}
+
+
+def main(argv=None) -> int:
+    parser = build_parser()
+    args = parser.parse_args(argv)
+    if not args.command:
+        parser.print_help()
+        return 2
+    try:
+        return COMMANDS[args.command](args)
+    except VelpolyError as e:
+        if args.debug:
+            raise
+        if not e.file and getattr(args, "file", None):
+            e.with_file(args.file)
+        print(f"error: {e.line()}", file=sys.stderr)
+        if e.hint:
+            print(f"hint: {e.hint}", file=sys.stderr)
+        return e.exit_code
+    except KeyboardInterrupt:
+        print("error: interrupted", file=sys.stderr)
+        return 130
+    except BrokenPipeError:
+        return 0
+    except Exception as e:  # an internal error: still one line, never a traceback
+        if args.debug:
+            raise
+        where = getattr(args, "file", "") or "velpoly"
+        print(f"error: {where}: internal error: {type(e).__name__}: {e}", file=sys.stderr)
+        print("hint: run again with --debug and report the traceback", file=sys.stderr)
+        return 1
+
+
+if __name__ == "__main__":  # pragma: no cover
+    sys.exit(main())

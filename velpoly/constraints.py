@@ -1,0 +1,330 @@
+"""The joint constraints of a mechanism as equations in the links' coordinates.
+
+Every moving link k has three generalised coordinates ``q = (x_k, y_k,
+theta_k)``: the position of the point of the link that lies at the world
+origin in the reference pose, and its rotation from the reference pose. A
+point with reference position s on link k is therefore at::
+
+    r_k(s) = (x_k, y_k) + R(theta_k) s,      so q = 0 is the reference pose.
+
+Each joint contributes scalar equations Phi(q) = 0 (FORMAT.md section 5):
+
+* pin at P between i and j:            r_i(P) - r_j(P) = 0                         (2)
+* straight slider, block b, guide g:   theta_b - theta_g = 0,
+                                       (r_b(P) - r_g(P)) . n_g = 0                 (2)
+* circular slider about K:             r_b(K) - r_g(K) = 0                         (2)
+* pin P of l in a straight slot of s:  (r_l(P) - r_s(P)) . n_s = 0                 (1)
+* pin in a circular slot about K:      |r_l(P) - r_s(K)| - R = 0                   (1)
+* contact with centres Ca, Cb:         |r_b(Cb) - r_a(Ca)| - D = 0   (a flat: the
+                                       distance of the centre from the flat)       (1)
+  and, rolling or with a prescribed slip, the integrated slip
+                                       la (theta_a - phi) - lb (theta_b - phi)     (1)
+  whose rate is the slip (V_P(a) - V_P(b)) . t (zero when rolling);
+* contact given by ``normal`` only:    velocity rows (V_P(a) - V_P(b)) . u = 0
+                                       (and . t = slip), at the reference pose only.
+
+Velocities solve J q' = w and accelerations J q'' = w' - h (see
+:mod:`velpoly.jet`), with the driver's row added: theta_d = delta (crank)
+or the slider's displacement along its path s = delta.
+"""
+from __future__ import annotations
+
+from dataclasses import dataclass
+from typing import Callable
+
+import numpy as np
+
+from .errors import InputError
+from .jet import Jet
+from .model import Mechanism
+
+__all__ = ["Equation", "System", "build_system", "Frame", "contact_frame", "contact_slip_equation",
+           "slider_coordinate"]
+
+
+@dataclass(frozen=True)
+class Equation:
+    """One scalar constraint: its label, the links it couples, its function.
+
+    ``dim`` is 1 for an equation in lengths and 0 for one in angles (for
+    scaling). ``holonomic`` is False for velocity-only rows (contacts given
+    by a normal, prescribed slips); ``rate`` is the prescribed value of the
+    equation's rate (a slip speed; zero for ordinary joints).
+    """
+
+    label: str
+    links: tuple[str, ...]
+    fn: Callable
+    dim: int = 1
+    holonomic: bool = True
+    rate: float = 0.0
+
+
+class Frame:
+    """The links' poses at some q as jets: the evaluation context of equations."""
+
+    def __init__(self, system: "System", q: np.ndarray, qd: np.ndarray | None = None):
+        q = np.atleast_2d(q)
+        n, nq = q.shape
+        qd = np.zeros_like(q) if qd is None else np.atleast_2d(qd)
+        self.n, self.nq = n, nq
+        self.q, self.qd = q, qd
+        self._bodies = {}
+        for name, k in system.index.items():
+            x = Jet.coordinate(q, qd, 3 * k)
+            y = Jet.coordinate(q, qd, 3 * k + 1)
+            th = Jet.coordinate(q, qd, 3 * k + 2)
+            self._bodies[name] = (x, y, th.cos(), th.sin(), th)
+
+    def const(self, c) -> Jet:
+        return Jet.const(c, self.n, self.nq)
+
+    def theta(self, link: str) -> Jet:
+        b = self._bodies.get(link)
+        return self.const(0.0) if b is None else b[4]
+
+    def point(self, link: str, s) -> tuple[Jet, Jet]:
+        """r_link(s): the world position of the link's point s (reference coordinates)."""
+        sx, sy = float(s[0]), float(s[1])
+        b = self._bodies.get(link)
+        if b is None:  # the frame
+            return self.const(sx), self.const(sy)
+        x, y, c, s_, _ = b
+        return x + c * sx - s_ * sy, y + s_ * sx + c * sy
+
+    def direction(self, link: str, d) -> tuple[Jet, Jet]:
+        """R(theta_link) d: a direction fixed to the link."""
+        dx, dy = float(d[0]), float(d[1])
+        b = self._bodies.get(link)
+        if b is None:
+            return self.const(dx), self.const(dy)
+        _, _, c, s_, _ = b
+        return c * dx - s_ * dy, s_ * dx + c * dy
+
+
+def _dot(a, b):
+    return a[0] * b[0] + a[1] * b[1]
+
+
+def _sub(a, b):
+    return a[0] - b[0], a[1] - b[1]
+
+
+def _unit(deg: float) -> np.ndarray:
+    t = np.radians(deg)
+    return np.array([np.cos(t), np.sin(t)])
+
+
+@dataclass(frozen=True)
+class System:
+    """The constraint equations of a mechanism and its coordinates' layout.
+
+    ``index`` maps each moving link to its block of three coordinates;
+    ``equations`` lists every joint equation; ``driver`` is the driver's
+    coordinate function (crank angle or slider displacement).
+    """
+
+    mechanism: Mechanism
+    index: dict
+    equations: tuple[Equation, ...]
+    driver: Equation
+    size: float
+
+    @property
+    def nq(self) -> int:
+        return 3 * len(self.index)
+
+    @property
+    def holonomic(self) -> bool:
+        return all(e.holonomic for e in self.equations)
+
+    def evaluate(self, q, qd=None, driver: bool = True):
+        """Values, Jacobian and h-terms of every equation (and the driver's last).
+
+        Returns ``(phi, jac, h)`` with shapes (N, m), (N, m, nq), (N, m).
+        """
+        f = Frame(self, q, qd)
+        eqs = self.equations + ((self.driver,) if driver else ())
+        jets = [e.fn(f) for e in eqs]
+        phi = np.stack([j.v for j in jets], axis=1)
+        jac = np.stack([j.g for j in jets], axis=1)
+        h = np.stack([j.h for j in jets], axis=1)
+        return phi, jac, h
+
+    def scale_matrix(self, jac: np.ndarray, rows: list[int] | None = None,
+                     driver: bool = True) -> np.ndarray:
+        """The Jacobian in unit lengths (lengths divided by the mechanism's size)."""
+        eqs = list(self.equations) + ([self.driver] if driver else [])
+        if rows is not None:
+            eqs = [eqs[i] for i in rows]
+        L = self.size
+        col = np.ones(self.nq)
+        col[0::3] = L
+        col[1::3] = L
+        row = np.array([1.0 / L if e.dim == 1 else 1.0 for e in eqs])
+        return jac * row[:, None] * col[None, :]
+
+
+def build_system(m: Mechanism) -> System:
+    """Translate the mechanism's joints and driver into constraint equations."""
+    index = {k.name: i for i, k in enumerate(m.moving_links)}
+    P = {name: np.array(xy, float) for name, xy in m.points.items()}
+    eqs: list[Equation] = []
+
+    for pin in m.pins:
+        i, j = pin.links
+        s = P[pin.point]
+        lab = f"pin {pin.point} ({i}, {j})"
+        eqs.append(Equation(lab, (i, j), lambda f, i=i, j=j, s=s: f.point(i, s)[0] - f.point(j, s)[0]))
+        eqs.append(Equation(lab, (i, j), lambda f, i=i, j=j, s=s: f.point(i, s)[1] - f.point(j, s)[1]))
+
+    for sl in m.sliders:
+        b, g = sl.block, sl.guide
+        s = P[sl.point]
+        lab = f"slider {sl.point} (block {b} on {g})"
+        if sl.centre is None:
+            n = _unit(sl.angle + 90.0)
+            eqs.append(Equation(lab, (b, g), lambda f, b=b, g=g: f.theta(b) - f.theta(g), dim=0))
+            eqs.append(Equation(lab, (b, g), lambda f, b=b, g=g, s=s, n=n:
+                                _dot(_sub(f.point(b, s), f.point(g, s)), f.direction(g, n))))
+        else:
+            k = P[sl.centre]
+            eqs.append(Equation(lab, (b, g), lambda f, b=b, g=g, k=k: f.point(b, k)[0] - f.point(g, k)[0]))
+            eqs.append(Equation(lab, (b, g), lambda f, b=b, g=g, k=k: f.point(b, k)[1] - f.point(g, k)[1]))
+
+    for sl in m.slots:
+        l, sk = sl.link, sl.slot
+        s = P[sl.pin]
+        lab = f"slot {sl.pin} (pin of {l} in {sk})"
+        if sl.centre is None:
+            n = _unit(sl.angle + 90.0)
+            eqs.append(Equation(lab, (l, sk), lambda f, l=l, sk=sk, s=s, n=n:
+                                _dot(_sub(f.point(l, s), f.point(sk, s)), f.direction(sk, n))))
+        else:
+            k = P[sl.centre]
+            r0 = float(np.hypot(*(s - k)))
+            def fn(f, l=l, sk=sk, s=s, k=k, r0=r0):
+                d = _sub(f.point(l, s), f.point(sk, k))
+                return _dot(d, d).sqrt() - r0
+            eqs.append(Equation(lab, (l, sk), fn))
+
+    for c in m.contacts:
+        eqs.extend(_contact_equations(m, c, P))
+
+    drv = m.driver
+    if drv.is_slider:
+        sl = next(x for x in m.sliders if x.point == drv.slider)
+        driver = _slider_coordinate(sl, P, f"driver slider {sl.point}")
+    else:
+        d = drv.link
+        driver = Equation(f"driver {d}", (d,), lambda f, d=d: f.theta(d), dim=0)
+    return System(m, index, tuple(eqs), driver, m.size)
+
+
+def contact_slip_equation(m: Mechanism, c) -> Equation | None:
+    """The integrated slip of a contact with centres (its rate is the slip velocity)."""
+    P = {name: np.array(xy, float) for name, xy in m.points.items()}
+    return _contact_equations(m, c, P, with_slip=True)[1]
+
+
+def slider_coordinate(m: Mechanism, sl) -> Equation:
+    """The block's displacement along its path from the reference pose (an Equation)."""
+    P = {name: np.array(xy, float) for name, xy in m.points.items()}
+    return _slider_coordinate(sl, P, f"slider {sl.point}")
+
+
+def _slider_coordinate(sl, P, label) -> Equation:
+    """The block's displacement along its path from the reference pose.
+
+    Straight path: s = (r_b(P) - r_g(P)) . d_g; circular: s = R (theta_b - theta_g).
+    """
+    b, g = sl.block, sl.guide
+    s = P[sl.point]
+    if sl.centre is None:
+        d = _unit(sl.angle)
+        return Equation(label, (b, g), lambda f: _dot(_sub(f.point(b, s), f.point(g, s)),
+                                                      f.direction(g, d)))
+    r = float(np.hypot(*(s - P[sl.centre])))
+    return Equation(label, (b, g), lambda f: r * (f.theta(b) - f.theta(g)))
+
+
+def contact_frame(m: Mechanism, c, P=None):
+    """The contact's common normal u (from a to b) and tangent t at the reference pose.
+
+    Also returns the signed distances la = (P - Ca) . u and lb = (P - Cb) . u
+    (None for a flat profile or a contact given by its normal).
+    """
+    P = P or {name: np.array(xy, float) for name, xy in m.points.items()}
+    p = P[c.point]
+    la = lb = None
+    if c.centres is None:
+        u = _unit(c.normal)
+    else:
+        ca, cb = c.centres
+        if ca is not None and cb is not None:
+            u = P[cb] - P[ca]
+        elif ca is None:  # flat on a: from P towards Cb
+            u = P[cb] - p
+        else:             # flat on b: from Ca towards P
+            u = p - P[ca]
+        nu = float(np.hypot(*u))
+        u = u / nu
+        if ca is not None:
+            la = float(np.dot(p - P[ca], u))
+        if cb is not None:
+            lb = float(np.dot(p - P[cb], u))
+    t = np.array([-u[1], u[0]])
+    return u, t, la, lb
+
+
+def _contact_equations(m: Mechanism, c, P, with_slip: bool = False):
+    """The contact's equations; with ``with_slip`` also its slip equation (whose rate is
+    the slip velocity), whether or not it constrains the motion (None without centres)."""
+    a, b = c.links
+    p = P[c.point]
+    u, t, la, lb = contact_frame(m, c, P)
+    lab = f"{c.kind} contact {c.point} ({a}, {b})"
+    tangential = c.kind == "rolling" or c.slip is not None
+    rate = float(c.slip or 0.0)
+    if c.centres is None:
+        out = [Equation(lab, (a, b), lambda f: _dot(_sub(f.point(a, p), f.point(b, p)), (u[0], u[1])),
+                        holonomic=False)]
+        if tangential:
+            out.append(Equation(lab, (a, b), lambda f: _dot(_sub(f.point(a, p), f.point(b, p)), (t[0], t[1])),
+                                holonomic=False, rate=rate))
+        return (out, None) if with_slip else out
+    ca, cb = c.centres
+    if ca is not None and cb is not None:
+        A, B = P[ca], P[cb]
+        D = float(np.hypot(*(B - A)))
+        phi0 = float(np.arctan2(u[1], u[0]))
+
+        def normal_eq(f):
+            d = _sub(f.point(b, B), f.point(a, A))
+            return _dot(d, d).sqrt() - D
+
+        def slip_eq(f):
+            d = _sub(f.point(b, B), f.point(a, A))
+            phi = Jet.atan2(d[1], d[0], phi0) - phi0
+            return la * (f.theta(a) - phi) - lb * (f.theta(b) - phi)
+    else:
+        # one flat profile: the curved link c_ (centre C, signed distance l) and flat link fl;
+        # written with the normal pointing from the curved profile's centre towards P.
+        if cb is None:   # flat on b, u from Ca to P
+            cur, fl, C, l_, uu = a, b, P[ca], la, u
+        else:            # flat on a: use u' = -u from Cb towards P
+            cur, fl, C, l_, uu = b, a, P[cb], -lb, -u
+        tt = np.array([-uu[1], uu[0]])
+        # the rate of slip_eq is (V_P(cur) - V_P(fl)) . tt = (V_P(a) - V_P(b)) . t either way
+
+        def normal_eq(f):
+            return _dot(_sub(f.point(cur, C), f.point(fl, p)), f.direction(fl, uu)) + l_
+
+        def slip_eq(f):
+            return _dot(_sub(f.point(cur, C), f.point(fl, p)), f.direction(fl, tt)) \
+                + l_ * (f.theta(cur) - f.theta(fl))
+    out = [Equation(lab, (a, b), normal_eq)]
+    slip = Equation(lab, (a, b), slip_eq, holonomic=c.slip is None, rate=rate)
+    if tangential:
+        out.append(slip)
+    return (out, slip) if with_slip else out

@@ -1,0 +1,109 @@
+"""Second-order forward differentiation along a motion, vectorised over poses.
+
+A :class:`Jet` is a scalar quantity f(q) of the generalised coordinates q
+(each moving link's ``x, y, theta``), carried together with what kinematics
+needs of it along a motion q(t):
+
+* ``v`` -- the value f(q);
+* ``g`` -- the gradient df/dq (a row of the constraint Jacobian);
+* ``vd`` -- the rate  f' = g . q';
+* ``h`` -- the velocity-product term of the second derivative,
+  f'' = g . q'' + h, i.e. h = q'^T (d2f/dq2) q'.
+
+The rules are the chain and product rules, e.g. for a product
+``(ab)'' = a'' b + 2 a' b' + a b''``. Every field has a leading axis over
+poses, so one evaluation serves a whole crank cycle. With ``q' = 0`` the
+rate terms vanish and only values and gradients are computed.
+"""
+from __future__ import annotations
+
+import numpy as np
+
+__all__ = ["Jet"]
+
+
+class Jet:
+    """A quantity with its gradient and first and second rates (see module doc)."""
+
+    __slots__ = ("v", "g", "vd", "h")
+
+    def __init__(self, v, g, vd, h):
+        self.v = v    # (N,)
+        self.g = g    # (N, nq)
+        self.vd = vd  # (N,)
+        self.h = h    # (N,)
+
+    # -- construction ----------------------------------------------------------
+    @staticmethod
+    def const(c, n: int, nq: int) -> "Jet":
+        """A constant (zero gradient and rates)."""
+        z = np.zeros(n)
+        return Jet(np.full(n, float(c)) if np.ndim(c) == 0 else np.asarray(c, float),
+                   np.zeros((n, nq)), z, z)
+
+    @staticmethod
+    def coordinate(q: np.ndarray, qd: np.ndarray, i: int) -> "Jet":
+        """The generalised coordinate ``q[:, i]`` itself."""
+        n, nq = q.shape
+        g = np.zeros((n, nq))
+        g[:, i] = 1.0
+        return Jet(q[:, i].copy(), g, qd[:, i].copy(), np.zeros(n))
+
+    # -- arithmetic --------------------------------------------------------------
+    def __add__(self, o):
+        if isinstance(o, Jet):
+            return Jet(self.v + o.v, self.g + o.g, self.vd + o.vd, self.h + o.h)
+        return Jet(self.v + o, self.g, self.vd, self.h)
+
+    __radd__ = __add__
+
+    def __neg__(self):
+        return Jet(-self.v, -self.g, -self.vd, -self.h)
+
+    def __sub__(self, o):
+        return self + (-o)
+
+    def __rsub__(self, o):
+        return (-self) + o
+
+    def __mul__(self, o):
+        if isinstance(o, Jet):
+            return Jet(self.v * o.v,
+                       self.g * o.v[:, None] + o.g * self.v[:, None],
+                       self.vd * o.v + self.v * o.vd,
+                       self.h * o.v + 2.0 * self.vd * o.vd + self.v * o.h)
+        o = np.asarray(o, float)
+        return Jet(self.v * o, self.g * (o[..., None] if o.ndim else o), self.vd * o, self.h * o)
+
+    __rmul__ = __mul__
+
+    def _unary(self, f, f1, f2):
+        """f(self), given f, f' and f'' evaluated at ``self.v``."""
+        return Jet(f, self.g * f1[:, None], self.vd * f1, self.h * f1 + f2 * self.vd ** 2)
+
+    def cos(self):
+        c, s = np.cos(self.v), np.sin(self.v)
+        return self._unary(c, -s, -c)
+
+    def sin(self):
+        c, s = np.cos(self.v), np.sin(self.v)
+        return self._unary(s, c, -s)
+
+    def sqrt(self):
+        r = np.sqrt(self.v)
+        return self._unary(r, 0.5 / r, -0.25 / (r * self.v))
+
+    @staticmethod
+    def atan2(y: "Jet", x: "Jet", ref: float = 0.0) -> "Jet":
+        """The angle of the vector (x, y), unwrapped to within pi of ``ref``.
+
+        theta' = (x y' - y x') / r^2.
+        """
+        r2 = x.v ** 2 + y.v ** 2
+        ang = np.arctan2(y.v, x.v)
+        ang = ref + np.mod(ang - ref + np.pi, 2 * np.pi) - np.pi
+        g = (x.v[:, None] * y.g - y.v[:, None] * x.g) / r2[:, None]
+        cross_d = x.v * y.vd - y.v * x.vd
+        vd = cross_d / r2
+        h = (x.v * y.h - y.v * x.h) / r2 - 2.0 * cross_d * (x.v * x.vd + y.v * y.vd) / r2 ** 2
+        return Jet(ang, g, vd, h)

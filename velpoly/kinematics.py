@@ -1,0 +1,160 @@
+"""Analytic kinematics: mobility, velocities and accelerations by linear solves.
+
+With the joint equations Phi(q) = 0 of :mod:`velpoly.constraints` and the
+driver's coordinate d(q) = delta, the velocities solve one linear system::
+
+    [J_Phi]        [w ]                        [J_Phi]         [w' - h_Phi]
+    [J_d  ] q'  =  [d'],    the accelerations  [J_d  ] q''  =  [d'' - h_d ]
+
+(w: prescribed slip rates, h: the velocity-product terms). Each link's
+twist follows: omega_k = theta_k', and a point P of link k moves with
+``V_P = V_O + omega x R_PO``, ``A_P = A_O + alpha x R_PO - omega^2 R_PO``.
+Everything is batched over poses (leading axis N).
+
+Mobility is 3(n-1) minus the rank of the joint equations (FORMAT.md
+section 5): the generic rank, at a random configuration, separates
+structurally redundant joints (counted once) from a pose that merely
+loses rank (a change point: a singular pose).
+"""
+from __future__ import annotations
+
+from dataclasses import dataclass
+
+import numpy as np
+
+from .constraints import System, build_system
+from .errors import InputError, SingularPoseError
+from .model import Mechanism
+from .pose import select_rows
+
+__all__ = ["Kinematics", "prepare", "velocities", "accelerations", "SINGULAR", "WARN"]
+
+SINGULAR = 1e10   # condition number above which a pose is singular (exit 3)
+WARN = 1e6        # above which results carry a warning
+
+
+@dataclass(frozen=True)
+class Kinematics:
+    """A mechanism's equations, ready to solve: the system and its independent rows.
+
+    ``rows`` indexes the independent joint equations followed by the
+    driver's row (the last equation of :meth:`System.evaluate`).
+    """
+
+    mechanism: Mechanism
+    system: System
+    rows: tuple[int, ...]
+    mobility: int
+
+
+def _scaled_rank(system: System, jac: np.ndarray, rows=None, driver=False) -> tuple[int, np.ndarray]:
+    a = system.scale_matrix(jac, rows, driver=driver)
+    if a.size == 0:
+        return 0, np.zeros(0)
+    sv = np.linalg.svd(a, compute_uv=False)
+    return int((sv > SINGULAR ** -1 * sv.max()).sum()) if sv.max() > 0 else 0, sv
+
+
+def prepare(m: Mechanism) -> Kinematics:
+    """Build the equations, check the mobility is 1 and the reference pose regular."""
+    system = build_system(m)
+    nq = system.nq
+    if nq == 0:
+        raise InputError("the mechanism has no moving link (mobility 0)", where="links", file=m.source,
+                         hint="add the links that move, each listing its points")
+    rng = np.random.default_rng(20261122)
+    qg = rng.uniform(-1, 1, (1, nq))
+    qg[:, 0::3] *= 0.3 * system.size
+    qg[:, 1::3] *= 0.3 * system.size
+    _, jg, _ = system.evaluate(qg, driver=False)
+    jg_s = system.scale_matrix(jg[0], driver=False)
+    rows = select_rows(system, jg_s, tol=1e-8)
+    mobility = nq - len(rows)
+    if mobility != 1:
+        raise InputError(
+            f"mobility is {mobility} (3 x {len(m.moving_links)} moving-link coordinates minus "
+            f"{len(rows)} independent joint constraints), must be 1 for one driver",
+            where="links", file=m.source,
+            hint=("add the joints that are missing (a point shared by two links is a pin)"
+                  if mobility > 1 else "remove a joint or a link: the mechanism is locked"))
+    m_eq = len(system.equations)
+    _, jd, _ = system.evaluate(qg)
+    r_full, _ = _scaled_rank(system, jd[0][list(rows) + [m_eq]], list(rows) + [m_eq], driver=True)
+    if r_full < nq:
+        raise InputError("the driver's motion is fixed by the joints: it cannot drive the mechanism",
+                         where="driver", file=m.source, hint="drive a link the joints leave free")
+    _, j0, _ = system.evaluate(np.zeros((1, nq)), driver=False)
+    r_ref, _ = _scaled_rank(system, j0[0])
+    if r_ref < len(rows):
+        raise SingularPoseError(
+            "singular pose: the joints lose independence at the reference pose (a change point)",
+            where="links", file=m.source, links=_involved(system, j0[0], list(range(m_eq)), False),
+            hint="draw the mechanism in a pose away from the change point")
+    return Kinematics(m, system, tuple(rows) + (m_eq,), mobility)
+
+
+def _involved(system: System, jac, rows, driver) -> tuple[str, ...]:
+    """The links that move in the matrix's near-null direction (those coming into line)."""
+    a = system.scale_matrix(jac, rows, driver=driver)
+    _, _, vt = np.linalg.svd(a)
+    v = vt[-1]
+    names = list(system.index)
+    w = np.array([np.abs(v[3 * i:3 * i + 3]).max() for i in range(len(names))])
+    if w.max() == 0:
+        return tuple(names)
+    return tuple(n for n, x in zip(names, w) if x > 0.05 * w.max())
+
+
+def _rates(kin: Kinematics) -> np.ndarray:
+    eqs = kin.system.equations + (kin.system.driver,)
+    drv = kin.mechanism.driver
+    w = np.array([e.rate for e in eqs])
+    w[-1] = drv.speed if drv.is_slider else drv.omega
+    return w[list(kin.rows)]
+
+
+def condition(kin: Kinematics, q) -> np.ndarray:
+    """Condition numbers of the velocity systems at poses q (unit lengths)."""
+    _, jac, _ = kin.system.evaluate(q)
+    a = kin.system.scale_matrix(jac[:, list(kin.rows)], list(kin.rows))
+    return np.linalg.cond(a)
+
+
+def velocities(kin: Kinematics, q, check: bool = True):
+    """q' at poses q (N, nq); returns (qd, cond)."""
+    q = np.atleast_2d(q)
+    _, jac, _ = kin.system.evaluate(q)
+    a = jac[:, list(kin.rows)]
+    cond = np.linalg.cond(kin.system.scale_matrix(a, list(kin.rows)))
+    bad = ~(cond <= SINGULAR)
+    if check and bad.any():
+        i = int(np.argmax(bad))
+        raise SingularPoseError(
+            f"singular pose: the velocity equations are singular (condition number "
+            f"{'inf' if not np.isfinite(cond[i]) else f'{cond[i]:.3g}'})",
+            where="pose", file=kin.mechanism.source,
+            links=_involved(kin.system, a[i], list(kin.rows), True),
+            hint="links in line (a toggle or dead centre): choose another driver angle")
+    rhs = np.broadcast_to(_rates(kin), a.shape[:2]).copy()
+    if bad.any():
+        a = a.copy()
+        a[bad] = np.eye(a.shape[1])
+        rhs[bad] = np.nan
+    qd = np.linalg.solve(a, rhs[..., None])[..., 0]
+    return qd, cond
+
+
+def accelerations(kin: Kinematics, q, qd):
+    """q'' at poses q with velocities qd (N, nq)."""
+    q, qd = np.atleast_2d(q), np.atleast_2d(qd)
+    _, jac, h = kin.system.evaluate(q, qd)
+    rows = list(kin.rows)
+    a = jac[:, rows]
+    rhs = -h[:, rows]
+    drv = kin.mechanism.driver
+    rhs[:, -1] += drv.accel if drv.is_slider else drv.alpha
+    good = np.isfinite(rhs).all(axis=1) & np.isfinite(a).all(axis=(1, 2))
+    out = np.full(q.shape, np.nan)
+    if good.any():
+        out[good] = np.linalg.solve(a[good], rhs[good][..., None])[..., 0]
+    return out

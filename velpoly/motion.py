@@ -1,0 +1,240 @@
+"""What the solved coordinates mean: every point's, link's and joint's motion.
+
+Given the poses q, velocities q' and accelerations q'' (leading axis over
+poses), a link k with origin x_k moves each of its points P as::
+
+    V_P = V_O + omega_k x R_PO,    A_P = A_O + alpha_k x R_PO - omega_k^2 R_PO
+
+Point keys follow FORMAT.md section 5: ``P`` where every link carrying P
+moves it alike (pinned together), else ``P@link`` for each carrier; a
+coincident carrier (a slider's guide, a slot's link, a contact's links)
+is evaluated at the point's current place. Relative motion along a path
+(sliders, slots): ``V_rel = V_P(block) - V_P(guide)``,
+``A_rel = A_P(block) - A_P(guide) - 2 omega_guide x V_rel``.
+"""
+from __future__ import annotations
+
+from dataclasses import dataclass
+
+import numpy as np
+
+from .constraints import Frame, contact_frame, contact_slip_equation, slider_coordinate
+from .model import Mechanism
+
+__all__ = ["Motion", "point_keys", "evaluate_motion", "wrap_deg"]
+
+
+def wrap_deg(a):
+    """Angles in degrees wrapped into (-180, 180]."""
+    a = np.asarray(a, float)
+    w = np.mod(a + 180.0, 360.0) - 180.0
+    return np.where(w == -180.0, 180.0, w)
+
+
+def _perp(v):
+    return np.stack([-v[..., 1], v[..., 0]], axis=-1)
+
+
+def point_keys(m: Mechanism) -> list[tuple[str, str, str]]:
+    """Every point key with its point and carrying link: ``(key, point, link)``."""
+    contact_pts = {c.point for c in m.contacts}
+    out = []
+    for p in m.point_order:
+        carriers = list(m.carriers[p])
+        parent = {lk: lk for lk in carriers}
+
+        def find(x):
+            while parent[x] != x:
+                x = parent[x]
+            return x
+        for pin in m.pins:
+            if pin.point == p and all(lk in parent for lk in pin.links):
+                parent[find(pin.links[0])] = find(pin.links[1])
+        groups = {find(lk) for lk in carriers}
+        if len(groups) == 1 and p not in contact_pts:
+            out.append((p, p, carriers[0]))
+        else:
+            out.extend((f"{p}@{lk}", p, lk) for lk in carriers)
+    return out
+
+
+@dataclass(frozen=True)
+class Motion:
+    """Arrays of one or many poses: ``position[key]`` is (N, 2), ``omega[link]`` is (N,)."""
+
+    angle: dict
+    omega: dict
+    alpha: dict
+    position: dict
+    velocity: dict
+    acceleration: dict
+    sliders: list
+    contacts: list
+    slots: list
+
+
+class _Bodies:
+    def __init__(self, m, index, q, qd, qdd):
+        self.m, self.index, self.q, self.qd, self.qdd = m, index, q, qd, qdd
+        self.n = len(q)
+
+    def theta(self, lk, arr=None):
+        arr = self.q if arr is None else arr
+        k = self.index.get(lk)
+        return np.zeros(self.n) if k is None or arr is None else arr[:, 3 * k + 2]
+
+    def origin(self, lk, arr=None):
+        arr = self.q if arr is None else arr
+        k = self.index.get(lk)
+        return np.zeros((self.n, 2)) if k is None or arr is None else arr[:, 3 * k:3 * k + 2]
+
+    def place(self, lk, s):
+        """r_k(s): world position of the link's point with reference position s."""
+        th = self.theta(lk)
+        c, sn = np.cos(th), np.sin(th)
+        return self.origin(lk) + np.stack([c * s[0] - sn * s[1], sn * s[0] + c * s[1]], axis=-1)
+
+    def turn(self, lk, d):
+        th = self.theta(lk)
+        c, sn = np.cos(th), np.sin(th)
+        return np.stack([c * d[0] - sn * d[1], sn * d[0] + c * d[1]], axis=-1)
+
+    def vel(self, lk, w):
+        r = w - self.origin(lk)
+        return self.origin(lk, self.qd) + self.theta(lk, self.qd)[:, None] * _perp(r)
+
+    def acc(self, lk, w):
+        r = w - self.origin(lk)
+        if self.qdd is None:
+            return np.full_like(r, np.nan)
+        om = self.theta(lk, self.qd)[:, None]
+        return self.origin(lk, self.qdd) + self.theta(lk, self.qdd)[:, None] * _perp(r) - om ** 2 * r
+
+
+def _unit(deg):
+    t = np.radians(deg)
+    return np.array([np.cos(t), np.sin(t)])
+
+
+def _norm(v):
+    return v / np.linalg.norm(v, axis=-1, keepdims=True)
+
+
+def evaluate_motion(m: Mechanism, index: dict, q, qd, qdd=None) -> Motion:
+    """Every output of FORMAT.md section 2, as arrays over the poses q."""
+    q, qd = np.atleast_2d(q), np.atleast_2d(qd)
+    qdd = None if qdd is None else np.atleast_2d(qdd)
+    B = _Bodies(m, index, q, qd, qdd)
+    P = {k: np.array(v, float) for k, v in m.points.items()}
+
+    # current places of points carried as coincident points
+    contact_place = {}
+    contact_dirs = {}
+    for c in m.contacts:
+        a, b = c.links
+        u0, t0, la, lb = contact_frame(m, c, P)
+        if c.centres is None:
+            place = B.place(a, P[c.point])
+            u = np.broadcast_to(u0, place.shape)
+        else:
+            ca, cb = c.centres
+            if ca is not None and cb is not None:
+                A, Bc = B.place(a, P[ca]), B.place(b, P[cb])
+                u = _norm(Bc - A)
+                place = A + la * u
+            elif cb is None:
+                u = B.turn(b, u0)
+                place = B.place(a, P[ca]) + la * u
+            else:
+                u = B.turn(a, u0)
+                place = B.place(b, P[cb]) + lb * u
+        contact_place[c.point] = place
+        contact_dirs[c.point] = (u, _perp(u))
+    coincident_place = {}
+    for s in m.sliders:
+        coincident_place[(s.point, s.guide)] = B.place(s.block, P[s.point])
+    for s in m.slots:
+        coincident_place[(s.pin, s.slot)] = B.place(s.link, P[s.pin])
+
+    position, velocity, acceleration = {}, {}, {}
+    for key, p, lk in point_keys(m):
+        if p in contact_place:
+            w = contact_place[p]
+        elif (p, lk) in coincident_place:
+            w = coincident_place[(p, lk)]
+        else:
+            w = B.place(lk, P[p])
+        position[key] = w
+        velocity[key] = B.vel(lk, w)
+        acceleration[key] = B.acc(lk, w)
+
+    angle, omega, alpha = {}, {}, {}
+    block_path = {s.block: s for s in m.sliders}
+    for link in m.links:
+        th = B.theta(link.name)
+        if len(link.points) >= 2:
+            d = P[link.points[1]] - P[link.points[0]]
+            base = np.degrees(np.arctan2(d[1], d[0])) if np.hypot(*d) > 0 else 0.0
+            angle[link.name] = wrap_deg(base + np.degrees(th))
+        elif link.name in block_path:
+            s = block_path[link.name]
+            angle[link.name] = wrap_deg(np.degrees(np.arctan2(*_path_dir(B, s, P)[..., ::-1].T)))
+        else:
+            angle[link.name] = wrap_deg(np.degrees(th))
+        omega[link.name] = B.theta(link.name, qd)
+        alpha[link.name] = B.theta(link.name, qdd) if qdd is not None else np.full(len(q), np.nan)
+
+    sliders = []
+    for s in m.sliders:
+        d = _path_dir(B, s, P)
+        sliders.append(_relative(B, s.block, s.guide, B.place(s.block, P[s.point]), d,
+                                 slider_coordinate(m, s), q, qd, qdd, m))
+    slots = []
+    for s in m.slots:
+        d = _path_dir(B, s, P, block=s.link, guide=s.slot, point=s.pin)
+        slots.append(_relative(B, s.link, s.slot, B.place(s.link, P[s.pin]), d, None, q, qd, qdd, m))
+    contacts = []
+    for c in m.contacts:
+        a, b = c.links
+        w = contact_place[c.point]
+        u, t = contact_dirs[c.point]
+        slip_v = np.einsum("ij,ij->i", B.vel(a, w) - B.vel(b, w), t)
+        eq = contact_slip_equation(m, c)
+        if eq is None or qdd is None:
+            slip_a = np.full(len(q), np.nan)
+        else:
+            jet = eq.fn(Frame(_FakeSystem(index), q, qd))
+            slip_a = np.einsum("ij,ij->i", jet.g, qdd) + jet.h
+        contacts.append({"slip_velocity": slip_v, "slip_acceleration": slip_a,
+                         "normal": np.degrees(np.arctan2(u[:, 1], u[:, 0])), "place": w})
+    return Motion(angle, omega, alpha, position, velocity, acceleration, sliders, contacts, slots)
+
+
+class _FakeSystem:
+    def __init__(self, index):
+        self.index = index
+
+
+def _path_dir(B, s, P, block=None, guide=None, point=None):
+    """The path's unit direction at the block's point, now (ccw about K for a circle)."""
+    block = block or s.block
+    guide = guide or s.guide
+    point = point or s.point
+    if s.centre is None:
+        return B.turn(guide, _unit(s.angle))
+    r = B.place(block, P[point]) - B.place(guide, P[s.centre])
+    return _perp(_norm(r))
+
+
+def _relative(B, block, guide, w, d, coord_eq, q, qd, qdd, m):
+    v_rel = B.vel(block, w) - B.vel(guide, w)
+    slip_v = np.einsum("ij,ij->i", v_rel, d)
+    om_g = B.theta(guide, qd)
+    cor = 2.0 * om_g[:, None] * _perp(v_rel)
+    if qdd is None:
+        slip_a = np.full(len(q), np.nan)
+    else:
+        a_rel = B.acc(block, w) - B.acc(guide, w) - cor
+        slip_a = np.einsum("ij,ij->i", a_rel, d)
+    return {"slip_velocity": slip_v, "slip_acceleration": slip_a, "coriolis": cor,
+            "direction": np.degrees(np.arctan2(d[:, 1], d[:, 0]))}

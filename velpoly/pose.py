@@ -1,0 +1,210 @@
+"""Poses: compass-and-ruler point constructions, and reassembly at other driver positions.
+
+The reference pose is drawn by the file's constructions, evaluated once in
+file order (:func:`circle_circle`, :func:`circle_line`). Any other driver
+position is reached by continuation from the reference pose along the
+branch the user drew: the driver is stepped, each pose predicted from the
+velocities of the last (q(delta + h) ~ q + h q') and corrected by Newton's
+method on the constraint equations, Phi(q) = 0. Poses between the steps are
+corrected all at once (one batched Newton over every remaining pose). A
+pose where the Jacobian degenerates or Newton cannot converge is a toggle:
+continuation stops there, with the reachable range.
+"""
+from __future__ import annotations
+
+import numpy as np
+
+from .constraints import System
+from .errors import AssemblyError
+
+__all__ = ["circle_circle", "circle_line", "Reassembly", "reassemble", "select_rows"]
+
+
+# -- compass and ruler ----------------------------------------------------------
+def circle_circle(p, r1: float, q, r2: float):
+    """Both intersections of the circles (p, r1) and (q, r2).
+
+    Returns ``(left, right, gap)``: the intersections to the left and to the
+    right of the directed line p -> q, and the gap by which the circles miss
+    each other (0 when they meet; positive when they do not, in which case
+    the two points are the nearest approach).
+    """
+    p, q = np.asarray(p, float), np.asarray(q, float)
+    d = q - p
+    dist = float(np.hypot(*d))
+    if dist == 0.0:
+        return p, p, (abs(r1 - r2) if r1 != r2 else float("inf"))
+    gap = max(dist - (r1 + r2), abs(r1 - r2) - dist, 0.0)
+    a = (r1 * r1 - r2 * r2 + dist * dist) / (2 * dist)
+    h2 = r1 * r1 - a * a
+    h = np.sqrt(h2) if h2 > 0 else 0.0
+    e = d / dist
+    n = np.array([-e[1], e[0]])
+    m = p + a * e
+    return m + h * n, m - h * n, gap
+
+
+def circle_line(c, r: float, through, direction_deg: float):
+    """Both intersections of the circle (c, r) with a line through ``through`` at an angle.
+
+    Returns ``(first, second, gap)``: the intersections in order along the
+    line's direction, and the gap by which the line misses the circle.
+    """
+    c, p = np.asarray(c, float), np.asarray(through, float)
+    t = np.radians(direction_deg)
+    e = np.array([np.cos(t), np.sin(t)])
+    foot = p + np.dot(c - p, e) * e
+    d = float(np.hypot(*(c - foot)))
+    gap = max(d - r, 0.0)
+    h = np.sqrt(max(r * r - d * d, 0.0))
+    return foot - h * e, foot + h * e, gap
+
+
+# -- Newton and continuation -------------------------------------------------------
+def select_rows(system: System, jac: np.ndarray, tol: float = 1e-9) -> list[int]:
+    """Indices of a maximal set of independent constraint rows of ``jac`` (m x nq), in order."""
+    keep: list[int] = []
+    basis = np.zeros((0, jac.shape[1]))
+    for i, row in enumerate(jac):
+        r = row.copy()
+        for b in basis:
+            r -= np.dot(r, b) * b
+        nr = np.linalg.norm(r)
+        if nr > tol * max(1.0, np.linalg.norm(row)):
+            basis = np.vstack([basis, r / nr])
+            keep.append(i)
+    return keep
+
+
+class Reassembly:
+    """The result of carrying a mechanism to other driver positions.
+
+    ``deltas`` are the driver displacements reached (from the reference
+    pose), ``q`` the poses (len(deltas), nq); ``stopped`` says why the sweep
+    ended early, or is empty.
+    """
+
+    def __init__(self, deltas, q, stopped=""):
+        self.deltas = deltas
+        self.q = q
+        self.stopped = stopped
+
+
+def _newton(system: System, rows, q, targets, iters=30, tol=1e-12):
+    """Batched Newton on the selected rows plus the driver row.
+
+    Returns (q, converged mask).
+    """
+    q = q.copy()
+    L = system.size
+    ok = np.zeros(len(q), bool)
+    for _ in range(iters):
+        phi, jac, _ = system.evaluate(q)
+        phi = phi[:, rows]
+        jac = jac[:, rows]
+        phi[:, -1] -= targets
+        res = np.abs(phi).max(axis=1)
+        ok = res <= tol * max(L, 1.0)
+        if ok.all():
+            break
+        try:
+            dq = np.linalg.solve(jac, -phi[..., None])[..., 0]
+        except np.linalg.LinAlgError:
+            dq = np.stack([np.linalg.lstsq(j, -p, rcond=None)[0] for j, p in zip(jac, phi)])
+        # limit the step so Newton cannot jump to another branch
+        step = np.abs(dq[:, 0::3]).max(axis=1, initial=0) / L + np.abs(dq[:, 2::3]).max(axis=1, initial=0)
+        scale = np.where(step > 0.5, 0.5 / np.maximum(step, 1e-300), 1.0)
+        q = q + dq * scale[:, None] * (~ok)[:, None]
+    phi, _, _ = system.evaluate(q)
+    phi = phi[:, rows]
+    phi[:, -1] -= targets
+    ok = np.abs(phi).max(axis=1) <= 1e-9 * max(L, 1.0)
+    return q, ok
+
+
+def _velocity(system, rows, q):
+    """q' per unit driver rate at the poses q (the continuation's tangent)."""
+    _, jac, _ = system.evaluate(q)
+    jac = jac[:, rows]
+    rhs = np.zeros(jac.shape[:2])
+    rhs[:, -1] = 1.0
+    return np.linalg.solve(jac, rhs[..., None])[..., 0]
+
+
+def _cond(system, rows, q):
+    _, jac, _ = system.evaluate(q)
+    return np.linalg.cond(system.scale_matrix(jac[:, rows], rows))
+
+
+def reassemble(system: System, rows: list[int], deltas, coarse: float | None = None) -> Reassembly:
+    """Carry the mechanism from the reference pose through the driver positions ``deltas``.
+
+    ``deltas`` are driver displacements from the reference pose (radians for
+    a crank, lengths for a slider), followed in the order given, each pose
+    continued from the previous one. ``rows`` are the independent
+    constraint rows plus the driver's (last). Stops before the first
+    position that cannot be reached without crossing a toggle.
+    """
+    if not system.holonomic:
+        raise AssemblyError("the mechanism has a contact given by its normal or a prescribed slip, "
+                            "which has no position equation",
+                            where="driver", hint="give the contact's centres of curvature (and no "
+                            "slip) to analyse other driver positions")
+    deltas = np.asarray(deltas, float).ravel()
+    n = len(deltas)
+    nq = system.nq
+    if coarse is None:
+        coarse = np.radians(3.0) if not system.mechanism.driver.is_slider else 0.02 * system.size
+    # 1. knots: a sequential continuation, never stepping farther than `coarse`;
+    #    every requested position is attached to the knot before it.
+    knot_d, knot_q = [0.0], [np.zeros(nq)]
+    attach = np.empty(n, int)
+    stopped = ""
+    q = np.zeros((1, nq))
+    for idx, d in enumerate(deltas):
+        if abs(d - knot_d[-1]) > coarse:
+            start = knot_d[-1]
+            k = int(np.ceil(abs(d - start) / coarse))
+            for target in start + (d - start) * np.arange(1, k + 1) / k:
+                qn = _step(system, rows, q, knot_d[-1], target)
+                if qn is None:
+                    stopped = "toggle"
+                    break
+                q = qn
+                knot_d.append(float(target))
+                knot_q.append(q[0].copy())
+            if stopped:
+                n = idx
+                break
+        attach[idx] = len(knot_d) - 1
+    deltas, attach = deltas[:n], attach[:n]
+    if n == 0:
+        return Reassembly(deltas, np.zeros((0, nq)), stopped)
+    # 2. every requested pose at once: predicted from its knot, corrected by batched Newton
+    kq = np.array(knot_q)
+    kd = np.array(knot_d)
+    qd = _velocity(system, rows, kq)
+    h = deltas - kd[attach]
+    guess = kq[attach] + h[:, None] * qd[attach]
+    out, ok = _newton(system, rows, guess, deltas)
+    drift = np.abs(out - guess).max(axis=1)
+    ok &= drift <= 0.25 * (np.abs(h) * np.abs(qd[attach]).max(axis=1)) + 1e-7 * system.size
+    if not ok.all():
+        first = int(np.argmin(ok))
+        return Reassembly(deltas[:first], out[:first], "toggle")
+    return Reassembly(deltas, out, stopped)
+
+
+def _step(system, rows, q, d0, d1):
+    """One continuation step of the knots from driver position d0 to d1, or None at a toggle."""
+    h = d1 - d0
+    qd = _velocity(system, rows, q)
+    guess = q + h * qd
+    qn, ok = _newton(system, rows, guess, np.array([d1]))
+    bound = 0.25 * abs(h) * np.abs(qd).max() + 1e-9 * system.size
+    if ok[0] and np.abs(qn - guess).max() <= bound and _cond(system, rows, qn)[0] <= 1e10:
+        return qn
+    if abs(h) < 1e-6:
+        return None
+    mid = _step(system, rows, q, d0, d0 + h / 2)   # near a toggle: halve the step
+    return None if mid is None else _step(system, rows, mid, d0 + h / 2, d1)

@@ -1,0 +1,278 @@
+"""Published answers (``[reference]``) in textbook notation, and their comparison.
+
+Keys of ``values`` are read the way books print them:
+
+=============  ==============================================================
+``V_B``        absolute velocity of B (``A_B``: acceleration)
+``V_B3``       velocity of the point of link 3 at B
+``V_BA``       V_B - V_A, B relative to A (``V_D5C5``: both on link 5)
+``V_B3/B4``    V_B3 - V_B4, coincident points of links 3 and 4
+``omega_3``    angular velocity of link 3 (``alpha_3``; ``theta_3`` its angle)
+``R_BA``       position of B relative to A
+``P_13``       position of the pole of links 1 and 3, ``[x, y]``
+``V_P24``      velocity of the pole P_24
+=============  ==============================================================
+
+A vector is ``[magnitude, direction]`` (a negative magnitude reverses it) or
+a bare magnitude.
+"""
+from __future__ import annotations
+
+import math
+import re
+from dataclasses import dataclass
+
+import numpy as np
+
+from .errors import InputError
+
+__all__ = ["Quantity", "parse_key", "validate_reference", "compare", "Row", "relative_pole"]
+
+
+@dataclass(frozen=True)
+class Quantity:
+    """A parsed textbook key: ``kind`` and its operands.
+
+    kind: 'V' or 'A' (difference of point refs), 'R' (position difference),
+    'omega', 'alpha', 'theta' (a link), 'P' (pole position), 'VP'/'AP' (pole motion).
+    ``refs`` are (point, link-or-None) pairs; ``links`` link names.
+    """
+
+    kind: str
+    refs: tuple = ()
+    links: tuple = ()
+
+
+def _point_refs(m, s: str, count: int):
+    """Split ``s`` into ``count`` point refs (point name + optional link suffix)."""
+    names = sorted(set(m.points), key=len, reverse=True)
+    links = set(m.link_names)
+
+    def one(tok):
+        if "@" in tok:
+            p, lk = tok.split("@", 1)
+            return (p, lk) if p in m.points and lk in links else None
+        if tok in m.points:
+            return (tok, None)
+        for p in names:
+            if tok.startswith(p) and tok[len(p):] in links:
+                return (p, tok[len(p):])
+        return None
+
+    if count == 1:
+        r = one(s)
+        return [r] if r else None
+    for i in range(1, len(s)):
+        a, b = one(s[:i]), one(s[i:])
+        if a and b:
+            return [a, b]
+    return None
+
+
+def _two_links(m, s: str):
+    links = m.link_names
+    s = s.lstrip("_")
+    for i in range(1, len(s)):
+        if s[:i] in links and s[i:] in links:
+            return (s[:i], s[i:])
+    return None
+
+
+def parse_key(m, key: str) -> Quantity | None:
+    """Read a textbook key; None if it cannot be read for this mechanism."""
+    mo = re.fullmatch(r"(omega|alpha|theta)_?(.+)", key)
+    if mo and mo.group(2) in m.link_names:
+        return Quantity(mo.group(1), links=(mo.group(2),))
+    mo = re.fullmatch(r"([VA])_?P_?(.+)", key)
+    if mo:
+        two = _two_links(m, mo.group(2))
+        if two:
+            return Quantity(mo.group(1) + "P", links=two)
+    mo = re.fullmatch(r"P_?(.+)", key)
+    if mo:
+        two = _two_links(m, mo.group(1))
+        if two:
+            return Quantity("P", links=two)
+    mo = re.fullmatch(r"([VAR])_(.+)", key)
+    if not mo:
+        return None
+    kind, body = mo.groups()
+    if "/" in body:
+        a, _, b = body.partition("/")
+        ra, rb = _point_refs(m, a, 1), _point_refs(m, b, 1)
+        return Quantity(kind, refs=(ra[0], rb[0])) if ra and rb else None
+    if kind != "R":
+        r = _point_refs(m, body, 1)
+        if r:
+            return Quantity(kind, refs=(r[0],))
+    r = _point_refs(m, body, 2)
+    return Quantity(kind, refs=tuple(r)) if r else None
+
+
+def validate_reference(m, ctx=None) -> None:
+    """Raise InputError for a ``values`` key that cannot be read (FORMAT.md section 1)."""
+    for key in m.reference.values:
+        if parse_key(m, key) is None:
+            raise InputError(f"unknown quantity {key!r}", where=f"reference.values.{key}", file=m.source,
+                             hint="keys in textbook notation: V_B, A_B, V_BA, V_B3/B4, omega_3, alpha_3, "
+                                  "theta_3, R_BA, P_13, V_P24")
+    for key in list(m.reference.note):
+        known = (set(m.reference.values) | {f"omega_{k}" for k in m.reference.omega}
+                 | {f"alpha_{k}" for k in m.reference.alpha} | set(m.reference.speed)
+                 | set(m.reference.velocity) | set(m.reference.acceleration)
+                 | set(m.reference.omega) | set(m.reference.alpha))
+        if key not in known and parse_key(m, key) is None:
+            raise InputError(f"a note for {key!r}, which is no reference value", where=f"reference.note.{key}",
+                             file=m.source)
+
+
+def relative_pole(sol, i: str, j: str):
+    """The pole of links i and j: the point where their velocity fields agree.
+
+    V_O(i) + omega_i x (W - O_i) = V_O(j) + omega_j x (W - O_j). Returns the
+    position, or ``None`` at infinity (equal omegas), with the direction.
+    """
+    def twist(lk):
+        k = sol.kinematics.system.index.get(lk)
+        if k is None:
+            return np.zeros(2), 0.0
+        o = sol.q[3 * k:3 * k + 2]
+        w = sol.qd[3 * k + 2]
+        v = sol.qd[3 * k:3 * k + 2]
+        return v - w * np.array([-o[1], o[0]]), w   # velocity of the body point at the world origin
+    vi, wi = twist(i)
+    vj, wj = twist(j)
+    dv, dw = vi - vj, wi - wj
+    # dv + dw * perp(W) = 0, perp(W) = (-W_y, W_x)  ->  W = (-dv_y, dv_x) / dw
+    if abs(dw) <= 1e-300 or np.hypot(*dv) / abs(dw) > 1e9 * sol.mechanism.size:
+        if np.hypot(*dv) == 0:
+            return None, None
+        d = math.degrees(math.atan2(dv[1], dv[0]))  # the velocity direction; the pole lies at 90 deg to it
+        return None, (d + 90.0) % 180.0
+    return np.array([-dv[1], dv[0]]) / dw, None
+
+
+def _place(sol, p, lk):
+    pos = sol.position
+    if p in pos:
+        return pos[p]
+    key = f"{p}@{lk}" if lk and f"{p}@{lk}" in pos else next(k for k in pos if k.startswith(p + "@"))
+    return pos[key]
+
+
+def _ref_vec(sol, ref, acc: bool):
+    p, lk = ref
+    table = sol.acceleration if acc else sol.velocity
+    if lk is None:
+        if p in table:
+            return table[p]
+        keys = [k for k in table if k.startswith(p + "@")]
+        if len(keys) == 1:
+            return table[keys[0]]
+        raise InputError(f"point {p!r} moves differently on links {', '.join(k.split('@')[1] for k in keys)}: "
+                         f"say which, e.g. {p}{keys[0].split('@')[1]}", where="reference.values",
+                         file=sol.mechanism.source)
+    w = _place(sol, p, lk)
+    return sol.body_acceleration(lk, w) if acc else sol.body_velocity(lk, w)
+
+
+def evaluate(sol, q: Quantity):
+    """The computed value of a parsed key: a vector (2,), a scalar, or None (a pole at infinity)."""
+    if q.kind in ("omega", "alpha"):
+        return (sol.omega if q.kind == "omega" else sol.alpha)[q.links[0]]
+    if q.kind == "theta":
+        return sol.angle[q.links[0]]
+    if q.kind in ("P", "VP", "AP"):
+        pos, _ = relative_pole(sol, *q.links)
+        if pos is None or q.kind == "P":
+            return pos
+        return (sol.body_velocity if q.kind == "VP" else sol.body_acceleration)(q.links[0], pos)
+    if q.kind == "R":
+        a = _place(sol, *q.refs[0])
+        return a - _place(sol, *q.refs[1]) if len(q.refs) == 2 else a
+    acc = q.kind == "A"
+    v = _ref_vec(sol, q.refs[0], acc)
+    if len(q.refs) == 2:
+        v = v - _ref_vec(sol, q.refs[1], acc)
+    return v
+
+
+@dataclass(frozen=True)
+class Row:
+    """One printed value beside the computed one.
+
+    ``printed`` and ``computed`` are (magnitude, direction) for vectors, a
+    number for scalars; ``deviation`` is relative (magnitudes) and
+    ``angle_error`` in degrees (directions, link angles).
+    """
+
+    key: str
+    printed: object
+    computed: object
+    deviation: float | None
+    angle_error: float | None
+    note: str = ""
+
+
+def _polar(v):
+    return float(np.hypot(*v)), float(math.degrees(math.atan2(v[1], v[0])))
+
+
+def _angle_diff(a, b):
+    return abs((a - b + 180.0) % 360.0 - 180.0)
+
+
+def _rel(printed, computed):
+    if printed == 0:
+        return abs(computed)
+    return abs(computed - printed) / abs(printed)
+
+
+def _row(key, printed, value, note):
+    if value is None:
+        return Row(key, printed, None, None, None, note)
+    if isinstance(value, np.ndarray):
+        mag, ang = _polar(value)
+        if isinstance(printed, list):
+            pm, pa = float(printed[0]), float(printed[1])
+            if pm < 0:
+                pm, pa = -pm, pa + 180.0
+            return Row(key, (pm, pa % 360.0), (mag, ang % 360.0), _rel(pm, mag),
+                       _angle_diff(pa, ang) if mag > 0 else None, note)
+        return Row(key, float(printed), mag, _rel(float(printed), mag), None, note)
+    value = float(value)
+    if key.startswith("theta"):
+        return Row(key, float(printed), value, None, _angle_diff(float(printed), value), note)
+    return Row(key, float(printed), value, _rel(float(printed), value), None, note)
+
+
+def compare(sol) -> list[Row]:
+    """Every ``[reference]`` value beside the analytic one, in the file's order."""
+    m = sol.mechanism
+    ref = m.reference
+    notes = ref.note
+    rows = []
+    for lk, v in ref.omega.items():
+        rows.append(_row(f"omega_{lk}", v, sol.omega[lk], notes.get(f"omega_{lk}", notes.get(lk, ""))))
+    for lk, v in ref.alpha.items():
+        rows.append(_row(f"alpha_{lk}", v, sol.alpha[lk], notes.get(f"alpha_{lk}", notes.get(lk, ""))))
+    for p, v in ref.speed.items():
+        rows.append(_row(f"|V_{p}|", v, evaluate(sol, parse_key(m, f"V_{p}") or Quantity("V", ((p, None),))),
+                         notes.get(p, notes.get(f"V_{p}", ""))))
+    for p, v in ref.velocity.items():
+        rows.append(_row(f"V_{p}", list(v), evaluate(sol, parse_key(m, f"V_{p}") or Quantity("V", ((p, None),))),
+                         notes.get(p, notes.get(f"V_{p}", ""))))
+    for p, v in ref.acceleration.items():
+        rows.append(_row(f"A_{p}", list(v), evaluate(sol, parse_key(m, f"A_{p}") or Quantity("A", ((p, None),))),
+                         notes.get(p, notes.get(f"A_{p}", ""))))
+    for key, v in ref.values.items():
+        q = parse_key(m, key)
+        value = evaluate(sol, q)
+        if q.kind == "P" and isinstance(v, list) and value is not None:
+            # a pole's position is printed as [x, y]
+            d = float(np.hypot(value[0] - v[0], value[1] - v[1]))
+            rows.append(Row(key, (float(v[0]), float(v[1])), (float(value[0]), float(value[1])),
+                            d / max(float(np.hypot(*v)), 1e-300), None, notes.get(key, "")))
+            continue
+        rows.append(_row(key, list(v) if isinstance(v, list) else v, value, notes.get(key, "")))
+    return rows

@@ -1,0 +1,191 @@
+"""Readable tables of a solution: links, points, joints, reference values.
+
+Each table is a list of rows (:class:`Table`), rendered as aligned text,
+Markdown, LaTeX or CSV by :func:`render_table`. ``velpoly solve`` prints
+:func:`solution_report`; the figures' results tables use the same rows.
+"""
+from __future__ import annotations
+
+import csv
+import io
+import math
+from dataclasses import dataclass
+
+import numpy as np
+
+from .reference import compare
+
+__all__ = ["Table", "render_table", "solution_tables", "solution_report", "fmt", "polar", "SECTIONS"]
+
+
+@dataclass(frozen=True)
+class Table:
+    """A titled table: column headers and rows of strings."""
+
+    title: str
+    header: tuple[str, ...]
+    rows: tuple[tuple[str, ...], ...]
+
+
+def fmt(x, digits: int = 6) -> str:
+    """A number to ``digits`` significant digits; '-' for None or NaN."""
+    if x is None:
+        return "-"
+    x = float(x)
+    if not math.isfinite(x):
+        return "-"
+    if x == 0:
+        return "0"
+    if abs(x) < 1e-12 * 10 ** digits and abs(x) < 1e-9:
+        return "0"
+    return f"{x:.{digits}g}"
+
+
+def polar(v) -> str:
+    """A vector as ``magnitude ∠ direction°`` (direction in [0, 360))."""
+    if v is None:
+        return "-"
+    v = np.asarray(v, float)
+    if not np.all(np.isfinite(v)):
+        return "-"
+    mag = float(np.hypot(*v))
+    if mag == 0:
+        return "0"
+    ang = math.degrees(math.atan2(v[1], v[0])) % 360.0
+    return f"{fmt(mag)} ∠ {ang:.3f}°"
+
+
+def _links(sol) -> Table:
+    rows = []
+    for k in sol.mechanism.links:
+        rows.append((k.name + (" (frame)" if k.frame else ""), f"{sol.angle[k.name]:.4f}",
+                     fmt(sol.omega[k.name]), fmt(sol.alpha[k.name])))
+    return Table("Links", ("link", "angle (deg)", "omega (rad/s)", "alpha (rad/s^2)"), tuple(rows))
+
+
+def _points(sol) -> Table:
+    rows = []
+    for key, p in sol.position.items():
+        rows.append((key, f"({fmt(p[0])}, {fmt(p[1])})", polar(sol.velocity[key]), polar(sol.acceleration[key])))
+    u = sol.mechanism.units
+    return Table("Points", ("point", f"position ({u})", f"velocity ({u}/s)", f"acceleration ({u}/s^2)"),
+                 tuple(rows))
+
+
+def _joints(sol) -> list[Table]:
+    m = sol.mechanism
+    mo = sol.motion
+    out = []
+    if m.sliders:
+        out.append(Table("Sliders", ("block on guide", "point", "slip velocity", "slip acceleration", "Coriolis"),
+                         tuple((f"{s.block} on {s.guide}", s.point, fmt(r["slip_velocity"][0]),
+                                fmt(r["slip_acceleration"][0]), polar(r["coriolis"][0]))
+                               for s, r in zip(m.sliders, mo.sliders))))
+    if m.slots:
+        out.append(Table("Pins in slots", ("pin of link in slot", "point", "slip velocity", "slip acceleration",
+                                           "Coriolis"),
+                         tuple((f"{s.link} in {s.slot}", s.pin, fmt(r["slip_velocity"][0]),
+                                fmt(r["slip_acceleration"][0]), polar(r["coriolis"][0]))
+                               for s, r in zip(m.slots, mo.slots))))
+    if m.contacts:
+        out.append(Table("Contacts", ("links", "point", "kind", "slip velocity", "slip acceleration"),
+                         tuple((f"{c.links[0]}, {c.links[1]}", c.point, c.kind, fmt(r["slip_velocity"][0]),
+                                fmt(r["slip_acceleration"][0])) for c, r in zip(m.contacts, mo.contacts))))
+    return out
+
+
+def _show_value(v) -> str:
+    if v is None:
+        return "at infinity"
+    if isinstance(v, tuple):
+        if len(v) == 2:
+            return f"{fmt(v[0])} ∠ {v[1]:.3f}°"
+    return fmt(v)
+
+
+def _reference(sol) -> Table | None:
+    m = sol.mechanism
+    if not m.reference:
+        return None
+    rows = []
+    for r in compare(sol):
+        if r.key.startswith("P") and isinstance(r.printed, tuple) and r.key[1:2] in ("_", *"0123456789"):
+            printed = f"({fmt(r.printed[0])}, {fmt(r.printed[1])})"
+            computed = "at infinity" if r.computed is None else f"({fmt(r.computed[0])}, {fmt(r.computed[1])})"
+        else:
+            printed, computed = _show_value(r.printed), _show_value(r.computed)
+        dev = [] if r.deviation is None else [f"{100 * r.deviation:.3g}%"]
+        if r.angle_error is not None:
+            dev.append(f"{r.angle_error:.3g}°")
+        rows.append((r.key, printed, computed, " ".join(dev) or "-", r.note))
+    title = "Reference values" + (f" ({m.reference.source})" if m.reference.source else "")
+    return Table(title, ("quantity", "printed", "analytic", "deviation", "note"), tuple(rows))
+
+
+# Further sections (function(solution) -> Table | list[Table] | None), added by the poles and
+# polygons modules so that this module does not import them.
+SECTIONS: list = []
+
+
+def solution_tables(sol) -> list[Table]:
+    """Every table of the solution, in reading order."""
+    out = [_links(sol), _points(sol), *_joints(sol)]
+    for fn in SECTIONS:
+        t = fn(sol)
+        if t is None:
+            continue
+        out.extend(t if isinstance(t, list) else [t])
+    ref = _reference(sol)
+    if ref is not None:
+        out.append(ref)
+    return out
+
+
+def render_table(t: Table, style: str = "text") -> str:
+    """A table as ``text`` (aligned columns), ``markdown``, ``latex`` or ``csv``."""
+    if style == "csv":
+        buf = io.StringIO()
+        w = csv.writer(buf, lineterminator="\n")
+        w.writerow(t.header)
+        w.writerows(t.rows)
+        return buf.getvalue()
+    if style == "markdown":
+        def esc(s):
+            return str(s).replace("|", "\\|")
+        lines = [f"**{t.title}**", "", "| " + " | ".join(map(esc, t.header)) + " |",
+                 "|" + "|".join("---" for _ in t.header) + "|"]
+        lines += ["| " + " | ".join(map(esc, r)) + " |" for r in t.rows]
+        return "\n".join(lines) + "\n"
+    if style == "latex":
+        def tex(s):
+            s = str(s)
+            for a, b in (("\\", r"\textbackslash{}"), ("&", r"\&"), ("%", r"\%"), ("_", r"\_"), ("#", r"\#"),
+                         ("∠", r"$\angle$"), ("°", r"$^\circ$"), ("^", r"\^{}")):
+                s = s.replace(a, b)
+            return s
+        cols = "l" * len(t.header)
+        lines = [r"\begin{tabular}{" + cols + "}", r"\hline", " & ".join(map(tex, t.header)) + r" \\", r"\hline"]
+        lines += [" & ".join(map(tex, r)) + r" \\" for r in t.rows]
+        lines += [r"\hline", r"\end{tabular}"]
+        return "\n".join(lines) + "\n"
+    widths = [max(len(str(x)) for x in col) for col in zip(t.header, *t.rows)]
+    lines = [t.title, "  ".join(h.ljust(w) for h, w in zip(t.header, widths)).rstrip(),
+             "  ".join("-" * w for w in widths)]
+    lines += ["  ".join(str(c).ljust(w) for c, w in zip(r, widths)).rstrip() for r in t.rows]
+    return "\n".join(lines) + "\n"
+
+
+def solution_report(sol, style: str = "text") -> str:
+    """The whole readable report of ``velpoly solve``."""
+    m = sol.mechanism
+    head = [m.title]
+    if m.driver.is_slider:
+        head.append(f"driver: slider {m.driver.slider}, speed {fmt(m.driver.speed)} {m.units}/s, "
+                    f"accel {fmt(m.driver.accel)} {m.units}/s^2")
+    else:
+        head.append(f"driver: link {m.driver.link} at {sol.driver_angle:.4f} deg, omega {fmt(m.driver.omega)} rad/s, "
+                    f"alpha {fmt(m.driver.alpha)} rad/s^2")
+    out = "\n".join(head) + "\n\n" + "\n".join(render_table(t, style) for t in solution_tables(sol))
+    for w in sol.warnings:
+        out += f"\nwarning: {w}\n"
+    return out

@@ -1,0 +1,227 @@
+"""One instant solved: :func:`solve` and the :class:`Solution` it returns.
+
+``solve(m)`` analyses the mechanism at its reference pose (or with the
+driver at ``angle``): pose, velocities and accelerations from the analytic
+solve (:mod:`velpoly.kinematics`). The graphical constructions
+(:mod:`velpoly.polygons`) and the instant centres (:mod:`velpoly.poles`)
+are built from it on first use and checked against it.
+"""
+from __future__ import annotations
+
+import math
+from dataclasses import dataclass, field
+from functools import cached_property
+
+import numpy as np
+
+from .errors import AssemblyError, InputError
+from .kinematics import WARN, Kinematics, accelerations, prepare, velocities
+from .model import Mechanism
+from .motion import Motion, evaluate_motion, wrap_deg
+from .pose import reassemble
+
+__all__ = ["Solution", "solve", "driver_reference_angle", "reachable_range"]
+
+
+def driver_reference_angle(m: Mechanism) -> float | None:
+    """The driver link's angle in the reference pose (degrees), None for a slider driver."""
+    if m.driver.is_slider:
+        return None
+    lk = m.link(m.driver.link)
+    a, b = m.position(lk.points[0]), m.position(lk.points[1])
+    return float(wrap_deg(math.degrees(math.atan2(*(b - a)[::-1]))))
+
+
+def reachable_range(kin: Kinematics, limit: float = 360.0, step: float = 1.0) -> tuple[float, float]:
+    """Driver displacements (degrees) reachable from the reference pose on its branch."""
+    out = []
+    for sign in (1.0, -1.0):
+        d = np.radians(np.arange(step, limit + step / 2, step)) * sign
+        r = reassemble(kin.system, list(kin.rows), d)
+        out.append(float(np.degrees(r.deltas[-1])) if len(r.deltas) else 0.0)
+    return out[1], out[0]
+
+
+@dataclass(frozen=True)
+class Solution:
+    """The mechanism solved at one instant.
+
+    Attributes are dicts keyed by link or point key (see FORMAT.md section 2):
+    ``angle``, ``omega``, ``alpha`` (links), ``position``, ``velocity``,
+    ``acceleration`` (points, numpy arrays of shape (2,)); ``sliders``,
+    ``slots``, ``contacts`` (lists of dicts in file order); ``warnings``.
+    """
+
+    mechanism: Mechanism
+    kinematics: Kinematics
+    q: np.ndarray
+    qd: np.ndarray
+    qdd: np.ndarray
+    condition: float
+    motion: Motion
+    driver_angle: float | None
+    warnings: tuple[str, ...] = field(default=())
+
+    # -- convenient views ------------------------------------------------------------
+    @property
+    def angle(self) -> dict:
+        return {k: float(v[0]) for k, v in self.motion.angle.items()}
+
+    @property
+    def omega(self) -> dict:
+        return {k: float(v[0]) for k, v in self.motion.omega.items()}
+
+    @property
+    def alpha(self) -> dict:
+        return {k: _f(v[0]) for k, v in self.motion.alpha.items()}
+
+    @property
+    def position(self) -> dict:
+        return {k: v[0] for k, v in self.motion.position.items()}
+
+    @property
+    def velocity(self) -> dict:
+        return {k: v[0] for k, v in self.motion.velocity.items()}
+
+    @property
+    def acceleration(self) -> dict:
+        return {k: v[0] for k, v in self.motion.acceleration.items()}
+
+    @property
+    def has_accelerations(self) -> bool:
+        return bool(np.all(np.isfinite(self.qdd)))
+
+    def body_velocity(self, link: str, w) -> np.ndarray:
+        """Velocity of the point of ``link`` now at world position w: V_O + omega x R."""
+        k = self.kinematics.system.index.get(link)
+        if k is None:
+            return np.zeros(2)
+        o = self.q[3 * k:3 * k + 2]
+        r = np.asarray(w, float) - o
+        return self.qd[3 * k:3 * k + 2] + self.qd[3 * k + 2] * np.array([-r[1], r[0]])
+
+    def body_acceleration(self, link: str, w) -> np.ndarray:
+        """Acceleration of the point of ``link`` now at w: A_O + alpha x R - omega^2 R."""
+        k = self.kinematics.system.index.get(link)
+        if k is None:
+            return np.zeros(2)
+        o = self.q[3 * k:3 * k + 2]
+        r = np.asarray(w, float) - o
+        om, al = self.qd[3 * k + 2], self.qdd[3 * k + 2]
+        return self.qdd[3 * k:3 * k + 2] + al * np.array([-r[1], r[0]]) - om ** 2 * r
+
+    def place(self, link: str, point: str) -> np.ndarray:
+        """Where the point of ``link`` that was at ``point`` in the reference pose is now."""
+        s = self.mechanism.position(point)
+        k = self.kinematics.system.index.get(link)
+        if k is None:
+            return s
+        th = self.q[3 * k + 2]
+        c, sn = math.cos(th), math.sin(th)
+        return self.q[3 * k:3 * k + 2] + np.array([c * s[0] - sn * s[1], sn * s[0] + c * s[1]])
+
+    # -- JSON -------------------------------------------------------------------------------
+    def to_dict(self) -> dict:
+        """The JSON object of FORMAT.md section 2."""
+        m = self.mechanism
+        drv = m.driver
+        if drv.is_slider:
+            driver = {"slider": drv.slider, "speed": drv.speed, "accel": drv.accel}
+        else:
+            driver = {"link": drv.link, "angle": self.driver_angle, "omega": drv.omega, "alpha": drv.alpha}
+        mo = self.motion
+        out = {
+            "format": 1,
+            "title": m.title,
+            "units": {"length": m.units},
+            "driver": driver,
+            "links": {k.name: {"angle": float(mo.angle[k.name][0]), "omega": float(mo.omega[k.name][0]),
+                               "alpha": _f(mo.alpha[k.name][0])} for k in m.links},
+            "points": {key: {"position": _v(mo.position[key][0]), "velocity": _v(mo.velocity[key][0]),
+                             "acceleration": _v(mo.acceleration[key][0])} for key in mo.position},
+            "sliders": [{"block": s.block, "guide": s.guide, "point": s.point,
+                         "slip_velocity": float(r["slip_velocity"][0]),
+                         "slip_acceleration": _f(r["slip_acceleration"][0]),
+                         "coriolis": _v(r["coriolis"][0])} for s, r in zip(m.sliders, mo.sliders)],
+            "contacts": [{"links": list(c.links), "point": c.point, "kind": c.kind,
+                          "slip_velocity": float(r["slip_velocity"][0]),
+                          "slip_acceleration": _f(r["slip_acceleration"][0]),
+                          "normal": float(r["normal"][0])} for c, r in zip(m.contacts, mo.contacts)],
+        }
+        if m.slots:
+            out["slots"] = [{"pin": s.pin, "link": s.link, "slot": s.slot,
+                             "slip_velocity": float(r["slip_velocity"][0]),
+                             "slip_acceleration": _f(r["slip_acceleration"][0]),
+                             "coriolis": _v(r["coriolis"][0])} for s, r in zip(m.slots, mo.slots)]
+        for name, fn in _EXTRA_SECTIONS:
+            section = fn(self)
+            if section is not None:
+                out[name] = section
+        if self.warnings:
+            out["warnings"] = list(self.warnings)
+        return out
+
+
+# Sections the pole and polygon modules add to the JSON: (key, function(solution) -> dict | None)
+_EXTRA_SECTIONS: list = []
+
+
+def register_section(name: str, fn) -> None:
+    """Add a section to :meth:`Solution.to_dict` (used by the poles and polygons modules)."""
+    if all(n != name for n, _ in _EXTRA_SECTIONS):
+        _EXTRA_SECTIONS.append((name, fn))
+
+
+def _f(x) -> float | None:
+    x = float(x)
+    return x if math.isfinite(x) else None
+
+
+def _v(v) -> list | None:
+    v = np.asarray(v, float)
+    return [float(v[0]), float(v[1])] if np.all(np.isfinite(v)) else None
+
+
+def solve(m: Mechanism, angle: float | None = None) -> Solution:
+    """Solve the mechanism at its reference pose, or with the driver at ``angle`` (degrees).
+
+    ``angle`` is absolute (the driver link's angle, counter-clockwise from +x);
+    the mechanism is carried there the shorter way round from the reference
+    pose, on the drawn branch. Without ``angle``, the file's ``driver.angle``
+    applies if given.
+    """
+    kin = prepare(m)
+    nq = kin.system.nq
+    q = np.zeros((1, nq))
+    drv = m.driver
+    ref = driver_reference_angle(m)
+    target = angle if angle is not None else drv.angle
+    if target is not None:
+        if drv.is_slider:
+            raise InputError("a slider driver has no angle", where="--angle", file=m.source)
+        if not math.isfinite(target):
+            raise InputError(f"the driver angle must be finite, got {target}", where="driver.angle", file=m.source)
+        delta = float(wrap_deg(target - ref))
+        if abs(delta) > 1e-12:
+            r = reassemble(kin.system, list(kin.rows), [math.radians(delta)])
+            if len(r.deltas) == 0:
+                lo, hi = reachable_range(kin)
+                raise AssemblyError(
+                    f"cannot assemble at driver angle {target:g} deg: a toggle lies on the way from the "
+                    f"reference pose ({ref:g} deg); reachable: {ref + lo:g} to {ref + hi:g} deg",
+                    where="driver.angle", file=m.source, links=tuple(kin.system.index),
+                    hint="choose an angle in the reachable range")
+            q = r.q
+        angle_now = float(wrap_deg(ref + delta))
+    else:
+        angle_now = ref
+    qd, cond = velocities(kin, q)
+    if all(c.centres is not None for c in m.contacts):
+        qdd = accelerations(kin, q, qd)
+    else:  # a contact given by its normal alone: velocities only (FORMAT.md section 5)
+        qdd = np.full_like(qd, np.nan)
+    warnings = []
+    if cond[0] > WARN:
+        warnings.append(f"near-singular pose: condition number {cond[0]:.3g} (results lose accuracy)")
+    motion = evaluate_motion(m, kin.system.index, q, qd, qdd)
+    return Solution(m, kin, q[0], qd[0], qdd[0], float(cond[0]), motion, angle_now, tuple(warnings))

@@ -1,0 +1,99 @@
+"""A whole driver cycle: :func:`sweep` and the :class:`Sweep` it returns.
+
+Every pose is continued from the previous one on the drawn branch
+(:func:`velpoly.pose.reassemble`); velocities and accelerations are then
+solved for all poses at once (batched linear solves), so a crank cycle is a
+handful of numpy passes, not a Python loop per pose.
+"""
+from __future__ import annotations
+
+import math
+from dataclasses import dataclass
+
+import numpy as np
+
+from .errors import InputError
+from .kinematics import Kinematics, accelerations, prepare, velocities
+from .model import Mechanism
+from .motion import evaluate_motion, wrap_deg
+from .pose import reassemble
+from .solution import driver_reference_angle
+
+__all__ = ["Sweep", "sweep"]
+
+
+@dataclass(frozen=True)
+class Sweep:
+    """Results over many driver positions, one row per solved angle.
+
+    ``angles`` (degrees; for a slider driver, displacements along its path
+    from the reference position), ``omega[link]``, ``alpha[link]`` and
+    ``angle[link]`` of shape (N,), ``position[key]``, ``velocity[key]``,
+    ``acceleration[key]`` of shape (N, 2); ``stopped`` tells why the sweep
+    ended before the last requested angle (empty if it did not);
+    ``condition`` is each pose's condition number.
+    """
+
+    mechanism: Mechanism
+    angles: np.ndarray
+    angle: dict
+    omega: dict
+    alpha: dict
+    position: dict
+    velocity: dict
+    acceleration: dict
+    sliders: list
+    contacts: list
+    slots: list
+    condition: np.ndarray
+    q: np.ndarray
+    qd: np.ndarray
+    qdd: np.ndarray
+    stopped: str = ""
+
+
+def sweep(m: Mechanism, angles, kin: Kinematics | None = None) -> Sweep:
+    """Solve the mechanism at each driver angle (degrees, absolute), in the order given.
+
+    Each pose is continued from the previous one, so ``ref .. ref + 360`` is
+    one turn. The sweep stops before the first angle it cannot reach without
+    crossing a toggle (``Sweep.stopped`` says so). For a slider driver the
+    values are displacements along its path from the reference position.
+    """
+    kin = kin or prepare(m)
+    angles = np.asarray(angles, float).ravel()
+    if not np.all(np.isfinite(angles)):
+        raise InputError("the angles must be finite numbers", where="angles", file=m.source)
+    ref = driver_reference_angle(m)
+    if m.driver.is_slider:
+        deltas = angles.copy()
+    else:
+        # the first angle is reached the shorter way round; later ones continue from it
+        first = float(wrap_deg(angles[0] - ref)) if len(angles) else 0.0
+        deltas = np.radians(first + np.concatenate([[0.0], np.cumsum(np.diff(angles))])) \
+            if len(angles) else angles
+    r = reassemble(kin.system, list(kin.rows), deltas)
+    n = len(r.deltas)
+    q = r.q
+    qd, cond = velocities(kin, q, check=False) if n else (np.zeros((0, kin.system.nq)), np.zeros(0))
+    if n and not np.all(cond <= 1e10):
+        k = int(np.argmin(cond <= 1e10))
+        n, q, qd, cond = k, q[:k], qd[:k], cond[:k]
+        stopped = "toggle"
+    else:
+        stopped = r.stopped
+    if n and all(c.centres is not None for c in m.contacts):
+        qdd = accelerations(kin, q, qd)
+    else:
+        qdd = np.full_like(qd, np.nan)
+    mo = evaluate_motion(m, kin.system.index, q, qd, qdd) if n else None
+    if stopped:
+        last = angles[n - 1] if n else (ref if ref is not None else 0.0)
+        stopped = (f"stopped at a toggle after {last:g}" + ("" if m.driver.is_slider else " deg") +
+                   f": {len(angles) - n} of {len(angles)} positions not reached on this branch")
+
+    def get(attr):
+        return getattr(mo, attr) if mo is not None else {}
+    return Sweep(m, angles[:n], get("angle"), get("omega"), get("alpha"), get("position"),
+                 get("velocity"), get("acceleration"), get("sliders") or [], get("contacts") or [],
+                 get("slots") or [], cond, q, qd, qdd, stopped)
