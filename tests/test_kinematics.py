@@ -1,0 +1,238 @@
+"""The analytic kernel against printed textbook answers and finite differences.
+
+Tolerances: printed answers to the book's own precision (5 significant digits for
+Problem 1.4.4; 4 for Example 3.6); velocities against a central difference of
+poses to 1e-6 relative; accelerations against a central difference of
+velocities to 1e-6 relative.
+"""
+import math
+
+import numpy as np
+import pytest
+from hypothesis import assume, given, settings, strategies as st
+
+import velpoly
+from velpoly.loader import parse_alpha, parse_omega
+from mechanisms import (EXAMPLE_3_6, SIXBAR_1_4_4, fourbar, inverted_slider_crank, set_path_angle,
+                        slider_crank)
+
+
+def polar(v):
+    return math.hypot(*v), math.degrees(math.atan2(v[1], v[0])) % 360
+
+
+def sig(x, digits):
+    """x rounded to ``digits`` significant digits."""
+    return float(f"{x:.{digits - 1}e}")
+
+
+# -- Problem 1.4.4 of seeds/003 -----------------------------------------------------------
+def test_problem_1_4_4_positions_velocities_accelerations():
+    s = velpoly.solve(velpoly.load(SIXBAR_1_4_4))
+    printed_positions = {"B": (0.129904, 0.075), "C": (-0.0689445, 0.422073), "E": (-0.298288, 0.404712),
+                         "F": (-0.37, 0.186177)}
+    for p, xy in printed_positions.items():
+        assert s.position[p] == pytest.approx(xy, abs=1e-6)
+    printed = {
+        "omega": {"1": 6.28319, "2": -1.1307, "3": -2.82169, "4": 0.58475},
+        "alpha": {"2": -22.33, "3": -2.20443, "4": -21.453},
+        "V": {"B": (-0.471239, 0.81621), "C": (-0.0788027, 1.04105), "E": (-0.127788, 1.68819),
+              "F": (0.0, 1.64625)},
+        "A": {"B": (-5.1284, -2.96088), "C": (2.87595, 1.03567), "E": (4.66371, 1.67947), "F": (0.0, 3.29262)},
+    }
+    for k, v in printed["omega"].items():
+        assert sig(s.omega[k], 5) == pytest.approx(v, rel=1e-4)
+    for k, v in printed["alpha"].items():
+        assert sig(s.alpha[k], 5) == pytest.approx(v, rel=1e-4)
+    for p, v in printed["V"].items():
+        assert s.velocity[p] == pytest.approx(v, abs=2e-5)
+    for p, v in printed["A"].items():
+        assert s.acceleration[p] == pytest.approx(v, abs=2e-4)
+    assert s.to_dict()["sliders"][0]["slip_velocity"] == pytest.approx(1.64625, rel=1e-5)
+    assert s.to_dict()["sliders"][0]["slip_acceleration"] == pytest.approx(3.29262, rel=1e-5)
+
+
+def test_problem_1_4_4_link_angles_match_the_printout():
+    # the book prints phi2 = -60.1903, phi3 = 4.32878, phi4 = 71.8329 (arctan of the slopes: mod 180)
+    s = velpoly.solve(velpoly.load(SIXBAR_1_4_4))
+    for link, printed in (("2", -60.1903), ("3", 4.32878), ("4", 71.8329)):
+        assert (s.angle[link] - printed) % 180 == pytest.approx(0, abs=1e-3) or \
+            (s.angle[link] - printed) % 180 == pytest.approx(180, abs=1e-3)
+
+
+# -- Example 3.6 of seeds/000 ---------------------------------------------------------------
+def test_example_3_6_link_by_link():
+    s = velpoly.solve(velpoly.load(EXAMPLE_3_6))
+    assert s.omega["3"] == pytest.approx(6.702, abs=6e-4)
+    assert s.omega["4"] == pytest.approx(8.602, abs=6e-4)
+    for p, (mag, ang) in {"B": (602.137, 149.213), "E": (435.222, 172.859), "F": (347.406, 165.644)}.items():
+        m, a = polar(s.velocity[p])
+        assert m == pytest.approx(mag, rel=2e-4), p
+        assert a == pytest.approx(ang, abs=0.01), p
+    assert polar(s.velocity["A"]) == pytest.approx((400, 210))
+
+
+# -- units and senses ----------------------------------------------------------------------
+@pytest.mark.parametrize("text, value", [
+    ("60 rpm", 2 * math.pi), ("60 RPM ccw", 2 * math.pi), ("10 rad/s cw", -10.0), ("-10 rad/s cw", 10.0),
+    ("90 deg/s", math.pi / 2), ("2 Hz", 4 * math.pi), ("1 rev/s cw", -2 * math.pi), ("30 r/min", math.pi),
+    (3.5, 3.5), (-2, -2.0)])
+def test_omega_strings(text, value):
+    assert parse_omega(text) == pytest.approx(value)
+
+
+@pytest.mark.parametrize("text, value", [("7 rad/s^2 cw", -7.0), ("7 rad/s^2", 7.0), (0, 0.0)])
+def test_alpha_strings(text, value):
+    assert parse_alpha(text) == pytest.approx(value)
+
+
+def test_cw_driver_reverses_every_velocity():
+    a = velpoly.solve(velpoly.load(fourbar(omega=10)))
+    b = velpoly.solve(velpoly.load(fourbar(omega="10 rad/s cw")))
+    for k in a.velocity:
+        assert b.velocity[k] == pytest.approx(-a.velocity[k], abs=1e-12)
+        # centripetal terms do not change sign with omega (alpha = 0)
+        assert b.acceleration[k] == pytest.approx(a.acceleration[k], abs=1e-9)
+
+
+# -- finite differences ---------------------------------------------------------------------
+def fd_check(m, angle, h=1e-3):
+    """Velocities vs central differences of positions; accelerations vs of velocities."""
+    w = velpoly.sweep(m, [angle - h, angle, angle + h])
+    assert len(w.angles) == 3
+    omega = m.driver.omega
+    alpha = m.driver.alpha
+    hr = math.radians(h)
+    scale_v = max(np.abs(v[1]).max() for v in w.velocity.values()) + 1e-300
+    for key in w.position:
+        if "@" in key:
+            continue  # coincident points are re-evaluated at a moving place
+        dpdth = (w.position[key][2] - w.position[key][0]) / (2 * hr)
+        d2p = (w.position[key][2] - 2 * w.position[key][1] + w.position[key][0]) / hr ** 2
+        v = dpdth * omega
+        assert np.abs(v - w.velocity[key][1]).max() <= 1e-6 * scale_v, key
+        # A = d2P/dth2 omega^2 + dP/dth alpha
+        a = d2p * omega ** 2 + dpdth * alpha
+        scale_a = max(np.abs(x[1]).max() for x in w.acceleration.values()) + 1e-300
+        assert np.abs(a - w.acceleration[key][1]).max() <= 2e-5 * scale_a, key
+    scale_w = max(abs(x[1]) for x in w.omega.values())
+    for link in w.omega:
+        dth = (w.angle[link][2] - w.angle[link][0] + 180) % 360 - 180
+        assert math.radians(dth) / (2 * hr) * omega == pytest.approx(w.omega[link][1], abs=1e-6 * scale_w)
+
+
+def test_fd_problem_1_4_4():
+    fd_check(velpoly.load(SIXBAR_1_4_4), 30.0)
+
+
+def test_fd_example_3_6():
+    fd_check(velpoly.load(EXAMPLE_3_6), 120.0)
+
+
+def assemblable(d):
+    try:
+        return velpoly.load(d)
+    except velpoly.VelpolyError:
+        return None
+
+
+@settings(max_examples=25, deadline=None)
+@given(a=st.floats(1, 5), b=st.floats(4, 12), c=st.floats(3, 12), d=st.floats(4, 12),
+       theta=st.floats(-180, 180), omega=st.floats(-20, 20).filter(lambda x: abs(x) > 0.1),
+       alpha=st.floats(-50, 50), branch=st.sampled_from(["left", "right"]))
+def test_fd_random_fourbars(a, b, c, d, theta, omega, alpha, branch):
+    m = assemblable(fourbar(a, b, c, d, theta, omega, alpha, branch, coupler=(3.0, 30.0)))
+    assume(m is not None)
+    try:
+        s = velpoly.solve(m)
+    except velpoly.PoseError:
+        assume(False)
+    assume(s.condition < 1e5)
+    fd_check(m, s.driver_angle)
+
+
+@settings(max_examples=20, deadline=None)
+@given(r=st.floats(1, 4), l=st.floats(6, 15), e=st.floats(-2, 2), theta=st.floats(-180, 180),
+       omega=st.floats(-20, 20).filter(lambda x: abs(x) > 0.1), alpha=st.floats(-30, 30),
+       path=st.floats(-60, 60))
+def test_fd_random_slider_cranks(r, l, e, theta, omega, alpha, path):
+    m = assemblable(slider_crank(r, l, e, theta, omega, alpha, path))
+    assume(m is not None)
+    s = velpoly.solve(m)
+    assume(s.condition < 1e5)
+    fd_check(m, s.driver_angle)
+    # the block moves along its path: V_B parallel to the path direction
+    t = math.radians(path)
+    vb = s.velocity["B"]
+    assert abs(vb[0] * math.sin(t) - vb[1] * math.cos(t)) <= 1e-9 * (1 + np.hypot(*vb))
+
+
+@settings(max_examples=20, deadline=None)
+@given(r=st.floats(1, 4), d=st.floats(5, 10), theta=st.floats(-180, 180),
+       omega=st.floats(-20, 20).filter(lambda x: abs(x) > 0.1), alpha=st.floats(-30, 30))
+def test_fd_random_inverted_slider_cranks(r, d, theta, omega, alpha):
+    m = velpoly.load(set_path_angle(inverted_slider_crank(r, d, theta, omega, alpha)))
+    s = velpoly.solve(m)
+    fd_check(m, s.driver_angle)
+    # block and guide turn together; the Coriolis term is 2 omega_4 x V_rel
+    assert s.omega["3"] == pytest.approx(s.omega["4"], abs=1e-9 * abs(omega))
+    sl = s.to_dict()["sliders"][0]
+    d_ = s.motion.sliders[0]["direction"][0]
+    vrel = sl["slip_velocity"] * np.array([math.cos(math.radians(d_)), math.sin(math.radians(d_))])
+    cor = 2 * s.omega["4"] * np.array([-vrel[1], vrel[0]])
+    assert sl["coriolis"] == pytest.approx(cor, abs=1e-9 * (1 + np.hypot(*cor)))
+    # A_A(3) = A_A(4) + A_rel + Coriolis, with A_rel along the path
+    a3, a4 = s.acceleration["A@3"], s.acceleration["A@4"]
+    arel = a3 - a4 - cor
+    e = np.array([math.cos(math.radians(d_)), math.sin(math.radians(d_))])
+    assert abs(arel[0] * e[1] - arel[1] * e[0]) <= 1e-9 * (1 + np.hypot(*a3))
+    assert np.dot(arel, e) == pytest.approx(sl["slip_acceleration"], abs=1e-9 * (1 + np.hypot(*a3)))
+
+
+def test_sweep_one_turn_is_continuous_and_closes():
+    m = velpoly.load(fourbar(2, 8, 7, 9))   # Grashof crank-rocker
+    ref = velpoly.solve(m).driver_angle
+    w = velpoly.sweep(m, ref + np.arange(0, 360.01, 0.5))
+    assert len(w.angles) == 721 and not w.stopped
+    for key, p in w.position.items():
+        assert np.abs(np.diff(p, axis=0)).max() < 0.2
+        assert p[-1] == pytest.approx(p[0], abs=1e-9)
+
+
+def test_solve_at_angle_equals_sweep():
+    m = velpoly.load(SIXBAR_1_4_4)
+    s = velpoly.solve(m, angle=100.0)
+    w = velpoly.sweep(m, [100.0])
+    assert s.driver_angle == pytest.approx(100.0)
+    for k in s.velocity:
+        assert s.velocity[k] == pytest.approx(w.velocity[k][0], abs=1e-12)
+
+
+def test_mobility_is_counted_by_rank():
+    # a four-bar with its coupler doubled by a second, parallel-free bar is locked (mobility 0)
+    d = fourbar()
+    d["points"]["G"] = [4.0, -3.0]
+    d["links"]["1"]["points"].append("G")
+    d["links"]["5"] = {"points": ["G", "B"]}
+    with pytest.raises(velpoly.InputError, match="mobility is 0"):
+        velpoly.solve(velpoly.load(d))
+    # without the rocker it has two degrees of freedom
+    d = fourbar()
+    del d["links"]["4"]
+    d["links"]["1"]["points"].remove("O4")
+    d["points"].pop("O4")
+    d["points"]["B"] = [9.0, 4.0]
+    with pytest.raises(velpoly.InputError, match="mobility is 2"):
+        velpoly.solve(velpoly.load(d))
+
+
+def test_json_matches_contract():
+    s = velpoly.solve(velpoly.load(SIXBAR_1_4_4)).to_dict()
+    assert s["format"] == 1 and s["units"] == {"length": "m"}
+    assert s["driver"] == {"link": "1", "angle": pytest.approx(30.0), "omega": pytest.approx(2 * math.pi),
+                           "alpha": 0.0}
+    assert set(s["links"]) == {"0", "1", "2", "3", "4", "5"}
+    assert s["links"]["0"]["omega"] == 0.0
+    assert set(s["points"]) == {"A", "B", "C", "D", "E", "F"}
+    for v in s["links"].values():
+        assert -180 < v["angle"] <= 180
