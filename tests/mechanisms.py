@@ -128,3 +128,107 @@ F = { from = "E", length = 15, along = ["A", "B"], turn = -90 }
 link = 2
 omega = "10 rad/s ccw"
 """
+
+
+WHEEL_ROLLING = """
+title = "wheel rolling on the ground, driven by a crank and rod"
+units = "mm"
+[points]
+O2 = [0, 40]
+A = { from = "O2", length = 15, angle = 60 }
+C = { circle = ["A", 60], line = { through = [0, 20], angle = 0 }, near = [60, 20] }
+P = { from = "C", length = 20, angle = -90 }
+[links]
+1 = { points = ["O2"], frame = true }
+2 = { points = ["O2", "A"] }
+3 = { points = ["A", "C"] }
+4 = { points = ["C"] }
+[[contacts]]
+links = ["4", "1"]
+point = "P"
+kind = "rolling"
+centres = ["C", "flat"]
+[driver]
+link = 2
+omega = 10
+alpha = 3
+"""
+
+CAM_FLAT = """
+title = "eccentric cam with a flat-faced translating follower"
+units = "mm"
+[points]
+O = [0, 0]
+K = { from = "O", length = 10, angle = 30 }
+P = { from = "K", length = 25, angle = 90 }
+F = { from = "P", length = 20, angle = 0 }
+[links]
+1 = { points = ["O"], frame = true }
+2 = { points = ["O", "K"] }
+3 = { points = ["F"] }
+[[sliders]]
+block = "3"
+guide = "1"
+point = "F"
+angle = 90
+[[contacts]]
+links = ["2", "3"]
+point = "P"
+kind = "sliding"
+centres = ["K", "flat"]
+[driver]
+link = 2
+omega = 10
+alpha = 4
+"""
+
+CAM_ROLLER = """
+title = "circular cam with a roller follower"
+units = "mm"
+[points]
+O = [0, 0]
+K = { from = "O", length = 10, angle = 30 }
+R = { from = "K", length = 30, angle = 80 }
+P = { from = "K", length = 25, along = ["K", "R"] }
+[links]
+1 = { points = ["O"], frame = true }
+2 = { points = ["O", "K"] }
+3 = { points = ["R"] }
+4 = { points = ["R"] }
+[[sliders]]
+block = "3"
+guide = "1"
+point = "R"
+angle = 90
+[[contacts]]
+links = ["2", "4"]
+point = "P"
+kind = "rolling"
+centres = ["K", "R"]
+[driver]
+link = 2
+omega = 10
+alpha = -2
+"""
+
+SLOTTED_LEVER = """
+title = "pin of a crank in the slot of a lever (Example 3.4's first loop)"
+units = "mm"
+[points]
+O1 = [0, 0]
+C = [0, -20]
+A = { from = "O1", length = 2, angle = 100 }
+D = { from = "C", length = 41.284, along = ["C", "A"] }
+[links]
+1 = { points = ["O1", "C"], frame = true }
+2 = { points = ["O1", "A"] }
+3 = { points = ["C", "D", "A"] }
+[[slots]]
+pin = "A"
+link = "2"
+slot = "3"
+angle = 95.7
+[driver]
+link = 2
+omega = "30 rad/s"
+"""

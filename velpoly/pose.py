@@ -93,32 +93,34 @@ class Reassembly:
 def _newton(system: System, rows, q, targets, iters=30, tol=1e-12):
     """Batched Newton on the selected rows plus the driver row.
 
-    Returns (q, converged mask).
+    Iterates until the correction is at rounding level (at least once, so a
+    good prediction is still corrected to full precision). Steps are limited
+    so that Newton cannot jump to another branch. Returns (q, converged mask).
     """
     q = q.copy()
-    L = system.size
-    ok = np.zeros(len(q), bool)
+    L = max(system.size, 1e-300)
+    active = np.ones(len(q), bool)
     for _ in range(iters):
-        phi, jac, _ = system.evaluate(q)
+        if not active.any():
+            break
+        phi, jac, _ = system.evaluate(q[active])
         phi = phi[:, rows]
         jac = jac[:, rows]
-        phi[:, -1] -= targets
-        res = np.abs(phi).max(axis=1)
-        ok = res <= tol * max(L, 1.0)
-        if ok.all():
-            break
+        phi[:, -1] -= targets[active]
         try:
             dq = np.linalg.solve(jac, -phi[..., None])[..., 0]
         except np.linalg.LinAlgError:
             dq = np.stack([np.linalg.lstsq(j, -p, rcond=None)[0] for j, p in zip(jac, phi)])
-        # limit the step so Newton cannot jump to another branch
-        step = np.abs(dq[:, 0::3]).max(axis=1, initial=0) / L + np.abs(dq[:, 2::3]).max(axis=1, initial=0)
-        scale = np.where(step > 0.5, 0.5 / np.maximum(step, 1e-300), 1.0)
-        q = q + dq * scale[:, None] * (~ok)[:, None]
+        size = np.abs(_scaled(system, dq)).max(axis=1, initial=0.0)
+        scale = np.where(size > 0.5, 0.5 / np.maximum(size, 1e-300), 1.0)
+        idx = np.flatnonzero(active)
+        q[idx] += dq * scale[:, None]
+        done = size <= 1e-14
+        active[idx[done]] = False
     phi, _, _ = system.evaluate(q)
     phi = phi[:, rows]
     phi[:, -1] -= targets
-    ok = np.abs(phi).max(axis=1) <= 1e-9 * max(L, 1.0)
+    ok = np.all(np.isfinite(phi), axis=1) & (np.abs(phi).max(axis=1) <= 1e-9 * L)
     return q, ok
 
 
@@ -187,12 +189,36 @@ def reassemble(system: System, rows: list[int], deltas, coarse: float | None = N
     h = deltas - kd[attach]
     guess = kq[attach] + h[:, None] * qd[attach]
     out, ok = _newton(system, rows, guess, deltas)
-    drift = np.abs(out - guess).max(axis=1)
-    ok &= drift <= 0.25 * (np.abs(h) * np.abs(qd[attach]).max(axis=1)) + 1e-7 * system.size
+    ok &= _drift(system, out - guess) <= _drift_bound(system, h, qd[attach])
     if not ok.all():
         first = int(np.argmin(ok))
         return Reassembly(deltas[:first], out[:first], "toggle")
     return Reassembly(deltas, out, stopped)
+
+
+def _scaled(system, dq):
+    """Coordinates in unit lengths (lengths divided by the mechanism's size)."""
+    dq = np.array(dq, float, copy=True)
+    dq[:, 0::3] /= system.size
+    dq[:, 1::3] /= system.size
+    return dq
+
+
+def _drift(system, dq):
+    """How far Newton moved from the predicted pose (unit lengths and radians)."""
+    return np.abs(_scaled(system, dq)).max(axis=1)
+
+
+def _drift_bound(system, h, qd):
+    """The largest correction that is still on the predicted branch: a fraction of the step.
+
+    A jump to the other assembly moves links by a good part of their length;
+    the predictor's own error is second order in the step ``h``.
+    """
+    rate = np.maximum(1.0, np.abs(_scaled(system, qd)).max(axis=1))
+    if system.mechanism.driver.is_slider:
+        h = h / system.size
+    return 0.5 * np.abs(h) * rate + 1e-9
 
 
 def _step(system, rows, q, d0, d1):
@@ -201,8 +227,8 @@ def _step(system, rows, q, d0, d1):
     qd = _velocity(system, rows, q)
     guess = q + h * qd
     qn, ok = _newton(system, rows, guess, np.array([d1]))
-    bound = 0.25 * abs(h) * np.abs(qd).max() + 1e-9 * system.size
-    if ok[0] and np.abs(qn - guess).max() <= bound and _cond(system, rows, qn)[0] <= 1e10:
+    if ok[0] and _drift(system, qn - guess)[0] <= _drift_bound(system, np.array([h]), qd)[0] \
+            and _cond(system, rows, qn)[0] <= 1e10:
         return qn
     if abs(h) < 1e-6:
         return None

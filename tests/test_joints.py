@@ -1,0 +1,115 @@
+"""Contacts, slots and curved paths: velocities and accelerations against finite differences,
+and against the closed forms of simple cases (tolerances 1e-9 relative for closed forms)."""
+import math
+
+import numpy as np
+import pytest
+
+import velpoly
+from mechanisms import CAM_FLAT, CAM_ROLLER, SLOTTED_LEVER, WHEEL_ROLLING
+from test_kinematics import fd_check
+
+
+def test_wheel_rolls_without_slip():
+    m = velpoly.load(WHEEL_ROLLING)
+    s = velpoly.solve(m)
+    c = s.to_dict()["contacts"][0]
+    assert c["slip_velocity"] == pytest.approx(0, abs=1e-12)
+    # the contact point of the wheel is at rest; the centre moves at -omega r along the ground
+    assert s.velocity["P@4"] == pytest.approx([0, 0], abs=1e-9)
+    assert s.velocity["C"] == pytest.approx([-20 * s.omega["4"], 0], rel=1e-12, abs=1e-9)
+    # the contact point of the wheel accelerates towards the centre: omega^2 r
+    assert s.acceleration["P@4"] == pytest.approx([0, 20 * s.omega["4"] ** 2], rel=1e-9, abs=1e-9)
+    fd_check(m, s.driver_angle)
+    w = velpoly.sweep(m, s.driver_angle + np.arange(0, 361, 2.0))
+    assert len(w.angles) == 181 and not w.stopped
+    assert np.abs(w.contacts[0]["slip_velocity"]).max() < 1e-9
+
+
+def test_eccentric_cam_flat_follower_closed_form():
+    m = velpoly.load(CAM_FLAT)
+    s = velpoly.solve(m)
+    e, w, al, th = 10, 10, 4, math.radians(30)
+    # follower height y = e sin(theta) + const: v = e w cos, a = -e w^2 sin + e alpha cos
+    assert s.velocity["F"] == pytest.approx([0, e * w * math.cos(th)], abs=1e-9)
+    assert s.acceleration["F"] == pytest.approx([0, -e * w * w * math.sin(th) + e * al * math.cos(th)], abs=1e-9)
+    fd_check(m, 30)
+    w_ = velpoly.sweep(m, 30 + np.arange(0, 361, 1.0))
+    assert len(w_.angles) == 361
+
+
+def test_roller_follower_rolls_and_sweeps():
+    m = velpoly.load(CAM_ROLLER)
+    s = velpoly.solve(m)
+    assert s.to_dict()["contacts"][0]["slip_velocity"] == pytest.approx(0, abs=1e-9)
+    assert s.velocity["P@2"] == pytest.approx(s.velocity["P@4"], abs=1e-9)
+    fd_check(m, 30)
+    assert len(velpoly.sweep(m, 30 + np.arange(0, 361, 3.0)).angles) == 121
+
+
+def test_sliding_contact_with_prescribed_slip_has_that_slip():
+    t = CAM_ROLLER.replace('kind = "rolling"', 'kind = "sliding"\nslip = 6.0')
+    s = velpoly.solve(velpoly.load(t))
+    assert s.to_dict()["contacts"][0]["slip_velocity"] == pytest.approx(6.0, abs=1e-12)
+    assert s.has_accelerations
+
+
+def test_contact_by_normal_has_velocities_only():
+    t = CAM_FLAT.replace('centres = ["K", "flat"]', 'normal = 90')
+    s = velpoly.solve(velpoly.load(t))
+    d = s.to_dict()
+    e, w, th = 10, 10, math.radians(30)
+    assert s.velocity["F"] == pytest.approx([0, e * w * math.cos(th)], abs=1e-9)
+    assert d["points"]["F"]["acceleration"] is None
+    assert d["links"]["3"]["alpha"] is None
+    assert d["contacts"][0]["slip_acceleration"] is None
+
+
+def test_pin_in_slot():
+    m = velpoly.load(SLOTTED_LEVER.replace("angle = 95.7", "angle = ANGLE"
+                                            .replace("ANGLE", str(_dir("A", "C", SLOTTED_LEVER)))))
+    s = velpoly.solve(m)
+    # the pin's relative velocity lies along the slot: V_A2 - V_A3 parallel to CA
+    ca = s.position["A@3"] - s.position["C"]
+    rel = s.velocity["A@2"] - s.velocity["A@3"]
+    assert abs(ca[0] * rel[1] - ca[1] * rel[0]) <= 1e-9 * np.hypot(*ca) * np.hypot(*rel)
+    assert s.to_dict()["slots"][0]["slip_velocity"] == pytest.approx(np.dot(rel, ca) / np.hypot(*ca), rel=1e-12)
+    fd_check(m, 100)
+
+
+def _dir(p, q, text):
+    m = velpoly.load(text)
+    d = m.position(p) - m.position(q)
+    return math.degrees(math.atan2(d[1], d[0]))
+
+
+def test_curved_slider_turns_about_its_centre():
+    t = """
+[points]
+O2 = [0, 0]
+K = [6, 0]
+A = { from = "O2", length = 2, angle = 70 }
+B = { circles = [["A", 5], ["K", 4]], side = "right" }
+[links]
+1 = { points = ["O2"], frame = true }
+2 = { points = ["O2", "A"] }
+3 = { points = ["A", "B"] }
+4 = { points = ["B"] }
+[[sliders]]
+block = "4"
+guide = "1"
+point = "B"
+centre = "K"
+[driver]
+link = 2
+omega = 3
+alpha = 1
+"""
+    m = velpoly.load(t)
+    s = velpoly.solve(m)
+    kb = s.position["B"] - m.position("K")
+    # B moves on the circle about K: V_B perpendicular to KB; the block turns at slip/radius
+    assert np.dot(s.velocity["B"], kb) == pytest.approx(0, abs=1e-9)
+    slip = s.to_dict()["sliders"][0]["slip_velocity"]
+    assert slip == pytest.approx(s.omega["4"] * 4, rel=1e-12)
+    fd_check(m, 70)
