@@ -55,8 +55,25 @@ def _scaled_rank(system: System, jac: np.ndarray, rows=None, driver=False) -> tu
     return int((sv > SINGULAR ** -1 * sv.max()).sum()) if sv.max() > 0 else 0, sv
 
 
+_PREPARED: dict = {}
+
+
 def prepare(m: Mechanism) -> Kinematics:
-    """Build the equations, check the mobility is 1 and the reference pose regular."""
+    """Build the equations, check the mobility is 1 and the reference pose regular.
+
+    The result is cached per mechanism object (mechanisms are immutable).
+    """
+    hit = _PREPARED.get(id(m))
+    if hit is not None and hit.mechanism is m:
+        return hit
+    kin = _prepare(m)
+    if len(_PREPARED) > 64:
+        _PREPARED.clear()
+    _PREPARED[id(m)] = kin
+    return kin
+
+
+def _prepare(m: Mechanism) -> Kinematics:
     system = build_system(m)
     nq = system.nq
     if nq == 0:

@@ -156,7 +156,7 @@ def reassemble(system: System, rows: list[int], deltas, coarse: float | None = N
     n = len(deltas)
     nq = system.nq
     if coarse is None:
-        coarse = np.radians(3.0) if not system.mechanism.driver.is_slider else 0.02 * system.size
+        coarse = np.radians(6.0) if not system.mechanism.driver.is_slider else 0.04 * system.size
     # 1. knots: a sequential continuation, never stepping farther than `coarse`;
     #    every requested position is attached to the knot before it.
     knot_d, knot_q = [0.0], [np.zeros(nq)]
