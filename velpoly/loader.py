@@ -32,37 +32,129 @@ class _Ctx:
     def __init__(self, file: str, text: str | None):
         self.file = file
         self.text = text
+        self.units = ""
+        self.point_names: tuple[str, ...] = ()   # every name in [points], in file order
 
     def err(self, where: str, what: str, hint: str = "") -> InputError:
-        line = self.line_of(where)
+        line = locate(self.text, where)
         if line:
             where = f"{where} (line {line})"
         return InputError(what, where=where, file=self.file, hint=hint)
 
-    def line_of(self, where: str) -> int | None:
-        """Best-effort line number of ``table.key`` in the TOML text."""
-        if not self.text or not where:
-            return None
-        parts = where.split(".")
-        table = parts[0].split("[")[0]
-        key = parts[1].split("[")[0] if len(parts) > 1 else None
-        lines = self.text.splitlines()
-        header = re.compile(r"^\s*\[\[?\s*" + re.escape(table) + r"\s*\]\]?\s*(#.*)?$")
-        any_header = re.compile(r"^\s*\[")
-        pat = re.compile(r'^\s*"?' + re.escape(key or "") + r'"?\s*=') if key else None
-        inside = False
-        for i, ln in enumerate(lines):
-            if header.match(ln):
-                if pat is None:
-                    return i + 1
-                inside = True
-                continue
-            if any_header.match(ln):
-                inside = False
-                continue
-            if inside and pat.match(ln):
-                return i + 1
+
+# -- where an entry is in the TOML text --------------------------------------------------
+_BARE = r"[A-Za-z0-9_-]+"
+_QUOTED = r'"(?:[^"\\]|\\.)*"|' + r"'[^']*'"
+_KEYPART = rf"(?:{_BARE}|{_QUOTED})"
+_DOTTED = rf"{_KEYPART}(?:\s*\.\s*{_KEYPART})*"
+_HEADER_RE = re.compile(rf"^\s*(\[\[|\[)\s*({_DOTTED})\s*(\]\]|\])\s*(?:#.*)?$")
+_ASSIGN_RE = re.compile(rf"^\s*({_DOTTED})\s*=")
+_PART_RE = re.compile(_KEYPART)
+_TRIPLE = ('"' * 3, "'" * 3)
+
+
+def _key_parts(dotted: str) -> list[str]:
+    out = []
+    for m in _PART_RE.finditer(dotted):
+        k = m.group(0)
+        if k[:1] in "\"'":
+            k = k[1:-1]
+        out.append(k)
+    return out
+
+
+def _where_parts(where: str) -> list:
+    """``sliders[0].guide`` -> ['sliders', 0, 'guide']."""
+    out: list = []
+    for piece in where.split("."):
+        m = re.fullmatch(r"(.*?)((?:\[\d+\])*)", piece)
+        if m.group(1):
+            out.append(m.group(1))
+        out.extend(int(i) for i in re.findall(r"\[(\d+)\]", m.group(2)))
+    return out
+
+
+def _scan_brackets(line: str, depth: int, in_ml: str | None) -> tuple[int, str | None]:
+    """Bracket depth and open multi-line string after ``line`` (strings and comments skipped)."""
+    i, n = 0, len(line)
+    while i < n:
+        if in_ml:
+            j = line.find(in_ml, i)
+            if j < 0:
+                return depth, in_ml
+            i, in_ml = j + 3, None
+            continue
+        c = line[i]
+        if c == "#":
+            break
+        if line[i:i + 3] in _TRIPLE:
+            in_ml = line[i:i + 3]
+            i += 3
+            continue
+        if c in "\"'":
+            j = i + 1
+            while j < n and line[j] != c:
+                j += 2 if (c == '"' and line[j] == "\\") else 1
+            i = j + 1
+            continue
+        if c in "[{":
+            depth += 1
+        elif c in "]}":
+            depth = max(depth - 1, 0)
+        i += 1
+    return depth, in_ml
+
+
+def locate(text: str | None, where: str) -> int | None:
+    """The line (1-based) of the TOML text that defines the entry ``where``.
+
+    ``where`` is written ``table.key`` (``points.C``, ``sliders[1].guide``,
+    ``reference.values.V_B``); the line is the one whose key path is the
+    longest prefix of it: the key's own line, or else its table's header.
+    None when the entry is not in the text (a default, or a dict input).
+
+    >>> locate("[points]\\nA = [0, 0]\\nB = [1, 0]\\n", "points.B")
+    3
+    >>> locate("[[sliders]]\\nblock = 1\\n[[sliders]]\\nblock = 2\\n", "sliders[1].block")
+    4
+    """
+    if not text or not where or "(line " in where:
         return None
+    target = [str(t) for t in _where_parts(where)]
+    best, best_len = None, 0
+    table: list = []
+    counts: dict[tuple, int] = {}
+    depth, in_ml = 0, None
+    for no, line in enumerate(text.splitlines(), start=1):
+        if depth == 0 and not in_ml:
+            path = None
+            h = _HEADER_RE.match(line)
+            if h:
+                table = _key_parts(h.group(2))
+                if h.group(1) == "[[":
+                    key = tuple(table)
+                    counts[key] = counts.get(key, -1) + 1
+                    table = table + [str(counts[key])]
+                else:  # a sub-table of the latest array-of-tables entry: [[a]] then [a.b]
+                    for key, i in counts.items():
+                        if tuple(table[:len(key)]) == key and len(table) > len(key):
+                            table = list(key) + [str(i)] + table[len(key):]
+                            break
+                path = table
+            else:
+                a = _ASSIGN_RE.match(line)
+                if a:
+                    path = table + _key_parts(a.group(1))
+            if path is not None:
+                k = 0
+                while k < min(len(path), len(target)) and path[k] == target[k]:
+                    k += 1
+                if k == len(path) and k > best_len:
+                    best, best_len = no, k
+            if h:
+                continue
+        depth, in_ml = _scan_brackets(line, depth, in_ml)
+    return best
 
 
 # -- scalar parsing --------------------------------------------------------------------
@@ -659,10 +751,6 @@ def _driver(ctx, d, lnames, frame, pins, sliders, links) -> Driver:
                       hint='a number in rad/s^2, or "NUMBER rad/s^2 [cw|ccw]"') from None
     if not math.isfinite(alpha):
         raise ctx.err("driver.alpha", "must be finite")
-    lk = ctx_link(links, link)
-    if len(lk.points) < 2:
-        raise ctx.err("driver.link", f"the driver {link!r} lists one point: its angle is undefined",
-                      hint="list a second point of the crank")
     angle = _num(ctx, "driver.angle", d["angle"]) if "angle" in d else None
     return Driver(link=link, omega=omega, alpha=alpha, angle=angle)
 

@@ -28,6 +28,8 @@ def driver_reference_angle(m: Mechanism) -> float | None:
     if m.driver.is_slider:
         return None
     lk = m.link(m.driver.link)
+    if len(lk.points) < 2:  # a one-point crank: its angle is its rotation from the reference pose
+        return 0.0
     a, b = m.position(lk.points[0]), m.position(lk.points[1])
     return float(wrap_deg(math.degrees(math.atan2(*(b - a)[::-1]))))
 
