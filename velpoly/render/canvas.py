@@ -1,0 +1,207 @@
+"""The drawing surface shared by every panel: views to scale, paper units, arrows.
+
+A panel's data coordinates are the quantity it draws: lengths for the
+mechanism, velocities for the velocity polygon (an image's position *is* its
+velocity), accelerations for the acceleration polygon. :func:`fit_view` sets
+an axes' limits so that one centimetre of paper stands for a round number of
+units (the panel's *scale*, units per cm), with equal aspect; after that,
+:func:`per_point` converts typographic points (1/72 inch) into data units so
+that arrowheads, pins and gaps have the same size on paper in every panel.
+"""
+from __future__ import annotations
+
+import math
+import re
+
+import numpy as np
+
+__all__ = ["Artists", "nice_scale", "nice_length", "fit_view", "view_scale", "per_point", "per_cm",
+           "view_box", "tex", "arrow", "get_ax", "renderer_of"]
+
+CM = 1 / 2.54  # inches
+
+
+class Artists(dict):
+    """What a drawing function returns: its artists by role, and its labels by key.
+
+    ``artists["arrows"]`` is a list of matplotlib artists (likewise ``"links"``,
+    ``"pins"``, ``"lines"`` ...); ``artists.labels`` maps each labelled key
+    (a point key, an image's key, a pole's key) to its ``Text``;
+    ``artists.ax`` is the axes drawn on.
+    """
+
+    def __init__(self, ax):
+        super().__init__()
+        self.ax = ax
+        self.labels: dict = {}
+
+    def add(self, role: str, *artists) -> None:
+        self.setdefault(role, []).extend(a for a in artists if a is not None)
+
+    def all(self) -> list:
+        return [a for v in self.values() for a in v]
+
+    def update_from(self, other: "Artists") -> "Artists":
+        for role, v in other.items():
+            self.add(role, *v)
+        self.labels.update(other.labels)
+        return self
+
+
+def get_ax(ax):
+    """``ax``, or pyplot's current axes (imported lazily, as shapely.plotting does)."""
+    if ax is None:
+        import matplotlib.pyplot as plt
+        ax = plt.gca()
+    return ax
+
+
+def renderer_of(fig):
+    """A renderer of the figure, to measure text (Agg, created if need be)."""
+    canvas = fig.canvas
+    get = getattr(canvas, "get_renderer", None)
+    if get is not None:
+        return get()
+    return fig._get_renderer()
+
+
+def nice_scale(x: float) -> float:
+    """The smallest of 1, 2, 2.5, 5 times a power of ten that is >= x (a drawing scale)."""
+    if not math.isfinite(x) or x <= 0:
+        return 1.0
+    e = math.floor(math.log10(x))
+    for f in (1.0, 2.0, 2.5, 5.0, 10.0):
+        v = f * 10.0 ** e
+        if v >= x * (1 - 1e-12):
+            return v
+    return 10.0 ** (e + 1)
+
+
+def nice_length(x: float) -> float:
+    """The largest of 1, 2, 5 times a power of ten that is <= x (a scale bar's length)."""
+    if not math.isfinite(x) or x <= 0:
+        return 1.0
+    e = math.floor(math.log10(x))
+    for f in (5.0, 2.0, 1.0):
+        v = f * 10.0 ** e
+        if v <= x * (1 + 1e-12):
+            return v
+    return 10.0 ** e
+
+
+def _axes_cm(ax) -> tuple[float, float]:
+    fig = ax.figure
+    pos = ax.get_position()
+    w, h = fig.get_size_inches()
+    return pos.width * w / CM, pos.height * h / CM
+
+
+def fit_view(ax, bounds, scale: float | None = None, margin: float = 0.06) -> float:
+    """Set equal-aspect limits showing ``bounds`` = (xmin, ymin, xmax, ymax), centred.
+
+    The scale (units per cm of paper) is ``scale`` if given, else the smallest
+    round scale (:func:`nice_scale`) at which the bounds, grown by ``margin``
+    of the panel on every side, fit. Returns the scale; it is kept on the axes
+    (:func:`view_scale`) so that later drawings on the same axes keep it.
+    """
+    wcm, hcm = _axes_cm(ax)
+    x0, y0, x1, y1 = (float(b) for b in bounds)
+    if not all(map(math.isfinite, (x0, y0, x1, y1))):
+        x0 = y0 = -1.0
+        x1 = y1 = 1.0
+    span_x, span_y = max(x1 - x0, 0.0), max(y1 - y0, 0.0)
+    usable = 1.0 - 2 * margin
+    need = max(span_x / (wcm * usable), span_y / (hcm * usable))
+    if need <= 0:
+        need = max(abs(x0), abs(y0), abs(x1), abs(y1), 1e-12) / min(wcm, hcm)
+    s = float(scale) if scale is not None else nice_scale(need)
+    cx, cy = (x0 + x1) / 2, (y0 + y1) / 2
+    ax.set_xlim(cx - wcm * s / 2, cx + wcm * s / 2)
+    ax.set_ylim(cy - hcm * s / 2, cy + hcm * s / 2)
+    ax.set_aspect("equal", adjustable="box")
+    ax.set_autoscale_on(False)
+    ax._velpoly_scale = s
+    return s
+
+
+def view_scale(ax) -> float | None:
+    """The scale (units per cm) :func:`fit_view` set on the axes, or None."""
+    return getattr(ax, "_velpoly_scale", None)
+
+
+def per_point(ax) -> float:
+    """Data units per typographic point (1/72 inch) on the axes, at its current limits."""
+    x0, x1 = ax.get_xlim()
+    wcm, _ = _axes_cm(ax)
+    return abs(x1 - x0) / wcm * (2.54 / 72.0)
+
+
+def per_cm(ax) -> float:
+    """Data units per centimetre of paper."""
+    return per_point(ax) * 72.0 / 2.54
+
+
+def view_box(ax):
+    """The axes' view as a shapely box."""
+    from shapely.geometry import box
+    x0, x1 = sorted(ax.get_xlim())
+    y0, y1 = sorted(ax.get_ylim())
+    return box(x0, y0, x1, y1)
+
+
+_SIMPLE = re.compile(r"^([A-Za-z]+)(?:_([0-9A-Za-z]+)|([0-9]+))?('*)$")
+
+
+def tex(label: str) -> str:
+    """A textbook label as mathtext: ``b4`` -> $b_{4}$, ``c'`` -> $c'$, ``O_v`` -> $O_{v}$.
+
+    Letters, then a subscript (digits, or anything after ``_``), then primes;
+    any other label is returned as plain text with ``$`` and ``_`` escaped.
+
+    >>> tex("b4"), tex("c'"), tex("P_13"), tex("F@5")
+    ('$b_{4}$', "$c'$", '$P_{13}$', 'F@5')
+    """
+    s = str(label)
+    m = _SIMPLE.match(s)
+    if not m:
+        return s.replace("$", r"\$").replace("_", r"\_")
+    base, sub, digits, primes = m.groups()
+    sub = sub or digits
+    return "$" + base + ("_{" + sub + "}" if sub else "") + primes + "$"
+
+
+def arrow(ax, tail, head, *, lw: float, head_length: float, colour, linestyle="-", zorder=3,
+          gid: str | None = None, open_head: bool = False):
+    """A straight arrow whose head's tip is exactly at ``head``.
+
+    ``head_length`` in points. Returns ``(shaft, head_patch, head_polygon)``:
+    a Line2D from ``tail`` to the head's base, the head as a Polygon patch,
+    and the head as a shapely polygon (an obstacle for labels). A vector
+    shorter than the head gets a head shrunk to fit it.
+    """
+    from matplotlib.lines import Line2D
+    from matplotlib.patches import Polygon as MPolygon
+    from shapely.geometry import Polygon as SPolygon
+    tail = np.asarray(tail, float)
+    head = np.asarray(head, float)
+    d = head - tail
+    length = float(np.hypot(*d))
+    if length == 0:
+        return None, None, None
+    u = d / length
+    n = np.array([-u[1], u[0]])
+    hl = min(head_length * per_point(ax), 0.6 * length)
+    hw = 0.32 * hl
+    base = head - u * hl
+    tri = np.array([head, base + n * hw, base + u * 0.18 * hl - 0 * n, base - n * hw]) if not open_head else \
+        np.array([head, base + n * hw, base - n * hw])
+    shaft = Line2D([tail[0], (base + u * 0.2 * hl)[0]], [tail[1], (base + u * 0.2 * hl)[1]], lw=lw,
+                   color=colour, linestyle=linestyle, solid_capstyle="butt", dash_capstyle="butt",
+                   zorder=zorder)
+    patch = MPolygon(tri, closed=True, facecolor=colour, edgecolor=colour, lw=0.3, zorder=zorder + 0.1)
+    if gid:
+        shaft.set_gid(gid + "-shaft")
+        patch.set_gid(gid)
+    ax.add_line(shaft)
+    ax.add_patch(patch)
+    return shaft, patch, SPolygon(tri)

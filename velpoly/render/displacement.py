@@ -1,0 +1,501 @@
+"""The displacement (space) diagram: the mechanism to scale, as a textbook draws it.
+
+Links are bars (two points) or plates (the buffered convex hull of three or
+more points), frame pivots stand on hatched ground, pins are open circles,
+slider blocks are rectangles aligned with their path on a hatched guide (a
+slotted bar when the guide moves), contacts show their profiles' circles
+about the centres of curvature. Every point is labelled once, every link
+numbered, and the driver's omega is a curved arrow with its value. Positions
+are the solution's (``sol.position``, ``sol.place``), so a solution at
+another driver angle draws the re-assembled pose.
+"""
+from __future__ import annotations
+
+import math
+
+import numpy as np
+from shapely.geometry import LineString, MultiPoint, Point
+from shapely.geometry import Polygon as SPolygon
+
+from .canvas import Artists, arrow, fit_view, get_ax, per_cm, per_point, tex, view_scale
+from .labels import placer
+from .options import drawing_options
+from .scalebar import scale_bar, unit_label
+from .style import get_style, link_fill
+
+__all__ = ["draw_mechanism", "mechanism_bounds", "shape_patch", "link_bodies"]
+
+
+def _unit(deg: float) -> np.ndarray:
+    t = math.radians(deg)
+    return np.array([math.cos(t), math.sin(t)])
+
+
+def _perp(v) -> np.ndarray:
+    return np.array([-v[1], v[0]])
+
+
+def shape_patch(geom, **kw):
+    """A matplotlib PathPatch of a shapely (Multi)Polygon, holes included."""
+    from matplotlib.patches import PathPatch
+    from matplotlib.path import Path
+    polys = getattr(geom, "geoms", [geom])
+    verts, codes = [], []
+    for poly in polys:
+        for ring in (poly.exterior, *poly.interiors):
+            xy = np.asarray(ring.coords)
+            verts.extend(xy)
+            codes.extend([Path.MOVETO] + [Path.LINETO] * (len(xy) - 2) + [Path.CLOSEPOLY])
+    return PathPatch(Path(np.array(verts), codes), **kw)
+
+
+def _groups(sol) -> dict:
+    """Point name -> list of (key, position) of its keys."""
+    out: dict = {}
+    for key, pos in sol.position.items():
+        out.setdefault(key.split("@")[0], []).append((key, np.asarray(pos, float)))
+    return out
+
+
+def mechanism_bounds(sol) -> tuple[float, float, float, float]:
+    """The box of every point of the pose and every contact profile small enough to draw whole."""
+    m = sol.mechanism
+    pts = [np.asarray(p, float) for p in sol.position.values()]
+    for c, r in zip(m.contacts, sol.motion.contacts):
+        place = np.asarray(r["place"][0], float)
+        for lk, cn in zip(c.links, c.centres or ()):
+            if cn is None:
+                continue
+            ctr = sol.place(lk, cn)
+            rad = float(np.hypot(*(place - ctr)))
+            if rad < 1.5 * m.size:
+                pts += [ctr - rad, ctr + rad]
+    p = np.array(pts)
+    return (*p.min(axis=0), *p.max(axis=0))
+
+
+def _neighbours(sol, point: str, links) -> list[np.ndarray]:
+    """Current positions of the other points of ``links`` (seen from ``point``)."""
+    out = []
+    for lk in links:
+        for q in sol.mechanism.link(lk).points:
+            if q != point:
+                out.append(sol.place(lk, q))
+    return out
+
+
+def _away(p, others, default: float = -90.0) -> float:
+    """The direction (deg) pointing away from the mean direction towards ``others``."""
+    if not others:
+        return default
+    u = sum((o - p) / max(np.hypot(*(o - p)), 1e-300) for o in others)
+    if np.hypot(*u) < 1e-6:
+        return default
+    return math.degrees(math.atan2(-u[1], -u[0]))
+
+
+def link_bodies(sol, bar_width: float) -> dict:
+    """Link -> shapely geometry of its body: a bar, or the buffered hull of its points.
+
+    One-point links (slider blocks, wheels) have no body here; they are drawn
+    as blocks and profiles.
+    """
+    out = {}
+    for link in sol.mechanism.moving_links:
+        if len(link.points) < 2:
+            continue
+        pts = [tuple(sol.place(link.name, p)) for p in link.points]
+        out[link.name] = MultiPoint(pts).convex_hull.buffer(bar_width / 2, quad_segs=12)
+    return out
+
+
+class _Drawing:
+    """The state of one displacement diagram being drawn."""
+
+    def __init__(self, sol, ax, st, opts):
+        self.sol, self.m, self.ax, self.st, self.opts = sol, sol.mechanism, ax, st, opts
+        self.pc, self.pp = per_cm(ax), per_point(ax)
+        self.pl = placer(ax)
+        self.art = Artists(ax)
+        self.pins_at: dict = {}          # point -> set of links pinned there
+        for pin in self.m.pins:
+            self.pins_at.setdefault(pin.point, set()).update(pin.links)
+        self.blocks = {s.block for s in self.m.sliders}
+        self.bodies = link_bodies(sol, st.bar_width * self.pc)
+        self.extra_body: dict = {}       # link -> geometry to union (slotted bars, wheels)
+        self.slots: list = []            # (link, slot geometry) drawn white over bodies
+
+    # -- pieces ------------------------------------------------------------------------
+    def patch(self, geom, role, zorder, facecolor, lw=None, gid=None, **kw):
+        p = shape_patch(geom, facecolor=facecolor, edgecolor=self.st.ink,
+                        lw=self.st.link_lw if lw is None else lw, zorder=zorder, **kw)
+        if gid:
+            p.set_gid(gid)
+        self.ax.add_patch(p)
+        self.art.add(role, p)
+        return p
+
+    def hatch(self, a, b, side, role="ground"):
+        """A ground line a-b with short slanted strokes on ``side`` (a unit normal)."""
+        from matplotlib.collections import LineCollection
+        a, b, side = (np.asarray(v, float) for v in (a, b, side))
+        d = b - a
+        length = float(np.hypot(*d))
+        u = d / length
+        step = 0.14 * self.pc
+        tick = 0.2 * self.pc
+        slant = (side + u * 0.75) / np.hypot(*(side + u * 0.75))
+        segs = [[a, b]]
+        n = max(int(length / step), 1)
+        for i in range(n + 1):
+            p = a + u * (i * length / n)
+            segs.append([p, p + slant * tick])
+        lc = LineCollection(segs, colors=self.st.ink, linewidths=[self.st.link_lw] + [self.st.thin_lw] * (n + 1),
+                            zorder=1)
+        self.ax.add_collection(lc)
+        self.art.add(role, lc)
+        self.pl.add_obstacle(LineString([a, b]).buffer(tick * 0.6), hard=False)
+        return lc
+
+    def pin(self, p, gid=None, radius=None):
+        r = (radius or self.st.pin_radius) * self.pc
+        c = Point(*p).buffer(r, quad_segs=10)
+        self.patch(c, "pins", 5, self.st.paper, lw=self.st.link_lw, gid=gid)
+        self.pl.add_obstacle(c)
+
+    # -- frame ---------------------------------------------------------------------------
+    def ground_pivot(self, point, links):
+        p = self.sol.position[point] if point in self.sol.position else self.sol.place(self.m.frame.name, point)
+        p = np.asarray(p, float)
+        away = _unit(_away(p, _neighbours(self.sol, point, links)))
+        # the ground goes the way most free of links, downwards when that is nearly as free
+        g = max((-90.0, 0.0, 180.0, 90.0), key=lambda a: float(np.dot(_unit(a), away)) + (0.45 if a == -90 else 0))
+        u = _unit(g)
+        n = _perp(u)
+        pc = self.pc
+        apex, base = p, p + u * 0.5 * pc
+        tri = SPolygon([apex + n * 0.12 * pc, base + n * 0.3 * pc, base - n * 0.3 * pc, apex - n * 0.12 * pc])
+        self.patch(tri, "ground", 1.2, self.st.paper, lw=self.st.link_lw)
+        self.pl.add_obstacle(tri)
+        self.hatch(base + n * 0.5 * pc, base - n * 0.5 * pc, u)
+        return g
+
+    # -- sliders, slots, contacts --------------------------------------------------------
+    def _path_segment(self, p, d, half):
+        return LineString([tuple(p - d * half), tuple(p + d * half)])
+
+    def _arc(self, k, radius, mid, half_angle):
+        a = np.linspace(mid - half_angle, mid + half_angle, 48)
+        return LineString(np.c_[k[0] + radius * np.cos(a), k[1] + radius * np.sin(a)])
+
+    def slider(self, i, s, r):
+        sol, st, pc = self.sol, self.st, self.pc
+        p = sol.place(s.block, s.point)
+        d = _unit(float(r["direction"][0]))
+        L, H = st.block[0] * pc, st.block[1] * pc
+        n = _perp(d)
+        others = _neighbours(sol, s.point, [lk for lk in self.m.carriers.get(s.point, ()) if lk not in
+                                            (s.block, s.guide)])
+        side_v = sum((o - p) for o in others) if others else -n
+        side = -1.0 if np.dot(side_v, n) > 0 else 1.0   # the guide's hatch away from the links
+        if s.centre is None:
+            path = self._path_segment(p, d, 2.1 * L)
+        else:
+            k = sol.place(s.guide, s.centre)
+            rad = float(np.hypot(*(p - k)))
+            mid = math.atan2(*(p - k)[::-1])
+            path = self._arc(k, rad, mid, min(2.1 * L / max(rad, 1e-300), 2.6))
+        if self.m.link(s.guide).frame:
+            surface = path.offset_curve(side * H / 2) if s.centre is None else \
+                self._arc(k, rad + side * H / 2 * (1 if np.dot(n, p - k) >= 0 else -1), mid,
+                          min(2.1 * L / max(rad, 1e-300), 2.6))
+            coords = np.asarray(surface.coords)
+            for a, b in zip(coords[:-1], coords[1:]):
+                seg_n = _perp((b - a) / max(np.hypot(*(b - a)), 1e-300))
+                if np.dot(seg_n, n * side) < 0:
+                    seg_n = -seg_n
+                self.hatch(a, b, seg_n, role="guides")
+            self.centre_line(path)
+        else:
+            self.extra_body.setdefault(s.guide, []).append(path.buffer(H / 2 + 0.09 * pc, cap_style="flat"))
+            self.slots.append((s.guide, path.buffer(H * 0.3, cap_style="round")))
+        block = SPolygon([p - d * L / 2 - n * H / 2, p + d * L / 2 - n * H / 2, p + d * L / 2 + n * H / 2,
+                          p - d * L / 2 + n * H / 2])
+        fill = link_fill(self.m, self.opts, st, s.block)
+        self.patch(block, "sliders", 3.2, fill, gid=f"block-{s.block}")
+        self.pl.add_obstacle(block, hard=False)
+        self.block_geom[s.block] = block
+
+    def centre_line(self, path):
+        from matplotlib.lines import Line2D
+        xy = np.asarray(path.coords)
+        ln = Line2D(xy[:, 0], xy[:, 1], lw=self.st.thin_lw, color=self.st.ink, linestyle=(0, (8, 2, 1.5, 2)),
+                    zorder=1.1)
+        self.ax.add_line(ln)
+        self.art.add("guides", ln)
+
+    def slot(self, i, s, r):
+        sol, st, pc = self.sol, self.st, self.pc
+        p = sol.place(s.link, s.pin)
+        d = _unit(float(r["direction"][0]))
+        w = 2.6 * st.pin_radius * pc
+        if s.centre is None:
+            path = self._path_segment(p, d, 1.6 * st.block[0] * pc)
+        else:
+            k = sol.place(s.slot, s.centre)
+            rad = float(np.hypot(*(p - k)))
+            path = self._arc(k, rad, math.atan2(*(p - k)[::-1]), min(1.6 * st.block[0] * pc / max(rad, 1e-300), 2.6))
+        if self.m.link(s.slot).frame:
+            self.patch(path.buffer(w / 2 + 0.12 * pc, cap_style="round"), "guides", 1.3, st.paper)
+            self.slots.append((None, path.buffer(w / 2, cap_style="round")))
+        else:
+            self.extra_body.setdefault(s.slot, []).append(path.buffer(w / 2 + 0.12 * pc, cap_style="round"))
+            self.slots.append((s.slot, path.buffer(w / 2, cap_style="round")))
+
+    def contact(self, i, c, r):
+        sol, st, pc = self.sol, self.st, self.pc
+        place = np.asarray(r["place"][0], float)
+        u = _unit(float(r["normal"][0]))
+        t = _perp(u)
+        from matplotlib.lines import Line2D
+        if c.centres is None:
+            for a, b, ls in ((place - t * 1.2 * pc, place + t * 1.2 * pc, "-"),
+                             (place - u * 1.5 * pc, place + u * 1.5 * pc, (0, (8, 2, 1.5, 2)))):
+                ln = Line2D([a[0], b[0]], [a[1], b[1]], lw=st.link_lw if ls == "-" else st.thin_lw,
+                            color=st.ink, linestyle=ls, zorder=2.9)
+                self.ax.add_line(ln)
+                self.art.add("contacts", ln)
+            return
+        for j, (lk, cn) in enumerate(zip(c.links, c.centres)):
+            if cn is None:  # a flat profile: a straight edge through the contact, along the tangent
+                if lk in self.bodies:      # a link with a shape of its own shows the face already
+                    continue
+                inward = -u if j == 0 else u     # the flat's link lies behind its edge
+                e0, e1 = place - t * 1.4 * pc, place + t * 1.4 * pc
+                geom = SPolygon([e0, e1, e1 + inward * 0.22 * pc, e0 + inward * 0.22 * pc])
+                self.extra_body.setdefault(lk, []).append(geom)
+                continue
+            ctr = sol.place(lk, cn)
+            rad = float(np.hypot(*(place - ctr)))
+            if rad < 1.5 * self.m.size:
+                self.extra_body.setdefault(lk, []).append(Point(*ctr).buffer(rad, quad_segs=32))
+            else:
+                mid = math.atan2(*(place - ctr)[::-1])
+                arc = self._arc(ctr, rad, mid, min(2.0 * pc / rad, 1.0))
+                self.extra_body.setdefault(lk, []).append(arc.buffer(0.11 * pc, cap_style="flat"))
+
+    # -- the whole -----------------------------------------------------------------------
+    def draw(self):
+        sol, m, st = self.sol, self.m, self.st
+        frame = m.frame.name
+        self.block_geom = {}
+        # ground pivots
+        ground_dir = {}
+        for point, links in self.pins_at.items():
+            if frame in links:
+                ground_dir[point] = self.ground_pivot(point, sorted(links - {frame}))
+        for i, (s, r) in enumerate(zip(m.sliders, sol.motion.sliders)):
+            self.slider(i, s, r)
+        for i, (s, r) in enumerate(zip(m.slots, sol.motion.slots)):
+            self.slot(i, s, r)
+        for i, (c, r) in enumerate(zip(m.contacts, sol.motion.contacts)):
+            self.contact(i, c, r)
+        # bodies, in file order (later links over earlier ones)
+        from shapely.ops import unary_union
+        order = [k.name for k in m.moving_links]
+        geoms = {}
+        for lk in order:
+            parts = ([self.bodies[lk]] if lk in self.bodies else []) + self.extra_body.get(lk, [])
+            if not parts and lk not in self.blocks:
+                p = sol.place(lk, m.link(lk).points[0])
+                parts = [Point(*p).buffer(2.2 * st.pin_radius * self.pc)]
+            if parts:
+                geoms[lk] = unary_union(parts)
+        for z, lk in enumerate(order):
+            if lk in geoms:
+                self.patch(geoms[lk], "links", 2 + 0.01 * z, link_fill(m, self.opts, st, lk), gid=f"link-{lk}")
+                self.pl.add_obstacle(geoms[lk], hard=False)
+        for lk, g in self.slots:
+            z = 2.5 if lk is None else 2 + 0.01 * order.index(lk) + 0.005
+            self.patch(g, "links", z, st.paper, lw=st.thin_lw * 1.5)
+        # pins and points
+        self.points(ground_dir)
+        self.link_numbers(geoms)
+        self.driver(ground_dir)
+        if self.opts.label_points is None or self.opts.label_points:
+            self.point_labels()
+        self.art.add("scale_bar", *scale_bar(self.ax, st, m.units, 0))
+        return self.art
+
+    def points(self, ground_dir):
+        sol, m, st = self.sol, self.m, self.st
+        from matplotlib.lines import Line2D
+        centres = {cn for c in m.contacts for cn in (c.centres or ()) if cn}
+        contact_pts = {c.point for c in m.contacts}
+        path_centres = {s.centre for s in (*m.sliders, *m.slots) if s.centre}
+        for name, keys in _groups(sol).items():
+            p = keys[0][1]
+            if name in self.pins_at or name in {s.pin for s in m.slots}:
+                self.pin(p, gid=f"pin-{name}")
+            elif name in centres or name in path_centres:
+                h = 0.12 * self.pc
+                ln = Line2D([p[0] - h, p[0] + h, np.nan, p[0], p[0]], [p[1], p[1], np.nan, p[1] - h, p[1] + h],
+                            lw=st.thin_lw, color=st.ink, zorder=4)
+                self.ax.add_line(ln)
+                self.art.add("points", ln)
+                self.pl.add_obstacle(Point(*p).buffer(h))
+            else:
+                r = 0.045 * self.pc if name not in contact_pts else 0.06 * self.pc
+                self.patch(Point(*p).buffer(r, quad_segs=8), "points", 4, st.ink, lw=0)
+                self.pl.add_obstacle(Point(*p).buffer(r))
+
+    def point_labels(self):
+        sol, m, st = self.sol, self.m, self.st
+        wanted = self.opts.label_points
+        for name, keys in _groups(sol).items():
+            if wanted is not None and name not in wanted:
+                continue
+            spots = [keys[0]]
+            for key, pos in keys[1:]:   # keys of one point that have drifted apart get their own label
+                if all(np.hypot(*(pos - q)) > 1e-9 * m.size for _, q in spots):
+                    spots.append((key, pos))
+            for key, pos in spots:
+                links = m.carriers.get(name, ())
+                prefer = _away(pos, _neighbours(sol, name, links), default=45.0)
+                text = tex(name) if len(spots) == 1 else tex(key)
+                t = self.pl.place(pos, text, prefer=prefer, fontsize=st.font_size, zorder=7,
+                                  gid=f"label-point-{name}" if len(spots) == 1 else f"label-point-{key}")
+                self.art.add("labels", t)
+                for k, q in keys:
+                    if len(spots) == 1 or k == key:
+                        self.art.labels[k] = t
+
+    def link_numbers(self, geoms):
+        if self.opts.link_numbers == "none":
+            return
+        sol, m, st = self.sol, self.m, self.st
+        cx, cy = np.mean(np.array(list(sol.position.values())), axis=0)
+        for lk in [k.name for k in m.moving_links]:
+            g = geoms.get(lk) if lk in geoms else self.block_geom.get(lk)
+            if g is None:
+                continue
+            pts = [sol.place(lk, p) for p in m.link(lk).points]
+            if len(pts) >= 2:
+                a, b = pts[0], pts[1]
+                anchor = (a + b) / 2 if len(pts) == 2 else np.array(g.centroid.coords[0])
+                n = _perp((b - a) / max(np.hypot(*(b - a)), 1e-300))
+                if np.dot(n, anchor - np.array([cx, cy])) < 0:
+                    n = -n
+                prefer = math.degrees(math.atan2(n[1], n[0]))
+            else:
+                anchor = np.array(g.centroid.coords[0])
+                prefer = _away(anchor, [np.array([cx, cy])], default=90.0)
+            kw = dict(fontsize=st.small_size * 1.1, zorder=7)
+            if self.opts.link_numbers == "circled":
+                kw["bbox"] = dict(boxstyle="circle,pad=0.18", facecolor=st.paper, edgecolor=st.ink,
+                                  lw=st.thin_lw * 1.4)
+            if len(pts) >= 3:
+                # a plate: its number inside, at the centroid, if there is room
+                t = self.ax.text(*anchor, lk, ha="center", va="center", gid=f"link-number-{lk}", **kw)
+                b = self.pl.box_of(t, pad=3.5 if "bbox" in kw else 1.0)
+                if g.contains(b) and self.pl.free(b):
+                    self.pl.boxes.append(b)
+                    self.pl.texts.append(t)
+                    self.art.add("link_numbers", t)
+                    continue
+                t.remove()
+            t = self.pl.place(anchor, lk, prefer=prefer, gap=2.0, gid=f"link-number-{lk}", pad=3.5
+                              if "bbox" in kw else 1.0, **kw)
+            self.art.add("link_numbers", t)
+
+    def driver(self, ground_dir):
+        sol, m, st = self.sol, self.m, self.st
+        drv = m.driver
+        pc, pp = self.pc, self.pp
+        if drv.is_slider:
+            s = next(s for s in m.sliders if s.point == drv.slider)
+            r = sol.motion.sliders[m.sliders.index(s)]
+            d = _unit(float(r["direction"][0])) * (1 if drv.speed >= 0 else -1)
+            p = sol.place(s.block, s.point)
+            n = _perp(d)
+            a = p + n * (st.block[1] * 0.5 + 0.35) * pc - d * 0.6 * pc
+            b = a + d * 1.2 * pc
+            sh, hd, poly = arrow(self.ax, a, b, lw=st.arrow_lw, head_length=st.head_length, colour=st.ink,
+                                 zorder=6, gid="driver-arrow")
+            self.art.add("driver", sh, hd)
+            self.pl.add_obstacle(poly)
+            text = f"$V_{{{drv.slider}}}$ = {abs(drv.speed):.4g} {unit_label(m.units, 1)}"
+            t = self.pl.place((a + b) / 2, text, prefer=math.degrees(math.atan2(n[1], n[0])),
+                              fontsize=st.small_size * 1.15, zorder=7, gid="driver-label")
+            self.art.add("driver", t)
+            return
+        frame = m.frame.name
+        pivot = next((pin.point for pin in m.pins if set(pin.links) == {drv.link, frame}), None)
+        if pivot is None:
+            return
+        p = np.asarray(sol.position.get(pivot, sol.place(drv.link, pivot)), float)
+        dirs = [math.degrees(math.atan2(*(q - p)[::-1])) for q in _neighbours(sol, pivot, self.pins_at[pivot] - {frame})]
+        if pivot in ground_dir:
+            dirs.append(ground_dir[pivot])
+        dirs = sorted(d % 360 for d in dirs) or [270.0]
+        gaps = [((dirs[(i + 1) % len(dirs)] - d) % 360 or 360, d) for i, d in enumerate(dirs)]
+        gap, start = max(gaps)
+        mid = start + gap / 2
+        span = min(130.0, 0.75 * gap)
+        rad = 0.8 * pc
+        sense = 1.0 if drv.omega >= 0 else -1.0
+        a0, a1 = mid - sense * span / 2, mid + sense * span / 2
+        t = np.radians(np.linspace(a0, a1, 60))
+        xy = np.c_[p[0] + rad * np.cos(t), p[1] + rad * np.sin(t)]
+        from matplotlib.lines import Line2D
+        hl = st.head_length * pp
+        # the shaft stops where the head begins
+        keep = np.hypot(*(xy - xy[-1]).T) > hl * 0.9
+        ln = Line2D(xy[keep, 0], xy[keep, 1], lw=st.arrow_lw, color=st.ink, zorder=6, gid="driver-arc")
+        self.ax.add_line(ln)
+        tail = xy[keep][-1]
+        sh, hd, poly = arrow(self.ax, tail, xy[-1], lw=st.arrow_lw, head_length=st.head_length, colour=st.ink,
+                             zorder=6, gid="driver-arrow")
+        self.art.add("driver", ln, sh, hd)
+        self.pl.add_obstacle(poly)
+        self.pl.add_obstacle(LineString(xy).buffer(1.0 * pp))
+        lk = drv.link
+        text = rf"$\omega_{{{lk}}}$ = {abs(drv.omega):.4g} rad/s {'ccw' if drv.omega >= 0 else 'cw'}"
+        if drv.alpha:
+            text += "\n" + rf"$\alpha_{{{lk}}}$ = {abs(drv.alpha):.4g} rad/s² {'ccw' if drv.alpha >= 0 else 'cw'}"
+        anchor = p + rad * _unit(mid)
+        tt = self.pl.place(anchor, text, prefer=mid, fontsize=st.small_size * 1.15, zorder=7, gid="driver-label")
+        self.art.add("driver", tt)
+
+
+def draw_mechanism(sol, ax=None, *, style="textbook", options=None, scale: float | None = None) -> Artists:
+    """Draw the displacement diagram of ``sol`` to scale; return its :class:`~velpoly.render.canvas.Artists`.
+
+    Parameters
+    ----------
+    sol : Solution
+        The solved instant; its positions are drawn (a re-assembled pose too).
+    ax : matplotlib Axes, optional
+        Drawn on pyplot's current axes if None. If the axes already has a
+        velpoly view (another drawing set it), its scale is kept.
+    style : {"textbook", "slides"} or Style
+    options : DrawingOptions, optional
+        The checked ``[drawing]`` table (read from the mechanism if None).
+    scale : float, optional
+        Length units per cm of paper; default ``[drawing] scale`` or a round
+        scale that fits.
+
+    Returns
+    -------
+    Artists
+        Roles ``links``, ``ground``, ``guides``, ``sliders``, ``pins``,
+        ``points``, ``labels``, ``link_numbers``, ``driver``, ``scale_bar``;
+        ``.labels`` maps each point key to its label.
+    """
+    ax = get_ax(ax)
+    st = get_style(style)
+    opts = options if options is not None else drawing_options(sol.mechanism)
+    if view_scale(ax) is None:
+        fit_view(ax, mechanism_bounds(sol), scale=scale if scale is not None else opts.scale, margin=0.1)
+        ax.set_axis_off()
+    return _Drawing(sol, ax, st, opts).draw()

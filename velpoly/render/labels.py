@@ -1,0 +1,230 @@
+"""Labels that never overlap: placement with shapely, in data coordinates.
+
+A :class:`LabelPlacer` belongs to one axes (:func:`placer`). Drawings
+register what labels must not cover (arrowheads, pins, pivots: *hard*
+obstacles) and what they should rather not cover (links, lines: *soft*).
+:meth:`LabelPlacer.place` measures the text with the figure's renderer,
+converts its box into data coordinates, and tries candidate positions around
+the anchor, ring after ring, in a fixed order of directions (the preferred
+one first): the first box that stays in view, meets no placed label and no
+hard obstacle, and crosses the fewest soft ones, wins. Far from its anchor, a
+label gets a thin leader line. Nothing is random: the same drawing gives
+the same placement.
+"""
+from __future__ import annotations
+
+import math
+
+import numpy as np
+import shapely
+from shapely import affinity
+from shapely.geometry import LineString, box
+
+from .canvas import per_point, renderer_of, view_box
+
+__all__ = ["LabelPlacer", "placer", "segment"]
+
+# ring radii, in points of gap between the anchor and the box
+RINGS = (2.5, 5.0, 9.0, 14.0, 21.0, 30.0, 42.0, 58.0)
+
+
+class LabelPlacer:
+    """Place texts on an axes so that no two boxes intersect (see the module's docstring)."""
+
+    def __init__(self, ax):
+        self.ax = ax
+        self.renderer = renderer_of(ax.figure)
+        self.hard: list = []
+        self.soft: list = []
+        self.boxes: list = []      # shapely polygons of placed labels
+        self.texts: list = []      # their Text artists, same order
+
+    # -- obstacles ---------------------------------------------------------------------
+    def add_obstacle(self, geom, hard: bool = True) -> None:
+        """Register a shapely geometry (data coordinates) labels must avoid (hard) or should (soft)."""
+        if geom is None or geom.is_empty:
+            return
+        (self.hard if hard else self.soft).append(geom)
+
+    def add_box(self, text) -> None:
+        """Register an already drawn Text as a placed label (its box)."""
+        self.boxes.append(self.box_of(text))
+        self.texts.append(text)
+
+    # -- measuring ---------------------------------------------------------------------
+    def box_of(self, text, pad: float = 1.0):
+        """The Text's box in data coordinates, grown by ``pad`` points (a rotated text: its outline)."""
+        bb = text.get_window_extent(self.renderer)
+        inv = self.ax.transData.inverted()
+        (x0, y0), (x1, y1) = inv.transform([[bb.x0, bb.y0], [bb.x1, bb.y1]])
+        p = pad * per_point(self.ax)
+        return box(min(x0, x1) - p, min(y0, y1) - p, max(x0, x1) + p, max(y0, y1) + p)
+
+    def _size(self, text, pad: float = 1.0) -> tuple[float, float]:
+        rot = text.get_rotation()
+        text.set_rotation(0)
+        b = self.box_of(text, pad)
+        text.set_rotation(rot)
+        x0, y0, x1, y1 = b.bounds
+        return x1 - x0, y1 - y0
+
+    def free(self, geom, soft: bool = False) -> bool:
+        """Whether ``geom`` meets no placed label and no hard (or, with ``soft``, any) obstacle."""
+        others = self.boxes + self.hard + (self.soft if soft else [])
+        if not others:
+            return True
+        return not bool(np.any(shapely.intersects(np.array(others, dtype=object), geom)))
+
+    def _soft_hits(self, geom) -> int:
+        if not self.soft:
+            return 0
+        return int(np.count_nonzero(shapely.intersects(np.array(self.soft, dtype=object), geom)))
+
+    # -- placing -----------------------------------------------------------------------
+    def place(self, anchor, s: str, *, prefer: float | None = None, gap: float = 2.5, leader: bool = True,
+              gid: str | None = None, obstacle: bool = True, pad: float = 1.0, **text_kw):
+        """Draw text ``s`` near ``anchor`` where it overlaps nothing; return the Text.
+
+        ``prefer``: the preferred direction from the anchor (degrees), e.g.
+        away from the link; the other directions follow alternately on either
+        side of it. ``gap``: the smallest distance from the anchor (points);
+        ``pad``: the margin kept around the text (points; more for a boxed text).
+        A label that can find no free place in view is put at the candidate
+        crossing the fewest obstacles (and the placement reports it through
+        :attr:`overlapping`).
+        """
+        ax = self.ax
+        anchor = np.asarray(anchor, float)
+        t = ax.text(anchor[0], anchor[1], s, ha="center", va="center", **text_kw)
+        if gid:
+            t.set_gid(gid)
+        w, h = self._size(t, pad)
+        pp = per_point(ax)
+        view = view_box(ax)
+        best = None
+        for ring_i, ring in enumerate((gap,) + tuple(r for r in RINGS if r > gap)):
+            for ang in _directions(prefer, 16 if ring_i >= 2 else 8):
+                u = np.array([math.cos(math.radians(ang)), math.sin(math.radians(ang))])
+                # put the box's near side at distance ring from the anchor along u
+                reach = ring * pp + _half_extent(w, h, u)
+                c = anchor + u * reach
+                b = box(c[0] - w / 2, c[1] - h / 2, c[0] + w / 2, c[1] + h / 2)
+                if not view.contains(b) or not self.free(b):
+                    continue
+                hits = self._soft_hits(b)
+                if best is None or hits < best[0]:
+                    best = (hits, c, b, ring)
+                if hits == 0:
+                    break
+            if best is not None and best[0] == 0:
+                break
+        if best is None:  # nothing free in view: fall back to the first ring's preferred spot
+            u = np.array([math.cos(math.radians(prefer or 45.0)), math.sin(math.radians(prefer or 45.0))])
+            c = anchor + u * (gap * pp + _half_extent(w, h, u))
+            b = box(c[0] - w / 2, c[1] - h / 2, c[0] + w / 2, c[1] + h / 2)
+            best = (math.inf, c, b, gap)
+            self.overlapping.append(t)
+        _, c, b, ring = best
+        t.set_position((float(c[0]), float(c[1])))
+        if leader and ring >= 9.0:
+            from matplotlib.lines import Line2D
+            edge = _toward(b, anchor)
+            start = anchor + (edge - anchor) * (1.5 * pp / max(np.hypot(*(edge - anchor)), 1e-300))
+            ln = Line2D([start[0], edge[0]], [start[1], edge[1]], lw=0.4, color=t.get_color(),
+                        zorder=t.get_zorder())
+            ax.add_line(ln)
+            t._velpoly_leader = ln
+        if obstacle:
+            self.boxes.append(b)
+            self.texts.append(t)
+        return t
+
+    def place_along(self, p0, p1, s: str, *, offset: float = 1.5, gid: str | None = None, **text_kw):
+        """Write ``s`` along the segment p0-p1 (rotated to it), where it is free; None if nowhere.
+
+        Tried at fractions of the segment from its far end inwards, on either side.
+        """
+        ax = self.ax
+        p0, p1 = np.asarray(p0, float), np.asarray(p1, float)
+        d = p1 - p0
+        length = float(np.hypot(*d))
+        if length == 0:
+            return None
+        u = d / length
+        ang = math.degrees(math.atan2(u[1], u[0]))
+        if ang > 90:
+            ang -= 180
+        elif ang <= -90:
+            ang += 180
+        t = ax.text(p0[0], p0[1], s, ha="center", va="center", rotation=ang, rotation_mode="anchor", **text_kw)
+        if gid:
+            t.set_gid(gid)
+        w, h = self._size(t)
+        if w > 0.92 * length:
+            t.remove()
+            return None
+        pp = per_point(ax)
+        n = np.array([-u[1], u[0]])
+        view = view_box(ax)
+        for frac in (0.78, 0.62, 0.46, 0.3):
+            for side in (1, -1):
+                c = p0 + u * (frac * length) + n * side * (offset * pp + h / 2)
+                b = affinity.rotate(box(c[0] - w / 2, c[1] - h / 2, c[0] + w / 2, c[1] + h / 2), ang,
+                                    origin=(c[0], c[1]))
+                if view.contains(b) and self.free(b, soft=True):
+                    t.set_position((float(c[0]), float(c[1])))
+                    self.boxes.append(b)
+                    self.texts.append(t)
+                    return t
+        t.remove()
+        return None
+
+    @property
+    def overlapping(self) -> list:
+        if not hasattr(self, "_overlapping"):
+            self._overlapping = []
+        return self._overlapping
+
+
+def _directions(prefer: float | None, k: int) -> list[float]:
+    base = 45.0 if prefer is None else float(prefer)
+    step = 360.0 / k
+    out = [base]
+    for i in range(1, k // 2 + 1):
+        out.append(base + i * step)
+        if i < k // 2:
+            out.append(base - i * step)
+    return out
+
+
+def _half_extent(w: float, h: float, u) -> float:
+    """Distance from a w x h box's centre to its edge along unit u."""
+    ux, uy = abs(u[0]), abs(u[1])
+    cands = []
+    if ux > 1e-12:
+        cands.append((w / 2) / ux)
+    if uy > 1e-12:
+        cands.append((h / 2) / uy)
+    return min(cands)
+
+
+def _toward(b, p):
+    """The point of box b's outline nearest to p."""
+    from shapely.geometry import Point
+    from shapely.ops import nearest_points
+    q = nearest_points(b.exterior, Point(p))[0]
+    return np.array([q.x, q.y])
+
+
+def placer(ax) -> LabelPlacer:
+    """The axes' :class:`LabelPlacer` (created on first use), shared by every drawing on it."""
+    p = getattr(ax, "_velpoly_placer", None)
+    if p is None:
+        p = LabelPlacer(ax)
+        ax._velpoly_placer = p
+    return p
+
+
+def segment(p0, p1) -> LineString:
+    """A shapely segment (for soft obstacles)."""
+    return LineString([tuple(map(float, p0)), tuple(map(float, p1))])

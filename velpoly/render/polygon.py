@@ -1,0 +1,293 @@
+"""Velocity and acceleration polygons, drawn from :mod:`velpoly.polygons`' objects.
+
+A polygon's data coordinates are velocities (accelerations): the image of a
+point sits at its velocity, the origin O_v (O_a) at zero. Drawn, in the
+order a textbook builds them: the dashed construction lines of each step,
+extended past their intersection and marked with their reason where there
+is room; the absolute vectors from the origin to each image; the relative
+vectors between images (for accelerations, the normal, tangential, Coriolis
+and slip components, each in its own line style, with a legend); each
+link's image shaded in the link's colour; one label per image (images that
+coincide share it); a scale bar in units/s (units/s²).
+
+Nothing is computed here but where to put things: every point drawn is an
+image, a vector or a line of the :class:`~velpoly.polygons.Polygon`.
+"""
+from __future__ import annotations
+
+import math
+
+import numpy as np
+from shapely.geometry import Point, box
+from shapely.geometry import Polygon as SPolygon
+
+from .canvas import Artists, arrow, fit_view, get_ax, per_cm, per_point, tex, view_box, view_scale
+from .labels import placer, segment
+from .options import drawing_options
+from .scalebar import scale_bar
+from .style import KIND_LABELS, get_style, link_colour
+
+__all__ = ["draw_polygon", "draw_velocity_polygon", "draw_acceleration_polygon", "polygon_bounds",
+           "known_keys", "image_groups"]
+
+_REL_TOL = 1e-9
+
+
+def _size(polygon) -> float:
+    pts = np.array([np.zeros(2)] + [np.asarray(v, float) for v in polygon.images.values()])
+    return float(np.hypot(*(pts.max(axis=0) - pts.min(axis=0)))) or 1.0
+
+
+def polygon_bounds(polygon) -> tuple[float, float, float, float]:
+    """The box of the origin and every image (and every vector's ends)."""
+    pts = [np.zeros(2)] + [np.asarray(v, float) for v in polygon.images.values()]
+    for st in polygon.steps:
+        for v in st.vectors:
+            pts += [np.asarray(v.tail, float), np.asarray(v.head, float)]
+    p = np.array([q for q in pts if np.all(np.isfinite(q))])
+    return (*p.min(axis=0), *p.max(axis=0))
+
+
+def known_keys(polygon, upto: int | None = None) -> list[str]:
+    """Keys whose images are drawn after ``upto`` steps (all if None), in the polygon's order.
+
+    An image is known once a step finds it; images at the origin (frame
+    points) are known from the start.
+    """
+    if upto is None:
+        return list(polygon.images)
+    tol = _REL_TOL * _size(polygon)
+    found = {k for st in polygon.steps[:upto] for k in st.found}
+    return [k for k, v in polygon.images.items() if k in found or float(np.hypot(*v)) <= tol]
+
+
+def image_groups(polygon, keys) -> tuple[list[str], list[list[str]]]:
+    """Keys at the origin, and the other keys grouped by coinciding images (one label a group)."""
+    tol = _REL_TOL * _size(polygon)
+    at_origin = [k for k in keys if float(np.hypot(*polygon.images[k])) <= tol]
+    groups: list[list[str]] = []
+    for k in keys:
+        if k in at_origin:
+            continue
+        p = np.asarray(polygon.images[k], float)
+        for g in groups:
+            if float(np.hypot(*(p - np.asarray(polygon.images[g[0]], float)))) <= tol:
+                g.append(k)
+                break
+        else:
+            groups.append([k])
+    return at_origin, groups
+
+
+def _label_text(polygon, keys, with_origin: bool) -> str:
+    parts = [tex(polygon.origin_label)] if with_origin else []
+    seen = []
+    for k in keys:
+        lab = tex(polygon.labels.get(k, k))
+        if lab not in seen:
+            seen.append(lab)
+    return ", ".join(parts + seen)
+
+
+def draw_polygon(polygon, ax=None, *, mechanism=None, style="textbook", options=None, scale: float | None = None,
+                 upto: int | None = None) -> Artists:
+    """Draw a velocity or acceleration :class:`~velpoly.polygons.Polygon`; return its Artists.
+
+    Parameters
+    ----------
+    polygon : Polygon
+        From :func:`velpoly.polygons.velocity_polygon` or ``acceleration_polygon``.
+    ax : matplotlib Axes, optional
+        pyplot's current axes if None; an axes with a velpoly view keeps its scale.
+    mechanism : Mechanism, optional
+        For the links' colours, the units and the ``[drawing]`` options.
+    upto : int, optional
+        Draw only the first ``upto`` steps (the ``--steps`` frames); the view
+        is that of the whole polygon, so frames do not jump.
+
+    Returns
+    -------
+    Artists
+        Roles ``images`` (shaded link images), ``construction``, ``reasons``,
+        ``arrows`` (arrowheads; each has the gid ``"<kind>-<tail>-<head>"``),
+        ``shafts``, ``origin``, ``labels``, ``legend``, ``scale_bar``;
+        ``.labels`` maps every image's key to its label, ``.arrows`` lists
+        ``(kind, tail, head, patch)`` for every vector drawn.
+    """
+    ax = get_ax(ax)
+    st = get_style(style)
+    m = mechanism
+    opts = options if options is not None else (drawing_options(m) if m is not None else None)
+    velocity = polygon.kind == "velocity"
+    if view_scale(ax) is None:
+        user = None if opts is None else (opts.velocity_scale if velocity else opts.acceleration_scale)
+        fit_view(ax, polygon_bounds(polygon), scale=scale if scale is not None else user, margin=0.08)
+        ax.set_axis_off()
+    art = Artists(ax)
+    art.arrows = []
+    pl = placer(ax)
+    pc, pp = per_cm(ax), per_point(ax)
+    keys = known_keys(polygon, upto)
+    known = set(keys)
+    steps = polygon.steps if upto is None else polygon.steps[:upto]
+    origin = np.zeros(2)
+
+    # shaded link images
+    for z, (lk, img_keys) in enumerate(polygon.link_images.items()):
+        if len(img_keys) >= 3 and all(k in known for k in img_keys):
+            pts = [tuple(map(float, polygon.images[k])) for k in img_keys]
+            shape = SPolygon(pts)
+            if shape.area <= (1e-9 * _size(polygon)) ** 2:
+                continue
+            colour = link_colour(m, opts, st, lk) if m is not None else st.palette[z % len(st.palette)]
+            from matplotlib.patches import Polygon as MPolygon
+            patch = MPolygon(pts, closed=True, facecolor=colour, alpha=st.image_alpha, edgecolor="none",
+                             zorder=1, gid=f"image-{lk}")
+            ax.add_patch(patch)
+            art.add("images", patch)
+
+    # construction lines
+    show_reasons = opts is None or opts.reasons
+    from matplotlib.lines import Line2D
+    view = view_box(ax)
+    for si, step in enumerate(steps):
+        hit = np.asarray(polygon.images[step.found[0]], float) if step.found else None
+        current = upto is not None and si == len(steps) - 1
+        for ln in step.lines:
+            base = np.asarray(ln.base, float)
+            d = np.asarray(ln.direction, float)
+            d = d / max(float(np.hypot(*d)), 1e-300)
+            t_hit = float(np.dot(hit - base, d)) if hit is not None else 0.0
+            ext = 0.9 * pc
+            a = base + d * (min(0.0, t_hit) - ext)
+            b = base + d * (max(0.0, t_hit) + ext)
+            seg = segment(a, b).intersection(view)
+            if seg.is_empty or seg.geom_type != "LineString":
+                continue
+            (x0, y0), (x1, y1) = seg.coords[0], seg.coords[-1]
+            line = Line2D([x0, x1], [y0, y1], lw=st.thin_lw * (1.6 if current else 1.0), color=st.ink,
+                          linestyle=(0, (6, 3)), zorder=1.5, gid=f"construction-{step.index}-{ln.base_label}")
+            line._velpoly_step = step.index
+            ax.add_line(line)
+            art.add("construction", line)
+            pl.add_obstacle(segment((x0, y0), (x1, y1)), hard=False)
+
+    # vectors: absolute from the origin to each known image, then the steps' other vectors
+    drawn = set()
+    tol = _REL_TOL * _size(polygon)
+
+    def vec(kind, tail, head, label=""):
+        tail, head = np.asarray(tail, float), np.asarray(head, float)
+        if float(np.hypot(*(head - tail))) <= tol:
+            return
+        key = (kind, *np.round(np.r_[tail, head] / tol).astype(np.int64))
+        if key in drawn:
+            return
+        drawn.add(key)
+        ls, colour, f = st.kind_styles.get(kind, st.kind_styles["relative"])
+        colour = st.ink if colour is None else colour
+        gid = f"{kind}-{label}" if label else None
+        sh, hd, poly = arrow(ax, tail, head, lw=st.arrow_lw * f, head_length=st.head_length, colour=colour,
+                             linestyle=ls, zorder=3 if kind == "absolute" else 3.5, gid=gid)
+        art.add("shafts", sh)
+        art.add("arrows", hd)
+        art.arrows.append((kind, tail, head, hd))
+        pl.add_obstacle(poly)
+        pl.add_obstacle(segment(tail, head).buffer(0.6 * pp), hard=False)
+
+    for k in keys:
+        vec("absolute", origin, polygon.images[k], label=k)
+    kinds = {"absolute"}
+    for step in steps:
+        for v in step.vectors:
+            if v.kind == "absolute":
+                vec("absolute", v.tail, v.head, label=v.label)
+            else:
+                vec(v.kind, v.tail, v.head, label=v.label)
+                kinds.add(v.kind)
+
+    # the origin
+    r = 0.05 * pc
+    o = Point(0, 0).buffer(r, quad_segs=8)
+    from .displacement import shape_patch
+    op = shape_patch(o, facecolor=st.ink, edgecolor=st.ink, lw=0, zorder=4, gid=f"origin-{polygon.kind}")
+    ax.add_patch(op)
+    art.add("origin", op)
+    pl.add_obstacle(o)
+
+    # labels: one per group of coinciding images; the origin's group is labelled with the origin
+    at_origin, groups = image_groups(polygon, keys)
+    cx, cy = np.mean(np.array([np.zeros(2)] + [np.asarray(polygon.images[k], float) for k in keys]), axis=0)
+    for gi, g in enumerate([at_origin] + groups):
+        p = np.zeros(2) if gi == 0 else np.asarray(polygon.images[g[0]], float)
+        away = p - np.array([cx, cy])
+        prefer = math.degrees(math.atan2(away[1], away[0])) if np.hypot(*away) > tol else -135.0
+        t = pl.place(p, _label_text(polygon, g, gi == 0), prefer=prefer, fontsize=st.font_size, zorder=7,
+                     gid=f"label-{polygon.kind}-" + ("origin+" if gi == 0 else "") + "+".join(g))
+        art.add("labels", t)
+        for k in g:
+            art.labels[k] = t
+
+    # the reasons, where there is room (after the labels, which matter more)
+    if show_reasons:
+        for line in art.get("construction", []):
+            step = next(s for s in steps if s.index == line._velpoly_step)
+            ln = next(c for c in step.lines if f"construction-{step.index}-{c.base_label}" == line.get_gid())
+            xs, ys = line.get_data()
+            t = pl.place_along((xs[0], ys[0]), (xs[1], ys[1]), ln.reason, fontsize=st.small_size * 0.9,
+                               style="italic", zorder=6, gid=line.get_gid() + "-reason")
+            if t is not None:
+                art.add("reasons", t)
+
+    if not velocity and len(kinds) > 1:
+        art.add("legend", *_legend(ax, st, [k for k in st.kind_styles if k in kinds]))
+    units = m.units if m is not None else ""
+    art.add("scale_bar", *scale_bar(ax, st, units, 1 if velocity else 2))
+    return art
+
+
+def _legend(ax, st, kinds) -> list:
+    """The line styles of the vector kinds, in a free corner of the panel."""
+    from matplotlib.lines import Line2D
+    handles = []
+    for k in kinds:
+        ls, colour, f = st.kind_styles[k]
+        handles.append(Line2D([], [], lw=st.arrow_lw * f, linestyle=ls, color=st.ink if colour is None else colour))
+    pl = placer(ax)
+    for loc in ("upper right", "upper left", "lower right", "lower left", "center right", "center left"):
+        leg = ax.legend(handles, [KIND_LABELS[k] for k in kinds], loc=loc, fontsize=st.small_size,
+                        handlelength=3.2, borderaxespad=0.3)
+        bb = leg.get_window_extent(pl.renderer)
+        inv = ax.transData.inverted()
+        (x0, y0), (x1, y1) = inv.transform([[bb.x0, bb.y0], [bb.x1, bb.y1]])
+        b = box(min(x0, x1), min(y0, y1), max(x0, x1), max(y0, y1))
+        if pl.free(b):
+            break
+    pl.boxes.append(b)
+    pl.texts.append(leg)
+    return [leg]
+
+
+def draw_velocity_polygon(sol, ax=None, *, style="textbook", options=None, polygon=None, scale=None,
+                          upto=None) -> Artists:
+    """Draw the velocity polygon of ``sol`` (from :func:`velpoly.polygons.velocity_polygon`).
+
+    See :func:`draw_polygon` for the parameters and what is returned.
+    """
+    if polygon is None:
+        from ..polygons import velocity_polygon
+        polygon = velocity_polygon(sol)
+    return draw_polygon(polygon, ax, mechanism=sol.mechanism, style=style, options=options, scale=scale, upto=upto)
+
+
+def draw_acceleration_polygon(sol, ax=None, *, style="textbook", options=None, polygon=None, scale=None,
+                              upto=None) -> Artists:
+    """Draw the acceleration polygon of ``sol`` (from :func:`velpoly.polygons.acceleration_polygon`).
+
+    Raises :class:`~velpoly.errors.InputError` when the mechanism has no
+    accelerations (a contact given by its normal only).
+    """
+    if polygon is None:
+        from ..polygons import acceleration_polygon
+        polygon = acceleration_polygon(sol)
+    return draw_polygon(polygon, ax, mechanism=sol.mechanism, style=style, options=options, scale=scale, upto=upto)
