@@ -61,7 +61,10 @@ class Equation:
 
 
 class Frame:
-    """The links' poses at some q as jets: the evaluation context of equations."""
+    """The links' poses at some q as jets: the evaluation context of equations.
+
+    A link's jets (x, y, cos theta, sin theta, theta) are built on first use.
+    """
 
     def __init__(self, system: "System", q: np.ndarray, qd: np.ndarray | None = None):
         q = np.atleast_2d(q)
@@ -69,24 +72,32 @@ class Frame:
         qd = np.zeros_like(q) if qd is None else np.atleast_2d(qd)
         self.n, self.nq = n, nq
         self.q, self.qd = q, qd
-        self._bodies = {}
-        for name, k in system.index.items():
-            x = Jet.coordinate(q, qd, 3 * k)
-            y = Jet.coordinate(q, qd, 3 * k + 1)
+        self._index = system.index
+        self._cache = {}
+
+    def _body(self, link: str):
+        b = self._cache.get(link)
+        if b is None:
+            k = self._index.get(link)
+            if k is None:
+                return None
+            q, qd = self.q, self.qd
             th = Jet.coordinate(q, qd, 3 * k + 2)
-            self._bodies[name] = (x, y, th.cos(), th.sin(), th)
+            b = (Jet.coordinate(q, qd, 3 * k), Jet.coordinate(q, qd, 3 * k + 1), th.cos(), th.sin(), th)
+            self._cache[link] = b
+        return b
 
     def const(self, c) -> Jet:
         return Jet.const(c, self.n, self.nq)
 
     def theta(self, link: str) -> Jet:
-        b = self._bodies.get(link)
+        b = self._body(link)
         return self.const(0.0) if b is None else b[4]
 
     def point(self, link: str, s) -> tuple[Jet, Jet]:
         """r_link(s): the world position of the link's point s (reference coordinates)."""
         sx, sy = float(s[0]), float(s[1])
-        b = self._bodies.get(link)
+        b = self._body(link)
         if b is None:  # the frame
             return self.const(sx), self.const(sy)
         x, y, c, s_, _ = b
@@ -95,11 +106,42 @@ class Frame:
     def direction(self, link: str, d) -> tuple[Jet, Jet]:
         """R(theta_link) d: a direction fixed to the link."""
         dx, dy = float(d[0]), float(d[1])
-        b = self._bodies.get(link)
+        b = self._body(link)
         if b is None:
             return self.const(dx), self.const(dy)
         _, _, c, s_, _ = b
         return c * dx - s_ * dy, s_ * dx + c * dy
+
+
+def _pins_bulk(block, q, qd, phi, jac, h) -> int:
+    """All pins at once: Phi = r_i(s) - r_j(s), with r_k(s) = x_k + R(theta_k) s.
+
+    dr/dx_k = I, dr/dtheta_k = k x R s, and h = -theta_i'^2 R_i s + theta_j'^2 R_j s.
+    Returns the number of rows filled (2 per pin).
+    """
+    ki, kj, s = block
+    n, nq = q.shape
+    qe = np.concatenate([q, np.zeros((n, 3))], axis=1)        # a zero "link" for the frame
+    qde = np.concatenate([qd if qd is not None else np.zeros_like(q), np.zeros((n, 3))], axis=1)
+    rows = 2 * np.arange(len(ki))
+    for k, sign in ((ki, 1.0), (kj, -1.0)):
+        kk = np.where(k < 0, nq // 3, k)
+        th = qe[:, 3 * kk + 2]
+        c, sn = np.cos(th), np.sin(th)
+        rx = c * s[:, 0] - sn * s[:, 1]
+        ry = sn * s[:, 0] + c * s[:, 1]
+        w2 = qde[:, 3 * kk + 2] ** 2
+        phi[:, rows] += sign * (qe[:, 3 * kk] + rx)
+        phi[:, rows + 1] += sign * (qe[:, 3 * kk + 1] + ry)
+        h[:, rows] += -sign * w2 * rx
+        h[:, rows + 1] += -sign * w2 * ry
+        moving = k >= 0
+        r, kk = rows[moving], k[moving]
+        jac[:, r, 3 * kk] += sign
+        jac[:, r + 1, 3 * kk + 1] += sign
+        jac[:, r, 3 * kk + 2] += -sign * ry[:, moving]
+        jac[:, r + 1, 3 * kk + 2] += sign * rx[:, moving]
+    return 2 * len(ki)
 
 
 def _dot(a, b):
@@ -129,6 +171,8 @@ class System:
     equations: tuple[Equation, ...]
     driver: Equation
     size: float
+    pin_block: tuple = ()   # (ki, kj, s): the first 2 x len(ki) equations are pins, evaluated in bulk
+    crank: int = -1         # the crank driver's link index (its row is theta_k), -1 otherwise
 
     @property
     def nq(self) -> int:
@@ -143,12 +187,28 @@ class System:
 
         Returns ``(phi, jac, h)`` with shapes (N, m), (N, m, nq), (N, m).
         """
-        f = Frame(self, q, qd)
-        eqs = self.equations + ((self.driver,) if driver else ())
-        jets = [e.fn(f) for e in eqs]
-        phi = np.stack([j.v for j in jets], axis=1)
-        jac = np.stack([j.g for j in jets], axis=1)
-        h = np.stack([j.h for j in jets], axis=1)
+        q = np.atleast_2d(q)
+        n, nq = q.shape
+        m_all = len(self.equations) + (1 if driver else 0)
+        phi = np.zeros((n, m_all))
+        jac = np.zeros((n, m_all, nq))
+        h = np.zeros((n, m_all))
+        start = 0
+        if self.pin_block:
+            start = _pins_bulk(self.pin_block, q, qd, phi, jac, h)
+        rest = list(self.equations[start:])
+        crank = driver and self.crank >= 0
+        if driver and not crank:
+            rest.append(self.driver)
+        if rest:
+            f = Frame(self, q, qd)
+            for i, e in enumerate(rest, start=start):
+                j = e.fn(f)
+                phi[:, i], jac[:, i], h[:, i] = j.v, j.g, j.h
+        if crank:
+            k = self.crank
+            phi[:, -1] = q[:, 3 * k + 2]
+            jac[:, -1, 3 * k + 2] = 1.0
         return phi, jac, h
 
     def scale_matrix(self, jac: np.ndarray, rows: list[int] | None = None,
@@ -218,7 +278,14 @@ def build_system(m: Mechanism) -> System:
     else:
         d = drv.link
         driver = Equation(f"driver {d}", (d,), lambda f, d=d: f.theta(d), dim=0)
-    return System(m, index, tuple(eqs), driver, m.size)
+    pins = m.pins
+    block = ()
+    if pins:
+        block = (np.array([index.get(p.links[0], -1) for p in pins]),
+                 np.array([index.get(p.links[1], -1) for p in pins]),
+                 np.array([P[p.point] for p in pins], float))
+    crank = -1 if drv.is_slider else index[drv.link]
+    return System(m, index, tuple(eqs), driver, m.size, block, crank)
 
 
 def contact_slip_equation(m: Mechanism, c) -> Equation | None:
