@@ -97,7 +97,7 @@ def test_cw_driver_reverses_every_velocity():
 
 # -- finite differences ---------------------------------------------------------------------
 def fd_check(m, angle, h=1e-3):
-    """Velocities vs central differences of positions; accelerations vs of velocities."""
+    """Velocities vs central differences of positions; accelerations vs those of velocities."""
     w = velpoly.sweep(m, [angle - h, angle, angle + h])
     assert len(w.angles) == 3
     omega = m.driver.omega
@@ -108,11 +108,11 @@ def fd_check(m, angle, h=1e-3):
         if "@" in key:
             continue  # coincident points are re-evaluated at a moving place
         dpdth = (w.position[key][2] - w.position[key][0]) / (2 * hr)
-        d2p = (w.position[key][2] - 2 * w.position[key][1] + w.position[key][0]) / hr ** 2
         v = dpdth * omega
         assert np.abs(v - w.velocity[key][1]).max() <= 1e-6 * scale_v, key
-        # A = d2P/dth2 omega^2 + dP/dth alpha
-        a = d2p * omega ** 2 + dpdth * alpha
+        # A = dV/dth omega + (V/omega) alpha: the central difference of velocities
+        dvdth = (w.velocity[key][2] - w.velocity[key][0]) / (2 * hr)
+        a = dvdth * omega + w.velocity[key][1] / omega * alpha
         scale_a = max(np.abs(x[1]).max() for x in w.acceleration.values()) + 1e-300
         assert np.abs(a - w.acceleration[key][1]).max() <= 2e-5 * scale_a, key
     scale_w = max(abs(x[1]) for x in w.omega.values())

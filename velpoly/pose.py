@@ -117,25 +117,25 @@ def _newton(system: System, rows, q, targets, iters=30, tol=1e-12):
         q[idx] += dq * scale[:, None]
         done = size <= 1e-14
         active[idx[done]] = False
-    phi, _, _ = system.evaluate(q)
+    phi, jac, _ = system.evaluate(q)
     phi = phi[:, rows]
     phi[:, -1] -= targets
     ok = np.all(np.isfinite(phi), axis=1) & (np.abs(phi).max(axis=1) <= 1e-9 * L)
-    return q, ok
+    return q, ok, jac[:, rows]
 
 
-def _velocity(system, rows, q):
+def _velocity(system, rows, q, jac=None):
     """q' per unit driver rate at the poses q (the continuation's tangent)."""
-    _, jac, _ = system.evaluate(q)
-    jac = jac[:, rows]
+    if jac is None:
+        jac = system.evaluate(q)[1][:, rows]
     rhs = np.zeros(jac.shape[:2])
     rhs[:, -1] = 1.0
     return np.linalg.solve(jac, rhs[..., None])[..., 0]
 
 
-def _cond(system, rows, q):
-    _, jac, _ = system.evaluate(q)
-    return np.linalg.cond(system.scale_matrix(jac[:, rows], rows))
+def _cond(system, rows, jac):
+    """Condition numbers of the (row-selected) Jacobians, in unit lengths."""
+    return np.linalg.cond(system.scale_matrix(jac, rows))
 
 
 def reassemble(system: System, rows: list[int], deltas, coarse: float | None = None) -> Reassembly:
@@ -160,6 +160,7 @@ def reassemble(system: System, rows: list[int], deltas, coarse: float | None = N
     # 1. knots: a sequential continuation, never stepping farther than `coarse`;
     #    every requested position is attached to the knot before it.
     knot_d, knot_q = [0.0], [np.zeros(nq)]
+    jac = system.evaluate(np.zeros((1, nq)))[1][:, rows]
     attach = np.empty(n, int)
     stopped = ""
     q = np.zeros((1, nq))
@@ -168,11 +169,11 @@ def reassemble(system: System, rows: list[int], deltas, coarse: float | None = N
             start = knot_d[-1]
             k = int(np.ceil(abs(d - start) / coarse))
             for target in start + (d - start) * np.arange(1, k + 1) / k:
-                qn = _step(system, rows, q, knot_d[-1], target)
-                if qn is None:
+                nxt = _step(system, rows, q, jac, knot_d[-1], target)
+                if nxt is None:
                     stopped = "toggle"
                     break
-                q = qn
+                q, jac = nxt
                 knot_d.append(float(target))
                 knot_q.append(q[0].copy())
             if stopped:
@@ -188,7 +189,7 @@ def reassemble(system: System, rows: list[int], deltas, coarse: float | None = N
     qd = _velocity(system, rows, kq)
     h = deltas - kd[attach]
     guess = kq[attach] + h[:, None] * qd[attach]
-    out, ok = _newton(system, rows, guess, deltas)
+    out, ok, _ = _newton(system, rows, guess, deltas)
     ok &= _drift(system, out - guess) <= _drift_bound(system, h, qd[attach])
     if not ok.all():
         first = int(np.argmin(ok))
@@ -221,16 +222,20 @@ def _drift_bound(system, h, qd):
     return 0.5 * np.abs(h) * rate + 1e-9
 
 
-def _step(system, rows, q, d0, d1):
-    """One continuation step of the knots from driver position d0 to d1, or None at a toggle."""
+def _step(system, rows, q, jac, d0, d1):
+    """One continuation step of the knots from driver position d0 to d1.
+
+    Returns (q, jac) at d1, or None at a toggle (Newton fails, the pose
+    jumps away from the prediction, or the equations become singular).
+    """
     h = d1 - d0
-    qd = _velocity(system, rows, q)
+    qd = _velocity(system, rows, q, jac)
     guess = q + h * qd
-    qn, ok = _newton(system, rows, guess, np.array([d1]))
+    qn, ok, jn = _newton(system, rows, guess, np.array([d1]))
     if ok[0] and _drift(system, qn - guess)[0] <= _drift_bound(system, np.array([h]), qd)[0] \
-            and _cond(system, rows, qn)[0] <= 1e10:
-        return qn
+            and _cond(system, rows, jn)[0] <= 1e10:
+        return qn, jn
     if abs(h) < 1e-6:
         return None
-    mid = _step(system, rows, q, d0, d0 + h / 2)   # near a toggle: halve the step
-    return None if mid is None else _step(system, rows, mid, d0 + h / 2, d1)
+    mid = _step(system, rows, q, jac, d0, d0 + h / 2)   # near a toggle: halve the step
+    return None if mid is None else _step(system, rows, mid[0], mid[1], d0 + h / 2, d1)
