@@ -8,7 +8,9 @@ singular) to exit status 3.
 """
 from __future__ import annotations
 
-__all__ = ["VelpolyError", "InputError", "PoseError", "AssemblyError", "SingularPoseError"]
+import re
+
+__all__ = ["VelpolyError", "InputError", "PoseError", "AssemblyError", "SingularPoseError", "one_line"]
 
 
 class VelpolyError(Exception):
@@ -36,9 +38,13 @@ class VelpolyError(Exception):
         super().__init__(self.line())
 
     def line(self) -> str:
-        """The one-line message ``FILE: WHERE: WHAT``."""
+        """The one-line message ``FILE: WHERE: WHAT`` (control characters escaped)."""
         parts = [p for p in (self.file, self.where, self.what) if p]
-        return ": ".join(parts)
+        return one_line(": ".join(parts))
+
+    def hint_line(self) -> str:
+        """The hint on one line ("" if none)."""
+        return one_line(self.hint)
 
     def with_file(self, file: str) -> "VelpolyError":
         """The same error, naming ``file`` (where none was named yet)."""
@@ -49,6 +55,18 @@ class VelpolyError(Exception):
 
     def __str__(self) -> str:
         return self.line()
+
+
+def one_line(text: str) -> str:
+    """``text`` with line breaks and other control characters escaped, so it prints as one line.
+
+    >>> print(one_line("two" + chr(10) + "lines"))
+    two\\nlines
+    """
+    text = str(text)
+    if all(ch >= " " and ch != "\x7f" for ch in text):
+        return text
+    return "".join(ch if ch >= " " and ch != "\x7f" else repr(ch)[1:-1] for ch in text)
 
 
 class InputError(VelpolyError):
@@ -67,8 +85,15 @@ class PoseError(VelpolyError):
 
     def __init__(self, what: str, where: str = "", file: str = "", hint: str = "",
                  links: tuple[str, ...] = ()):
-        self.links = tuple(links)
+        self.links = tuple(str(k) for k in links)
         super().__init__(what, where, file, hint)
+
+    def line(self) -> str:
+        """``FILE: WHERE: WHAT (links i, j)``: the message names the links involved."""
+        text = super().line()
+        if self.links and not re.search(r"\blinks? \d|\blinks? '", self.what):
+            text += " (" + ("link " if len(self.links) == 1 else "links ") + ", ".join(self.links) + ")"
+        return one_line(text)
 
 
 class AssemblyError(PoseError):

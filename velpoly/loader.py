@@ -6,6 +6,7 @@ Every check of the input lives here. Each failure raises
 """
 from __future__ import annotations
 
+import json
 import math
 import os
 import re
@@ -20,7 +21,7 @@ from .model import (Contact, Driver, Link, Mechanism, Pin, Reference, Slider, Sl
                     frozen_map)
 from .pose import circle_circle, circle_line
 
-__all__ = ["load", "parse_omega", "parse_alpha"]
+__all__ = ["load", "locate", "parse_omega", "parse_alpha"]
 
 TOP_KEYS = ("format", "title", "units", "points", "links", "sliders", "contacts", "slots",
             "driver", "reference", "drawing")
@@ -149,7 +150,7 @@ def locate(text: str | None, where: str) -> int | None:
                 k = 0
                 while k < min(len(path), len(target)) and path[k] == target[k]:
                     k += 1
-                if k == len(path) and k > best_len:
+                if (k == len(path) or (h and k == len(target))) and k > best_len:
                     best, best_len = no, k
             if h:
                 continue
@@ -158,31 +159,44 @@ def locate(text: str | None, where: str) -> int | None:
 
 
 # -- scalar parsing --------------------------------------------------------------------
-def _num(ctx: _Ctx, where: str, v: Any, positive: bool = False, allow_zero: bool = True) -> float:
-    if isinstance(v, bool) or not isinstance(v, (int, float)):
-        raise ctx.err(where, f"expected a number, got {_show(v)}")
-    x = float(v)
-    if not math.isfinite(x):
-        raise ctx.err(where, f"expected a finite number, got {x}")
-    if positive and (x < 0 or (x == 0 and not allow_zero)):
-        raise ctx.err(where, f"must be positive, got {_show(v)}", hint="lengths are positive; "
-                      "give the direction with an angle")
-    return x
-
-
 def _show(v: Any) -> str:
+    """A value as the user wrote it, on one short line: "40", true, a table, a list."""
+    if isinstance(v, bool):
+        return "true" if v else "false"
     if isinstance(v, str):
-        return repr(v)
+        s = json.dumps(v, ensure_ascii=False)
+        return s if len(s) <= 42 else s[:38] + '..."'
     if isinstance(v, dict):
         return "a table"
     if isinstance(v, list):
         return "a list"
-    return repr(v)
+    if isinstance(v, float) and not math.isfinite(v):
+        return str(v)
+    if isinstance(v, (int, float)):
+        return f"{v:g}" if isinstance(v, float) else str(v)
+    return f"a {type(v).__name__}"
 
 
-def _name(ctx: _Ctx, where: str, v: Any) -> str:
+def _num(ctx: _Ctx, where: str, v: Any, positive: bool = False, allow_zero: bool = True) -> float:
+    if isinstance(v, bool):
+        raise ctx.err(where, f"expected a number, got {_show(v)}", hint="true and false are not numbers")
+    if isinstance(v, str):
+        raise ctx.err(where, f"expected a number, got the string {_show(v)}",
+                      hint="write numbers without quotes")
+    if not isinstance(v, (int, float)):
+        raise ctx.err(where, f"expected a number, got {_show(v)}", hint="write a single number here")
+    x = float(v)
+    if not math.isfinite(x):
+        raise ctx.err(where, f"expected a finite number, got {_show(x)}", hint="nan and inf are not allowed")
+    if positive and (x < 0 or (x == 0 and not allow_zero)):
+        raise ctx.err(where, f"must be positive, got {_show(v)}",
+                      hint="lengths and radii are positive; give the direction with an angle")
+    return x
+
+
+def _name(ctx: _Ctx, where: str, v: Any, what: str = "a name") -> str:
     if isinstance(v, bool) or not isinstance(v, (str, int)):
-        raise ctx.err(where, f"expected a name, got {_show(v)}")
+        raise ctx.err(where, f"expected {what}, got {_show(v)}", hint='names are strings: "B", "3"')
     return str(v)
 
 
@@ -192,11 +206,12 @@ _OMEGA_UNITS = {
 }
 _ALPHA_UNITS = {"rad/s^2": 1.0, "rad/s2": 1.0, "rad/s²": 1.0, "rad/s/s": 1.0,
                 "deg/s^2": math.pi / 180, "deg/s2": math.pi / 180}
+_RATE_RE = re.compile(r"\s*([-+]?(?:\d+\.?\d*|\.\d+)(?:[eE][-+]?\d+)?)\s*(\S+?)(?:\s+(cw|ccw))?\s*",
+                      flags=re.IGNORECASE)
 
 
 def _parse_rate(text: str, units: Mapping[str, float]) -> float:
-    m = re.fullmatch(r"\s*([-+]?(?:\d+\.?\d*|\.\d+)(?:[eE][-+]?\d+)?)\s*(\S+)\s*(cw|ccw)?\s*",
-                     text, flags=re.IGNORECASE)
+    m = _RATE_RE.fullmatch(text)
     if not m:
         raise ValueError(text)
     value, unit, sense = m.groups()
@@ -204,13 +219,18 @@ def _parse_rate(text: str, units: Mapping[str, float]) -> float:
     if unit not in units:
         raise ValueError(text)
     x = float(value) * units[unit]
+    if not math.isfinite(x):
+        raise ValueError(text)
     if sense and sense.lower() == "cw":
         x = -x
-    return x
+    return x + 0.0   # no negative zero
 
 
 def parse_omega(v: Any) -> float:
     """An angular velocity in rad/s (ccw positive) from a number or ``"NUMBER UNIT [cw|ccw]"``.
+
+    UNIT is rad/s, rpm (r/min, rev/min), deg/s or rev/s (rps, Hz), case-insensitive;
+    ``cw`` reverses the sign (FORMAT.md section 5). Raises ValueError otherwise.
 
     >>> round(parse_omega("60 rpm"), 6)
     6.283185
@@ -227,7 +247,11 @@ def parse_omega(v: Any) -> float:
 
 
 def parse_alpha(v: Any) -> float:
-    """An angular acceleration in rad/s^2 from a number or ``"NUMBER rad/s^2 [cw|ccw]"``."""
+    """An angular acceleration in rad/s^2 from a number or ``"NUMBER rad/s^2 [cw|ccw]"``.
+
+    >>> parse_alpha("5 rad/s^2 cw")
+    -5.0
+    """
     if isinstance(v, bool):
         raise ValueError(v)
     if isinstance(v, (int, float)):
@@ -238,31 +262,56 @@ def parse_alpha(v: Any) -> float:
 
 
 # -- points -------------------------------------------------------------------------------
+TANGENT = 1e-7   # intersections closer than this (relative to the construction's size) touch
+
+
 def _xy(ctx, where, v) -> np.ndarray:
     if not isinstance(v, list) or len(v) != 2:
-        raise ctx.err(where, f"expected [x, y], got {_show(v)}")
+        raise ctx.err(where, f"expected [x, y], got {_show(v)}" + (f" of {len(v)} items" if isinstance(v, list) else ""),
+                      hint="a position is a list of two numbers, e.g. [0.3, 0.45]")
     return np.array([_num(ctx, where, v[0]), _num(ctx, where, v[1])])
 
 
-def _ref(ctx, where, name, pts) -> np.ndarray:
-    name = _name(ctx, where, name)
-    if name not in pts:
-        raise ctx.err(where, f"refers to point {name!r}, which is not defined before it",
-                      hint="points are evaluated in file order: define it earlier")
-    return pts[name]
+def _ref(ctx, where, name, pts, current=None) -> np.ndarray:
+    """The position of a point named in a construction: one defined above it."""
+    name = _name(ctx, where, name, "a point's name")
+    if name in pts:
+        return pts[name]
+    if name == current:
+        raise ctx.err(where, f"point {name!r} refers to itself",
+                      hint="construct it from points defined above it")
+    if name in ctx.point_names:
+        line = locate(ctx.text, f"points.{name}")
+        at = f" (line {line})" if line else ""
+        raise ctx.err(where, f"refers to point {name!r}, which is defined later{at}",
+                      hint=f"points are evaluated in file order: define {name!r} above "
+                           f"{current!r}" if current else "points are evaluated in file order")
+    raise ctx.err(where, f"refers to unknown point {name!r}",
+                  hint="points defined above it: " + (", ".join(pts) or "none") if len(pts) <= 20
+                  else "define it in [points], above the point that uses it")
 
 
-def _point_or_xy(ctx, where, v, pts) -> np.ndarray:
+def _point_or_xy(ctx, where, v, pts, current=None) -> np.ndarray:
     if isinstance(v, list):
         return _xy(ctx, where, v)
-    return _ref(ctx, where, v, pts)
+    return _ref(ctx, where, v, pts, current)
 
 
 def _keys(ctx, where, d: dict, allowed: tuple[str, ...]):
     for k in d:
         if k not in allowed:
-            raise ctx.err(f"{where}.{k}" if where else k, f"unknown key {k!r}",
+            raise ctx.err(f"{where}.{k}" if where else str(k), f"unknown key {_key(k)}",
                           hint="valid keys: " + ", ".join(allowed))
+
+
+def _key(k) -> str:
+    return repr(k) if isinstance(k, str) else repr(str(k))
+
+
+_CONSTRUCTIONS = ("[x, y], {from, length, angle}, {to, length, angle}, {from, length, along, turn}, "
+                  "{circles, near or side} or {circle, line, near}")
+_CONSTRUCTION_KEYS = ("from", "to", "length", "angle", "along", "turn", "circles", "near", "side",
+                      "circle", "line")
 
 
 def _construct(ctx: _Ctx, name: str, spec: Any, pts: dict) -> np.ndarray:
@@ -270,108 +319,149 @@ def _construct(ctx: _Ctx, name: str, spec: Any, pts: dict) -> np.ndarray:
     if isinstance(spec, list):
         return _xy(ctx, where, spec)
     if not isinstance(spec, dict):
-        raise ctx.err(where, f"expected [x, y] or a construction table, got {_show(spec)}")
+        raise ctx.err(where, f"expected [x, y] or a construction table, got {_show(spec)}",
+                      hint="use " + _CONSTRUCTIONS)
     if "circles" in spec:
-        _keys(ctx, where, spec, ("circles", "near", "side"))
-        cs = spec["circles"]
-        if not (isinstance(cs, list) and len(cs) == 2 and all(isinstance(c, list) and len(c) == 2 for c in cs)):
-            raise ctx.err(where + ".circles", "expected [[\"P\", r1], [\"Q\", r2]]")
-        p = _ref(ctx, where + ".circles", cs[0][0], pts)
-        q = _ref(ctx, where + ".circles", cs[1][0], pts)
-        r1 = _num(ctx, where + ".circles", cs[0][1], positive=True, allow_zero=False)
-        r2 = _num(ctx, where + ".circles", cs[1][1], positive=True, allow_zero=False)
-        if ("near" in spec) == ("side" in spec):
-            raise ctx.err(where, "a two-circle construction needs exactly one of 'near' and 'side'",
-                          hint='add near = [x, y] (a sketch point) or side = "left"')
-        left, right, gap = circle_circle(p, r1, q, r2)
-        if np.allclose(p, q):
-            raise ctx.err(where, f"the circles' centres {cs[0][0]!r} and {cs[1][0]!r} coincide")
-        if gap > 1e-9 * max(r1, r2):
-            raise ctx.err(where, f"circles do not meet (gap {gap:.6g} {ctx_units(ctx)})".replace(" )", ")"),
-                          hint="check the lengths: the circles must overlap")
-        if "side" in spec:
-            side = spec["side"]
-            if side not in ("left", "right"):
-                raise ctx.err(where + ".side", f"expected \"left\" or \"right\", got {_show(side)}")
-            return left if side == "left" else right
-        return _pick(ctx, where, (left, right), spec["near"], pts)
+        return _two_circles(ctx, where, name, spec, pts)
     if "circle" in spec:
-        _keys(ctx, where, spec, ("circle", "line", "near"))
-        c = spec["circle"]
-        if not (isinstance(c, list) and len(c) == 2):
-            raise ctx.err(where + ".circle", "expected [\"P\", r]")
-        centre = _ref(ctx, where + ".circle", c[0], pts)
-        r = _num(ctx, where + ".circle", c[1], positive=True, allow_zero=False)
-        if "line" not in spec:
-            raise ctx.err(where, "a circle-line construction needs 'line'")
-        through, ang = _line(ctx, where + ".line", spec["line"], pts)
-        if "near" not in spec:
-            raise ctx.err(where, "a circle-line construction needs 'near'", hint="add near = [x, y]")
-        a, b, gap = circle_line(centre, r, through, ang)
-        if gap > 1e-9 * r:
-            raise ctx.err(where, f"the line misses the circle (gap {gap:.6g} {ctx_units(ctx)})".replace(" )", ")"),
-                          hint="check the radius and the line")
-        return _pick(ctx, where, (a, b), spec["near"], pts)
+        return _circle_and_line(ctx, where, name, spec, pts)
     if "from" in spec or "to" in spec:
-        key = "from" if "from" in spec else "to"
-        if "from" in spec and "to" in spec:
-            raise ctx.err(where, "give one of 'from' and 'to', not both")
-        if "along" in spec:
-            _keys(ctx, where, spec, (key, "length", "along", "turn"))
-        else:
-            _keys(ctx, where, spec, (key, "length", "angle"))
-        base = _ref(ctx, f"{where}.{key}", spec[key], pts)
-        if "length" not in spec:
-            raise ctx.err(where, "missing 'length'")
-        L = _num(ctx, where + ".length", spec["length"], positive=True)
-        if "along" in spec:
-            al = spec["along"]
-            if not (isinstance(al, list) and len(al) == 2):
-                raise ctx.err(where + ".along", "expected [\"Q\", \"R\"]")
-            q = _ref(ctx, where + ".along", al[0], pts)
-            r = _ref(ctx, where + ".along", al[1], pts)
-            d = r - q
-            if np.hypot(*d) == 0:
-                raise ctx.err(where + ".along", f"{al[0]!r} and {al[1]!r} coincide: no direction")
-            ang = math.degrees(math.atan2(d[1], d[0])) + _num(ctx, where + ".turn", spec.get("turn", 0.0))
-        else:
-            if "angle" not in spec:
-                raise ctx.err(where, "missing 'angle' (or 'along')")
-            ang = _num(ctx, where + ".angle", spec["angle"])
-        v = L * np.array([math.cos(math.radians(ang)), math.sin(math.radians(ang))])
-        return base + v if key == "from" else base - v
-    raise ctx.err(where, "unknown construction", hint="use [x, y], {from, length, angle}, {to, ...}, "
-                  "{from, length, along, turn}, {circles, near|side} or {circle, line, near}")
+        return _polar_construction(ctx, where, name, spec, pts)
+    unknown = [k for k in spec if k not in _CONSTRUCTION_KEYS]
+    if unknown:
+        raise ctx.err(f"{where}.{unknown[0]}", f"unknown key {_key(unknown[0])}",
+                      hint="a point is " + _CONSTRUCTIONS)
+    raise ctx.err(where, "incomplete construction: " + (", ".join(map(str, spec)) or "an empty table"),
+                  hint="a point is " + _CONSTRUCTIONS)
 
 
-def ctx_units(ctx) -> str:
-    return getattr(ctx, "units", "")
+def _two_circles(ctx, where, name, spec, pts):
+    _keys(ctx, where, spec, ("circles", "near", "side"))
+    cs = spec["circles"]
+    if not (isinstance(cs, list) and len(cs) == 2 and all(isinstance(c, list) and len(c) == 2 for c in cs)):
+        raise ctx.err(where + ".circles", f"expected [[\"P\", r1], [\"Q\", r2]], got {_show(cs)}",
+                      hint="two circles, each a centre point's name and a radius")
+    p = _ref(ctx, where + ".circles", cs[0][0], pts, name)
+    q = _ref(ctx, where + ".circles", cs[1][0], pts, name)
+    r1 = _num(ctx, where + ".circles", cs[0][1], positive=True, allow_zero=False)
+    r2 = _num(ctx, where + ".circles", cs[1][1], positive=True, allow_zero=False)
+    if ("near" in spec) == ("side" in spec):
+        raise ctx.err(where, "a two-circle construction needs exactly one of 'near' and 'side'"
+                      + (" (both are given)" if "near" in spec else ""),
+                      hint='keep near = [x, y] (a sketch point) or side = "left" / "right", not both'
+                      if "near" in spec else 'add near = [x, y] (a sketch point) or side = "left" / "right"')
+    dist = float(np.hypot(*(q - p)))
+    if dist == 0:
+        raise ctx.err(where + ".circles", f"the circles' centres {str(cs[0][0])!r} and {str(cs[1][0])!r} coincide",
+                      hint="two circles about one centre meet nowhere or everywhere: use other centres")
+    left, right, gap = circle_circle(p, r1, q, r2)
+    if gap > 1e-9 * max(r1, r2):
+        inside = abs(r1 - r2) > dist
+        raise ctx.err(where, f"circles do not meet (gap {_length(ctx, gap)})",
+                      hint=(f"one circle lies inside the other ({_length(ctx, dist)} between centres, radii "
+                            f"{r1:g} and {r2:g}): check the lengths") if inside else
+                      (f"the centres are {_length(ctx, dist)} apart but the radii add up to {r1 + r2:g}: "
+                       "check the lengths (the links cannot reach)"))
+    if np.hypot(*(left - right)) <= 2 * TANGENT * max(r1, r2, dist):
+        left = right = 0.5 * (left + right)   # tangent to within rounding: on the line of centres
+    if "side" in spec:
+        side = spec["side"]
+        if side not in ("left", "right"):
+            raise ctx.err(where + ".side", f"expected \"left\" or \"right\", got {_show(side)}",
+                          hint="the side of the directed line from the first centre to the second")
+        return left if side == "left" else right
+    return _pick(ctx, where, (left, right), spec["near"], pts, name)
 
 
-def _line(ctx, where, spec, pts):
-    if isinstance(spec, list):
-        if len(spec) != 2:
-            raise ctx.err(where, "expected [\"Q\", \"R\"] or {through, angle}")
-        q = _ref(ctx, where, spec[0], pts)
-        r = _ref(ctx, where, spec[1], pts)
+def _circle_and_line(ctx, where, name, spec, pts):
+    _keys(ctx, where, spec, ("circle", "line", "near"))
+    c = spec["circle"]
+    if not (isinstance(c, list) and len(c) == 2):
+        raise ctx.err(where + ".circle", f"expected [\"P\", r], got {_show(c)}",
+                      hint="the circle's centre point and its radius")
+    centre = _ref(ctx, where + ".circle", c[0], pts, name)
+    r = _num(ctx, where + ".circle", c[1], positive=True, allow_zero=False)
+    if "line" not in spec:
+        raise ctx.err(where, "a circle-line construction needs 'line'",
+                      hint='add line = { through = [x, y], angle = deg } or line = ["Q", "R"]')
+    through, ang = _line(ctx, where + ".line", spec["line"], pts, name)
+    if "near" not in spec:
+        raise ctx.err(where, "a circle-line construction needs 'near'",
+                      hint="add near = [x, y], a sketch point near the intersection you mean")
+    a, b, gap = circle_line(centre, r, through, ang)
+    if gap > 1e-9 * r:
+        raise ctx.err(where, f"the line misses the circle (gap {_length(ctx, gap)})",
+                      hint=f"the line passes {_length(ctx, gap + r)} from the centre, beyond the radius {r:g}: "
+                           "check the radius and the line")
+    if np.hypot(*(a - b)) <= 2 * TANGENT * max(r, float(np.hypot(*(centre - through)))):
+        a = b = 0.5 * (a + b)   # tangent to within rounding
+    return _pick(ctx, where, (a, b), spec["near"], pts, name)
+
+
+def _polar_construction(ctx, where, name, spec, pts):
+    if "from" in spec and "to" in spec:
+        raise ctx.err(where, "give one of 'from' and 'to', not both",
+                      hint="from = \"P\": P plus the vector; to = \"P\": P minus it")
+    key = "from" if "from" in spec else "to"
+    _keys(ctx, where, spec, (key, "length", "along", "turn") if "along" in spec else (key, "length", "angle"))
+    base = _ref(ctx, f"{where}.{key}", spec[key], pts, name)
+    if "length" not in spec:
+        raise ctx.err(where, "missing 'length'", hint=f"add length = L (the distance from {spec[key]!s})")
+    L = _num(ctx, where + ".length", spec["length"], positive=True)
+    if "along" in spec:
+        al = spec["along"]
+        if not (isinstance(al, list) and len(al) == 2):
+            raise ctx.err(where + ".along", f"expected [\"Q\", \"R\"], got {_show(al)}",
+                          hint="the direction from Q to R, two points' names")
+        q = _ref(ctx, where + ".along", al[0], pts, name)
+        r = _ref(ctx, where + ".along", al[1], pts, name)
         d = r - q
         if np.hypot(*d) == 0:
-            raise ctx.err(where, "the line's two points coincide")
+            raise ctx.err(where + ".along", f"{str(al[0])!r} and {str(al[1])!r} coincide: no direction",
+                          hint="name two points that are apart")
+        ang = math.degrees(math.atan2(d[1], d[0])) + _num(ctx, where + ".turn", spec.get("turn", 0.0))
+    else:
+        if "angle" not in spec:
+            raise ctx.err(where, "missing 'angle' (or 'along')",
+                          hint="add angle = deg (counter-clockwise from +x) or along = [\"Q\", \"R\"]")
+        ang = _num(ctx, where + ".angle", spec["angle"])
+    v = L * np.array([math.cos(math.radians(ang)), math.sin(math.radians(ang))])
+    return base + v if key == "from" else base - v
+
+
+def _length(ctx, x: float) -> str:
+    return f"{x:.6g} {ctx.units}".rstrip()
+
+
+def _line(ctx, where, spec, pts, name):
+    if isinstance(spec, list):
+        if len(spec) != 2:
+            raise ctx.err(where, f"expected [\"Q\", \"R\"] or {{through, angle}}, got a list of {len(spec)}",
+                          hint="the line through two points, or through a point at an angle")
+        q = _ref(ctx, where, spec[0], pts, name)
+        r = _ref(ctx, where, spec[1], pts, name)
+        d = r - q
+        if np.hypot(*d) == 0:
+            raise ctx.err(where, "the line's two points coincide", hint="name two points that are apart")
         return q, math.degrees(math.atan2(d[1], d[0]))
     if isinstance(spec, dict):
         _keys(ctx, where, spec, ("through", "angle"))
         if "through" not in spec or "angle" not in spec:
-            raise ctx.err(where, "a line needs 'through' and 'angle'")
-        return _point_or_xy(ctx, where + ".through", spec["through"], pts), _num(ctx, where + ".angle", spec["angle"])
-    raise ctx.err(where, f"expected a line, got {_show(spec)}")
+            raise ctx.err(where, "a line needs 'through' and 'angle'",
+                          hint="line = { through = \"Q\" or [x, y], angle = deg }")
+        return (_point_or_xy(ctx, where + ".through", spec["through"], pts, name),
+                _num(ctx, where + ".angle", spec["angle"]))
+    raise ctx.err(where, f"expected a line, got {_show(spec)}",
+                  hint="line = { through = \"Q\" or [x, y], angle = deg } or line = [\"Q\", \"R\"]")
 
 
-def _pick(ctx, where, cands, near, pts) -> np.ndarray:
+def _pick(ctx, where, cands, near, pts, name) -> np.ndarray:
     if isinstance(near, dict):
         _keys(ctx, where + ".near", near, ("from", "angle"))
         if "from" not in near or "angle" not in near:
-            raise ctx.err(where + ".near", "expected {from = \"P\", angle = deg}")
-        base = _ref(ctx, where + ".near", near["from"], pts)
+            raise ctx.err(where + ".near", "expected {from = \"P\", angle = deg}",
+                          hint="the intersection whose direction from P is closest to the angle")
+        base = _ref(ctx, where + ".near", near["from"], pts, name)
         ang = math.radians(_num(ctx, where + ".near.angle", near["angle"]))
         e = np.array([math.cos(ang), math.sin(ang)])
 
@@ -380,7 +470,10 @@ def _pick(ctx, where, cands, near, pts) -> np.ndarray:
             n = np.hypot(*d)
             return -np.dot(d, e) / n if n > 0 else 2.0
         return min(cands, key=score)
-    target = _point_or_xy(ctx, where + ".near", near, pts)
+    if not isinstance(near, (list, str, int)) or isinstance(near, bool):
+        raise ctx.err(where + ".near", f"expected [x, y], a point's name or {{from, angle}}, got {_show(near)}",
+                      hint="near = [x, y] is a sketch point near the intersection you mean")
+    target = _point_or_xy(ctx, where + ".near", near, pts, name)
     return min(cands, key=lambda c: float(np.hypot(*(c - target))))
 
 
@@ -388,26 +481,32 @@ def _pick(ctx, where, cands, near, pts) -> np.ndarray:
 def load(source, *, name: str | None = None) -> Mechanism:
     """Read a mechanism from a file path, TOML text, or a dict.
 
-    Raises :class:`~velpoly.errors.InputError` (a :class:`VelpolyError`) naming
-    the file, the entry and what is wrong.
+    A string is a path when it is one line that names a file or has no
+    ``=``; otherwise it is TOML text. Input files are only read, never
+    written. Raises :class:`~velpoly.errors.InputError` (a
+    :class:`VelpolyError`) naming the file, the entry and what is wrong.
     """
     text = None
     if isinstance(source, dict):
         data, file = source, name or "<dict>"
-    elif isinstance(source, os.PathLike) or (isinstance(source, str) and "\n" not in source
-                                            and "=" not in source):
+    elif isinstance(source, os.PathLike) or (isinstance(source, str) and source.strip() and "\n" not in source
+                                            and (os.path.exists(source) or "=" not in source)):
         path = Path(source)
         file = name or str(source)
         try:
             text = path.read_text(encoding="utf-8")
         except FileNotFoundError:
-            raise InputError("no such file", file=str(source), hint="check the path") from None
+            raise InputError("no such file", file=file, hint="check the path") from None
         except IsADirectoryError:
-            raise InputError("is a directory, not a mechanism file", file=str(source)) from None
+            raise InputError("is a directory, not a mechanism file", file=file,
+                             hint="give the path of a .toml file") from None
         except UnicodeDecodeError:
-            raise InputError("not a text (UTF-8) file", file=str(source)) from None
+            raise InputError("not a text (UTF-8) file", file=file,
+                             hint="a mechanism file is TOML text in UTF-8") from None
         except OSError as e:
-            raise InputError(f"cannot read: {e.strerror}", file=str(source)) from None
+            raise InputError(f"cannot read: {e.strerror or e}", file=file, hint="check the path and its permissions") from None
+        if text.startswith("\ufeff"):   # a byte-order mark, as some editors write
+            text = text[1:]
         data = _parse_toml(text, file)
         if name is None:
             name = path.name
@@ -415,148 +514,230 @@ def load(source, *, name: str | None = None) -> Mechanism:
         text, file = source, name or "<text>"
         data = _parse_toml(text, file)
     else:
-        raise InputError(f"cannot load a {type(source).__name__}: give a path, TOML text or a dict")
+        raise InputError(f"cannot load a {type(source).__name__}: give a path, TOML text or a dict",
+                         file=name or "", hint="velpoly.load(\"fourbar.toml\")")
     ctx = _Ctx(file, text)
     try:
         return _build(ctx, data, default_title=name or file)
     except VelpolyError as e:
         raise e.with_file(file)
     except (TypeError, ValueError, KeyError, IndexError, AttributeError) as e:  # pragma: no cover
-        raise InputError(f"malformed entry ({type(e).__name__}: {e})", file=file) from None
+        # every input is checked above; this is a last line of defence, never a traceback
+        raise InputError(f"malformed entry ({type(e).__name__}: {e})", file=file,
+                         hint="please report this file: velpoly should have named the entry") from None
 
 
 def _parse_toml(text: str, file: str) -> dict:
     if not text.strip():
-        raise InputError("the file is empty", file=file, hint="write a mechanism: see README")
+        raise InputError("the file is empty", file=file,
+                         hint="a mechanism file has [points], [links] and [driver] tables (see the README)")
     try:
         return tomllib.loads(text)
     except tomllib.TOMLDecodeError as e:
-        raise InputError(f"bad TOML: {e}", file=file, hint="check the syntax at that line") from None
+        msg = str(e)
+        m = re.search(r"\s*\(at line (\d+), column (\d+)\)\s*$", msg)
+        where = ""
+        if m:
+            where = f"line {m.group(1)}"
+            msg = msg[:m.start()] + f" at column {m.group(2)}"
+        else:
+            msg = re.sub(r"\s*\(at end of document\)\s*$", " at the end of the file", msg)
+        raise InputError(f"bad TOML: {msg[:1].lower() + msg[1:]}", where=where, file=file,
+                         hint="check the syntax there (quotes around names, = between key and value, "
+                              "one key per line)") from None
 
 
 def _table(ctx, data, key, required=True) -> dict:
     if key not in data:
         if required:
-            raise ctx.err(key, f"missing table [{key}]")
+            raise ctx.err(key, f"missing table [{key}]", hint=_TABLE_HINTS.get(key, ""))
         return {}
     v = data[key]
     if not isinstance(v, dict):
-        raise ctx.err(key, f"expected a table [{key}], got {_show(v)}")
+        raise ctx.err(key, f"expected a table [{key}], got {_show(v)}", hint=_TABLE_HINTS.get(key, ""))
     return v
+
+
+_TABLE_HINTS = {
+    "points": "[points] names each point: A = [0, 0], B = { from = \"A\", length = 0.15, angle = 30 }",
+    "links": "[links] lists each link's points: 2 = { points = [\"A\", \"B\"] }, one with frame = true",
+    "driver": "[driver] link = \"2\" (a crank pinned to the frame), omega = \"60 rpm\"",
+    "reference": "[reference] holds published answers: omega = { \"3\" = 6.70 }, values = { V_B = 602 }",
+    "drawing": "[drawing] holds presentation options (see the README)",
+}
 
 
 def _array_of_tables(ctx, data, key) -> list[dict]:
     v = data.get(key, [])
-    if not isinstance(v, list) or not all(isinstance(x, dict) for x in v):
-        raise ctx.err(key, f"expected [[{key}]] entries (an array of tables)")
+    if not isinstance(v, list):
+        raise ctx.err(key, f"expected [[{key}]] entries (an array of tables), got {_show(v)}",
+                      hint=f"write each entry under its own [[{key}]] header")
+    for i, x in enumerate(v):
+        if not isinstance(x, dict):
+            raise ctx.err(f"{key}[{i}]", f"expected a table, got {_show(x)}",
+                          hint=f"write each entry under its own [[{key}]] header")
     return v
+
+
+def _names(ctx, table: str, raw: dict, kind: str) -> list[tuple[str, Any]]:
+    """The table's entries as (name, spec), names checked."""
+    out, seen = [], set()
+    for k, spec in raw.items():
+        if isinstance(k, bool) or not isinstance(k, (str, int)):
+            raise ctx.err(table, f"a {kind}'s name must be a string, got {_show(k)}", hint='e.g. "B" or "3"')
+        n = str(k)
+        where = f"{table}.{n}"
+        if not n.strip():
+            raise ctx.err(where, f"a {kind}'s name is empty", hint=f"give the {kind} a name")
+        if n in seen:
+            raise ctx.err(where, f"{kind} {n!r} is defined twice", hint="each name once")
+        for c, why in (("@", "point keys are \"P@link\""),) + ((("-", "pole keys are \"i-j\""),)
+                                                             if kind == "link" else ()):
+            if c in n:
+                raise ctx.err(where, f"a {kind}'s name must not contain {c!r} ({why})",
+                              hint=f"rename {kind} {n!r}" + (" (textbooks number links: 1, 2, 3)"
+                                                             if kind == "link" else ""))
+        if any(ord(ch) < 32 for ch in n):
+            raise ctx.err(where, f"a {kind}'s name must not contain control characters", hint=f"rename {n!r}")
+        seen.add(n)
+        out.append((n, spec))
+    return out
 
 
 def _build(ctx: _Ctx, data: dict, default_title: str) -> Mechanism:
     for k in data:
         if k not in TOP_KEYS:
-            raise ctx.err(k, f"unknown key {k!r}", hint="valid keys: " + ", ".join(TOP_KEYS))
+            raise ctx.err(str(k), f"unknown key {_key(k)}", hint="valid keys: " + ", ".join(TOP_KEYS))
     fmt = data.get("format", 1)
-    if fmt != 1 or isinstance(fmt, bool):
-        raise ctx.err("format", f"unsupported format {fmt!r}", hint="this velpoly reads format = 1")
+    if isinstance(fmt, bool) or fmt != 1:
+        raise ctx.err("format", f"unsupported format {_show(fmt)}", hint="this velpoly reads format = 1")
     title = data.get("title", default_title)
     if not isinstance(title, str):
-        raise ctx.err("title", f"expected a string, got {_show(title)}")
+        raise ctx.err("title", f"expected a string, got {_show(title)}", hint='title = "Four-bar, Example 3.6"')
     units = data.get("units", "m")
     if not isinstance(units, str):
-        raise ctx.err("units", f"expected a string such as \"mm\", got {_show(units)}")
+        raise ctx.err("units", f"expected a string such as \"mm\", got {_show(units)}",
+                      hint='units = "mm" (a label for lengths; "" for none)')
     ctx.units = units
 
-    # points
+    # points, in file order
     raw_points = _table(ctx, data, "points")
     if not raw_points:
-        raise ctx.err("points", "no points", hint="define the mechanism's points in [points]")
+        raise ctx.err("points", "no points", hint=_TABLE_HINTS["points"])
+    named_points = _names(ctx, "points", raw_points, "point")
+    ctx.point_names = tuple(n for n, _ in named_points)
     pts: dict[str, np.ndarray] = {}
-    for pname, spec in raw_points.items():
-        if "@" in pname:
-            raise ctx.err(f"points.{pname}", "a point's name must not contain '@'")
+    for pname, spec in named_points:
         pts[pname] = _construct(ctx, pname, spec, pts)
         if not np.all(np.isfinite(pts[pname])):
-            raise ctx.err(f"points.{pname}", "the construction gives no finite position")
+            raise ctx.err(f"points.{pname}", "the construction gives no finite position",
+                          hint="check its lengths and angles")
+    size = _size(pts)
 
     # links
     raw_links = _table(ctx, data, "links")
     links: list[Link] = []
-    for lname, spec in raw_links.items():
+    for lname, spec in _names(ctx, "links", raw_links, "link"):
         where = f"links.{lname}"
-        if "-" in lname:
-            raise ctx.err(where, "a link's name must not contain '-' (pole keys are \"i-j\")")
         if lname in pts:
             raise ctx.err(where, f"{lname!r} names both a point and a link",
                           hint="give links numbers and points letters, as textbooks do")
         if not isinstance(spec, dict):
-            raise ctx.err(where, f"expected {{ points = [...] }}, got {_show(spec)}")
+            raise ctx.err(where, f"expected {{ points = [...] }}, got {_show(spec)}",
+                          hint=f'{lname} = {{ points = ["A", "B"] }}')
         _keys(ctx, where, spec, ("points", "frame"))
         lp = spec.get("points")
         if not isinstance(lp, list) or not lp:
-            raise ctx.err(where + ".points", "expected a non-empty list of point names")
+            raise ctx.err(where + ".points", "expected a non-empty list of point names" +
+                          ("" if lp is None else f", got {_show(lp)}"),
+                          hint=f'{lname} = {{ points = ["A", "B"] }}: the points fixed to the link')
         names = []
         for p in lp:
-            p = _name(ctx, where + ".points", p)
+            p = _name(ctx, where + ".points", p, "a point's name")
             if p not in pts:
-                raise ctx.err(where + ".points", f"unknown point {p!r}", hint="define it in [points]")
+                raise ctx.err(where + ".points", f"unknown point {p!r}",
+                              hint="define it in [points]" + (": " + ", ".join(pts) if len(pts) <= 20 else ""))
             if p in names:
-                raise ctx.err(where + ".points", f"point {p!r} is listed twice")
+                raise ctx.err(where + ".points", f"point {p!r} is listed twice", hint="list each point once")
             names.append(p)
         frame = spec.get("frame", False)
         if not isinstance(frame, bool):
-            raise ctx.err(where + ".frame", f"expected true or false, got {_show(frame)}")
+            raise ctx.err(where + ".frame", f"expected true or false, got {_show(frame)}",
+                          hint="frame = true marks the fixed link")
+        if len(names) >= 2 and np.hypot(*(pts[names[0]] - pts[names[1]])) <= 1e-12 * size:
+            raise ctx.err(where + ".points", f"its first two points {names[0]!r} and {names[1]!r} coincide, "
+                          "so the link's angle is undefined",
+                          hint="a link's angle is the direction from its first point to its second: "
+                               "list two points that are apart first")
         links.append(Link(lname, tuple(names), frame))
     frames = [k for k in links if k.frame]
-    if len(frames) != 1:
-        raise ctx.err("links", "no link is the frame" if not frames else
-                      "two or more links are the frame: " + ", ".join(k.name for k in frames),
-                      hint="mark exactly one link with frame = true")
-    lnames = {k.name for k in links}
+    if not frames:
+        raise ctx.err("links", "no link is the frame", hint="mark exactly one link with frame = true")
+    if len(frames) > 1:
+        raise ctx.err(f"links.{frames[1].name}", "two or more links are the frame: " +
+                      ", ".join(k.name for k in frames), hint="mark exactly one link with frame = true")
+    lnames = [k.name for k in links]
     listed: dict[str, list[str]] = {}
     for k in links:
         for p in k.points:
             listed.setdefault(p, []).append(k.name)
 
     def link_ref(where, v):
-        n = _name(ctx, where, v)
+        n = _name(ctx, where, v, "a link's name")
         if n not in lnames:
-            raise ctx.err(where, f"unknown link {n!r}", hint="links: " + ", ".join(sorted(lnames)))
+            raise ctx.err(where, f"unknown link {n!r}", hint="links: " + ", ".join(lnames))
         return n
 
     def point_ref(where, v):
-        n = _name(ctx, where, v)
+        n = _name(ctx, where, v, "a point's name")
         if n not in pts:
-            raise ctx.err(where, f"unknown point {n!r}", hint="define it in [points]")
+            raise ctx.err(where, f"unknown point {n!r}",
+                          hint="define it in [points]" + (": " + ", ".join(pts) if len(pts) <= 20 else ""))
         return n
+
+    def require(where, entry, keys, example):
+        for req in keys:
+            if req not in entry:
+                raise ctx.err(where, f"missing '{req}'", hint=example)
 
     owned: dict[str, list[str]] = {}   # points carried without being listed
     coincident: set[tuple[str, str]] = set()  # (point, link): carried as a coincident point, no pin
+
+    def path_centre(where, cen, p, guide, what):
+        """A circular path's centre: a point of the guide (or listed in no link: the guide's)."""
+        if np.hypot(*(pts[p] - pts[cen])) == 0:
+            raise ctx.err(where, f"the {what}'s centre is the point {p!r} itself",
+                          hint="the centre of a circular path is the centre of its arc")
+        if cen not in listed:
+            owned.setdefault(cen, []).append(guide)
+        elif guide not in listed[cen]:
+            raise ctx.err(where, f"the centre {cen!r} is not a point of link {guide!r}",
+                          hint=f"a circular path turns with its link: list {cen!r} in links.{guide}, "
+                               "or in no link")
 
     # sliders
     sliders = []
     for i, s in enumerate(_array_of_tables(ctx, data, "sliders")):
         where = f"sliders[{i}]"
         _keys(ctx, where, s, ("block", "guide", "point", "angle", "centre"))
-        for req in ("block", "guide", "point"):
-            if req not in s:
-                raise ctx.err(where, f"missing '{req}'")
+        require(where, s, ("block", "guide", "point"),
+                'a slider has block = "5", guide = "0", point = "F" and angle = deg (or centre = "K")')
         b, g = link_ref(where + ".block", s["block"]), link_ref(where + ".guide", s["guide"])
         p = point_ref(where + ".point", s["point"])
         if b == g:
-            raise ctx.err(where, "block and guide are the same link")
+            raise ctx.err(where + ".guide", f"block and guide are the same link {b!r}",
+                          hint="the block slides on another link, its guide")
         if p not in ctx_link(links, b).points:
             raise ctx.err(where + ".point", f"point {p!r} is not a point of the block {b!r}",
                           hint=f"list {p!r} in links.{b}")
         if ("angle" in s) == ("centre" in s):
-            raise ctx.err(where, "give the path as exactly one of 'angle' and 'centre'")
+            raise ctx.err(where, "give the path as exactly one of 'angle' and 'centre'" +
+                          (" (both are given)" if "angle" in s else ""),
+                          hint="angle = deg (a straight path) or centre = \"K\" (a circular one)")
         ang = _num(ctx, where + ".angle", s["angle"]) if "angle" in s else None
         cen = point_ref(where + ".centre", s["centre"]) if "centre" in s else None
         if cen is not None:
-            if np.hypot(*(pts[p] - pts[cen])) == 0:
-                raise ctx.err(where + ".centre", "the path's centre is the slider's point")
-            if cen not in listed:
-                owned.setdefault(cen, []).append(g)
+            path_centre(where + ".centre", cen, p, g, "path")
         if p in ctx_link(links, g).points:
             coincident.add((p, g))
         sliders.append(Slider(b, g, p, ang, cen))
@@ -566,86 +747,61 @@ def _build(ctx: _Ctx, data: dict, default_title: str) -> Mechanism:
     for i, s in enumerate(_array_of_tables(ctx, data, "slots")):
         where = f"slots[{i}]"
         _keys(ctx, where, s, ("pin", "link", "slot", "angle", "centre"))
-        for req in ("pin", "link", "slot"):
-            if req not in s:
-                raise ctx.err(where, f"missing '{req}'")
+        require(where, s, ("pin", "link", "slot"),
+                'a slot has pin = "P", link = "3" (carries the pin), slot = "4" and angle = deg (or centre = "K")')
         p = point_ref(where + ".pin", s["pin"])
-        l, sk = link_ref(where + ".link", s["link"]), link_ref(where + ".slot", s["slot"])
-        if l == sk:
-            raise ctx.err(where, "the pin's link and the slot's link are the same")
-        if p not in ctx_link(links, l).points:
-            raise ctx.err(where + ".pin", f"point {p!r} is not a point of link {l!r}", hint=f"list it in links.{l}")
+        lk, sk = link_ref(where + ".link", s["link"]), link_ref(where + ".slot", s["slot"])
+        if lk == sk:
+            raise ctx.err(where + ".slot", f"the pin's link and the slot's link are the same link {lk!r}",
+                          hint="the pin of one link slides in a slot of another")
+        if p not in ctx_link(links, lk).points:
+            raise ctx.err(where + ".pin", f"point {p!r} is not a point of link {lk!r}", hint=f"list it in links.{lk}")
         if ("angle" in s) == ("centre" in s):
-            raise ctx.err(where, "give the slot's path as exactly one of 'angle' and 'centre'")
+            raise ctx.err(where, "give the slot's path as exactly one of 'angle' and 'centre'" +
+                          (" (both are given)" if "angle" in s else ""),
+                          hint="angle = deg (a straight slot) or centre = \"K\" (a circular one)")
         ang = _num(ctx, where + ".angle", s["angle"]) if "angle" in s else None
         cen = point_ref(where + ".centre", s["centre"]) if "centre" in s else None
         if cen is not None:
-            if np.hypot(*(pts[p] - pts[cen])) == 0:
-                raise ctx.err(where + ".centre", "the slot's centre is the pin")
-            if cen not in listed:
-                owned.setdefault(cen, []).append(sk)
+            path_centre(where + ".centre", cen, p, sk, "slot")
         if p in ctx_link(links, sk).points:
             coincident.add((p, sk))
-        slots.append(Slot(p, l, sk, ang, cen))
+        slots.append(Slot(p, lk, sk, ang, cen))
 
     # contacts
     contacts = []
-    size = _size(pts)
     for i, c in enumerate(_array_of_tables(ctx, data, "contacts")):
         where = f"contacts[{i}]"
         _keys(ctx, where, c, ("links", "point", "kind", "slip", "centres", "normal"))
         if "links" not in c or not isinstance(c["links"], list) or len(c["links"]) != 2:
-            raise ctx.err(where + ".links", "expected links = [\"a\", \"b\"]")
+            raise ctx.err(where + ".links", "expected links = [\"a\", \"b\"]" +
+                          (f", got {_show(c['links'])}" if "links" in c else ""),
+                          hint="the two links that touch")
         a, b = link_ref(where + ".links", c["links"][0]), link_ref(where + ".links", c["links"][1])
         if a == b:
-            raise ctx.err(where + ".links", "a contact needs two different links")
-        if "point" not in c:
-            raise ctx.err(where, "missing 'point'")
+            raise ctx.err(where + ".links", f"a contact needs two different links, got {a!r} twice",
+                          hint="the two links that touch")
+        require(where, c, ("point",), 'point = "P": the contact point, defined in [points]')
         p = point_ref(where + ".point", c["point"])
         kind = c.get("kind")
         if kind not in ("rolling", "sliding"):
-            raise ctx.err(where + ".kind", f"expected \"rolling\" or \"sliding\", got {_show(kind)}")
+            raise ctx.err(where + ".kind", "expected \"rolling\" or \"sliding\"" +
+                          (f", got {_show(kind)}" if "kind" in c else " (kind is missing)"),
+                          hint="rolling: no slip; sliding: slip along the common tangent")
         slip = None
         if "slip" in c:
             if kind != "sliding":
-                raise ctx.err(where + ".slip", "a prescribed slip needs kind = \"sliding\"")
+                raise ctx.err(where + ".slip", "a prescribed slip needs kind = \"sliding\"",
+                              hint="a rolling contact has no slip: remove slip, or make it sliding")
             slip = _num(ctx, where + ".slip", c["slip"])
         if ("centres" in c) == ("normal" in c):
-            raise ctx.err(where, "give exactly one of 'centres' and 'normal'",
+            raise ctx.err(where, "give exactly one of 'centres' and 'normal'" +
+                          (" (both are given)" if "normal" in c else ""),
                           hint="centres = [\"Ca\", \"Cb\"] (\"flat\" for a straight profile), or normal = deg")
         centres = None
         normal = None
         if "centres" in c:
-            cs = c["centres"]
-            if not isinstance(cs, list) or len(cs) != 2:
-                raise ctx.err(where + ".centres", "expected [\"Ca\", \"Cb\"]")
-            cc = []
-            for j, (cn, owner) in enumerate(zip(cs, (a, b))):
-                if cn == "flat":
-                    cc.append(None)
-                    continue
-                cn = point_ref(where + ".centres", cn)
-                if cn == p:
-                    raise ctx.err(where + ".centres", f"centre {cn!r} is the contact point itself")
-                cc.append(cn)
-                if cn not in listed:
-                    owned.setdefault(cn, []).append(owner)
-                elif owner not in listed[cn]:
-                    raise ctx.err(where + ".centres", f"centre {cn!r} is not a point of link {owner!r}",
-                                  hint=f"the centres are in the order of links: list {cn!r} in links.{owner}")
-            if cc[0] is None and cc[1] is None:
-                raise ctx.err(where + ".centres", "both profiles are flat", hint="use a slider for a flat on a flat")
-            if cc[0] is not None and cc[1] is not None:
-                A, B, P = pts[cc[0]], pts[cc[1]], pts[p]
-                d = B - A
-                if np.hypot(*d) == 0:
-                    raise ctx.err(where + ".centres", "the two centres of curvature coincide")
-                off = abs(d[0] * (P - A)[1] - d[1] * (P - A)[0]) / np.hypot(*d)
-                if off > 1e-6 * size:
-                    raise ctx.err(where + ".point", f"the contact point is off the line of centres by "
-                                  f"{off:.6g} {units}".rstrip(), hint="the contact point lies on the common normal, "
-                                  "the line through both centres of curvature")
-            centres = tuple(cc)
+            centres = _contact_centres(ctx, where, c["centres"], (a, b), p, pts, listed, owned, point_ref, size)
         else:
             normal = _num(ctx, where + ".normal", c["normal"])
         for lk in (a, b):
@@ -680,7 +836,7 @@ def _build(ctx: _Ctx, data: dict, default_title: str) -> Mechanism:
         carriers[pname] = tuple(cl)
 
     driver = _driver(ctx, _table(ctx, data, "driver"), lnames, frames[0].name, pins, sliders, links)
-    reference = _reference(ctx, _table(ctx, data, "reference", required=False), lnames, pts)
+    reference = _reference(ctx, _table(ctx, data, "reference", required=False), lnames)
     drawing = _table(ctx, data, "drawing", required=False)
     m = Mechanism(
         title=title, units=units,
@@ -689,10 +845,45 @@ def _build(ctx: _Ctx, data: dict, default_title: str) -> Mechanism:
         slots=tuple(slots), driver=driver, reference=reference, drawing=frozen_map(drawing),
         carriers=frozen_map(carriers), source=ctx.file, point_order=tuple(pts),
     )
-    # a link needs two points to have a shape, unless it is a slider block or a wheel
-    from .reference import validate_reference
-    validate_reference(m, ctx)
+    _check_reference(ctx, m)
     return m
+
+
+def _contact_centres(ctx, where, cs, owners, p, pts, listed, owned, point_ref, size):
+    """A contact's centres of curvature, checked: each a point of its link (or "flat")."""
+    w = where + ".centres"
+    if not isinstance(cs, list) or len(cs) != 2:
+        raise ctx.err(w, f"expected [\"Ca\", \"Cb\"], got {_show(cs)}",
+                      hint="the centres of curvature of the profiles of links a and b, \"flat\" for a straight one")
+    cc = []
+    for cn, owner in zip(cs, owners):
+        if cn == "flat":
+            cc.append(None)
+            continue
+        cn = point_ref(w, cn)
+        if cn == p or np.hypot(*(pts[cn] - pts[p])) == 0:
+            raise ctx.err(w, f"centre {cn!r} is at the contact point: the profile has no radius",
+                          hint="the centre of curvature is the centre of the profile's arc at the contact")
+        cc.append(cn)
+        if cn not in listed:
+            owned.setdefault(cn, []).append(owner)
+        elif owner not in listed[cn]:
+            raise ctx.err(w, f"centre {cn!r} is not a point of link {owner!r}",
+                          hint=f"the centres are in the order of links: list {cn!r} in links.{owner}")
+    if cc[0] is None and cc[1] is None:
+        raise ctx.err(w, "both profiles are flat", hint="a flat on a flat is a slider: use [[sliders]]")
+    if cc[0] is not None and cc[1] is not None:
+        A, B, P = pts[cc[0]], pts[cc[1]], pts[p]
+        d = B - A
+        if np.hypot(*d) == 0:
+            raise ctx.err(w, "the two centres of curvature coincide",
+                          hint="concentric profiles touch everywhere or nowhere")
+        off = abs(d[0] * (P - A)[1] - d[1] * (P - A)[0]) / np.hypot(*d)
+        if off > 1e-6 * size:
+            raise ctx.err(where + ".point", f"the contact point is off the line of centres by {_length(ctx, off)}",
+                          hint="profiles touch on their common normal, the line through both centres "
+                               "of curvature: put the point there")
+    return tuple(cc)
 
 
 def ctx_link(links, name) -> Link:
@@ -705,89 +896,128 @@ def _size(pts) -> float:
     return d or 1.0
 
 
+_OMEGA_HINT = ('a number in rad/s, or "NUMBER UNIT [cw|ccw]" with UNIT rad/s, rpm, deg/s or rev/s '
+               '(e.g. "60 rpm", "10 rad/s cw")')
+
+
 def _driver(ctx, d, lnames, frame, pins, sliders, links) -> Driver:
-    if not d:
-        raise ctx.err("driver", "missing table [driver]", hint="e.g. [driver] link = \"2\", omega = \"10 rad/s\"")
     _keys(ctx, "driver", d, ("link", "omega", "alpha", "angle", "slider", "speed", "accel"))
     if ("link" in d) == ("slider" in d):
-        raise ctx.err("driver", "give exactly one of 'link' (a crank) and 'slider' (a slider's point)")
+        raise ctx.err("driver", "give exactly one of 'link' (a crank) and 'slider' (a slider's point)" +
+                      (" (both are given)" if "link" in d else ""),
+                      hint='link = "2" with omega, or slider = "F" with speed')
     if "slider" in d:
-        p = _name(ctx, "driver.slider", d["slider"])
+        p = _name(ctx, "driver.slider", d["slider"], "a point's name")
         sl = [s for s in sliders if s.point == p]
         if not sl:
             raise ctx.err("driver.slider", f"no slider has the point {p!r}",
-                          hint="name the point of a [[sliders]] entry")
+                          hint="name the point of a [[sliders]] entry" +
+                          (": " + ", ".join(s.point for s in sliders) if sliders else " (there are none)"))
         for k in ("omega", "alpha", "angle"):
             if k in d:
-                raise ctx.err(f"driver.{k}", f"'{k}' belongs to a crank driver; a slider driver has speed and accel")
+                raise ctx.err(f"driver.{k}", f"'{k}' belongs to a crank driver",
+                              hint="a slider driver has speed and accel (along its path)")
         if "speed" not in d:
-            raise ctx.err("driver", "a slider driver needs 'speed'")
+            raise ctx.err("driver", "a slider driver needs 'speed'", hint="speed = v, in length units per second")
         return Driver(slider=p, speed=_num(ctx, "driver.speed", d["speed"]),
                       accel=_num(ctx, "driver.accel", d.get("accel", 0.0)))
-    link = _name(ctx, "driver.link", d["link"])
+    link = _name(ctx, "driver.link", d["link"], "a link's name")
     if link not in lnames:
-        raise ctx.err("driver.link", f"unknown link {link!r}", hint="links: " + ", ".join(sorted(lnames)))
+        raise ctx.err("driver.link", f"unknown link {link!r}", hint="links: " + ", ".join(lnames))
     if link == frame:
-        raise ctx.err("driver.link", "the driver cannot be the frame")
+        raise ctx.err("driver.link", f"the driver cannot be the frame {frame!r}",
+                      hint="drive a crank pinned to the frame")
     if not any(set(p.links) == {link, frame} for p in pins):
         raise ctx.err("driver.link", f"link {link!r} is not pinned to the frame {frame!r}",
-                      hint="a crank driver turns about a pin on the frame; for a slider give slider = \"P\"")
-    if "omega" not in d:
-        raise ctx.err("driver", "missing 'omega'", hint='e.g. omega = "60 rpm" or omega = 10')
+                      hint="a crank driver turns about a pin on the frame (a point listed in both); "
+                           "for a slider give slider = \"P\"")
     for k in ("speed", "accel"):
         if k in d:
-            raise ctx.err(f"driver.{k}", f"'{k}' belongs to a slider driver; a crank has omega and alpha")
+            raise ctx.err(f"driver.{k}", f"'{k}' belongs to a slider driver", hint="a crank has omega and alpha")
+    if "omega" not in d:
+        raise ctx.err("driver", "missing 'omega'", hint='e.g. omega = "60 rpm" or omega = 10 (rad/s)')
     try:
         omega = parse_omega(d["omega"])
     except ValueError:
         raise ctx.err("driver.omega", f"cannot read {_show(d['omega'])} as an angular velocity",
-                      hint='a number in rad/s, or "NUMBER UNIT [cw|ccw]" with UNIT rad/s, rpm, deg/s or rev/s') from None
+                      hint=_OMEGA_HINT) from None
     if not math.isfinite(omega):
-        raise ctx.err("driver.omega", "must be finite")
+        raise ctx.err("driver.omega", f"must be finite, got {_show(omega)}", hint=_OMEGA_HINT)
     try:
         alpha = parse_alpha(d.get("alpha", 0.0))
     except ValueError:
         raise ctx.err("driver.alpha", f"cannot read {_show(d['alpha'])} as an angular acceleration",
                       hint='a number in rad/s^2, or "NUMBER rad/s^2 [cw|ccw]"') from None
     if not math.isfinite(alpha):
-        raise ctx.err("driver.alpha", "must be finite")
+        raise ctx.err("driver.alpha", f"must be finite, got {_show(alpha)}",
+                      hint='a number in rad/s^2, or "NUMBER rad/s^2 [cw|ccw]"')
     angle = _num(ctx, "driver.angle", d["angle"]) if "angle" in d else None
     return Driver(link=link, omega=omega, alpha=alpha, angle=angle)
 
 
-def _reference(ctx, r, lnames, pts) -> Reference:
+def _reference(ctx, r, lnames) -> Reference:
     if not r:
         return Reference()
     _keys(ctx, "reference", r, ("source", "omega", "alpha", "speed", "velocity", "acceleration", "values", "note"))
     src = r.get("source", "")
     if not isinstance(src, str):
-        raise ctx.err("reference.source", "expected a string")
+        raise ctx.err("reference.source", f"expected a string, got {_show(src)}", hint='source = "Example 3.6"')
     out = {}
+    vector = "expected [magnitude, direction in degrees]"
     for key in ("omega", "alpha", "speed", "velocity", "acceleration", "values", "note"):
         t = r.get(key, {})
         if not isinstance(t, dict):
-            raise ctx.err(f"reference.{key}", f"expected a table, got {_show(t)}")
+            raise ctx.err(f"reference.{key}", f"expected a table, got {_show(t)}",
+                          hint=f'{key} = {{ "3" = 6.702 }}' if key in ("omega", "alpha") else
+                          f"{key} = {{ KEY = VALUE, ... }}")
         for k, v in t.items():
             w = f"reference.{key}.{k}"
             if key in ("omega", "alpha"):
-                if k not in lnames:
-                    raise ctx.err(w, f"unknown link {k!r}")
+                if str(k) not in lnames:
+                    raise ctx.err(w, f"unknown link {_key(k)}", hint="links: " + ", ".join(lnames))
                 _num(ctx, w, v)
             elif key == "speed":
                 _num(ctx, w, v)
             elif key in ("velocity", "acceleration"):
                 if not (isinstance(v, list) and len(v) == 2):
-                    raise ctx.err(w, "expected [magnitude, direction in degrees]")
+                    raise ctx.err(w, f"{vector}, got {_show(v)}", hint="e.g. [435.2, 21.7]")
                 _num(ctx, w, v[0]), _num(ctx, w, v[1])
             elif key == "values":
                 if isinstance(v, list):
                     if len(v) != 2:
-                        raise ctx.err(w, "expected a magnitude or [magnitude, direction]")
+                        raise ctx.err(w, f"expected a magnitude or [magnitude, direction], got a list of {len(v)}",
+                                      hint="a vector is [magnitude, direction in degrees]")
                     _num(ctx, w, v[0]), _num(ctx, w, v[1])
                 else:
                     _num(ctx, w, v)
-            else:
-                if not isinstance(v, str):
-                    raise ctx.err(w, "expected a string saying what is wrong with the printed value")
-        out[key] = frozen_map(t)
+            elif not isinstance(v, str):
+                raise ctx.err(w, f"expected a string saying what is wrong with the printed value, got {_show(v)}",
+                              hint='note = { V_B = "misprint: ..." }')
+        out[key] = frozen_map({str(k): v for k, v in t.items()})
     return Reference(source=src, **out)
+
+
+def _check_reference(ctx, m: Mechanism) -> None:
+    """Every reference key names something of this mechanism (FORMAT.md section 1)."""
+    from .motion import point_keys
+    from .reference import parse_key, validate_reference
+    try:
+        validate_reference(m, ctx)
+    except InputError as e:
+        raise ctx.err(e.where, e.what, e.hint) from None
+    moving = {}
+    for key, p, lk in point_keys(m):
+        if key != p:
+            moving.setdefault(p, []).append(lk)
+    ref = m.reference
+    for table, prefix in (("speed", "V_"), ("velocity", "V_"), ("acceleration", "A_"), ("values", "")):
+        for k in getattr(ref, table):
+            q = parse_key(m, prefix + k)
+            w = f"reference.{table}.{k}"
+            if q is None:
+                raise ctx.err(w, f"unknown point {k!r}", hint="a point's name, or point and link (B3 or B@3): "
+                              + ", ".join(m.point_order[:20]))
+            for p, lk in (q.refs if q.kind in ("V", "A") else ()):
+                if lk is None and p in moving:
+                    raise ctx.err(w, f"point {p!r} moves differently on links {', '.join(moving[p])}: say which",
+                                  hint=f"e.g. {prefix or (q.kind + '_')}{p}{moving[p][0]} or {p}@{moving[p][0]}")
