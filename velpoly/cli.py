@@ -1,16 +1,20 @@
 """The ``velpoly`` command: the only place that prints or exits.
 
 Exit status: 0 done; 2 the input is wrong; 3 the pose cannot be assembled
-or is singular (FORMAT.md section 3). Errors are one line
-``error: FILE: WHERE: WHAT`` and a hint; ``--debug`` shows the traceback.
+or is singular (FORMAT.md section 3); 1 an internal error (a bug: please
+report it); 130 interrupted. Errors are one line ``error: FILE: WHERE: WHAT``
+and a line ``hint: ...``; ``--debug`` (before or after the command) shows
+the traceback instead. Warnings (a near-singular pose) are lines
+``warning: FILE: ...`` on standard error. See docs/errors.md.
 """
 from __future__ import annotations
 
 import argparse
 import json
 import sys
+from pathlib import Path
 
-from .errors import InputError, VelpolyError
+from .errors import InputError, VelpolyError, one_line
 
 __all__ = ["main", "build_parser"]
 
@@ -23,7 +27,11 @@ def build_parser() -> argparse.ArgumentParser:
                                 "velocity and acceleration polygons, instant centres, textbook figures.")
     p.add_argument("--version", action="version", version="velpoly " + _version())
     p.add_argument("--debug", action="store_true", help="show the traceback of an error")
-    sub = p.add_subparsers(dest="command", metavar="COMMAND")
+    # --debug is also accepted after the command (velpoly solve FILE --debug)
+    debug = argparse.ArgumentParser(add_help=False)
+    debug.add_argument("--debug", action="store_true", default=argparse.SUPPRESS,
+                       help="show the traceback of an error")
+    sub = p.add_subparsers(dest="command", metavar="COMMAND", parser_class=_sub_parser(debug))
 
     s = sub.add_parser("solve", help="analytic positions, velocities, accelerations, poles")
     s.add_argument("file")
@@ -56,8 +64,19 @@ def build_parser() -> argparse.ArgumentParser:
     e.add_argument("--style", choices=STYLES, default="textbook")
 
     g = sub.add_parser("gallery", help="rebuild the gallery's figures and README")
-    g.add_argument("-o", "--output", default=None, help="output folder (default: gallery/)")
+    g.add_argument("-o", "--output", default=None, help="output folder (default: the source folder)")
+    g.add_argument("--source", default=None, help="folder of the example *.toml files (default: the "
+                   "repository's gallery/)")
+    g.add_argument("--style", choices=STYLES, default="textbook")
     return p
+
+
+def _sub_parser(parent):
+    class SubParser(argparse.ArgumentParser):
+        def __init__(self, *a, **kw):
+            kw.setdefault("parents", [parent])
+            super().__init__(*a, **kw)
+    return SubParser
 
 
 def _version() -> str:
@@ -67,8 +86,13 @@ def _version() -> str:
 
 def _load_and_solve(args):
     from . import load, solve
-    m = load(args.file)
+    m = load(Path(args.file), name=args.file)
     return m, solve(m, angle=args.angle)
+
+
+def _warn(sol) -> None:
+    for w in sol.warnings:
+        print(one_line(f"warning: {sol.mechanism.source}: {w}"), file=sys.stderr)
 
 
 def cmd_solve(args) -> int:
@@ -78,18 +102,17 @@ def cmd_solve(args) -> int:
         print(json.dumps(sol.to_dict(), indent=2, allow_nan=False))
     else:
         print(solution_report(sol, args.format), end="")
-    for w in sol.warnings:
-        print(f"warning: {sol.mechanism.source}: {w}", file=sys.stderr)
+    _warn(sol)
     return 0
 
 
 def cmd_draw(args) -> int:
-    from pathlib import Path
-    _, sol = _load_and_solve(args)
     out = Path(args.output) if args.output else Path(Path(args.file).stem + ".svg")
     if out.suffix.lower() not in (".svg", ".png", ".pdf"):
         raise InputError(f"unknown figure type {out.suffix or '(none)'!r}", where="-o", file=str(out),
                          hint="end the output's name with .svg, .png or .pdf")
+    _, sol = _load_and_solve(args)
+    _warn(sol)
     from .render import draw_to_file
     written = draw_to_file(sol, out, sheet=args.sheet, style=args.style, steps=args.steps)
     for path in written:
@@ -116,34 +139,63 @@ COMMANDS = {"solve": cmd_solve, "draw": cmd_draw, "sweep": cmd_sweep, "demo": cm
 
 
 def main(argv=None) -> int:
+    """Run the ``velpoly`` command; returns the exit status (FORMAT.md section 3)."""
     parser = build_parser()
     args = parser.parse_args(argv)
     if not args.command:
         parser.print_help()
         return 2
+    for stream in (sys.stdout, sys.stderr):  # a title in any script prints on any terminal
+        try:
+            stream.reconfigure(errors="backslashreplace")
+        except (AttributeError, ValueError, OSError):
+            pass
     try:
         return COMMANDS[args.command](args)
     except VelpolyError as e:
         if args.debug:
             raise
-        if not e.file and getattr(args, "file", None):
-            e.with_file(args.file)
-        print(f"error: {e.line()}", file=sys.stderr)
-        if e.hint:
-            print(f"hint: {e.hint}", file=sys.stderr)
+        _explain(e, args)
         return e.exit_code
     except KeyboardInterrupt:
         print("error: interrupted", file=sys.stderr)
         return 130
-    except BrokenPipeError:
+    except BrokenPipeError:  # the reader of our output went away (velpoly solve F | head)
+        try:
+            sys.stdout = None
+        except Exception:  # pragma: no cover
+            pass
         return 0
     except Exception as e:  # an internal error: still one line, never a traceback
         if args.debug:
             raise
         where = getattr(args, "file", "") or "velpoly"
-        print(f"error: {where}: internal error: {type(e).__name__}: {e}", file=sys.stderr)
-        print("hint: run again with --debug and report the traceback", file=sys.stderr)
+        print(one_line(f"error: {where}: internal error: {type(e).__name__}: {e}"), file=sys.stderr)
+        print("hint: this is a bug in velpoly: run again with --debug and report the traceback",
+              file=sys.stderr)
         return 1
+
+
+def _explain(e: VelpolyError, args) -> None:
+    """Print ``error: FILE: WHERE: WHAT`` and ``hint: ...``, adding what the kernel cannot know:
+    the file's name, the entry's TOML line, and that an angle came from --angle."""
+    file = getattr(args, "file", None)
+    if file and not e.file:
+        e.with_file(file)
+    if getattr(args, "angle", None) is not None and e.where == "driver.angle":
+        e.where = "--angle"
+    if file and e.where and "(line " not in e.where and e.file == file:
+        from .loader import locate
+        try:
+            line = locate(Path(file).read_text(encoding="utf-8"), e.where)
+        except (OSError, UnicodeDecodeError):
+            line = None
+        if line:
+            e.where = f"{e.where} (line {line})"
+    print(f"error: {e.line()}", file=sys.stderr)
+    hint = e.hint_line() or ("check the file against the format in the README" if isinstance(e, InputError)
+                             else "choose another driver angle, or draw the mechanism in another pose")
+    print(f"hint: {hint}", file=sys.stderr)
 
 
 if __name__ == "__main__":  # pragma: no cover
