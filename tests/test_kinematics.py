@@ -236,3 +236,33 @@ def test_json_matches_contract():
     assert set(s["points"]) == {"A", "B", "C", "D", "E", "F"}
     for v in s["links"].values():
         assert -180 < v["angle"] <= 180
+
+
+@pytest.mark.parametrize("text", [SIXBAR_1_4_4, EXAMPLE_3_6])
+def test_closed_form_dyads_equal_continuation(text, monkeypatch):
+    """The vectorised dyad assembly and Newton continuation find the same branch (1e-9)."""
+    import velpoly.pose as pose
+    from velpoly.dyads import dyad_plan
+    m = velpoly.load(text)
+    assert dyad_plan(m) is not None
+    ref = velpoly.solve(m).driver_angle
+    angles = ref + np.arange(0, 360, 7.0)
+    fast = velpoly.sweep(m, angles)
+    monkeypatch.setattr(pose, "_closed_form", lambda *a: None)
+    slow = velpoly.sweep(m, angles)
+    assert len(fast.angles) == len(slow.angles) == len(angles)
+    for key in fast.position:
+        assert fast.position[key] == pytest.approx(slow.position[key], abs=1e-9 * m.size)
+        assert fast.velocity[key] == pytest.approx(slow.velocity[key], abs=1e-9)
+
+
+def test_closed_form_stops_at_the_toggle_like_continuation(monkeypatch):
+    import velpoly.pose as pose
+    m = velpoly.load(fourbar(4, 5, 6, 9))   # non-Grashof: the crank cannot turn round
+    ref = velpoly.solve(m).driver_angle
+    angles = ref + np.arange(0, 360, 1.0)
+    fast = velpoly.sweep(m, angles)
+    monkeypatch.setattr(pose, "_closed_form", lambda *a: None)
+    slow = velpoly.sweep(m, angles)
+    assert fast.stopped and slow.stopped
+    assert abs(len(fast.angles) - len(slow.angles)) <= 1

@@ -130,19 +130,45 @@ def _rates(kin: Kinematics) -> np.ndarray:
     return w[list(kin.rows)]
 
 
+def _scaled_cond(system: System, a: np.ndarray, rows) -> np.ndarray:
+    """2-norm condition numbers of the batch of matrices a, in unit lengths.
+
+    For many poses the Frobenius estimate ||A|| ||A^-1|| (at most n times the
+    2-norm value) screens them; poses it cannot clear are measured exactly (SVD).
+    """
+    s = system.scale_matrix(a, rows)
+    if len(s) <= 8:
+        return np.linalg.cond(s)
+    try:
+        inv = np.linalg.inv(s)
+    except np.linalg.LinAlgError:
+        return np.linalg.cond(s)
+    est = np.linalg.norm(s, axis=(1, 2)) * np.linalg.norm(inv, axis=(1, 2))
+    cond = est / np.sqrt(s.shape[1])   # a lower bound of the 2-norm condition number...
+    unsure = ~(est <= WARN)             # ...exact where it matters
+    if unsure.any():
+        cond[unsure] = np.linalg.cond(s[unsure])
+    return cond
+
+
 def condition(kin: Kinematics, q) -> np.ndarray:
-    """Condition numbers of the velocity systems at poses q (unit lengths)."""
+    """Condition numbers of the velocity systems at poses q (unit lengths).
+
+    Below WARN they may be estimates; at and above it they are exact.
+    """
     _, jac, _ = kin.system.evaluate(q)
-    a = kin.system.scale_matrix(jac[:, list(kin.rows)], list(kin.rows))
-    return np.linalg.cond(a)
+    return _scaled_cond(kin.system, jac[:, list(kin.rows)], list(kin.rows))
 
 
 def velocities(kin: Kinematics, q, check: bool = True):
-    """q' at poses q (N, nq); returns (qd, cond)."""
+    """q' at poses q (N, nq); returns (qd, cond).
+
+    ``cond`` is exact where it exceeds WARN (1e6), an estimate below.
+    """
     q = np.atleast_2d(q)
     _, jac, _ = kin.system.evaluate(q)
     a = jac[:, list(kin.rows)]
-    cond = np.linalg.cond(kin.system.scale_matrix(a, list(kin.rows)))
+    cond = _scaled_cond(kin.system, a, list(kin.rows))
     bad = ~(cond <= SINGULAR)
     if check and bad.any():
         i = int(np.argmax(bad))

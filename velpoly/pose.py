@@ -15,6 +15,7 @@ from __future__ import annotations
 import numpy as np
 
 from .constraints import System
+from .dyads import assemble, dyad_plan
 from .errors import AssemblyError
 
 __all__ = ["circle_circle", "circle_line", "Reassembly", "reassemble", "select_rows"]
@@ -155,6 +156,9 @@ def reassemble(system: System, rows: list[int], deltas, coarse: float | None = N
     deltas = np.asarray(deltas, float).ravel()
     n = len(deltas)
     nq = system.nq
+    fast = _closed_form(system, rows, deltas)
+    if fast is not None:
+        return fast
     if coarse is None:
         coarse = np.radians(6.0) if not system.mechanism.driver.is_slider else 0.04 * system.size
     # 1. knots: a sequential continuation, never stepping farther than `coarse`;
@@ -195,6 +199,29 @@ def reassemble(system: System, rows: list[int], deltas, coarse: float | None = N
         first = int(np.argmin(ok))
         return Reassembly(deltas[:first], out[:first], "toggle")
     return Reassembly(deltas, out, stopped)
+
+
+_PLANS: dict = {}
+
+
+def _closed_form(system: System, rows, deltas) -> Reassembly | None:
+    """All poses at once by the mechanism's chain of dyads, if it has one (verified)."""
+    m = system.mechanism
+    key = id(system)
+    if key not in _PLANS or _PLANS[key][0] is not system:
+        if len(_PLANS) > 64:
+            _PLANS.clear()
+        _PLANS[key] = (system, dyad_plan(m))
+    plan = _PLANS[key][1]
+    if plan is None or len(deltas) == 0:
+        return None
+    q, reach = assemble(m, system.index, plan, deltas)
+    if reach:
+        phi = system.evaluate(q[:reach])[0][:, rows]
+        phi[:, -1] -= deltas[:reach]
+        if not np.all(np.abs(phi) <= 1e-9 * max(system.size, 1.0)):
+            return None   # not the mechanism the plan assumed: use continuation
+    return Reassembly(deltas[:reach], q[:reach], "toggle" if reach < len(deltas) else "")
 
 
 def _scaled(system, dq):

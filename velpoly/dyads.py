@@ -1,0 +1,222 @@
+"""Closed-form assembly by dyads, vectorised over every driver position at once.
+
+Most lecture mechanisms are assembled from the driver by a chain of dyads,
+each a compass-and-ruler construction:
+
+* **RRR** -- links u and v pinned together at P2, u pinned to a known body
+  at P1, v at P3: P2 is an intersection of the circles (P1, |P1P2|) and
+  (P3, |P3P2|), on the side of P1 -> P3 it was drawn on;
+* **RRP** -- link u pinned to a known body at P1 and to a block v at P2, the
+  block sliding on a known guide: P2 is an intersection of the circle
+  (P1, |P1P2|) with the path's line through P2, on the side it was drawn on.
+
+Evaluated over arrays of driver positions, a whole cycle is a few dozen
+numpy operations. The side of each intersection is the one of the drawn
+pose, which is the continuous branch as long as no dyad passes through a
+toggle (its circles tangent): the first position where a dyad cannot close
+ends the assembly there. Mechanisms that are not such a chain (contacts,
+slots, inversions with the block on a moving guide, eight-bars) return no
+plan and are assembled by continuation (:mod:`velpoly.pose`).
+"""
+from __future__ import annotations
+
+from dataclasses import dataclass
+
+import numpy as np
+
+from .model import Mechanism
+
+__all__ = ["DyadPlan", "dyad_plan", "assemble"]
+
+
+@dataclass(frozen=True)
+class DyadPlan:
+    """The driver and the dyads, in order; each dyad names its links and points."""
+
+    driver: tuple       # ("crank", link, pivot point) or ("slider", block, direction)
+    steps: tuple        # ("RRR", u, v, P1, known1, P2, P3, known3, side) / ("RRP", u, v, P1, known1, P2, guide, dir, side)
+
+
+def _pins_between(m: Mechanism):
+    out = {}
+    for p in m.pins:
+        a, b = p.links
+        out.setdefault(frozenset((a, b)), []).append(p.point)
+    return out
+
+
+def dyad_plan(m: Mechanism) -> DyadPlan | None:
+    """The chain of dyads that assembles the mechanism from its driver, or None."""
+    if m.contacts or m.slots:
+        return None
+    frame = m.frame.name
+    pins = _pins_between(m)
+    P = {k: np.array(v, float) for k, v in m.points.items()}
+    drv = m.driver
+    if drv.is_slider:
+        sl = next(s for s in m.sliders if s.point == drv.slider)
+        if sl.guide != frame or sl.centre is not None:
+            return None
+        driver = ("slider", sl.block, float(sl.angle))
+        known = {frame, sl.block}
+    else:
+        piv = pins.get(frozenset((drv.link, frame)))
+        if not piv:
+            return None
+        driver = ("crank", drv.link, piv[0])
+        known = {frame, drv.link}
+    sliders = {s.block: s for s in m.sliders}
+    for s in m.sliders:
+        if s.centre is not None:
+            return None
+    moving = [k.name for k in m.links if not k.frame]
+    steps = []
+
+    def pin_to_known(u, exclude):
+        for k in sorted(known, key=lambda n: m.link_names.index(n)):
+            for pt in pins.get(frozenset((u, k)), []):
+                if pt != exclude:
+                    return pt, k
+        return None
+
+    progress = True
+    while progress and len(known) < len(m.links):
+        progress = False
+        unknown = [u for u in moving if u not in known]
+        for u in unknown:
+            for v in unknown:
+                if u == v:
+                    continue
+                shared = pins.get(frozenset((u, v)), [])
+                for p2 in shared:
+                    a = pin_to_known(u, p2)
+                    if a is None:
+                        continue
+                    p1, k1 = a
+                    if v in sliders and sliders[v].guide in known and u not in sliders:
+                        s = sliders[v]
+                        d = np.array([np.cos(np.radians(s.angle)), np.sin(np.radians(s.angle))])
+                        foot = P[p1] + np.dot(P[p2] - P[p1], d) * d
+                        side = float(np.sign(np.dot(P[p2] - foot, d)) or 1.0)
+                        steps.append(("RRP", u, v, p1, k1, p2, s.guide, d, side))
+                        known.update((u, v))
+                        progress = True
+                        break
+                    b = pin_to_known(v, p2)
+                    if b is None or v in sliders or u in sliders:
+                        continue
+                    p3, k3 = b
+                    e = P[p3] - P[p1]
+                    f = P[p2] - P[p1]
+                    cross = e[0] * f[1] - e[1] * f[0]
+                    if np.hypot(*e) == 0:
+                        continue
+                    steps.append(("RRR", u, v, p1, k1, p2, p3, k3, float(np.sign(cross) or 1.0)))
+                    known.update((u, v))
+                    progress = True
+                    break
+                if progress:
+                    break
+            if progress:
+                break
+    if len(known) < len(m.links):
+        return None
+    # every joint must be one the plan used or one it satisfies by construction; check the
+    # joint count: a pin not used by any step (a redundant loop) makes the plan unsafe
+    used = {("pin", frozenset((drv.link, frame))) if not drv.is_slider else None}
+    for st in steps:
+        if st[0] == "RRR":
+            _, u, v, p1, k1, p2, p3, k3, _ = st
+            used |= {("pin", frozenset((u, k1))), ("pin", frozenset((u, v))), ("pin", frozenset((v, k3)))}
+        else:
+            _, u, v, p1, k1, p2, g, _, _ = st
+            used |= {("pin", frozenset((u, k1))), ("pin", frozenset((u, v)))}
+    for p in m.pins:
+        if ("pin", frozenset(p.links)) not in used:
+            return None
+    return DyadPlan(driver, tuple(steps))
+
+
+def _place(pose, s):
+    x, y, th = pose
+    c, sn = np.cos(th), np.sin(th)
+    return np.stack([x + c * s[0] - sn * s[1], y + sn * s[0] + c * s[1]], axis=-1)
+
+
+def _pose_from(p_now, p_ref, q_now, q_ref):
+    """The rigid motion taking reference points p_ref, q_ref to p_now, q_now: (x, y, theta)."""
+    d_ref = q_ref - p_ref
+    d_now = q_now - p_now
+    th = np.arctan2(d_now[:, 1], d_now[:, 0]) - np.arctan2(d_ref[1], d_ref[0])
+    c, sn = np.cos(th), np.sin(th)
+    x = p_now[:, 0] - (c * p_ref[0] - sn * p_ref[1])
+    y = p_now[:, 1] - (sn * p_ref[0] + c * p_ref[1])
+    return x, y, th
+
+
+def assemble(m: Mechanism, index: dict, plan: DyadPlan, deltas) -> tuple[np.ndarray, int]:
+    """Poses q (N, nq) at the driver positions ``deltas``, and how many are reachable.
+
+    Positions are reachable up to (not including) the first one where a dyad
+    does not close; q beyond it is NaN.
+    """
+    deltas = np.asarray(deltas, float)
+    n = len(deltas)
+    P = {k: np.array(v, float) for k, v in m.points.items()}
+    zero = np.zeros(n)
+    poses = {m.frame.name: (zero, zero, zero)}
+    kind, link, extra = plan.driver
+    if kind == "crank":
+        o = P[extra]
+        c, s = np.cos(deltas), np.sin(deltas)
+        poses[link] = (o[0] - (c * o[0] - s * o[1]), o[1] - (s * o[0] + c * o[1]), deltas)
+    else:
+        t = np.radians(extra)
+        poses[link] = (deltas * np.cos(t), deltas * np.sin(t), zero)
+    bad = np.zeros(n, bool)
+    for st in plan.steps:
+        if st[0] == "RRR":
+            _, u, v, p1, k1, p2, p3, k3, side = st
+            a = _place(poses[k1], P[p1])
+            b = _place(poses[k3], P[p3])
+            r1 = np.hypot(*(P[p2] - P[p1]))
+            r2 = np.hypot(*(P[p2] - P[p3]))
+            d = b - a
+            dist = np.hypot(d[:, 0], d[:, 1])
+            along = (r1 * r1 - r2 * r2 + dist * dist) / (2 * dist)
+            h2 = r1 * r1 - along * along
+            bad |= ~(h2 >= 0) | (dist == 0)
+            h = np.sqrt(np.maximum(h2, 0.0))
+            e = d / dist[:, None]
+            nrm = np.stack([-e[:, 1], e[:, 0]], axis=-1)
+            c2 = a + along[:, None] * e + side * h[:, None] * nrm
+            poses[u] = _pose_from(a, P[p1], c2, P[p2])
+            poses[v] = _pose_from(b, P[p3], c2, P[p2])
+        else:
+            _, u, v, p1, k1, p2, g, dref, side = st
+            a = _place(poses[k1], P[p1])
+            xg, yg, thg = poses[g]
+            c, s = np.cos(thg), np.sin(thg)
+            e = np.stack([c * dref[0] - s * dref[1], s * dref[0] + c * dref[1]], axis=-1)
+            through = _place(poses[g], P[p2])
+            r = np.hypot(*(P[p2] - P[p1]))
+            t0 = np.einsum("ij,ij->i", a - through, e)
+            foot = through + t0[:, None] * e
+            off = a - foot
+            h2 = r * r - np.einsum("ij,ij->i", off, off)
+            bad |= ~(h2 >= 0)
+            c2 = foot + side * np.sqrt(np.maximum(h2, 0.0))[:, None] * e
+            poses[u] = _pose_from(a, P[p1], c2, P[p2])
+            # the block translates on its guide: it turns with the guide
+            poses[v] = (c2[:, 0] - (c * P[p2][0] - s * P[p2][1]), c2[:, 1] - (s * P[p2][0] + c * P[p2][1]), thg)
+    reach = int(np.argmax(bad)) if bad.any() else n
+    q = np.zeros((n, 3 * len(index)))
+    for name, k in index.items():
+        x, y, th = poses[name]
+        q[:, 3 * k], q[:, 3 * k + 1], q[:, 3 * k + 2] = x, y, th
+    # angles continuous with the reference pose (0), not wrapped into (-pi, pi]
+    th = q[:, 2::3]
+    if n:
+        th[:] = np.unwrap(np.concatenate([np.zeros((1, th.shape[1])), th]), axis=0)[1:]
+    q[reach:] = np.nan
+    return q, reach
