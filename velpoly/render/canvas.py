@@ -66,14 +66,18 @@ def renderer_of(fig):
 
 
 def nice_scale(x: float) -> float:
-    """The smallest of 1, 2, 2.5, 5 times a power of ten that is >= x (a drawing scale)."""
+    """The smallest round scale >= x: 1, 1.5, 2, 2.5, 3, 4, 5, 6 or 8 times a power of ten.
+
+    >>> nice_scale(0.065), nice_scale(1.1), nice_scale(3e-5)
+    (0.08, 1.5, 3e-05)
+    """
     if not math.isfinite(x) or x <= 0:
         return 1.0
     e = math.floor(math.log10(x))
-    for f in (1.0, 2.0, 2.5, 5.0, 10.0):
+    for f in (1.0, 1.5, 2.0, 2.5, 3.0, 4.0, 5.0, 6.0, 8.0, 10.0):
         v = f * 10.0 ** e
         if v >= x * (1 - 1e-12):
-            return v
+            return float(f"{v:.12g}")
     return 10.0 ** (e + 1)
 
 

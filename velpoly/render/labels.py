@@ -139,6 +139,29 @@ class LabelPlacer:
             self.texts.append(t)
         return t
 
+    def place_at(self, centres, s: str, *, gid: str | None = None, pad: float = 1.0, **text_kw):
+        """Draw ``s`` centred on the first of ``centres`` where it is free; None if none is.
+
+        For a mark that belongs *on* something (a number on a chord).
+        """
+        ax = self.ax
+        c0 = np.asarray(centres[0], float)
+        t = ax.text(c0[0], c0[1], s, ha="center", va="center", **text_kw)
+        if gid:
+            t.set_gid(gid)
+        w, h = self._size(t, pad)
+        view = view_box(ax)
+        for c in centres:
+            c = np.asarray(c, float)
+            b = box(c[0] - w / 2, c[1] - h / 2, c[0] + w / 2, c[1] + h / 2)
+            if view.contains(b) and self.free(b):
+                t.set_position((float(c[0]), float(c[1])))
+                self.boxes.append(b)
+                self.texts.append(t)
+                return t
+        t.remove()
+        return None
+
     def place_along(self, p0, p1, s: str, *, offset: float = 1.5, gid: str | None = None, **text_kw):
         """Write ``s`` along the segment p0-p1 (rotated to it), where it is free; None if nowhere.
 

@@ -1,0 +1,285 @@
+"""Instant centres: every pole on the mechanism, the Kennedy lines used, the Kennedy circle.
+
+Drawn from :mod:`velpoly.poles`' objects (a :class:`~velpoly.poles.PoleSet`
+and its :func:`~velpoly.poles.kennedy_circle`). On the mechanism, each pole
+P_ij is marked and labelled; a pole at infinity (a relative translation) is
+an arrow at the border of the view pointing its way, labelled ``P_ij ∞``, and
+a finite pole too far to show is an arrow towards it labelled with its
+position. The Kennedy lines that located each pole (P_ik P_jk and P_il P_jl)
+are drawn thin through their poles. On the Kennedy circle the links are
+points on a circle (the first at the top, the others clockwise), poles known
+by inspection are solid chords, and poles found are dashed chords numbered
+in the order of their discovery.
+"""
+from __future__ import annotations
+
+import math
+
+import numpy as np
+from shapely.geometry import LineString, Point
+
+from .canvas import Artists, arrow, fit_view, get_ax, per_cm, per_point, view_box, view_scale
+from .displacement import draw_mechanism, mechanism_bounds, shape_patch
+from .labels import placer, segment
+from .options import drawing_options
+from .style import get_style
+
+__all__ = ["draw_poles", "draw_kennedy_circle", "pole_label", "shown_poles", "REACH"]
+
+REACH = 2.5   # finite poles within REACH mechanism sizes of the mechanism are drawn where they are
+
+
+def pole_label(links: tuple[str, str]) -> str:
+    """``$P_{13}$``, or ``$P_{2,10}$`` when a link's name is longer than one character."""
+    i, j = links
+    sub = f"{i}{j}" if len(i) == 1 and len(j) == 1 else f"{i},{j}"
+    return "$P_{" + sub.replace("_", r"\_") + "}$"
+
+
+def shown_poles(ps, upto: int | None = None) -> list:
+    """The poles known after ``upto`` discoveries (all if None): inspection first, then in order."""
+    poles = list(ps.poles.values())
+    if upto is None:
+        return poles
+    return [p for p in poles if p.order <= upto]
+
+
+def _poleset(sol, poleset):
+    if poleset is not None:
+        return poleset
+    from ..poles import locate_poles
+    return locate_poles(sol)
+
+
+def _centre(sol) -> np.ndarray:
+    x0, y0, x1, y1 = mechanism_bounds(sol)
+    return np.array([(x0 + x1) / 2, (y0 + y1) / 2])
+
+
+def poles_bounds(sol, ps) -> tuple[float, float, float, float]:
+    """The mechanism's box grown to hold every finite pole within :data:`REACH` sizes."""
+    x0, y0, x1, y1 = mechanism_bounds(sol)
+    c = _centre(sol)
+    reach = REACH * sol.mechanism.size
+    for p in ps.poles.values():
+        if p.position is not None and float(np.hypot(*(p.position - c))) <= reach:
+            x0, y0 = min(x0, p.position[0]), min(y0, p.position[1])
+            x1, y1 = max(x1, p.position[0]), max(y1, p.position[1])
+    return x0, y0, x1, y1
+
+
+def draw_poles(sol, ax=None, *, style="textbook", options=None, poleset=None, upto: int | None = None,
+               mechanism: bool = True) -> Artists:
+    """Draw the mechanism with every instant centre and the Kennedy lines used; return the Artists.
+
+    Parameters
+    ----------
+    poleset : PoleSet, optional
+        From :func:`velpoly.poles.locate_poles` (located if None).
+    upto : int, optional
+        Show only the poles known by inspection and the first ``upto`` found
+        (the ``--steps`` frames); the last one's lines are drawn heavier.
+    mechanism : bool
+        Draw the displacement diagram first (default); False to draw the
+        poles over a mechanism already drawn on ``ax``.
+
+    Returns
+    -------
+    Artists
+        The mechanism's roles and ``poles`` (markers), ``far`` (arrows to
+        poles at infinity or out of view), ``kennedy_lines``; ``.labels``
+        maps each pole's key ("1-3") to its label (with the points' labels).
+    """
+    ax = get_ax(ax)
+    st = get_style(style)
+    opts = options if options is not None else drawing_options(sol.mechanism)
+    ps = _poleset(sol, poleset)
+    if view_scale(ax) is None:
+        fit_view(ax, poles_bounds(sol, ps), scale=opts.scale, margin=0.1)
+        ax.set_axis_off()
+    art = Artists(ax)
+    art.labels = {}
+    if mechanism:
+        mech = draw_mechanism(sol, ax, style=st, options=opts)
+        art.update_from(mech)
+        art.labels = {}
+        art.point_labels = mech.labels
+    pl = placer(ax)
+    pc, pp = per_cm(ax), per_point(ax)
+    view = view_box(ax)
+    # arrows to poles out of reach stand at the border of what is drawn, not of the whole panel
+    from shapely.geometry import box as sbox
+    bx0, by0, bx1, by1 = poles_bounds(sol, ps)
+    content = sbox(bx0 - 1.6 * pc, by0 - 1.6 * pc, bx1 + 1.6 * pc, by1 + 1.6 * pc).intersection(view)
+    shown = shown_poles(ps, upto)
+    current = max((p.order for p in shown), default=0) if upto is not None else None
+    from matplotlib.lines import Line2D
+
+    # the Kennedy lines, under everything else
+    for p in shown:
+        if p.order == 0:
+            continue
+        heavy = current is not None and p.order == current
+        for ln in getattr(p, "construction", ()) or ():
+            if ln.point is None or ln.direction is None:
+                continue
+            base = np.asarray(ln.point, float)
+            d = np.asarray(ln.direction, float)
+            d = d / max(float(np.hypot(*d)), 1e-300)
+            ts = [0.0]
+            for k in ln.through:
+                q = ps.poles[k].position if k in ps.poles else None
+                if q is not None:
+                    ts.append(float(np.dot(np.asarray(q, float) - base, d)))
+            if p.position is not None:
+                ts.append(float(np.dot(p.position - base, d)))
+            far = 4 * max(view.bounds[2] - view.bounds[0], view.bounds[3] - view.bounds[1])
+            lo, hi = min(ts) - 0.8 * pc, max(ts) + 0.8 * pc
+            if p.position is None:   # a pole at infinity: the line runs out of the view both ways
+                lo, hi = -far, far
+            seg = LineString([tuple(base + d * lo), tuple(base + d * hi)]).intersection(view)
+            if seg.is_empty or seg.geom_type != "LineString":
+                continue
+            xy = np.asarray(seg.coords)
+            line = Line2D(xy[:, 0], xy[:, 1], lw=st.thin_lw * (2.0 if heavy else 1.0),
+                          color=st.ink if not st.coloured else "#7f7f7f", linestyle=(0, (7, 2, 1.5, 2)),
+                          zorder=1.4, gid=f"kennedy-line-{p.key}-{ln.label}")
+            ax.add_line(line)
+            art.add("kennedy_lines", line)
+            pl.add_obstacle(segment(xy[0], xy[-1]), hard=False)
+
+    # the poles
+    c = _centre(sol)
+    reach = REACH * sol.mechanism.size
+    pins = {pin.point for pin in sol.mechanism.pins}
+    pin_places = [np.asarray(sol.position[k], float) for k in sol.position if k.split("@")[0] in pins]
+    tol = 1e-9 * sol.mechanism.size
+    for p in shown:
+        if p.position is None and p.direction is None:
+            continue   # undefined: the links move alike (listed in the table)
+        colour = st.ink if not st.coloured else "#c0392b"
+        label = pole_label(p.links)
+        if p.position is not None and view.contains(Point(*p.position)) and \
+                float(np.hypot(*(p.position - c))) <= reach:
+            q = np.asarray(p.position, float)
+            on_pin = any(float(np.hypot(*(q - w))) <= tol for w in pin_places)
+            if not on_pin:
+                r = 0.085 * pc
+                ring = Point(*q).buffer(r, quad_segs=10)
+                mk = shape_patch(ring, facecolor=st.paper, edgecolor=colour, lw=st.link_lw, zorder=5.5,
+                                 gid=f"pole-{p.key}")
+                ax.add_patch(mk)
+                cross = Line2D([q[0] - r, q[0] + r, np.nan, q[0], q[0]], [q[1], q[1], np.nan, q[1] - r, q[1] + r],
+                               lw=st.thin_lw, color=colour, zorder=5.6)
+                ax.add_line(cross)
+                art.add("poles", mk, cross)
+                pl.add_obstacle(ring)
+            t = pl.place(q, label, prefer=-45.0, fontsize=st.font_size * 0.9, color=colour, zorder=7,
+                         gid=f"label-pole-{p.key}")
+        else:
+            if p.position is None:
+                d = np.array([math.cos(math.radians(p.direction)), math.sin(math.radians(p.direction))])
+                text = label + r" $\infty$"
+            else:
+                d = (p.position - c) / max(float(np.hypot(*(p.position - c))), 1e-300)
+                text = label + f" ({p.position[0]:.4g}, {p.position[1]:.4g})"
+            tip = _border_point(content, c, d, 0.2 * pc)
+            tail = tip - d * 1.1 * pc
+            sh, hd, poly = arrow(ax, tail, tip, lw=st.arrow_lw, head_length=st.head_length, colour=colour,
+                                 zorder=6, gid=f"pole-{p.key}")
+            art.add("far", sh, hd)
+            pl.add_obstacle(poly)
+            pl.add_obstacle(segment(tail, tip).buffer(pp), hard=True)
+            t = pl.place(tail, text, prefer=math.degrees(math.atan2(-d[1], -d[0])), fontsize=st.font_size * 0.9,
+                         color=colour, zorder=7, gid=f"label-pole-{p.key}")
+        art.add("labels", t)
+        art.labels[p.key] = t
+    return art
+
+
+def _border_point(view, c, d, inset: float) -> np.ndarray:
+    """Where the ray from c along d leaves the view, moved ``inset`` back inside."""
+    x0, y0, x1, y1 = view.bounds
+    x0, y0, x1, y1 = x0 + inset, y0 + inset, x1 - inset, y1 - inset
+    ts = []
+    for lo, hi, cc, dd in ((x0, x1, c[0], d[0]), (y0, y1, c[1], d[1])):
+        if abs(dd) > 1e-12:
+            ts.append(((hi if dd > 0 else lo) - cc) / dd)
+    t = max(min(ts), 0.0) if ts else 0.0
+    return c + d * t
+
+
+def draw_kennedy_circle(sol, ax=None, *, style="textbook", options=None, poleset=None,
+                        upto: int | None = None) -> Artists:
+    """Draw the Kennedy circle of ``sol``'s poles; return its Artists.
+
+    The links are points on a circle; each of the n(n-1)/2 poles is a chord:
+    solid if known by inspection, dashed and numbered by order of discovery
+    if found (with ``upto``, only the first ``upto`` found are drawn, the
+    last one heavier), dotted if undefined.
+
+    Returns
+    -------
+    Artists
+        Roles ``circle``, ``points`` (one per link, gid ``kennedy-point-<link>``),
+        ``chords`` (one per pole drawn, gid ``chord-<key>``), ``numbers``,
+        ``labels``; ``.labels`` maps each link to its label.
+    """
+    from ..poles import kennedy_circle
+    ax = get_ax(ax)
+    st = get_style(style)
+    ps = _poleset(sol, poleset)
+    kc = kennedy_circle(ps)
+    if view_scale(ax) is None:
+        fit_view(ax, (-1.0, -1.0, 1.0, 1.0), margin=0.16)
+        ax.set_axis_off()
+    art = Artists(ax)
+    pl = placer(ax)
+    pc = per_cm(ax)
+    from matplotlib.lines import Line2D
+    from matplotlib.patches import Circle
+    circ = Circle((0, 0), 1.0, fill=False, lw=st.thin_lw, edgecolor=st.ink, zorder=1, gid="kennedy-circle")
+    ax.add_patch(circ)
+    art.add("circle", circ)
+    found = [ch for ch in kc.chords if not ch.solid and ch.order > 0]
+    last = max((ch.order for ch in found if upto is None or ch.order <= upto), default=0)
+    numbered = []
+    for ch in kc.chords:
+        pole = ps.poles[ch.key]
+        undefined = pole.position is None and pole.direction is None
+        if not ch.solid and upto is not None and ch.order > upto:
+            continue
+        a, b = kc.points[ch.links[0]], kc.points[ch.links[1]]
+        if ch.solid:
+            ls, lw = "-", st.link_lw
+        elif undefined and ch.order == 0:
+            ls, lw = (0, (1, 2)), st.thin_lw * 1.5
+        else:
+            ls, lw = (0, (5, 3)), st.link_lw * (1.8 if upto is not None and ch.order == last else 1.0)
+        colour = st.ink if not (st.coloured and not ch.solid) else "#c0392b"
+        line = Line2D([a[0], b[0]], [a[1], b[1]], lw=lw, linestyle=ls, color=colour, zorder=2,
+                      gid=f"chord-{ch.key}")
+        ax.add_line(line)
+        art.add("chords", line)
+        if not ch.solid and ch.order > 0:
+            numbered.append((ch, a, b, colour))
+    for lk, q in kc.points.items():
+        dot = Circle(tuple(q), 0.05 * pc, facecolor=st.ink, edgecolor=st.ink, zorder=4, gid=f"kennedy-point-{lk}")
+        ax.add_patch(dot)
+        art.add("points", dot)
+        pl.add_obstacle(Point(*q).buffer(0.05 * pc))
+    for lk, q in kc.points.items():
+        t = pl.place(q, lk, prefer=math.degrees(math.atan2(q[1], q[0])), fontsize=st.font_size, zorder=7,
+                     gid=f"kennedy-label-{lk}")
+        art.add("labels", t)
+        art.labels[lk] = t
+    # numbers of the found chords, on the chord, where they meet no other mark
+    for ch, a, b, colour in sorted(numbered, key=lambda x: x[0].order):
+        spots = [a + (b - a) * f for f in (0.5, 0.42, 0.58, 0.34, 0.66, 0.26, 0.74)]
+        kw = dict(fontsize=st.small_size, color=colour, zorder=6,
+                  bbox=dict(boxstyle="circle,pad=0.15", facecolor=st.paper, edgecolor=colour, lw=st.thin_lw))
+        t = pl.place_at(spots, str(ch.order), gid=f"chord-number-{ch.key}", pad=3.0, **kw)
+        if t is None:
+            t = pl.place(spots[0], str(ch.order), gid=f"chord-number-{ch.key}", pad=3.0, **kw)
+        art.add("numbers", t)
+    return art

@@ -1,0 +1,311 @@
+"""Sheets: the page layouts of ``velpoly draw``, the step frames, and the files written.
+
+=================  =================================================================
+sheet              shows
+=================  =================================================================
+``velocity``       the displacement diagram and the velocity polygon; results table
+``acceleration``   the displacement diagram and the acceleration polygon; table
+``poles``          the mechanism with every instant centre and the Kennedy lines,
+                   the Kennedy circle; table
+``full``           displacement diagram, velocity and acceleration polygons; table
+=================  =================================================================
+
+With ``steps`` the construction is built up one step per frame (the
+polygons' steps, or the poles in order of discovery), each frame captioned
+with the step's vector equation: a multi-page PDF, or numbered SVG/PNG files
+``out-01.svg``, ``out-02.svg`` ... Every view is that of the finished
+construction, so frames do not jump. Output is reproducible (fixed SVG hash
+salt, no dates) and written atomically: a failed run leaves no file.
+"""
+from __future__ import annotations
+
+import io
+import re
+from dataclasses import dataclass
+from pathlib import Path
+
+from ..errors import InputError
+from ..fileio import atomic_path
+from .canvas import fit_view, view_scale
+from .displacement import draw_mechanism, mechanism_bounds
+from .kennedy import draw_kennedy_circle, draw_poles, pole_label
+from .options import drawing_options
+from .polygon import draw_polygon, polygon_bounds
+from .scalebar import scale_text
+from .style import get_style, rc_context
+from .table import draw_results_table
+
+__all__ = ["SHEETS", "Constructions", "constructions", "render_sheet", "frames", "draw_to_file", "mechanism_svg",
+           "equation_tex"]
+
+SHEETS = ("velocity", "acceleration", "poles", "full")
+FORMATS = (".svg", ".png", ".pdf")
+
+
+@dataclass(frozen=True)
+class Constructions:
+    """What a sheet draws from: the polygons and the poles (None where the sheet needs none)."""
+
+    velocity: object = None
+    acceleration: object = None
+    poles: object = None
+
+
+def _check_sheet(sheet: str) -> None:
+    if sheet not in SHEETS:
+        raise InputError(f"unknown sheet {sheet!r}", where="--sheet", hint="valid sheets: " + ", ".join(SHEETS))
+
+
+def constructions(sol, sheet: str) -> Constructions:
+    """Build what ``sheet`` needs with :mod:`velpoly.polygons` and :mod:`velpoly.poles`.
+
+    The acceleration sheet needs accelerations (InputError without centres of
+    curvature); the full sheet then shows velocities only.
+    """
+    _check_sheet(sheet)
+    vel = acc = poles = None
+    if sheet in ("velocity", "full"):
+        from ..polygons import velocity_polygon
+        vel = velocity_polygon(sol)
+    if sheet == "acceleration" or (sheet == "full" and sol.has_accelerations):
+        from ..polygons import acceleration_polygon
+        acc = acceleration_polygon(sol)
+    if sheet in ("poles", "velocity", "full"):
+        from ..poles import locate_poles
+        poles = locate_poles(sol)
+    return Constructions(vel, acc, poles)
+
+
+_QUANTITY = re.compile(r"(?<![A-Za-z\\])(omega|alpha|theta|[VARP])(\^[nt])?_([A-Za-z0-9]+(?:/[A-Za-z0-9]+)?)")
+
+
+def equation_tex(eq: str) -> str:
+    """A step's vector equation in mathtext: ``V_CB`` -> $V_{CB}$, ``omega_3 x R`` -> $\\omega_{3}$ × R."""
+    def sub(mo):
+        name, sup, index = mo.groups()
+        name = {"omega": r"\omega", "alpha": r"\alpha", "theta": r"\theta"}.get(name, name)
+        return "$" + name + ("^{" + sup[1:] + "}" if sup else "") + "_{" + index + "}$"
+    s = eq.replace("$", r"\$")
+    s = _QUANTITY.sub(sub, s)
+    s = re.sub(r"\bomega\b", r"$\\omega$", s)
+    s = re.sub(r"\balpha\b", r"$\\alpha$", s)
+    return s.replace(" x ", " × ")
+
+
+# -- layouts (fractions of the page: left, bottom, width, height) ----------------------------------
+_LAYOUTS = {
+    "velocity": {"mechanism": (0.02, 0.31, 0.47, 0.59), "velocity": (0.51, 0.31, 0.47, 0.59),
+                 "table": (0.05, 0.02, 0.9, 0.23)},
+    "acceleration": {"mechanism": (0.02, 0.31, 0.47, 0.59), "acceleration": (0.51, 0.31, 0.47, 0.59),
+                     "table": (0.05, 0.02, 0.9, 0.23)},
+    "poles": {"poles": (0.02, 0.31, 0.62, 0.59), "kennedy": (0.67, 0.36, 0.3, 0.42),
+              "table": (0.05, 0.02, 0.9, 0.23)},
+    "full": {"mechanism": (0.01, 0.37, 0.33, 0.53), "velocity": (0.34, 0.37, 0.32, 0.53),
+             "acceleration": (0.67, 0.37, 0.32, 0.53), "table": (0.05, 0.02, 0.9, 0.29)},
+}
+_CAPTIONS = {"mechanism": "Space diagram", "velocity": "Velocity polygon", "acceleration": "Acceleration polygon",
+             "poles": "Instant centres", "kennedy": "Kennedy circle (order of discovery)"}
+
+
+@dataclass(frozen=True)
+class Frame:
+    """One picture of a sheet: how many steps of each construction, and the caption."""
+
+    velocity: int | None = None
+    acceleration: int | None = None
+    poles: int | None = None
+    caption: str = ""
+
+
+def _pole_caption(p) -> str:
+    lines = []
+    for ln in getattr(p, "lines", ()) or ():
+        if len(ln) == 2 and "-" in str(ln[0]):
+            lines.append(pole_label(tuple(ln[0].split("-"))) + pole_label(tuple(ln[1].split("-"))))
+        else:
+            lines.append(" ".join(map(str, ln)))
+    what = f"{pole_label(p.links)} ({p.how})"
+    return what + (": on " + " and ".join(lines) if lines else "")
+
+
+def frames(sheet: str, cons: Constructions, steps: bool) -> list[Frame]:
+    """The frames of a sheet: one (everything) without ``steps``, else one a construction step."""
+    if not steps:
+        return [Frame()]
+    out = []
+    vel, acc, ps = cons.velocity, cons.acceleration, cons.poles
+    if sheet in ("velocity", "full") and vel is not None:
+        for k, s in enumerate(vel.steps, 1):
+            out.append(Frame(velocity=k, acceleration=0, caption=f"Step {k}: " + equation_tex(s.equation)))
+    if sheet in ("acceleration", "full") and acc is not None:
+        for k, s in enumerate(acc.steps, 1):
+            out.append(Frame(acceleration=k, caption=f"Step {len(out) + 1}: " + equation_tex(s.equation)))
+    if sheet == "poles" and ps is not None:
+        found = sorted((p for p in ps.poles.values() if p.order > 0), key=lambda p: p.order)
+        out.append(Frame(poles=0, caption="Poles known by inspection: pins, sliders, rolling contacts"))
+        for p in found:
+            out.append(Frame(poles=p.order, caption=f"Step {p.order}: " + _pole_caption(p)))
+    return out or [Frame()]
+
+
+def _page(fig, st, m, sol) -> None:
+    title = m.title
+    if sol.driver_angle is not None and m.driver.angle is None and not _at_reference(sol):
+        title += f"  (driver at {sol.driver_angle:.4g}°)"
+    fig.text(0.5, 0.975, title, ha="center", va="top", fontsize=st.title_size, gid="sheet-title")
+
+
+def _at_reference(sol) -> bool:
+    from ..solution import driver_reference_angle
+    ref = driver_reference_angle(sol.mechanism)
+    return ref is None or abs(((sol.driver_angle - ref) + 180) % 360 - 180) < 1e-9
+
+
+def render_sheet(sol, sheet: str = "full", style="textbook", *, cons: Constructions | None = None,
+                 frame: Frame | None = None):
+    """The matplotlib Figure of one sheet (one frame of it); no pyplot involved.
+
+    Call inside :func:`velpoly.render.style.rc_context` for the style's fonts
+    (:func:`draw_to_file` does).
+    """
+    from matplotlib.backends.backend_agg import FigureCanvasAgg
+    from matplotlib.figure import Figure
+    _check_sheet(sheet)
+    st = get_style(style)
+    m = sol.mechanism
+    opts = drawing_options(m)
+    cons = cons if cons is not None else constructions(sol, sheet)
+    frame = frame or Frame()
+    layout = dict(_LAYOUTS[sheet])
+    if sheet == "full" and cons.acceleration is None:
+        layout = dict(_LAYOUTS["velocity"])
+    if not opts.table:
+        layout.pop("table")
+        for k, (l, b, w, h) in layout.items():
+            layout[k] = (l, b - 0.24 if b >= 0.3 else b, w, h + 0.24) if b >= 0.3 else (l, b, w, h)
+    fig = Figure(figsize=st.figsize)
+    FigureCanvasAgg(fig)
+    _page(fig, st, m, sol)
+    axes = {name: fig.add_axes(rect, label=name) for name, rect in layout.items()}
+    captions = {}
+    if "mechanism" in axes:
+        ax = axes["mechanism"]
+        s = fit_view(ax, mechanism_bounds(sol), scale=opts.scale, margin=0.1)
+        ax.set_axis_off()
+        draw_mechanism(sol, ax, style=st, options=opts)
+        captions["mechanism"] = scale_text(s, m.units, 0)
+    if "poles" in axes:
+        ax = axes["poles"]
+        draw_poles(sol, ax, style=st, options=opts, poleset=cons.poles, upto=frame.poles)
+        captions["poles"] = scale_text(view_scale(ax), m.units, 0)
+    if "kennedy" in axes:
+        draw_kennedy_circle(sol, axes["kennedy"], style=st, options=opts, poleset=cons.poles, upto=frame.poles)
+    for kind, poly, upto, power in (("velocity", cons.velocity, frame.velocity, 1),
+                                    ("acceleration", cons.acceleration, frame.acceleration, 2)):
+        if kind not in axes or poly is None:
+            continue
+        ax = axes[kind]
+        user = opts.velocity_scale if kind == "velocity" else opts.acceleration_scale
+        s = fit_view(ax, polygon_bounds(poly), scale=user, margin=0.08)
+        ax.set_axis_off()
+        draw_polygon(poly, ax, mechanism=m, style=st, options=opts, upto=upto)
+        captions[kind] = scale_text(s, m.units, power)
+    for name, ax in axes.items():
+        if name == "table":
+            continue
+        pos = ax.get_position()
+        text = _CAPTIONS[name] + (f"   ({captions[name]})" if name in captions else "")
+        fig.text(pos.x0 + pos.width / 2, pos.y1 + 0.004, text, ha="center", va="bottom", fontsize=st.font_size,
+                 style="italic", gid=f"caption-{name}")
+    if "table" in axes:
+        shows = {"velocity": ("velocity",), "acceleration": ("acceleration",), "poles": (),
+                 "full": ("velocity", "acceleration")}[sheet]
+        draw_results_table(sol, axes["table"], sheet=sheet, style=st,
+                           velocity=cons.velocity if "velocity" in shows else None,
+                           acceleration=cons.acceleration if "acceleration" in shows else None,
+                           poleset=cons.poles)
+    if frame.caption:
+        fig.text(0.5, 0.925, frame.caption, ha="center", va="top", fontsize=st.font_size * 1.1,
+                 gid="step-caption", bbox=dict(boxstyle="round,pad=0.3", facecolor=st.paper, edgecolor=st.ink,
+                                                lw=st.thin_lw))
+    return fig
+
+
+def _save(fig, target, fmt: str, st) -> None:
+    meta = {"svg": {"Date": None}, "pdf": {"CreationDate": None, "ModDate": None}, "png": {}}[fmt]
+    fig.savefig(target, format=fmt, metadata=meta, dpi=st.dpi if fmt == "png" else 72)
+
+
+def _numbered(out: Path, i: int, n: int) -> Path:
+    width = max(2, len(str(n)))
+    return out.with_name(f"{out.stem}-{i:0{width}d}{out.suffix}")
+
+
+def draw_to_file(sol, out, sheet: str = "full", style: str = "textbook", steps: bool = False, *,
+                 cons: Constructions | None = None) -> list[Path]:
+    """Draw ``sheet`` of ``sol`` into ``out`` (SVG, PNG or PDF by its suffix); return the paths written.
+
+    With ``steps``: a PDF gets one page a frame; SVG and PNG one file a frame,
+    ``out-01.svg``, ``out-02.svg`` ... Every frame is drawn before any file
+    is written, and each file is written atomically, so a failure leaves no
+    file behind.
+    """
+    out = Path(out)
+    fmt = out.suffix.lower()
+    if fmt not in FORMATS:
+        raise InputError(f"unknown figure type {out.suffix or '(none)'!r}", where="-o", file=str(out),
+                         hint="end the output's name with .svg, .png or .pdf")
+    fmt = fmt[1:]
+    _check_sheet(sheet)
+    st = get_style(style)
+    drawing_options(sol.mechanism)   # bad [drawing] keys fail before anything is drawn
+    cons = cons if cons is not None else constructions(sol, sheet)
+    pictures = frames(sheet, cons, steps)
+    with rc_context(st):
+        if steps and fmt == "pdf":
+            from matplotlib.backends.backend_pdf import PdfPages
+            with atomic_path(out) as tmp:
+                with PdfPages(tmp, metadata={"CreationDate": None, "ModDate": None}) as pdf:
+                    for fr in pictures:
+                        pdf.savefig(render_sheet(sol, sheet, st, cons=cons, frame=fr))
+            return [out]
+        blobs = []
+        for fr in pictures:
+            buf = io.BytesIO()
+            _save(render_sheet(sol, sheet, st, cons=cons, frame=fr), buf, fmt, st)
+            blobs.append(buf.getvalue())
+    targets = [out] if not steps else [_numbered(out, i, len(blobs)) for i in range(1, len(blobs) + 1)]
+    written = []
+    try:
+        for target, data in zip(targets, blobs):
+            with atomic_path(target) as tmp:
+                tmp.write_bytes(data)
+            written.append(target)
+    except BaseException:
+        for p in written:
+            p.unlink(missing_ok=True)
+        raise
+    return written
+
+
+def mechanism_svg(m, style: str = "textbook") -> str:
+    """The displacement diagram of a Mechanism at its reference pose as SVG text (Jupyter's view)."""
+    from matplotlib.backends.backend_agg import FigureCanvasAgg
+    from matplotlib.figure import Figure
+    from ..solution import solve
+    sol = solve(m)
+    st = get_style(style)
+    x0, y0, x1, y1 = mechanism_bounds(sol)
+    aspect = (y1 - y0) / max(x1 - x0, 1e-300)
+    w = 6.0
+    h = min(max(w * aspect, 3.0), 6.0)
+    with rc_context(st):
+        fig = Figure(figsize=(w, h))
+        FigureCanvasAgg(fig)
+        ax = fig.add_axes((0, 0, 1, 1))
+        fit_view(ax, (x0, y0, x1, y1), scale=drawing_options(m).scale, margin=0.1)
+        ax.set_axis_off()
+        draw_mechanism(sol, ax, style=st)
+        buf = io.StringIO()
+        fig.savefig(buf, format="svg", metadata={"Date": None})
+    return buf.getvalue()

@@ -1,0 +1,256 @@
+"""The results table of a sheet: graphical, analytic, instant-centre and reference values.
+
+:func:`results_table` gathers, for the quantities a sheet constructs, the
+value read off the construction (the polygon's rates and images, the poles'
+positions), the analytic solve's, the instant-centre method's (velocities)
+and the book's (``[reference]``, via :func:`velpoly.reference.compare`), with
+the deviation of the book from the analytic value. Printed values that are
+no row of the sheet (``V_BA``, ``R_BA`` ...) follow at the end. The drawn
+table is booktabs-style (rules, no boxes) and keeps to the room it has:
+rows that do not fit are summarised in a last line.
+"""
+from __future__ import annotations
+
+import math
+
+import numpy as np
+
+from ..report import Table, fmt
+from .canvas import Artists, get_ax, renderer_of
+from .kennedy import pole_label
+from .style import get_style
+
+__all__ = ["results_table", "draw_results_table"]
+
+
+def _vec(v, digits=5) -> str:
+    v = np.asarray(v, float)
+    if not np.all(np.isfinite(v)):
+        return "–"
+    mag = float(np.hypot(*v))
+    if mag == 0:
+        return "0"
+    return f"{fmt(mag, digits)} ∠ {math.degrees(math.atan2(v[1], v[0])) % 360:.2f}°"
+
+
+def _q(symbol: str, index: str, unit: str = "") -> str:
+    """A quantity's name in mathtext: ``$\\omega_{3}$ (rad/s)``, ``$V_{B}$``."""
+    return "$" + symbol + "_{" + index.replace("@", "").replace("_", r"\_") + "}$" + (f" ({unit})" if unit else "")
+
+
+def _num(x, digits=5) -> str:
+    return "–" if x is None else fmt(x, digits).replace("-", "−")
+
+
+def _dev(row) -> str:
+    if row is None:
+        return ""
+    parts = []
+    if row.deviation is not None:
+        pct = 100 * row.deviation
+        parts.append("< 0.001 %" if pct < 1e-3 else f"{pct:.2g} %")
+    if row.angle_error is not None and row.angle_error > 5e-4:
+        parts.append(f"{row.angle_error:.2g}°")
+    return " ".join(parts) or "0"
+
+
+def _printed(row) -> str:
+    if row is None:
+        return ""
+    v = row.printed
+    if isinstance(v, tuple):
+        if row.key.startswith("P"):
+            return f"({fmt(v[0], 5)}, {fmt(v[1], 5)})"
+        return f"{fmt(v[0], 5)} ∠ {v[1]:.2f}°"
+    return _num(v)
+
+
+def results_table(sol, sheet: str = "full", *, velocity=None, acceleration=None, poleset=None) -> Table:
+    """The rows of a sheet's results table (a :class:`velpoly.report.Table`).
+
+    ``velocity`` / ``acceleration``: the sheet's Polygon objects (rows of
+    omega and V, alpha and A); ``poleset``: its PoleSet (the instant-centre
+    column, and rows of the poles found on a poles sheet). Columns:
+    quantity, graphical, analytic, instant centres (when poles are given),
+    reference and its deviation from the analytic value (when the file has
+    a ``[reference]``).
+    """
+    from ..reference import compare
+    m = sol.mechanism
+    refs = {r.key: r for r in compare(sol)} if m.reference else {}
+    used = set()
+    ic = None
+    if poleset is not None and sheet in ("velocity", "poles", "full"):
+        from ..poles import instant_centre_velocities
+        ic = instant_centre_velocities(sol, poleset)
+    rows = []
+
+    def ref_for(*keys):
+        for k in keys:
+            if k in refs:
+                used.add(k)
+                return refs[k]
+        return None
+
+    moving = [k.name for k in m.moving_links]
+    if velocity is not None or (ic is not None and sheet == "poles"):
+        for lk in moving:
+            g = velocity.rates.get(lk) if velocity is not None else None
+            r = ref_for(f"omega_{lk}")
+            rows.append((_q(r"\omega", lk, "rad/s"), _num(g), _num(sol.omega[lk]),
+                         _num(ic["omega"][lk]) if ic else "", _printed(r), _dev(r)))
+    if velocity is not None:
+        for key in velocity.images:
+            v = sol.velocity.get(key)
+            if v is None or float(np.hypot(*v)) == 0:
+                continue
+            r = ref_for(f"V_{key}", f"|V_{key}|")
+            rows.append((_q("V", key), _vec(velocity.images[key]), _vec(v),
+                         _vec(ic["velocity"][key]) if ic and key in ic["velocity"] else "", _printed(r), _dev(r)))
+    if acceleration is not None:
+        for lk in moving:
+            g = acceleration.rates.get(lk)
+            r = ref_for(f"alpha_{lk}")
+            rows.append((_q(r"\alpha", lk, "rad/s²"), _num(g), _num(sol.alpha[lk]), "", _printed(r), _dev(r)))
+        for key in acceleration.images:
+            a = sol.acceleration.get(key)
+            if a is None or not np.all(np.isfinite(a)) or float(np.hypot(*a)) == 0:
+                continue
+            r = ref_for(f"A_{key}")
+            rows.append((_q("A", key), _vec(acceleration.images[key]), _vec(a), "", _printed(r), _dev(r)))
+    if poleset is not None and sheet == "poles":
+        from ..reference import relative_pole
+        for p in sorted((p for p in poleset.poles.values() if p.order > 0), key=lambda p: p.order):
+            pos, direction = relative_pole(sol, *p.links)
+            r = ref_for(f"P_{p.links[0]}{p.links[1]}", f"P{p.links[0]}{p.links[1]}")
+            rows.append((pole_label(p.links) + f"  ({p.order})", _where(p.position, p.direction),
+                         _where(pos, direction), "", _printed(r), _dev(r)))
+    related = {"velocity": ("V", "|V", "omega"), "acceleration": ("A", "alpha"), "poles": ("P", "V_P", "omega"),
+               "full": ("V", "|V", "omega", "A", "alpha")}[sheet]
+    for key, r in refs.items():   # the book's other values this sheet is about, against the analytic solve
+        if key in used or not key.startswith(related):
+            continue
+        comp = r.computed
+        shown = "at infinity" if comp is None else (
+            f"{fmt(comp[0], 5)} ∠ {comp[1]:.2f}°" if isinstance(comp, tuple) and not key.startswith("P")
+            else (f"({fmt(comp[0], 5)}, {fmt(comp[1], 5)})" if isinstance(comp, tuple) else _num(comp)))
+        rows.append((key, "", shown, "", _printed(r), _dev(r)))
+    header = ["quantity", "graphical", "analytic"]
+    keep = [0, 1, 2]
+    if ic is not None:
+        header.append("instant centres")
+        keep.append(3)
+    if refs:
+        header += ["reference", "deviation"]
+        keep += [4, 5]
+    rows = [tuple(r[i] for i in keep) for r in rows]
+    title = "Results: graphical construction against the analytic solve"
+    if refs and m.reference.source:
+        title += f"; reference values: {m.reference.source}"
+    return Table(title, tuple(header), tuple(rows))
+
+
+def _where(pos, direction) -> str:
+    if pos is None:
+        return "undefined" if direction is None else f"∞ at {direction:.2f}°"
+    return f"({fmt(pos[0], 5)}, {fmt(pos[1], 5)})"
+
+
+def draw_results_table(sol, ax=None, *, sheet: str = "full", style="textbook", velocity=None,
+                       acceleration=None, poleset=None, table: Table | None = None) -> Artists:
+    """Draw the sheet's results table in ``ax`` (booktabs style); return the Artists.
+
+    The table is :func:`results_table` unless ``table`` is given. It fills the
+    axes' width at most; type shrinks (down to 5 pt) to fit the widest row,
+    and rows that do not fit the height are summarised in a last line.
+
+    Returns
+    -------
+    Artists
+        Roles ``cells`` (Texts, row by row), ``rules`` and ``title``;
+        ``artists.table`` is the Table drawn, ``artists.shown`` the number of
+        its rows drawn.
+    """
+    from matplotlib.lines import Line2D
+    ax = get_ax(ax)
+    st = get_style(style)
+    t = table if table is not None else results_table(sol, sheet, velocity=velocity, acceleration=acceleration,
+                                                     poleset=poleset)
+    ax.set_axis_off()
+    ax.set_xlim(0, 1)
+    ax.set_ylim(0, 1)
+    art = Artists(ax)
+    art.table = t
+    fig = ax.figure
+    r = renderer_of(fig)
+    pos = ax.get_position()
+    w_in, h_in = fig.get_size_inches()
+    width_pt, height_pt = pos.width * w_in * 72, pos.height * h_in * 72
+    size = st.small_size
+    gap = 1.6 * size   # between columns, points
+
+    def measure(size):
+        widths = [0.0] * len(t.header)
+        for row in (t.header, *t.rows):
+            for i, cell in enumerate(row):
+                tx = ax.text(0, 0, cell, fontsize=size)
+                widths[i] = max(widths[i], tx.get_window_extent(r).width * 72 / fig.dpi)
+                tx.remove()
+        return widths
+
+    widths = measure(size)
+    need = sum(widths) + gap * (len(widths) - 1)
+    if need > width_pt:
+        size = max(5.0, size * width_pt / need)
+        widths = measure(size)
+        need = sum(widths) + gap * (len(widths) - 1)
+    line_h = 1.45 * size
+    title = ax.text(0, 1, t.title, fontsize=size * 1.1, va="top", ha="left", style="italic", gid="results-table")
+    art.add("title", title)
+    top = height_pt - 1.6 * size * 1.1
+    room = max(int((top - 1.9 * line_h) // line_h), 1)      # rows a block has room for
+    rows = list(t.rows)
+    bgap = 3.0 * size
+    blocks = 1
+    if len(rows) > room:   # side by side, as many blocks as the width takes (three at most)
+        blocks = max(1, min(3, int((width_pt + bgap) // (need + bgap)), -(-len(rows) // room)))
+    per = room if blocks > 1 or len(rows) > room else len(rows)
+    shown = rows if len(rows) <= per * blocks else rows[:per * blocks - 1]
+    xs = np.cumsum([0.0] + [w + gap for w in widths[:-1]])
+    total = min(need, width_pt)
+
+    def rule(x0, y, lw):
+        ln = Line2D([x0 / width_pt, (x0 + total) / width_pt], [y / height_pt] * 2, lw=lw, color=st.ink,
+                    transform=ax.transAxes)
+        ax.add_line(ln)
+        art.add("rules", ln)
+
+    def cell(x, y, text, **kw):
+        art.add("cells", ax.text(x / width_pt, (y + 0.3 * size) / height_pt, text, fontsize=size, va="baseline",
+                                 ha="left", transform=ax.transAxes, **kw))
+
+    bottom = top
+    for b in range(blocks):
+        chunk = shown[b * per:(b + 1) * per]
+        if not chunk and b:
+            break
+        x0 = b * (need + bgap)
+        y = top
+        rule(x0, y, st.link_lw)
+        y -= line_h
+        for x, text in zip(xs, t.header):
+            cell(x0 + x, y, text)
+        y -= 0.45 * size
+        rule(x0, y, st.thin_lw)
+        for row in chunk:
+            y -= line_h
+            for x, text in zip(xs, row):
+                cell(x0 + x, y, text)
+        if b == blocks - 1 and len(shown) < len(rows):
+            y -= line_h
+            cell(x0, y, f"… {len(rows) - len(shown)} more rows: velpoly solve FILE", style="italic")
+        y -= 0.6 * size
+        bottom = min(bottom, y)
+        rule(x0, y, st.link_lw)
+    art.shown = len(shown)
+    return art
