@@ -25,7 +25,7 @@ import numpy as np
 __all__ = [
     "point", "ideal", "line_through", "meet", "join", "is_finite", "euclid", "line_direction",
     "rotate", "perp", "unit", "angle_deg", "from_polar", "intersect_lines", "collinear",
-    "line_angle_sine", "distance_point_line",
+    "line_angle_sine", "distance_point_line", "intersect_lines_batch", "rotate_batch",
 ]
 
 
@@ -155,3 +155,33 @@ def from_polar(mag: float, deg: float) -> np.ndarray:
     """The vector of magnitude ``mag`` at ``deg`` degrees (textbook ``mag ∠ deg``)."""
     t = math.radians(deg)
     return np.array([mag * math.cos(t), mag * math.sin(t)])
+
+
+def intersect_lines_batch(p, d, q, e):
+    """:func:`intersect_lines` for many line pairs at once (arrays of shape (..., 2)).
+
+    Solves p + s d = q + t e for every leading index. Returns ``(x, s, t, sine)``
+    with shapes (..., 2), (...), (...), (...); parallel pairs give NaN in x, s, t
+    and a sine of 0.
+
+    >>> x, s, t, sine = intersect_lines_batch([[0, 0], [0, 0]], [[1, 0], [1, 0]],
+    ...                                       [[2, 1], [0, 1]], [[0, 1], [1, 0]])
+    >>> x[0] + 0.0, bool(np.isnan(x[1]).all()), float(sine[0]), float(sine[1])
+    (array([2., 0.]), True, 1.0, 0.0)
+    """
+    p, d, q, e = np.broadcast_arrays(*(np.asarray(v, float) for v in (p, d, q, e)))
+    den = d[..., 0] * e[..., 1] - d[..., 1] * e[..., 0]
+    scale = np.hypot(d[..., 0], d[..., 1]) * np.hypot(e[..., 0], e[..., 1])
+    w = q - p
+    with np.errstate(divide="ignore", invalid="ignore"):
+        sine = np.where(scale > 0, np.abs(den) / np.where(scale > 0, scale, 1.0), 0.0)
+        s = np.where(den != 0, (w[..., 0] * e[..., 1] - w[..., 1] * e[..., 0]) / den, np.nan)
+        t = np.where(den != 0, (w[..., 0] * d[..., 1] - w[..., 1] * d[..., 0]) / den, np.nan)
+    return p + s[..., None] * d, s, t, sine
+
+
+def rotate_batch(v, rad) -> np.ndarray:
+    """Vectors v (..., 2) turned counter-clockwise by angles ``rad`` (radians, broadcast over ...)."""
+    v = np.asarray(v, float)
+    c, s = np.cos(rad), np.sin(rad)
+    return np.stack([c * v[..., 0] - s * v[..., 1], s * v[..., 0] + c * v[..., 1]], axis=-1)
