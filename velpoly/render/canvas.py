@@ -156,14 +156,17 @@ def view_box(ax):
 _SIMPLE = re.compile(r"^([A-Za-z]+)(?:_([0-9A-Za-z]+)|([0-9]+))?('*)$")
 
 
-def tex(label: str) -> str:
-    """A textbook label as mathtext: ``b4`` -> $b_{4}$, ``c'`` -> $c'$, ``O_v`` -> $O_{v}$.
+def tex(label: str, math: bool = False) -> str:
+    """A textbook label as text for an italic Text: ``b4`` -> $b_{4}$, ``c'`` -> c′, ``O_v`` -> $O_{v}$.
 
-    Letters, then a subscript (digits, or anything after ``_``), then primes;
-    any other label is returned as plain text with ``$`` and ``_`` escaped.
+    Letters, then a subscript (digits, or anything after ``_``), then primes.
+    Only a subscript needs mathtext; primes become the prime sign (′), so
+    plain labels stay plain text (set ``fontstyle="italic"`` on the Text).
+    Any other label is returned as it is, with ``$`` and ``_`` escaped.
+    ``math=True`` gives mathtext always (for a label beside mathtext ones).
 
-    >>> tex("b4"), tex("c'"), tex("P_13"), tex("F@5")
-    ('$b_{4}$', "$c'$", '$P_{13}$', 'F@5')
+    >>> tex("b4"), tex("c'"), tex("P_13"), tex("F@5"), tex("B")
+    ('$b_{4}$', 'c′', '$P_{13}$', 'F@5', 'B')
     """
     s = str(label)
     m = _SIMPLE.match(s)
@@ -171,7 +174,11 @@ def tex(label: str) -> str:
         return s.replace("$", r"\$").replace("_", r"\_")
     base, sub, digits, primes = m.groups()
     sub = sub or digits
-    return "$" + base + ("_{" + sub + "}" if sub else "") + primes + "$"
+    if not sub and not math:
+        return base + "′" * len(primes)
+    if not sub:
+        return "$" + base + primes + "$"
+    return "$" + base + "_{" + sub + "}" + primes + "$"
 
 
 def arrow(ax, tail, head, *, lw: float, head_length: float, colour, linestyle="-", zorder=3,

@@ -363,7 +363,7 @@ class _Drawing:
                 links = m.carriers.get(name, ())
                 prefer = _away(pos, _neighbours(sol, name, links), default=45.0)
                 text = tex(name) if len(spots) == 1 else tex(key)
-                t = self.pl.place(pos, text, prefer=prefer, fontsize=st.font_size, zorder=7,
+                t = self.pl.place(pos, text, prefer=prefer, fontsize=st.font_size, zorder=7, fontstyle="italic",
                                   gid=f"label-point-{name}" if len(spots) == 1 else f"label-point-{key}")
                 self.art.add("labels", t)
                 for k, q in keys:

@@ -80,7 +80,7 @@ def drawing_options(m) -> DrawingOptions:
     d = dict(m.drawing or {})
     for key in d:
         if key not in KEYS:
-            raise _err(m, key, f"unknown drawing option {key!r}", hint="valid keys: " + ", ".join(KEYS))
+            raise _err(m, key, f"unknown drawing option {key!r}; valid keys: " + ", ".join(KEYS))
     out = {}
     for key in ("scale", "velocity_scale", "acceleration_scale"):
         if key in d:

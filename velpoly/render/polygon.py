@@ -80,13 +80,13 @@ def image_groups(polygon, keys) -> tuple[list[str], list[list[str]]]:
 
 
 def _label_text(polygon, keys, with_origin: bool) -> str:
-    parts = [tex(polygon.origin_label)] if with_origin else []
-    seen = []
+    labels = [polygon.origin_label] if with_origin else []
     for k in keys:
-        lab = tex(polygon.labels.get(k, k))
-        if lab not in seen:
-            seen.append(lab)
-    return ", ".join(parts + seen)
+        lab = polygon.labels.get(k, k)
+        if lab not in labels:
+            labels.append(lab)
+    math = any(tex(lab).startswith("$") for lab in labels)   # primes beside mathtext go in mathtext too
+    return ", ".join(tex(lab, math=math) for lab in labels)
 
 
 def draw_polygon(polygon, ax=None, *, mechanism=None, style="textbook", options=None, scale: float | None = None,
@@ -223,6 +223,7 @@ def draw_polygon(polygon, ax=None, *, mechanism=None, style="textbook", options=
         away = p - np.array([cx, cy])
         prefer = math.degrees(math.atan2(away[1], away[0])) if np.hypot(*away) > tol else -135.0
         t = pl.place(p, _label_text(polygon, g, gi == 0), prefer=prefer, fontsize=st.font_size, zorder=7,
+                     fontstyle="italic",
                      gid=f"label-{polygon.kind}-" + ("origin+" if gi == 0 else "") + "+".join(g))
         art.add("labels", t)
         for k in g:

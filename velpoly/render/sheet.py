@@ -53,7 +53,7 @@ class Constructions:
 
 def _check_sheet(sheet: str) -> None:
     if sheet not in SHEETS:
-        raise InputError(f"unknown sheet {sheet!r}", where="--sheet", hint="valid sheets: " + ", ".join(SHEETS))
+        raise InputError(f"unknown sheet {sheet!r}; valid sheets: " + ", ".join(SHEETS), where="--sheet")
 
 
 def constructions(sol, sheet: str) -> Constructions:
@@ -183,7 +183,7 @@ def render_sheet(sol, sheet: str = "full", style="textbook", *, cons: Constructi
         layout.pop("table")
         for k, (l, b, w, h) in layout.items():
             layout[k] = (l, b - 0.24 if b >= 0.3 else b, w, h + 0.24) if b >= 0.3 else (l, b, w, h)
-    fig = Figure(figsize=st.figsize)
+    fig = Figure(figsize=st.figsize, dpi=72)   # text is measured at the dpi vector output is written at
     FigureCanvasAgg(fig)
     _page(fig, st, m, sol)
     axes = {name: fig.add_axes(rect, label=name) for name, rect in layout.items()}
@@ -300,7 +300,7 @@ def mechanism_svg(m, style: str = "textbook") -> str:
     w = 6.0
     h = min(max(w * aspect, 3.0), 6.0)
     with rc_context(st):
-        fig = Figure(figsize=(w, h))
+        fig = Figure(figsize=(w, h), dpi=72)
         FigureCanvasAgg(fig)
         ax = fig.add_axes((0, 0, 1, 1))
         fit_view(ax, (x0, y0, x1, y1), scale=drawing_options(m).scale, margin=0.1)

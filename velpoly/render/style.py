@@ -95,8 +95,7 @@ def get_style(style) -> Style:
     try:
         return STYLES[style]
     except (KeyError, TypeError):
-        raise InputError(f"unknown style {style!r}", where="--style",
-                         hint="valid styles: " + ", ".join(STYLES)) from None
+        raise InputError(f"unknown style {style!r}; valid styles: " + ", ".join(STYLES), where="--style") from None
 
 
 def link_colour(m, options, style: Style, link: str) -> str:

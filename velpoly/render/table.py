@@ -2,8 +2,10 @@
 
 :func:`results_table` gathers, for the quantities a sheet constructs, the
 value read off the construction (the polygon's rates and images, the poles'
-positions), the analytic solve's, the instant-centre method's (velocities)
-and the book's (``[reference]``, via :func:`velpoly.reference.compare`), with
+positions), the range a careful hand drawing would give
+(:func:`velpoly.polygons.hand_drafting`: 95 % of drawings with lines within
+±0.25° and points within ±0.25 mm), the analytic solve's, the
+instant-centre method's (velocities) and the book's (``[reference]``, via :func:`velpoly.reference.compare`), with
 the deviation of the book from the analytic value. Printed values that are
 no row of the sheet (``V_BA``, ``R_BA`` ...) follow at the end. The drawn
 table is booktabs-style (rules, no boxes) and keeps to the room it has:
@@ -92,12 +94,27 @@ def results_table(sol, sheet: str = "full", *, velocity=None, acceleration=None,
                 return refs[k]
         return None
 
+    hd = None
+    if velocity is not None or acceleration is not None:
+        from ..polygons import hand_drafting
+        hd = hand_drafting(sol)
+
+    def drafted(level, table, key):
+        if hd is None or hd.get(level) is None or key not in hd[level][table]:
+            return ""
+        lo, hi = hd[level][table][key]
+        if lo == hi:
+            return "exact"
+        return f"{_num(lo, 4)} … {_num(hi, 4)}"
+
     moving = [k.name for k in m.moving_links]
     if velocity is not None or (ic is not None and sheet == "poles"):
         for lk in moving:
             g = velocity.rates.get(lk) if velocity is not None else None
             r = ref_for(f"omega_{lk}")
-            rows.append((_q(r"\omega", lk, "rad/s"), _num(g), _num(sol.omega[lk]),
+            if sol.omega[lk] == 0 and (g is None or g == 0) and r is None:
+                continue   # a translating link (a block on a fixed guide): nothing to show
+            rows.append((_q(r"\omega", lk, "rad/s"), _num(g), drafted("velocity", "omega", lk), _num(sol.omega[lk]),
                          _num(ic["omega"][lk]) if ic else "", _printed(r), _dev(r)))
     if velocity is not None:
         for key in velocity.images:
@@ -105,25 +122,29 @@ def results_table(sol, sheet: str = "full", *, velocity=None, acceleration=None,
             if v is None or float(np.hypot(*v)) == 0:
                 continue
             r = ref_for(f"V_{key}", f"|V_{key}|")
-            rows.append((_q("V", key), _vec(velocity.images[key]), _vec(v),
+            rows.append((_q("V", key), _vec(velocity.images[key]), drafted("velocity", "speed", key), _vec(v),
                          _vec(ic["velocity"][key]) if ic and key in ic["velocity"] else "", _printed(r), _dev(r)))
     if acceleration is not None:
         for lk in moving:
             g = acceleration.rates.get(lk)
             r = ref_for(f"alpha_{lk}")
-            rows.append((_q(r"\alpha", lk, "rad/s²"), _num(g), _num(sol.alpha[lk]), "", _printed(r), _dev(r)))
+            if sol.alpha[lk] == 0 and (g is None or g == 0) and r is None:
+                continue
+            rows.append((_q(r"\alpha", lk, "rad/s²"), _num(g), drafted("acceleration", "alpha", lk),
+                         _num(sol.alpha[lk]), "", _printed(r), _dev(r)))
         for key in acceleration.images:
             a = sol.acceleration.get(key)
             if a is None or not np.all(np.isfinite(a)) or float(np.hypot(*a)) == 0:
                 continue
             r = ref_for(f"A_{key}")
-            rows.append((_q("A", key), _vec(acceleration.images[key]), _vec(a), "", _printed(r), _dev(r)))
+            rows.append((_q("A", key), _vec(acceleration.images[key]), drafted("acceleration", "magnitude", key),
+                         _vec(a), "", _printed(r), _dev(r)))
     if poleset is not None and sheet == "poles":
         from ..reference import relative_pole
         for p in sorted((p for p in poleset.poles.values() if p.order > 0), key=lambda p: p.order):
             pos, direction = relative_pole(sol, *p.links)
             r = ref_for(f"P_{p.links[0]}{p.links[1]}", f"P{p.links[0]}{p.links[1]}")
-            rows.append((pole_label(p.links) + f"  ({p.order})", _where(p.position, p.direction),
+            rows.append((pole_label(p.links) + f"  ({p.order})", _where(p.position, p.direction), "",
                          _where(pos, direction), "", _printed(r), _dev(r)))
     related = {"velocity": ("V", "|V", "omega"), "acceleration": ("A", "alpha"), "poles": ("P", "V_P", "omega"),
                "full": ("V", "|V", "omega", "A", "alpha")}[sheet]
@@ -134,15 +155,20 @@ def results_table(sol, sheet: str = "full", *, velocity=None, acceleration=None,
         shown = "at infinity" if comp is None else (
             f"{fmt(comp[0], 5)} ∠ {comp[1]:.2f}°" if isinstance(comp, tuple) and not key.startswith("P")
             else (f"({fmt(comp[0], 5)}, {fmt(comp[1], 5)})" if isinstance(comp, tuple) else _num(comp)))
-        rows.append((key, "", shown, "", _printed(r), _dev(r)))
-    header = ["quantity", "graphical", "analytic"]
-    keep = [0, 1, 2]
+        rows.append((key, "", "", shown, "", _printed(r), _dev(r)))
+    header = ["quantity", "graphical"]
+    keep = [0, 1]
+    if hd is not None:
+        header.append("hand-drawn, 95 %")
+        keep.append(2)
+    header.append("analytic")
+    keep.append(3)
     if ic is not None:
         header.append("instant centres")
-        keep.append(3)
+        keep.append(4)
     if refs:
         header += ["reference", "deviation"]
-        keep += [4, 5]
+        keep += [5, 6]
     rows = [tuple(r[i] for i in keep) for r in rows]
     title = "Results: graphical construction against the analytic solve"
     if refs and m.reference.source:

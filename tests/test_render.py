@@ -1,0 +1,484 @@
+"""The figures, tested at the data level: what is drawn is the computed geometry.
+
+Arrows end at the images, each image has one label, labels never overlap,
+scale bars match the scale, the Kennedy circle has n points and n(n-1)/2
+chords, output is reproducible and atomic, and the kernel never imports
+matplotlib. Polygons are the hand-made ones of render_contract.py (the
+six-bar, built like a textbook), so the drawing is checked independently of
+velpoly.polygons; the gallery test renders every example with the real
+constructions.
+"""
+from __future__ import annotations
+
+import itertools
+import subprocess
+import sys
+from pathlib import Path
+
+import numpy as np
+import pytest
+from matplotlib.backends.backend_agg import FigureCanvasAgg
+from matplotlib.figure import Figure
+from shapely.geometry import Polygon as SPolygon
+from shapely.geometry import box
+
+import velpoly
+from render_contract import SIXBAR, load_sixbar, sixbar_acceleration, sixbar_velocity
+from velpoly.errors import InputError
+from velpoly.render import canvas, sheet
+from velpoly.render.canvas import per_cm, tex, view_scale
+from velpoly.render.displacement import draw_mechanism
+from velpoly.render.labels import LabelPlacer
+from velpoly.render.polygon import draw_polygon
+from velpoly.render.style import rc_context
+
+ROOT = Path(__file__).resolve().parent.parent
+
+
+@pytest.fixture(scope="module")
+def sixbar():
+    return load_sixbar()
+
+
+def _axes(size=(6, 5)):
+    fig = Figure(figsize=size)
+    FigureCanvasAgg(fig)
+    return fig.add_axes((0.02, 0.02, 0.96, 0.96))
+
+
+def _cross(a, b):
+    return a[0] * b[1] - a[1] * b[0]
+
+
+def _display_box(ax, artist, shrink=0.3):
+    """The artist's outline in display units, shrunk by ``shrink`` points (the placer pads by 1).
+
+    A rotated text's outline is its rotated box, not the window extent around it.
+    """
+    from shapely import affinity
+    r = ax.figure.canvas.get_renderer()
+    rot = artist.get_rotation() if hasattr(artist, "get_rotation") else 0
+    if rot:
+        artist.set_rotation(0)
+    bb = artist.get_window_extent(r)
+    if rot:
+        artist.set_rotation(rot)
+    s = shrink * ax.figure.dpi / 72
+    b = box(bb.x0 + s, bb.y0 + s, bb.x1 - s, bb.y1 - s)
+    return affinity.rotate(b, rot, origin="centroid") if rot else b
+
+
+def _patch_polygon(ax, patch):
+    xy = patch.get_path().to_polygons(patch.get_transform())
+    return SPolygon(xy[0]).buffer(0)
+
+
+def _no_overlaps(ax, texts, obstacles=()):
+    boxes = [_display_box(ax, t) for t in texts]
+    for (i, a), (j, b) in itertools.combinations(enumerate(boxes), 2):
+        assert not a.intersects(b), f"labels {texts[i].get_text()!r} and {texts[j].get_text()!r} overlap"
+    for o in obstacles:
+        shape = _patch_polygon(ax, o)
+        for t, b in zip(texts, boxes):
+            assert not b.intersects(shape), f"label {t.get_text()!r} covers {o.get_gid()}"
+
+
+# -- polygons ---------------------------------------------------------------------------------------
+@pytest.mark.parametrize("build", [sixbar_velocity, sixbar_acceleration])
+def test_arrows_end_at_the_images(sixbar, build):
+    m, sol = sixbar
+    poly = build(sol)
+    ax = _axes()
+    art = draw_polygon(poly, ax, mechanism=m)
+    absolute = {tuple(np.round(h, 12)) for kind, t, h, _ in art.arrows if kind == "absolute"}
+    for key, img in poly.images.items():
+        if np.hypot(*img) > 0:
+            assert tuple(np.round(img, 12)) in absolute, key
+    for kind, tail, head, patch in art.arrows:
+        tip = patch.get_xy()[0]
+        np.testing.assert_allclose(tip, head, rtol=0, atol=1e-12)   # the head's tip is exactly the image
+    for kind, tail, head, _ in art.arrows:
+        if kind == "absolute":
+            np.testing.assert_array_equal(tail, [0, 0])
+    drawn = {(kind, *np.round(np.r_[t, h], 9)) for kind, t, h, _ in art.arrows}
+    for step in poly.steps:
+        for v in step.vectors:
+            assert (v.kind, *np.round(np.r_[v.tail, v.head], 9)) in drawn, v.label
+    shafts = art["shafts"]
+    for (kind, tail, head, _), sh in zip(art.arrows, shafts):
+        x, y = sh.get_data()
+        np.testing.assert_allclose((x[0], y[0]), tail, atol=1e-12)
+
+
+def test_construction_lines_pass_through_their_intersection(sixbar):
+    m, sol = sixbar
+    poly = sixbar_velocity(sol)
+    art = draw_polygon(poly, _axes(), mechanism=m)
+    lines = art["construction"]
+    assert len(lines) == sum(len(s.lines) for s in poly.steps)
+    for step in poly.steps:
+        hit = poly.images[step.found[0]] if step.found else None
+        for ln in step.lines:
+            drawn = next(x for x in lines if x.get_gid() == f"construction-{step.index}-{ln.base_label}")
+            (x0, x1), (y0, y1) = drawn.get_data()
+            a, b = np.array([x0, y0]), np.array([x1, y1])
+            d = (b - a) / np.hypot(*(b - a))
+            assert abs(_cross(d, ln.direction)) < 1e-12          # along the line's direction
+            assert abs(_cross(d, hit - a)) < 1e-9 * np.hypot(*hit)  # through the intersection
+            t = np.dot(hit - a, d)
+            assert 0 < t < np.hypot(*(b - a))                     # extended past it on both sides
+
+
+@pytest.mark.parametrize("build", [sixbar_velocity, sixbar_acceleration])
+def test_every_image_has_exactly_one_label(sixbar, build):
+    m, sol = sixbar
+    poly = build(sol)
+    art = draw_polygon(poly, _axes(), mechanism=m)
+    assert set(art.labels) == set(poly.images)
+    texts = art["labels"]
+    assert len(texts) == len(set(map(id, texts)))
+    for key, lab in poly.labels.items():
+        holders = [t for t in texts if {tex(lab), tex(lab, math=True)} & set(t.get_text().split(", "))]
+        assert holders == [art.labels[key]], key
+    origin = [t for t in texts if tex(poly.origin_label) in t.get_text()]
+    assert len(origin) == 1
+    # the frame's points image at the origin and share its label
+    assert art.labels["A"] is art.labels["D"] is origin[0]
+
+
+@pytest.mark.parametrize("build", [sixbar_velocity, sixbar_acceleration])
+def test_polygon_labels_do_not_overlap(sixbar, build):
+    m, sol = sixbar
+    ax = _axes()
+    art = draw_polygon(build(sol), ax, mechanism=m)
+    _no_overlaps(ax, art["labels"] + art.get("reasons", []), obstacles=art["arrows"])
+
+
+def test_steps_draw_a_growing_construction(sixbar):
+    m, sol = sixbar
+    poly = sixbar_velocity(sol)
+    counts = []
+    for k in range(1, len(poly.steps) + 1):
+        art = draw_polygon(poly, _axes(), mechanism=m, upto=k)
+        found = {key for s in poly.steps[:k] for key in s.found} | {"A", "D"}
+        assert set(art.labels) == found
+        counts.append(len(art["arrows"]))
+    assert counts == sorted(counts) and counts[0] < counts[-1]
+
+
+# -- the displacement diagram -------------------------------------------------------------------------
+def test_mechanism_pins_and_labels_sit_on_the_pose(sixbar):
+    m, _ = sixbar
+    sol = velpoly.solve(m, angle=75.0)          # a re-assembled pose, as `--angle` draws it
+    ax = _axes()
+    art = draw_mechanism(sol, ax)
+    for pin in {p.point for p in m.pins}:
+        circle = next(p for p in art["pins"] if p.get_gid() == f"pin-{pin}")
+        c = np.mean(circle.get_path().vertices[:-1], axis=0)
+        np.testing.assert_allclose(c, sol.position[pin], atol=1e-9)
+    assert set(art.labels) == set(sol.position)
+    texts = art["labels"] + art["link_numbers"]
+    assert sorted(t.get_gid() for t in art["link_numbers"]) == sorted(f"link-number-{k.name}"
+                                                                       for k in m.moving_links)
+    _no_overlaps(ax, texts, obstacles=art["pins"])
+
+
+def test_driver_arrow_turns_with_omega(sixbar):
+    m, sol = sixbar
+    art = draw_mechanism(sol, _axes())
+    arc = next(a for a in art["driver"] if a.get_gid() == "driver-arc")
+    x, y = arc.get_data()
+    a = np.unwrap(np.arctan2(y - 0.0, x - 0.0))     # around the pivot A at the origin
+    assert np.all(np.diff(a) > 0)                   # counter-clockwise, as omega_1 > 0
+    label = next(a for a in art["driver"] if a.get_gid() == "driver-label")
+    assert "6.283 rad/s ccw" in label.get_text()
+
+
+def test_scale_bar_matches_the_scale(sixbar):
+    m, sol = sixbar
+    for scale in (None, 0.04, 0.125):
+        ax = _axes()
+        s = canvas.fit_view(ax, (-0.4, 0.0, 0.3, 0.45), scale=scale)
+        if scale is not None:
+            assert s == scale
+        art = draw_mechanism(sol, ax)
+        assert view_scale(ax) == s
+        assert per_cm(ax) == pytest.approx(s, rel=1e-12)
+        x0, x1 = ax.get_xlim()
+        fig_w = ax.figure.get_size_inches()[0] * ax.get_position().width * 2.54
+        assert (x1 - x0) / fig_w == pytest.approx(s, rel=1e-12)   # 1 cm of paper = s units
+        bar = art["scale_bar"][0]
+        length = bar._velpoly_length
+        assert bar.get_width() == pytest.approx(length, rel=1e-12)
+        assert 1.0 - 1e-9 <= length / s <= 2.5 + 1e-9                    # 1 to 2.5 cm on paper
+        lead = length / 10 ** np.floor(np.log10(length))
+        assert round(lead, 9) in (1, 2, 5)
+        assert any(t.get_text() == f"{length:g} m" for t in art["scale_bar"][1:] if hasattr(t, "get_text"))
+
+
+def test_velocity_scale_bar_has_velocity_units(sixbar):
+    m, sol = sixbar
+    art = draw_polygon(sixbar_velocity(sol), _axes(), mechanism=m)
+    texts = [t.get_text() for t in art["scale_bar"] if hasattr(t, "get_text")]
+    assert any(t.endswith(" m/s") for t in texts)
+    art = draw_polygon(sixbar_acceleration(sol), _axes(), mechanism=m)
+    assert any(t.get_text().endswith(" m/s²") for t in art["scale_bar"] if hasattr(t, "get_text"))
+
+
+def test_nice_scales():
+    assert canvas.nice_scale(0.065) == 0.08
+    assert canvas.nice_scale(0.08) == 0.08
+    assert canvas.nice_scale(1.1) == 1.5
+    assert canvas.nice_length(0.27) == 0.2
+    assert canvas.nice_length(7.0) == 5.0
+
+
+# -- labels ---------------------------------------------------------------------------------------------
+def test_placer_keeps_crowded_labels_apart():
+    ax = _axes((4, 4))
+    canvas.fit_view(ax, (0, 0, 1, 1))
+    pl = LabelPlacer(ax)
+    from shapely.geometry import Point
+    pl.add_obstacle(Point(0.5, 0.5).buffer(0.02))
+    texts = [pl.place((0.5, 0.5), f"label {i}", fontsize=9) for i in range(12)]
+    texts += [pl.place((0.5 + 0.01 * i, 0.5), "x", fontsize=9) for i in range(4)]
+    assert not pl.overlapping
+    _no_overlaps(ax, texts)
+    centre = ax.transData.transform((0.5, 0.5))
+    for t in texts:   # and none covers the obstacle
+        assert not _display_box(ax, t).contains(box(*centre, *(centre + 1)))
+
+
+def test_placer_is_deterministic():
+    def run():
+        ax = _axes((4, 4))
+        canvas.fit_view(ax, (0, 0, 1, 1))
+        pl = LabelPlacer(ax)
+        return [pl.place((0.5, 0.5), s, fontsize=9).get_position() for s in ("A", "B", "C", "D")]
+    assert run() == run()
+
+
+def test_tex_labels():
+    assert tex("b4") == "$b_{4}$"
+    assert tex("c'") == "c′"
+    assert tex("f5'") == "$f_{5}'$"
+    assert tex("B") == "B"
+    assert tex("O_v") == "$O_{v}$"
+    assert tex("P@5") == "P@5"
+
+
+# -- poles and the Kennedy circle -------------------------------------------------------------------------
+def test_kennedy_circle_has_n_points_and_all_chords(sixbar):
+    pytest.importorskip("velpoly.poles")
+    from velpoly.poles import locate_poles
+    from velpoly.render.kennedy import draw_kennedy_circle
+    m, sol = sixbar
+    ps = locate_poles(sol)
+    ax = _axes((4, 4))
+    art = draw_kennedy_circle(sol, ax, poleset=ps)
+    n = len(m.links)
+    assert len(art["points"]) == n
+    assert len(art["chords"]) == n * (n - 1) // 2
+    assert {c.get_gid() for c in art["chords"]} == {f"chord-{k}" for k in ps.poles}
+    for c in art["points"]:   # on the circle
+        assert np.hypot(*c.center) == pytest.approx(1.0)
+    found = [p for p in ps.poles.values() if p.order > 0]
+    assert len(art["numbers"]) == len(found)
+    assert sorted(t.get_text() for t in art["numbers"]) == sorted(str(p.order) for p in found)
+    for p in ps.poles.values():
+        chord = next(c for c in art["chords"] if c.get_gid() == f"chord-{p.key}")
+        assert (chord.get_linestyle() == "-") == (p.order == 0)
+    _no_overlaps(ax, art["labels"] + art["numbers"])
+    # step by step: the chords found so far
+    art = draw_kennedy_circle(sol, _axes((4, 4)), poleset=ps, upto=2)
+    assert len(art["chords"]) == sum(1 for p in ps.poles.values() if p.order <= 2)
+
+
+def test_poles_are_drawn_where_they_are(sixbar):
+    pytest.importorskip("velpoly.poles")
+    from velpoly.poles import locate_poles
+    from velpoly.render.kennedy import draw_poles
+    m, sol = sixbar
+    ps = locate_poles(sol)
+    ax = _axes((7, 5))
+    art = draw_poles(sol, ax, poleset=ps)
+    assert set(art.labels) == {k for k, p in ps.poles.items() if not (p.position is None and p.direction is None)}
+    for mark in art.get("poles", []):
+        if mark.get_gid():
+            key = mark.get_gid()[len("pole-"):]
+            c = np.mean(mark.get_path().vertices[:-1], axis=0)
+            np.testing.assert_allclose(c, ps.poles[key].position, atol=1e-9)
+    for head in art.get("far", []):
+        if hasattr(head, "get_xy") and head.get_gid():
+            p = ps.poles[head.get_gid()[len("pole-"):]]
+            tip, base = head.get_xy()[0], (head.get_xy()[1] + head.get_xy()[3]) / 2
+            d = (tip - base) / np.hypot(*(tip - base))
+            if p.position is None:     # a pole at infinity: the arrow points its way
+                assert abs(_cross(d, [np.cos(np.radians(p.direction)), np.sin(np.radians(p.direction))])) < 1e-9
+    _no_overlaps(ax, art["labels"] + art["link_numbers"] + [a for a in art["far"] if hasattr(a, "get_text")])
+
+
+# -- the results table -----------------------------------------------------------------------------------
+def test_results_table_rows(sixbar):
+    from velpoly.render.table import results_table
+    m, sol = sixbar
+    t = results_table(sol, "velocity", velocity=sixbar_velocity(sol))
+    rows = {r[0]: dict(zip(t.header, r)) for r in t.rows}
+    w2 = rows[r"$\omega_{2}$ (rad/s)"]
+    assert (w2["graphical"], w2["analytic"]) == ("−1.1307", "−1.1307")
+    lo, hi = (float(x.replace("−", "-")) for x in w2["hand-drawn, 95 %"].split(" … "))
+    assert lo < sol.omega["2"] < hi                       # a hand drawing straddles the exact value
+    assert rows["$V_{B}$"]["graphical"] == "0.94248 ∠ 120.00°"
+    assert "reference" in t.header and "deviation" in t.header
+    assert rows[r"$\omega_{3}$ (rad/s)"]["deviation"] == "< 0.001 %"
+
+
+def test_results_table_is_drawn_within_its_axes(sixbar):
+    from velpoly.render.table import draw_results_table
+    m, sol = sixbar
+    fig = Figure(figsize=(11.69, 8.27))
+    FigureCanvasAgg(fig)
+    ax = fig.add_axes((0.05, 0.02, 0.9, 0.2))
+    art = draw_results_table(sol, ax, sheet="full", velocity=sixbar_velocity(sol),
+                             acceleration=sixbar_acceleration(sol))
+    frame = ax.get_window_extent(fig.canvas.get_renderer())
+    for t in art["cells"]:
+        bb = t.get_window_extent(fig.canvas.get_renderer())
+        assert frame.x0 - 1 <= bb.x0 and bb.x1 <= frame.x1 + 1 and frame.y0 - 1 <= bb.y0, t.get_text()
+    assert art.shown + sum(1 for c in art["cells"] if c.get_text().startswith("…")) >= 1
+
+
+# -- sheets and files ------------------------------------------------------------------------------------
+def _cons(sol):
+    from velpoly.render.sheet import Constructions
+    poles = None
+    try:
+        from velpoly.poles import locate_poles
+        poles = locate_poles(sol)
+    except ImportError:
+        pass
+    return Constructions(sixbar_velocity(sol), sixbar_acceleration(sol), poles)
+
+
+def test_same_input_same_bytes(sixbar, tmp_path):
+    m, sol = sixbar
+    for suffix in (".svg", ".pdf"):
+        a = sheet.draw_to_file(sol, tmp_path / f"a{suffix}", "full", cons=_cons(sol))[0]
+        b = sheet.draw_to_file(velpoly.solve(velpoly.load(SIXBAR)), tmp_path / f"b{suffix}", "full",
+                               cons=_cons(sol))[0]
+        assert a.read_bytes() == b.read_bytes()
+    assert b"<dc:date>" not in a.with_suffix(".svg").read_bytes()
+
+
+def test_a_failed_drawing_leaves_no_file(sixbar, tmp_path, monkeypatch):
+    m, sol = sixbar
+
+    def boom(*args, **kw):
+        raise RuntimeError("drawing failed")
+    monkeypatch.setattr(sheet, "draw_results_table", boom)
+    for name, steps in (("out.svg", False), ("out.pdf", False), ("out.pdf", True), ("out.svg", True)):
+        with pytest.raises(RuntimeError):
+            sheet.draw_to_file(sol, tmp_path / name, "velocity", steps=steps, cons=_cons(sol))
+        assert list(tmp_path.iterdir()) == []
+
+
+def test_steps_write_numbered_files_and_pdf_pages(sixbar, tmp_path):
+    m, sol = sixbar
+    cons = _cons(sol)
+    files = sheet.draw_to_file(sol, tmp_path / "v.svg", "velocity", steps=True, cons=cons)
+    n = len(cons.velocity.steps)
+    assert [p.name for p in files] == [f"v-{i:02d}.svg" for i in range(1, n + 1)]
+    assert all(p.exists() for p in files)
+    text = files[1].read_text()
+    assert 'id="step-caption"' in text
+    frames = sheet.frames("full", cons, True)
+    assert len(frames) == n + len(cons.acceleration.steps)
+    assert frames[1].caption.startswith("Step 2: ") and r"$V_{CB}$" in frames[1].caption
+    pdf = sheet.draw_to_file(sol, tmp_path / "a.pdf", "acceleration", steps=True, cons=cons)[0]
+    assert pdf.read_bytes().count(b"/Type /Page\n") + pdf.read_bytes().count(b"/Type /Page ") >= \
+        len(cons.acceleration.steps)
+
+
+def test_sheets_have_their_panels_and_a_table(sixbar):
+    m, sol = sixbar
+    cons = _cons(sol)
+    with rc_context(sheet.get_style("textbook")):
+        for name in sheet.SHEETS:
+            if name == "poles" and cons.poles is None:
+                continue
+            fig = sheet.render_sheet(sol, name, "textbook", cons=cons)
+            labels = {ax.get_label() for ax in fig.axes}
+            assert "table" in labels
+            assert labels - {"table"} == set(sheet._LAYOUTS[name]) - {"table"}
+    fig = sheet.render_sheet(sol, "full", "slides", cons=cons)
+    w, h = fig.get_size_inches()
+    assert w / h == pytest.approx(16 / 9, rel=1e-3)
+
+
+def test_bad_arguments_are_input_errors(sixbar, tmp_path):
+    m, sol = sixbar
+    with pytest.raises(InputError, match="valid sheets"):
+        sheet.draw_to_file(sol, tmp_path / "x.svg", "everything")
+    with pytest.raises(InputError, match="valid styles"):
+        sheet.draw_to_file(sol, tmp_path / "x.svg", "full", style="fancy", cons=_cons(sol))
+    with pytest.raises(InputError, match="unknown figure type '.jpg'") as e:
+        sheet.draw_to_file(sol, tmp_path / "x.jpg", "full")
+    assert ".svg, .png or .pdf" in e.value.hint
+    assert list(tmp_path.iterdir()) == []
+
+
+@pytest.mark.parametrize("drawing, where, what", [
+    ({"scael": 0.1}, "drawing.scael", "valid keys: scale, velocity_scale"),
+    ({"scale": -1}, "drawing.scale", "positive"),
+    ({"velocity_scale": "big"}, "drawing.velocity_scale", "positive"),
+    ({"label_points": ["A", "Q"]}, "drawing.label_points", "unknown point 'Q'"),
+    ({"link_colours": {"9": "red"}}, "drawing.link_colours.9", "unknown link"),
+    ({"link_colours": {"2": "reddish"}}, "drawing.link_colours.2", "not a colour"),
+    ({"link_numbers": "boxed"}, "drawing.link_numbers", "circled, plain, none"),
+    ({"table": "yes"}, "drawing.table", "true or false"),
+])
+def test_drawing_options_are_checked(drawing, where, what):
+    import tomllib
+    from velpoly.render.options import drawing_options
+    data = tomllib.loads(SIXBAR.read_text())
+    data["drawing"] = drawing
+    m = velpoly.load(data)
+    with pytest.raises(InputError) as e:
+        drawing_options(m)
+    assert e.value.where == where and what in e.value.what + e.value.hint
+
+
+def test_drawing_options_take_effect(sixbar):
+    import tomllib
+    data = tomllib.loads(SIXBAR.read_text())
+    data["drawing"] = {"scale": 0.05, "label_points": ["B", "C"], "link_numbers": "none",
+                       "link_colours": {"2": "#ff0000"}}
+    m = velpoly.load(data)
+    sol = velpoly.solve(m)
+    art = draw_mechanism(sol, _axes(), style="slides")
+    assert view_scale(art.ax) == 0.05
+    assert set(art.labels) == {"B", "C"}
+    assert "link_numbers" not in art
+    body = next(p for p in art["links"] if p.get_gid() == "link-2")
+    assert body.get_facecolor()[0] == 1.0 and body.get_facecolor()[1] < 0.8
+
+
+def test_mechanism_svg_for_jupyter(sixbar):
+    m, _ = sixbar
+    svg = m._repr_svg_()
+    assert svg.lstrip().startswith("<?xml") and "<svg" in svg
+    assert svg == m._repr_svg_()
+
+
+# -- matplotlib stays out of the kernel ---------------------------------------------------------------
+def test_kernel_and_solve_do_not_import_matplotlib():
+    code = ("import sys, velpoly, velpoly.cli, io, contextlib\n"
+            "assert 'matplotlib' not in sys.modules, 'import velpoly'\n"
+            f"with contextlib.redirect_stdout(io.StringIO()):\n"
+            f"    rc = velpoly.cli.main(['solve', {str(SIXBAR)!r}, '--json'])\n"
+            "assert rc == 0\n"
+            "assert 'matplotlib' not in sys.modules, 'velpoly solve'\n"
+            "import velpoly.render\n"
+            "assert 'matplotlib' not in sys.modules, 'import velpoly.render'\n")
+    r = subprocess.run([sys.executable, "-c", code], capture_output=True, text=True, cwd=ROOT)
+    assert r.returncode == 0, r.stderr
