@@ -1,0 +1,204 @@
+"""`velpoly demo` and `velpoly gallery`: the built-in example, the comparison tables, the README."""
+import re
+import shutil
+from pathlib import Path
+
+import numpy as np
+import pytest
+
+import velpoly
+from velpoly.cli import main
+from velpoly.fileio import atomic_write_bytes
+from velpoly.gallery import build_gallery, comparison, comparison_text, example_path, find_gallery, top_comments
+
+REPO = Path(__file__).resolve().parent.parent
+GALLERY = REPO / "gallery"
+
+
+def render_available():
+    try:
+        from velpoly.render import draw_to_file  # noqa: F401
+    except ImportError:
+        return False
+    return True
+
+
+needs_render = pytest.mark.skipif(not render_available(), reason="velpoly.render (the figures) is absent")
+
+
+def run(capsys, *argv):
+    code = main([str(a) for a in argv])
+    out, err = capsys.readouterr()
+    return code, out, err
+
+
+def table_rows(markdown: str, section_title: str) -> list[list[str]]:
+    """The rows of the first table in the README section whose heading contains ``section_title``."""
+    part = markdown.split(f"## {section_title}", 1)[1].split("\n## ", 1)[0]
+    rows = [line for line in part.splitlines() if line.startswith("| ")]
+    return [[c.strip() for c in re.split(r"(?<!\\)\|", r)[1:-1]] for r in rows[1:]]   # without the header
+
+
+# -- the demo ----------------------------------------------------------------------------------
+def test_demo_example_is_problem_1_4_4_with_its_printed_answers():
+    m = velpoly.load(example_path())
+    assert m.reference.source.startswith("Problem 1.4.4")
+    c = comparison(velpoly.solve(m))
+    keys = [v[0] for v in c.values]
+    assert keys[:7] == ["omega_1", "omega_2", "omega_3", "omega_4", "alpha_2", "alpha_3", "alpha_4"]
+    assert {"V_B", "V_C", "V_E", "V_F", "A_B", "A_C", "A_E", "A_F"} <= set(keys)
+    for key, printed, graphical, analytic in c.values:
+        # the book prints 5 to 6 significant digits: it agrees to 5e-5 (directions to 1e-3 deg)
+        p, a = (printed, analytic) if isinstance(printed, tuple) else ((printed, 0.0), (analytic, 0.0))
+        assert a[0] == pytest.approx(p[0], rel=5e-5, abs=1e-9), key
+        assert abs((a[1] - p[1] + 180) % 360 - 180) < 1e-3, key
+        # the graphical construction is exact
+        g = graphical if isinstance(graphical, tuple) else (graphical, 0.0)
+        assert g[0] == pytest.approx(a[0], rel=1e-9, abs=1e-12), key
+        assert abs((g[1] - a[1] + 180) % 360 - 180) < 1e-7, key
+
+
+def test_comparison_text_and_markdown_hold_every_row_and_note():
+    sol = velpoly.solve(velpoly.load(example_path()))
+    text, md = comparison_text(sol, "text"), comparison_text(sol, "markdown")
+    n = len(comparison(sol).values)
+    assert md.startswith("# Six-bar") and md.count("\n| ") == n + 1
+    assert "| omega_2 | -1.1307 | -1.1307 | -1.1307 |" in md
+    assert "alpha_4: the book's Eq. (12)" in text and "1. alpha\\_4:" in md
+    assert "graphical vs analytic" in text
+
+
+@needs_render
+def test_demo_writes_the_sheet_and_the_tables(tmp_path, capsys):
+    out = tmp_path / "out"
+    code, stdout, err = run(capsys, "demo", "-o", out)
+    assert code == 0, err
+    names = ["sixbar.svg", "sixbar.png", "sixbar-results.txt", "sixbar-results.md"]
+    for name in names:
+        assert (out / name).stat().st_size > 0
+        assert str(out / name) in stdout
+    assert (out / "sixbar.png").read_bytes().startswith(b"\x89PNG")
+    assert "<svg" in (out / "sixbar.svg").read_text()
+    assert "omega_3   -2.82169" in (out / "sixbar-results.txt").read_text()
+    assert not list(out.glob(".*part"))
+
+
+def test_demo_without_the_figure_module_fails_clearly(tmp_path, capsys, monkeypatch):
+    import velpoly.gallery as gallery
+
+    def absent():
+        raise gallery.FiguresUnavailable("the figure module velpoly.render is not available (test)",
+                                         where="figures", hint="install velpoly completely")
+    monkeypatch.setattr(gallery, "_draw_to_file", absent)
+    code, stdout, err = run(capsys, "demo", "-o", tmp_path / "out")
+    assert code == 1 and err.startswith("error: figures: the figure module") and "hint:" in err
+    assert not (tmp_path / "out").exists()
+
+
+# -- the gallery ---------------------------------------------------------------------------------
+def two_examples(tmp_path) -> Path:
+    src = tmp_path / "src"
+    src.mkdir()
+    for name in ("problem_1_4_4_sixbar.toml", "ex3_6_fourbar.toml"):
+        shutil.copy(GALLERY / name, src / name)
+    return src
+
+
+def fake_draw(calls):
+    """A stand-in for draw_to_file that records its calls and writes a one-byte file atomically."""
+    def draw(sol, out, sheet="full", style="textbook", steps=False):
+        calls.append((sol.mechanism.title, Path(out), sheet, style, steps))
+        return [atomic_write_bytes(out, b"x")]
+    return draw
+
+
+def test_gallery_readme_has_a_row_per_reference_value(tmp_path):
+    src = two_examples(tmp_path)
+    calls = []
+    result = build_gallery(src, draw=fake_draw(calls))
+    assert not result.failed and len(result.built) == 2
+    assert [c[1].name for c in calls] == ["ex3_6_fourbar.png", "problem_1_4_4_sixbar.png"]
+    assert all(c[2] == "full" and c[4] is False for c in calls)
+    readme = (src / "README.md").read_text()
+    for name in ("ex3_6_fourbar", "problem_1_4_4_sixbar"):
+        m = velpoly.load(src / f"{name}.toml")
+        sol = velpoly.solve(m)
+        rows = table_rows(readme, m.title.replace("_", "\\_"))
+        expected = comparison(sol).values
+        assert len(rows) == len(expected) > 10
+        assert [r[0].replace("\\", "") for r in rows] == [v[0] for v in expected]
+        assert f"![{m.title.replace('_', chr(92) + '_')}](figures/{name}.png)" in readme
+        for r in rows:   # book, graphical, analytic and both deviations are shown
+            assert r[1] != "" and r[3] != "" and r[4] != ""
+    # the notes and the top comments explain the disagreements
+    from velpoly.gallery import _md
+    for name in ("ex3_6_fourbar", "problem_1_4_4_sixbar"):
+        m = velpoly.load(src / f"{name}.toml")
+        assert m.reference.note
+        for note in m.reference.note.values():
+            assert _md(note) in readme
+        for kind, body in top_comments(src / f"{name}.toml"):
+            assert (f"```text\n{body}\n```" if kind == "pre" else _md(body)) in readme
+
+
+def test_one_failing_example_does_not_stop_the_others(tmp_path, capsys):
+    src = two_examples(tmp_path)
+    (src / "broken.toml").write_text('title = "broken"\n[points]\nA = [0, 0]\n')
+    logged = []
+    result = build_gallery(src, draw=fake_draw([]), log=logged.append)
+    assert len(result.built) == 2 and [p.name for p, _ in result.failed] == ["broken.toml"]
+    assert len(logged) == 1 and logged[0].startswith("broken.toml: ")
+    readme = (src / "README.md").read_text()
+    assert "## Not built" in readme and "broken.toml" in readme.split("## Not built")[1]
+    assert readme.count("\n## ") == 3   # the two examples and the failures
+
+
+@needs_render
+def test_gallery_command_builds_figures_and_exits_1_on_a_failure(tmp_path, capsys):
+    src = two_examples(tmp_path)
+    (src / "zz_bad.toml").write_text("this is not toml = = \n")
+    out = tmp_path / "site"
+    code, stdout, err = run(capsys, "gallery", "--source", src, "-o", out)
+    assert code == 1
+    assert "error: zz_bad.toml" in err and "1 of 3 examples failed" in err
+    assert (out / "figures" / "ex3_6_fourbar.png").read_bytes().startswith(b"\x89PNG")
+    assert (out / "figures" / "problem_1_4_4_sixbar.png").exists()
+    readme = (out / "README.md").read_text()
+    assert "](figures/ex3_6_fourbar.png)" in readme and "## Not built" in readme
+    assert str(out / "README.md") in stdout
+
+
+def test_gallery_without_examples_is_an_input_error(tmp_path, capsys):
+    code, _, err = run(capsys, "gallery", "--source", tmp_path)
+    assert code == 2 and "no *.toml files" in err
+
+
+def test_find_gallery_from_inside_the_repository(tmp_path):
+    assert find_gallery(REPO / "docs") == GALLERY
+    assert find_gallery(REPO) == GALLERY
+
+
+def test_top_comments_keep_paragraphs_items_and_formulas(tmp_path):
+    f = tmp_path / "c.toml"
+    f.write_text("# First line\n# goes on.\n#\n# Misprints:\n# - one item\n#   continued.\n# - two\n"
+                 "#\n#   x = 1      y = 2\n#   z = 3\nformat = 1\n# not a top comment\n")
+    assert top_comments(f) == [("text", "First line goes on."), ("text", "Misprints:"),
+                               ("item", "one item continued."), ("item", "two"),
+                               ("pre", "x = 1      y = 2\nz = 3")]
+
+
+def test_a_file_without_reference_values_shows_graphical_against_analytic():
+    from mechanisms import slider_crank
+    m = velpoly.load(slider_crank())
+    sol = velpoly.solve(m)
+    c = comparison(sol)
+    keys = [v[0] for v in c.values]
+    assert keys == ["omega_2", "omega_3", "omega_4", "alpha_2", "alpha_3", "alpha_4", "V_A", "V_B", "A_A", "A_B"]
+    for key, printed, graphical, analytic in c.values:
+        assert printed is None
+        if isinstance(analytic, tuple):
+            assert graphical[0] == pytest.approx(analytic[0], rel=1e-9), key
+            assert abs((graphical[1] - analytic[1] + 180) % 360 - 180) < 1e-7, key
+        else:
+            assert graphical == pytest.approx(analytic, rel=1e-9, abs=1e-9), key
+    assert all(r[1] == "-" and r[4] == "-" for r in c.table.rows)

@@ -1,0 +1,596 @@
+"""``velpoly demo`` and ``velpoly gallery``: textbook examples drawn and checked against the book.
+
+Both draw a full sheet per example (:func:`velpoly.render.draw_to_file`) and
+write a comparison table: each ``[reference]`` value as the book prints it,
+as the graphical constructions give it (velocity and acceleration polygons,
+the poles found on the Kennedy circle) and as the analytic solve gives it,
+with the deviations. The gallery's README also carries, for every example,
+the sentences that explain a disagreement with the book: the file's
+``[reference] note`` entries and its top comments.
+
+The kernel part of this module imports no matplotlib; figures are drawn by
+the render module.
+"""
+from __future__ import annotations
+
+import math
+import re
+import sys
+from dataclasses import dataclass
+from pathlib import Path
+
+import numpy as np
+
+from .errors import InputError, VelpolyError
+from .fileio import atomic_write_text
+from .reference import Quantity, compare, evaluate, parse_key
+from .report import Table, fmt, render_table
+
+__all__ = ["example_path", "comparison", "comparison_text", "Comparison", "top_comments", "example_markdown",
+           "build_gallery", "GalleryResult", "find_gallery", "demo_command", "gallery_command",
+           "FiguresUnavailable"]
+
+DEMO_EXAMPLE = "sixbar"
+
+
+class FiguresUnavailable(VelpolyError):
+    """The figure module (velpoly.render) is not installed or offers no ``draw_to_file``."""
+
+    exit_code = 1
+
+
+def _draw_to_file():
+    """:func:`velpoly.render.draw_to_file`, or a clear error if the render module is absent."""
+    try:
+        from .render import draw_to_file
+    except ImportError as e:
+        raise FiguresUnavailable(f"the figure module velpoly.render is not available ({e})", where="figures",
+                                 hint="install velpoly completely (pip install -e .) or update the checkout; "
+                                      "`velpoly solve` works without figures") from None
+    return draw_to_file
+
+
+def example_path(name: str = DEMO_EXAMPLE) -> Path:
+    """The path of a built-in example file (``velpoly/examples/NAME.toml``)."""
+    path = Path(__file__).resolve().parent / "examples" / f"{name}.toml"
+    if not path.is_file():
+        raise InputError(f"no built-in example {name!r}", where="examples", file=str(path))
+    return path
+
+
+# -- graphical values ----------------------------------------------------------------------------
+class _Graphical:
+    """The graphical constructions of one solution, read like a Solution by :func:`reference.evaluate`.
+
+    omega and alpha are the polygons' rates; a point's velocity (acceleration) is
+    its image in the velocity (acceleration) polygon; a body point of a link
+    that has no image of its own follows from the link's image
+    (``V = V_a + omega x R``, ``A = A_a + alpha x R - omega^2 R`` from an image a);
+    a pole's position is the one found on the Kennedy circle.
+    """
+
+    def __init__(self, sol):
+        from .poles import locate_poles
+        from .polygons import acceleration_polygon, velocity_polygon
+        self.sol = sol
+        self.mechanism = sol.mechanism
+        self.vel = velocity_polygon(sol)
+        self.acc = acceleration_polygon(sol) if sol.has_accelerations else None
+        self.poles = locate_poles(sol)
+        # what reference.evaluate reads
+        self.angle, self.position = sol.angle, sol.position
+        self.omega, self.velocity = self.vel.rates, self.vel.images
+        self.alpha = self.acc.rates if self.acc else {}
+        self.acceleration = self.acc.images if self.acc else {}
+
+    def _anchor(self, link: str, images: dict):
+        """An imaged point key carried by ``link``: (key, its position)."""
+        m = self.mechanism
+        for p in m.link(link).points:
+            for key in (p, f"{p}@{link}"):
+                if key in images and key in self.sol.position:
+                    return key, self.sol.position[key]
+        return None, None
+
+    def _body(self, link: str, w, acc: bool) -> np.ndarray:
+        """V (A) of the body point of ``link`` at w from the link's image: V_a + omega x R
+        (A_a + alpha x R - omega^2 R)."""
+        if link == self.mechanism.frame.name:
+            return np.zeros(2)
+        poly = self.acc if acc else self.vel
+        key, at = self._anchor(link, poly.images)
+        if key is None:
+            raise KeyError(link)
+        r = np.asarray(w, float) - at
+        om = self.vel.rates[link]
+        out = np.asarray(poly.images[key], float) + poly.rates[link] * np.array([-r[1], r[0]])
+        return out - om ** 2 * r if acc else out
+
+    def body_velocity(self, link: str, w) -> np.ndarray:
+        return self._body(link, w, False)
+
+    def body_acceleration(self, link: str, w) -> np.ndarray:
+        return self._body(link, w, True)
+
+    def pole(self, i: str, j: str):
+        names = self.mechanism.link_names
+        a, b = sorted((i, j), key=names.index)
+        return self.poles.poles[f"{a}-{b}"].position
+
+    def value(self, q: Quantity):
+        """The graphical value of a parsed reference key, or None where no construction gives it."""
+        if q.kind in ("theta", "R"):
+            return None               # positions: the displacement diagram is the analytic pose itself
+        if q.kind == "P":
+            return self.pole(*q.links)
+        if q.kind in ("A", "alpha", "AP") and self.acc is None:
+            return None
+        if q.kind in ("VP", "AP"):
+            at = self.pole(*q.links)
+            if at is None:
+                return None
+            return (self.body_velocity if q.kind == "VP" else self.body_acceleration)(q.links[0], at)
+        try:
+            return evaluate(self, q)
+        except (KeyError, InputError):
+            return None
+
+
+# -- the comparison table ------------------------------------------------------------------------
+@dataclass(frozen=True)
+class Comparison:
+    """The book's values beside the graphical and analytic ones: a :class:`Table` and its notes.
+
+    ``table.rows`` hold strings; ``notes`` are ``(number, quantity, sentence)``,
+    one per distinct ``[reference] note``; ``values`` keeps each row's numbers
+    ``(quantity, printed, graphical, analytic)`` for checks.
+    """
+
+    title: str
+    table: Table
+    notes: tuple = ()
+    values: tuple = ()
+
+
+def _magnitude_direction(v):
+    v = np.asarray(v, float)
+    return float(np.hypot(*v)), float(math.degrees(math.atan2(v[1], v[0]))) % 360.0
+
+
+def _show(value, kind: str) -> str:
+    if value is None:
+        return "-"
+    if kind == "P":
+        return f"({fmt(value[0])}, {fmt(value[1])})"
+    if isinstance(value, tuple):
+        return f"{fmt(value[0])} ∠ {value[1]:.3f}°"
+    return fmt(value)
+
+
+def _graphical_shown(row, q: Quantity, g):
+    """The graphical value in the row's printed form: (magnitude, direction), a magnitude, a number."""
+    if g is None:
+        return None
+    if q.kind == "P":
+        return (float(g[0]), float(g[1]))
+    if isinstance(g, np.ndarray):
+        if isinstance(row.computed, tuple):
+            return _magnitude_direction(g)
+        return float(np.hypot(*g))
+    return float(g)
+
+
+def _scales(sol) -> dict:
+    """The size of each kind of quantity in the mechanism, to which a graphical value's error is
+    relative (as FORMAT.md's graphical.max_error): the largest |omega|, speed, |alpha| (at least
+    omega_max^2) and acceleration (at least v_max^2 / size), and the mechanism's size for positions."""
+    def top(values):
+        v = [abs(float(x)) for x in values if x is not None and math.isfinite(float(x))]
+        return max(v, default=0.0)
+    size = sol.mechanism.size
+    omega = top(sol.omega.values()) or 1.0
+    speed = top(np.hypot(*v) for v in sol.velocity.values()) or size * omega
+    return {"omega": omega, "alpha": max(top(sol.alpha.values()), omega ** 2),
+            "V": speed, "A": max(top(np.hypot(*a) for a in sol.acceleration.values()), speed ** 2 / size),
+            "P": size}
+
+
+def _scale_of(q: Quantity, scales: dict) -> float:
+    kind = {"VP": "V", "AP": "A", "R": "P", "theta": "P"}.get(q.kind, q.kind)
+    return scales.get(kind, 1.0)
+
+
+def _cartesian(v, polar: bool) -> np.ndarray:
+    if polar:
+        return np.array([v[0] * math.cos(math.radians(v[1])), v[0] * math.sin(math.radians(v[1]))])
+    return np.asarray(v, float)
+
+
+def _difference(g, a, scale: float, polar: bool = True) -> str:
+    """|graphical - analytic| relative to ``scale``, the largest value of its kind in the mechanism.
+
+    Tuples are vectors: (magnitude, direction in degrees) if ``polar``, else (x, y).
+    """
+    if g is None or a is None:
+        return "-"
+    if isinstance(a, tuple):
+        d = float(np.hypot(*(_cartesian(g, polar) - _cartesian(a, polar))))
+    else:
+        d = abs(float(g) - float(a))
+    rel = d / scale
+    return "0" if rel == 0 else f"{rel:.1e}"
+
+
+def _book_deviation(r) -> str:
+    dev = [] if r.deviation is None else [f"{100 * r.deviation:.3g}%"]
+    if r.angle_error is not None:
+        dev.append(f"{r.angle_error:.3g}°")
+    return " ".join(dev) or "-"
+
+
+def _key_kind(m, key: str) -> Quantity:
+    label = key[1:-1] if key.startswith("|") else key       # "|V_F|" is a speed
+    q = parse_key(m, label)
+    if q is None:
+        q = Quantity("V", ((label[2:], None),)) if label.startswith("V_") else Quantity("A", ((label[2:], None),))
+    return q
+
+
+def comparison(sol) -> Comparison:
+    """Every ``[reference]`` value: book, graphical, analytic, and the deviations.
+
+    A file without printed values gets the main results instead (each moving
+    link's omega and alpha, each moving point's velocity and acceleration),
+    graphical beside analytic, the book's column empty.
+    """
+    m = sol.mechanism
+    g = _Graphical(sol)
+    scales = _scales(sol)
+    if not m.reference:
+        return _results(sol, g, scales)
+    rows, notes, values = [], [], []
+    note_no = {}
+    for r in compare(sol):
+        if r.key.startswith("omega_") or r.key.startswith("alpha_"):
+            q = Quantity(r.key.split("_", 1)[0], links=(r.key.split("_", 1)[1],))
+        else:
+            q = _key_kind(m, r.key)
+        gv = _graphical_shown(r, q, g.value(q))
+        kind = "P" if q.kind == "P" else ""
+        ref = ""
+        if r.note:
+            if r.note not in note_no:
+                note_no[r.note] = len(note_no) + 1
+                notes.append((note_no[r.note], r.key, r.note))
+            ref = f"[{note_no[r.note]}]"
+        rows.append((r.key, _show(r.printed, kind), _show(gv, kind), _show(r.computed, kind), _book_deviation(r),
+                     _difference(gv, r.computed, _scale_of(q, scales), polar=q.kind != "P"), ref))
+        values.append((r.key, r.printed, gv, r.computed))
+    title = "Book, graphical and analytic values" + (f" ({m.reference.source})" if m.reference.source else "")
+    table = Table(title, HEADER, tuple(rows))
+    return Comparison(title, table, tuple(notes), tuple(values))
+
+
+HEADER = ("quantity", "book", "graphical", "analytic", "book vs analytic", "graphical vs analytic", "note")
+
+
+def _results(sol, g: _Graphical, scales: dict) -> Comparison:
+    m = sol.mechanism
+    rows, values = [], []
+
+    def add(key, graphical, analytic):
+        scale = scales[key.split("_", 1)[0]]
+        rows.append((key, "-", _show(graphical, ""), _show(analytic, ""), "-",
+                     _difference(graphical, analytic, scale), ""))
+        values.append((key, None, graphical, analytic))
+
+    def vec(v):
+        return None if v is None or not np.all(np.isfinite(v)) else _magnitude_direction(v)
+    moving = [k.name for k in m.moving_links]
+    for lk in moving:
+        add(f"omega_{lk}", g.vel.rates.get(lk), sol.omega[lk])
+    if sol.has_accelerations:
+        for lk in moving:
+            add(f"alpha_{lk}", g.acc.rates.get(lk), sol.alpha[lk])
+    keys = [k for k, v in sol.velocity.items() if np.hypot(*v) > 0]
+    for key in keys:
+        add(f"V_{key}", vec(g.vel.images.get(key)), vec(sol.velocity[key]))
+    if sol.has_accelerations:
+        for key in keys:
+            add(f"A_{key}", vec(g.acc.images.get(key)), vec(sol.acceleration[key]))
+    title = "Graphical and analytic values (no printed values to compare)"
+    return Comparison(title, Table(title, HEADER, tuple(rows)), (), tuple(values))
+
+
+def comparison_text(sol, style: str = "text") -> str:
+    """The comparison as text or Markdown: a head line, the table, its notes."""
+    m = sol.mechanism
+    c = comparison(sol)
+    drv = m.driver
+    if drv.is_slider:
+        head = f"driver: slider {drv.slider}, speed {fmt(drv.speed)} {m.units}/s, accel {fmt(drv.accel)} {m.units}/s^2"
+    else:
+        head = (f"driver: link {drv.link} at {sol.driver_angle:.4f} deg, omega {fmt(drv.omega)} rad/s, "
+                f"alpha {fmt(drv.alpha)} rad/s^2")
+    legend = ("book: the printed value; graphical: read off the exact polygons and the Kennedy "
+              "construction; analytic: the linear solve. Deviations: book vs analytic relative (%) and in "
+              "direction (deg); graphical vs analytic relative to the largest value of its kind (omega, "
+              "alpha, speed, acceleration, mechanism size).")
+    md = style == "markdown"
+    out = [f"# {m.title}" if md else m.title, "", head, "", legend, ""]
+    out.append(render_table(c.table, style))
+    for n, key, note in c.notes:
+        out.append(f"{n}. {_md(key) if md else key}: {_md(note) if md else note}")
+    return "\n".join(out).rstrip("\n") + "\n"
+
+
+# -- the files' own explanations -----------------------------------------------------------------
+_ITEM = re.compile(r"^(?:[-*]|\d+[.)])\s+")
+
+
+def top_comments(path) -> list[tuple[str, str]]:
+    """The comment block at the top of a TOML file, as blocks in reading order.
+
+    ``("text", paragraph)``: consecutive comment lines joined; ``("item", text)``:
+    a list item (a line starting ``- ``, ``* `` or ``1. ``, with its indented
+    continuation lines); ``("pre", lines)``: indented lines that continue no
+    item (formulas, aligned lists), kept verbatim. A blank or empty comment
+    line ends a block; the block ends at the first line that is not a comment.
+    """
+    try:
+        lines = Path(path).read_text(encoding="utf-8").splitlines()
+    except (OSError, UnicodeDecodeError):
+        return []
+    blocks: list[list] = []
+    current = None
+    for line in lines:
+        s = line.strip()
+        if s and not s.startswith("#"):
+            break
+        body = s[1:] if s else ""
+        if body.startswith(" "):
+            body = body[1:]
+        if not body.strip():
+            current = None
+            continue
+        indented = body.startswith("  ")
+        if _ITEM.match(body):
+            current = ["item", [_ITEM.sub("", body).strip()]]
+            blocks.append(current)
+        elif indented and current is not None and current[0] == "item":
+            current[1].append(body.strip())
+        elif indented:
+            if current is None or current[0] != "pre":
+                current = ["pre", []]
+                blocks.append(current)
+            current[1].append(body.rstrip())
+        elif current is not None and current[0] == "text":
+            current[1].append(body.strip())
+        else:
+            current = ["text", [body.strip()]]
+            blocks.append(current)
+    out = []
+    for kind, body in blocks:
+        if kind == "pre":
+            width = min(len(b) - len(b.lstrip()) for b in body)
+            out.append(("pre", "\n".join(b[width:] for b in body)))
+        else:
+            out.append((kind, " ".join(body)))
+    return out
+
+
+_MD_SPECIAL = re.compile(r"([\\`*_\[\]<>|#])")
+
+
+def _md(text: str) -> str:
+    """Text safe in Markdown prose and table cells."""
+    return _MD_SPECIAL.sub(r"\\\1", str(text))
+
+
+def _anchor(title: str, used: set) -> str:
+    """GitHub's heading anchor of a title (lower case, punctuation dropped, spaces to hyphens)."""
+    a = re.sub(r"[^\w\- ]", "", title.lower()).replace(" ", "-")
+    base, k = a, 1
+    while a in used:
+        a = f"{base}-{k}"
+        k += 1
+    used.add(a)
+    return a
+
+
+def _md_table(t: Table) -> str:
+    lines = ["| " + " | ".join(_md(h) for h in t.header) + " |", "|" + "|".join("---" for _ in t.header) + "|"]
+    lines += ["| " + " | ".join(_md(c) for c in r) + " |" for r in t.rows]
+    return "\n".join(lines) + "\n"
+
+
+def example_markdown(path, sol, figure: str | None) -> str:
+    """The README section of one example: title, file, figure, table, notes, the file's comments."""
+    m = sol.mechanism
+    path = Path(path)
+    c = comparison(sol)
+    out = [f"## {_md(m.title)}", "", f"File: [`{path.name}`]({path.name})"
+           + (f" · source: {_md(m.reference.source)}" if m.reference.source else ""), ""]
+    if figure:
+        out += [f"![{_md(m.title)}]({figure})", ""]
+    if not m.reference:
+        out += ["No printed values to compare (the file has no `[reference]` table): the graphical "
+                "constructions against the analytic solve.", ""]
+    out.append(_md_table(c.table))
+    if c.notes:
+        out += ["Notes on the book's values:", ""]
+        out += [f"{n}. **{_md(key)}**: {_md(note)}" for n, key, note in c.notes]
+        out.append("")
+    comments = top_comments(path)
+    if comments:
+        out += ["About this example (from the file's comments):", ""]
+        for i, (kind, body) in enumerate(comments):
+            if kind == "text":
+                out += [_md(body), ""]
+            elif kind == "item":
+                out.append(f"- {_md(body)}")
+                if i + 1 == len(comments) or comments[i + 1][0] != "item":
+                    out.append("")
+            else:
+                out += ["```text", body, "```", ""]
+    return "\n".join(out).rstrip("\n") + "\n"
+
+
+# -- the gallery ---------------------------------------------------------------------------------
+def find_gallery(start=None) -> Path:
+    """The repository's gallery folder: ``gallery/`` holding ``*.toml`` files in the current folder
+    or one above it, else the one beside the installed package (an editable install)."""
+    here = Path(start or Path.cwd()).resolve()
+    for folder in (here, *here.parents):
+        g = folder / "gallery"
+        if g.is_dir() and any(g.glob("*.toml")):
+            return g
+    g = Path(__file__).resolve().parent.parent / "gallery"
+    if g.is_dir() and any(g.glob("*.toml")):
+        return g
+    raise InputError("no gallery folder found (a folder gallery/ with *.toml files)", where="gallery",
+                     hint="run from the repository, or give --source DIR")
+
+
+@dataclass(frozen=True)
+class GalleryResult:
+    """What a gallery build did: the files written, and ``failed`` as (file, error line) pairs."""
+
+    written: tuple
+    built: tuple
+    failed: tuple
+
+
+def _error_line(e: BaseException, path: Path) -> str:
+    """``NAME: WHERE: WHAT``, naming the file by its name alone (the README is read anywhere)."""
+    if isinstance(e, VelpolyError):
+        return ": ".join(p for p in (path.name, e.where, e.what) if p)
+    return f"{path.name}: internal error: {type(e).__name__}: {e}"
+
+
+def build_gallery(source, out=None, style: str = "textbook", draw=None, log=None) -> GalleryResult:
+    """Rebuild every example of ``source`` (its ``*.toml`` files, in natural name order) into ``out``.
+
+    For each file: the full sheet as ``figures/NAME.png``; then ``README.md`` with a
+    section per example. A failing example is reported (``log`` gets its error
+    line) and left out of the README's sections but listed at its end; the
+    others are built.
+    """
+    from . import load, solve
+    source = Path(source)
+    out = Path(out) if out is not None else source
+    if not source.is_dir():
+        raise InputError("not a folder", where="--source", file=str(source))
+    files = sorted(source.glob("*.toml"), key=_natural)
+    if not files:
+        raise InputError("no *.toml files in the gallery folder", where="--source", file=str(source))
+    draw = draw or _draw_to_file()
+    written, built, failed, sections = [], [], [], []
+    for path in files:
+        try:
+            m = load(path)
+            sol = solve(m)
+            target = out / "figures" / f"{path.stem}.png"
+            figs = draw(sol, target, sheet="full", style=style, steps=False)
+            written += list(figs)
+            figure = _relative(Path(figs[0]) if figs else target, out)
+            text = example_markdown(path, sol, figure)
+            # links in the README point to the example files from where the README is
+            text = text.replace(f"]({path.name})", f"]({_relative(path, out)})", 1)
+            sections.append((m.title, text))
+            built.append(path)
+        except Exception as e:  # one example's failure must not stop the others
+            line = _error_line(e, path)
+            failed.append((path, line))
+            if log:
+                log(line)
+    readme = _readme(sections, failed, source, out)
+    written.append(atomic_write_text(out / "README.md", readme))
+    return GalleryResult(tuple(written), tuple(built), tuple(failed))
+
+
+def _natural(path: Path):
+    """Sort key: names in natural order (ex3_4 before ex3_10)."""
+    return [(0, int(t), "") if t.isdigit() else (1, 0, t.lower()) for t in re.split(r"(\d+)", path.stem)]
+
+
+def _relative(path: Path, base: Path) -> str:
+    import os
+    return Path(os.path.relpath(Path(path).resolve(), Path(base).resolve())).as_posix()
+
+
+def _readme(sections, failed, source: Path, out: Path) -> str:
+    used: set = set()
+    src = "" if source.resolve() == out.resolve() else f" --source {_relative(source, Path.cwd())}"
+    lines = [
+        "# Gallery",
+        "",
+        "Textbook mechanisms drawn by velpoly, each checked against the book's printed answers. Every",
+        "section shows the full sheet (the mechanism to scale, its velocity and acceleration polygons",
+        "and their results) and a table: **book** is the printed value, **graphical** what the",
+        "polygons and the Kennedy construction give, **analytic** the linear solve; *book vs analytic*",
+        "is the relative deviation (and the direction's, in degrees), *graphical vs analytic* the",
+        "difference relative to the largest value of its kind in the mechanism (largest omega, alpha,",
+        "speed or acceleration; the mechanism's size for positions). Where the book disagrees, the",
+        "notes and the file's comments say why.",
+        "",
+        f"This page is generated: `velpoly gallery{src}` rebuilds it and every figure from the",
+        "`*.toml` files beside it (do not edit it by hand).",
+        "",
+    ]
+    if sections:
+        lines += ["Examples:", ""]
+        for title, _ in sections:
+            lines.append(f"- [{_md(title)}](#{_anchor(title, used)})")
+        lines.append("")
+    for _, text in sections:
+        lines += [text]
+    if failed:
+        lines += ["## Not built", "", "These files failed; the error each gave:", ""]
+        lines += [f"- {_md(line)}" for _, line in failed]
+        lines.append("")
+    return "\n".join(lines).rstrip("\n") + "\n"
+
+
+# -- the commands --------------------------------------------------------------------------------
+def demo_command(args) -> int:
+    """``velpoly demo [-o DIR] [--style]``: the built-in six-bar drawn, with its comparison table."""
+    from . import load, solve
+    out = Path(getattr(args, "output", None) or "out")
+    style = getattr(args, "style", "textbook") or "textbook"
+    draw = _draw_to_file()
+    m = load(example_path(DEMO_EXAMPLE))
+    sol = solve(m)
+    written = []
+    for suffix in (".svg", ".png"):
+        written += list(draw(sol, out / f"{DEMO_EXAMPLE}{suffix}", sheet="full", style=style, steps=False))
+    written.append(atomic_write_text(out / f"{DEMO_EXAMPLE}-results.txt", comparison_text(sol, "text")))
+    written.append(atomic_write_text(out / f"{DEMO_EXAMPLE}-results.md", comparison_text(sol, "markdown")))
+    book = f"the book's values ({m.reference.source})" if m.reference.source else "the book's values"
+    print(f"{m.title}: the full sheet and the comparison with {book} are in {out}/")
+    for p in written:
+        print(f"  {p}")
+    return 0
+
+
+def gallery_command(args) -> int:
+    """``velpoly gallery [-o DIR] [--source DIR]``: rebuild every figure and README.md.
+
+    One failing example is reported with its error line and does not stop the
+    others; the exit status is 1 if any failed.
+    """
+    source = Path(args.source) if getattr(args, "source", None) else find_gallery()
+    out = Path(args.output) if getattr(args, "output", None) else source
+    style = getattr(args, "style", "textbook") or "textbook"
+
+    def log(line):
+        print(f"error: {line}", file=sys.stderr)
+    result = build_gallery(source, out, style=style, log=log)
+    for p in result.written:
+        print(p)
+    n = len(result.built) + len(result.failed)
+    if result.failed:
+        print(f"gallery: {len(result.failed)} of {n} examples failed (listed above and at the end of "
+              f"{out / 'README.md'})", file=sys.stderr)
+        return 1
+    return 0
