@@ -66,11 +66,13 @@ class Frame:
     A link's jets (x, y, cos theta, sin theta, theta) are built on first use.
     """
 
-    def __init__(self, system: "System", q: np.ndarray, qd: np.ndarray | None = None):
+    def __init__(self, system: "System", q: np.ndarray, qd: np.ndarray | None = None,
+                 values_only: bool = False):
         q = np.atleast_2d(q)
         n, nq = q.shape
         qd = np.zeros_like(q) if qd is None else np.atleast_2d(qd)
-        self.n, self.nq = n, nq
+        self.n, self.nq = n, (None if values_only else nq)
+        self.values_only = values_only
         self.q, self.qd = q, qd
         self._index = system.index
         self._cache = {}
@@ -82,8 +84,9 @@ class Frame:
             if k is None:
                 return None
             q, qd = self.q, self.qd
-            th = Jet.coordinate(q, qd, 3 * k + 2)
-            b = (Jet.coordinate(q, qd, 3 * k), Jet.coordinate(q, qd, 3 * k + 1), th.cos(), th.sin(), th)
+            vo = self.values_only
+            th = Jet.coordinate(q, qd, 3 * k + 2, vo)
+            b = (Jet.coordinate(q, qd, 3 * k, vo), Jet.coordinate(q, qd, 3 * k + 1, vo), th.cos(), th.sin(), th)
             self._cache[link] = b
         return b
 
@@ -133,6 +136,8 @@ def _pins_bulk(block, q, qd, phi, jac, h) -> int:
         w2 = qde[:, 3 * kk + 2] ** 2
         phi[:, rows] += sign * (qe[:, 3 * kk] + rx)
         phi[:, rows + 1] += sign * (qe[:, 3 * kk + 1] + ry)
+        if jac is None:
+            continue
         h[:, rows] += -sign * w2 * rx
         h[:, rows + 1] += -sign * w2 * ry
         moving = k >= 0
@@ -210,6 +215,25 @@ class System:
             phi[:, -1] = q[:, 3 * k + 2]
             jac[:, -1, 3 * k + 2] = 1.0
         return phi, jac, h
+
+    def residual(self, q, driver: bool = True) -> np.ndarray:
+        """The equations' values Phi(q) alone (N, m): no Jacobian is built for the pins."""
+        q = np.atleast_2d(q)
+        n, nq = q.shape
+        m_all = len(self.equations) + (1 if driver else 0)
+        phi = np.zeros((n, m_all))
+        start = _pins_bulk(self.pin_block, q, None, phi, None, None) if self.pin_block else 0
+        rest = list(self.equations[start:])
+        crank = driver and self.crank >= 0
+        if driver and not crank:
+            rest.append(self.driver)
+        if rest:
+            f = Frame(self, q, None, values_only=True)
+            for i, e in enumerate(rest, start=start):
+                phi[:, i] = e.fn(f).v
+        if crank:
+            phi[:, -1] = q[:, 3 * self.crank + 2]
+        return phi
 
     def scale_matrix(self, jac: np.ndarray, rows: list[int] | None = None,
                      driver: bool = True) -> np.ndarray:

@@ -220,3 +220,117 @@ def assemble(m: Mechanism, index: dict, plan: DyadPlan, deltas) -> tuple[np.ndar
         th[:] = np.unwrap(np.concatenate([np.zeros((1, th.shape[1])), th]), axis=0)[1:]
     q[reach:] = np.nan
     return q, reach
+
+
+def _perp(v):
+    return np.stack([-v[..., 1], v[..., 0]], axis=-1)
+
+
+def _cross(a, b):
+    return a[..., 0] * b[..., 1] - a[..., 1] * b[..., 0]
+
+
+def _dot(a, b):
+    return a[..., 0] * b[..., 0] + a[..., 1] * b[..., 1]
+
+
+def _solve2(r1, b1, r2, b2):
+    """x with r1 . x = b1 and r2 . x = b2 (Cramer's rule, over all poses)."""
+    det = _cross(r1, r2)
+    return np.stack([(b1 * r2[..., 1] - b2 * r1[..., 1]) / det, (r1[..., 0] * b2 - r2[..., 0] * b1) / det], axis=-1)
+
+
+def rates(m: Mechanism, index: dict, plan: DyadPlan, q: np.ndarray, rate: float, accel: float):
+    """Velocities and accelerations dyad by dyad, in closed form: (q', q'', sine).
+
+    Each dyad is two vector equations of case 2a. For an RRR dyad with joint
+    P2 between links on P1 and P3 (u = P2 - P1, v = P2 - P3)::
+
+        u . V2 = u . V1,               v . V2 = v . V3
+        u . A2 = u . A1 - |V2 - V1|^2, v . A2 = v . A3 - |V2 - V3|^2
+
+    and omega_u = u x (V2 - V1) / |u|^2, alpha_u = u x (A2 - A1) / |u|^2. For an
+    RRP dyad (block on a guide g, path e, n = k x e, G the guide's point at P2)
+    the second equation is n . V2 = n . V_G and
+    n . A2 = n . A_G + 2 omega_g e . (V2 - V_G) (Coriolis); the block turns with
+    its guide. ``sine`` is the smallest |sin| of a dyad's two directions
+    (the transmission angle): zero exactly at a dyad's toggle.
+    """
+    n = len(q)
+    P = {k: np.array(v, float) for k, v in m.points.items()}
+    state = {m.frame.name: (np.zeros((n, 2)), np.zeros((n, 2)), np.zeros(n), np.zeros(n), np.zeros((n, 2)))}
+
+    def origin(lk):
+        k = index[lk]
+        return q[:, 3 * k:3 * k + 2]
+
+    def place(lk, s):
+        if lk == m.frame.name:
+            return np.broadcast_to(s, (n, 2))
+        k = index[lk]
+        th = q[:, 3 * k + 2]
+        c, sn = np.cos(th), np.sin(th)
+        return q[:, 3 * k:3 * k + 2] + np.stack([c * s[0] - sn * s[1], sn * s[0] + c * s[1]], axis=-1)
+
+    def motion_at(lk, w):
+        vo, ao, om, al, o = state[lk]
+        r = w - o
+        return vo + om[:, None] * _perp(r), ao + al[:, None] * _perp(r) - (om ** 2)[:, None] * r
+
+    def set_link(lk, w, v, a, om, al):
+        o = origin(lk)
+        r = w - o
+        state[lk] = (v - om[:, None] * _perp(r), a - al[:, None] * _perp(r) + (om ** 2)[:, None] * r,
+                     om, al, o)
+
+    kind, link, extra = plan.driver
+    if kind == "crank":
+        w = place(link, P[extra])
+        om, al = np.full(n, float(rate)), np.full(n, float(accel))
+        set_link(link, w, np.zeros((n, 2)), np.zeros((n, 2)), om, al)
+    else:
+        t = np.radians(extra)
+        e = np.array([np.cos(t), np.sin(t)])
+        state[link] = (np.broadcast_to(rate * e, (n, 2)).copy(), np.broadcast_to(accel * e, (n, 2)).copy(),
+                       np.zeros(n), np.zeros(n), origin(link))
+    sine = np.ones(n)
+    for st in plan.steps:
+        if st[0] == "RRR":
+            _, u_, v_, p1, k1, p2, p3, k3, _ = st
+            a1, a3 = place(k1, P[p1]), place(k3, P[p3])
+            x2 = place(u_, P[p2])
+            V1, A1 = motion_at(k1, a1)
+            V3, A3 = motion_at(k3, a3)
+            u, v = x2 - a1, x2 - a3
+            V2 = _solve2(u, _dot(u, V1), v, _dot(v, V3))
+            A2 = _solve2(u, _dot(u, A1) - _dot(V2 - V1, V2 - V1), v, _dot(v, A3) - _dot(V2 - V3, V2 - V3))
+            uu, vv = _dot(u, u), _dot(v, v)
+            sine = np.minimum(sine, np.abs(_cross(u, v)) / np.sqrt(uu * vv))
+            set_link(u_, x2, V2, A2, _cross(u, V2 - V1) / uu, _cross(u, A2 - A1) / uu)
+            set_link(v_, x2, V2, A2, _cross(v, V2 - V3) / vv, _cross(v, A2 - A3) / vv)
+        else:
+            _, u_, v_, p1, k1, p2, g, dref, _ = st
+            a1 = place(k1, P[p1])
+            x2 = place(u_, P[p2])
+            V1, A1 = motion_at(k1, a1)
+            VG, AG = motion_at(g, x2)
+            _, _, omg, alg, _ = state[g]
+            thg = q[:, 3 * index[g] + 2] if g in index else np.zeros(n)
+            c, s = np.cos(thg), np.sin(thg)
+            e = np.stack([c * dref[0] - s * dref[1], s * dref[0] + c * dref[1]], axis=-1)
+            nn = _perp(e)
+            u = x2 - a1
+            V2 = _solve2(u, _dot(u, V1), nn, _dot(nn, VG))
+            A2 = _solve2(u, _dot(u, A1) - _dot(V2 - V1, V2 - V1), nn,
+                         _dot(nn, AG) + 2 * omg * _dot(e, V2 - VG))
+            uu = _dot(u, u)
+            sine = np.minimum(sine, np.abs(_dot(u, e)) / np.sqrt(uu))
+            set_link(u_, x2, V2, A2, _cross(u, V2 - V1) / uu, _cross(u, A2 - A1) / uu)
+            set_link(v_, x2, V2, A2, omg, alg)
+    qd = np.zeros_like(q)
+    qdd = np.zeros_like(q)
+    for name, k in index.items():
+        vo, ao, om, al, _ = state[name]
+        qd[:, 3 * k:3 * k + 2], qd[:, 3 * k + 2] = vo, om
+        qdd[:, 3 * k:3 * k + 2], qdd[:, 3 * k + 2] = ao, al
+    return qd, qdd, sine

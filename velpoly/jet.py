@@ -35,30 +35,32 @@ class Jet:
 
     # -- construction ----------------------------------------------------------
     @staticmethod
-    def const(c, n: int, nq: int) -> "Jet":
-        """A constant (zero gradient and rates)."""
+    def const(c, n: int, nq: int | None) -> "Jet":
+        """A constant (zero gradient and rates); ``nq = None``: values only."""
         z = np.zeros(n)
         return Jet(np.full(n, float(c)) if np.ndim(c) == 0 else np.asarray(c, float),
-                   np.zeros((n, nq)), z, z)
+                   None if nq is None else np.zeros((n, nq)), z, z)
 
     @staticmethod
-    def coordinate(q: np.ndarray, qd: np.ndarray, i: int) -> "Jet":
-        """The generalised coordinate ``q[:, i]`` itself."""
+    def coordinate(q: np.ndarray, qd: np.ndarray, i: int, values_only: bool = False) -> "Jet":
+        """The generalised coordinate ``q[:, i]`` itself (with no gradient if ``values_only``)."""
         n, nq = q.shape
-        g = np.zeros((n, nq))
-        g[:, i] = 1.0
+        g = None
+        if not values_only:
+            g = np.zeros((n, nq))
+            g[:, i] = 1.0
         return Jet(q[:, i].copy(), g, qd[:, i].copy(), np.zeros(n))
 
     # -- arithmetic --------------------------------------------------------------
     def __add__(self, o):
         if isinstance(o, Jet):
-            return Jet(self.v + o.v, self.g + o.g, self.vd + o.vd, self.h + o.h)
+            return Jet(self.v + o.v, None if self.g is None else self.g + o.g, self.vd + o.vd, self.h + o.h)
         return Jet(self.v + o, self.g, self.vd, self.h)
 
     __radd__ = __add__
 
     def __neg__(self):
-        return Jet(-self.v, -self.g, -self.vd, -self.h)
+        return Jet(-self.v, None if self.g is None else -self.g, -self.vd, -self.h)
 
     def __sub__(self, o):
         return self + (-o)
@@ -69,17 +71,19 @@ class Jet:
     def __mul__(self, o):
         if isinstance(o, Jet):
             return Jet(self.v * o.v,
-                       self.g * o.v[:, None] + o.g * self.v[:, None],
+                       None if self.g is None else self.g * o.v[:, None] + o.g * self.v[:, None],
                        self.vd * o.v + self.v * o.vd,
                        self.h * o.v + 2.0 * self.vd * o.vd + self.v * o.h)
         o = np.asarray(o, float)
-        return Jet(self.v * o, self.g * (o[..., None] if o.ndim else o), self.vd * o, self.h * o)
+        return Jet(self.v * o, None if self.g is None else self.g * (o[..., None] if o.ndim else o),
+                   self.vd * o, self.h * o)
 
     __rmul__ = __mul__
 
     def _unary(self, f, f1, f2):
         """f(self), given f, f' and f'' evaluated at ``self.v``."""
-        return Jet(f, self.g * f1[:, None], self.vd * f1, self.h * f1 + f2 * self.vd ** 2)
+        return Jet(f, None if self.g is None else self.g * f1[:, None], self.vd * f1,
+                   self.h * f1 + f2 * self.vd ** 2)
 
     def cos(self):
         c, s = np.cos(self.v), np.sin(self.v)
@@ -102,7 +106,7 @@ class Jet:
         r2 = x.v ** 2 + y.v ** 2
         ang = np.arctan2(y.v, x.v)
         ang = ref + np.mod(ang - ref + np.pi, 2 * np.pi) - np.pi
-        g = (x.v[:, None] * y.g - y.v[:, None] * x.g) / r2[:, None]
+        g = None if x.g is None else (x.v[:, None] * y.g - y.v[:, None] * x.g) / r2[:, None]
         cross_d = x.v * y.vd - y.v * x.vd
         vd = cross_d / r2
         h = (x.v * y.h - y.v * x.h) / r2 - 2.0 * cross_d * (x.v * x.vd + y.v * y.vd) / r2 ** 2

@@ -85,10 +85,11 @@ class Reassembly:
     ended early, or is empty.
     """
 
-    def __init__(self, deltas, q, stopped=""):
+    def __init__(self, deltas, q, stopped="", continued=False):
         self.deltas = deltas
         self.q = q
         self.stopped = stopped
+        self.continued = continued   # True when found by continuation, not the closed-form dyads
 
 
 def _newton(system: System, rows, q, targets, iters=30, tol=1e-12):
@@ -186,7 +187,7 @@ def reassemble(system: System, rows: list[int], deltas, coarse: float | None = N
         attach[idx] = len(knot_d) - 1
     deltas, attach = deltas[:n], attach[:n]
     if n == 0:
-        return Reassembly(deltas, np.zeros((0, nq)), stopped)
+        return Reassembly(deltas, np.zeros((0, nq)), stopped, continued=True)
     # 2. every requested pose at once: predicted from its knot, corrected by batched Newton
     kq = np.array(knot_q)
     kd = np.array(knot_d)
@@ -197,27 +198,32 @@ def reassemble(system: System, rows: list[int], deltas, coarse: float | None = N
     ok &= _drift(system, out - guess) <= _drift_bound(system, h, qd[attach])
     if not ok.all():
         first = int(np.argmin(ok))
-        return Reassembly(deltas[:first], out[:first], "toggle")
-    return Reassembly(deltas, out, stopped)
+        return Reassembly(deltas[:first], out[:first], "toggle", continued=True)
+    return Reassembly(deltas, out, stopped, continued=True)
 
 
 _PLANS: dict = {}
 
 
-def _closed_form(system: System, rows, deltas) -> Reassembly | None:
-    """All poses at once by the mechanism's chain of dyads, if it has one (verified)."""
-    m = system.mechanism
+def plan_for(system: System):
+    """The mechanism's chain of dyads (:func:`velpoly.dyads.dyad_plan`), cached per system."""
     key = id(system)
     if key not in _PLANS or _PLANS[key][0] is not system:
         if len(_PLANS) > 64:
             _PLANS.clear()
-        _PLANS[key] = (system, dyad_plan(m))
-    plan = _PLANS[key][1]
+        _PLANS[key] = (system, dyad_plan(system.mechanism))
+    return _PLANS[key][1]
+
+
+def _closed_form(system: System, rows, deltas) -> Reassembly | None:
+    """All poses at once by the mechanism's chain of dyads, if it has one (verified)."""
+    m = system.mechanism
+    plan = plan_for(system)
     if plan is None or len(deltas) == 0:
         return None
     q, reach = assemble(m, system.index, plan, deltas)
     if reach:
-        phi = system.evaluate(q[:reach])[0][:, rows]
+        phi = system.residual(q[:reach])[:, rows]
         phi[:, -1] -= deltas[:reach]
         if not np.all(np.abs(phi) <= 1e-9 * max(system.size, 1.0)):
             return None   # not the mechanism the plan assumed: use continuation

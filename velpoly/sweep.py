@@ -8,15 +8,17 @@ handful of numpy passes, not a Python loop per pose.
 from __future__ import annotations
 
 import math
-from dataclasses import dataclass
+from dataclasses import dataclass, field
+from functools import cached_property
 
 import numpy as np
 
 from .errors import InputError
-from .kinematics import Kinematics, accelerations, prepare, velocities
+from .dyads import rates
+from .kinematics import SINGULAR, Kinematics, accelerations, condition, prepare, velocities
 from .model import Mechanism
 from .motion import evaluate_motion, wrap_deg
-from .pose import reassemble
+from .pose import plan_for, reassemble
 from .solution import driver_reference_angle
 
 __all__ = ["Sweep", "sweep"]
@@ -31,7 +33,8 @@ class Sweep:
     ``angle[link]`` of shape (N,), ``position[key]``, ``velocity[key]``,
     ``acceleration[key]`` of shape (N, 2); ``stopped`` tells why the sweep
     ended before the last requested angle (empty if it did not);
-    ``condition`` is each pose's condition number.
+    ``condition`` is each pose's condition number (computed on first use:
+    exact above 1e6, a close estimate below).
     """
 
     mechanism: Mechanism
@@ -45,11 +48,20 @@ class Sweep:
     sliders: list
     contacts: list
     slots: list
-    condition: np.ndarray
     q: np.ndarray
     qd: np.ndarray
     qdd: np.ndarray
     stopped: str = ""
+    kinematics: Kinematics | None = field(default=None, repr=False, compare=False)
+    known_condition: np.ndarray | None = field(default=None, repr=False, compare=False)
+
+    @cached_property
+    def condition(self) -> np.ndarray:
+        if self.known_condition is not None:
+            return self.known_condition
+        if len(self.q) == 0:
+            return np.zeros(0)
+        return condition(self.kinematics or prepare(self.mechanism), self.q)
 
 
 def sweep(m: Mechanism, angles, kin: Kinematics | None = None) -> Sweep:
@@ -75,17 +87,33 @@ def sweep(m: Mechanism, angles, kin: Kinematics | None = None) -> Sweep:
     r = reassemble(kin.system, list(kin.rows), deltas)
     n = len(r.deltas)
     q = r.q
-    qd, cond = velocities(kin, q, check=False) if n else (np.zeros((0, kin.system.nq)), np.zeros(0))
-    if n and not np.all(cond <= 1e10):
-        k = int(np.argmin(cond <= 1e10))
-        n, q, qd, cond = k, q[:k], qd[:k], cond[:k]
-        stopped = "toggle"
+    stopped = r.stopped
+    plan = plan_for(kin.system)
+    known_cond = None
+    if n and plan is not None and not r.continued:
+        # closed form, dyad by dyad; only poses near a dyad's toggle need the condition number
+        drv = m.driver
+        qd, qdd, sine = rates(m, kin.system.index, plan, q, drv.speed if drv.is_slider else drv.omega,
+                              drv.accel if drv.is_slider else drv.alpha)
+        near = np.flatnonzero(sine < 1e-3)
+        if len(near):
+            c = condition(kin, q[near])
+            bad = near[~(c <= SINGULAR)]
+            if len(bad):
+                k = int(bad[0])
+                n, q, qd, qdd = k, q[:k], qd[:k], qdd[:k]
+                stopped = "toggle"
     else:
-        stopped = r.stopped
-    if n and all(c.centres is not None for c in m.contacts):
-        qdd = accelerations(kin, q, qd)
-    else:
-        qdd = np.full_like(qd, np.nan)
+        qd, cond = velocities(kin, q, check=False) if n else (np.zeros((0, kin.system.nq)), np.zeros(0))
+        if n and not np.all(cond <= SINGULAR):
+            k = int(np.argmin(cond <= SINGULAR))
+            n, q, qd, cond = k, q[:k], qd[:k], cond[:k]
+            stopped = "toggle"
+        known_cond = cond
+        if n and all(c.centres is not None for c in m.contacts):
+            qdd = accelerations(kin, q, qd)
+        else:
+            qdd = np.full_like(qd, np.nan)
     mo = evaluate_motion(m, kin.system.index, q, qd, qdd) if n else None
     if stopped:
         last = angles[n - 1] if n else (ref if ref is not None else 0.0)
@@ -96,4 +124,4 @@ def sweep(m: Mechanism, angles, kin: Kinematics | None = None) -> Sweep:
         return getattr(mo, attr) if mo is not None else {}
     return Sweep(m, angles[:n], get("angle"), get("omega"), get("alpha"), get("position"),
                  get("velocity"), get("acceleration"), get("sliders") or [], get("contacts") or [],
-                 get("slots") or [], cond, q, qd, qdd, stopped)
+                 get("slots") or [], q, qd, qdd, stopped, kin, known_cond)
