@@ -238,12 +238,12 @@ def test_json_matches_contract():
         assert -180 < v["angle"] <= 180
 
 
-@pytest.mark.parametrize("text", [SIXBAR_1_4_4, EXAMPLE_3_6])
+@pytest.mark.parametrize("text", [SIXBAR_1_4_4, EXAMPLE_3_6, "slider-crank"])
 def test_closed_form_dyads_equal_continuation(text, monkeypatch):
     """The vectorised dyad assembly and Newton continuation find the same branch (1e-9)."""
     import velpoly.pose as pose
     from velpoly.dyads import dyad_plan
-    m = velpoly.load(text)
+    m = velpoly.load(slider_crank() if text == "slider-crank" else text)
     assert dyad_plan(m) is not None
     ref = velpoly.solve(m).driver_angle
     angles = ref + np.arange(0, 360, 7.0)
@@ -251,9 +251,14 @@ def test_closed_form_dyads_equal_continuation(text, monkeypatch):
     monkeypatch.setattr(pose, "_closed_form", lambda *a: None)
     slow = velpoly.sweep(m, angles)
     assert len(fast.angles) == len(slow.angles) == len(angles)
+    vmax = max(np.abs(v).max() for v in slow.velocity.values())
+    amax = max(np.abs(a).max() for a in slow.acceleration.values())
     for key in fast.position:
         assert fast.position[key] == pytest.approx(slow.position[key], abs=1e-9 * m.size)
-        assert fast.velocity[key] == pytest.approx(slow.velocity[key], abs=1e-9)
+        assert fast.velocity[key] == pytest.approx(slow.velocity[key], abs=1e-9 * vmax)
+        assert fast.acceleration[key] == pytest.approx(slow.acceleration[key], abs=1e-9 * amax)
+    for link in fast.omega:
+        assert fast.alpha[link] == pytest.approx(slow.alpha[link], abs=1e-9 * amax / m.size)
 
 
 def test_closed_form_stops_at_the_toggle_like_continuation(monkeypatch):
