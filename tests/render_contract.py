@@ -1,61 +1,22 @@
 """Hand-made construction objects for the render tests, following docs/internals.md's contract.
 
-The figures are drawn from velpoly.polygons' objects; these stand-ins (same
-fields) are built by hand for the six-bar of velpoly/examples/sixbar.toml, the
-way a textbook constructs them, so that the drawing code is tested against
-known geometry independently of that module.
+The figures are drawn from velpoly.polygons' objects (Polygon, Step,
+ConstructionLine, Vector); these are built by hand for the six-bar of
+velpoly/examples/sixbar.toml, the way a textbook constructs them, so that the
+drawing code is tested against known geometry independently of how
+velpoly.polygons plans its constructions.
 """
 from __future__ import annotations
 
 import math
-from dataclasses import dataclass, field
 from pathlib import Path
 
 import numpy as np
 
 import velpoly
+from velpoly.polygons import ConstructionLine, Polygon, Step, Vector
 
 SIXBAR = Path(velpoly.__file__).parent / "examples" / "sixbar.toml"
-
-
-@dataclass(frozen=True)
-class ConstructionLine:
-    base: np.ndarray
-    direction: np.ndarray
-    base_label: str
-    reason: str
-
-
-@dataclass(frozen=True)
-class Vector:
-    tail: np.ndarray
-    head: np.ndarray
-    kind: str
-    label: str
-
-
-@dataclass(frozen=True)
-class Step:
-    index: int
-    kind: str
-    equation: str
-    lines: tuple
-    found: tuple
-    vectors: tuple
-    omegas: dict = field(default_factory=dict)
-    sine: float = 1.0
-
-
-@dataclass(frozen=True)
-class Polygon:
-    kind: str
-    origin_label: str
-    images: dict
-    labels: dict
-    steps: tuple
-    link_images: dict
-    rates: dict
-    max_error: float = 0.0
 
 
 def _unit(v):
@@ -73,13 +34,13 @@ def sixbar_velocity(sol) -> Polygon:
     o = np.zeros(2)
     steps = (
         Step(1, "driver", "V_B = omega_1 x R_BA", (), ("B",), (Vector(o, V["B"], "absolute", "V_B"),),
-             {"1": sol.omega["1"]}),
+             {"1": sol.omega["1"]}, 1.0),
         Step(2, "intersection", "V_C = V_B + V_CB = V_D + V_CD",
              (ConstructionLine(V["B"], _unit(_perp(P["C"] - P["B"])), "b", "perpendicular to BC"),
               ConstructionLine(o, _unit(_perp(P["C"] - P["D"])), "d", "perpendicular to DC")),
              ("C",), (Vector(V["B"], V["C"], "relative", "V_CB"), Vector(o, V["C"], "absolute", "V_C")),
              {"2": sol.omega["2"], "3": sol.omega["3"]}, 0.8),
-        Step(3, "image", "V_E from the image of DCE", (), ("E",), (Vector(o, V["E"], "absolute", "V_E"),)),
+        Step(3, "image", "V_E from the image of DCE", (), ("E",), (Vector(o, V["E"], "absolute", "V_E"),), {}, 1.0),
         Step(4, "intersection", "V_F = V_E + V_FE, along the path",
              (ConstructionLine(V["E"], _unit(_perp(P["F"] - P["E"])), "e", "perpendicular to EF"),
               ConstructionLine(o, np.array([0.0, 1.0]), "O_v", "parallel to the path of F")),
@@ -88,7 +49,7 @@ def sixbar_velocity(sol) -> Polygon:
     images = {k: np.asarray(V[k], float) for k in ("A", "D", "B", "C", "E", "F")}
     return Polygon("velocity", "O_v", images, {k: k.lower() for k in images}, steps,
                    {"1": ("A", "B"), "2": ("B", "C"), "3": ("D", "C", "E"), "4": ("E", "F")},
-                   {lk: sol.omega[lk] for lk in ("1", "2", "3", "4", "5")})
+                   {lk: sol.omega[lk] for lk in ("1", "2", "3", "4", "5")}, 0.0)
 
 
 def sixbar_acceleration(sol) -> Polygon:
@@ -103,14 +64,14 @@ def sixbar_acceleration(sol) -> Polygon:
     n_cd = normal("3", "C", "D")
     n_fe = A["E"] + normal("4", "F", "E")
     steps = (
-        Step(1, "driver", "A_B = A^n_BA + A^t_BA", (), ("B",), (Vector(o, A["B"], "normal", "A^n_BA"),)),
+        Step(1, "driver", "A_B = A^n_BA + A^t_BA", (), ("B",), (Vector(o, A["B"], "normal", "A^n_BA"),), {}, 1.0),
         Step(2, "intersection", "A_C = A_B + A^n_CB + A^t_CB = A^n_CD + A^t_CD",
              (ConstructionLine(n_cb, _unit(_perp(P["C"] - P["B"])), "n_CB", "perpendicular to BC"),
               ConstructionLine(n_cd, _unit(_perp(P["C"] - P["D"])), "n_CD", "perpendicular to DC")),
              ("C",), (Vector(A["B"], n_cb, "normal", "A^n_CB"), Vector(n_cb, A["C"], "tangential", "A^t_CB"),
                       Vector(o, n_cd, "normal", "A^n_CD"), Vector(n_cd, A["C"], "tangential", "A^t_CD")),
              {"2": sol.alpha["2"], "3": sol.alpha["3"]}, 0.8),
-        Step(3, "image", "A_E from the image of DCE", (), ("E",), ()),
+        Step(3, "image", "A_E from the image of DCE", (), ("E",), (), {}, 1.0),
         Step(4, "intersection", "A_F = A_E + A^n_FE + A^t_FE, along the path",
              (ConstructionLine(n_fe, _unit(_perp(P["F"] - P["E"])), "n_FE", "perpendicular to EF"),
               ConstructionLine(o, np.array([0.0, 1.0]), "O_a", "parallel to the path of F")),
@@ -120,7 +81,7 @@ def sixbar_acceleration(sol) -> Polygon:
     images = {k: np.asarray(A[k], float) for k in ("A", "D", "B", "C", "E", "F")}
     return Polygon("acceleration", "O_a", images, {k: k.lower() + "'" for k in images}, steps,
                    {"1": ("A", "B"), "2": ("B", "C"), "3": ("D", "C", "E"), "4": ("E", "F")},
-                   {lk: sol.alpha[lk] for lk in ("1", "2", "3", "4", "5")})
+                   {lk: sol.alpha[lk] for lk in ("1", "2", "3", "4", "5")}, 0.0)
 
 
 def load_sixbar():

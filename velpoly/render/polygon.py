@@ -61,17 +61,20 @@ def known_keys(polygon, upto: int | None = None) -> list[str]:
     return [k for k, v in polygon.images.items() if k in found or float(np.hypot(*v)) <= tol]
 
 
-def image_groups(polygon, keys) -> tuple[list[str], list[list[str]]]:
-    """Keys at the origin, and the other keys grouped by coinciding images (one label a group)."""
+def image_groups(polygon, points: dict) -> tuple[list[str], list[list[str]]]:
+    """Keys at the origin, and the other keys grouped by coinciding images (one label a group).
+
+    ``points`` maps keys to images: the polygon's images and auxiliary points drawn.
+    """
     tol = _REL_TOL * _size(polygon)
-    at_origin = [k for k in keys if float(np.hypot(*polygon.images[k])) <= tol]
+    at_origin = [k for k, v in points.items() if float(np.hypot(*v)) <= tol]
     groups: list[list[str]] = []
-    for k in keys:
+    for k, v in points.items():
         if k in at_origin:
             continue
-        p = np.asarray(polygon.images[k], float)
+        p = np.asarray(v, float)
         for g in groups:
-            if float(np.hypot(*(p - np.asarray(polygon.images[g[0]], float)))) <= tol:
+            if float(np.hypot(*(p - np.asarray(points[g[0]], float)))) <= tol:
                 g.append(k)
                 break
         else:
@@ -79,10 +82,10 @@ def image_groups(polygon, keys) -> tuple[list[str], list[list[str]]]:
     return at_origin, groups
 
 
-def _label_text(polygon, keys, with_origin: bool) -> str:
+def _label_text(polygon, names: dict, keys, with_origin: bool) -> str:
     labels = [polygon.origin_label] if with_origin else []
     for k in keys:
-        lab = polygon.labels.get(k, k)
+        lab = names.get(k, k)
         if lab not in labels:
             labels.append(lab)
     math = any(tex(lab).startswith("$") for lab in labels)   # primes beside mathtext go in mathtext too
@@ -111,7 +114,7 @@ def draw_polygon(polygon, ax=None, *, mechanism=None, style="textbook", options=
         Roles ``images`` (shaded link images), ``construction``, ``reasons``,
         ``arrows`` (arrowheads; each has the gid ``"<kind>-<tail>-<head>"``),
         ``shafts``, ``origin``, ``labels``, ``legend``, ``scale_bar``;
-        ``.labels`` maps every image's key to its label, ``.arrows`` lists
+        ``.labels`` maps every image's key (and every auxiliary point's) to its label, ``.arrows`` lists
         ``(kind, tail, head, patch)`` for every vector drawn.
     """
     ax = get_ax(ax)
@@ -131,6 +134,13 @@ def draw_polygon(polygon, ax=None, *, mechanism=None, style="textbook", options=
     known = set(keys)
     steps = polygon.steps if upto is None else polygon.steps[:upto]
     origin = np.zeros(2)
+    # auxiliary points (a guide's point under a block, an auxiliary point of a link) located so far
+    aux = getattr(polygon, "auxiliary", None) or {}
+    aux_keys = [a for st_ in steps for a in getattr(st_, "auxiliary", ()) if a in aux]
+    points = {k: np.asarray(polygon.images[k], float) for k in keys}
+    points.update({a: np.asarray(aux[a].image, float) for a in aux_keys})
+    names = dict(polygon.labels)
+    names.update({a: aux[a].label for a in aux_keys})
 
     # shaded link images
     for z, (lk, img_keys) in enumerate(polygon.link_images.items()):
@@ -151,7 +161,8 @@ def draw_polygon(polygon, ax=None, *, mechanism=None, style="textbook", options=
     from matplotlib.lines import Line2D
     view = view_box(ax)
     for si, step in enumerate(steps):
-        hit = np.asarray(polygon.images[step.found[0]], float) if step.found else None
+        located = list(step.found) + [a for a in getattr(step, "auxiliary", ()) if a in aux]
+        hit = points[located[0]] if located else None
         current = upto is not None and si == len(steps) - 1
         for ln in step.lines:
             base = np.asarray(ln.base, float)
@@ -180,8 +191,8 @@ def draw_polygon(polygon, ax=None, *, mechanism=None, style="textbook", options=
         tail, head = np.asarray(tail, float), np.asarray(head, float)
         if float(np.hypot(*(head - tail))) <= tol:
             return
-        key = (kind, *np.round(np.r_[tail, head] / tol).astype(np.int64))
-        if key in drawn:
+        key = tuple(np.round(np.r_[tail, head] / tol).astype(np.int64))
+        if key in drawn:   # one arrow a vector: an absolute one that is also relative (from O_v) stays absolute
             return
         drawn.add(key)
         ls, colour, f = st.kind_styles.get(kind, st.kind_styles["relative"])
@@ -216,13 +227,13 @@ def draw_polygon(polygon, ax=None, *, mechanism=None, style="textbook", options=
     pl.add_obstacle(o)
 
     # labels: one per group of coinciding images; the origin's group is labelled with the origin
-    at_origin, groups = image_groups(polygon, keys)
-    cx, cy = np.mean(np.array([np.zeros(2)] + [np.asarray(polygon.images[k], float) for k in keys]), axis=0)
+    at_origin, groups = image_groups(polygon, points)
+    cx, cy = np.mean(np.array([np.zeros(2)] + list(points.values())), axis=0)
     for gi, g in enumerate([at_origin] + groups):
-        p = np.zeros(2) if gi == 0 else np.asarray(polygon.images[g[0]], float)
+        p = np.zeros(2) if gi == 0 else points[g[0]]
         away = p - np.array([cx, cy])
         prefer = math.degrees(math.atan2(away[1], away[0])) if np.hypot(*away) > tol else -135.0
-        t = pl.place(p, _label_text(polygon, g, gi == 0), prefer=prefer, fontsize=st.font_size, zorder=7,
+        t = pl.place(p, _label_text(polygon, names, g, gi == 0), prefer=prefer, fontsize=st.font_size, zorder=7,
                      fontstyle="italic",
                      gid=f"label-{polygon.kind}-" + ("origin+" if gi == 0 else "") + "+".join(g))
         art.add("labels", t)

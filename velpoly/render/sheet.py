@@ -94,14 +94,14 @@ def equation_tex(eq: str) -> str:
 
 # -- layouts (fractions of the page: left, bottom, width, height) ----------------------------------
 _LAYOUTS = {
-    "velocity": {"mechanism": (0.02, 0.31, 0.47, 0.59), "velocity": (0.51, 0.31, 0.47, 0.59),
+    "velocity": {"mechanism": (0.02, 0.31, 0.47, 0.545), "velocity": (0.51, 0.31, 0.47, 0.545),
                  "table": (0.05, 0.02, 0.9, 0.23)},
-    "acceleration": {"mechanism": (0.02, 0.31, 0.47, 0.59), "acceleration": (0.51, 0.31, 0.47, 0.59),
+    "acceleration": {"mechanism": (0.02, 0.31, 0.47, 0.545), "acceleration": (0.51, 0.31, 0.47, 0.545),
                      "table": (0.05, 0.02, 0.9, 0.23)},
-    "poles": {"poles": (0.02, 0.31, 0.62, 0.59), "kennedy": (0.67, 0.36, 0.3, 0.42),
+    "poles": {"poles": (0.02, 0.31, 0.62, 0.545), "kennedy": (0.67, 0.36, 0.3, 0.375),
               "table": (0.05, 0.02, 0.9, 0.23)},
-    "full": {"mechanism": (0.01, 0.37, 0.33, 0.53), "velocity": (0.34, 0.37, 0.32, 0.53),
-             "acceleration": (0.67, 0.37, 0.32, 0.53), "table": (0.05, 0.02, 0.9, 0.29)},
+    "full": {"mechanism": (0.01, 0.37, 0.33, 0.485), "velocity": (0.34, 0.37, 0.32, 0.485),
+             "acceleration": (0.67, 0.37, 0.32, 0.485), "table": (0.05, 0.02, 0.9, 0.29)},
 }
 _CAPTIONS = {"mechanism": "Space diagram", "velocity": "Velocity polygon", "acceleration": "Acceleration polygon",
              "poles": "Instant centres", "kennedy": "Kennedy circle (order of discovery)"}

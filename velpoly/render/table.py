@@ -112,7 +112,7 @@ def results_table(sol, sheet: str = "full", *, velocity=None, acceleration=None,
         for lk in moving:
             g = velocity.rates.get(lk) if velocity is not None else None
             r = ref_for(f"omega_{lk}")
-            if sol.omega[lk] == 0 and (g is None or g == 0) and r is None:
+            if abs(sol.omega[lk]) <= 1e-12 and (g is None or abs(g) <= 1e-12) and r is None:
                 continue   # a translating link (a block on a fixed guide): nothing to show
             rows.append((_q(r"\omega", lk, "rad/s"), _num(g), drafted("velocity", "omega", lk), _num(sol.omega[lk]),
                          _num(ic["omega"][lk]) if ic else "", _printed(r), _dev(r)))
@@ -128,7 +128,7 @@ def results_table(sol, sheet: str = "full", *, velocity=None, acceleration=None,
         for lk in moving:
             g = acceleration.rates.get(lk)
             r = ref_for(f"alpha_{lk}")
-            if sol.alpha[lk] == 0 and (g is None or g == 0) and r is None:
+            if abs(sol.alpha[lk]) <= 1e-12 and (g is None or abs(g) <= 1e-12) and r is None:
                 continue
             rows.append((_q(r"\alpha", lk, "rad/s²"), _num(g), drafted("acceleration", "alpha", lk),
                          _num(sol.alpha[lk]), "", _printed(r), _dev(r)))
@@ -156,20 +156,11 @@ def results_table(sol, sheet: str = "full", *, velocity=None, acceleration=None,
             f"{fmt(comp[0], 5)} ∠ {comp[1]:.2f}°" if isinstance(comp, tuple) and not key.startswith("P")
             else (f"({fmt(comp[0], 5)}, {fmt(comp[1], 5)})" if isinstance(comp, tuple) else _num(comp)))
         rows.append((key, "", "", shown, "", _printed(r), _dev(r)))
-    header = ["quantity", "graphical"]
-    keep = [0, 1]
-    if hd is not None:
-        header.append("hand-drawn, 95 %")
-        keep.append(2)
-    header.append("analytic")
-    keep.append(3)
-    if ic is not None:
-        header.append("instant centres")
-        keep.append(4)
-    if refs:
-        header += ["reference", "deviation"]
-        keep += [5, 6]
-    rows = [tuple(r[i] for i in keep) for r in rows]
+    columns = [(0, "quantity"), (1, "graphical"), (2, "hand-drawn, 95 %"), (3, "analytic"),
+               (4, "instant centres"), (5, "reference"), (6, "deviation")]
+    columns = [(i, name) for i, name in columns if i == 0 or any(r[i] for r in rows)]   # no empty column
+    header = [name for _, name in columns]
+    rows = [tuple(r[i] for i, _ in columns) for r in rows]
     title = "Results: graphical construction against the analytic solve"
     if refs and m.reference.source:
         title += f"; reference values: {m.reference.source}"
@@ -215,14 +206,21 @@ def draw_results_table(sol, ax=None, *, sheet: str = "full", style="textbook", v
     size = st.small_size
     gap = 1.6 * size   # between columns, points
 
+    widths_at: dict = {}
+
     def measure(size):
-        widths = [0.0] * len(t.header)
-        for row in (t.header, *t.rows):
-            for i, cell in enumerate(row):
-                tx = ax.text(0, 0, cell, fontsize=size)
-                widths[i] = max(widths[i], tx.get_window_extent(r).width * 72 / fig.dpi)
-                tx.remove()
-        return widths
+        """Column widths (points) at ``size``: each distinct text measured once, widths scale with size."""
+        if not widths_at:
+            base = {}
+            for row in (t.header, *t.rows):
+                for cell in row:
+                    if cell not in base:
+                        tx = ax.text(0, 0, cell, fontsize=st.small_size)
+                        base[cell] = tx.get_window_extent(r).width * 72 / fig.dpi
+                        tx.remove()
+            widths_at.update(base)
+        f = size / st.small_size
+        return [max(widths_at[row[i]] for row in (t.header, *t.rows)) * f for i in range(len(t.header))]
 
     widths = measure(size)
     need = sum(widths) + gap * (len(widths) - 1)
