@@ -187,6 +187,53 @@ def test_wheel_on_a_drum_rolling_and_slipping(kind, slip):
     check(velpoly.solve(velpoly.load(_planet(kind, slip))))
 
 
+EXAMPLE_3_10 = """
+title = "Example 3.10: a four-bar drives wheel 5, which rolls on the flat of lever 6 pivoted at F"
+[points]
+O2 = [0, 0]
+O1 = { from = "O2", length = 7, angle = 180 }
+A = { from = "O1", length = 2.5, angle = 150 }
+B = { from = "O2", length = 7, angle = 97.713 }
+C = { from = "A", length = 7.496, angle = 79.826 }
+F = { to = "C", length = 6.422, angle = 14.032 }
+D = { from = "C", length = 2, angle = 100.032 }
+H = { from = "F", length = 10.038, angle = 24.068 }
+E = { to = "H", length = 10, angle = 10.032 }
+[links]
+1 = { points = ["O1", "O2", "F"], frame = true }
+2 = { points = ["O1", "A"] }
+3 = { points = ["A", "B", "C"] }
+4 = { points = ["O2", "B"] }
+5 = { points = ["C"] }
+6 = { points = ["F", "E", "H"] }
+[[contacts]]
+links = ["5", "6"]
+point = "D"
+kind = "rolling"
+centres = ["C", "flat"]
+[driver]
+link = "2"
+omega = "5 rad/s ccw"
+alpha = "7 rad/s^2 cw"
+"""
+
+
+def test_example_3_10_uses_the_equivalent_linkage_like_the_book():
+    """The wheel's centre C moves on lever 6 parallel to its flat: V_C5 = V_C6 + V_C5/C6 locates c6
+    (a dyad with the line through O_v perpendicular to FC); then rolling gives d5 = d6."""
+    s = velpoly.solve(velpoly.load(EXAMPLE_3_10))
+    check(s)
+    for poly in (velocity_polygon(s), acceleration_polygon(s)):
+        assert "auxiliary" not in [stp.kind for stp in poly.steps]
+        c6 = next(stp for stp in poly.steps if stp.auxiliary == ("C@6",))
+        assert c6.kind == "intersection" and set(c6.omegas) == {"6"}
+        assert sorted(ln.reason for ln in c6.lines) == ["parallel to the flat of 6 (the path of C on 6)",
+                                                        "perpendicular to FC"]
+        roll = poly.steps[poly.steps.index(c6) + 1]
+        assert roll.kind == "known" and set(roll.found) == {"D@5", "D@6"} and set(roll.omegas) == {"5"}
+    assert velocity_polygon(s).auxiliary["C@6"].label == "c6"
+
+
 def test_flat_on_the_first_link_with_slip():
     """A flat-faced arm 2 pushing the curved end of rocker 4: the slip's Coriolis-like term."""
     d = {"points": {"O2": [0, 0], "Q": [0.05, 0.0], "O4": [0.02, 0.12], "R": [0.04, 0.07], "P": [0.04, 0.05]},
@@ -259,7 +306,8 @@ def _blind(s):
     return dataclasses.replace(s, qd=np.full_like(s.qd, np.nan), qdd=np.full_like(s.qdd, np.nan), motion=motion)
 
 
-@pytest.mark.parametrize("text", [M.SIXBAR_1_4_4, M.CAM_ROLLER, M.SLOTTED_LEVER])
+@pytest.mark.parametrize("text", [M.SIXBAR_1_4_4, M.CAM_ROLLER, M.SLOTTED_LEVER],
+                         ids=["sixbar", "cam_roller", "slotted_lever"])
 def test_construction_uses_the_pose_and_driver_only(text):
     s = velpoly.solve(velpoly.load(text))
     blind = _blind(s)

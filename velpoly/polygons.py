@@ -157,32 +157,24 @@ class ConstructionError(VelpolyError):
 
 
 # -- the mechanism's geometry, as the construction sees it ------------------------------------------
-def _unit(v) -> np.ndarray:
-    v = np.asarray(v, float)
-    return v / math.hypot(v[0], v[1])
-
-
-def _dir(deg: float) -> np.ndarray:
-    t = math.radians(deg)
-    return np.array([math.cos(t), math.sin(t)])
-
-
 @dataclass(frozen=True)
 class _Rel:
     """A joint between the points of links a and b at the same place W.
 
     ``image_a(W) = image_b(W) + offset`` (``exact``), or that plus any multiple of
-    ``direction`` (a path: slider, slot, sliding contact). ``at`` is the point
-    where it holds; None for a straight slider (every coincident point).
+    ``direction`` (a path: slider, slot, sliding contact, a contact's centre of
+    curvature). ``at`` is the point where it holds; None for a straight slider
+    (every coincident point). ``centre``: the centre of a circular relative path.
     """
 
-    source: str           # 'slider' | 'slot' | 'contact' | 'drive'
+    source: str           # 'slider' | 'slot' | 'contact' | 'centre' | 'drive'
     index: int            # into m.sliders / m.slots / m.contacts
     a: str
     b: str
     at: str | None
     direction: np.ndarray
     exact: bool
+    centre: str | None = None
 
 
 class _Geo:
@@ -211,7 +203,7 @@ class _Geo:
         self.rels, self.rate_eq = [], []
         drv = m.driver
         for i, (s, r) in enumerate(zip(m.sliders, mo.sliders)):
-            d = _dir(float(r["direction"][0]))
+            d = G.from_polar(1.0, float(r["direction"][0]))
             if s.centre is not None:   # a curved block turns about K relative to its guide: a pin at K
                 if s.centre not in self.own[s.block]:
                     self.extra[s.block].append(s.centre)
@@ -219,15 +211,24 @@ class _Geo:
             else:
                 self.rate_eq.append((s.block, s.guide))
             if drv.is_slider and drv.slider == s.point:
-                self.rels.append(_Rel("drive", i, s.block, s.guide, s.point, d, True))
+                self.rels.append(_Rel("drive", i, s.block, s.guide, s.point, d, True, s.centre))
             elif s.centre is None:
                 self.rels.append(_Rel("slider", i, s.block, s.guide, None, d, False))
         for i, (s, r) in enumerate(zip(m.slots, mo.slots)):
-            self.rels.append(_Rel("slot", i, s.link, s.slot, s.pin, _dir(float(r["direction"][0])), False))
+            self.rels.append(_Rel("slot", i, s.link, s.slot, s.pin, G.from_polar(1.0, float(r["direction"][0])), False, s.centre))
         for i, (c, r) in enumerate(zip(m.contacts, mo.contacts)):
-            t = G.perp(_dir(float(r["normal"][0])))
+            t = G.perp(G.from_polar(1.0, float(r["normal"][0])))
             exact = c.kind == "rolling" or c.slip is not None
             self.rels.append(_Rel("contact", i, c.links[0], c.links[1], c.point, t, exact))
+            # the equivalent linkage: each centre of curvature moves on the other link along the
+            # tangent, on a circle about the other centre (or parallel to the other's flat)
+            for k, (ca, cb) in enumerate((c.centres, c.centres[::-1]) if c.centres else ()):
+                if ca is not None:
+                    self.rels.append(_Rel("centre", i, c.links[k], c.links[1 - k], ca, t, False, cb))
+        self._root = {p: self._find(p) for p in self._parent}   # the unions are complete
+        self._groups = {}
+        for p, r in self._root.items():
+            self._groups.setdefault(r, [r]).extend([p] if p != r else [])
 
     # places are (link, point name); pins (and the centres of curved sliders) share one image
     def _find(self, p):
@@ -243,14 +244,16 @@ class _Geo:
             self._parent[b] = a
 
     def canon(self, place):
-        return self._find(place)
+        """The place whose image stands for this one's (pinned places share one image)."""
+        return self._root.get(place, place)
 
     def group(self, place) -> list:
-        c = self._find(place)
-        return [c] + [p for p in self._parent if p != c and self._find(p) == c]
+        """Every place sharing the image of ``place`` (the canonical one first)."""
+        c = self.canon(place)
+        return self._groups.get(c, [c])
 
     def grounded(self, place) -> bool:
-        return self._find(place)[0] == self.frame
+        return self.canon(place)[0] == self.frame
 
     def places(self, lk) -> list:
         return self.own[lk] + [n for n in self.extra[lk] if n not in self.own[lk]]
@@ -282,8 +285,8 @@ class _Line:
 
     ``terms``: ('normal', link, Q, W) is -omega_link^2 R_WQ (acceleration only);
     ('rel', rel index, sign, W) the known part of a joint's relative motion.
-    ``unknown``: how the unknown component reads ('rigid', link, Q, W) or ('path', rel, sign, W)
-    or ('aux', line, line2-free) for an auxiliary point.
+    ``unknown``: what the line's unknown component is: ('rigid', link, Q, W), ('path', rel, sign, W),
+    or ('aux', inner line, link, X, S) for an auxiliary point S reached from its point X.
     """
 
     base: tuple
@@ -508,7 +511,7 @@ class _Planner:
                 ks = [q for q in self.kp[lk] if g.dist(q, n) > g.tol]
                 if ks:
                     q = ks[0]
-                    out.append(_Line((lk, q), (("normal", lk, q, n),), _unit(G.perp(g.pos[n] - g.pos[q])),
+                    out.append(_Line((lk, q), (("normal", lk, q, n),), G.unit(G.perp(g.pos[n] - g.pos[q])),
                                      ("rigid", lk, q, n), f"perpendicular to {q}{n}", (lk,)))
             for i, r in enumerate(g.rels):
                 if r.exact or r.at not in (None, n) or lk not in (r.a, r.b):
@@ -646,6 +649,10 @@ def _path_reason(g: _Geo, r: _Rel) -> str:
     if r.source == "slot":
         s = m.slots[r.index]
         return f"along the slot of {s.slot} at {s.pin}"
+    if r.source == "centre":
+        if r.centre is None:
+            return f"parallel to the flat of {r.b} (the path of {r.at} on {r.b})"
+        return f"perpendicular to {r.centre}{r.at} (the path of {r.at} on {r.b}, a circle about {r.centre})"
     return f"along the common tangent at {r.at}"
 
 
@@ -666,6 +673,7 @@ class _Run:
 
     # drafting errors (none in the exact run)
     def _turn(self, v):
+        """A drawn direction or vector, turned by the drafting error."""
         v = np.broadcast_to(np.asarray(v, float), (self.n, 2))
         if self.rng is None:
             return v
@@ -727,16 +735,15 @@ class _Run:
         vel = self.vel
         vrel = vel.image((r.a, w)) - vel.image((r.b, w))
         out = []
-        if r.source in ("slider", "slot", "drive"):
+        if r.source != "contact":
             om = vel.rate[r.b][:, None]
             cor = 2.0 * om * np.stack([-vrel[:, 1], vrel[:, 0]], axis=-1)
             if r.source == "drive":
                 out.append(("slip", f"A_{rel}", m.driver.accel * np.broadcast_to(r.direction, (self.n, 2))))
             if r.b != g.frame:   # a guide on the frame has no Coriolis term
                 out.append(("coriolis", f"2 omega_{r.b} x V_{rel}", cor))
-            centre = (m.slots[r.index].centre if r.source == "slot" else m.sliders[r.index].centre)
-            if centre is not None:
-                k = g.pos[centre] - g.pos[w]
+            if r.centre is not None:   # a circular relative path: V_rel^2 / rho towards its centre
+                k = g.pos[r.centre] - g.pos[w]
                 rho = math.hypot(*k)
                 speed2 = np.einsum("ij,ij->i", vrel, vrel)[:, None]
                 out.append(("normal", f"A^n_{rel}", speed2 / rho * (k / rho)))
@@ -778,15 +785,10 @@ class _Run:
         tip = self.image(base)
         parts = []
         for kind, lab, v in self.terms(terms):
-            new = self._mark(tip + self._turn_vec(v))
+            new = self._mark(tip + self._turn(v))
             parts.append((kind, lab, tip, new))
             tip = new
         return tip, parts
-
-    def _turn_vec(self, v):
-        if self.rng is None:
-            return v
-        return G.rotate_batch(v, self.rng.uniform(-self.angle, self.angle, self.n))
 
     def do(self, op):
         g = self.g
@@ -823,12 +825,12 @@ class _Run:
         pr = np.array([-r[1], r[0]])
         name_w, name_q = self.g.name((lk, w)), self.g.name((lk, q))
         if self.level == "velocity":
-            tip = self._mark(base + self._turn_vec(rate * pr))
+            tip = self._mark(base + self._turn(rate * pr))
             self._vec(base, tip, "relative", f"V_{name_w}{name_q}")
             return tip
         om = self.vel.rate[lk][:, None]
-        mid = self._mark(base + self._turn_vec(-om ** 2 * r))
-        tip = self._mark(mid + self._turn_vec(rate * pr))
+        mid = self._mark(base + self._turn(-om ** 2 * r))
+        tip = self._mark(mid + self._turn(rate * pr))
         self._vec(base, mid, "normal", f"A^n_{name_w}{name_q}")
         self._vec(mid, tip, "tangential", f"A^t_{name_w}{name_q}")
         return tip
@@ -844,32 +846,30 @@ class _Run:
             if self.record:
                 label = _sum([self.base_label(ln.base)] + [lab for _, lab, _, _ in parts])
                 self.lines.append(ConstructionLine(tip[0].copy(), ln.direction.copy(), label, ln.reason))
-        if self.rng is None:
-            x, _, _, sine = G.intersect_lines(tips[0][0], dirs[0][0], tips[1][0], dirs[1][0])
-            if x is None:
-                raise SingularPoseError(f"parallel construction lines for {self.g.name(target)}",
-                                        where="pose", file=self.g.m.source, links=l1.links + l2.links)
-            x = np.asarray(x, float)[None, :]
-        else:
-            x, _, _, _ = G.intersect_lines_batch(tips[0], dirs[0], tips[1], dirs[1])
-            x = self._mark(x)
+        x, _, _ = self._intersect(tips[0], dirs[0], tips[1], dirs[1])
+        if x is None:   # the planner checked the directions; only a degenerate pose gets here
+            raise SingularPoseError(f"parallel construction lines for {self.g.name(target)}",
+                                    where="pose", file=self.g.m.source, links=l1.links + l2.links)
+        x = self._mark(x)
         self._set(target, x)
         if self.record:
             for ln, tip in zip((l1, l2), tips):
                 kind = "relative" if self.level == "velocity" or ln.unknown[0] == "aux" else (
                     "tangential" if ln.unknown[0] == "rigid" else "slip")
-                self.vectors.append(Vector(tip[0].copy(), x[0].copy(), kind, self.unknown_label(ln, target)))
+                self.vectors.append(Vector(tip[0].copy(), x[0].copy(), kind, self.unknown_label(ln)))
 
     def _intersect(self, p, d, q, e):
-        """x and the parameter s of p + s d on q + t e (exact kernel in the exact run)."""
+        """(x, s, sine): where p + s d meets q + t e; the exact kernel in the exact run.
+
+        x is None when the lines are parallel (sine below SINE_LIMIT) in the exact run.
+        """
         if self.rng is None:
             x, s, _, sine = G.intersect_lines(p[0], d[0], q[0], e[0])
-            self.sine = sine
             if x is None or sine < SINE_LIMIT:
-                return None, None
-            return np.asarray(x, float)[None, :], np.array([s])
-        x, s, _, _ = G.intersect_lines_batch(p, d, q, e)
-        return x, s
+                return None, None, sine
+            return np.asarray(x, float)[None, :], np.array([s]), sine
+        x, s, _, sine = G.intersect_lines_batch(p, d, q, e)
+        return x, s, sine
 
     def _trial(self, seed, line, sub, closure):
         """Two trial polygons with x = tip + tau e, then tau from the closing link.
@@ -897,7 +897,8 @@ class _Run:
         c = 0.0 if self.level == "velocity" else -self.vel.rate[lk][:, None] ** 2 * rn
         locus = z[1] - z[0]
         target = np.broadcast_to(c * (r / rn), (self.n, 2))
-        x, s = self._intersect(z[0], locus, target, self._turn(G.perp(r)))
+        x, s, sine = self._intersect(z[0], locus, target, self._turn(G.perp(r)))
+        self.sine = float(np.min(sine))
         if x is None:
             raise SingularPoseError(
                 f"singular pose: the trial solution for {self.g.name(seed)} does not close on link {lk} "
@@ -910,19 +911,20 @@ class _Run:
         if record:
             for k, lab, t0, t1 in parts:
                 self._vec(t0, t1, k, lab)
-            self.lines.append(ConstructionLine(z[0][0].copy(), _unit(locus[0]), self.origin,
+            self.lines.append(ConstructionLine(z[0][0].copy(), G.unit(locus[0]), self.origin,
                                                f"locus of {self.X}_{w}{q} over the trial values"))
-            self.lines.append(ConstructionLine(target[0].copy(), _unit(G.perp(r)), self.origin,
+            self.lines.append(ConstructionLine(target[0].copy(), G.unit(G.perp(r)), self.origin,
                                                f"perpendicular to {q}{w}: link {lk} is rigid"))
             self.lines.append(ConstructionLine(tip[0].copy(), line.direction.copy(),
                                                _sum([self.base_label(line.base)] + [p[1] for p in parts]),
                                                line.reason + " (the trial image's line)"))
             self.vectors.append(Vector(tip[0].copy(), found[0].copy(), "relative",
-                                       self.unknown_label(line, seed)))
+                                       self.unknown_label(line)))
         for o in sub:
             self.do(o)
 
-    def unknown_label(self, ln: _Line, target) -> str:
+    def unknown_label(self, ln: _Line) -> str:
+        """How the line's unknown component reads: V_BA, A^t_BA, V_B3/B4, ..."""
         u = ln.unknown
         g = self.g
         if u[0] == "rigid":
@@ -935,7 +937,7 @@ class _Run:
             a, b = (r.a, r.b) if sign > 0 else (r.b, r.a)
             return f"{self.X}_{w}{a}/{w}{b}"
         _, inner, lk, p, s = u
-        return f"{self.unknown_label(inner, target)} + {self.X}{'' if self.level == 'velocity' else '^t'}_{s}{p}"
+        return f"{self.unknown_label(inner)} + {self.X}{'' if self.level == 'velocity' else '^t'}_{s}{p}"
 
     def run(self, steps):
         for st in steps:
@@ -1000,22 +1002,18 @@ def acceleration_polygon(sol) -> Polygon:
 
 
 def _polygon(sol, level) -> Polygon:
-    c = _construction(sol)
+    return _level(_construction(sol), sol, level)[0]
+
+
+def _level(c: _Construction, sol, level) -> tuple[Polygon, _Run]:
+    """The polygon of a level and its exact run (the acceleration level replays on the velocity's)."""
     if level not in c.polygons:
-        vel = None if level == "velocity" else _exact_run(c, "velocity")
+        vel = None if level == "velocity" else _level(c, sol, "velocity")[1]
         c.polygons[level] = _assemble(c, sol, level, vel)
     return c.polygons[level]
 
 
-def _exact_run(c: _Construction, level) -> _Run:
-    key = ("run", level)
-    if key not in c.polygons:
-        vel = None if level == "velocity" else _exact_run(c, "velocity")
-        c.polygons[key] = _Run(c.geo, level, vel).run(c.plan)
-    return c.polygons[key]
-
-
-def _assemble(c: _Construction, sol, level: str, vel) -> Polygon:
+def _assemble(c: _Construction, sol, level: str, vel) -> tuple[Polygon, _Run]:
     geo, m = c.geo, sol.mechanism
     run = _Run(geo, level, vel, record=True)
     steps = []
@@ -1052,7 +1050,7 @@ def _assemble(c: _Construction, sol, level: str, vel) -> Polygon:
     err = max((float(np.hypot(*(images[k] - np.asarray(analytic[k], float)))) for k in images), default=0.0)
     max_error = err / scale_ref if scale_ref > 0 else err
     return Polygon(level, run.origin, images, labels, tuple(steps), link_images, rates, max_error,
-                   auxiliary, _figure_scale(images, auxiliary))
+                   auxiliary, _figure_scale(images, auxiliary)), run
 
 
 def _figure_scale(images, auxiliary, figure_mm: float = 120.0) -> float:
@@ -1103,13 +1101,13 @@ def _equation(run: _Run, st: _PStep, kind: str) -> str:
         terms = [lab for _, lab, _ in run.terms(seed.terms)]
         rhs = "0" if X == "V" else f"-omega_{lk}^2 |R_{w}{q}|^2"
         return (f"trial solution: {X}_{g.name(t)} = " + _sum([f"{X}_{g.name(seed.base)}"] + terms
-                                                             + [run.unknown_label(seed, t)])
+                                                             + [run.unknown_label(seed)])
                 + f" assumed along its line; the construction closes on link {lk}: "
                   f"({X}_{w} - {X}_{q}) . R_{w}{q} = {rhs}, which fixes the assumed value")
     chains = []
     for ln in st.lines:
         terms = [lab for _, lab, _ in run.terms(ln.terms)]
-        chains.append(_sum([f"{X}_{g.name(ln.base)}"] + terms + [run.unknown_label(ln, t)]))
+        chains.append(_sum([f"{X}_{g.name(ln.base)}"] + terms + [run.unknown_label(ln)]))
     head = f"{X}_{g.name(t)} = " + " = ".join(chains)
     if kind == "instant-centre":
         head += f"  ({g.name(t)} is the instant centre of link {t[0]}: its image is at {run.origin})"
