@@ -113,8 +113,10 @@ def _join(down: Sweep, up: Sweep) -> Sweep:
         a, b = getattr(down, f.name), getattr(up, f.name)
         if f.name == "stopped":
             joined[f.name] = "; ".join(x for x in (a, b) if x)
-        elif isinstance(a, (np.ndarray, dict, list)):
+        elif isinstance(a, (np.ndarray, dict, list)) and type(a) is type(b):
             joined[f.name] = cat(a, b)
+        elif isinstance(a, np.ndarray) or isinstance(b, np.ndarray):
+            joined[f.name] = None          # known on one side only (a cache): recomputed on use
         else:
             joined[f.name] = b
     return Sweep(**joined)
