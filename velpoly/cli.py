@@ -11,7 +11,9 @@ from __future__ import annotations
 
 import argparse
 import json
+import os
 import sys
+import warnings
 from pathlib import Path
 
 from .errors import InputError, VelpolyError, one_line
@@ -151,7 +153,10 @@ def main(argv=None) -> int:
         except (AttributeError, ValueError, OSError):
             pass
     try:
-        return COMMANDS[args.command](args)
+        with warnings.catch_warnings():
+            if not args.debug:  # numpy's overflow chatter is not for users: errors say what is wrong
+                warnings.simplefilter("ignore", RuntimeWarning)
+            return COMMANDS[args.command](args)
     except VelpolyError as e:
         if args.debug:
             raise
@@ -161,9 +166,10 @@ def main(argv=None) -> int:
         print("error: interrupted", file=sys.stderr)
         return 130
     except BrokenPipeError:  # the reader of our output went away (velpoly solve F | head)
-        try:
-            sys.stdout = None
-        except Exception:  # pragma: no cover
+        try:  # point stdout at devnull so the interpreter's final flush cannot fail again
+            devnull = os.open(os.devnull, os.O_WRONLY)
+            os.dup2(devnull, sys.stdout.fileno())
+        except (OSError, AttributeError, ValueError):
             pass
         return 0
     except Exception as e:  # an internal error: still one line, never a traceback

@@ -415,10 +415,10 @@ def _polar_construction(ctx, where, name, spec, pts):
                           hint="the direction from Q to R, two points' names")
         q = _ref(ctx, where + ".along", al[0], pts, name)
         r = _ref(ctx, where + ".along", al[1], pts, name)
-        d = r - q
-        if np.hypot(*d) == 0:
+        if _coincide(q, r):
             raise ctx.err(where + ".along", f"{str(al[0])!r} and {str(al[1])!r} coincide: no direction",
                           hint="name two points that are apart")
+        d = r - q
         ang = math.degrees(math.atan2(d[1], d[0])) + _num(ctx, where + ".turn", spec.get("turn", 0.0))
     else:
         if "angle" not in spec:
@@ -427,6 +427,11 @@ def _polar_construction(ctx, where, name, spec, pts):
         ang = _num(ctx, where + ".angle", spec["angle"])
     v = L * np.array([math.cos(math.radians(ang)), math.sin(math.radians(ang))])
     return base + v if key == "from" else base - v
+
+
+def _coincide(p, q) -> bool:
+    """Two points at one place, to within rounding of their coordinates."""
+    return float(np.hypot(*(q - p))) <= 1e-12 * max(float(np.abs(p).max()), float(np.abs(q).max()))
 
 
 def _length(ctx, x: float) -> str:
@@ -440,9 +445,9 @@ def _line(ctx, where, spec, pts, name):
                           hint="the line through two points, or through a point at an angle")
         q = _ref(ctx, where, spec[0], pts, name)
         r = _ref(ctx, where, spec[1], pts, name)
-        d = r - q
-        if np.hypot(*d) == 0:
+        if _coincide(q, r):
             raise ctx.err(where, "the line's two points coincide", hint="name two points that are apart")
+        d = r - q
         return q, math.degrees(math.atan2(d[1], d[0]))
     if isinstance(spec, dict):
         _keys(ctx, where, spec, ("through", "angle"))
@@ -542,9 +547,24 @@ def _parse_toml(text: str, file: str) -> dict:
             msg = msg[:m.start()] + f" at column {m.group(2)}"
         else:
             msg = re.sub(r"\s*\(at end of document\)\s*$", " at the end of the file", msg)
+            opened = _unclosed(text)
+            if opened:
+                where = f"line {opened}"
+                msg += " (opened here)"
         raise InputError(f"bad TOML: {msg[:1].lower() + msg[1:]}", where=where, file=file,
                          hint="check the syntax there (quotes around names, = between key and value, "
                               "one key per line)") from None
+
+
+def _unclosed(text: str) -> int | None:
+    """The line where a bracket or multi-line string opens that the text never closes."""
+    depth, in_ml, opened = 0, None, None
+    for no, line in enumerate(text.splitlines(), start=1):
+        was_open = depth > 0 or in_ml
+        depth, in_ml = _scan_brackets(line, depth, in_ml)
+        if (depth > 0 or in_ml) and not was_open:
+            opened = no
+    return opened if (depth > 0 or in_ml) else None
 
 
 def _table(ctx, data, key, required=True) -> dict:
@@ -628,7 +648,8 @@ def _build(ctx: _Ctx, data: dict, default_title: str) -> Mechanism:
     ctx.point_names = tuple(n for n, _ in named_points)
     pts: dict[str, np.ndarray] = {}
     for pname, spec in named_points:
-        pts[pname] = _construct(ctx, pname, spec, pts)
+        with np.errstate(all="ignore"):   # an overflow is reported below, as no finite position
+            pts[pname] = _construct(ctx, pname, spec, pts)
         if not np.all(np.isfinite(pts[pname])):
             raise ctx.err(f"points.{pname}", "the construction gives no finite position",
                           hint="check its lengths and angles")

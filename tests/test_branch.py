@@ -1,0 +1,296 @@
+"""Branch continuity: sweeps and --angle stay on the assembly the file draws.
+
+Each mechanism is drawn on either assembly branch (``near`` on either side of
+the line of centres). A sweep of 3600 poses must be continuous (no point
+jumps more than a few times the distance its speed carries it in one step),
+keep the branch (the sign of the triangle at every two-circle construction
+never changes) and close after a full turn; a non-Grashof four-bar stops at
+its toggle, within a step or two of the analytic angle, and ``solve --angle``
+beyond it exits 3 naming the reachable range.
+"""
+from __future__ import annotations
+
+import math
+import re
+import time
+
+import numpy as np
+import pytest
+
+import velpoly
+from velpoly.cli import main
+from velpoly.pose import circle_circle
+
+STEP = 0.1           # degrees: 3600 poses a turn
+N = 3601
+
+
+# -- mechanisms --------------------------------------------------------------------------------
+def near_text(p, r1, q, r2, branch: int) -> str:
+    """``near = [x, y]``: the sketch point of one assembly (0: left of P->Q, 1: right)."""
+    left, right, gap = circle_circle(np.array(p, float), r1, np.array(q, float), r2)
+    assert gap == 0
+    x, y = (left, right)[branch]
+    return f"near = [{x:.6f}, {y:.6f}]"
+
+
+def fourbar(a, b, c, d, theta, branch, omega=10.0) -> str:
+    """Crank AB = a at theta, coupler BC = b, rocker DC = c, frame AD = d along +x."""
+    bxy = (a * math.cos(math.radians(theta)), a * math.sin(math.radians(theta)))
+    return f"""
+title = "four-bar {a} {b} {c} {d}"
+units = "mm"
+[points]
+A = [0, 0]
+D = [{d}, 0]
+B = {{ from = "A", length = {a}, angle = {theta} }}
+C = {{ circles = [["B", {b}], ["D", {c}]], {near_text(bxy, b, (d, 0), c, branch)} }}
+[links]
+1 = {{ points = ["A", "D"], frame = true }}
+2 = {{ points = ["A", "B"] }}
+3 = {{ points = ["B", "C"] }}
+4 = {{ points = ["D", "C"] }}
+[driver]
+link = "2"
+omega = {omega}
+"""
+
+
+def watt_sixbar(branch_c: int, branch_f: int, theta=50.0, a=40.0, b=120.0, c=80.0, d=100.0, e=30.0,
+                g=100.0, r5=80.0, r6=60.0) -> dict:
+    """A Watt six-bar: the crank-rocker A-B-C-D, its rocker extended past D to E, and a second
+    loop E-F-G (coupler 5, rocker 6 about G). Either loop drawn on either branch."""
+    d_ = np.array([d, 0.0])
+    bxy = a * np.array([math.cos(math.radians(theta)), math.sin(math.radians(theta))])
+    left, right, _ = circle_circle(bxy, b, d_, c)
+    cxy = (left, right)[branch_c]
+    exy = d_ - e * (cxy - d_) / np.linalg.norm(cxy - d_)
+    gxy = d_ + np.array([0.0, -g])
+    fl, fr, gap = circle_circle(exy, r5, gxy, r6)
+    assert gap == 0
+    fxy = (fl, fr)[branch_f]
+    return {
+        "title": "Watt six-bar", "units": "mm",
+        "points": {
+            "A": [0.0, 0.0], "D": [d, 0.0], "G": [float(gxy[0]), float(gxy[1])],
+            "B": {"from": "A", "length": a, "angle": theta},
+            "C": {"circles": [["B", b], ["D", c]], "near": [float(cxy[0]), float(cxy[1])]},
+            "E": {"from": "D", "length": e, "along": ["C", "D"]},
+            "F": {"circles": [["E", r5], ["G", r6]], "near": [float(fxy[0]), float(fxy[1])]},
+        },
+        "links": {
+            "1": {"points": ["A", "D", "G"], "frame": True},
+            "2": {"points": ["A", "B"]},
+            "3": {"points": ["B", "C"]},
+            "4": {"points": ["D", "C", "E"]},
+            "5": {"points": ["E", "F"]},
+            "6": {"points": ["G", "F"]},
+        },
+        "driver": {"link": "2", "omega": "60 rpm cw"},
+    }
+
+
+def chain(loops: int = 9, side: str = "right") -> dict:
+    """A chain of four-bar loops: the crank drives rocker 3 through coupler 2, each rocker
+    drives the next through a coupler; 2 + 2 x loops links (20 for nine loops)."""
+    pts = {"P0": [0.0, 0.0], "E0": {"from": "P0", "length": 30.0, "angle": 70.0}}
+    links = {"0": {"points": ["P0"], "frame": True}, "1": {"points": ["P0", "E0"]}}
+    k = 2
+    for i in range(1, loops + 1):
+        r5, r6 = 80.0 + 3 * i, 60.0 - 2 * i
+        pts[f"P{i}"] = [100.0 * i, 0.0]
+        pts[f"F{i}"] = {"circles": [[f"E{i - 1}", r5], [f"P{i}", r6]], "side": side}
+        pts[f"E{i}"] = {"from": f"P{i}", "length": 30.0, "along": [f"F{i}", f"P{i}"]}
+        links["0"]["points"].append(f"P{i}")
+        links[str(k)] = {"points": [f"E{i - 1}", f"F{i}"]}
+        links[str(k + 1)] = {"points": [f"P{i}", f"F{i}", f"E{i}"]}
+        k += 2
+    return {"title": f"chain of {loops} four-bar loops", "units": "mm", "points": pts, "links": links,
+            "driver": {"link": "1", "omega": 5}}
+
+
+# -- checks -----------------------------------------------------------------------------------------
+def orientation(w, p, q, r) -> np.ndarray:
+    """Sign of the triangle p, q, r at every pose: which side of p->q the point r is on."""
+    u = w.position[q] - w.position[p]
+    v = w.position[r] - w.position[p]
+    return np.sign(u[:, 0] * v[:, 1] - u[:, 1] * v[:, 0])
+
+
+def assert_continuous(w, step_deg, factor=4.0):
+    """No point moves farther between poses than ``factor`` times its speed times the step's time."""
+    m = w.mechanism
+    dt = math.radians(step_deg) / abs(m.driver.omega)
+    for key, p in w.position.items():
+        jump = np.hypot(*np.diff(p, axis=0).T)
+        speed = np.hypot(*w.velocity[key].T)
+        bound = factor * np.maximum(speed[:-1], speed[1:]) * dt + 1e-9 * m.size
+        worst = int(np.argmax(jump - bound))
+        assert jump[worst] <= bound[worst], (key, w.angles[worst], jump[worst], bound[worst])
+
+
+def assert_closes(w):
+    for key, p in w.position.items():
+        assert np.abs(p[-1] - p[0]).max() <= 1e-8 * w.mechanism.size, key
+
+
+def sweep_turn(m, direction=1.0):
+    ref = velpoly.solve(m).driver_angle
+    return velpoly.sweep(m, ref + direction * STEP * np.arange(N))
+
+
+def toggle_range(a, b, c, d):
+    """The crank angles (deg) at which a four-bar can be assembled, about +x (A at 0, D at +d)."""
+    lo_cos = (a * a + d * d - (b + c) ** 2) / (2 * a * d)
+    hi_cos = (a * a + d * d - (b - c) ** 2) / (2 * a * d)
+    top = math.degrees(math.acos(max(lo_cos, -1.0)))
+    bottom = math.degrees(math.acos(min(hi_cos, 1.0)))
+    return bottom, top     # reachable for bottom <= |theta| <= top
+
+
+# -- four-bars --------------------------------------------------------------------------------------
+@pytest.mark.parametrize("dims", [(40, 120, 80, 100), (100, 60, 110, 30)], ids=["crank-rocker", "drag-link"])
+@pytest.mark.parametrize("branch", [0, 1])
+def test_grashof_fourbar_turns_on_its_branch(dims, branch):
+    m = velpoly.load(fourbar(*dims, theta=60.0, branch=branch))
+    w = sweep_turn(m)
+    assert len(w.angles) == N and not w.stopped
+    assert_continuous(w, STEP)
+    assert_closes(w)
+    side = orientation(w, "B", "D", "C")
+    assert np.all(side == side[0]) and side[0] == (1 if branch == 0 else -1)
+
+
+@pytest.mark.parametrize("branch", [0, 1])
+@pytest.mark.parametrize("direction", [1.0, -1.0])
+def test_non_grashof_fourbar_stops_at_its_toggle(branch, direction):
+    a, b, c, d = 80, 60, 70, 100           # triple rocker: the crank swings between two toggles
+    m = velpoly.load(fourbar(a, b, c, d, theta=60.0, branch=branch))
+    w = sweep_turn(m, direction)
+    _, top = toggle_range(a, b, c, d)      # |theta| <= 91.79 deg
+    assert w.stopped.startswith("stopped at a toggle")
+    last = w.angles[-1]
+    assert top - 1.5 <= direction * last <= top, last
+    assert_continuous(w, STEP)
+    side = orientation(w, "B", "D", "C")
+    assert np.all(side == side[0]) and side[0] == (1 if branch == 0 else -1)
+
+
+@pytest.mark.parametrize("branch", [0, 1])
+def test_angle_beyond_the_toggle_exits_3_with_the_reachable_range(capsys, tmp_path, branch):
+    f = tmp_path / "triple_rocker.toml"
+    f.write_text(fourbar(80, 60, 70, 100, theta=60.0, branch=branch))
+    assert main(["solve", str(f), "--angle", "150"]) == 3
+    err = capsys.readouterr().err.splitlines()
+    assert len(err) == 2 and err[0].startswith(f"error: {f}: --angle: cannot assemble at driver angle 150 deg")
+    lo, hi = (float(x) for x in re.search(r"reachable: (\S+) to (\S+) deg", err[0]).groups())
+    _, top = toggle_range(80, 60, 70, 100)
+    assert -top <= lo <= -top + 1.5 and top - 1.5 <= hi <= top, err[0]
+    assert re.search(r"\(links [\d, ]+\)$", err[0])
+    # inside the range it solves, on the drawn branch
+    assert main(["solve", str(f), "--angle", "-80", "--json"]) == 0
+    capsys.readouterr()
+
+
+@pytest.mark.parametrize("branch", [0, 1])
+def test_solve_at_an_angle_stays_on_the_drawn_branch(branch):
+    m = velpoly.load(fourbar(40, 120, 80, 100, theta=60.0, branch=branch))
+    ref = velpoly.solve(m)
+    w = sweep_turn(m)
+    for angle in (-170.0, -100.0, 0.0, 95.0, 179.0, 235.0):
+        s = velpoly.solve(m, angle=angle)
+        assert s.driver_angle == pytest.approx((angle + 180) % 360 - 180)
+        b, c, d = (s.position[p] for p in "BCD")
+        u, v = d - b, c - b
+        assert np.sign(u[0] * v[1] - u[1] * v[0]) == (1 if branch == 0 else -1)
+        i = int(round(((angle - ref.driver_angle) % 360) / STEP))
+        assert s.position["C"] == pytest.approx(w.position["C"][i], abs=1e-9 * m.size)
+        assert s.velocity["C"] == pytest.approx(w.velocity["C"][i], rel=1e-9, abs=1e-9)
+
+
+def test_driver_angle_in_the_file_stays_on_the_branch():
+    text = fourbar(40, 120, 80, 100, theta=60.0, branch=1).replace('omega = 10.0', 'omega = 10.0\nangle = -120')
+    s = velpoly.solve(velpoly.load(text))
+    b, c, d = (s.position[p] for p in "BCD")
+    u, v = d - b, c - b
+    assert s.driver_angle == pytest.approx(-120) and u[0] * v[1] - u[1] * v[0] < 0
+
+
+# -- six-bars ---------------------------------------------------------------------------------------------
+@pytest.mark.parametrize("branch_c, branch_f", [(0, 0), (0, 1), (1, 0), (1, 1)])
+def test_watt_sixbar_turns_on_both_loops_branches(branch_c, branch_f):
+    m = velpoly.load(watt_sixbar(branch_c, branch_f))
+    w = sweep_turn(m)
+    assert len(w.angles) == N and not w.stopped
+    assert_continuous(w, STEP)
+    assert_closes(w)
+    for (p, q, r), br in ((("B", "D", "C"), branch_c), (("E", "G", "F"), branch_f)):
+        side = orientation(w, p, q, r)
+        assert np.all(side == (1 if br == 0 else -1)), (p, q, r)
+
+
+@pytest.mark.parametrize("near_f", ["[-0.37, 0.19]", "[-0.37, 0.62]"])
+def test_textbook_sixbar_with_a_slider_on_either_branch(near_f):
+    from mechanisms import SIXBAR_1_4_4
+    m = velpoly.load(SIXBAR_1_4_4.replace("near = [-0.37, 0.19]", f"near = {near_f}"))
+    w = sweep_turn(m)
+    assert len(w.angles) == N and not w.stopped
+    assert_continuous(w, STEP)
+    assert_closes(w)
+    above = w.position["F"][:, 1] > w.position["E"][:, 1]   # F stays on its side of E along the slider's path
+    assert np.all(above == above[0])
+
+
+# -- scale ---------------------------------------------------------------------------------------------------
+def test_twenty_link_chain_solves_and_turns_quickly():
+    d = chain(9)
+    t0 = time.perf_counter()
+    m = velpoly.load(d)
+    s = velpoly.solve(m)
+    assert time.perf_counter() - t0 < 5.0
+    assert len(m.links) == 20 and len(s.omega) == 20
+    t0 = time.perf_counter()
+    w = velpoly.sweep(m, s.driver_angle + np.arange(0, 360.5, 1.0))
+    assert time.perf_counter() - t0 < 5.0
+    assert len(w.angles) == 361 and not w.stopped
+    assert_continuous(w, 1.0)
+    assert_closes(w)
+    for i in range(1, 10):
+        side = orientation(w, f"E{i - 1}", f"P{i}", f"F{i}")
+        assert np.all(side == -1), i   # side = "right" of E -> P, every loop, the whole turn
+
+
+def test_the_continuity_check_sees_a_branch_jump():
+    # the checks above can fail: a sweep with one pose on the other assembly is caught
+    import dataclasses
+    m = velpoly.load(fourbar(40, 120, 80, 100, theta=60.0, branch=0))
+    w = velpoly.sweep(m, 60.0 + STEP * np.arange(200))
+    other = velpoly.load(fourbar(40, 120, 80, 100, theta=60.0 + 100 * STEP, branch=1))
+    pos = dict(w.position)
+    pos["C"] = pos["C"].copy()
+    pos["C"][100] = other.position("C")
+    bad = dataclasses.replace(w, position=pos)
+    with pytest.raises(AssertionError):
+        assert_continuous(bad, STEP)
+    assert set(orientation(bad, "B", "D", "C")) == {1.0, -1.0}
+
+
+# -- known kernel issues (docs/requests/robustness.md) ---------------------------------------------------------
+@pytest.mark.xfail(strict=True, raises=np.linalg.LinAlgError,
+                   reason="kernel issue 1: pose.reassemble raises numpy's LinAlgError when the reference pose "
+                          "is singular (docs/requests/robustness.md)")
+@pytest.mark.parametrize("how", ["solve", "sweep"])
+def test_reassembly_from_a_singular_reference_pose_is_a_pose_error(how):
+    from mechanisms import inverted_slider_crank
+    # the block's pin A 1.7e-10 from the rocker's pivot O4: the rocker's direction is undefined
+    m = velpoly.load(inverted_slider_crank(1.0, 1.0, 1e-8, 1.0, 0.0))
+    with pytest.raises(velpoly.SingularPoseError):
+        velpoly.solve(m)                       # at the reference pose it is already reported
+    try:
+        if how == "solve":
+            velpoly.solve(m, angle=30.0)
+        else:
+            w = velpoly.sweep(m, [1e-8, 10.0])
+            assert w.stopped
+    except velpoly.PoseError:
+        pass

@@ -1,0 +1,282 @@
+"""The command line's contract: exit codes, one-line errors, --debug, atomic outputs, scale.
+
+A few cases run the real ``python -m velpoly`` in a subprocess (what users
+see, tracebacks included); the rest call ``velpoly.cli.main`` in-process.
+"""
+from __future__ import annotations
+
+import hashlib
+import json
+import os
+import stat
+import subprocess
+import sys
+import time
+from pathlib import Path
+
+import pytest
+
+import velpoly
+import velpoly.cli
+from velpoly.cli import main
+from velpoly.fileio import atomic_path, atomic_write_bytes, atomic_write_text
+
+DATA = Path(__file__).parent / "data"
+FOURBAR = DATA / "fourbar.toml"
+
+
+def velpoly_cmd(*args, cwd=None):
+    return subprocess.run([sys.executable, "-m", "velpoly", *map(str, args)], capture_output=True, text=True,
+                          timeout=120, cwd=cwd)
+
+
+# -- exit codes and messages, as a user sees them ------------------------------------------------------
+def test_solve_exit_0():
+    r = velpoly_cmd("solve", FOURBAR, "--json")
+    assert r.returncode == 0 and r.stderr == ""
+    assert json.loads(r.stdout)["links"]["2"]["omega"] == 10.0
+
+
+def test_missing_file_exit_2_one_line_and_a_hint(tmp_path):
+    r = velpoly_cmd("solve", tmp_path / "fourbar.toml")
+    assert r.returncode == 2 and r.stdout == ""
+    assert r.stderr.splitlines() == [f"error: {tmp_path / 'fourbar.toml'}: no such file", "hint: check the path"]
+
+
+def test_bad_toml_exit_2(tmp_path):
+    f = tmp_path / "bad.toml"
+    f.write_text("[points]\nA = [0, 0\n")
+    r = velpoly_cmd("solve", f)
+    err = r.stderr.splitlines()
+    assert r.returncode == 2 and len(err) == 2 and "Traceback" not in r.stderr
+    assert err[0].startswith(f"error: {f}: line 2: bad TOML: ")
+
+
+def test_singular_pose_exit_3():
+    r = velpoly_cmd("solve", DATA / "toggle_fourbar.toml")
+    err = r.stderr.splitlines()
+    assert r.returncode == 3 and r.stdout == "" and len(err) == 2
+    assert "singular" in err[0] and err[0].endswith("(links 3, 4)") and err[1].startswith("hint: ")
+
+
+def test_near_singular_warning_on_stderr_and_in_the_json():
+    r = velpoly_cmd("solve", DATA / "near_toggle.toml", "--json")
+    assert r.returncode == 0
+    w = json.loads(r.stdout)["warnings"]
+    assert r.stderr.splitlines() == [f"warning: {DATA / 'near_toggle.toml'}: {w[0]}"]
+
+
+def test_debug_shows_the_traceback():
+    for args in (("--debug", "solve", DATA / "toggle_fourbar.toml"), ("solve", DATA / "toggle_fourbar.toml", "--debug")):
+        r = velpoly_cmd(*args)
+        assert r.returncode == 1
+        assert "Traceback (most recent call last)" in r.stderr
+        assert "velpoly.errors.SingularPoseError" in r.stderr
+
+
+def test_debug_in_process_raises(tmp_path):
+    with pytest.raises(velpoly.InputError, match="no such file"):
+        main(["solve", str(tmp_path / "x.toml"), "--debug"])
+    with pytest.raises(velpoly.SingularPoseError):
+        main(["--debug", "solve", str(DATA / "dead_centre.toml")])
+
+
+def test_no_command_exit_2(capsys):
+    assert main([]) == 2
+    assert "usage: velpoly" in capsys.readouterr().out
+
+
+def test_unknown_option_is_an_argparse_error(capsys):
+    with pytest.raises(SystemExit) as e:
+        main(["solve", str(FOURBAR), "--angel", "3"])
+    assert e.value.code == 2
+    assert "unrecognized arguments: --angel" in capsys.readouterr().err
+
+
+def test_nan_angle_is_an_input_error(capsys):
+    assert main(["solve", str(FOURBAR), "--angle", "nan"]) == 2
+    err = capsys.readouterr().err.splitlines()
+    assert err[0].startswith(f"error: {FOURBAR}: ") and "finite" in err[0]
+
+
+def test_angle_for_a_slider_driver(capsys):
+    assert main(["solve", str(DATA / "dead_centre.toml"), "--angle", "10"]) == 2
+    assert "a slider driver has no angle" in capsys.readouterr().err
+
+
+@pytest.mark.parametrize("exc", [RuntimeError("boom"), ZeroDivisionError("float division by zero"),
+                                 KeyError("B"), ValueError("two\nlines")])
+def test_unexpected_exceptions_are_one_line_without_traceback(capsys, monkeypatch, exc):
+    def broken(*a, **k):
+        raise exc
+    monkeypatch.setattr(velpoly, "solve", broken)
+    assert main(["solve", str(FOURBAR)]) == 1
+    err = capsys.readouterr().err.splitlines()
+    assert len(err) == 2 and "Traceback" not in "".join(err)
+    assert err[0].startswith(f"error: {FOURBAR}: internal error: {type(exc).__name__}: ")
+    assert err[1] == "hint: this is a bug in velpoly: run again with --debug and report the traceback"
+    with pytest.raises(type(exc)):
+        main(["solve", str(FOURBAR), "--debug"])
+
+
+def test_keyboard_interrupt(capsys, monkeypatch):
+    def interrupted(*a, **k):
+        raise KeyboardInterrupt
+    monkeypatch.setattr(velpoly, "load", interrupted)
+    assert main(["solve", str(FOURBAR)]) == 130
+    assert capsys.readouterr().err == "error: interrupted\n"
+
+
+def test_kernel_errors_get_their_line(capsys, tmp_path):
+    # mobility is the kernel's to find; the command line adds the [links] line to its message
+    f = tmp_path / "locked.toml"
+    f.write_text(FOURBAR.read_text().replace('3 = { points = ["B", "C"] }', '3 = { points = ["B", "C", "D"] }'))
+    assert main(["solve", str(f)]) == 2
+    assert capsys.readouterr().err.startswith(f"error: {f}: links (line 11): mobility is 0 ")
+
+
+def test_output_is_not_read_as_a_figure(capsys, tmp_path):
+    out = tmp_path / "fig.txt"
+    assert main(["draw", str(FOURBAR), "-o", str(out)]) == 2
+    assert capsys.readouterr().err.splitlines()[0] == f"error: {out}: -o: unknown figure type '.txt'"
+    assert not out.exists()
+
+
+def test_a_failed_draw_writes_nothing(capsys, tmp_path):
+    out = tmp_path / "figs" / "toggle.svg"
+    assert main(["draw", str(DATA / "toggle_fourbar.toml"), "-o", str(out)]) == 3
+    assert not out.parent.exists() or list(out.parent.iterdir()) == []
+
+
+def test_a_failed_sweep_writes_nothing(capsys, tmp_path):
+    csv = tmp_path / "cycle.csv"
+    code = main(["sweep", str(DATA / "dead_centre.toml"), "--csv", str(csv)])
+    assert code == 3, capsys.readouterr().err
+    assert list(tmp_path.iterdir()) == []
+
+
+def test_broken_pipe_is_quiet():
+    p = subprocess.Popen([sys.executable, "-m", "velpoly", "solve", str(DATA / "fourbar.toml"), "--json"],
+                         stdout=subprocess.PIPE, stderr=subprocess.PIPE)
+    p.stdout.readline()
+    p.stdout.close()
+    err = p.stderr.read().decode()
+    assert p.wait(timeout=60) == 0 and "Traceback" not in err and "BrokenPipe" not in err
+
+
+# -- reading never writes ------------------------------------------------------------------------------
+def snapshot(folder: Path):
+    return {p.name: (hashlib.sha256(p.read_bytes()).hexdigest(), p.stat().st_mtime_ns, stat.S_IMODE(p.stat().st_mode))
+            for p in sorted(folder.iterdir())}
+
+
+@pytest.mark.parametrize("name", ["fourbar.toml", "toggle_fourbar.toml"])
+def test_reading_never_modifies_the_input(tmp_path, name):
+    f = tmp_path / name
+    f.write_bytes((DATA / name).read_bytes())
+    os.chmod(f, 0o444)
+    before = snapshot(tmp_path)
+    velpoly.load(f)
+    velpoly.load(str(f))
+    r = velpoly_cmd("solve", f, "--json", cwd=tmp_path)
+    assert r.returncode in (0, 3)
+    assert snapshot(tmp_path) == before
+
+
+# -- atomic outputs ---------------------------------------------------------------------------------------
+def test_atomic_write_creates_an_ordinary_file(tmp_path):
+    out = atomic_write_text(tmp_path / "sub" / "table.txt", "ω = 10 rad/s\n")
+    assert out.read_text(encoding="utf-8") == "ω = 10 rad/s\n"
+    mask = os.umask(0)
+    os.umask(mask)
+    assert stat.S_IMODE(out.stat().st_mode) == 0o666 & ~mask
+    assert [p.name for p in out.parent.iterdir()] == ["table.txt"]
+
+
+def test_atomic_write_keeps_an_existing_files_permissions(tmp_path):
+    out = tmp_path / "f.svg"
+    out.write_text("old")
+    os.chmod(out, 0o640)
+    atomic_write_bytes(out, b"new")
+    assert out.read_bytes() == b"new" and stat.S_IMODE(out.stat().st_mode) == 0o640
+
+
+@pytest.mark.parametrize("existing", [False, True])
+def test_a_failure_while_writing_leaves_no_partial_file(tmp_path, existing):
+    out = tmp_path / "figure.svg"
+    if existing:
+        out.write_text("the previous figure")
+    with pytest.raises(RuntimeError, match="renderer crashed"):
+        with atomic_path(out) as tmp:
+            with open(tmp, "w") as fh:
+                fh.write("<svg>half a figure")
+            raise RuntimeError("renderer crashed")
+    if existing:
+        assert out.read_text() == "the previous figure"
+        assert [p.name for p in tmp_path.iterdir()] == ["figure.svg"]
+    else:
+        assert list(tmp_path.iterdir()) == []
+
+
+def test_a_failure_in_the_rename_leaves_no_temporary_file(tmp_path, monkeypatch):
+    out = tmp_path / "data.csv"
+    out.write_text("old")
+
+    def full_disk(src, dst):
+        raise OSError(28, "No space left on device")
+    monkeypatch.setattr(os, "replace", full_disk)
+    with pytest.raises(velpoly.InputError, match="cannot write: No space left on device"):
+        atomic_write_text(out, "new")
+    assert [p.name for p in tmp_path.iterdir()] == ["data.csv"] and out.read_text() == "old"
+
+
+def test_writing_over_a_folder_is_an_input_error(tmp_path):
+    (tmp_path / "out.svg").mkdir()
+    with pytest.raises(velpoly.InputError, match="is a folder"):
+        atomic_write_text(tmp_path / "out.svg", "x")
+    assert [p.name for p in tmp_path.iterdir()] == ["out.svg"]
+
+
+@pytest.mark.skipif(hasattr(os, "geteuid") and os.geteuid() == 0, reason="root writes anywhere")
+def test_an_unwritable_folder_is_an_input_error(tmp_path):
+    ro = tmp_path / "ro"
+    ro.mkdir()
+    os.chmod(ro, 0o555)
+    try:
+        with pytest.raises(velpoly.InputError, match="cannot write"):
+            atomic_write_text(ro / "x.txt", "x")
+    finally:
+        os.chmod(ro, 0o755)
+
+
+# -- scale --------------------------------------------------------------------------------------------------
+def test_a_file_with_500_points(tmp_path):
+    extra = [f'P{i} = {{ from = "B", length = {10 + 0.1 * i:.1f}, along = ["B", "C"], turn = {0.7 * i:.1f} }}'
+             for i in range(496)]
+    text = FOURBAR.read_text().replace("\n[links]", "\n" + "\n".join(extra) + "\n\n[links]")
+    text = text.replace('3 = { points = ["B", "C"] }',
+                        '3 = { points = ["B", "C", ' + ", ".join(f'"P{i}"' for i in range(496)) + "] }")
+    f = tmp_path / "many.toml"
+    f.write_text(text)
+    t0 = time.perf_counter()
+    s = velpoly.solve(velpoly.load(f))
+    assert time.perf_counter() - t0 < 5.0
+    assert len(s.position) == 500
+    t0 = time.perf_counter()
+    r = velpoly_cmd("solve", f, "--json")
+    assert time.perf_counter() - t0 < 10.0
+    assert r.returncode == 0, r.stderr
+    points = json.loads(r.stdout)["points"]
+    assert len(points) == 500
+    # a point of the coupler moves with it: V_P = V_B + omega_3 x (P - B)
+    w3 = s.omega["3"]
+    p, b = s.position["P123"], s.position["B"]
+    expected = s.velocity["B"] + w3 * __import__("numpy").array([-(p - b)[1], (p - b)[0]])
+    assert points["P123"]["velocity"] == pytest.approx(expected.tolist(), rel=1e-12, abs=1e-9)
+
+
+def test_solve_does_not_import_matplotlib():
+    code = ("import sys, velpoly, velpoly.cli; velpoly.cli.main(['solve', sys.argv[1], '--json']); "
+            "assert 'matplotlib' not in sys.modules, 'matplotlib imported'")
+    r = subprocess.run([sys.executable, "-c", code, str(FOURBAR)], capture_output=True, text=True, timeout=60)
+    assert r.returncode == 0, r.stderr
