@@ -118,8 +118,8 @@ def test_construction_lines_pass_through_their_intersection(sixbar):
     assert len(lines) == sum(len(s.lines) for s in poly.steps)
     for step in poly.steps:
         hit = poly.images[step.found[0]] if step.found else None
-        for ln in step.lines:
-            drawn = next(x for x in lines if x.get_gid() == f"construction-{step.index}-{ln.base_label}")
+        for li, ln in enumerate(step.lines):
+            drawn = next(x for x in lines if x.get_gid() == f"construction-{step.index}-{li}-{ln.base_label}")
             (x0, x1), (y0, y1) = drawn.get_data()
             a, b = np.array([x0, y0]), np.array([x1, y1])
             d = (b - a) / np.hypot(*(b - a))
@@ -482,3 +482,29 @@ def test_kernel_and_solve_do_not_import_matplotlib():
             "assert 'matplotlib' not in sys.modules, 'import velpoly.render'\n")
     r = subprocess.run([sys.executable, "-c", code], capture_output=True, text=True, cwd=ROOT)
     assert r.returncode == 0, r.stderr
+
+
+def test_auxiliary_points_are_labelled_in_the_polygon_and_marked_on_the_mechanism():
+    from velpoly.polygons import velocity_polygon
+    from velpoly.render.displacement import mark_auxiliary
+    names = ("O1", "O4", "P", "Q", "S", "U", "R")        # Stephenson III: a triad, no dyad order
+    pts = ((0, 0), (1.0, 0.1), (0.2, 0.25), (-0.05, 0.3), (0.5, 0.9), (0.1, 0.8), (1.1, 0.7))
+    m = velpoly.load({"points": {n: list(p) for n, p in zip(names, pts)},
+                      "links": {"0": {"points": ["O1", "O4"], "frame": True}, "1": {"points": ["O1", "P", "Q"]},
+                                "2": {"points": ["P", "S"]}, "3": {"points": ["Q", "U"]},
+                                "4": {"points": ["O4", "R"]}, "5": {"points": ["S", "U", "R"]}},
+                      "driver": {"link": "1", "omega": 10}})
+    sol = velpoly.solve(m)
+    poly = velocity_polygon(sol)
+    assert poly.auxiliary
+    art = draw_polygon(poly, _axes(), mechanism=m)
+    for key, aux in poly.auxiliary.items():
+        assert key in art.labels and tex(aux.label) in art.labels[key].get_text()
+    ax = _axes()
+    canvas.fit_view(ax, (-0.2, 0.0, 1.6, 3.1))
+    draw_mechanism(sol, ax)
+    marks = mark_auxiliary(sol, ax, poly)
+    for key, aux in poly.auxiliary.items():
+        ring = next(p for p in marks["auxiliary"] if p.get_gid() == f"auxiliary-{key}")
+        np.testing.assert_allclose(np.mean(ring.get_path().vertices[:-1], axis=0), aux.position, atol=1e-9)
+        assert marks.labels[key].get_text().startswith(tex(aux.label.upper()))

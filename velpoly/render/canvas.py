@@ -16,7 +16,7 @@ import re
 import numpy as np
 
 __all__ = ["Artists", "nice_scale", "nice_length", "fit_view", "view_scale", "per_point", "per_cm",
-           "view_box", "tex", "arrow", "get_ax", "renderer_of"]
+           "view_box", "border_point", "tex", "arrow", "get_ax", "renderer_of"]
 
 CM = 1 / 2.54  # inches
 
@@ -216,3 +216,15 @@ def arrow(ax, tail, head, *, lw: float, head_length: float, colour, linestyle="-
     ax.add_line(shaft)
     ax.add_patch(patch)
     return shaft, patch, SPolygon(tri)
+
+
+def border_point(view, c, d, inset: float) -> np.ndarray:
+    """Where the ray from c along d leaves the view, moved ``inset`` back inside."""
+    x0, y0, x1, y1 = view.bounds
+    x0, y0, x1, y1 = x0 + inset, y0 + inset, x1 - inset, y1 - inset
+    ts = []
+    for lo, hi, cc, dd in ((x0, x1, c[0], d[0]), (y0, y1, c[1], d[1])):
+        if abs(dd) > 1e-12:
+            ts.append(((hi if dd > 0 else lo) - cc) / dd)
+    t = max(min(ts), 0.0) if ts else 0.0
+    return c + d * t

@@ -17,13 +17,13 @@ import numpy as np
 from shapely.geometry import LineString, MultiPoint, Point
 from shapely.geometry import Polygon as SPolygon
 
-from .canvas import Artists, arrow, fit_view, get_ax, per_cm, per_point, tex, view_scale
+from .canvas import Artists, arrow, border_point, fit_view, get_ax, per_cm, per_point, tex, view_box, view_scale
 from .labels import placer
 from .options import drawing_options
 from .scalebar import scale_bar, unit_label
 from .style import get_style, link_fill
 
-__all__ = ["draw_mechanism", "mechanism_bounds", "shape_patch", "link_bodies"]
+__all__ = ["draw_mechanism", "mechanism_bounds", "shape_patch", "link_bodies", "mark_auxiliary"]
 
 
 def _unit(deg: float) -> np.ndarray:
@@ -499,3 +499,54 @@ def draw_mechanism(sol, ax=None, *, style="textbook", options=None, scale: float
         fit_view(ax, mechanism_bounds(sol), scale=scale if scale is not None else opts.scale, margin=0.1)
         ax.set_axis_off()
     return _Drawing(sol, ax, st, opts).draw()
+
+
+def mark_auxiliary(sol, ax, polygon, *, style="textbook") -> Artists:
+    """Mark on the space diagram the auxiliary points a polygon's construction uses.
+
+    An auxiliary point that is not one of the mechanism's points (the point
+    S of a link where the lines of two of its points' velocities meet) is
+    drawn as a small ring at its position, labelled with its name (the
+    image's label in capitals: s5 -> S5); one outside the view is an arrow
+    at the border pointing to it, labelled with its position. Points that
+    coincide with a mechanism point (a guide's point under a block) are
+    already labelled.
+    """
+    st = get_style(style)
+    art = Artists(ax)
+    pl = placer(ax)
+    pc = per_cm(ax)
+    tol = 1e-9 * sol.mechanism.size
+    existing = [np.asarray(p, float) for p in sol.position.values()]
+    for key, aux in (getattr(polygon, "auxiliary", None) or {}).items():
+        p = np.asarray(aux.position, float)
+        if any(float(np.hypot(*(p - q))) <= tol for q in existing):
+            continue
+        name = aux.label.rstrip("'").upper() if aux.label else key.split("@")[0]
+        view = view_box(ax)
+        if not view.contains(Point(*p)):
+            x0, y0, x1, y1 = mechanism_bounds(sol)
+            c = np.array([(x0 + x1) / 2, (y0 + y1) / 2])
+            d = (p - c) / max(float(np.hypot(*(p - c))), 1e-300)
+            tip = border_point(view, c, d, 0.3 * pc)
+            sh, hd, poly = arrow(ax, tip - d * 1.0 * pc, tip, lw=st.arrow_lw, head_length=st.head_length,
+                                 colour=st.ink, zorder=6, gid=f"auxiliary-{key}")
+            pl.add_obstacle(poly)
+            art.add("auxiliary", sh, hd)
+            t = pl.place(tip - d * 1.0 * pc, tex(name) + f" ({p[0]:.4g}, {p[1]:.4g})", prefer=math.degrees(
+                math.atan2(-d[1], -d[0])), fontsize=st.font_size * 0.9, fontstyle="italic", zorder=7,
+                gid=f"label-point-{key}")
+            art.add("labels", t)
+            art.labels[key] = t
+            continue
+        ring = Point(*p).buffer(0.07 * pc, quad_segs=8)
+        patch = shape_patch(ring, facecolor=st.paper, edgecolor=st.ink, lw=st.thin_lw * 1.5, zorder=5,
+                            gid=f"auxiliary-{key}")
+        ax.add_patch(patch)
+        pl.add_obstacle(ring)
+        t = pl.place(p, tex(name), fontsize=st.font_size, fontstyle="italic", zorder=7, gid=f"label-point-{key}")
+        art.add("auxiliary", patch)
+        art.add("labels", t)
+        art.labels[key] = t
+        existing.append(p)
+    return art

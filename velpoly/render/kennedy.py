@@ -18,7 +18,7 @@ import math
 import numpy as np
 from shapely.geometry import LineString, Point
 
-from .canvas import Artists, arrow, fit_view, get_ax, per_cm, per_point, view_box, view_scale
+from .canvas import Artists, arrow, border_point, fit_view, get_ax, per_cm, per_point, view_box, view_scale
 from .displacement import draw_mechanism, mechanism_bounds, shape_patch
 from .labels import placer, segment
 from .options import drawing_options
@@ -183,7 +183,7 @@ def draw_poles(sol, ax=None, *, style="textbook", options=None, poleset=None, up
             else:
                 d = (p.position - c) / max(float(np.hypot(*(p.position - c))), 1e-300)
                 text = label + f" ({p.position[0]:.4g}, {p.position[1]:.4g})"
-            tip = _border_point(content, c, d, 0.2 * pc)
+            tip = border_point(content, c, d, 0.2 * pc)
             tail = tip - d * 1.1 * pc
             sh, hd, poly = arrow(ax, tail, tip, lw=st.arrow_lw, head_length=st.head_length, colour=colour,
                                  zorder=6, gid=f"pole-{p.key}")
@@ -195,18 +195,6 @@ def draw_poles(sol, ax=None, *, style="textbook", options=None, poleset=None, up
         art.add("labels", t)
         art.labels[p.key] = t
     return art
-
-
-def _border_point(view, c, d, inset: float) -> np.ndarray:
-    """Where the ray from c along d leaves the view, moved ``inset`` back inside."""
-    x0, y0, x1, y1 = view.bounds
-    x0, y0, x1, y1 = x0 + inset, y0 + inset, x1 - inset, y1 - inset
-    ts = []
-    for lo, hi, cc, dd in ((x0, x1, c[0], d[0]), (y0, y1, c[1], d[1])):
-        if abs(dd) > 1e-12:
-            ts.append(((hi if dd > 0 else lo) - cc) / dd)
-    t = max(min(ts), 0.0) if ts else 0.0
-    return c + d * t
 
 
 def draw_kennedy_circle(sol, ax=None, *, style="textbook", options=None, poleset=None,

@@ -164,7 +164,7 @@ def draw_polygon(polygon, ax=None, *, mechanism=None, style="textbook", options=
         located = list(step.found) + [a for a in getattr(step, "auxiliary", ()) if a in aux]
         hit = points[located[0]] if located else None
         current = upto is not None and si == len(steps) - 1
-        for ln in step.lines:
+        for li, ln in enumerate(step.lines):
             base = np.asarray(ln.base, float)
             d = np.asarray(ln.direction, float)
             d = d / max(float(np.hypot(*d)), 1e-300)
@@ -176,9 +176,11 @@ def draw_polygon(polygon, ax=None, *, mechanism=None, style="textbook", options=
             if seg.is_empty or seg.geom_type != "LineString":
                 continue
             (x0, y0), (x1, y1) = seg.coords[0], seg.coords[-1]
-            line = Line2D([x0, x1], [y0, y1], lw=st.thin_lw * (1.6 if current else 1.0), color=st.ink,
-                          linestyle=(0, (6, 3)), zorder=1.5, gid=f"construction-{step.index}-{ln.base_label}")
-            line._velpoly_step = step.index
+            trial = li >= 2     # a trial solution's own lines, beyond the two intersected
+            line = Line2D([x0, x1], [y0, y1], lw=st.thin_lw * (1.6 if current and not trial else 1.0),
+                          color=st.ink, linestyle=(0, (1, 2)) if trial else (0, (6, 3)), zorder=1.5,
+                          gid=f"construction-{step.index}-{li}-{ln.base_label}")
+            line._velpoly_line = ln
             ax.add_line(line)
             art.add("construction", line)
             pl.add_obstacle(segment((x0, y0), (x1, y1)), hard=False)
@@ -243,8 +245,7 @@ def draw_polygon(polygon, ax=None, *, mechanism=None, style="textbook", options=
     # the reasons, where there is room (after the labels, which matter more)
     if show_reasons:
         for line in art.get("construction", []):
-            step = next(s for s in steps if s.index == line._velpoly_step)
-            ln = next(c for c in step.lines if f"construction-{step.index}-{c.base_label}" == line.get_gid())
+            ln = line._velpoly_line
             xs, ys = line.get_data()
             t = pl.place_along((xs[0], ys[0]), (xs[1], ys[1]), ln.reason, fontsize=st.small_size * 0.9,
                                style="italic", zorder=6, gid=line.get_gid() + "-reason")

@@ -27,7 +27,7 @@ from pathlib import Path
 from ..errors import InputError
 from ..fileio import atomic_path
 from .canvas import fit_view, view_scale
-from .displacement import draw_mechanism, mechanism_bounds
+from .displacement import draw_mechanism, mark_auxiliary, mechanism_bounds
 from .kennedy import draw_kennedy_circle, draw_poles, pole_label
 from .options import drawing_options
 from .polygon import draw_polygon, polygon_bounds
@@ -105,6 +105,20 @@ _LAYOUTS = {
 }
 _CAPTIONS = {"mechanism": "Space diagram", "velocity": "Velocity polygon", "acceleration": "Acceleration polygon",
              "poles": "Instant centres", "kennedy": "Kennedy circle (order of discovery)"}
+
+
+def _space_bounds(sol, cons: Constructions):
+    """The mechanism's box, grown to the auxiliary points of the constructions within reach."""
+    import numpy as np
+    from .kennedy import REACH
+    x0, y0, x1, y1 = mechanism_bounds(sol)
+    c = np.array([(x0 + x1) / 2, (y0 + y1) / 2])
+    for poly in (cons.velocity, cons.acceleration):
+        for aux in (getattr(poly, "auxiliary", None) or {}).values():
+            p = np.asarray(aux.position, float)
+            if float(np.hypot(*(p - c))) <= REACH * sol.mechanism.size:
+                x0, y0, x1, y1 = min(x0, p[0]), min(y0, p[1]), max(x1, p[0]), max(y1, p[1])
+    return x0, y0, x1, y1
 
 
 @dataclass(frozen=True)
@@ -190,9 +204,12 @@ def render_sheet(sol, sheet: str = "full", style="textbook", *, cons: Constructi
     captions = {}
     if "mechanism" in axes:
         ax = axes["mechanism"]
-        s = fit_view(ax, mechanism_bounds(sol), scale=opts.scale, margin=0.1)
+        s = fit_view(ax, _space_bounds(sol, cons), scale=opts.scale, margin=0.1)
         ax.set_axis_off()
         draw_mechanism(sol, ax, style=st, options=opts)
+        for poly in (cons.velocity, cons.acceleration):
+            if poly is not None and (sheet != "full" or poly is cons.velocity):
+                mark_auxiliary(sol, ax, poly, style=st)
         captions["mechanism"] = scale_text(s, m.units, 0)
     if "poles" in axes:
         ax = axes["poles"]

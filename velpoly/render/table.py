@@ -238,7 +238,7 @@ def draw_results_table(sol, ax=None, *, sheet: str = "full", style="textbook", v
     blocks = 1
     if len(rows) > room:   # side by side, as many blocks as the width takes (three at most)
         blocks = max(1, min(3, int((width_pt + bgap) // (need + bgap)), -(-len(rows) // room)))
-    per = room if blocks > 1 or len(rows) > room else len(rows)
+    per = min(room, -(-len(rows) // blocks))          # rows shared evenly between the blocks
     shown = rows if len(rows) <= per * blocks else rows[:per * blocks - 1]
     xs = np.cumsum([0.0] + [w + gap for w in widths[:-1]])
     total = min(need, width_pt)
