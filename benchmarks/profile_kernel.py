@@ -32,9 +32,11 @@ import numpy as np
 
 from bench_sweep import ANGLES_DEG, FOURBAR
 
-STAGES = {"velpoly.sweep": ("prepare", "reassemble", "velocities", "accelerations", "evaluate_motion"),
+# the kernel functions timed, where they exist (the kernel changes; missing names are skipped)
+STAGES = {"velpoly.sweep": ("prepare", "reassemble", "rates", "condition", "velocities", "accelerations",
+                            "evaluate_motion"),
           "velpoly.solution": ("prepare", "reassemble", "velocities", "accelerations", "evaluate_motion"),
-          "velpoly.pose": ("_step", "_newton", "_velocity", "_cond"),
+          "velpoly.pose": ("_closed_form", "assemble", "_step", "_newton", "_velocity", "_cond"),
           "velpoly.polygons": ("velocity_polygon", "acceleration_polygon"),
           "velpoly.poles": ("locate_poles",)}
 
@@ -76,6 +78,7 @@ class Recorder:
             for n in names:
                 self.wrap(mod, n, f"{mod_name.split('.')[1]}.{n}", top_only=(n == "_step"))
         from velpoly.constraints import System
+        self.wrap(System, "residual", "System.residual")
         evaluate = System.evaluate
 
         def timed_evaluate(system, q, *a, **k):
@@ -106,7 +109,7 @@ class Recorder:
                   f"({t / n * 1e6:.0f} us each)")
 
 
-def breakdown(title: str, fn, runs: int = 3):
+def breakdown(title: str, fn, runs: int = 10):
     fn()                                                  # warm-up: caches, imports
     best = None
     for _ in range(runs):
@@ -159,7 +162,7 @@ def main(argv=None) -> int:
     import velpoly
     m4 = velpoly.load(FOURBAR)
     m6 = velpoly.load(Path(velpoly.__file__).parent / "examples" / "sixbar.toml")
-    breakdown("four-bar sweep, 3600 poses", lambda: velpoly.sweep(m4, ANGLES_DEG))
+    breakdown("four-bar sweep, 3600 poses", lambda: velpoly.sweep(m4, ANGLES_DEG), runs=10)
     parts = []
     for mod_name, names in (("velpoly.polygons", ("velocity_polygon", "acceleration_polygon")),
                             ("velpoly.poles", ("locate_poles",))):
