@@ -794,9 +794,8 @@ def _check_suffix(path: str | None, allowed, option: str) -> Path | None:
 
 def _toggle_links(kin: Kinematics, q_last) -> tuple[str, ...]:
     """The links moving in the near-null direction at the last reached pose (those coming into line)."""
-    from .kinematics import _involved  # the kernel's own rule, shared with its singular-pose errors
-    _, jac, _ = kin.system.evaluate(np.atleast_2d(q_last))
-    return _involved(kin.system, jac[0][list(kin.rows)], list(kin.rows), True)
+    from .kinematics import involved_links  # the kernel's own rule, shared with its singular-pose errors
+    return involved_links(kin, q_last)
 
 
 def sweep_command(args) -> int:

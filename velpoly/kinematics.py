@@ -27,7 +27,8 @@ from .errors import InputError, SingularPoseError
 from .model import Mechanism
 from .pose import select_rows
 
-__all__ = ["Kinematics", "prepare", "velocities", "accelerations", "SINGULAR", "WARN"]
+__all__ = ["Kinematics", "prepare", "velocities", "accelerations", "condition", "involved_links", "SINGULAR",
+           "WARN"]
 
 SINGULAR = 1e10   # condition number above which a pose is singular (exit 3)
 WARN = 1e6        # above which results carry a warning
@@ -108,6 +109,13 @@ def _prepare(m: Mechanism) -> Kinematics:
             where="links", file=m.source, links=_involved(system, j0[0], list(range(m_eq)), False),
             hint="draw the mechanism in a pose away from the change point")
     return Kinematics(m, system, tuple(rows) + (m_eq,), mobility)
+
+
+def involved_links(kin: Kinematics, q) -> tuple[str, ...]:
+    """The links that come into line at the pose q (those moving in the near-null direction
+    of the velocity equations): what a singular-pose error names."""
+    _, jac, _ = kin.system.evaluate(np.atleast_2d(q)[:1])
+    return _involved(kin.system, jac[0][list(kin.rows)], list(kin.rows), True)
 
 
 def _involved(system: System, jac, rows, driver) -> tuple[str, ...]:
