@@ -99,13 +99,17 @@ def draw_poles(sol, ax=None, *, style="textbook", options=None, poleset=None, up
         ax.set_axis_off()
     art = Artists(ax)
     art.labels = {}
+    pl = placer(ax)
+    pc, pp = per_cm(ax), per_point(ax)
     if mechanism:
+        # the poles' marks first, so that the mechanism's labels keep clear of them
+        for p in shown_poles(ps, upto):
+            if p.position is not None and view_box(ax).contains(Point(*p.position)):
+                pl.add_obstacle(Point(*p.position).buffer(0.085 * pc))
         mech = draw_mechanism(sol, ax, style=st, options=opts)
         art.update_from(mech)
         art.labels = {}
         art.point_labels = mech.labels
-    pl = placer(ax)
-    pc, pp = per_cm(ax), per_point(ax)
     view = view_box(ax)
     # arrows to poles out of reach stand at the border of what is drawn, not of the whole panel
     from shapely.geometry import box as sbox

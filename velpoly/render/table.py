@@ -40,6 +40,20 @@ def _q(symbol: str, index: str, unit: str = "") -> str:
     return "$" + symbol + "_{" + index.replace("@", "").replace("_", r"\_") + "}$" + (f" ({unit})" if unit else "")
 
 
+_GREEK = {"omega": r"\omega", "alpha": r"\alpha", "theta": r"\theta"}
+
+
+def _key(key: str) -> str:
+    """A reference key in mathtext: ``V_P3/P4`` -> $V_{P3/P4}$, ``omega_3`` -> $\\omega_{3}$, ``|V_B|``."""
+    bars = key.startswith("|") and key.endswith("|")
+    body = key.strip("|")
+    sym, sep, idx = body.partition("_")
+    if not sep or not idx or not sym.isalpha():
+        return key
+    out = _q(_GREEK.get(sym, sym), idx)
+    return f"|{out}|" if bars else out
+
+
 def _num(x, digits=5) -> str:
     return "–" if x is None else fmt(x, digits).replace("-", "−")
 
@@ -114,7 +128,8 @@ def results_table(sol, sheet: str = "full", *, velocity=None, acceleration=None,
             r = ref_for(f"omega_{lk}")
             if abs(sol.omega[lk]) <= 1e-12 and (g is None or abs(g) <= 1e-12) and r is None:
                 continue   # a translating link (a block on a fixed guide): nothing to show
-            rows.append((_q(r"\omega", lk, "rad/s"), _num(g), drafted("velocity", "omega", lk), _num(sol.omega[lk]),
+            rows.append((_q(r"\omega", lk, "rad/s"), "" if g is None else _num(g), drafted("velocity", "omega", lk),
+                         _num(sol.omega[lk]),
                          _num(ic["omega"][lk]) if ic else "", _printed(r), _dev(r)))
     if velocity is not None:
         for key in velocity.images:
@@ -155,7 +170,7 @@ def results_table(sol, sheet: str = "full", *, velocity=None, acceleration=None,
         shown = "at infinity" if comp is None else (
             f"{fmt(comp[0], 5)} ∠ {comp[1]:.2f}°" if isinstance(comp, tuple) and not key.startswith("P")
             else (f"({fmt(comp[0], 5)}, {fmt(comp[1], 5)})" if isinstance(comp, tuple) else _num(comp)))
-        rows.append((key, "", "", shown, "", _printed(r), _dev(r)))
+        rows.append((_key(key), "", "", shown, "", _printed(r), _dev(r)))
     columns = [(0, "quantity"), (1, "graphical"), (2, "hand-drawn, 95 %"), (3, "analytic"),
                (4, "instant centres"), (5, "reference"), (6, "deviation")]
     columns = [(i, name) for i, name in columns if i == 0 or any(r[i] for r in rows)]   # no empty column
