@@ -113,3 +113,59 @@ alpha = 1
     slip = s.to_dict()["sliders"][0]["slip_velocity"]
     assert slip == pytest.approx(s.omega["4"] * 4, rel=1e-12)
     fd_check(m, 70)
+
+
+PLANET = """
+title = "planet wheel rolling inside a fixed ring, carried by an arm"
+units = "mm"
+[points]
+O = [0, 0]
+C = { from = "O", length = 60, angle = 30 }
+P = { from = "O", length = 100, angle = 30 }
+Q = { from = "C", length = 40, angle = 120 }
+[links]
+1 = { points = ["O"], frame = true }
+2 = { points = ["O", "C"] }
+3 = { points = ["C", "Q"] }
+[[contacts]]
+links = ["3", "1"]
+point = "P"
+kind = "rolling"
+centres = ["C", "O"]
+[driver]
+link = 2
+omega = 10
+alpha = 2
+"""
+
+
+def test_planet_in_a_ring_counts_the_redundant_contact_once_and_turns_twice_round():
+    """The arm fixes the centre distance the contact also fixes (FORMAT.md section 5: mobility by rank)."""
+    m = velpoly.load(PLANET)
+    s = velpoly.solve(m)
+    assert s.omega["3"] == pytest.approx(10 * (1 - 100 / 40), rel=1e-12)   # -15 rad/s
+    assert s.alpha["3"] == pytest.approx(2 * (1 - 100 / 40), rel=1e-9)
+    fd_check(m, 30)
+    w = velpoly.sweep(m, 30 + np.arange(0, 721, 2.0))
+    assert len(w.angles) == 361 and not w.stopped
+    assert np.abs(np.diff(w.position["Q"], axis=0)).max() < 5.0
+    assert np.abs(w.omega["3"] + 15).max() < 1e-9
+
+
+def test_a_locked_truss_is_not_taken_for_a_redundant_joint():
+    # three bars pinned in a triangle to the frame: mobility 0 at every pose
+    t = """
+[points]
+A = [0, 0]
+B = [4, 0]
+C = [2, 3]
+[links]
+1 = { points = ["A", "B"], frame = true }
+2 = { points = ["A", "C"] }
+3 = { points = ["B", "C"] }
+[driver]
+link = 2
+omega = 1
+"""
+    with pytest.raises(velpoly.InputError, match="mobility is 0"):
+        velpoly.solve(velpoly.load(t))

@@ -396,8 +396,12 @@ def _contact_equations(m: Mechanism, c, P, with_slip: bool = False):
 
         def slip_eq(f):
             d = _sub(f.point(b, B), f.point(a, A))
-            phi = Jet.atan2(d[1], d[0], phi0) - phi0
-            return la * (f.theta(a) - phi) - lb * (f.theta(b) - phi)
+            ta, tb = f.theta(a), f.theta(b)
+            # the line of centres' turn, unwrapped near the value rolling implies,
+            # phi = (la theta_a - lb theta_b) / D, so that it stays continuous over many turns
+            near = phi0 + (la * ta.v - lb * tb.v) / D
+            phi = Jet.atan2(d[1], d[0], near) - phi0
+            return la * (ta - phi) - lb * (tb - phi)
     else:
         # one flat profile: the curved link c_ (centre C, signed distance l) and flat link fl;
         # written with the normal pointing from the curved profile's centre towards P.

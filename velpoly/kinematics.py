@@ -75,40 +75,78 @@ def prepare(m: Mechanism) -> Kinematics:
 
 
 def _prepare(m: Mechanism) -> Kinematics:
+    """Mobility from the rank of the joint equations at the reference pose (FORMAT.md section 5).
+
+    The rank at a random, unassembled configuration is the structural rank:
+    where the reference pose's rank is lower, either a joint is redundant on
+    the assembled mechanism (a wheel rolling on a drum whose centre distance
+    an arm already fixes) -- then the mechanism really moves, which a small
+    step of the driver shows -- or the pose is a change point: a singular pose.
+    """
     system = build_system(m)
     nq = system.nq
     if nq == 0:
         raise InputError("the mechanism has no moving link (mobility 0)", where="links", file=m.source,
                          hint="add the links that move, each listing its points")
+    m_eq = len(system.equations)
+    _, j0, _ = system.evaluate(np.zeros((1, nq)), driver=False)
+    rows = select_rows(system, system.scale_matrix(j0[0], driver=False), tol=1e-10)
+    mobility = nq - len(rows)
     rng = np.random.default_rng(20261122)
     qg = rng.uniform(-1, 1, (1, nq))
     qg[:, 0::3] *= 0.3 * system.size
     qg[:, 1::3] *= 0.3 * system.size
-    _, jg, _ = system.evaluate(qg, driver=False)
-    jg_s = system.scale_matrix(jg[0], driver=False)
-    rows = select_rows(system, jg_s, tol=1e-8)
-    mobility = nq - len(rows)
+    _, jg, _ = system.evaluate(qg)
+    rows_g = select_rows(system, system.scale_matrix(jg[0][:m_eq], driver=False), tol=1e-8)
+    structural = nq - len(rows_g)
+    changes = _involved(system, j0[0], list(range(m_eq)), False) if m_eq else ()
     if mobility != 1:
+        if structural == 1 and mobility > 1:
+            raise SingularPoseError(
+                "singular pose: the joints lose independence at the reference pose (a change point)",
+                where="links", file=m.source, links=changes,
+                hint="draw the mechanism in a pose away from the change point")
         raise InputError(
             f"mobility is {mobility} (3 x {len(m.moving_links)} moving-link coordinates minus "
             f"{len(rows)} independent joint constraints), must be 1 for one driver",
             where="links", file=m.source,
             hint=("add the joints that are missing (a point shared by two links is a pin)"
                   if mobility > 1 else "remove a joint or a link: the mechanism is locked"))
-    m_eq = len(system.equations)
-    _, jd, _ = system.evaluate(qg)
-    r_full, _ = _scaled_rank(system, jd[0][list(rows) + [m_eq]], list(rows) + [m_eq], driver=True)
-    if r_full < nq:
+    r_full, _ = _scaled_rank(system, jg[0][list(rows_g) + [m_eq]], list(rows_g) + [m_eq], driver=True)
+    if structural == 1 and r_full < nq:
         raise InputError("the driver's motion is fixed by the joints: it cannot drive the mechanism",
                          where="driver", file=m.source, hint="drive a link the joints leave free")
-    _, j0, _ = system.evaluate(np.zeros((1, nq)), driver=False)
-    r_ref, _ = _scaled_rank(system, j0[0])
-    if r_ref < len(rows):
+    kin = Kinematics(m, system, tuple(rows) + (m_eq,), mobility)
+    if len(rows_g) > len(rows) and not _moves(kin):
         raise SingularPoseError(
             "singular pose: the joints lose independence at the reference pose (a change point)",
-            where="links", file=m.source, links=_involved(system, j0[0], list(range(m_eq)), False),
+            where="links", file=m.source, links=changes,
             hint="draw the mechanism in a pose away from the change point")
-    return Kinematics(m, system, tuple(rows) + (m_eq,), mobility)
+    return kin
+
+
+def _moves(kin: Kinematics) -> bool:
+    """Whether a small driver step keeps every joint equation satisfied at the same rank.
+
+    Distinguishes a joint redundant on the assembled mechanism (it moves) from
+    an infinitesimal mechanism at a change point (it does not).
+    """
+    from .pose import reassemble
+    system = kin.system
+    if not system.holonomic:
+        return True   # velocity-only rows: nothing to move along; the reference rank stands
+    h = 1e-3 if not kin.mechanism.driver.is_slider else 1e-3 * system.size
+    for step in (h, -h):
+        try:
+            r = reassemble(system, list(kin.rows), [step], coarse=2 * h)
+        except Exception:
+            return False
+        if len(r.deltas) != 1:
+            return False
+        phi = system.residual(r.q)[:, :len(system.equations)]
+        if np.abs(phi).max() > 1e-9 * max(system.size, 1.0):
+            return False
+    return True
 
 
 def involved_links(kin: Kinematics, q) -> tuple[str, ...]:
