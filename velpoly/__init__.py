@@ -16,6 +16,7 @@ from .loader import load
 from .model import Mechanism
 from .solution import Solution, solve
 from .sweep import Sweep, sweep
+from . import poles  # noqa: F401,E402  (registers the JSON section and tables of the instant centres)
 from . import polygons  # noqa: F401,E402  (registers the "graphical" JSON section and the polygon tables)
 
 __version__ = "0.1.0"

@@ -1,0 +1,835 @@
+"""Instant centres (poles): inspection, the Aronhold-Kennedy theorem, the instant-centre method.
+
+n links have n(n-1)/2 poles. The pole P_ij of links i and j is the point
+where their velocity fields agree, ``V_i(P_ij) = V_j(P_ij)``; seen as a
+homogeneous point it is the difference of the links' twists,
+
+    P_ij ~ (-(v_i - v_j)_y, (v_i - v_j)_x, omega_i - omega_j),
+
+(v_k: the velocity of link k's body point at the origin), so a pole at
+infinity (equal omegas, a relative translation) needs no special case.
+
+How the poles are found, the way a textbook draws them (seed 000, sections
+3.9 and 3.10, Examples 3.7 and 3.8):
+
+1. **By inspection.** A pin is its own pole (``how='pin'``); a block on a
+   straight path has its pole at infinity normal to the path (``'slider'``);
+   a block on a circular path, at the path's centre K (``'circular path'``);
+   rolling without slip, at the contact point (``'rolling'``). A sliding
+   contact puts the pole on the common normal through the contact point, a
+   pin in a slot on the slot's normal through the pin (through K for a
+   circular slot): these are *constraint lines*, used like Kennedy lines.
+2. **Aronhold-Kennedy.** P_ij, P_ik and P_jk are collinear. On the Kennedy
+   circle (the links as points, known poles as solid chords), an unknown
+   chord i-j that closes two triangles (i, j, k) and (i, j, l) with known
+   sides is found by intersecting the lines P_ik-P_jk and P_il-P_jl (or one
+   such line and a constraint line): ``P_ij = l x m`` in homogeneous
+   coordinates, parallel lines meeting at infinity. Poles are found in
+   rounds, each round using only poles known before it; among a pole's
+   candidate lines the pair meeting at the largest angle is drawn (a line
+   through two nearly coincident poles counts as poorly drawn). The order
+   of discovery, the two triangles (``via``) and the two lines (``lines``)
+   are recorded (``how='kennedy'``; ``'normals'`` when two constraint lines
+   meet).
+3. **What Kennedy cannot finish** (some eight-bars, the Stephenson chain in
+   some orders) is finished from the velocity solution, one pole at a time,
+   then Kennedy resumes (``how='velocity'``).
+
+Two links moving alike at the instant (same omega and the same velocity
+field: a block that momentarily does not slide) have an undefined pole
+(``how='undefined'``, position and direction ``None``); then every other
+link k sees them alike, ``P_jk = P_ik`` (``how='alike'``). A pole farther
+than 1e9 mechanism sizes is at infinity, with its ``direction`` in [0, 180).
+
+The **instant-centre method** (:func:`instant_centre_velocities`) then gives
+every omega from the driver's through the poles,
+
+    omega_j = omega_i (P_ij - P_1i) / (P_ij - P_1j)   (signed, along their common line),
+
+written homogeneously (twists t_k = lambda_k P_1k, t_j - t_i ~ P_ij) so
+that translating links (P_1k at infinity) are handled exactly, and any
+point's velocity from its link's frame pole, ``V_B = omega_k x (B - P_1k)``.
+
+This module registers the JSON section ``poles`` (FORMAT.md section 2) and
+the readable tables of ``velpoly solve``.
+"""
+from __future__ import annotations
+
+import functools
+import math
+import weakref
+from dataclasses import dataclass, field
+
+import numpy as np
+
+from .motion import point_keys
+from .report import SECTIONS, Table, fmt
+from .solution import register_section
+
+__all__ = ["Pole", "PoleLine", "PoleSet", "KennedyCircle", "Chord", "locate_poles", "kennedy_circle",
+           "instant_centre_velocities", "link_twists", "pole_key", "pole_label", "poles_section", "poles_tables",
+           "FAR", "ALIKE"]
+
+FAR = 1e9        # a pole farther than FAR mechanism sizes is at infinity (FORMAT.md section 5)
+ALIKE = 1e-14    # relative twist below ALIKE x condition x the largest twist (the velocity solution's
+                 # own precision): the links move alike, their pole is undefined
+_POOR = 1e-2     # a pair of lines meeting at a smaller sine waits a round for better lines
+_BLUNT = 1e-6    # lines meeting at a smaller sine do not fix a pole (they nearly coincide)
+_CLOSE = 0.05    # a line through two poles closer than this (in mechanism sizes) is discounted
+_DEGENERATE = 1e-12
+
+_UNKNOWN, _KNOWN, _UNDEFINED = 0, 1, 2
+
+
+# -- the data contract (docs/internals.md) ------------------------------------------------------
+@dataclass(frozen=True)
+class PoleLine:
+    """A line drawn to locate a pole.
+
+    A Kennedy line joins two known poles (``through`` names their keys); a
+    constraint line (a sliding contact's common normal, a slot's normal) is
+    known by inspection (``through`` is empty). ``point`` is a finite point
+    of the line and ``direction`` its unit direction, in frame coordinates;
+    both are None for the line at infinity (through two poles at infinity).
+    """
+
+    label: str
+    through: tuple[str, ...]
+    point: np.ndarray | None
+    direction: np.ndarray | None
+
+
+@dataclass(frozen=True)
+class Pole:
+    """The instant centre P_ij of links ``links = (i, j)``, i before j in file order.
+
+    ``position`` is None at infinity (then ``direction`` is in [0, 180)) and
+    when undefined (both None). ``how``: 'pin', 'slider', 'circular path',
+    'rolling' (inspection, ``order`` 0), 'undefined' (the links move alike,
+    order 0), 'kennedy', 'normals', 'alike', 'velocity' (order 1, 2, ... of
+    discovery). For 'kennedy' ``via`` holds the two triples (i, j, k) whose
+    lines met (a constraint line appears as its label instead) and
+    ``lines`` the two lines as pairs of pole keys (``("1-2", "1-4")``) or,
+    for a constraint line, ``("normal", point)`` / ``("slot normal", pin)``;
+    ``construction`` has the same lines with their geometry. ``sine`` is
+    |sin| of the angle between the two lines (1 where none were drawn).
+    ``homogeneous`` is the pole as a unit homogeneous point (x, y, w) in
+    frame coordinates (w = 0 at infinity; None when undefined).
+    """
+
+    links: tuple[str, str]
+    key: str
+    position: np.ndarray | None
+    direction: float | None
+    how: str
+    order: int = 0
+    via: tuple = ()
+    lines: tuple = ()
+    construction: tuple[PoleLine, ...] = ()
+    sine: float = 1.0
+    homogeneous: np.ndarray | None = None
+    note: str = ""
+
+    @property
+    def at_infinity(self) -> bool:
+        return self.position is None and self.direction is not None
+
+    @property
+    def undefined(self) -> bool:
+        return self.position is None and self.direction is None
+
+    @property
+    def by_inspection(self) -> bool:
+        return self.order == 0 and self.how != "undefined"
+
+
+@dataclass(frozen=True)
+class PoleSet:
+    """All n(n-1)/2 poles of a solution.
+
+    ``links`` in file order (the points of the Kennedy circle); ``poles``
+    maps every key "i-j" to its :class:`Pole`; ``order`` lists the keys of
+    the poles found (not known by inspection) in order of discovery;
+    ``constraint_lines`` maps a pair's key to its constraint lines;
+    ``max_error`` is the largest disagreement of a pole with the velocity
+    solution: |P_ij x (T_i - T_j)| (unit P_ij, coordinates scaled by the
+    mechanism's size), relative to the largest twist -- the two links'
+    relative velocity at the pole found, relative to the largest speed; for
+    a pole near the mechanism and links not moving nearly alike, about its
+    distance from the true pole in mechanism sizes. ``frame`` names the frame link,
+    ``centre`` and ``scale`` the normalisation used for the homogeneous
+    arithmetic.
+    """
+
+    links: tuple[str, ...]
+    poles: dict
+    frame: str = ""
+    order: tuple[str, ...] = ()
+    constraint_lines: dict = field(default_factory=dict)
+    max_error: float = 0.0
+    centre: np.ndarray = field(default_factory=lambda: np.zeros(2))
+    scale: float = 1.0
+
+    def pole(self, i: str, j: str) -> Pole:
+        """The pole of links i and j, in either order."""
+        return self.poles[pole_key(self.links, i, j)]
+
+    def __len__(self) -> int:
+        return len(self.poles)
+
+
+@dataclass(frozen=True)
+class Chord:
+    """A chord of the Kennedy circle: the pole ``key`` between two links.
+
+    ``solid`` when known by inspection (drawn solid from the start), else
+    drawn dashed and made solid at step ``order``.
+    """
+
+    key: str
+    links: tuple[str, str]
+    solid: bool
+    order: int
+
+
+@dataclass(frozen=True)
+class KennedyCircle:
+    """The Kennedy circle: the links at equal spacing on a unit circle, the poles as chords.
+
+    Link 1 (the first in file order) is at the top, the others follow
+    clockwise, as textbooks draw it.
+    """
+
+    points: dict          # link -> np.ndarray (2,) on the unit circle
+    chords: tuple[Chord, ...]
+
+
+def pole_key(links, i: str, j: str) -> str:
+    """The key "i-j" with i before j in file order."""
+    a, b = links.index(i), links.index(j)
+    return f"{i}-{j}" if a < b else f"{j}-{i}"
+
+
+# -- twists ---------------------------------------------------------------------------------
+def _normalisation(sol) -> tuple[np.ndarray, float]:
+    pts = np.array(list(sol.position.values()), float)
+    pts = pts[np.all(np.isfinite(pts), axis=1)]
+    centre = 0.5 * (pts.min(axis=0) + pts.max(axis=0)) if len(pts) else np.zeros(2)
+    return centre, float(sol.mechanism.size)
+
+
+def link_twists(sol, centre=None, scale=None) -> np.ndarray:
+    """Every link's twist as a homogeneous point, rows in file order: (-v_y, v_x, omega).
+
+    v is the velocity of the link's body point at ``centre`` divided by
+    ``scale`` (coordinates x' = (x - centre) / scale). The pole of links i
+    and j is the homogeneous point T_i - T_j: ``V_i = V_j`` where
+    ``(v_i - v_j) + (omega_i - omega_j) k x x' = 0``. The frame's row is zero.
+    """
+    if centre is None or scale is None:
+        centre, scale = _normalisation(sol)
+    index = sol.kinematics.system.index
+    out = np.zeros((len(sol.mechanism.links), 3))
+    for row, lk in enumerate(sol.mechanism.links):
+        k = index.get(lk.name)
+        if k is None:
+            continue
+        o = sol.q[3 * k:3 * k + 2]
+        v = sol.qd[3 * k:3 * k + 2]
+        w = sol.qd[3 * k + 2]
+        r = centre - o
+        vc = (v + w * np.array([-r[1], r[0]])) / scale
+        out[row] = (-vc[1], vc[0], w)
+    return out
+
+
+def _unit(h) -> np.ndarray:
+    n = math.sqrt(h[0] * h[0] + h[1] * h[1] + h[2] * h[2])
+    return h / n if n > 0 else h
+
+
+def _to_world(h, centre, scale) -> np.ndarray:
+    """A homogeneous point in normalised coordinates to frame coordinates (unit norm)."""
+    return _unit(np.array([scale * h[0] + centre[0] * h[2], scale * h[1] + centre[1] * h[2], h[2]]))
+
+
+def _to_local(h, centre, scale) -> np.ndarray:
+    return _unit(np.array([h[0] - centre[0] * h[2], h[1] - centre[1] * h[2], scale * h[2]]))
+
+
+def _local_point(x, centre, scale) -> np.ndarray:
+    return _unit(np.array([(x[0] - centre[0]) / scale, (x[1] - centre[1]) / scale, 1.0]))
+
+
+def _local_direction(deg) -> np.ndarray:
+    t = math.radians(deg)
+    return np.array([math.cos(t), math.sin(t), 0.0])
+
+
+# -- inspection ------------------------------------------------------------------------------
+def _inspection(sol, centre, scale):
+    """Poles known by inspection and the constraint lines, in normalised coordinates.
+
+    Returns ``(points, lines)``: points is a list of ``(i, j, h, how, note)``;
+    lines a list of ``(i, j, h_line, label_pair, description)``.
+    """
+    m = sol.mechanism
+    mo = sol.motion
+    points, lines = [], []
+    for pin in m.pins:
+        i, j = pin.links
+        points.append((i, j, _local_point(sol.place(i, pin.point), centre, scale), "pin", f"pin {pin.point}"))
+    for s, r in zip(m.sliders, mo.sliders):
+        if s.centre is None:
+            d = float(r["direction"][0])
+            points.append((s.block, s.guide, _local_direction(d + 90.0), "slider",
+                           f"slider {s.point}: normal to its path"))
+        else:
+            k = sol.place(s.guide, s.centre)
+            points.append((s.block, s.guide, _local_point(k, centre, scale), "circular path",
+                           f"centre {s.centre} of the path of {s.point}"))
+    for c, r in zip(m.contacts, mo.contacts):
+        a, b = c.links
+        place = np.asarray(r["place"][0], float)
+        if c.kind == "rolling":
+            points.append((a, b, _local_point(place, centre, scale), "rolling", f"rolling contact {c.point}"))
+        else:
+            p = _local_point(place, centre, scale)
+            h = np.cross(p, _local_direction(float(r["normal"][0])))
+            lines.append((a, b, _unit(h), ("normal", c.point), f"common normal at {c.point}"))
+    for s, r in zip(m.slots, mo.slots):
+        pin = sol.place(s.link, s.pin)
+        p = _local_point(pin, centre, scale)
+        if s.centre is None:
+            q = _local_direction(float(r["direction"][0]) + 90.0)
+            desc = f"normal to the slot at {s.pin}"
+        else:
+            q = _local_point(sol.place(s.slot, s.centre), centre, scale)
+            desc = f"line {s.pin}{s.centre} (normal to the circular slot)"
+        lines.append((s.link, s.slot, _unit(np.cross(p, q)), ("slot normal", s.pin), desc))
+    return points, lines
+
+
+# -- Kennedy -------------------------------------------------------------------------------------
+def _cross(a, b) -> np.ndarray:
+    """a x b over the last axis (numpy's cross is slow on many small triples)."""
+    a0, a1, a2 = a[..., 0], a[..., 1], a[..., 2]
+    b0, b1, b2 = b[..., 0], b[..., 1], b[..., 2]
+    return np.stack((a1 * b2 - a2 * b1, a2 * b0 - a0 * b2, a0 * b1 - a1 * b0), axis=-1)
+
+
+@functools.lru_cache(maxsize=64)
+def _lower(m: int) -> np.ndarray:
+    """The mask of the diagonal and below of an m x m matrix (pairs of lines counted once)."""
+    return np.tril(np.ones((m, m), bool))
+
+
+@functools.lru_cache(maxsize=64)
+def _upper(n: int) -> np.ndarray:
+    """The mask of the pairs (a, b), a < b, of n links."""
+    return np.triu(np.ones((n, n), bool), 1)
+
+
+def _norm(v) -> np.ndarray:
+    return np.sqrt(np.einsum("...k,...k->...", v, v))
+
+
+class _Kennedy:
+    """The construction's state, all in coordinates normalised by the mechanism's size.
+
+    ``H[a, b]``: the pole P_ab as a unit homogeneous triple; ``S[a, b]``:
+    unknown, known or undefined. ``L[a, b, k]`` is the line that triangle
+    (a, b, k) of the Kennedy circle gives for P_ab (through P_ak and P_bk),
+    and ``L[a, b, n + c]`` the pair's c-th constraint line; ``Q`` is each
+    line's drafting quality (0: not drawn yet).
+    """
+
+    def __init__(self, names, T, n_constraint, condition=1.0):
+        n = len(names)
+        self.names, self.n, self.T = names, n, T
+        self.H = np.zeros((n, n, 3))
+        self.S = np.zeros((n, n), np.int8)
+        self.L = np.zeros((n, n, n + n_constraint, 3))
+        self.Q = np.zeros((n, n, n + n_constraint))
+        self.info = {}
+        self.constraints = {}            # (a, b) -> [(label pair, description)]
+        tw = float(_norm(T).max()) if n else 0.0
+        rel = _norm(T[:, None, :] - T[None, :, :])
+        undefined = rel <= ALIKE * max(condition, 1.0) * tw if tw > 0 else np.ones((n, n), bool)
+        np.fill_diagonal(undefined, True)
+        self.S[undefined] = _UNDEFINED
+        for a, b in zip(*np.nonzero(undefined & _upper(n))):
+            self.info[(int(a), int(b))] = dict(how="undefined", order=0, note="the links move alike")
+
+    def key(self, a, b) -> str:
+        return _key(self.names, a, b)
+
+    def set(self, a, b, h, info) -> None:
+        self.H[a, b] = self.H[b, a] = h
+        self.S[a, b] = self.S[b, a] = _KNOWN
+        self.info[(min(a, b), max(a, b))] = info
+
+    def add_constraint(self, a, b, h, label, desc) -> None:
+        a, b = min(a, b), max(a, b)
+        lst = self.constraints.setdefault((a, b), [])
+        slot = self.n + len(lst)
+        lst.append((label, desc))
+        self.L[a, b, slot] = self.L[b, a, slot] = h
+        self.Q[a, b, slot] = self.Q[b, a, slot] = 1.0
+
+    def spread(self, new) -> None:
+        """The Kennedy lines the new poles complete: with P_xy new and P_xc known, the line
+        P_xy P_xc carries the unknown P_yc (triangle y, c, x of the Kennedy circle)."""
+        if not new:
+            return
+        nw = np.array(new)
+        X = np.concatenate((nw[:, 0], nw[:, 1]))
+        Y = np.concatenate((nw[:, 1], nw[:, 0]))
+        r, c = np.nonzero((self.S[X] == _KNOWN) & (self.S[Y] == _UNKNOWN))
+        if len(r) == 0:
+            return
+        x, y = X[r], Y[r]
+        lines = _cross(self.H[x, y], self.H[x, c])
+        sep = _norm(lines)
+        q = np.where(sep >= _DEGENERATE, np.minimum(1.0, sep / _CLOSE), 0.0)
+        lines = lines / np.where(sep > 0, sep, 1.0)[:, None]
+        self.L[y, c, x] = lines
+        self.L[c, y, x] = lines
+        self.Q[y, c, x] = q
+        self.Q[c, y, x] = q
+
+    def candidates(self) -> list:
+        """The unknown poles two lines locate now, in key order: (a, b, score, info)."""
+        unknown = (self.S == _UNKNOWN) & _upper(self.n)
+        count = (self.Q > 0).sum(axis=-1)
+        A, B = np.nonzero(unknown & (count >= 2))
+        out = []
+        if len(A):
+            ls, qs = self.L[A, B], self.Q[A, B]                      # (C, M, 3), (C, M)
+            x = _cross(ls[:, :, None, :], ls[:, None, :, :])          # (C, M, M, 3)
+            proj = _norm(x)
+            nrm = np.hypot(ls[..., 0], ls[..., 1])
+            den = nrm[:, :, None] * nrm[:, None, :]
+            sine = np.divide(np.abs(x[..., 2]), den, out=np.zeros_like(den), where=den > 0)
+            score = np.maximum(sine, proj) * qs[:, :, None] * qs[:, None, :]
+            m = ls.shape[1]
+            score[:, _lower(m)] = -1.0
+            flat = score.reshape(len(A), -1).argmax(axis=1)
+            i, j = np.divmod(flat, m)
+            rows = np.arange(len(A))
+            best = score[rows, i, j]
+            p = proj[rows, i, j]
+            for r in np.nonzero((p >= _DEGENERATE) & (best >= _BLUNT))[0]:
+                h = x[r, i[r], j[r]] / p[r]
+                out.append((int(A[r]), int(B[r]), float(best[r]),
+                            dict(how=None, slots=(int(i[r]), int(j[r])), sine=min(1.0, float(sine[r, i[r], j[r]])),
+                                 line_vectors=(ls[r, i[r]], ls[r, j[r]]), h=h)))
+        if (self.S == _UNDEFINED).sum() > self.n:   # some links move alike: copy their poles
+            done = {(a, b) for a, b, _, _ in out}
+            for a, b in zip(*np.nonzero(unknown)):
+                a, b = int(a), int(b)
+                hit = self._alike(a, b)
+                if hit is not None:
+                    if (a, b) in done:
+                        out = [o for o in out if (o[0], o[1]) != (a, b)]
+                    out.append((a, b, 1.0, hit))
+        out.sort(key=lambda o: (o[0], o[1]))
+        return out
+
+    def _alike(self, a, b):
+        """P_ab = P_ib when link a moves like link i (P_ai undefined), or P_ai when b moves like i."""
+        for x, y in ((a, b), (b, a)):
+            for i in np.nonzero((self.S[x] == _UNDEFINED) & (self.S[:, y] == _KNOWN))[0]:
+                i = int(i)
+                if i == x:
+                    continue
+                return dict(how="alike", h=self.H[i, y], sine=self.info[(min(i, y), max(i, y))].get("sine", 1.0),
+                            via=((self.names[i], self.names[x], self.names[y]),),
+                            lines=((self.key(i, x), self.key(i, y)),),
+                            note=f"{self.names[x]} moves like {self.names[i]}: "
+                                 f"P_{self.key(x, y)} = P_{self.key(i, y)}")
+        return None
+
+
+_CACHE: dict = {}   # id(solution) -> (weak reference, PoleSet): the JSON, tables and figures share one
+
+
+def locate_poles(sol, *, cached: bool = True) -> PoleSet:
+    """Locate all n(n-1)/2 instant centres of the solution (see the module's docstring).
+
+    Inspection first (pins, sliders, circular paths, rolling contacts, and
+    the constraint lines of sliding contacts and slots), then the
+    Aronhold-Kennedy theorem, round by round: P_ij lies on the line
+    P_ik P_jk for every third link k, so two such lines (or one and a
+    constraint line) meet at P_ij, ``P_ij = l x m``. What Kennedy cannot
+    reach comes from the velocity solution (P_ij ~ T_i - T_j, :func:`link_twists`).
+    The result is kept for the solution's lifetime (``cached=False`` computes afresh).
+    """
+    if not cached:
+        return _locate(sol)
+    hit = _CACHE.get(id(sol))
+    if hit is not None and hit[0]() is sol:
+        return hit[1]
+    ps = _locate(sol)
+    _CACHE[id(sol)] = (weakref.ref(sol), ps)
+    weakref.finalize(sol, _CACHE.pop, id(sol), None)
+    return ps
+
+
+def _locate(sol) -> PoleSet:
+    m = sol.mechanism
+    names = list(m.link_names)
+    idx = {nm: i for i, nm in enumerate(names)}
+    centre, scale = _normalisation(sol)
+    T = link_twists(sol, centre, scale)
+    points, cons = _inspection(sol, centre, scale)
+    per_pair = {}
+    for i, j, *_ in cons:
+        per_pair[frozenset((i, j))] = per_pair.get(frozenset((i, j)), 0) + 1
+    K = _Kennedy(names, T, max(per_pair.values(), default=0), sol.condition)
+
+    new = []
+    for i, j, h, how, note in points:
+        a, b = sorted((idx[i], idx[j]))
+        if K.S[a, b] == _UNKNOWN:
+            K.set(a, b, h, dict(how=how, order=0, note=note))
+            new.append((a, b))
+    for i, j, h, label, desc in cons:
+        K.add_constraint(idx[i], idx[j], h, label, desc)
+    K.spread(new)
+
+    order = 0
+    found = []
+    while (K.S == _UNKNOWN).any():
+        cands = K.candidates()
+        if cands and max(c[2] for c in cands) >= _POOR:
+            cands = [c for c in cands if c[2] >= _POOR]   # poorly meeting lines wait for better ones
+        if not cands:
+            # Kennedy is stuck: the unknown pole on the most known lines, from the velocity solution
+            count = np.where((K.S == _UNKNOWN) & _upper(K.n), (K.Q > 0).sum(axis=-1), -1)
+            a, b = (int(v) for v in np.unravel_index(int(np.argmax(count)), count.shape))
+            cands = [(a, b, 0.0, dict(how="velocity", h=_unit(T[a] - T[b]),
+                                      note="from the links' velocity fields: no two Kennedy lines reach it"))]
+        new = []
+        for a, b, _, info in cands:
+            order += 1
+            info["order"] = order
+            if info["how"] is None:
+                info["how"] = "kennedy" if min(info["slots"]) < K.n else "normals"
+            K.set(a, b, info.pop("h"), info)
+            new.append((a, b))
+        found.extend(new)
+        K.spread(new)
+    return _pole_set(sol, K, centre, scale, found)
+
+
+def _line(K, a, b, slot, vec, where, centre, scale):
+    """The contract's (pair of labels, via entry, PoleLine) of the line in ``slot`` used for P_ab."""
+    if slot < K.n:
+        ka, kb = K.key(a, slot), K.key(b, slot)
+        ends = (where[min(a, slot), max(a, slot)], where[min(b, slot), max(b, slot)])
+        return ((ka, kb), (K.names[a], K.names[b], K.names[slot]),
+                _pole_line(f"P_{ka} P_{kb}", (ka, kb), vec, ends, centre, scale))
+    label, desc = K.constraints[(a, b)][slot - K.n]
+    return label, desc, _pole_line(desc, (), vec, (), centre, scale)
+
+
+def _pole_line(label, through, l, ends, centre, scale) -> PoleLine:
+    """A line's geometry for drawing: a finite point (a known pole where one is finite, else the
+    foot of the perpendicular from the centre) and a unit direction, in frame coordinates."""
+    nrm = math.hypot(l[0], l[1])
+    if nrm < 1e-15:
+        return PoleLine(label, through, None, None)
+    direction = np.array([-l[1], l[0]]) / nrm
+    for pos in ends:
+        if pos is not None:
+            return PoleLine(label, through, pos, direction)
+    return PoleLine(label, through, centre + scale * (-l[2] / (nrm * nrm)) * np.array([l[0], l[1]]), direction)
+
+
+def _euclid_all(hw, size: float):
+    """Positions (None at infinity) and directions (None when finite) of world homogeneous points."""
+    x, y, w = hw[:, 0], hw[:, 1], hw[:, 2]
+    far = (w == 0) | (np.hypot(x, y) > FAR * size * np.abs(w))
+    safe = np.where(far, 1.0, w)
+    pos = np.stack((x / safe, y / safe), -1)
+    d = np.degrees(np.arctan2(y, x)) % 180.0
+    d = np.where(d >= 180.0, 0.0, d) + 0.0
+    return [None if f else p for f, p in zip(far.tolist(), pos)], [float(v) if f else None
+                                                                   for f, v in zip(far.tolist(), d)]
+
+
+def _pole_set(sol, K, centre, scale, found) -> PoleSet:
+    names, n = K.names, K.n
+    A, B = np.nonzero(_upper(n))
+    hl = K.H[A, B]
+    tw = float(_norm(K.T).max()) if n else 0.0
+    defined = K.S[A, B] == _KNOWN
+    mismatch = _norm(_cross(hl, K.T[A] - K.T[B])) / (tw or 1.0)
+    err = float(mismatch[defined].max()) if defined.any() else 0.0
+    hw = np.stack((scale * hl[:, 0] + centre[0] * hl[:, 2], scale * hl[:, 1] + centre[1] * hl[:, 2], hl[:, 2]), -1)
+    hw = hw / np.maximum(_norm(hw), 1e-300)[:, None]
+    positions, directions = _euclid_all(hw, scale)
+    pairs = list(zip(A.tolist(), B.tolist()))
+    where = {pair: (positions[r] if defined[r] else None) for r, pair in enumerate(pairs)}
+    poles = {}
+    for r, (a, b) in enumerate(pairs):
+        key = K.key(a, b)
+        info = K.info[(a, b)]
+        if not defined[r]:
+            poles[key] = Pole((names[a], names[b]), key, None, None, "undefined", 0, note=info.get("note", ""))
+            continue
+        via, lines, construction = info.get("via", ()), info.get("lines", ()), ()
+        if "slots" in info:
+            parts = [_line(K, a, b, s, v, where, centre, scale) for s, v in zip(info["slots"], info["line_vectors"])]
+            lines = tuple(p[0] for p in parts)
+            via = tuple(p[1] for p in parts)
+            construction = tuple(p[2] for p in parts)
+        poles[key] = Pole((names[a], names[b]), key, positions[r], directions[r], info["how"], info["order"], via,
+                          lines, construction, info.get("sine", 1.0), hw[r], info.get("note", ""))
+    cl = {K.key(a, b): tuple(_pole_line(desc, (), K.L[a, b, n + c], (), centre, scale)
+                             for c, (_, desc) in enumerate(items))
+          for (a, b), items in K.constraints.items()}
+    return PoleSet(tuple(names), poles, sol.mechanism.frame.name, tuple(K.key(a, b) for a, b in found), cl, err,
+                   np.asarray(centre, float), scale)
+
+
+def kennedy_circle(ps: PoleSet) -> KennedyCircle:
+    """The Kennedy circle of a pole set: n points, n(n-1)/2 chords (see :class:`KennedyCircle`)."""
+    n = len(ps.links)
+    pts = {}
+    for i, lk in enumerate(ps.links):
+        t = math.pi / 2 - 2 * math.pi * i / n
+        pts[lk] = np.array([math.cos(t), math.sin(t)])
+    chords = tuple(Chord(p.key, p.links, p.by_inspection, p.order) for p in ps.poles.values())
+    return KennedyCircle(pts, chords)
+
+
+# -- the instant-centre method -------------------------------------------------------------------
+def instant_centre_velocities(sol, poles: PoleSet | None = None) -> dict:
+    """Every omega and point velocity by the instant-centre method, from the driver through the poles.
+
+    Each link's twist is a multiple of its frame pole, t_k = lambda_k P_1k
+    (homogeneous, normalised coordinates), and t_j - t_i ~ P_ij, so
+
+        lambda_j (P_1j x P_ij) = t_i x P_ij,
+
+    which is omega_j = omega_i (P_ij - P_1i) / (P_ij - P_1j) along the line
+    of the three poles, and stays exact for a translating link (P_1k at
+    infinity: V = omega_i x (P_ij - P_1i) for the block). Links are reached
+    from the driver in rounds (first every link with a pole on the driver,
+    then the links with a pole on those, ...), each through the pole that
+    fixes it best (P_ij farthest from P_1j, both poles well drawn). A point B of link k then moves with
+    ``V_B = omega_k x (B - P_1k)``.
+
+    Returns a dict: ``omega`` (link -> rad/s), ``velocity`` (point key ->
+    array (2,)), ``path`` (tuples ``(link, from_link, pole_key)`` in the
+    order found) and ``max_error`` (``{"omega", "velocity"}``: largest
+    difference from the analytic solve, relative to the largest omega and
+    the largest speed).
+    """
+    ps = locate_poles(sol) if poles is None else poles
+    m = sol.mechanism
+    names = list(ps.links)
+    n = len(names)
+    idx = {nm: i for i, nm in enumerate(names)}
+    centre, scale = ps.centre, ps.scale
+    H = np.zeros((n, n, 3))
+    state = np.zeros((n, n), np.int8)
+    sure = np.ones((n, n))      # how well each pole is fixed: 1, less for lines meeting at a small angle
+    for p in ps.poles.values():
+        a, b = idx[p.links[0]], idx[p.links[1]]
+        if p.undefined:
+            state[a, b] = state[b, a] = _UNDEFINED
+        else:
+            H[a, b] = H[b, a] = _to_local(p.homogeneous, centre, scale)
+            state[a, b] = state[b, a] = _KNOWN
+            sure[a, b] = sure[b, a] = min(1.0, p.sine / _POOR)
+    f = idx[m.frame.name]
+    t = np.zeros((n, 3))
+    known = np.zeros(n, bool)
+    known[f] = True
+    path = []
+
+    def fix(j, twist, frm, key):
+        t[j] = twist
+        known[j] = True
+        path.append((names[j], frm, key))
+
+    for j in range(n):   # links at rest move like the frame
+        if j != f and state[f, j] == _UNDEFINED:
+            fix(j, np.zeros(3), names[f], _key(names, f, j))
+    drv = m.driver
+    if not drv.is_slider:
+        d = idx[drv.link]
+        if not known[d]:
+            p = H[f, d]
+            fix(d, drv.omega * p / p[2], None, _key(names, f, d))
+    else:
+        _slider_driver(sol, m, idx, f, H, state, t, known, path, names, centre, scale)
+
+    while not known.all():
+        # one round: every link reachable now, each through its best pole from a link known before
+        ks = np.nonzero(known & (np.arange(n) != f))[0]
+        us = np.nonzero(~known)[0]
+        if len(ks) == 0:
+            break
+        st = state[np.ix_(ks, us)]
+        cond = _norm(_cross(H[f, us][None, :, :], H[np.ix_(ks, us)])) * sure[np.ix_(ks, us)] * sure[f, us][None, :]
+        cond = np.where(st == _UNDEFINED, 1.0, np.where((st == _KNOWN) & (state[f, us] == _KNOWN)[None, :],
+                                                        cond, 0.0))
+        best = cond.max(axis=0)
+        if best.max() < _DEGENERATE:
+            break
+        take = best >= min(_POOR, best.max())
+        new = []
+        for u in np.nonzero(take)[0]:
+            j, i = int(us[u]), int(ks[int(np.argmax(cond[:, u]))])
+            if state[i, j] == _UNDEFINED:
+                new.append((j, t[i].copy(), i))
+            else:
+                q, pj = H[i, j], H[f, j]
+                cj = _cross(pj, q)
+                lam = float(_cross(t[i], q) @ cj) / float(cj @ cj)
+                new.append((j, lam * pj, i))
+        for j, twist, i in new:
+            fix(j, twist, names[i], _key(names, i, j))
+    T = None
+    for j in range(n):   # unreachable through the poles (degenerate): from the velocity solution
+        if not known[j]:
+            T = link_twists(sol, centre, scale) if T is None else T
+            fix(j, T[j], None, "velocity")
+
+    omega = {names[j]: float(t[j][2]) for j in range(n)}
+    velocity = {}
+    for key, _, lk in point_keys(m):
+        velocity[key] = _twist_velocity(t[idx[lk]], sol.position[key], centre, scale)
+    w_ref = max((abs(v) for v in sol.omega.values()), default=0.0) or 1.0
+    v_ref = max((float(np.hypot(*v)) for v in sol.velocity.values()), default=0.0) or 1.0
+    e_om = max((abs(omega[k] - sol.omega[k]) for k in omega), default=0.0) / w_ref
+    e_v = max((float(np.hypot(*(velocity[k] - sol.velocity[k]))) for k in velocity), default=0.0) / v_ref
+    return {"omega": omega, "velocity": velocity, "path": tuple(path),
+            "max_error": {"omega": e_om, "velocity": e_v}}
+
+
+def _key(names, a, b) -> str:
+    """The pole key of two link indices (file order)."""
+    return f"{names[a]}-{names[b]}" if a < b else f"{names[b]}-{names[a]}"
+
+
+def _twist_velocity(t, x, centre, scale) -> np.ndarray:
+    """V at frame point x of the twist t = (-v_y, v_x, omega) (normalised): v + omega k x x'."""
+    xl = (np.asarray(x, float) - centre) / scale
+    return scale * np.array([t[1] - t[2] * xl[1], -t[0] + t[2] * xl[0]])
+
+
+def _slider_driver(sol, m, idx, f, H, state, t, known, path, names, centre, scale):
+    """Seed the twists from a slider driver: the block's motion relative to its guide is known.
+
+    Straight path: a translation s e, the relative twist (-s e_y, s e_x, 0)/scale;
+    circular path about K: omega_rel = s / R about K. With a moving guide,
+    lambda_b P_1b - lambda_g P_1g equals that relative twist.
+    """
+    drv = m.driver
+    k = next(i for i, s in enumerate(m.sliders) if s.point == drv.slider)
+    s = m.sliders[k]
+    b, g = idx[s.block], idx[s.guide]
+    if s.centre is None:
+        d = math.radians(float(sol.motion.sliders[k]["direction"][0]))
+        e = np.array([math.cos(d), math.sin(d)]) * drv.speed / scale
+        r = np.array([-e[1], e[0], 0.0])
+    else:
+        kk = sol.place(s.guide, s.centre)
+        radius = float(np.hypot(*(sol.place(s.block, s.point) - kk)))
+        w = drv.speed / radius
+        r = w * np.array([(kk[0] - centre[0]) / scale, (kk[1] - centre[1]) / scale, 1.0])
+    key = _key(names, b, g)
+    if g == f:
+        t[b] = r
+        known[b] = True
+        path.append((names[b], None, key))
+        return
+    A = np.stack([H[f, b], -H[f, g]], axis=1)
+    sol_, _, rank, _ = np.linalg.lstsq(A, r, rcond=None)
+    if rank < 2:  # the two frame poles coincide: the guide's twist from the velocity solution
+        T = link_twists(sol, centre, scale)
+        t[g], t[b] = T[g], T[g] + r
+    else:
+        t[b], t[g] = sol_[0] * H[f, b], sol_[1] * H[f, g]
+    known[b] = known[g] = True
+    path.append((names[b], None, key))
+    path.append((names[g], names[b], key))
+
+
+# -- JSON and tables ---------------------------------------------------------------------------------
+def poles_section(sol) -> dict:
+    """The JSON ``poles`` section (FORMAT.md section 2), with ``how`` and ``order`` added."""
+    out = {}
+    for key, p in locate_poles(sol).poles.items():
+        if p.position is not None:
+            d = {"position": [float(p.position[0]), float(p.position[1])]}
+        else:
+            d = {"position": None, "direction": p.direction}
+        d["how"] = p.how
+        d["order"] = p.order
+        out[key] = d
+    return out
+
+
+def pole_label(key: str, compact: bool = True) -> str:
+    """The textbook name of a pole: ``P_13`` for key "1-3" (``P_{10-12}`` where names are longer)."""
+    i, j = key.split("-")
+    return f"P_{i}{j}" if compact and len(i) == 1 and len(j) == 1 else f"P_{{{key}}}"
+
+
+def _where(p: Pole) -> str:
+    if p.undefined:
+        return "undefined (links move alike)"
+    if p.position is None:
+        return f"at infinity, {p.direction:.3f}°"
+    return f"({fmt(p.position[0])}, {fmt(p.position[1])})"
+
+
+def _found(p: Pole, compact: bool) -> str:
+    if p.how not in ("kennedy", "normals"):
+        return p.note or p.how
+    lines = []
+    for ln in p.lines:
+        lines.append(f"{pole_label(ln[0], compact)}{pole_label(ln[1], compact)}" if "-" in ln[0]
+                     else f"{ln[0]} at {ln[1]}")
+    return f"line {lines[0]} x line {lines[1]}"
+
+
+def poles_tables(sol) -> list[Table]:
+    """The readable tables: every pole, and the instant-centre omegas beside the analytic ones."""
+    ps = locate_poles(sol)
+    compact = all(len(lk) == 1 for lk in ps.links)
+    rows = tuple((pole_label(p.key, compact), _where(p), "inspection" if p.by_inspection else p.how,
+                  str(p.order) if p.order else "-", _found(p, compact)) for p in ps.poles.values())
+    units = sol.mechanism.units
+    t1 = Table(f"Instant centres ({len(ps.poles)} poles, order of discovery on the Kennedy circle)",
+               ("pole", f"position ({units})" if units else "position", "found by", "order", "how"), rows)
+    ic = instant_centre_velocities(sol, ps)
+    via = {lk: (frm, key) for lk, frm, key in ic["path"]}
+    rows2 = []
+    for lk in ps.links:
+        if lk == ps.frame:
+            continue
+        w, wa = ic["omega"][lk], sol.omega[lk]
+        frm, key = via[lk]
+        if key == "velocity":
+            how = "from the velocity solution"
+        elif frm is None:
+            how = "driver"
+        else:
+            how = f"from {frm} through {pole_label(key, compact)}"
+        rows2.append((lk, _where(ps.pole(ps.frame, lk)), fmt(w), fmt(wa), fmt(abs(w - wa), 2), how))
+    t2 = Table("Instant-centre method: omega_j = omega_i (P_ij - P_1i) / (P_ij - P_1j)",
+               ("link", "frame pole", "omega (instant centres)", "omega (analytic)", "difference", "found"),
+               tuple(rows2))
+    return [t1, t2]
+
+
+register_section("poles", poles_section)
+if poles_tables not in SECTIONS:
+    SECTIONS.append(poles_tables)
