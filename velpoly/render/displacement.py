@@ -58,7 +58,7 @@ def _groups(sol) -> dict:
 
 
 def mechanism_bounds(sol) -> tuple[float, float, float, float]:
-    """The box of every point of the pose and every contact profile small enough to draw whole."""
+    """The box of every point of the pose, every contact profile small enough to draw whole, and guides."""
     m = sol.mechanism
     pts = [np.asarray(p, float) for p in sol.position.values()]
     for c, r in zip(m.contacts, sol.motion.contacts):
@@ -70,6 +70,11 @@ def mechanism_bounds(sol) -> tuple[float, float, float, float]:
             rad = float(np.hypot(*(place - ctr)))
             if rad < 1.5 * m.size:
                 pts += [ctr - rad, ctr + rad]
+    for s, r in zip(m.sliders, sol.motion.sliders):   # a guide runs some way past its block
+        if s.centre is None:
+            d = _unit(float(r["direction"][0])) * 0.18 * m.size
+            q = sol.place(s.block, s.point)
+            pts += [q - d, q + d]
     p = np.array(pts)
     return (*p.min(axis=0), *p.max(axis=0))
 
@@ -135,7 +140,7 @@ class _Drawing:
         self.art.add(role, p)
         return p
 
-    def hatch(self, a, b, side, role="ground"):
+    def hatch(self, a, b, side, role="ground", zorder=1.0):
         """A ground line a-b with short slanted strokes on ``side`` (a unit normal)."""
         from matplotlib.collections import LineCollection
         a, b, side = (np.asarray(v, float) for v in (a, b, side))
@@ -151,7 +156,7 @@ class _Drawing:
             p = a + u * (i * length / n)
             segs.append([p, p + slant * tick])
         lc = LineCollection(segs, colors=self.st.ink, linewidths=[self.st.link_lw] + [self.st.thin_lw] * (n + 1),
-                            zorder=1)
+                            zorder=zorder)
         self.ax.add_collection(lc)
         self.art.add(role, lc)
         self.pl.add_obstacle(LineString([a, b]).buffer(tick * 0.6), hard=False)
@@ -175,9 +180,10 @@ class _Drawing:
         pc = self.pc
         apex, base = p, p + u * 0.5 * pc
         tri = SPolygon([apex + n * 0.12 * pc, base + n * 0.3 * pc, base - n * 0.3 * pc, apex - n * 0.12 * pc])
-        self.patch(tri, "ground", 1.2, self.st.paper, lw=self.st.link_lw)
+        # over the link bodies: a pivot inside a plate or a cam disc keeps its ground in sight
+        self.patch(tri, "ground", 2.9, self.st.paper, lw=self.st.link_lw)
         self.pl.add_obstacle(tri)
-        self.hatch(base + n * 0.5 * pc, base - n * 0.5 * pc, u)
+        self.hatch(base + n * 0.5 * pc, base - n * 0.5 * pc, u, zorder=2.9)
         return g
 
     # -- sliders, slots, contacts --------------------------------------------------------
@@ -271,8 +277,15 @@ class _Drawing:
                 if lk in self.bodies:      # a link with a shape of its own shows the face already
                     continue
                 inward = -u if j == 0 else u     # the flat's link lies behind its edge
-                e0, e1 = place - t * 1.4 * pc, place + t * 1.4 * pc
+                # a one-point link (a flat-faced follower): a plate on a stem from its point to the face
+                own = sol.place(lk, self.m.link(lk).points[0])
+                foot = place + t * float(np.dot(own - place, t))
+                half = max(1.4 * pc, abs(float(np.dot(place - foot, t))) + 0.6 * pc)
+                e0, e1 = foot - t * half, foot + t * half
                 geom = SPolygon([e0, e1, e1 + inward * 0.22 * pc, e0 + inward * 0.22 * pc])
+                if float(np.hypot(*(own - foot))) > 0.3 * pc:
+                    geom = geom.union(LineString([tuple(own), tuple(foot)]).buffer(st.bar_width * pc / 2,
+                                                                                  cap_style="flat"))
                 self.extra_body.setdefault(lk, []).append(geom)
                 continue
             ctr = sol.place(lk, cn)
@@ -435,8 +448,8 @@ class _Drawing:
             return
         p = np.asarray(sol.position.get(pivot, sol.place(drv.link, pivot)), float)
         dirs = [math.degrees(math.atan2(*(q - p)[::-1])) for q in _neighbours(sol, pivot, self.pins_at[pivot] - {frame})]
-        if pivot in ground_dir:
-            dirs.append(ground_dir[pivot])
+        if pivot in ground_dir:   # the ground symbol takes a sector of its own
+            dirs += [ground_dir[pivot] - 40.0, ground_dir[pivot], ground_dir[pivot] + 40.0]
         dirs = sorted(d % 360 for d in dirs) or [270.0]
         gaps = [((dirs[(i + 1) % len(dirs)] - d) % 360 or 360, d) for i, d in enumerate(dirs)]
         gap, start = max(gaps)
