@@ -275,10 +275,7 @@ def test_the_continuity_check_sees_a_branch_jump():
     assert set(orientation(bad, "B", "D", "C")) == {1.0, -1.0}
 
 
-# -- known kernel issues (docs/requests/robustness.md) ---------------------------------------------------------
-@pytest.mark.xfail(strict=True, raises=np.linalg.LinAlgError,
-                   reason="kernel issue 1: pose.reassemble raises numpy's LinAlgError when the reference pose "
-                          "is singular (docs/requests/robustness.md)")
+# -- a singular drawn pose (formerly kernel issue 1 of docs/requests/robustness.md) ---------------------------------------------------------
 @pytest.mark.parametrize("how", ["solve", "sweep"])
 def test_reassembly_from_a_singular_reference_pose_is_a_pose_error(how):
     from mechanisms import inverted_slider_crank

@@ -14,7 +14,6 @@ The examples add up to more than 2000 a run (``EXAMPLES``).
 from __future__ import annotations
 
 import copy
-import dataclasses
 import json
 import math
 import os
@@ -99,17 +98,6 @@ def check(source, file=NAME):
         m = velpoly.load(source, name=file)
         s = velpoly.solve(m)
         data = json.dumps(s.to_dict(), allow_nan=False)   # what `velpoly solve --json` prints
-    except np.linalg.LinAlgError:
-        # Known kernel issue 1 (docs/requests/robustness.md, strict xfail in tests/test_branch.py):
-        # re-assembly to driver.angle from a singular reference pose raises numpy's LinAlgError.
-        # Only that case is let through: the reference pose itself must be singular.
-        assert m is not None and m.driver.angle is not None
-        at_reference = dataclasses.replace(m, driver=dataclasses.replace(m.driver, angle=None))
-        try:
-            velpoly.solve(at_reference)
-        except velpoly.SingularPoseError:
-            return None
-        raise
     except velpoly.VelpolyError as e:
         msg, hint = e.line(), e.hint_line()
         note(f"error: {msg}\nhint: {hint}")

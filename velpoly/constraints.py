@@ -34,7 +34,7 @@ from typing import Callable
 
 import numpy as np
 
-from .errors import InputError
+
 from .jet import Jet
 from .model import Mechanism
 

@@ -206,8 +206,8 @@ def condition(kin: Kinematics, q) -> np.ndarray:
     return _scaled_cond(kin.system, jac[:, list(kin.rows)], list(kin.rows))
 
 
-def velocities(kin: Kinematics, q, check: bool = True):
-    """q' at poses q (N, nq); returns (qd, cond).
+def velocities(kin: Kinematics, q, check: bool = True, where: str = "pose"):
+    """q' at poses q (N, nq); returns (qd, cond). ``where`` names the pose in a singular-pose error.
 
     ``cond`` is exact where it exceeds WARN (1e6), an estimate below.
     """
@@ -221,7 +221,7 @@ def velocities(kin: Kinematics, q, check: bool = True):
         raise SingularPoseError(
             f"singular pose: the velocity equations are singular (condition number "
             f"{'inf' if not np.isfinite(cond[i]) else f'{cond[i]:.3g}'})",
-            where="pose", file=kin.mechanism.source,
+            where=where, file=kin.mechanism.source,
             links=_involved(kin.system, a[i], list(kin.rows), True),
             hint="links in line (a toggle or dead centre): choose another driver angle")
     rhs = np.broadcast_to(_rates(kin), a.shape[:2]).copy()

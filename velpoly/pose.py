@@ -112,7 +112,7 @@ def _newton(system: System, rows, q, targets, iters=30, tol=1e-12):
         try:
             dq = np.linalg.solve(jac, -phi[..., None])[..., 0]
         except np.linalg.LinAlgError:
-            dq = np.stack([np.linalg.lstsq(j, -p, rcond=None)[0] for j, p in zip(jac, phi)])
+            dq = np.stack([_solve_or_nan(j, -p) for j, p in zip(jac, phi)])
         size = np.abs(_scaled(system, dq)).max(axis=1, initial=0.0)
         scale = np.where(size > 0.5, 0.5 / np.maximum(size, 1e-300), 1.0)
         idx = np.flatnonzero(active)
@@ -132,7 +132,17 @@ def _velocity(system, rows, q, jac=None):
         jac = system.evaluate(q)[1][:, rows]
     rhs = np.zeros(jac.shape[:2])
     rhs[:, -1] = 1.0
-    return np.linalg.solve(jac, rhs[..., None])[..., 0]
+    try:
+        return np.linalg.solve(jac, rhs[..., None])[..., 0]
+    except np.linalg.LinAlgError:   # a singular pose among them: no tangent there (NaN)
+        return np.stack([_solve_or_nan(j, r) for j, r in zip(jac, rhs)])
+
+
+def _solve_or_nan(a, b):
+    try:
+        return np.linalg.solve(a, b)
+    except np.linalg.LinAlgError:
+        return np.full(a.shape[1], np.nan)
 
 
 def _cond(system, rows, jac):

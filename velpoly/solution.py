@@ -10,7 +10,6 @@ from __future__ import annotations
 
 import math
 from dataclasses import dataclass, field
-from functools import cached_property
 
 import numpy as np
 
@@ -205,6 +204,7 @@ def solve(m: Mechanism, angle: float | None = None) -> Solution:
             raise InputError(f"the driver angle must be finite, got {target}", where="driver.angle", file=m.source)
         delta = float(wrap_deg(target - ref))
         if abs(delta) > 1e-12:
+            velocities(kin, q, where="reference pose")   # regular, to tell its branch (else exit 3)
             r = reassemble(kin.system, list(kin.rows), [math.radians(delta)])
             if len(r.deltas) == 0:
                 lo, hi = reachable_range(kin)
@@ -217,7 +217,7 @@ def solve(m: Mechanism, angle: float | None = None) -> Solution:
         angle_now = float(wrap_deg(ref + delta))
     else:
         angle_now = ref
-    qd, cond = velocities(kin, q)
+    qd, cond = velocities(kin, q, where="reference pose" if angle_now == ref else f"driver angle {angle_now:g} deg")
     if all(c.centres is not None for c in m.contacts):
         qdd = accelerations(kin, q, qd)
     else:  # a contact given by its normal alone: velocities only (FORMAT.md section 5)

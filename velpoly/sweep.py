@@ -7,7 +7,6 @@ handful of numpy passes, not a Python loop per pose.
 """
 from __future__ import annotations
 
-import math
 from dataclasses import dataclass, field
 from functools import cached_property
 
@@ -84,6 +83,7 @@ def sweep(m: Mechanism, angles, kin: Kinematics | None = None) -> Sweep:
         first = float(wrap_deg(angles[0] - ref)) if len(angles) else 0.0
         deltas = np.radians(first + np.concatenate([[0.0], np.cumsum(np.diff(angles))])) \
             if len(angles) else angles
+    velocities(kin, np.zeros((1, kin.system.nq)), where="reference pose")   # regular, to tell its branch
     r = reassemble(kin.system, list(kin.rows), deltas)
     n = len(r.deltas)
     q = r.q
