@@ -34,7 +34,6 @@ from typing import Callable
 
 import numpy as np
 
-
 from .jet import Jet
 from .model import Mechanism
 
