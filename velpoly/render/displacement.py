@@ -232,6 +232,25 @@ class _Drawing:
         self.pl.add_obstacle(block, hard=False)
         self.block_geom[s.block] = block
 
+    def frame_profile(self, place, outward, centre):
+        """The frame's side of a contact: a hatched line along the tangent, or a hatched arc about its centre.
+
+        ``outward`` points from the contact into the frame's material.
+        """
+        pc = self.pc
+        t = _perp(outward)
+        if centre is None:
+            self.hatch(place - t * 1.6 * pc, place + t * 1.6 * pc, outward, role="contacts")
+            return
+        rad = float(np.hypot(*(place - centre)))
+        mid = math.atan2(*(place - centre)[::-1])
+        arc = np.asarray(self._arc(centre, rad, mid, min(1.6 * pc / max(rad, 1e-300), 2.6)).coords)
+        for a, b in zip(arc[:-1], arc[1:]):
+            n = _perp((b - a) / max(float(np.hypot(*(b - a))), 1e-300))
+            if np.dot(n, outward) < 0:
+                n = -n
+            self.hatch(a, b, n, role="contacts")
+
     def centre_line(self, path):
         from matplotlib.lines import Line2D
         xy = np.asarray(path.coords)
@@ -273,6 +292,9 @@ class _Drawing:
                 self.art.add("contacts", ln)
             return
         for j, (lk, cn) in enumerate(zip(c.links, c.centres)):
+            if self.m.link(lk).frame:   # the frame's profile: a hatched surface (flat) or arc
+                self.frame_profile(place, u if j == 1 else -u, None if cn is None else sol.place(lk, cn))
+                continue
             if cn is None:  # a flat profile: a straight edge through the contact, along the tangent
                 if lk in self.bodies:      # a link with a shape of its own shows the face already
                     continue
@@ -327,7 +349,8 @@ class _Drawing:
         for z, lk in enumerate(order):
             if lk in geoms:
                 self.patch(geoms[lk], "links", 2 + 0.01 * z, link_fill(m, self.opts, st, lk), gid=f"link-{lk}")
-                self.pl.add_obstacle(geoms[lk], hard=False)
+                # its outline, not its area: a label may sit inside a plate or a wheel, clear of its edges
+                self.pl.add_obstacle(geoms[lk].boundary.buffer(0.6 * self.pp), hard=False)
         for lk, g in self.slots:
             z = 2.5 if lk is None else 2 + 0.01 * order.index(lk) + 0.005
             self.patch(g, "links", z, st.paper, lw=st.thin_lw * 1.5)

@@ -64,9 +64,10 @@ def _dev(row) -> str:
     parts = []
     if row.deviation is not None:
         pct = 100 * row.deviation
-        parts.append("< 0.001 %" if pct < 1e-3 else f"{pct:.2g} %")
+        parts.append("< 0.001 %" if pct < 1e-3 else (f"{pct:.0f} %" if pct >= 10 else f"{pct:.2g} %"))
     if row.angle_error is not None and row.angle_error > 5e-4:
-        parts.append(f"{row.angle_error:.2g}°")
+        e = row.angle_error
+        parts.append(f"{e:.0f}°" if e >= 10 else f"{e:.2g}°")
     return " ".join(parts) or "0"
 
 
