@@ -271,3 +271,14 @@ def test_closed_form_stops_at_the_toggle_like_continuation(monkeypatch):
     slow = velpoly.sweep(m, angles)
     assert fast.stopped and slow.stopped
     assert abs(len(fast.angles) - len(slow.angles)) <= 1
+
+
+def test_import_is_light_and_the_api_names_stay_functions():
+    """`velpoly --help` imports no numpy; importing every module keeps load/solve/sweep callable."""
+    import subprocess
+    import sys
+    out = subprocess.run([sys.executable, "-c", "import sys, velpoly.cli; print('numpy' in sys.modules)"],
+                         capture_output=True, text=True, check=True)
+    assert out.stdout.strip() == "False"
+    import velpoly.cycle, velpoly.sweeps, velpoly.solution, velpoly.loader  # noqa: F401,E401
+    assert callable(velpoly.sweep) and callable(velpoly.solve) and callable(velpoly.load)

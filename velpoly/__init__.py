@@ -12,14 +12,26 @@ Rendering (matplotlib) lives in :mod:`velpoly.render` and is imported only
 when a figure is drawn.
 """
 from .errors import AssemblyError, InputError, PoseError, SingularPoseError, VelpolyError
-from .loader import load
-from .model import Mechanism
-from .solution import Solution, solve
-from .sweep import Sweep, sweep
-from . import poles  # noqa: F401,E402  (registers the JSON section and tables of the instant centres)
-from . import polygons  # noqa: F401,E402  (registers the "graphical" JSON section and the polygon tables)
 
 __version__ = "0.1.0"
 
 __all__ = ["load", "solve", "sweep", "Mechanism", "Solution", "Sweep", "VelpolyError", "InputError",
            "PoseError", "AssemblyError", "SingularPoseError", "__version__"]
+
+# The rest is imported on first use (PEP 562), so that `velpoly --help` starts without numpy.
+_LAZY = {"load": "loader", "Mechanism": "model", "Solution": "solution", "solve": "solution",
+         "Sweep": "sweeps", "sweep": "sweeps"}
+
+
+def __getattr__(name):
+    module = _LAZY.get(name)
+    if module is None:
+        raise AttributeError(f"module 'velpoly' has no attribute {name!r}")
+    import importlib
+    value = getattr(importlib.import_module(f".{module}", __name__), name)
+    globals()[name] = value
+    return value
+
+
+def __dir__():
+    return sorted(set(globals()) | set(_LAZY))

@@ -45,7 +45,7 @@ from .kinematics import Kinematics, prepare
 from .model import Mechanism
 from .report import Table, fmt, render_table
 from .solution import driver_reference_angle
-from .sweep import Sweep, sweep
+from .sweeps import Sweep, sweep
 
 __all__ = ["cycle_angles", "run_cycle", "Centrodes", "centrodes", "cycle_columns", "cycle_csv",
            "summary_table", "cycle_figure", "plot_cycle", "write_gif", "sweep_command"]

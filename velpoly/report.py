@@ -129,6 +129,8 @@ SECTIONS: list = []
 
 def solution_tables(sol) -> list[Table]:
     """Every table of the solution, in reading order."""
+    from .solution import load_sections
+    load_sections()
     out = [_links(sol), _points(sol), *_joints(sol)]
     for fn in SECTIONS:
         t = fn(sol)

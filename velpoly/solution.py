@@ -154,6 +154,7 @@ class Solution:
                              "slip_velocity": float(r["slip_velocity"][0]),
                              "slip_acceleration": _f(r["slip_acceleration"][0]),
                              "coriolis": _v(r["coriolis"][0])} for s, r in zip(m.slots, mo.slots)]
+        load_sections()
         for name, fn in _EXTRA_SECTIONS:
             section = fn(self)
             if section is not None:
@@ -165,6 +166,11 @@ class Solution:
 
 # Sections the pole and polygon modules add to the JSON: (key, function(solution) -> dict | None)
 _EXTRA_SECTIONS: list = []
+
+
+def load_sections() -> None:
+    """Import the modules that add sections (instant centres, then polygons), once."""
+    from . import poles, polygons  # noqa: F401  (they register themselves on import)
 
 
 def register_section(name: str, fn) -> None:
