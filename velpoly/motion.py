@@ -157,16 +157,20 @@ def evaluate_motion(m: Mechanism, index: dict, q, qd, qdd=None) -> Motion:
         coincident_place[(s.pin, s.slot)] = B.place(s.link, P[s.pin])
 
     position, velocity, acceleration = {}, {}, {}
-    for key, p, lk in point_keys(m):
-        if p in contact_place:
-            w = contact_place[p]
-        elif (p, lk) in coincident_place:
-            w = coincident_place[(p, lk)]
-        else:
-            w = B.place(lk, P[p])
+    keys = point_keys(m)
+    body = [(key, p, lk) for key, p, lk in keys if p not in contact_place and (p, lk) not in coincident_place]
+    if body:   # every body point at once: r = x_k + R(theta_k) s, V = V_O + omega x r', A = ...
+        _body_points(B, index, body, P, position, velocity, acceleration)
+    for key, p, lk in keys:
+        if key in position:
+            continue
+        w = contact_place[p] if p in contact_place else coincident_place[(p, lk)]
         position[key] = w
         velocity[key] = B.vel(lk, w)
         acceleration[key] = B.acc(lk, w)
+    position = {key: position[key] for key, _, _ in keys}
+    velocity = {key: velocity[key] for key, _, _ in keys}
+    acceleration = {key: acceleration[key] for key, _, _ in keys}
 
     angle, omega, alpha = {}, {}, {}
     block_path = {s.block: s for s in m.sliders}
@@ -208,6 +212,32 @@ def evaluate_motion(m: Mechanism, index: dict, q, qd, qdd=None) -> Motion:
         contacts.append({"slip_velocity": slip_v, "slip_acceleration": slip_a,
                          "normal": np.degrees(np.arctan2(u[:, 1], u[:, 0])), "place": w})
     return Motion(angle, omega, alpha, position, velocity, acceleration, sliders, contacts, slots)
+
+
+def _body_points(B, index, body, P, position, velocity, acceleration):
+    """Positions, velocities and accelerations of many body points in one vectorised pass."""
+    n = B.n
+    nl = len(index)
+    k = np.array([index.get(lk, nl) for _, _, lk in body])      # the frame: a zero "link" nl
+    s = np.array([P[p] for _, p, _ in body])                      # (K, 2) reference positions
+    def ext(a):
+        return np.concatenate([a.reshape(n, nl, 3), np.zeros((n, 1, 3))], axis=1)[:, k]   # (N, K, 3)
+    qk, qdk = ext(B.q), ext(B.qd)
+    th = qk[..., 2]
+    c, sn = np.cos(th), np.sin(th)
+    rx = c * s[:, 0] - sn * s[:, 1]
+    ry = sn * s[:, 0] + c * s[:, 1]
+    r = np.stack([rx, ry], axis=-1)                               # (N, K, 2): from the link's origin
+    om = qdk[..., 2:3]
+    pos = qk[..., :2] + r
+    vel = qdk[..., :2] + om * _perp(r)
+    if B.qdd is None:
+        acc = np.full_like(pos, np.nan)
+    else:
+        qddk = ext(B.qdd)
+        acc = qddk[..., :2] + qddk[..., 2:3] * _perp(r) - om ** 2 * r
+    for i, (key, _, _) in enumerate(body):
+        position[key], velocity[key], acceleration[key] = pos[:, i], vel[:, i], acc[:, i]
 
 
 class _FakeSystem:
