@@ -333,6 +333,15 @@ def test_results_table_rows(sixbar):
     assert rows[r"$\omega_{3}$ (rad/s)"]["deviation"] == "< 0.001 %"
 
 
+def test_reference_values_only_at_the_files_pose(sixbar):
+    from velpoly.render.table import results_table
+    m, sol = sixbar
+    assert "reference" in results_table(sol, "velocity", velocity=sixbar_velocity(sol)).header
+    other = velpoly.solve(m, angle=120.0)
+    t = results_table(other, "velocity", velocity=sixbar_velocity(other))
+    assert "reference" not in t.header and "no reference values at this driver angle (120°)" in t.title
+
+
 def test_results_table_is_drawn_within_its_axes(sixbar):
     from velpoly.render.table import draw_results_table
     m, sol = sixbar

@@ -33,7 +33,7 @@ from .options import drawing_options
 from .polygon import draw_polygon, polygon_bounds
 from .scalebar import scale_text
 from .style import get_style, rc_context
-from .table import draw_results_table
+from .table import at_file_pose, draw_results_table
 
 __all__ = ["SHEETS", "Constructions", "constructions", "render_sheet", "frames", "draw_to_file", "mechanism_svg",
            "equation_tex"]
@@ -164,15 +164,9 @@ def frames(sheet: str, cons: Constructions, steps: bool) -> list[Frame]:
 
 def _page(fig, st, m, sol) -> None:
     title = m.title
-    if sol.driver_angle is not None and m.driver.angle is None and not _at_reference(sol):
+    if not at_file_pose(sol):   # drawn with --angle: say where the driver is
         title += f"  (driver at {sol.driver_angle:.4g}°)"
     fig.text(0.5, 0.975, title, ha="center", va="top", fontsize=st.title_size, gid="sheet-title")
-
-
-def _at_reference(sol) -> bool:
-    from ..solution import driver_reference_angle
-    ref = driver_reference_angle(sol.mechanism)
-    return ref is None or abs(((sol.driver_angle - ref) + 180) % 360 - 180) < 1e-9
 
 
 def render_sheet(sol, sheet: str = "full", style="textbook", *, cons: Constructions | None = None,
