@@ -562,6 +562,26 @@ def test_random_wheel_rolling_on_a_lever(o2, o4, u, off, radius, phi, omega):
 
 
 @settings(**SETTINGS)
+@given(arm=grid(0.3, 1.0), frac=grid(0.2, 0.8), theta=angles, omega=omegas)
+def test_planet_gear_on_a_fixed_sun(arm, frac, theta, omega):
+    # every pole by inspection (two pins, the pitch point); omega_planet through P_12 and P_02
+    t = math.radians(theta)
+    c = [arm * math.cos(t), arm * math.sin(t)]
+    d = {"points": {"O": [0, 0], "C": c, "P": [frac * c[0], frac * c[1]], "G": [1.0, -1.0]},
+         "links": {"0": {"points": ["O", "G"], "frame": True}, "arm": {"points": ["O", "C"]},
+                   "planet": {"points": ["C"]}},
+         "contacts": [{"links": ["planet", "0"], "point": "P", "kind": "rolling", "centres": ["C", "O"]}],
+         "driver": {"link": "arm", "omega": omega}}
+    s = solve_or_reject(d)
+    ps = check_all(s)
+    assert hows(ps) == {"pin": 2, "rolling": 1}
+    ic = instant_centre_velocities(s, ps)
+    # omega_planet = omega_arm (C - O) / (C - P), along their common line
+    assert ic["omega"]["planet"] == pytest.approx(omega / (1 - frac), rel=1e-9)
+    assert ic["path"][-1] == ("planet", "arm", "arm-planet")
+
+
+@settings(**SETTINGS)
 @given(ecc=grid(0.1, 0.8), radius=grid(0.5, 1.5), theta=angles, psi=grid(30, 150),
        omega=omegas)
 def test_random_cam_with_flat_faced_translating_follower(ecc, radius, theta, psi, omega):

@@ -27,13 +27,16 @@ How the poles are found, the way a textbook draws them (seed 000, sections
    coordinates, parallel lines meeting at infinity. Poles are found in
    rounds, each round using only poles known before it; among a pole's
    candidate lines the pair meeting at the largest angle is drawn (a line
-   through two nearly coincident poles counts as poorly drawn). The order
+   through two nearly coincident poles counts as poorly drawn; lines meeting
+   at a sine under 1e-6 nearly coincide and fix nothing). The order
    of discovery, the two triangles (``via``) and the two lines (``lines``)
    are recorded (``how='kennedy'``; ``'normals'`` when two constraint lines
    meet).
-3. **What Kennedy cannot finish** (some eight-bars, the Stephenson chain in
-   some orders) is finished from the velocity solution, one pole at a time,
-   then Kennedy resumes (``how='velocity'``).
+3. **What Kennedy cannot finish** (some eight-bars, where no unknown chord
+   closes two triangles of known ones; degenerate poses where the lines
+   coincide) is finished from the velocity solution, one pole at a time --
+   the unknown pole on the most known lines -- then Kennedy resumes
+   (``how='velocity'``).
 
 Two links moving alike at the instant (same omega and the same velocity
 field: a block that momentarily does not slide) have an undefined pole
@@ -62,6 +65,7 @@ from dataclasses import dataclass, field
 
 import numpy as np
 
+from .geometry import from_polar, ideal, join, point
 from .motion import point_keys
 from .report import SECTIONS, Table, fmt
 from .solution import register_section
@@ -112,7 +116,8 @@ class Pole:
     ``lines`` the two lines as pairs of pole keys (``("1-2", "1-4")``) or,
     for a constraint line, ``("normal", point)`` / ``("slot normal", pin)``;
     ``construction`` has the same lines with their geometry. ``sine`` is
-    |sin| of the angle between the two lines (1 where none were drawn).
+    |sin| of the angle between the two lines (1 where none were drawn; an
+    'alike' pole has its source's).
     ``homogeneous`` is the pole as a unit homogeneous point (x, y, w) in
     frame coordinates (w = 0 at infinity; None when undefined).
     """
@@ -248,22 +253,18 @@ def _unit(h) -> np.ndarray:
     return h / n if n > 0 else h
 
 
-def _to_world(h, centre, scale) -> np.ndarray:
-    """A homogeneous point in normalised coordinates to frame coordinates (unit norm)."""
-    return _unit(np.array([scale * h[0] + centre[0] * h[2], scale * h[1] + centre[1] * h[2], h[2]]))
-
-
 def _to_local(h, centre, scale) -> np.ndarray:
     return _unit(np.array([h[0] - centre[0] * h[2], h[1] - centre[1] * h[2], scale * h[2]]))
 
 
 def _local_point(x, centre, scale) -> np.ndarray:
-    return _unit(np.array([(x[0] - centre[0]) / scale, (x[1] - centre[1]) / scale, 1.0]))
+    """The frame point x as a unit homogeneous triple in normalised coordinates."""
+    return _unit(point((np.asarray(x, float) - centre) / scale))
 
 
 def _local_direction(deg) -> np.ndarray:
-    t = math.radians(deg)
-    return np.array([math.cos(t), math.sin(t), 0.0])
+    """The point at infinity in direction ``deg`` (the same in every normalisation)."""
+    return ideal(from_polar(1.0, deg))
 
 
 # -- inspection ------------------------------------------------------------------------------
@@ -295,7 +296,7 @@ def _inspection(sol, centre, scale):
             points.append((a, b, _local_point(place, centre, scale), "rolling", f"rolling contact {c.point}"))
         else:
             p = _local_point(place, centre, scale)
-            h = np.cross(p, _local_direction(float(r["normal"][0])))
+            h = join(p, _local_direction(float(r["normal"][0])))
             lines.append((a, b, _unit(h), ("normal", c.point), f"common normal at {c.point}"))
     for s, r in zip(m.slots, mo.slots):
         pin = sol.place(s.link, s.pin)
@@ -306,11 +307,13 @@ def _inspection(sol, centre, scale):
         else:
             q = _local_point(sol.place(s.slot, s.centre), centre, scale)
             desc = f"line {s.pin}{s.centre} (normal to the circular slot)"
-        lines.append((s.link, s.slot, _unit(np.cross(p, q)), ("slot normal", s.pin), desc))
+        lines.append((s.link, s.slot, _unit(join(p, q)), ("slot normal", s.pin), desc))
     return points, lines
 
 
 # -- Kennedy -------------------------------------------------------------------------------------
+# The construction works on whole arrays of homogeneous triples: joining two poles and meeting two
+# lines are both cross products (velpoly.geometry's join and meet, vectorised).
 def _cross(a, b) -> np.ndarray:
     """a x b over the last axis (numpy's cross is slow on many small triples)."""
     a0, a1, a2 = a[..., 0], a[..., 1], a[..., 2]
@@ -347,6 +350,7 @@ class _Kennedy:
     def __init__(self, names, T, n_constraint, condition=1.0):
         n = len(names)
         self.names, self.n, self.T = names, n, T
+        self.keys = [[_key(names, a, b) for b in range(n)] for a in range(n)]
         self.H = np.zeros((n, n, 3))
         self.S = np.zeros((n, n), np.int8)
         self.L = np.zeros((n, n, n + n_constraint, 3))
@@ -362,7 +366,7 @@ class _Kennedy:
             self.info[(int(a), int(b))] = dict(how="undefined", order=0, note="the links move alike")
 
     def key(self, a, b) -> str:
-        return _key(self.names, a, b)
+        return self.keys[a][b]
 
     def set(self, a, b, h, info) -> None:
         self.H[a, b] = self.H[b, a] = h
@@ -423,7 +427,7 @@ class _Kennedy:
                 h = x[r, i[r], j[r]] / p[r]
                 out.append((int(A[r]), int(B[r]), float(best[r]),
                             dict(how=None, slots=(int(i[r]), int(j[r])), sine=min(1.0, float(sine[r, i[r], j[r]])),
-                                 line_vectors=(ls[r, i[r]], ls[r, j[r]]), h=h)))
+                                 line_vectors=(ls[r, i[r]].tolist(), ls[r, j[r]].tolist()), h=h)))
         if (self.S == _UNDEFINED).sum() > self.n:   # some links move alike: copy their poles
             done = {(a, b) for a, b, _, _ in out}
             for a, b in zip(*np.nonzero(unknown)):
@@ -537,14 +541,16 @@ def _line(K, a, b, slot, vec, where, centre, scale):
 def _pole_line(label, through, l, ends, centre, scale) -> PoleLine:
     """A line's geometry for drawing: a finite point (a known pole where one is finite, else the
     foot of the perpendicular from the centre) and a unit direction, in frame coordinates."""
-    nrm = math.hypot(l[0], l[1])
+    l0, l1, l2 = (float(v) for v in l)
+    nrm = math.hypot(l0, l1)
     if nrm < 1e-15:
         return PoleLine(label, through, None, None)
-    direction = np.array([-l[1], l[0]]) / nrm
+    direction = np.array((-l1 / nrm, l0 / nrm))
     for pos in ends:
         if pos is not None:
             return PoleLine(label, through, pos, direction)
-    return PoleLine(label, through, centre + scale * (-l[2] / (nrm * nrm)) * np.array([l[0], l[1]]), direction)
+    f = -scale * l2 / (nrm * nrm)
+    return PoleLine(label, through, np.array((centre[0] + f * l0, centre[1] + f * l1)), direction)
 
 
 def _euclid_all(hw, size: float):
