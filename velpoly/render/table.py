@@ -14,6 +14,7 @@ rows that do not fit are summarised in a last line.
 from __future__ import annotations
 
 import math
+import re
 
 import numpy as np
 
@@ -52,6 +53,21 @@ def _key(key: str) -> str:
         return key
     out = _q(_GREEK.get(sym, sym), idx)
     return f"|{out}|" if bars else out
+
+
+_RICH = re.compile(r"^(\|?)\$(\\?[A-Za-z]+)_\{([^}$]*)\}\$(\|?)(.*)$")
+_SYMBOLS = {r"\omega": "ω", r"\alpha": "α", r"\theta": "θ"}
+
+
+def _parts(cell: str) -> list[tuple[str, float, float, str]]:
+    """A cell as pieces (text, size factor, baseline shift in ems, font style): ``$V_{B}$`` -> V, B lowered."""
+    m = _RICH.match(cell)
+    if not m:
+        return [(cell, 1.0, 0.0, "normal")]
+    bar, sym, sub, bar2, rest = m.groups()
+    return [(bar + _SYMBOLS.get(sym, sym), 1.0, 0.0, "italic"),
+            (sub, 0.72, -0.28, "normal" if sub[:1].isdigit() else "italic"),
+            (bar2 + rest, 1.0, 0.0, "normal")]
 
 
 def _num(x, digits=5) -> str:
@@ -237,19 +253,21 @@ def draw_results_table(sol, ax=None, *, sheet: str = "full", style="textbook", v
 
     widths_at: dict = {}
 
+    def part_width(text, scale, style):
+        tx = ax.text(0, 0, text, fontsize=st.small_size * scale, fontstyle=style)
+        w = tx.get_window_extent(r).width * 72 / fig.dpi
+        tx.remove()
+        return w
+
     def measure(size):
         """Column widths (points) at ``size``: each distinct text measured once, widths scale with size."""
         if not widths_at:
-            base = {}
             for row in (t.header, *t.rows):
                 for cell in row:
-                    if cell not in base:
-                        tx = ax.text(0, 0, cell, fontsize=st.small_size)
-                        base[cell] = tx.get_window_extent(r).width * 72 / fig.dpi
-                        tx.remove()
-            widths_at.update(base)
+                    if cell not in widths_at:
+                        widths_at[cell] = [part_width(*p[:2], p[3]) for p in _parts(cell)]
         f = size / st.small_size
-        return [max(widths_at[row[i]] for row in (t.header, *t.rows)) * f for i in range(len(t.header))]
+        return [max(sum(widths_at[row[i]]) for row in (t.header, *t.rows)) * f for i in range(len(t.header))]
 
     widths = measure(size)
     need = sum(widths) + gap * (len(widths) - 1)
@@ -259,8 +277,15 @@ def draw_results_table(sol, ax=None, *, sheet: str = "full", style="textbook", v
         need = sum(widths) + gap * (len(widths) - 1)
     line_h = 1.45 * size
     title = ax.text(0, 1, t.title, fontsize=size * 1.1, va="top", ha="left", style="italic", gid="results-table")
+    tw = title.get_window_extent(r).width * 72 / fig.dpi
+    lines = 1
+    if tw > width_pt:   # a long title (a long source) wraps to the table's width
+        import textwrap
+        wrapped = textwrap.wrap(t.title, max(20, int(len(t.title) * width_pt / tw * 0.97)))
+        title.set_text("\n".join(wrapped))
+        lines = len(wrapped)
     art.add("title", title)
-    top = height_pt - 1.6 * size * 1.1
+    top = height_pt - 1.6 * size * 1.1 - (lines - 1) * 1.25 * size * 1.1
     room = max(int((top - 1.9 * line_h) // line_h), 1)      # rows a block has room for
     rows = list(t.rows)
     bgap = 3.0 * size
@@ -279,8 +304,15 @@ def draw_results_table(sol, ax=None, *, sheet: str = "full", style="textbook", v
         art.add("rules", ln)
 
     def cell(x, y, text, **kw):
-        art.add("cells", ax.text(x / width_pt, (y + 0.3 * size) / height_pt, text, fontsize=size, va="baseline",
-                                 ha="left", transform=ax.transAxes, **kw))
+        """A cell's text; a quantity's subscript set as a smaller, lowered text (no mathtext: fast)."""
+        parts = _parts(text)
+        ws = widths_at.get(text) or [0.0] * len(parts)
+        for (piece, scale, dy, style), w in zip(parts, ws):
+            if piece:
+                art.add("cells", ax.text(x / width_pt, (y + 0.3 * size + dy * size) / height_pt, piece,
+                                         fontsize=size * scale, fontstyle=kw.get("style", style), va="baseline",
+                                         ha="left", transform=ax.transAxes))
+            x += w * size / st.small_size
 
     bottom = top
     for b in range(blocks):
