@@ -517,3 +517,25 @@ def test_auxiliary_points_are_labelled_in_the_polygon_and_marked_on_the_mechanis
         ring = next(p for p in marks["auxiliary"] if p.get_gid() == f"auxiliary-{key}")
         np.testing.assert_allclose(np.mean(ring.get_path().vertices[:-1], axis=0), aux.position, atol=1e-9)
         assert marks.labels[key].get_text().startswith(tex(aux.label.upper()))
+
+
+def test_panels_draw_on_pyplots_current_axes(sixbar):
+    import matplotlib.pyplot as plt
+    from velpoly.render import (draw_acceleration_polygon, draw_kennedy_circle, draw_mechanism, draw_poles,
+                                draw_results_table, draw_velocity_polygon)
+    m, sol = sixbar
+    try:
+        for fn in (draw_mechanism, draw_velocity_polygon, draw_acceleration_polygon, draw_poles,
+                   draw_kennedy_circle, draw_results_table):
+            fig = plt.figure()
+            art = fn(sol)
+            assert art.ax is plt.gca() and art.all(), fn.__name__
+            plt.close(fig)
+    finally:
+        plt.close("all")
+    from velpoly.polygons import velocity_polygon
+    poly = velocity_polygon(sol)
+    fig = plt.figure()
+    art = draw_velocity_polygon(sol, polygon=poly)
+    assert set(art.labels) == set(poly.images)
+    plt.close(fig)

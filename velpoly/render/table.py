@@ -222,7 +222,8 @@ def draw_results_table(sol, ax=None, *, sheet: str = "full", style="textbook", v
                        acceleration=None, poleset=None, table: Table | None = None) -> Artists:
     """Draw the sheet's results table in ``ax`` (booktabs style); return the Artists.
 
-    The table is :func:`results_table` unless ``table`` is given. It fills the
+    The table is :func:`results_table` unless ``table`` is given; without
+    constructions given, those of ``sheet`` are built. It fills the
     axes' width at most; type shrinks (down to 5 pt) to fit the widest row,
     and rows that do not fit the height are summarised in a last line.
 
@@ -236,6 +237,14 @@ def draw_results_table(sol, ax=None, *, sheet: str = "full", style="textbook", v
     from matplotlib.lines import Line2D
     ax = get_ax(ax)
     st = get_style(style)
+    if table is None and velocity is None and acceleration is None and poleset is None:
+        # drawn on its own: the constructions of the sheet named
+        from .sheet import constructions
+        cons = constructions(sol, sheet)
+        shows = {"velocity": (1, 0), "acceleration": (0, 1), "poles": (0, 0), "full": (1, 1)}[sheet]
+        velocity = cons.velocity if shows[0] else None
+        acceleration = cons.acceleration if shows[1] else None
+        poleset = cons.poles
     t = table if table is not None else results_table(sol, sheet, velocity=velocity, acceleration=acceleration,
                                                      poleset=poleset)
     ax.set_axis_off()
