@@ -801,9 +801,9 @@ def _found(p: Pole, compact: bool) -> str:
         return p.note or p.how
     lines = []
     for ln in p.lines:
-        lines.append(f"{pole_label(ln[0], compact)}{pole_label(ln[1], compact)}" if "-" in ln[0]
+        lines.append(f"{pole_label(ln[0], compact)}-{pole_label(ln[1], compact)}" if "-" in ln[0]
                      else f"{ln[0]} at {ln[1]}")
-    return f"line {lines[0]} x line {lines[1]}"
+    return " x ".join(lines)
 
 
 def poles_tables(sol) -> list[Table]:
