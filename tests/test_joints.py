@@ -169,3 +169,13 @@ omega = 1
 """
     with pytest.raises(velpoly.InputError, match="mobility is 0"):
         velpoly.solve(velpoly.load(t))
+
+
+def test_a_contact_without_position_equation_allows_only_the_drawn_pose():
+    t = CAM_FLAT.replace('centres = ["K", "flat"]', 'normal = 90')
+    m = velpoly.load(t)
+    velpoly.solve(m)
+    with pytest.raises(velpoly.InputError, match="contacts\\[0\\].*no position equation"):
+        velpoly.solve(m, angle=60)
+    with pytest.raises(velpoly.InputError, match="centres of curvature"):
+        velpoly.sweep(m, [30, 40])

@@ -16,7 +16,7 @@ import numpy as np
 
 from .constraints import System
 from .dyads import assemble, dyad_plan
-from .errors import AssemblyError
+from .errors import InputError
 
 __all__ = ["circle_circle", "circle_line", "Reassembly", "reassemble", "select_rows"]
 
@@ -160,10 +160,12 @@ def reassemble(system: System, rows: list[int], deltas, coarse: float | None = N
     position that cannot be reached without crossing a toggle.
     """
     if not system.holonomic:
-        raise AssemblyError("the mechanism has a contact given by its normal or a prescribed slip, "
-                            "which has no position equation",
-                            where="driver", hint="give the contact's centres of curvature (and no "
-                            "slip) to analyse other driver positions")
+        bad = next(i for i, c in enumerate(system.mechanism.contacts) if c.centres is None or c.slip is not None)
+        raise InputError("only the drawn pose can be analysed: this contact, given by its normal or with a "
+                         "prescribed slip, has no position equation", where=f"contacts[{bad}]",
+                         file=system.mechanism.source,
+                         hint="give the contact's centres of curvature (and no slip) to analyse other driver "
+                              "positions or a whole cycle")
     deltas = np.asarray(deltas, float).ravel()
     n = len(deltas)
     nq = system.nq
