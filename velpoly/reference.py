@@ -183,7 +183,9 @@ def evaluate(sol, q: Quantity):
     if q.kind == "theta":
         return sol.angle[q.links[0]]
     if q.kind in ("P", "VP", "AP"):
-        pos, _ = relative_pole(sol, *q.links)
+        from .poles import locate_poles   # the poles as the instant-centre tables show them
+        pole = locate_poles(sol).pole(*q.links)
+        pos = None if pole.position is None else np.asarray(pole.position, float)
         if pos is None or q.kind == "P":
             return pos
         return (sol.body_velocity if q.kind == "VP" else sol.body_acceleration)(q.links[0], pos)
