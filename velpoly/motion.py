@@ -35,8 +35,23 @@ def _perp(v):
     return np.stack([-v[..., 1], v[..., 0]], axis=-1)
 
 
+_KEYS: dict = {}
+
+
 def point_keys(m: Mechanism) -> list[tuple[str, str, str]]:
-    """Every point key with its point and carrying link: ``(key, point, link)``."""
+    """Every point key with its point and carrying link: ``(key, point, link)``.
+
+    Cached per mechanism (mechanisms are immutable); the list returned is a copy.
+    """
+    hit = _KEYS.get(id(m))
+    if hit is None or hit[0] is not m:
+        if len(_KEYS) > 64:
+            _KEYS.clear()
+        hit = _KEYS[id(m)] = (m, _point_keys(m))
+    return list(hit[1])
+
+
+def _point_keys(m: Mechanism) -> list[tuple[str, str, str]]:
     contact_pts = {c.point for c in m.contacts}
     out = []
     for p in m.point_order:
