@@ -233,10 +233,14 @@ def _body_points(B, index, body, P, position, velocity, acceleration):
     """Positions, velocities and accelerations of many body points in one vectorised pass."""
     n = B.n
     nl = len(index)
-    k = np.array([index.get(lk, nl) for _, _, lk in body])      # the frame: a zero "link" nl
+    k = np.array([index.get(lk, -1) for _, _, lk in body])       # -1: the frame
     s = np.array([P[p] for _, p, _ in body])                      # (K, 2) reference positions
-    def ext(a):
-        return np.concatenate([a.reshape(n, nl, 3), np.zeros((n, 1, 3))], axis=1)[:, k]   # (N, K, 3)
+    moving = (k >= 0).astype(float)[:, None]
+    kk = np.maximum(k, 0)
+
+    def ext(a):   # (N, K, 3): each point's link coordinates, zero for the frame
+        out = a.reshape(n, nl, 3)[:, kk] if nl else np.zeros((n, len(k), 3))
+        return out * moving
     qk, qdk = ext(B.q), ext(B.qd)
     th = qk[..., 2]
     c, sn = np.cos(th), np.sin(th)
