@@ -294,6 +294,42 @@ def test_kennedy_circle_has_n_points_and_all_chords(sixbar):
     assert len(art["chords"]) == sum(1 for p in ps.poles.values() if p.order <= 2)
 
 
+@pytest.mark.parametrize("path", [ROOT / "gallery" / "ex3_6_fourbar.toml", SIXBAR,
+                                  ROOT / "gallery" / "watt_sixbar.toml"], ids=lambda p: p.stem)
+def test_kennedy_numbers_sit_on_their_own_chord_clear_of_crossings(path):
+    """Each order number lies on its chord, meets no other chord (so no crossing: on a four-bar the
+    diagonals cross at the centre) and no other number or link label."""
+    pytest.importorskip("velpoly.poles")
+    from shapely.geometry import LineString, Point
+    from velpoly.poles import locate_poles
+    from velpoly.render.kennedy import draw_kennedy_circle
+    sol = velpoly.solve(velpoly.load(path))
+    ps = locate_poles(sol)
+    ax = _axes((4, 4))
+    art = draw_kennedy_circle(sol, ax, poleset=ps)
+    chords = {c.get_gid()[len("chord-"):]: np.column_stack(c.get_data()) for c in art["chords"]}
+    assert art["numbers"]
+    ax.figure.canvas.draw()                                            # places the numbers' circles
+    to_data = ax.transData.inverted()
+    boxes = []
+    for t in art["numbers"]:
+        key = t.get_gid()[len("chord-number-"):]
+        a, b = chords[key]
+        c = np.array(t.get_position())
+        assert LineString([a, b]).distance(Point(*c)) < 1e-9            # on its own chord
+        f = np.dot(c - a, b - a) / np.dot(b - a, b - a)
+        assert 0.1 < f < 0.9                                           # inside the circle, off the ends
+        bb = t.get_bbox_patch().get_window_extent(ax.figure.canvas.get_renderer())
+        (x0, y0), (x1, y1) = to_data.transform([[bb.x0, bb.y0], [bb.x1, bb.y1]])
+        boxes.append((t.get_text(), box(x0, y0, x1, y1)))
+        for k, (p, q) in chords.items():
+            if k != key:
+                assert not LineString([p, q]).intersects(boxes[-1][1]), f"number {t.get_text()} on chord {k}"
+    for (s1, b1), (s2, b2) in itertools.combinations(boxes, 2):
+        assert not b1.intersects(b2), f"numbers {s1} and {s2} overlap"
+    _no_overlaps(ax, art["labels"] + art["numbers"])
+
+
 def test_poles_are_drawn_where_they_are(sixbar):
     pytest.importorskip("velpoly.poles")
     from velpoly.poles import locate_poles

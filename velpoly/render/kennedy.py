@@ -26,6 +26,7 @@ from .style import get_style
 
 __all__ = ["draw_poles", "draw_kennedy_circle", "pole_label", "shown_poles", "REACH"]
 
+NUMBER_SPOTS = (0.3, 0.7, 0.5, 0.4, 0.6, 0.22, 0.78, 0.35, 0.65, 0.45, 0.55)  # along a chord, tried in turn
 REACH = 2.5   # finite poles within REACH mechanism sizes of the mechanism are drawn where they are
 
 
@@ -265,12 +266,17 @@ def draw_kennedy_circle(sol, ax=None, *, style="textbook", options=None, poleset
                      gid=f"kennedy-label-{lk}")
         art.add("labels", t)
         art.labels[lk] = t
-    # numbers of the found chords, on the chord, where they meet no other mark
+    # numbers of the found chords, each on its own chord where it meets no other chord (so never at a
+    # crossing: on a four-bar the two diagonals cross at the centre), no other number and no link label
+    segs = {ch.key: segment(kc.points[ch.links[0]], kc.points[ch.links[1]]) for ch in kc.chords}
     for ch, a, b, colour in sorted(numbered, key=lambda x: x[0].order):
-        spots = [a + (b - a) * f for f in (0.5, 0.42, 0.58, 0.34, 0.66, 0.26, 0.74)]
+        spots = [a + (b - a) * f for f in NUMBER_SPOTS]
         kw = dict(fontsize=st.small_size, color=colour, zorder=6,
                   bbox=dict(boxstyle="circle,pad=0.15", facecolor=st.paper, edgecolor=colour, lw=st.thin_lw))
-        t = pl.place_at(spots, str(ch.order), gid=f"chord-number-{ch.key}", pad=3.0, **kw)
+        others = [g for k, g in segs.items() if k != ch.key]
+        t = pl.place_at(spots, str(ch.order), gid=f"chord-number-{ch.key}", pad=3.0, avoid=others, **kw)
+        if t is None:   # crowded: no spot clear of every chord, then clear of the labels at least
+            t = pl.place_at(spots, str(ch.order), gid=f"chord-number-{ch.key}", pad=3.0, **kw)
         if t is None:
             t = pl.place(spots[0], str(ch.order), gid=f"chord-number-{ch.key}", pad=3.0, **kw)
         art.add("numbers", t)

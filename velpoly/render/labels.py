@@ -139,10 +139,12 @@ class LabelPlacer:
             self.texts.append(t)
         return t
 
-    def place_at(self, centres, s: str, *, gid: str | None = None, pad: float = 1.0, **text_kw):
+    def place_at(self, centres, s: str, *, gid: str | None = None, pad: float = 1.0, avoid=(), **text_kw):
         """Draw ``s`` centred on the first of ``centres`` where it is free; None if none is.
 
-        For a mark that belongs *on* something (a number on a chord).
+        For a mark that belongs *on* something (a number on a chord). ``avoid``:
+        further geometries (data coordinates) the box must not meet, for this
+        text only (the other chords, for a chord's number).
         """
         ax = self.ax
         c0 = np.asarray(centres[0], float)
@@ -154,7 +156,7 @@ class LabelPlacer:
         for c in centres:
             c = np.asarray(c, float)
             b = box(c[0] - w / 2, c[1] - h / 2, c[0] + w / 2, c[1] + h / 2)
-            if view.contains(b) and self.free(b):
+            if view.contains(b) and self.free(b) and not any(g.intersects(b) for g in avoid):
                 t.set_position((float(c[0]), float(c[1])))
                 self.boxes.append(b)
                 self.texts.append(t)
