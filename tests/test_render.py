@@ -460,6 +460,31 @@ def test_sheets_have_their_panels_and_a_table(sixbar):
     assert w / h == pytest.approx(16 / 9, rel=1e-3)
 
 
+def test_poles_sheet_layouts_draw_the_mechanism_large():
+    """The poles sheet picks the layout drawing the mechanism largest; the panels never overlap, and the
+    table keeps its full type size (ex3_6's far P_24 used to shrink the mechanism to 1 cm = 15 mm)."""
+    pytest.importorskip("velpoly.poles")
+    from shapely.geometry import box as sbox
+    for name, lay in sheet._LAYOUTS.items():
+        if name.startswith("poles"):
+            rects = [sbox(l, b, l + w, b + h) for l, b, w, h in lay.values()]
+            assert all(0 <= r.bounds[0] and r.bounds[2] <= 1 and 0 <= r.bounds[1] and r.bounds[3] <= 0.9
+                       for r in rects)
+            for a, b in itertools.combinations(rects, 2):
+                assert a.intersection(b).area == 0, name
+    st = sheet.get_style("textbook")
+    for stem, largest, layout in (("ex3_6_fourbar", 10.0, "poles-wide"), ("crank_shaper", 80.0, "poles")):
+        sol = velpoly.solve(velpoly.load(ROOT / "gallery" / f"{stem}.toml"))
+        with rc_context(st):
+            fig = sheet.render_sheet(sol, "poles", st)
+        axes = {ax.get_label(): ax for ax in fig.axes}
+        assert view_scale(axes["poles"]) <= largest
+        rect = tuple(axes["poles"].get_position().bounds)
+        assert rect == pytest.approx(sheet._LAYOUTS[layout]["poles"])
+        sizes = {t.get_fontsize() for t in axes["table"].texts if t.get_gid() != "results-table"}
+        assert sizes and max(sizes) >= st.small_size * 0.99      # not shrunk to fit
+
+
 def test_bad_arguments_are_input_errors(sixbar, tmp_path):
     m, sol = sixbar
     with pytest.raises(InputError, match="valid sheets"):

@@ -98,8 +98,16 @@ _LAYOUTS = {
                  "table": (0.05, 0.02, 0.9, 0.23)},
     "acceleration": {"mechanism": (0.02, 0.31, 0.47, 0.545), "acceleration": (0.51, 0.31, 0.47, 0.545),
                      "table": (0.05, 0.02, 0.9, 0.23)},
-    "poles": {"poles": (0.02, 0.31, 0.62, 0.545), "kennedy": (0.67, 0.36, 0.3, 0.375),
-              "table": (0.05, 0.02, 0.9, 0.23)},
+    # the poles' panel takes the full height left of the Kennedy circle, the table sits beneath the
+    # circle; a table too wide for that column (its type would shrink, or rows be cut) goes to the bottom
+    "poles": {"poles": (0.01, 0.03, 0.65, 0.83), "kennedy": (0.69, 0.5, 0.29, 0.34),
+              "table": (0.68, 0.03, 0.31, 0.42)},
+    "poles-wide-table": {"poles": (0.02, 0.31, 0.62, 0.545), "kennedy": (0.67, 0.36, 0.3, 0.375),
+                         "table": (0.05, 0.02, 0.9, 0.23)},
+    # a wide, flat mechanism (a far pole on the line of frame pivots): the whole width for it, the
+    # Kennedy circle and the table beneath
+    "poles-wide": {"poles": (0.01, 0.4, 0.98, 0.46), "kennedy": (0.02, 0.02, 0.28, 0.33),
+                   "table": (0.33, 0.02, 0.65, 0.33)},
     "full": {"mechanism": (0.01, 0.37, 0.33, 0.485), "velocity": (0.34, 0.37, 0.32, 0.485),
              "acceleration": (0.67, 0.37, 0.32, 0.485), "table": (0.05, 0.02, 0.9, 0.29)},
 }
@@ -169,6 +177,36 @@ def _page(fig, st, m, sol) -> None:
     fig.text(0.5, 0.975, title, ha="center", va="top", fontsize=st.title_size, gid="sheet-title")
 
 
+def _poles_layout(sol, st, opts, cons: Constructions) -> str:
+    """The poles sheet's layout that draws the mechanism largest (the first of equals, in order:
+    table beside the panel, beneath it, panel across the page)."""
+    from .canvas import nice_scale
+    from .kennedy import poles_bounds
+    names = (["poles"] if _fits_beside(sol, st, cons) else []) + ["poles-wide-table", "poles-wide"]
+    if opts.scale is not None or cons.poles is None:
+        return names[0]
+    x0, y0, x1, y1 = poles_bounds(sol, cons.poles)
+    w_in, h_in = st.figsize
+
+    def scale(name):
+        _, _, w, h = _LAYOUTS[name]["poles"]
+        usable = 0.8     # draw_poles fits with a margin of 0.1 a side
+        need = max((x1 - x0) / (w * w_in * 2.54 * usable), (y1 - y0) / (h * h_in * 2.54 * usable), 1e-300)
+        return nice_scale(need)
+    return min(names, key=lambda n: (scale(n), names.index(n)))
+
+
+def _fits_beside(sol, st, cons: Constructions) -> bool:
+    """Whether the poles sheet's table fits the column beneath the Kennedy circle at its full type size."""
+    from matplotlib.backends.backend_agg import FigureCanvasAgg
+    from matplotlib.figure import Figure
+    fig = Figure(figsize=st.figsize, dpi=72)
+    FigureCanvasAgg(fig)
+    ax = fig.add_axes(_LAYOUTS["poles"]["table"])
+    art = draw_results_table(sol, ax, sheet="poles", style=st, poleset=cons.poles)
+    return art.size >= st.small_size - 1e-9 and art.shown == len(art.table.rows)
+
+
 def render_sheet(sol, sheet: str = "full", style="textbook", *, cons: Constructions | None = None,
                  frame: Frame | None = None):
     """The matplotlib Figure of one sheet (one frame of it); no pyplot involved.
@@ -185,6 +223,8 @@ def render_sheet(sol, sheet: str = "full", style="textbook", *, cons: Constructi
     cons = cons if cons is not None else constructions(sol, sheet)
     frame = frame or Frame()
     layout = dict(_LAYOUTS[sheet])
+    if sheet == "poles" and opts.table:
+        layout = dict(_LAYOUTS[_poles_layout(sol, st, opts, cons)])
     if sheet == "full" and cons.acceleration is None:
         layout = dict(_LAYOUTS["velocity"])
     if not opts.table:

@@ -232,7 +232,7 @@ def draw_results_table(sol, ax=None, *, sheet: str = "full", style="textbook", v
     Artists
         Roles ``cells`` (Texts, row by row), ``rules`` and ``title``;
         ``artists.table`` is the Table drawn, ``artists.shown`` the number of
-        its rows drawn.
+        its rows drawn, ``artists.size`` its type size (points, after any shrinking).
     """
     from matplotlib.lines import Line2D
     ax = get_ax(ax)
@@ -347,4 +347,5 @@ def draw_results_table(sol, ax=None, *, sheet: str = "full", style="textbook", v
         bottom = min(bottom, y)
         rule(x0, y, st.link_lw)
     art.shown = len(shown)
+    art.size = size
     return art
