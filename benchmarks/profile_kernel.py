@@ -9,7 +9,7 @@ Prints, for the 3600-pose four-bar sweep and the six-bar ``solve``:
   (``System.evaluate``) by batch size: one pose at a time (the knots'
   sequential continuation) or many at once;
 * cProfile's top functions by own time and by cumulative time;
-* ``python -X importtime -c "import velpoly"``: the slowest imports.
+* ``python -X importtime``: the slowest imports when the API is first touched.
 
 The evidence behind docs/requests/performance.md. It only reads the kernel
 (wrapping functions in this process); it changes nothing.
@@ -33,8 +33,9 @@ import numpy as np
 from bench_sweep import ANGLES_DEG, FOURBAR
 
 # the kernel functions timed, where they exist (the kernel changes; missing names are skipped)
-STAGES = {"velpoly.sweep": ("prepare", "reassemble", "rates", "condition", "velocities", "accelerations",
-                            "evaluate_motion"),
+SWEEP_STAGES = ("prepare", "reassemble", "rates", "condition", "velocities", "accelerations", "evaluate_motion")
+STAGES = {"velpoly.sweeps": SWEEP_STAGES,
+          "velpoly.sweep": SWEEP_STAGES,        # the module's name before a4055dd
           "velpoly.solution": ("prepare", "reassemble", "velocities", "accelerations", "evaluate_motion"),
           "velpoly.pose": ("_closed_form", "assemble", "_step", "_newton", "_velocity", "_cond"),
           "velpoly.polygons": ("velocity_polygon", "acceleration_polygon"),
@@ -143,14 +144,15 @@ def profile(title: str, fn, top: int, calls: int = 1):
 
 
 def import_times(top: int):
-    proc = subprocess.run([sys.executable, "-X", "importtime", "-c", "import velpoly"],
+    code = "import velpoly; velpoly.load, velpoly.solve, velpoly.sweep"   # the package imports lazily
+    proc = subprocess.run([sys.executable, "-X", "importtime", "-c", code],
                           capture_output=True, text=True)
     rows = []
     for line in proc.stderr.splitlines():
         m = re.match(r"import time:\s+(\d+) \|\s+(\d+) \|(\s*)(\S+)", line)
         if m:
             rows.append((int(m.group(2)), len(m.group(3)), m.group(4)))
-    print(f"\nimport velpoly: slowest imports (cumulative microseconds, python -X importtime), top {top}")
+    print(f"\n{code}: slowest imports (cumulative microseconds, python -X importtime), top {top}")
     for cum, indent, name in sorted(rows, reverse=True)[:top]:
         print(f"  {cum:8d} us  {'  ' * ((indent - 1) // 2)}{name}")
 
