@@ -184,8 +184,8 @@ def reassemble(system: System, rows: list[int], deltas, coarse: float | None = N
     for idx, d in enumerate(deltas):
         if abs(d - knot_d[-1]) > coarse:
             start = knot_d[-1]
-            k = int(np.ceil(abs(d - start) / coarse))
-            for target in start + (d - start) * np.arange(1, k + 1) / k:
+            k = int(np.floor(abs(d - start) / coarse))   # whole steps of `coarse` towards d
+            for target in start + np.sign(d - start) * coarse * np.arange(1, k + 1):
                 nxt = _step(system, rows, q, jac, knot_d[-1], target)
                 if nxt is None:
                     stopped = "toggle"
