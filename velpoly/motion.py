@@ -230,33 +230,41 @@ def evaluate_motion(m: Mechanism, index: dict, q, qd, qdd=None) -> Motion:
 
 
 def _body_points(B, index, body, P, position, velocity, acceleration):
-    """Positions, velocities and accelerations of many body points in one vectorised pass."""
+    """Positions, velocities and accelerations of many body points in one vectorised pass.
+
+    Per link (rows; the frame last, at rest): r = x + R(theta) s,
+    V = V_O + omega x R s, A = A_O + alpha x R s - omega^2 R s.
+    """
     n = B.n
     nl = len(index)
-    k = np.array([index.get(lk, -1) for _, _, lk in body])       # -1: the frame
-    s = np.array([P[p] for _, p, _ in body])                      # (K, 2) reference positions
-    moving = (k >= 0).astype(float)[:, None]
-    kk = np.maximum(k, 0)
 
-    def ext(a):   # (N, K, 3): each point's link coordinates, zero for the frame
-        out = a.reshape(n, nl, 3)[:, kk] if nl else np.zeros((n, len(k), 3))
-        return out * moving
-    qk, qdk = ext(B.q), ext(B.qd)
-    th = qk[..., 2]
-    c, sn = np.cos(th), np.sin(th)
-    rx = c * s[:, 0] - sn * s[:, 1]
-    ry = sn * s[:, 0] + c * s[:, 1]
-    r = np.stack([rx, ry], axis=-1)                               # (N, K, 2): from the link's origin
-    om = qdk[..., 2:3]
-    pos = qk[..., :2] + r
-    vel = qdk[..., :2] + om * _perp(r)
-    if B.qdd is None:
-        acc = np.full_like(pos, np.nan)
+    def rows(a):   # (nl + 1, N) per coordinate: the links' x, y, theta (and the frame's zeros)
+        if a is None:
+            return None
+        t = np.zeros((3, nl + 1, n))
+        if nl:
+            t[:, :nl] = a.reshape(n, nl, 3).transpose(2, 1, 0)
+        return t
+    q, qd, qdd = rows(B.q), rows(B.qd), rows(B.qdd)
+    c, sn = np.cos(q[2]), np.sin(q[2])
+    k = np.array([index.get(lk, nl) for _, _, lk in body])
+    s = np.array([P[p] for _, p, _ in body])
+    ck, sk = c[k], sn[k]
+    rx = ck * s[:, :1] - sk * s[:, 1:]
+    ry = sk * s[:, :1] + ck * s[:, 1:]
+    om = qd[2][k]
+    px, py = q[0][k] + rx, q[1][k] + ry
+    vx, vy = qd[0][k] - om * ry, qd[1][k] + om * rx
+    if qdd is None:
+        ax = ay = np.full_like(px, np.nan)
     else:
-        qddk = ext(B.qdd)
-        acc = qddk[..., :2] + qddk[..., 2:3] * _perp(r) - om ** 2 * r
+        al, w2 = qdd[2][k], om * om
+        ax = qdd[0][k] - al * ry - w2 * rx
+        ay = qdd[1][k] + al * rx - w2 * ry
     for i, (key, _, _) in enumerate(body):
-        position[key], velocity[key], acceleration[key] = pos[:, i], vel[:, i], acc[:, i]
+        position[key] = np.stack([px[i], py[i]], axis=-1)
+        velocity[key] = np.stack([vx[i], vy[i]], axis=-1)
+        acceleration[key] = np.stack([ax[i], ay[i]], axis=-1)
 
 
 class _FakeSystem:
