@@ -267,6 +267,34 @@ def test_tex_labels():
     assert tex("P@5") == "P@5"
 
 
+def test_slotted_lever_is_drawn_under_its_crank_and_clear_of_its_pins():
+    """Crank-shaper: the slotted lever 4 lies under the crank 2, its slot stops short of its pin B (B's
+    label is not inside the bar), and the driver's arc crosses no other link."""
+    from shapely.geometry import LineString, Point
+    sol = velpoly.solve(velpoly.load(ROOT / "gallery" / "crank_shaper.toml"))
+    ax = _axes((5, 6))
+    with rc_context(sheet.get_style("textbook")):
+        art = draw_mechanism(sol, ax)
+    links = {p.get_gid()[len("link-"):]: p for p in art["links"] if (p.get_gid() or "").startswith("link-")}
+    assert links["2"].get_zorder() > links["4"].get_zorder()
+    to_data = ax.transData.inverted()
+
+    def outline(patch):
+        return SPolygon(to_data.transform(patch.get_path().to_polygons(patch.get_transform())[0])).buffer(0)
+
+    slots = [outline(p) for p in art["links"] if not p.get_gid()]
+    assert slots
+    pin_b = Point(*sol.position["B"]).buffer(per_cm(ax) * 0.05)
+    assert not any(s.intersects(pin_b) for s in slots)
+    r = ax.figure.canvas.get_renderer()
+    bb = art.labels["B"].get_window_extent(r)
+    (x0, y0), (x1, y1) = to_data.transform([[bb.x0, bb.y0], [bb.x1, bb.y1]])
+    assert not outline(links["4"]).intersects(box(x0, y0, x1, y1))
+    arc = next(a for a in art["driver"] if a.get_gid() == "driver-arc")
+    arc = LineString(np.column_stack(arc.get_data()))
+    assert not any(outline(p).intersects(arc) for k, p in links.items() if k != "2")
+
+
 # -- poles and the Kennedy circle -------------------------------------------------------------------------
 def test_kennedy_circle_has_n_points_and_all_chords(sixbar):
     pytest.importorskip("velpoly.poles")

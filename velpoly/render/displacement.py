@@ -129,6 +129,7 @@ class _Drawing:
         self.bodies = link_bodies(sol, st.bar_width * self.pc)
         self.extra_body: dict = {}       # link -> geometry to union (slotted bars, wheels)
         self.slots: list = []            # (link, slot geometry) drawn white over bodies
+        self.slotted: set = set()        # links with a slot or a moving guide's slotted bar
 
     # -- pieces ------------------------------------------------------------------------
     def patch(self, geom, role, zorder, facecolor, lw=None, gid=None, **kw):
@@ -190,6 +191,31 @@ class _Drawing:
     def _path_segment(self, p, d, half):
         return LineString([tuple(p - d * half), tuple(p + d * half)])
 
+    def _clipped_to_link(self, path, p, d, link, point, L, H):
+        """A moving guide's straight path, cut short of the guide link's other pins on it.
+
+        A slotted lever's slot runs between its pins (a pin at the slot's end would sit in the
+        slot, its label inside the bar), but always leaves the block room to show it sliding.
+        """
+        sol = self.sol
+        (x0, y0), (x1, y1) = path.coords
+        lo = float(np.dot(np.array([x0, y0]) - p, d))
+        hi = float(np.dot(np.array([x1, y1]) - p, d))
+        keep = L / 2 + 0.25 * self.pc                    # the block and a little travel either side
+        clear = 2.2 * self.st.pin_radius * self.pc + H / 2   # from a pin to the slot's end
+        for q in self.m.link(link).points:
+            if q == point:
+                continue
+            v = sol.place(link, q) - p
+            t = float(np.dot(v, d))
+            if abs(float(_perp(d) @ v)) > H:             # off the path's line: the slot passes it by
+                continue
+            if t > 0:
+                hi = min(hi, max(t - clear, keep))
+            elif t < 0:
+                lo = max(lo, min(t + clear, -keep))
+        return LineString([tuple(p + d * lo), tuple(p + d * hi)])
+
     def _arc(self, k, radius, mid, half_angle):
         a = np.linspace(mid - half_angle, mid + half_angle, 48)
         return LineString(np.c_[k[0] + radius * np.cos(a), k[1] + radius * np.sin(a)])
@@ -206,6 +232,8 @@ class _Drawing:
         side = -1.0 if np.dot(side_v, n) > 0 else 1.0   # the guide's hatch away from the links
         if s.centre is None:
             path = self._path_segment(p, d, 2.1 * L)
+            if not self.m.link(s.guide).frame:
+                path = self._clipped_to_link(path, p, d, s.guide, s.point, L, H)
         else:
             k = sol.place(s.guide, s.centre)
             rad = float(np.hypot(*(p - k)))
@@ -224,6 +252,7 @@ class _Drawing:
             self.centre_line(path)
         else:
             self.extra_body.setdefault(s.guide, []).append(path.buffer(H / 2 + 0.09 * pc, cap_style="flat"))
+            self.slotted.add(s.guide)
             self.slots.append((s.guide, path.buffer(H * 0.3, cap_style="round")))
         block = SPolygon([p - d * L / 2 - n * H / 2, p + d * L / 2 - n * H / 2, p + d * L / 2 + n * H / 2,
                           p - d * L / 2 + n * H / 2])
@@ -275,6 +304,7 @@ class _Drawing:
             self.slots.append((None, path.buffer(w / 2, cap_style="round")))
         else:
             self.extra_body.setdefault(s.slot, []).append(path.buffer(w / 2 + 0.12 * pc, cap_style="round"))
+            self.slotted.add(s.slot)
             self.slots.append((s.slot, path.buffer(w / 2, cap_style="round")))
 
     def contact(self, i, c, r):
@@ -338,6 +368,9 @@ class _Drawing:
         # bodies, in file order (later links over earlier ones)
         from shapely.ops import unary_union
         order = [k.name for k in m.moving_links]
+        # a link with a slot or a moving guide lies under the others (the crank that drives the block
+        # in a slotted lever is seen over the lever), otherwise file order: later links over earlier ones
+        order = [lk for lk in order if lk in self.slotted] + [lk for lk in order if lk not in self.slotted]
         geoms = {}
         for lk in order:
             parts = ([self.bodies[lk]] if lk in self.bodies else []) + self.extra_body.get(lk, [])
@@ -346,6 +379,7 @@ class _Drawing:
                 parts = [Point(*p).buffer(2.2 * st.pin_radius * self.pc)]
             if parts:
                 geoms[lk] = unary_union(parts)
+        self.geoms = geoms
         for z, lk in enumerate(order):
             if lk in geoms:
                 self.patch(geoms[lk], "links", 2 + 0.01 * z, link_fill(m, self.opts, st, lk), gid=f"link-{lk}")
@@ -354,10 +388,11 @@ class _Drawing:
         for lk, g in self.slots:
             z = 2.5 if lk is None else 2 + 0.01 * order.index(lk) + 0.005
             self.patch(g, "links", z, st.paper, lw=st.thin_lw * 1.5)
+            self.pl.add_obstacle(g.boundary.buffer(0.6 * self.pp), hard=False)
         # pins and points
         self.points(ground_dir)
+        self.driver(ground_dir)          # before the link numbers, which then keep clear of its arrow
         self.link_numbers(geoms)
-        self.driver(ground_dir)
         if self.opts.label_points is None or self.opts.label_points:
             self.point_labels()
         self.art.add("scale_bar", *scale_bar(self.ax, st, m.units, 0))
@@ -440,8 +475,23 @@ class _Drawing:
                     self.art.add("link_numbers", t)
                     continue
                 t.remove()
-            t = self.pl.place(anchor, lk, prefer=prefer, gap=2.0, gid=f"link-number-{lk}", pad=3.5
-                              if "bbox" in kw else 1.0, **kw)
+            pad = 3.5 if "bbox" in kw else 1.0
+            t = None
+            if len(pts) == 2:
+                # a bar: its number beside it, near its middle, on the side clear of everything
+                probe = self.ax.text(*anchor, lk, ha="center", va="center", **kw)
+                w, h = self.pl._size(probe, pad)
+                probe.remove()
+                u = (b - a) / max(np.hypot(*(b - a)), 1e-300)
+                off = st.bar_width * self.pc / 2 + 2.0 * self.pp + 0.5 * (abs(n[0]) * w + abs(n[1]) * h)
+                spots = [a + (b - a) * f + side * n * off for f in (0.5, 0.38, 0.62, 0.27, 0.73)
+                         for side in (1, -1)]
+                if np.hypot(*(b - a)) > 2 * off:
+                    t = self.pl.place_at(spots, lk, gid=f"link-number-{lk}", pad=pad, soft=True, **kw)
+                    if t is None:   # nothing clear of every line beside it: clear of marks and labels
+                        t = self.pl.place_at(spots, lk, gid=f"link-number-{lk}", pad=pad, **kw)
+            if t is None:
+                t = self.pl.place(anchor, lk, prefer=prefer, gap=2.0, gid=f"link-number-{lk}", pad=pad, **kw)
             self.art.add("link_numbers", t)
 
     def driver(self, ground_dir):
@@ -475,14 +525,28 @@ class _Drawing:
             dirs += [ground_dir[pivot] - 40.0, ground_dir[pivot], ground_dir[pivot] + 40.0]
         dirs = sorted(d % 360 for d in dirs) or [270.0]
         gaps = [((dirs[(i + 1) % len(dirs)] - d) % 360 or 360, d) for i, d in enumerate(dirs)]
-        gap, start = max(gaps)
-        mid = start + gap / 2
-        span = min(130.0, 0.75 * gap)
         rad = 0.8 * pc
         sense = 1.0 if drv.omega >= 0 else -1.0
-        a0, a1 = mid - sense * span / 2, mid + sense * span / 2
-        t = np.radians(np.linspace(a0, a1, 60))
-        xy = np.c_[p[0] + rad * np.cos(t), p[1] + rad * np.sin(t)]
+        # the arc in the widest gap between the driver's links and the ground, unless it would cross
+        # another link (a slotted lever passing by the pivot), a block or a label: then the next gap
+        others = [g for lk, g in getattr(self, "geoms", {}).items() if lk != drv.link]
+        others += [g for lk, g in self.block_geom.items() if lk != drv.link] + list(self.pl.boxes)
+        best = None
+        for rank, (gap, start) in enumerate(sorted(gaps, reverse=True)):
+            if gap < 50.0 and rank > 0:
+                break
+            mid = start + gap / 2
+            span = min(130.0, 0.75 * gap)
+            a0, a1 = mid - sense * span / 2, mid + sense * span / 2
+            t = np.radians(np.linspace(a0, a1, 60))
+            cand = np.c_[p[0] + rad * np.cos(t), p[1] + rad * np.sin(t)]
+            arc = LineString(cand)
+            hits = sum(1 for g in others if g.intersects(arc))
+            if best is None or hits < best[0]:
+                best = (hits, mid, cand)
+            if hits == 0:
+                break
+        _, mid, xy = best
         from matplotlib.lines import Line2D
         hl = st.head_length * pp
         # the shaft stops where the head begins

@@ -139,12 +139,14 @@ class LabelPlacer:
             self.texts.append(t)
         return t
 
-    def place_at(self, centres, s: str, *, gid: str | None = None, pad: float = 1.0, avoid=(), **text_kw):
+    def place_at(self, centres, s: str, *, gid: str | None = None, pad: float = 1.0, avoid=(), soft: bool = False,
+                 **text_kw):
         """Draw ``s`` centred on the first of ``centres`` where it is free; None if none is.
 
         For a mark that belongs *on* something (a number on a chord). ``avoid``:
         further geometries (data coordinates) the box must not meet, for this
-        text only (the other chords, for a chord's number).
+        text only (the other chords, for a chord's number); ``soft``: the box must
+        meet no soft obstacle either.
         """
         ax = self.ax
         c0 = np.asarray(centres[0], float)
@@ -156,7 +158,7 @@ class LabelPlacer:
         for c in centres:
             c = np.asarray(c, float)
             b = box(c[0] - w / 2, c[1] - h / 2, c[0] + w / 2, c[1] + h / 2)
-            if view.contains(b) and self.free(b) and not any(g.intersects(b) for g in avoid):
+            if view.contains(b) and self.free(b, soft=soft) and not any(g.intersects(b) for g in avoid):
                 t.set_position((float(c[0]), float(c[1])))
                 self.boxes.append(b)
                 self.texts.append(t)
