@@ -137,107 +137,84 @@ def dyad_plan(m: Mechanism) -> DyadPlan | None:
     return DyadPlan(driver, tuple(steps))
 
 
-def _place(pose, s):
-    x, y, th = pose
-    c, sn = np.cos(th), np.sin(th)
-    return np.stack([x + c * s[0] - sn * s[1], y + sn * s[0] + c * s[1]], axis=-1)
-
-
-def _pose_from(p_now, p_ref, q_now, q_ref):
-    """The rigid motion taking reference points p_ref, q_ref to p_now, q_now: (x, y, theta)."""
-    d_ref = q_ref - p_ref
-    d_now = q_now - p_now
-    th = np.arctan2(d_now[:, 1], d_now[:, 0]) - np.arctan2(d_ref[1], d_ref[0])
-    c, sn = np.cos(th), np.sin(th)
-    x = p_now[:, 0] - (c * p_ref[0] - sn * p_ref[1])
-    y = p_now[:, 1] - (sn * p_ref[0] + c * p_ref[1])
-    return x, y, th
+def _c(p) -> complex:
+    """A point as a complex number x + iy (the walk below works in complex numbers:
+    perp(v) = i v, a . b = Re(conj(a) b), a x b = Im(conj(a) b))."""
+    return complex(p[0], p[1])
 
 
 def assemble(m: Mechanism, index: dict, plan: DyadPlan, deltas) -> tuple[np.ndarray, int]:
     """Poses q (N, nq) at the driver positions ``deltas``, and how many are reachable.
 
     Positions are reachable up to (not including) the first one where a dyad
-    does not close; q beyond it is NaN.
+    does not close; q beyond it is NaN. A link's pose is its origin o and turn
+    rot = e^(i theta); its point s (reference position) is at o + rot s.
     """
     deltas = np.asarray(deltas, float)
     n = len(deltas)
-    P = {k: np.array(v, float) for k, v in m.points.items()}
-    zero = np.zeros(n)
-    poses = {m.frame.name: (zero, zero, zero)}
+    P = {k: _c(v) for k, v in m.points.items()}
+    one = np.ones(n, complex)
+    poses = {m.frame.name: (np.zeros(n, complex), one)}
     kind, link, extra = plan.driver
     if kind == "crank":
-        o = P[extra]
-        c, s = np.cos(deltas), np.sin(deltas)
-        poses[link] = (o[0] - (c * o[0] - s * o[1]), o[1] - (s * o[0] + c * o[1]), deltas)
+        rot = np.exp(1j * deltas)
+        poses[link] = (P[extra] - rot * P[extra], rot)
     else:
-        t = np.radians(extra)
-        poses[link] = (deltas * np.cos(t), deltas * np.sin(t), zero)
+        poses[link] = (deltas * np.exp(1j * np.radians(extra)), one)
+
+    def place(lk, s):
+        o, rot = poses[lk]
+        return o + rot * s
+
+    def pose_from(a, s1, c2, s2):
+        rot = (c2 - a) / (s2 - s1)
+        rot /= np.abs(rot)
+        return a - rot * s1, rot
+
     bad = np.zeros(n, bool)
     for st in plan.steps:
         if st[0] == "RRR":
             _, u, v, p1, k1, p2, p3, k3, side = st
-            a = _place(poses[k1], P[p1])
-            b = _place(poses[k3], P[p3])
-            r1 = np.hypot(*(P[p2] - P[p1]))
-            r2 = np.hypot(*(P[p2] - P[p3]))
+            a, b = place(k1, P[p1]), place(k3, P[p3])
+            r1, r2 = abs(P[p2] - P[p1]), abs(P[p2] - P[p3])
             d = b - a
-            dist = np.hypot(d[:, 0], d[:, 1])
+            dist = np.abs(d)
             along = (r1 * r1 - r2 * r2 + dist * dist) / (2 * dist)
             h2 = r1 * r1 - along * along
             bad |= ~(h2 >= 0) | (dist == 0)
-            h = np.sqrt(np.maximum(h2, 0.0))
-            e = d / dist[:, None]
-            nrm = np.stack([-e[:, 1], e[:, 0]], axis=-1)
-            c2 = a + along[:, None] * e + side * h[:, None] * nrm
-            poses[u] = _pose_from(a, P[p1], c2, P[p2])
-            poses[v] = _pose_from(b, P[p3], c2, P[p2])
+            e = d / dist
+            c2 = a + (along + side * 1j * np.sqrt(np.maximum(h2, 0.0))) * e
+            poses[u] = pose_from(a, P[p1], c2, P[p2])
+            poses[v] = pose_from(b, P[p3], c2, P[p2])
         else:
             _, u, v, p1, k1, p2, g, dref, side = st
-            a = _place(poses[k1], P[p1])
-            xg, yg, thg = poses[g]
-            c, s = np.cos(thg), np.sin(thg)
-            e = np.stack([c * dref[0] - s * dref[1], s * dref[0] + c * dref[1]], axis=-1)
-            through = _place(poses[g], P[p2])
-            r = np.hypot(*(P[p2] - P[p1]))
-            t0 = np.einsum("ij,ij->i", a - through, e)
-            foot = through + t0[:, None] * e
+            a = place(k1, P[p1])
+            og, rotg = poses[g]
+            e = rotg * _c(dref)
+            through = place(g, P[p2])
+            r = abs(P[p2] - P[p1])
+            foot = through + (np.conj(e) * (a - through)).real * e
             off = a - foot
-            h2 = r * r - np.einsum("ij,ij->i", off, off)
+            h2 = r * r - (off.real ** 2 + off.imag ** 2)
             bad |= ~(h2 >= 0)
-            c2 = foot + side * np.sqrt(np.maximum(h2, 0.0))[:, None] * e
-            poses[u] = _pose_from(a, P[p1], c2, P[p2])
-            # the block translates on its guide: it turns with the guide
-            poses[v] = (c2[:, 0] - (c * P[p2][0] - s * P[p2][1]), c2[:, 1] - (s * P[p2][0] + c * P[p2][1]), thg)
+            c2 = foot + side * np.sqrt(np.maximum(h2, 0.0)) * e
+            poses[u] = pose_from(a, P[p1], c2, P[p2])
+            poses[v] = (c2 - rotg * P[p2], rotg)   # the block translates on its guide: it turns with it
     reach = int(np.argmax(bad)) if bad.any() else n
     q = np.zeros((n, 3 * len(index)))
     for name, k in index.items():
-        x, y, th = poses[name]
-        q[:, 3 * k], q[:, 3 * k + 1], q[:, 3 * k + 2] = x, y, th
+        o, rot = poses[name]
+        q[:, 3 * k], q[:, 3 * k + 1] = o.real, o.imag
+        th = np.angle(rot)
+        if name == link and kind == "crank":
+            th = deltas                       # the driver's own angle, exactly
+        q[:, 3 * k + 2] = th
     # angles continuous with the reference pose (0), not wrapped into (-pi, pi]
     th = q[:, 2::3]
     if n:
         th[:] = np.unwrap(np.concatenate([np.zeros((1, th.shape[1])), th]), axis=0)[1:]
     q[reach:] = np.nan
     return q, reach
-
-
-def _perp(v):
-    return np.stack([-v[..., 1], v[..., 0]], axis=-1)
-
-
-def _cross(a, b):
-    return a[..., 0] * b[..., 1] - a[..., 1] * b[..., 0]
-
-
-def _dot(a, b):
-    return a[..., 0] * b[..., 0] + a[..., 1] * b[..., 1]
-
-
-def _solve2(r1, b1, r2, b2):
-    """x with r1 . x = b1 and r2 . x = b2 (Cramer's rule, over all poses)."""
-    det = _cross(r1, r2)
-    return np.stack([(b1 * r2[..., 1] - b2 * r1[..., 1]) / det, (r1[..., 0] * b2 - r2[..., 0] * b1) / det], axis=-1)
 
 
 def rates(m: Mechanism, index: dict, plan: DyadPlan, q: np.ndarray, rate: float, accel: float):
@@ -257,80 +234,79 @@ def rates(m: Mechanism, index: dict, plan: DyadPlan, q: np.ndarray, rate: float,
     (the transmission angle): zero exactly at a dyad's toggle.
     """
     n = len(q)
-    P = {k: np.array(v, float) for k, v in m.points.items()}
-    state = {m.frame.name: (np.zeros((n, 2)), np.zeros((n, 2)), np.zeros(n), np.zeros(n), np.zeros((n, 2)))}
-
-    def origin(lk):
-        k = index[lk]
-        return q[:, 3 * k:3 * k + 2]
+    P = {k: _c(v) for k, v in m.points.items()}
+    zero = np.zeros(n)
+    frame = m.frame.name
+    state = {frame: (np.zeros(n, complex), np.zeros(n, complex), zero, zero, np.zeros(n, complex))}
+    pose = {frame: (np.zeros(n, complex), np.ones(n, complex))}
+    for name, k in index.items():
+        pose[name] = (q[:, 3 * k] + 1j * q[:, 3 * k + 1], np.exp(1j * q[:, 3 * k + 2]))
 
     def place(lk, s):
-        if lk == m.frame.name:
-            return np.broadcast_to(s, (n, 2))
-        k = index[lk]
-        th = q[:, 3 * k + 2]
-        c, sn = np.cos(th), np.sin(th)
-        return q[:, 3 * k:3 * k + 2] + np.stack([c * s[0] - sn * s[1], sn * s[0] + c * s[1]], axis=-1)
+        o, rot = pose[lk]
+        return o + rot * s
 
     def motion_at(lk, w):
         vo, ao, om, al, o = state[lk]
         r = w - o
-        return vo + om[:, None] * _perp(r), ao + al[:, None] * _perp(r) - (om ** 2)[:, None] * r
+        return vo + 1j * om * r, ao + (1j * al - om * om) * r
 
     def set_link(lk, w, v, a, om, al):
-        o = origin(lk)
+        o = pose[lk][0]
         r = w - o
-        state[lk] = (v - om[:, None] * _perp(r), a - al[:, None] * _perp(r) + (om ** 2)[:, None] * r,
-                     om, al, o)
+        state[lk] = (v - 1j * om * r, a - (1j * al - om * om) * r, om, al, o)
+
+    def solve2(r1, b1, r2, b2):   # x with Re(conj(r1) x) = b1, Re(conj(r2) x) = b2
+        det = (np.conj(r1) * r2).imag
+        return ((b1 * r2.imag - b2 * r1.imag) + 1j * (r1.real * b2 - r2.real * b1)) / det
+
+    def dot(a, b):
+        return (np.conj(a) * b).real
+
+    def cross(a, b):
+        return (np.conj(a) * b).imag
 
     kind, link, extra = plan.driver
     if kind == "crank":
         w = place(link, P[extra])
-        om, al = np.full(n, float(rate)), np.full(n, float(accel))
-        set_link(link, w, np.zeros((n, 2)), np.zeros((n, 2)), om, al)
+        zc = np.zeros(n, complex)
+        set_link(link, w, zc, zc, np.full(n, float(rate)), np.full(n, float(accel)))
     else:
-        t = np.radians(extra)
-        e = np.array([np.cos(t), np.sin(t)])
-        state[link] = (np.broadcast_to(rate * e, (n, 2)).copy(), np.broadcast_to(accel * e, (n, 2)).copy(),
-                       np.zeros(n), np.zeros(n), origin(link))
+        e = np.exp(1j * np.radians(extra))
+        state[link] = (np.full(n, rate * e), np.full(n, accel * e), zero, zero, pose[link][0])
     sine = np.ones(n)
     for st in plan.steps:
         if st[0] == "RRR":
             _, u_, v_, p1, k1, p2, p3, k3, _ = st
-            a1, a3 = place(k1, P[p1]), place(k3, P[p3])
-            x2 = place(u_, P[p2])
+            a1, a3, x2 = place(k1, P[p1]), place(k3, P[p3]), place(u_, P[p2])
             V1, A1 = motion_at(k1, a1)
             V3, A3 = motion_at(k3, a3)
             u, v = x2 - a1, x2 - a3
-            V2 = _solve2(u, _dot(u, V1), v, _dot(v, V3))
-            A2 = _solve2(u, _dot(u, A1) - _dot(V2 - V1, V2 - V1), v, _dot(v, A3) - _dot(V2 - V3, V2 - V3))
-            uu, vv = _dot(u, u), _dot(v, v)
-            sine = np.minimum(sine, np.abs(_cross(u, v)) / np.sqrt(uu * vv))
-            set_link(u_, x2, V2, A2, _cross(u, V2 - V1) / uu, _cross(u, A2 - A1) / uu)
-            set_link(v_, x2, V2, A2, _cross(v, V2 - V3) / vv, _cross(v, A2 - A3) / vv)
+            V2 = solve2(u, dot(u, V1), v, dot(v, V3))
+            A2 = solve2(u, dot(u, A1) - np.abs(V2 - V1) ** 2, v, dot(v, A3) - np.abs(V2 - V3) ** 2)
+            uu, vv = np.abs(u) ** 2, np.abs(v) ** 2
+            sine = np.minimum(sine, np.abs(cross(u, v)) / np.sqrt(uu * vv))
+            set_link(u_, x2, V2, A2, cross(u, V2 - V1) / uu, cross(u, A2 - A1) / uu)
+            set_link(v_, x2, V2, A2, cross(v, V2 - V3) / vv, cross(v, A2 - A3) / vv)
         else:
             _, u_, v_, p1, k1, p2, g, dref, _ = st
-            a1 = place(k1, P[p1])
-            x2 = place(u_, P[p2])
+            a1, x2 = place(k1, P[p1]), place(u_, P[p2])
             V1, A1 = motion_at(k1, a1)
             VG, AG = motion_at(g, x2)
-            _, _, omg, alg, _ = state[g]
-            thg = q[:, 3 * index[g] + 2] if g in index else np.zeros(n)
-            c, s = np.cos(thg), np.sin(thg)
-            e = np.stack([c * dref[0] - s * dref[1], s * dref[0] + c * dref[1]], axis=-1)
-            nn = _perp(e)
+            omg, alg = state[g][2], state[g][3]
+            e = pose[g][1] * _c(dref)
+            nn = 1j * e
             u = x2 - a1
-            V2 = _solve2(u, _dot(u, V1), nn, _dot(nn, VG))
-            A2 = _solve2(u, _dot(u, A1) - _dot(V2 - V1, V2 - V1), nn,
-                         _dot(nn, AG) + 2 * omg * _dot(e, V2 - VG))
-            uu = _dot(u, u)
-            sine = np.minimum(sine, np.abs(_dot(u, e)) / np.sqrt(uu))
-            set_link(u_, x2, V2, A2, _cross(u, V2 - V1) / uu, _cross(u, A2 - A1) / uu)
+            V2 = solve2(u, dot(u, V1), nn, dot(nn, VG))
+            A2 = solve2(u, dot(u, A1) - np.abs(V2 - V1) ** 2, nn, dot(nn, AG) + 2 * omg * dot(e, V2 - VG))
+            uu = np.abs(u) ** 2
+            sine = np.minimum(sine, np.abs(dot(u, e)) / np.sqrt(uu))
+            set_link(u_, x2, V2, A2, cross(u, V2 - V1) / uu, cross(u, A2 - A1) / uu)
             set_link(v_, x2, V2, A2, omg, alg)
     qd = np.zeros_like(q)
     qdd = np.zeros_like(q)
     for name, k in index.items():
         vo, ao, om, al, _ = state[name]
-        qd[:, 3 * k:3 * k + 2], qd[:, 3 * k + 2] = vo, om
-        qdd[:, 3 * k:3 * k + 2], qdd[:, 3 * k + 2] = ao, al
+        qd[:, 3 * k], qd[:, 3 * k + 1], qd[:, 3 * k + 2] = vo.real, vo.imag, om
+        qdd[:, 3 * k], qdd[:, 3 * k + 1], qdd[:, 3 * k + 2] = ao.real, ao.imag, al
     return qd, qdd, sine
