@@ -212,7 +212,9 @@ def assemble(m: Mechanism, index: dict, plan: DyadPlan, deltas) -> tuple[np.ndar
     # angles continuous with the reference pose (0), not wrapped into (-pi, pi]
     th = q[:, 2::3]
     if n:
-        th[:] = np.unwrap(np.concatenate([np.zeros((1, th.shape[1])), th]), axis=0)[1:]
+        jumps = np.abs(np.diff(th, axis=0, prepend=0.0)).max(axis=0) > np.pi
+        if jumps.any():
+            th[:, jumps] = np.unwrap(np.concatenate([np.zeros((1, int(jumps.sum()))), th[:, jumps]]), axis=0)[1:]
     q[reach:] = np.nan
     return q, reach
 

@@ -261,10 +261,12 @@ def _body_points(B, index, body, P, position, velocity, acceleration):
         al, w2 = qdd[2][k], om * om
         ax = qdd[0][k] - al * ry - w2 * rx
         ay = qdd[1][k] + al * rx - w2 * ry
+    out = np.empty((3, len(body), n, 2))
+    out[0, ..., 0], out[0, ..., 1] = px, py
+    out[1, ..., 0], out[1, ..., 1] = vx, vy
+    out[2, ..., 0], out[2, ..., 1] = ax, ay
     for i, (key, _, _) in enumerate(body):
-        position[key] = np.stack([px[i], py[i]], axis=-1)
-        velocity[key] = np.stack([vx[i], vy[i]], axis=-1)
-        acceleration[key] = np.stack([ax[i], ay[i]], axis=-1)
+        position[key], velocity[key], acceleration[key] = out[0, i], out[1, i], out[2, i]
 
 
 class _FakeSystem:
