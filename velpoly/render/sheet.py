@@ -182,9 +182,9 @@ def _poles_layout(sol, st, opts, cons: Constructions) -> str:
     table beside the panel, beneath it, panel across the page)."""
     from .canvas import nice_scale
     from .kennedy import poles_bounds
-    names = (["poles"] if _fits_beside(sol, st, cons) else []) + ["poles-wide-table", "poles-wide"]
+    names = ["poles", "poles-wide-table", "poles-wide"]
     if opts.scale is not None or cons.poles is None:
-        return names[0]
+        return names[0] if _fits_beside(sol, st, cons) else names[1]
     x0, y0, x1, y1 = poles_bounds(sol, cons.poles)
     w_in, h_in = st.figsize
 
@@ -193,7 +193,10 @@ def _poles_layout(sol, st, opts, cons: Constructions) -> str:
         usable = 0.8     # draw_poles fits with a margin of 0.1 a side
         need = max((x1 - x0) / (w * w_in * 2.54 * usable), (y1 - y0) / (h * h_in * 2.54 * usable), 1e-300)
         return nice_scale(need)
-    return min(names, key=lambda n: (scale(n), names.index(n)))
+    best = min(names, key=lambda n: (scale(n), names.index(n)))
+    if best == "poles" and not _fits_beside(sol, st, cons):   # measured only when it would win
+        best = min(names[1:], key=lambda n: (scale(n), names.index(n)))
+    return best
 
 
 def _fits_beside(sol, st, cons: Constructions) -> bool:

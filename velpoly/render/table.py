@@ -218,6 +218,9 @@ def _where(pos, direction) -> str:
     return f"({fmt(pos[0], 5)}, {fmt(pos[1], 5)})"
 
 
+_WIDTHS: dict = {}   # measured widths of the table's texts (points), by font, size and text: they never change
+
+
 def draw_results_table(sol, ax=None, *, sheet: str = "full", style="textbook", velocity=None,
                        acceleration=None, poleset=None, table: Table | None = None) -> Artists:
     """Draw the sheet's results table in ``ax`` (booktabs style); return the Artists.
@@ -234,6 +237,7 @@ def draw_results_table(sol, ax=None, *, sheet: str = "full", style="textbook", v
         ``artists.table`` is the Table drawn, ``artists.shown`` the number of
         its rows drawn, ``artists.size`` its type size (points, after any shrinking).
     """
+    import matplotlib
     from matplotlib.lines import Line2D
     ax = get_ax(ax)
     st = get_style(style)
@@ -263,9 +267,14 @@ def draw_results_table(sol, ax=None, *, sheet: str = "full", style="textbook", v
     widths_at: dict = {}
 
     def part_width(text, scale, style):
-        tx = ax.text(0, 0, text, fontsize=st.small_size * scale, fontstyle=style)
-        w = tx.get_window_extent(r).width * 72 / fig.dpi
-        tx.remove()
+        rc = matplotlib.rcParams   # the fonts in force (the style's, inside rc_context)
+        key = (tuple(rc["font.family"]), tuple(rc.get(f"font.{rc['font.family'][0]}", ())),
+               rc["mathtext.fontset"], st.small_size, fig.dpi, text, scale, style)
+        w = _WIDTHS.get(key)
+        if w is None:
+            tx = ax.text(0, 0, text, fontsize=st.small_size * scale, fontstyle=style)
+            w = _WIDTHS[key] = tx.get_window_extent(r).width * 72 / fig.dpi
+            tx.remove()
         return w
 
     def measure(size):
