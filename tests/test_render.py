@@ -295,6 +295,27 @@ def test_slotted_lever_is_drawn_under_its_crank_and_clear_of_its_pins():
     assert not any(outline(p).intersects(arc) for k, p in links.items() if k != "2")
 
 
+def test_labels_of_close_images_stand_apart_on_their_own_sides(sixbar):
+    """Six-bar, slides: e and f are a few millimetres apart at the polygon's top; each label stands on
+    its own image's side (e's on the side away from f and f's away from e), not side by side as one."""
+    m, sol = sixbar
+    st = sheet.get_style("slides")
+    ax = _axes((4.3, 3.6))
+    with rc_context(st):
+        art = draw_polygon(sixbar_velocity(sol), ax, mechanism=m, style=st)
+    pc = per_cm(ax)
+    images = {k: np.asarray(v, float) for k, v in sixbar_velocity(sol).images.items()}
+    close = [(a, b) for a, b in itertools.combinations(sorted(art.labels), 2)
+             if art.labels[a] is not art.labels[b] and a in images and b in images
+             and 1e-9 < np.hypot(*(images[a] - images[b])) < 1.0 * pc]
+    assert ("E", "F") in close
+    for a, b in close:
+        d = images[a] - images[b]
+        la, lb = (np.array(art.labels[k].get_position()) for k in (a, b))
+        assert np.dot(la - images[a], d) > 0 and np.dot(lb - images[b], -d) > 0, (a, b)
+    _no_overlaps(ax, art["labels"])
+
+
 # -- poles and the Kennedy circle -------------------------------------------------------------------------
 def test_kennedy_circle_has_n_points_and_all_chords(sixbar):
     pytest.importorskip("velpoly.poles")

@@ -82,7 +82,8 @@ class LabelPlacer:
 
     # -- placing -----------------------------------------------------------------------
     def place(self, anchor, s: str, *, prefer: float | None = None, gap: float = 2.5, leader: bool = True,
-              gid: str | None = None, obstacle: bool = True, pad: float = 1.0, **text_kw):
+              gid: str | None = None, obstacle: bool = True, pad: float = 1.0, within: float | None = None,
+              **text_kw):
         """Draw text ``s`` near ``anchor`` where it overlaps nothing; return the Text.
 
         ``prefer``: the preferred direction from the anchor (degrees), e.g.
@@ -91,7 +92,9 @@ class LabelPlacer:
         ``pad``: the margin kept around the text (points; more for a boxed text).
         A label that can find no free place in view is put at the candidate
         crossing the fewest obstacles (and the placement reports it through
-        :attr:`overlapping`).
+        :attr:`overlapping`). ``within``: only directions within so many degrees
+        of ``prefer`` (a label that must sit on one side of its anchor); if none
+        of them is free, every direction.
         """
         ax = self.ax
         anchor = np.asarray(anchor, float)
@@ -104,6 +107,8 @@ class LabelPlacer:
         best = None
         for ring_i, ring in enumerate((gap,) + tuple(r for r in RINGS if r > gap)):
             for ang in _directions(prefer, 16 if ring_i >= 2 else 8):
+                if within is not None and abs((ang - (prefer or 45.0) + 180.0) % 360.0 - 180.0) > within + 1e-9:
+                    continue
                 u = np.array([math.cos(math.radians(ang)), math.sin(math.radians(ang))])
                 # put the box's near side at distance ring from the anchor along u
                 reach = ring * pp + _half_extent(w, h, u)
@@ -118,6 +123,10 @@ class LabelPlacer:
                     break
             if best is not None and best[0] == 0:
                 break
+        if best is None and within is not None:   # nothing free on that side: any side
+            t.remove()
+            return self.place(anchor, s, prefer=prefer, gap=gap, leader=leader, gid=gid, obstacle=obstacle, pad=pad,
+                              **text_kw)
         if best is None:  # nothing free in view: fall back to the first ring's preferred spot
             u = np.array([math.cos(math.radians(prefer or 45.0)), math.sin(math.radians(prefer or 45.0))])
             c = anchor + u * (gap * pp + _half_extent(w, h, u))

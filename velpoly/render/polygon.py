@@ -235,8 +235,19 @@ def draw_polygon(polygon, ax=None, *, mechanism=None, style="textbook", options=
         p = np.zeros(2) if gi == 0 else points[g[0]]
         away = p - np.array([cx, cy])
         prefer = math.degrees(math.atan2(away[1], away[0])) if np.hypot(*away) > tol else -135.0
+        # an image close to another (a short relative velocity): its label on the side away from the
+        # other, so that the two labels do not read as one ("e f" over two images a millimetre apart)
+        near = [q for q in [np.zeros(2)] + [points[h[0]] for h in groups]
+                if tol < float(np.hypot(*(q - p))) < 1.0 * pc]
+        if near:
+            q = min(near, key=lambda q: float(np.hypot(*(q - p))))
+            d = (p - q) / float(np.hypot(*(p - q)))
+            a = np.array([math.cos(math.radians(prefer)), math.sin(math.radians(prefer))])
+            v = d + 0.35 * a if np.dot(d, a) > -0.9 else d
+            prefer = math.degrees(math.atan2(v[1], v[0]))
+        within = 70.0 if near else None
         t = pl.place(p, _label_text(polygon, names, g, gi == 0), prefer=prefer, fontsize=st.font_size, zorder=7,
-                     fontstyle="italic",
+                     fontstyle="italic", within=within,
                      gid=f"label-{polygon.kind}-" + ("origin+" if gi == 0 else "") + "+".join(g))
         art.add("labels", t)
         for k in g:
