@@ -26,16 +26,21 @@ FILES = [ROOT / "velpoly" / "examples" / "sixbar.toml"] + sorted((ROOT / "galler
 
 
 def _label_boxes(fig):
-    """Window boxes of the labels (gid label-...) and link numbers of every axes, shrunk by 0.3 pt."""
+    """Window boxes of the labels (gid label-...), link numbers, scale bars' texts and legends of every
+    axes, shrunk by 0.3 pt."""
     r = fig.canvas.get_renderer()
     s = 0.3 * fig.dpi / 72
     out = []
     for ax in fig.axes:
         texts = [t for t in ax.texts if (t.get_gid() or "").startswith(("label-", "link-number-", "kennedy-label-",
-                                                                        "chord-number-", "driver-label"))]
+                                                                        "chord-number-", "driver-label",
+                                                                        "scale-bar"))]
+        if ax.get_legend() is not None:
+            texts.append(ax.get_legend())
         for t in texts:
             bb = t.get_window_extent(r)
-            out.append((t.get_text(), box(bb.x0 + s, bb.y0 + s, bb.x1 - s, bb.y1 - s)))
+            name = t.get_text() if hasattr(t, "get_text") else "legend"
+            out.append((name, box(bb.x0 + s, bb.y0 + s, bb.x1 - s, bb.y1 - s)))
     return out
 
 

@@ -18,6 +18,7 @@ from __future__ import annotations
 import math
 
 import numpy as np
+import shapely
 from shapely.geometry import Point, box
 from shapely.geometry import Polygon as SPolygon
 
@@ -228,6 +229,10 @@ def draw_polygon(polygon, ax=None, *, mechanism=None, style="textbook", options=
     art.add("origin", op)
     pl.add_obstacle(o)
 
+    # the legend before the labels, which then keep clear of it
+    if not velocity and len(kinds) > 1:
+        art.add("legend", *_legend(ax, st, [k for k in st.kind_styles if k in kinds]))
+
     # labels: one per group of coinciding images; the origin's group is labelled with the origin
     at_origin, groups = image_groups(polygon, points)
     cx, cy = np.mean(np.array([np.zeros(2)] + list(points.values())), axis=0)
@@ -263,8 +268,6 @@ def draw_polygon(polygon, ax=None, *, mechanism=None, style="textbook", options=
             if t is not None:
                 art.add("reasons", t)
 
-    if not velocity and len(kinds) > 1:
-        art.add("legend", *_legend(ax, st, [k for k in st.kind_styles if k in kinds]))
     units = m.units if m is not None else ""
     art.add("scale_bar", *scale_bar(ax, st, units, 1 if velocity else 2))
     return art
@@ -278,15 +281,43 @@ def _legend(ax, st, kinds) -> list:
         ls, colour, f = st.kind_styles[k]
         handles.append(Line2D([], [], lw=st.arrow_lw * f, linestyle=ls, color=st.ink if colour is None else colour))
     pl = placer(ax)
-    for loc in ("upper right", "upper left", "lower right", "lower left", "center right", "center left"):
-        leg = ax.legend(handles, [KIND_LABELS[k] for k in kinds], loc=loc, fontsize=st.small_size,
-                        handlelength=3.2, borderaxespad=0.3)
+    locs = ("upper right", "upper left", "lower right", "lower left", "center right", "center left",
+            "upper center", "lower center")
+    # the full legend, smaller, in two columns, both: the first free corner; else the one
+    # crossing the fewest marks, then lines
+    variants = ((st.small_size, 1), (st.small_size * 0.85, 1), (st.small_size, 2), (st.small_size * 0.85, 2))
+    geoms = np.array(pl.boxes + pl.hard + pl.soft, dtype=object)
+    weights = np.array([10] * (len(pl.boxes) + len(pl.hard)) + [1] * len(pl.soft))
+    inv = ax.transData.inverted()
+
+    def make(loc, size, ncol):
+        return ax.legend(handles, [KIND_LABELS[k] for k in kinds], loc=loc, fontsize=size, ncol=ncol,
+                         handlelength=3.2 if ncol == 1 else 2.4, borderaxespad=0.3, columnspacing=1.0)
+
+    vx0, vy0, vx1, vy1 = view_box(ax).bounds
+    pp = per_point(ax)
+    best = None
+    for size, ncol in variants:
+        # measured once a variant; its box at each location computed as matplotlib places it
+        leg = make("upper right", size, ncol)
         bb = leg.get_window_extent(pl.renderer)
-        inv = ax.transData.inverted()
         (x0, y0), (x1, y1) = inv.transform([[bb.x0, bb.y0], [bb.x1, bb.y1]])
-        b = box(min(x0, x1), min(y0, y1), max(x0, x1), max(y0, y1))
-        if pl.free(b):
+        w, h = abs(x1 - x0), abs(y1 - y0)
+        pad = 0.3 * size * pp
+        for loc in locs:
+            v, u = loc.split()
+            lx = {"left": vx0 + pad, "right": vx1 - pad - w, "center": (vx0 + vx1 - w) / 2}[u]
+            ly = {"lower": vy0 + pad, "upper": vy1 - pad - h, "center": (vy0 + vy1 - h) / 2}[v]
+            b = box(lx, ly, lx + w, ly + h)
+            hits = int(np.dot(shapely.intersects(geoms, b), weights)) if len(geoms) else 0
+            if best is None or hits < best[0]:
+                best = (hits, (loc, size, ncol), b)
+            if hits == 0:
+                break
+        if best[0] == 0:
             break
+    _, (loc, size, ncol), b = best
+    leg = make(loc, size, ncol)
     pl.boxes.append(b)
     pl.texts.append(leg)
     return [leg]
