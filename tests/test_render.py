@@ -316,6 +316,36 @@ def test_labels_of_close_images_stand_apart_on_their_own_sides(sixbar):
     _no_overlaps(ax, art["labels"])
 
 
+@pytest.mark.parametrize("stem,name,style", [("ex3_6_fourbar", "poles", "textbook"), ("ex3_6_fourbar", "poles", "slides"),
+                                              ("crank_shaper", "full", "textbook")])
+def test_driver_value_sits_by_its_arc_over_no_link(stem, name, style):
+    """The omega arrow goes where its value can stand next to it, over no link's outline (ex3_6's poles
+    sheet in slides had it across link 4 and the label of P_14)."""
+    sol = velpoly.solve(velpoly.load(ROOT / "gallery" / f"{stem}.toml"))
+    st = sheet.get_style(style)
+    with rc_context(st):
+        fig = sheet.render_sheet(sol, name, st)
+    ax = next(a for a in fig.axes if any(t.get_gid() == "driver-label" for t in a.texts))
+    to_data = ax.transData.inverted()
+    label = next(t for t in ax.texts if t.get_gid() == "driver-label")
+    bb = label.get_window_extent(fig.canvas.get_renderer())
+    (x0, y0), (x1, y1) = to_data.transform([[bb.x0, bb.y0], [bb.x1, bb.y1]])
+    lab = box(x0, y0, x1, y1)
+    leader = getattr(label, "_velpoly_leader", None)
+    from shapely.geometry import LineString
+    lead = LineString(np.column_stack(leader.get_data())) if leader is not None else None
+    for p in ax.patches:
+        if (p.get_gid() or "").startswith("link-"):
+            outline = SPolygon(to_data.transform(p.get_path().to_polygons(p.get_transform())[0])).buffer(0)
+            assert not outline.boundary.intersects(lab), p.get_gid()
+            if lead is not None:
+                assert not outline.boundary.intersects(lead), "leader across " + p.get_gid()
+    others = [t for t in ax.texts if t is not label and (t.get_gid() or "").startswith(("label-", "link-number"))]
+    _no_overlaps(ax, [label] + others)
+    arc = next(a for a in ax.lines if a.get_gid() == "driver-arc")
+    assert lab.distance(SPolygon(np.column_stack(arc.get_data())).convex_hull) < 1.5 * per_cm(ax)   # by its arc
+
+
 # -- poles and the Kennedy circle -------------------------------------------------------------------------
 def test_kennedy_circle_has_n_points_and_all_chords(sixbar):
     pytest.importorskip("velpoly.poles")

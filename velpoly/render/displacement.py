@@ -531,7 +531,12 @@ class _Drawing:
         # another link (a slotted lever passing by the pivot), a block or a label: then the next gap
         others = [g for lk, g in getattr(self, "geoms", {}).items() if lk != drv.link]
         others += [g for lk, g in self.block_geom.items() if lk != drv.link] + list(self.pl.boxes)
-        best = None
+        lk = drv.link
+        text = rf"$\omega_{{{lk}}}$ = {abs(drv.omega):.4g} rad/s {'ccw' if drv.omega >= 0 else 'cw'}"
+        if drv.alpha:
+            text += "\n" + rf"$\alpha_{{{lk}}}$ = {abs(drv.alpha):.4g} rad/s² {'ccw' if drv.alpha >= 0 else 'cw'}"
+        label_kw = dict(fontsize=st.small_size * 1.15, zorder=7)
+        cands = []
         for rank, (gap, start) in enumerate(sorted(gaps, reverse=True)):
             if gap < 50.0 and rank > 0:
                 break
@@ -541,11 +546,23 @@ class _Drawing:
             t = np.radians(np.linspace(a0, a1, 60))
             cand = np.c_[p[0] + rad * np.cos(t), p[1] + rad * np.sin(t)]
             arc = LineString(cand)
-            hits = sum(1 for g in others if g.intersects(arc))
-            if best is None or hits < best[0]:
-                best = (hits, mid, cand)
-            if hits == 0:
-                break
+            cands.append((sum(1 for g in others if g.intersects(arc)), rank, mid, cand))
+        fewest = min(c[0] for c in cands)
+        best = None
+        for hits, rank, mid, cand in cands:
+            if hits > fewest:
+                continue
+            # where its value would go: a gap whose label sits close to the arc, over no link, wins
+            arc_zone = LineString(cand).buffer(1.0 * pp)
+            self.pl.hard.append(arc_zone)
+            trial = self.pl.place(p + rad * _unit(mid), text, prefer=mid, leader=False, obstacle=False, **label_kw)
+            self.pl.hard.pop()
+            tb = self.pl.box_of(trial, pad=0.0)
+            trial.remove()
+            score = (self.pl._soft_hits(tb), round(float(tb.distance(Point(*(p + rad * _unit(mid))))) / pp / 6.0),
+                     rank)
+            if best is None or score < best[0]:
+                best = (score, mid, cand)
         _, mid, xy = best
         from matplotlib.lines import Line2D
         hl = st.head_length * pp
@@ -559,12 +576,8 @@ class _Drawing:
         self.art.add("driver", ln, sh, hd)
         self.pl.add_obstacle(poly)
         self.pl.add_obstacle(LineString(xy).buffer(1.0 * pp))
-        lk = drv.link
-        text = rf"$\omega_{{{lk}}}$ = {abs(drv.omega):.4g} rad/s {'ccw' if drv.omega >= 0 else 'cw'}"
-        if drv.alpha:
-            text += "\n" + rf"$\alpha_{{{lk}}}$ = {abs(drv.alpha):.4g} rad/s² {'ccw' if drv.alpha >= 0 else 'cw'}"
         anchor = p + rad * _unit(mid)
-        tt = self.pl.place(anchor, text, prefer=mid, fontsize=st.small_size * 1.15, zorder=7, gid="driver-label")
+        tt = self.pl.place(anchor, text, prefer=mid, gid="driver-label", **label_kw)
         self.art.add("driver", tt)
 
 
