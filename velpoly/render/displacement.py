@@ -160,7 +160,9 @@ class _Drawing:
                             zorder=zorder)
         self.ax.add_collection(lc)
         self.art.add(role, lc)
-        self.pl.add_obstacle(LineString([a, b]).buffer(tick * 0.6), hard=False)
+        # the hatched strip itself (the strokes lie on one side of the line), with a little margin
+        strip = SPolygon([tuple(a), tuple(b), tuple(b + slant * tick), tuple(a + slant * tick)])
+        self.pl.add_obstacle(strip.buffer(tick * 0.25), hard=False)
         return lc
 
     def pin(self, p, gid=None, radius=None):
