@@ -433,6 +433,31 @@ def test_poles_are_drawn_where_they_are(sixbar):
     _no_overlaps(ax, art["labels"] + art["link_numbers"] + [a for a in art["far"] if hasattr(a, "get_text")])
 
 
+def test_mechanism_labels_keep_off_the_kennedy_lines():
+    """The Kennedy lines are known before the mechanism's labels are placed: no point label and not the
+    driver's value lies across one (Watt six-bar: omega_2 and O_2 used to sit on the lines through P_12)."""
+    pytest.importorskip("velpoly.poles")
+    from shapely.geometry import LineString
+    from velpoly.poles import locate_poles
+    from velpoly.render.kennedy import draw_poles
+    sol = velpoly.solve(velpoly.load(ROOT / "gallery" / "watt_sixbar.toml"))
+    st = sheet.get_style("textbook")
+    ax = _axes((7.5, 6.9))
+    with rc_context(st):
+        art = draw_poles(sol, ax, poleset=locate_poles(sol))
+    lines = [LineString(np.column_stack(k.get_data())) for k in art["kennedy_lines"]]
+    assert lines
+    r = ax.figure.canvas.get_renderer()
+    to_data = ax.transData.inverted()
+    texts = list({id(t): t for t in art.point_labels.values()}.values())
+    texts += [t for t in art["driver"] if t.get_gid() == "driver-label"]
+    for t in texts:
+        bb = t.get_window_extent(r)
+        (x0, y0), (x1, y1) = to_data.transform([[bb.x0, bb.y0], [bb.x1, bb.y1]])
+        b = box(x0, y0, x1, y1)
+        assert not any(ln.intersects(b) for ln in lines), t.get_text()
+
+
 # -- the results table -----------------------------------------------------------------------------------
 def test_results_table_rows(sixbar):
     from velpoly.render.table import results_table

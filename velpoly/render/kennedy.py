@@ -102,25 +102,14 @@ def draw_poles(sol, ax=None, *, style="textbook", options=None, poleset=None, up
     art.labels = {}
     pl = placer(ax)
     pc, pp = per_cm(ax), per_point(ax)
-    if mechanism:
-        # the poles' marks first, so that the mechanism's labels keep clear of them
-        for p in shown_poles(ps, upto):
-            if p.position is not None and view_box(ax).contains(Point(*p.position)):
-                pl.add_obstacle(Point(*p.position).buffer(0.085 * pc))
-        mech = draw_mechanism(sol, ax, style=st, options=opts)
-        art.update_from(mech)
-        art.labels = {}
-        art.point_labels = mech.labels
-    view = view_box(ax)
-    # arrows to poles out of reach stand at the border of what is drawn, not of the whole panel
-    from shapely.geometry import box as sbox
-    bx0, by0, bx1, by1 = poles_bounds(sol, ps)
-    content = sbox(bx0 - 1.6 * pc, by0 - 1.6 * pc, bx1 + 1.6 * pc, by1 + 1.6 * pc).intersection(view)
     shown = shown_poles(ps, upto)
     current = max((p.order for p in shown), default=0) if upto is not None else None
     from matplotlib.lines import Line2D
 
-    # the Kennedy lines, under everything else
+    # the Kennedy lines (drawn under everything else), known before the mechanism's labels are placed so
+    # that these keep clear of them
+    klines = []
+    vb = view_box(ax)
     for p in shown:
         if p.order == 0:
             continue
@@ -138,20 +127,38 @@ def draw_poles(sol, ax=None, *, style="textbook", options=None, poleset=None, up
                     ts.append(float(np.dot(np.asarray(q, float) - base, d)))
             if p.position is not None:
                 ts.append(float(np.dot(p.position - base, d)))
-            far = 4 * max(view.bounds[2] - view.bounds[0], view.bounds[3] - view.bounds[1])
+            far = 4 * max(vb.bounds[2] - vb.bounds[0], vb.bounds[3] - vb.bounds[1])
             lo, hi = min(ts) - 0.8 * pc, max(ts) + 0.8 * pc
             if p.position is None:   # a pole at infinity: the line runs out of the view both ways
                 lo, hi = -far, far
-            seg = LineString([tuple(base + d * lo), tuple(base + d * hi)]).intersection(view)
+            seg = LineString([tuple(base + d * lo), tuple(base + d * hi)]).intersection(vb)
             if seg.is_empty or seg.geom_type != "LineString":
                 continue
-            xy = np.asarray(seg.coords)
-            line = Line2D(xy[:, 0], xy[:, 1], lw=st.thin_lw * (2.0 if heavy else 1.0),
-                          color=st.ink if not st.coloured else "#7f7f7f", linestyle=(0, (7, 2, 1.5, 2)),
-                          zorder=1.4, gid=f"kennedy-line-{p.key}-{ln.label}")
-            ax.add_line(line)
-            art.add("kennedy_lines", line)
-            pl.add_obstacle(segment(xy[0], xy[-1]), hard=False)
+            klines.append((np.asarray(seg.coords), heavy, f"kennedy-line-{p.key}-{ln.label}"))
+
+    for xy, _, _ in klines:
+        pl.add_obstacle(segment(xy[0], xy[-1]), hard=False)
+    if mechanism:
+        # the poles' marks first, so that the mechanism's labels keep clear of them
+        for p in shown_poles(ps, upto):
+            if p.position is not None and view_box(ax).contains(Point(*p.position)):
+                pl.add_obstacle(Point(*p.position).buffer(0.085 * pc))
+        mech = draw_mechanism(sol, ax, style=st, options=opts)
+        art.update_from(mech)
+        art.labels = {}
+        art.point_labels = mech.labels
+    view = view_box(ax)
+    # arrows to poles out of reach stand at the border of what is drawn, not of the whole panel
+    from shapely.geometry import box as sbox
+    bx0, by0, bx1, by1 = poles_bounds(sol, ps)
+    content = sbox(bx0 - 1.6 * pc, by0 - 1.6 * pc, bx1 + 1.6 * pc, by1 + 1.6 * pc).intersection(view)
+    # the Kennedy lines
+    for xy, heavy, gid in klines:
+        line = Line2D(xy[:, 0], xy[:, 1], lw=st.thin_lw * (2.0 if heavy else 1.0),
+                      color=st.ink if not st.coloured else "#7f7f7f", linestyle=(0, (7, 2, 1.5, 2)),
+                      zorder=1.4, gid=gid)
+        ax.add_line(line)
+        art.add("kennedy_lines", line)
 
     # the poles
     c = _centre(sol)
