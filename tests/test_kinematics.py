@@ -2,8 +2,8 @@
 
 Tolerances: printed answers to the book's own precision (5 significant digits for
 Problem 1.4.4; 4 for Example 3.6); velocities against a central difference of
-poses to 1e-6 relative; accelerations against a central difference of
-velocities to 1e-6 relative.
+poses to 1e-6 relative; accelerations (and every link's alpha) against a central
+difference of velocities (omegas) to 1e-6 relative.
 """
 import math
 
@@ -114,11 +114,15 @@ def fd_check(m, angle, h=1e-3):
         dvdth = (w.velocity[key][2] - w.velocity[key][0]) / (2 * hr)
         a = dvdth * omega + w.velocity[key][1] / omega * alpha
         scale_a = max(np.abs(x[1]).max() for x in w.acceleration.values()) + 1e-300
-        assert np.abs(a - w.acceleration[key][1]).max() <= 2e-5 * scale_a, key
+        assert np.abs(a - w.acceleration[key][1]).max() <= 1e-6 * scale_a, key
     scale_w = max(abs(x[1]) for x in w.omega.values())
+    scale_al = max(abs(x[1]) for x in w.alpha.values()) + abs(alpha) + scale_w * abs(omega)
     for link in w.omega:
         dth = (w.angle[link][2] - w.angle[link][0] + 180) % 360 - 180
         assert math.radians(dth) / (2 * hr) * omega == pytest.approx(w.omega[link][1], abs=1e-6 * scale_w)
+        # alpha = d(omega)/d(theta) omega_driver + (omega / omega_driver) alpha_driver
+        al = (w.omega[link][2] - w.omega[link][0]) / (2 * hr) * omega + w.omega[link][1] / omega * alpha
+        assert al == pytest.approx(w.alpha[link][1], abs=1e-6 * scale_al), link
 
 
 def test_fd_problem_1_4_4():
