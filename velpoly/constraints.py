@@ -29,6 +29,7 @@ or the slider's displacement along its path s = delta.
 """
 from __future__ import annotations
 
+import functools
 from dataclasses import dataclass
 from typing import Callable
 
@@ -97,11 +98,14 @@ class Frame:
         return self.const(0.0) if b is None else b[4]
 
     def point(self, link: str, s) -> tuple[Jet, Jet]:
-        """r_link(s): the world position of the link's point s (reference coordinates)."""
+        """r_link(s): the world position of the link's point s (reference coordinates).
+
+        The frame's points are plain floats (constants: Jet arithmetic takes them as they are).
+        """
         sx, sy = float(s[0]), float(s[1])
         b = self._body(link)
         if b is None:  # the frame
-            return self.const(sx), self.const(sy)
+            return sx, sy
         x, y, c, s_, _ = b
         return x + c * sx - s_ * sy, y + s_ * sx + c * sy
 
@@ -109,43 +113,83 @@ class Frame:
         """R(theta_link) d: a direction fixed to the link."""
         dx, dy = float(d[0]), float(d[1])
         b = self._body(link)
-        if b is None:
-            return self.const(dx), self.const(dy)
+        if b is None:  # the frame: constants
+            return dx, dy
         _, _, c, s_, _ = b
         return c * dx - s_ * dy, s_ * dx + c * dy
 
 
-def _pins_bulk(block, q, qd, phi, jac, h) -> int:
+@dataclass(frozen=True)
+class PinBlock:
+    """Every pin's two equations, laid out for evaluation in bulk (built once per mechanism).
+
+    Side 0 of pin p is its first link, side 1 its second (the frame indexed as an extra link
+    at rest after the moving ones). ``theta``, ``x``, ``y`` index each side's coordinates in
+    q padded with the frame's zeros; ``j0`` is the Jacobian's constant part (the +-1 of the
+    origins' columns); ``flat`` and ``sign`` place each moving side's theta column.
+    """
+
+    ki: np.ndarray        # (L,) link index of each pin's first link, -1 for the frame
+    kj: np.ndarray        # (L,) of its second link
+    s: np.ndarray         # (L, 2) the pin's reference position
+    sx: np.ndarray        # (2L,) sides 0 then sides 1: the pin's reference position
+    sy: np.ndarray
+    theta: np.ndarray     # (2L,) column of the side's theta_k in the padded q
+    x: np.ndarray
+    y: np.ndarray
+    j0: np.ndarray        # (2L, nq)
+    moving: np.ndarray    # (2L,) bool: the side is a moving link
+    flat_x: np.ndarray    # flat (row, theta column) of the x row of each moving side, in jac (m, nq)
+    flat_y: np.ndarray
+    sign: np.ndarray      # (moving sides,) +1 for side 0, -1 for side 1
+
+    @staticmethod
+    def build(ki, kj, s, nq: int) -> "PinBlock":
+        n_pins = len(ki)
+        k2 = np.concatenate([ki, kj])
+        pad = np.where(k2 < 0, nq // 3, k2)            # the frame: the zero link after the moving ones
+        sign2 = np.repeat([1.0, -1.0], n_pins)
+        row2 = np.tile(2 * np.arange(n_pins), 2)
+        moving = k2 >= 0
+        j0 = np.zeros((2 * n_pins, nq))
+        r, k, sg = row2[moving], k2[moving], sign2[moving]
+        j0[r, 3 * k] = sg
+        j0[r + 1, 3 * k + 1] = sg
+        s = np.asarray(s, float)
+        return PinBlock(np.asarray(ki), np.asarray(kj), s, np.tile(s[:, 0], 2), np.tile(s[:, 1], 2),
+                        3 * pad + 2, 3 * pad, 3 * pad + 1, j0, moving, r * nq + 3 * k + 2, (r + 1) * nq + 3 * k + 2, sg)
+
+
+def _pins_bulk(block: PinBlock, q, qd, phi, jac, h) -> int:
     """All pins at once: Phi = r_i(s) - r_j(s), with r_k(s) = x_k + R(theta_k) s.
 
     dr/dx_k = I, dr/dtheta_k = k x R s, and h = -theta_i'^2 R_i s + theta_j'^2 R_j s.
-    Returns the number of rows filled (2 per pin).
+    ``jac`` and ``h`` (with ``qd``) are filled where given. Returns the number of rows (2 per pin).
     """
-    ki, kj, s = block
     n, nq = q.shape
-    qe = np.concatenate([q, np.zeros((n, 3))], axis=1)        # a zero "link" for the frame
-    qde = np.concatenate([qd if qd is not None else np.zeros_like(q), np.zeros((n, 3))], axis=1)
-    rows = 2 * np.arange(len(ki))
-    for k, sign in ((ki, 1.0), (kj, -1.0)):
-        kk = np.where(k < 0, nq // 3, k)
-        th = qe[:, 3 * kk + 2]
-        c, sn = np.cos(th), np.sin(th)
-        rx = c * s[:, 0] - sn * s[:, 1]
-        ry = sn * s[:, 0] + c * s[:, 1]
-        w2 = qde[:, 3 * kk + 2] ** 2
-        phi[:, rows] += sign * (qe[:, 3 * kk] + rx)
-        phi[:, rows + 1] += sign * (qe[:, 3 * kk + 1] + ry)
-        if jac is None:
-            continue
-        h[:, rows] += -sign * w2 * rx
-        h[:, rows + 1] += -sign * w2 * ry
-        moving = k >= 0
-        r, kk = rows[moving], k[moving]
-        jac[:, r, 3 * kk] += sign
-        jac[:, r + 1, 3 * kk + 1] += sign
-        jac[:, r, 3 * kk + 2] += -sign * ry[:, moving]
-        jac[:, r + 1, 3 * kk + 2] += sign * rx[:, moving]
-    return 2 * len(ki)
+    n_pins = len(block.ki)
+    qe = np.zeros((n, nq + 3))       # a zero "link" for the frame
+    qe[:, :nq] = q
+    th = qe[:, block.theta]          # (N, 2L)
+    c, sn = np.cos(th), np.sin(th)
+    sx, sy = block.sx, block.sy
+    rx = c * sx - sn * sy
+    ry = sn * sx + c * sy
+    px, py = qe[:, block.x] + rx, qe[:, block.y] + ry
+    phi[:, 0:2 * n_pins:2] = px[:, :n_pins] - px[:, n_pins:]
+    phi[:, 1:2 * n_pins:2] = py[:, :n_pins] - py[:, n_pins:]
+    if jac is not None:
+        jac[:, :2 * n_pins] = block.j0
+        flat = jac.reshape(n, -1)    # a view: jac is freshly allocated and contiguous
+        flat[:, block.flat_x] = -block.sign * ry[:, block.moving]
+        flat[:, block.flat_y] = block.sign * rx[:, block.moving]
+    if h is not None and qd is not None:
+        qe[:, :nq] = qd
+        w2 = qe[:, block.theta] ** 2
+        hx, hy = w2 * rx, w2 * ry
+        h[:, 0:2 * n_pins:2] = hx[:, n_pins:] - hx[:, :n_pins]
+        h[:, 1:2 * n_pins:2] = hy[:, n_pins:] - hy[:, :n_pins]
+    return 2 * n_pins
 
 
 def _dot(a, b):
@@ -175,7 +219,7 @@ class System:
     equations: tuple[Equation, ...]
     driver: Equation
     size: float
-    pin_block: tuple = ()   # (ki, kj, s): the first 2 x len(ki) equations are pins, evaluated in bulk
+    pin_block: PinBlock | None = None   # the first 2 x (number of pins) equations, evaluated in bulk
     crank: int = -1         # the crank driver's link index (its row is theta_k), -1 otherwise
 
     @property
@@ -198,7 +242,7 @@ class System:
         jac = np.zeros((n, m_all, nq))
         h = np.zeros((n, m_all))
         start = 0
-        if self.pin_block:
+        if self.pin_block is not None:
             start = _pins_bulk(self.pin_block, q, qd, phi, jac, h)
         rest = list(self.equations[start:])
         crank = driver and self.crank >= 0
@@ -217,35 +261,53 @@ class System:
 
     def residual(self, q, driver: bool = True) -> np.ndarray:
         """The equations' values Phi(q) alone (N, m): no Jacobian is built for the pins."""
+        return self._values(q, None, driver)[0]
+
+    def second_terms(self, q, qd, driver: bool = True) -> np.ndarray:
+        """The h-terms alone (N, m): Phi'' = J q'' + h, without building the Jacobian again
+        (for the accelerations once the velocities are solved with the Jacobian)."""
+        return self._values(q, qd, driver)[1]
+
+    def _values(self, q, qd, driver: bool):
+        """Phi(q) and, with qd, h = q'^T (d2 Phi/dq2) q' (else None); no gradients."""
         q = np.atleast_2d(q)
         n, nq = q.shape
         m_all = len(self.equations) + (1 if driver else 0)
         phi = np.zeros((n, m_all))
-        start = _pins_bulk(self.pin_block, q, None, phi, None, None) if self.pin_block else 0
+        h = None if qd is None else np.zeros((n, m_all))
+        qd = None if qd is None else np.atleast_2d(qd)
+        start = _pins_bulk(self.pin_block, q, qd, phi, None, h) if self.pin_block is not None else 0
         rest = list(self.equations[start:])
         crank = driver and self.crank >= 0
         if driver and not crank:
             rest.append(self.driver)
         if rest:
-            f = Frame(self, q, None, values_only=True)
+            f = Frame(self, q, qd, values_only=True)
             for i, e in enumerate(rest, start=start):
-                phi[:, i] = e.fn(f).v
+                j = e.fn(f)
+                phi[:, i] = j.v
+                if h is not None:
+                    h[:, i] = j.h
         if crank:
-            phi[:, -1] = q[:, 3 * self.crank + 2]
-        return phi
+            phi[:, -1] = q[:, 3 * self.crank + 2]   # theta_d: no h-term
+        return phi, h
 
     def scale_matrix(self, jac: np.ndarray, rows: list[int] | None = None,
                      driver: bool = True) -> np.ndarray:
         """The Jacobian in unit lengths (lengths divided by the mechanism's size)."""
-        eqs = list(self.equations) + ([self.driver] if driver else [])
-        if rows is not None:
-            eqs = [eqs[i] for i in rows]
+        row, col = self._scales
+        row = row[:len(row) - (0 if driver else 1)] if rows is None else row[list(rows)]
+        return jac * row[:, None] * col[None, :]
+
+    @functools.cached_property
+    def _scales(self) -> tuple[np.ndarray, np.ndarray]:
+        """Row scales of every equation and the driver's (1/L for lengths), column scales (L for x, y)."""
         L = self.size
         col = np.ones(self.nq)
         col[0::3] = L
         col[1::3] = L
-        row = np.array([1.0 / L if e.dim == 1 else 1.0 for e in eqs])
-        return jac * row[:, None] * col[None, :]
+        row = np.array([1.0 / L if e.dim == 1 else 1.0 for e in self.equations + (self.driver,)])
+        return row, col
 
 
 def build_system(m: Mechanism) -> System:
@@ -302,11 +364,11 @@ def build_system(m: Mechanism) -> System:
         d = drv.link
         driver = Equation(f"driver {d}", (d,), lambda f, d=d: f.theta(d), dim=0)
     pins = m.pins
-    block = ()
+    block = None
     if pins:
-        block = (np.array([index.get(p.links[0], -1) for p in pins]),
-                 np.array([index.get(p.links[1], -1) for p in pins]),
-                 np.array([P[p.point] for p in pins], float))
+        block = PinBlock.build(np.array([index.get(p.links[0], -1) for p in pins]),
+                               np.array([index.get(p.links[1], -1) for p in pins]),
+                               np.array([P[p.point] for p in pins], float), 3 * len(index))
     crank = -1 if drv.is_slider else index[drv.link]
     return System(m, index, tuple(eqs), driver, m.size, block, crank)
 

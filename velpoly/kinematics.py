@@ -206,13 +206,15 @@ def condition(kin: Kinematics, q) -> np.ndarray:
     return _scaled_cond(kin.system, jac[:, list(kin.rows)], list(kin.rows))
 
 
-def velocities(kin: Kinematics, q, check: bool = True, where: str = "pose"):
+def velocities(kin: Kinematics, q, check: bool = True, where: str = "pose", jac=None):
     """q' at poses q (N, nq); returns (qd, cond). ``where`` names the pose in a singular-pose error.
 
-    ``cond`` is exact where it exceeds WARN (1e6), an estimate below.
+    ``cond`` is exact where it exceeds WARN (1e6), an estimate below. ``jac``: the
+    Jacobian of :meth:`System.evaluate` at q, if already evaluated.
     """
     q = np.atleast_2d(q)
-    _, jac, _ = kin.system.evaluate(q)
+    if jac is None:
+        _, jac, _ = kin.system.evaluate(q)
     a = jac[:, list(kin.rows)]
     cond = _scaled_cond(kin.system, a, list(kin.rows))
     bad = ~(cond <= SINGULAR)
@@ -233,10 +235,17 @@ def velocities(kin: Kinematics, q, check: bool = True, where: str = "pose"):
     return qd, cond
 
 
-def accelerations(kin: Kinematics, q, qd):
-    """q'' at poses q with velocities qd (N, nq)."""
+def accelerations(kin: Kinematics, q, qd, jac=None):
+    """q'' at poses q with velocities qd (N, nq).
+
+    With ``jac`` (the Jacobian at q, as the velocities used it) only the h-terms are
+    evaluated: J q'' = w' - h needs no second Jacobian.
+    """
     q, qd = np.atleast_2d(q), np.atleast_2d(qd)
-    _, jac, h = kin.system.evaluate(q, qd)
+    if jac is None:
+        _, jac, h = kin.system.evaluate(q, qd)
+    else:
+        h = kin.system.second_terms(q, qd)
     rows = list(kin.rows)
     a = jac[:, rows]
     rhs = -h[:, rows]

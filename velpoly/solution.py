@@ -223,9 +223,11 @@ def solve(m: Mechanism, angle: float | None = None) -> Solution:
         angle_now = float(wrap_deg(ref + delta))
     else:
         angle_now = ref
-    qd, cond = velocities(kin, q, where="reference pose" if angle_now == ref else f"driver angle {angle_now:g} deg")
+    _, jac, _ = kin.system.evaluate(q)   # one Jacobian for the velocities and the accelerations
+    qd, cond = velocities(kin, q, where="reference pose" if angle_now == ref else f"driver angle {angle_now:g} deg",
+                          jac=jac)
     if all(c.centres is not None for c in m.contacts):
-        qdd = accelerations(kin, q, qd)
+        qdd = accelerations(kin, q, qd, jac=jac)
     else:  # a contact given by its normal alone: velocities only (FORMAT.md section 5)
         qdd = np.full_like(qd, np.nan)
     warnings = []

@@ -1,0 +1,42 @@
+"""The single-instant shortcuts agree with the general evaluation they replace."""
+from pathlib import Path
+
+import numpy as np
+import pytest
+
+import velpoly
+from velpoly.kinematics import accelerations, prepare, velocities
+
+ROOT = Path(__file__).resolve().parent.parent
+FILES = sorted((ROOT / "gallery").glob("*.toml")) + [ROOT / "velpoly" / "examples" / "sixbar.toml"]
+
+
+@pytest.mark.parametrize("path", FILES, ids=lambda p: p.stem)
+def test_values_and_second_terms_match_evaluate(path):
+    """residual and second_terms (no Jacobian) give evaluate's Phi and h exactly."""
+    system = prepare(velpoly.load(path)).system
+    rng = np.random.default_rng(7)
+    q = rng.normal(size=(3, system.nq)) * 0.1
+    qd = rng.normal(size=(3, system.nq))
+    phi, jac, h = system.evaluate(q, qd)
+    assert np.array_equal(system.residual(q), phi)
+    assert np.array_equal(system.second_terms(q, qd), h)
+    # the Jacobian against central differences of the values
+    eps = 1e-6
+    for k in range(system.nq):
+        dq = np.zeros(system.nq)
+        dq[k] = eps
+        fd = (system.residual(q + dq) - system.residual(q - dq)) / (2 * eps)
+        assert np.abs(fd - jac[:, :, k]).max() <= 1e-6 * max(1.0, system.size)
+
+
+@pytest.mark.parametrize("path", FILES, ids=lambda p: p.stem)
+def test_accelerations_with_the_velocities_jacobian(path):
+    """accelerations(..., jac=J) (h-terms only) equals a fresh evaluation."""
+    m = velpoly.load(path)
+    kin = prepare(m)
+    q = np.zeros((1, kin.system.nq))
+    _, jac, _ = kin.system.evaluate(q)
+    qd, _ = velocities(kin, q, jac=jac)
+    assert np.array_equal(qd, velocities(kin, q)[0])
+    assert np.array_equal(accelerations(kin, q, qd, jac=jac), accelerations(kin, q, qd), equal_nan=True)
