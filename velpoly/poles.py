@@ -58,7 +58,6 @@ the readable tables of ``velpoly solve``.
 """
 from __future__ import annotations
 
-import functools
 import math
 import weakref
 from dataclasses import dataclass, field
@@ -312,8 +311,9 @@ def _inspection(sol, centre, scale):
 
 
 # -- Kennedy -------------------------------------------------------------------------------------
-# The construction works on whole arrays of homogeneous triples: joining two poles and meeting two
-# lines are both cross products (velpoly.geometry's join and meet, vectorised).
+# Joining two poles and meeting two lines are both cross products of homogeneous triples
+# (velpoly.geometry's join and meet). One instant has a few dozen of them: the construction does
+# them on plain float triples; _cross and _norm do them on arrays (the instant-centre method).
 def _cross(a, b) -> np.ndarray:
     """a x b over the last axis (numpy's cross is slow on many small triples)."""
     a0, a1, a2 = a[..., 0], a[..., 1], a[..., 2]
@@ -321,56 +321,60 @@ def _cross(a, b) -> np.ndarray:
     return np.stack((a1 * b2 - a2 * b1, a2 * b0 - a0 * b2, a0 * b1 - a1 * b0), axis=-1)
 
 
-@functools.lru_cache(maxsize=64)
-def _lower(m: int) -> np.ndarray:
-    """The mask of the diagonal and below of an m x m matrix (pairs of lines counted once)."""
-    return np.tril(np.ones((m, m), bool))
-
-
-@functools.lru_cache(maxsize=64)
-def _upper(n: int) -> np.ndarray:
-    """The mask of the pairs (a, b), a < b, of n links."""
-    return np.triu(np.ones((n, n), bool), 1)
-
-
 def _norm(v) -> np.ndarray:
     return np.sqrt(np.einsum("...k,...k->...", v, v))
+
+
+def _cross3(a, b) -> tuple:
+    """a x b of two homogeneous triples of floats: the line through two points, the meet of two lines."""
+    return (a[1] * b[2] - a[2] * b[1], a[2] * b[0] - a[0] * b[2], a[0] * b[1] - a[1] * b[0])
+
+
+def _norm3(v) -> float:
+    return math.sqrt(v[0] * v[0] + v[1] * v[1] + v[2] * v[2])
 
 
 class _Kennedy:
     """The construction's state, all in coordinates normalised by the mechanism's size.
 
-    ``H[a, b]``: the pole P_ab as a unit homogeneous triple; ``S[a, b]``:
-    unknown, known or undefined. ``L[a, b, k]`` is the line that triangle
+    ``H[a][b]``: the pole P_ab as a unit homogeneous triple (floats); ``S[a][b]``:
+    unknown, known or undefined. ``L[a][b][k]`` is the line that triangle
     (a, b, k) of the Kennedy circle gives for P_ab (through P_ak and P_bk),
-    and ``L[a, b, n + c]`` the pair's c-th constraint line; ``Q`` is each
-    line's drafting quality (0: not drawn yet).
+    and ``L[a][b][n + c]`` the pair's c-th constraint line; ``Q`` is each
+    line's drafting quality (0: not drawn yet). ``T``: the links' twists (float triples).
     """
 
     def __init__(self, names, T, n_constraint, condition=1.0):
         n = len(names)
+        m = n + n_constraint
         self.names, self.n, self.T = names, n, T
         self.keys = [[_key(names, a, b) for b in range(n)] for a in range(n)]
-        self.H = np.zeros((n, n, 3))
-        self.S = np.zeros((n, n), np.int8)
-        self.L = np.zeros((n, n, n + n_constraint, 3))
-        self.Q = np.zeros((n, n, n + n_constraint))
+        self.H = [[(0.0, 0.0, 0.0)] * n for _ in range(n)]
+        self.S = [[_UNKNOWN] * n for _ in range(n)]
+        self.L = [[[None] * m for _ in range(n)] for _ in range(n)]
+        self.Q = [[[0.0] * m for _ in range(n)] for _ in range(n)]
+        self.unknown = n * (n - 1) // 2  # pairs a < b still unknown
         self.info = {}
         self.constraints = {}            # (a, b) -> [(label pair, description)]
-        tw = float(_norm(T).max()) if n else 0.0
-        rel = _norm(T[:, None, :] - T[None, :, :])
-        undefined = rel <= ALIKE * max(condition, 1.0) * tw if tw > 0 else np.ones((n, n), bool)
-        np.fill_diagonal(undefined, True)
-        self.S[undefined] = _UNDEFINED
-        for a, b in zip(*np.nonzero(undefined & _upper(n))):
-            self.info[(int(a), int(b))] = dict(how="undefined", order=0, note="the links move alike")
+        tw = max(map(_norm3, T), default=0.0)
+        limit = ALIKE * max(condition, 1.0) * tw
+        for a in range(n):
+            self.S[a][a] = _UNDEFINED
+            for b in range(a + 1, n):
+                if tw == 0 or _norm3([u - v for u, v in zip(T[a], T[b])]) <= limit:
+                    self.S[a][b] = self.S[b][a] = _UNDEFINED
+                    self.unknown -= 1
+                    self.info[(a, b)] = dict(how="undefined", order=0, note="the links move alike")
 
     def key(self, a, b) -> str:
         return self.keys[a][b]
 
     def set(self, a, b, h, info) -> None:
-        self.H[a, b] = self.H[b, a] = h
-        self.S[a, b] = self.S[b, a] = _KNOWN
+        h = tuple(map(float, h))
+        self.H[a][b] = self.H[b][a] = h
+        if self.S[a][b] == _UNKNOWN:
+            self.unknown -= 1
+        self.S[a][b] = self.S[b][a] = _KNOWN
         self.info[(min(a, b), max(a, b))] = info
 
     def add_constraint(self, a, b, h, label, desc) -> None:
@@ -378,76 +382,99 @@ class _Kennedy:
         lst = self.constraints.setdefault((a, b), [])
         slot = self.n + len(lst)
         lst.append((label, desc))
-        self.L[a, b, slot] = self.L[b, a, slot] = h
-        self.Q[a, b, slot] = self.Q[b, a, slot] = 1.0
+        self.L[a][b][slot] = self.L[b][a][slot] = tuple(map(float, h))
+        self.Q[a][b][slot] = self.Q[b][a][slot] = 1.0
 
     def spread(self, new) -> None:
         """The Kennedy lines the new poles complete: with P_xy new and P_xc known, the line
         P_xy P_xc carries the unknown P_yc (triangle y, c, x of the Kennedy circle)."""
-        if not new:
-            return
-        nw = np.array(new)
-        X = np.concatenate((nw[:, 0], nw[:, 1]))
-        Y = np.concatenate((nw[:, 1], nw[:, 0]))
-        r, c = np.nonzero((self.S[X] == _KNOWN) & (self.S[Y] == _UNKNOWN))
-        if len(r) == 0:
-            return
-        x, y = X[r], Y[r]
-        lines = _cross(self.H[x, y], self.H[x, c])
-        sep = _norm(lines)
-        q = np.where(sep >= _DEGENERATE, np.minimum(1.0, sep / _CLOSE), 0.0)
-        lines = lines / np.where(sep > 0, sep, 1.0)[:, None]
-        self.L[y, c, x] = lines
-        self.L[c, y, x] = lines
-        self.Q[y, c, x] = q
-        self.Q[c, y, x] = q
+        S, H = self.S, self.H
+        drawn = []
+        for x, y in [(a, b) for a, b in new] + [(b, a) for a, b in new]:
+            for c in range(self.n):
+                if S[x][c] != _KNOWN or S[y][c] != _UNKNOWN:
+                    continue
+                line = _cross3(H[x][y], H[x][c])
+                sep = _norm3(line)
+                q = min(1.0, sep / _CLOSE) if sep >= _DEGENERATE else 0.0
+                if sep > 0:
+                    line = (line[0] / sep, line[1] / sep, line[2] / sep)
+                drawn.append((x, y, c, line, q))
+        # P_yc's line through P_xy and P_xc may come from both new poles (then with opposite signs):
+        # L[y][c] keeps the one drawn from P_xc, L[c][y] the one from P_xy
+        for x, y, c, line, q in drawn:
+            self.L[y][c][x], self.Q[y][c][x] = line, q
+        for x, y, c, line, q in drawn:
+            self.L[c][y][x], self.Q[c][y][x] = line, q
+
+    def drawn(self, a, b) -> list:
+        """The lines drawn for the pair: [(slot, line, quality)], in slot order."""
+        return [(k, ln, q) for k, (ln, q) in enumerate(zip(self.L[a][b], self.Q[a][b])) if q > 0]
 
     def candidates(self) -> list:
-        """The unknown poles two lines locate now, in key order: (a, b, score, info)."""
-        unknown = (self.S == _UNKNOWN) & _upper(self.n)
-        count = (self.Q > 0).sum(axis=-1)
-        A, B = np.nonzero(unknown & (count >= 2))
+        """The unknown poles two lines locate now, in key order: (a, b, score, info).
+
+        Of a pole's drawn lines, the pair with the best score, max(sine, |l x m|) times both
+        lines' qualities, is taken (the first such pair in slot order).
+        """
+        n, S = self.n, self.S
         out = []
-        if len(A):
-            ls, qs = self.L[A, B], self.Q[A, B]                      # (C, M, 3), (C, M)
-            x = _cross(ls[:, :, None, :], ls[:, None, :, :])          # (C, M, M, 3)
-            proj = _norm(x)
-            nrm = np.hypot(ls[..., 0], ls[..., 1])
-            den = nrm[:, :, None] * nrm[:, None, :]
-            sine = np.divide(np.abs(x[..., 2]), den, out=np.zeros_like(den), where=den > 0)
-            score = np.maximum(sine, proj) * qs[:, :, None] * qs[:, None, :]
-            m = ls.shape[1]
-            score[:, _lower(m)] = -1.0
-            flat = score.reshape(len(A), -1).argmax(axis=1)
-            i, j = np.divmod(flat, m)
-            rows = np.arange(len(A))
-            best = score[rows, i, j]
-            p = proj[rows, i, j]
-            for r in np.nonzero((p >= _DEGENERATE) & (best >= _BLUNT))[0]:
-                h = x[r, i[r], j[r]] / p[r]
-                out.append((int(A[r]), int(B[r]), float(best[r]),
-                            dict(how=None, slots=(int(i[r]), int(j[r])), sine=min(1.0, float(sine[r, i[r], j[r]])),
-                                 line_vectors=(ls[r, i[r]].tolist(), ls[r, j[r]].tolist()), h=h)))
-        if (self.S == _UNDEFINED).sum() > self.n:   # some links move alike: copy their poles
+        for a in range(n):
+            for b in range(a + 1, n):
+                if S[a][b] != _UNKNOWN:
+                    continue
+                lines = self.drawn(a, b)
+                best = None
+                for u in range(len(lines)):
+                    i, li, qi = lines[u]
+                    ni = math.hypot(li[0], li[1])
+                    for v in range(u + 1, len(lines)):
+                        j, lj, qj = lines[v]
+                        x = _cross3(li, lj)
+                        proj = _norm3(x)
+                        den = ni * math.hypot(lj[0], lj[1])
+                        sine = abs(x[2]) / den if den > 0 else 0.0
+                        score = max(sine, proj) * qi * qj
+                        if best is None or score > best[0]:
+                            best = (score, i, j, li, lj, x, proj, sine)
+                if best is None:
+                    continue
+                score, i, j, li, lj, x, proj, sine = best
+                if proj >= _DEGENERATE and score >= _BLUNT:
+                    out.append((a, b, score, dict(how=None, slots=(i, j), sine=min(1.0, sine),
+                                                  line_vectors=(list(li), list(lj)),
+                                                  h=(x[0] / proj, x[1] / proj, x[2] / proj))))
+        if sum(row.count(_UNDEFINED) for row in S) > n:   # some links move alike: copy their poles
             done = {(a, b) for a, b, _, _ in out}
-            for a, b in zip(*np.nonzero(unknown)):
-                a, b = int(a), int(b)
-                hit = self._alike(a, b)
-                if hit is not None:
-                    if (a, b) in done:
-                        out = [o for o in out if (o[0], o[1]) != (a, b)]
-                    out.append((a, b, 1.0, hit))
+            for a in range(n):
+                for b in range(a + 1, n):
+                    hit = self._alike(a, b) if S[a][b] == _UNKNOWN else None
+                    if hit is not None:
+                        if (a, b) in done:
+                            out = [o for o in out if (o[0], o[1]) != (a, b)]
+                        out.append((a, b, 1.0, hit))
         out.sort(key=lambda o: (o[0], o[1]))
         return out
 
+    def most_lines(self) -> tuple[int, int]:
+        """The unknown pair with the most lines drawn (the first in key order)."""
+        best = None
+        for a in range(self.n):
+            for b in range(a + 1, self.n):
+                if self.S[a][b] == _UNKNOWN:
+                    count = sum(q > 0 for q in self.Q[a][b])
+                    if best is None or count > best[0]:
+                        best = (count, a, b)
+        return best[1], best[2]
+
     def _alike(self, a, b):
         """P_ab = P_ib when link a moves like link i (P_ai undefined), or P_ai when b moves like i."""
+        S = self.S
         for x, y in ((a, b), (b, a)):
-            for i in np.nonzero((self.S[x] == _UNDEFINED) & (self.S[:, y] == _KNOWN))[0]:
-                i = int(i)
-                if i == x:
+            for i in range(self.n):
+                if i == x or S[x][i] != _UNDEFINED or S[i][y] != _KNOWN:
                     continue
-                return dict(how="alike", h=self.H[i, y], sine=self.info[(min(i, y), max(i, y))].get("sine", 1.0),
+                return dict(how="alike", h=self.H[i][y], sine=self.info[(min(i, y), max(i, y))].get("sine", 1.0),
                             via=((self.names[i], self.names[x], self.names[y]),),
                             lines=((self.key(i, x), self.key(i, y)),),
                             note=f"{self.names[x]} moves like {self.names[i]}: "
@@ -490,12 +517,13 @@ def _locate(sol) -> PoleSet:
     per_pair = {}
     for i, j, *_ in cons:
         per_pair[frozenset((i, j))] = per_pair.get(frozenset((i, j)), 0) + 1
+    T = T.tolist()
     K = _Kennedy(names, T, max(per_pair.values(), default=0), sol.condition)
 
     new = []
     for i, j, h, how, note in points:
         a, b = sorted((idx[i], idx[j]))
-        if K.S[a, b] == _UNKNOWN:
+        if K.S[a][b] == _UNKNOWN:
             K.set(a, b, h, dict(how=how, order=0, note=note))
             new.append((a, b))
     for i, j, h, label, desc in cons:
@@ -504,15 +532,14 @@ def _locate(sol) -> PoleSet:
 
     order = 0
     found = []
-    while (K.S == _UNKNOWN).any():
+    while K.unknown:
         cands = K.candidates()
         if cands and max(c[2] for c in cands) >= _POOR:
             cands = [c for c in cands if c[2] >= _POOR]   # poorly meeting lines wait for better ones
         if not cands:
             # Kennedy is stuck: the unknown pole on the most known lines, from the velocity solution
-            count = np.where((K.S == _UNKNOWN) & _upper(K.n), (K.Q > 0).sum(axis=-1), -1)
-            a, b = (int(v) for v in np.unravel_index(int(np.argmax(count)), count.shape))
-            cands = [(a, b, 0.0, dict(how="velocity", h=_unit(T[a] - T[b]),
+            a, b = K.most_lines()
+            cands = [(a, b, 0.0, dict(how="velocity", h=_unit(np.subtract(T[a], T[b])),
                                       note="from the links' velocity fields: no two Kennedy lines reach it"))]
         new = []
         for a, b, _, info in cands:
@@ -553,47 +580,53 @@ def _pole_line(label, through, l, ends, centre, scale) -> PoleLine:
     return PoleLine(label, through, np.array((centre[0] + f * l0, centre[1] + f * l1)), direction)
 
 
-def _euclid_all(hw, size: float):
-    """Positions (None at infinity) and directions (None when finite) of world homogeneous points."""
-    x, y, w = hw[:, 0], hw[:, 1], hw[:, 2]
-    far = (w == 0) | (np.hypot(x, y) > FAR * size * np.abs(w))
-    safe = np.where(far, 1.0, w)
-    pos = np.stack((x / safe, y / safe), -1)
-    d = np.degrees(np.arctan2(y, x)) % 180.0
-    d = np.where(d >= 180.0, 0.0, d) + 0.0
-    return [None if f else p for f, p in zip(far.tolist(), pos)], [float(v) if f else None
-                                                                   for f, v in zip(far.tolist(), d)]
+def _euclid(hw, size: float):
+    """The position (None at infinity) and direction in [0, 180) (None when finite) of a world
+    homogeneous point (x, y, w): far when w = 0 or |(x, y)| > FAR size |w|."""
+    x, y, w = hw
+    if w == 0 or math.hypot(x, y) > FAR * size * abs(w):
+        d = math.degrees(math.atan2(y, x)) % 180.0
+        return None, (0.0 if d >= 180.0 else d) + 0.0
+    return np.array((x / w, y / w)), None
 
 
 def _pole_set(sol, K, centre, scale, found) -> PoleSet:
-    names, n = K.names, K.n
-    A, B = np.nonzero(_upper(n))
-    hl = K.H[A, B]
-    tw = float(_norm(K.T).max()) if n else 0.0
-    defined = K.S[A, B] == _KNOWN
-    mismatch = _norm(_cross(hl, K.T[A] - K.T[B])) / (tw or 1.0)
-    err = float(mismatch[defined].max()) if defined.any() else 0.0
-    hw = np.stack((scale * hl[:, 0] + centre[0] * hl[:, 2], scale * hl[:, 1] + centre[1] * hl[:, 2], hl[:, 2]), -1)
-    hw = hw / np.maximum(_norm(hw), 1e-300)[:, None]
-    positions, directions = _euclid_all(hw, scale)
-    pairs = list(zip(A.tolist(), B.tolist()))
-    where = {pair: (positions[r] if defined[r] else None) for r, pair in enumerate(pairs)}
+    """The contract's PoleSet: world positions (x, y, w) = (scale x' + centre w', ..., w'), the lines."""
+    names, n, T = K.names, K.n, K.T
+    tw = max(map(_norm3, T), default=0.0)
+    c0, c1 = float(centre[0]), float(centre[1])
+    err = 0.0
+    world, where = {}, {}
+    for a in range(n):
+        for b in range(a + 1, n):
+            if K.S[a][b] != _KNOWN:
+                where[a, b] = None
+                continue
+            h = K.H[a][b]
+            # the disagreement with the velocity solution: |P_ab x (T_a - T_b)|
+            err = max(err, _norm3(_cross3(h, [u - v for u, v in zip(T[a], T[b])])) / (tw or 1.0))
+            hw = (scale * h[0] + c0 * h[2], scale * h[1] + c1 * h[2], h[2])
+            nw = max(_norm3(hw), 1e-300)
+            hw = (hw[0] / nw, hw[1] / nw, hw[2] / nw)
+            world[a, b] = hw, *_euclid(hw, scale)
+            where[a, b] = world[a, b][1]
     poles = {}
-    for r, (a, b) in enumerate(pairs):
+    for (a, b), position in where.items():
         key = K.key(a, b)
         info = K.info[(a, b)]
-        if not defined[r]:
+        if (a, b) not in world:
             poles[key] = Pole((names[a], names[b]), key, None, None, "undefined", 0, note=info.get("note", ""))
             continue
+        hw, position, direction = world[a, b]
         via, lines, construction = info.get("via", ()), info.get("lines", ()), ()
         if "slots" in info:
             parts = [_line(K, a, b, s, v, where, centre, scale) for s, v in zip(info["slots"], info["line_vectors"])]
             lines = tuple(p[0] for p in parts)
             via = tuple(p[1] for p in parts)
             construction = tuple(p[2] for p in parts)
-        poles[key] = Pole((names[a], names[b]), key, positions[r], directions[r], info["how"], info["order"], via,
-                          lines, construction, info.get("sine", 1.0), hw[r], info.get("note", ""))
-    cl = {K.key(a, b): tuple(_pole_line(desc, (), K.L[a, b, n + c], (), centre, scale)
+        poles[key] = Pole((names[a], names[b]), key, position, direction, info["how"], info["order"], via,
+                          lines, construction, info.get("sine", 1.0), np.array(hw), info.get("note", ""))
+    cl = {K.key(a, b): tuple(_pole_line(desc, (), K.L[a][b][n + c], (), centre, scale)
                              for c, (_, desc) in enumerate(items))
           for (a, b), items in K.constraints.items()}
     return PoleSet(tuple(names), poles, sol.mechanism.frame.name, tuple(K.key(a, b) for a, b in found), cl, err,
