@@ -25,8 +25,9 @@ from dataclasses import dataclass
 import numpy as np
 
 from .model import Mechanism
+from .motion import LinkMotion, _zero
 
-__all__ = ["DyadPlan", "dyad_plan", "assemble"]
+__all__ = ["DyadPlan", "Walk", "dyad_plan", "walk", "assemble", "rates"]
 
 
 @dataclass(frozen=True)
@@ -35,6 +36,7 @@ class DyadPlan:
 
     driver: tuple       # ("crank", link, pivot point) or ("slider", block, direction)
     steps: tuple        # ("RRR", u, v, P1, known1, P2, P3, known3, side) / ("RRP", u, v, P1, known1, P2, guide, dir, side)
+    margin: float = 0.0  # the drawn pose's smallest transmission sine times the shortest dyad arm / size
 
 
 def _pins_between(m: Mechanism):
@@ -96,8 +98,8 @@ def dyad_plan(m: Mechanism) -> DyadPlan | None:
                     if v in sliders and sliders[v].guide in known and u not in sliders:
                         s = sliders[v]
                         d = np.array([np.cos(np.radians(s.angle)), np.sin(np.radians(s.angle))])
-                        foot = P[p1] + np.dot(P[p2] - P[p1], d) * d
-                        side = float(np.sign(np.dot(P[p2] - foot, d)) or 1.0)
+                        # P2 is on the path, on this side of the foot of P1
+                        side = float(np.sign(np.dot(P[p2] - P[p1], d)) or 1.0)
                         steps.append(("RRP", u, v, p1, k1, p2, s.guide, d, side))
                         known.update((u, v))
                         progress = True
@@ -134,7 +136,29 @@ def dyad_plan(m: Mechanism) -> DyadPlan | None:
     for p in m.pins:
         if ("pin", frozenset(p.links)) not in used:
             return None
-    return DyadPlan(driver, tuple(steps))
+    return DyadPlan(driver, tuple(steps), _margin(m, steps, P))
+
+
+def _margin(m: Mechanism, steps, P) -> float:
+    """How far the drawn pose is from a singular one, for the dyads: the smallest of
+    |sin| of a dyad's two directions (RRR: |u x v| / |u||v|; RRP: |u . e| / |u|)
+    times the shortest arm over the mechanism's size. Far above 1e-3, the velocity
+    equations of the drawn pose are regular (a dyad's 2 x 2 system is the only part
+    that can lose rank)."""
+    out = np.inf
+    for st in steps:
+        u = P[st[5]] - P[st[3]]
+        lu = np.hypot(*u)
+        if st[0] == "RRR":
+            v = P[st[5]] - P[st[6]]
+            lv = np.hypot(*v)
+            sine = abs(u[0] * v[1] - u[1] * v[0]) / (lu * lv) if lu * lv > 0 else 0.0
+            arm = min(lu, lv)
+        else:
+            sine = abs(np.dot(u, st[7])) / lu if lu > 0 else 0.0
+            arm = lu
+        out = min(out, sine * arm / m.size)
+    return float(out) if steps else 1.0
 
 
 def _c(p) -> complex:
@@ -143,172 +167,191 @@ def _c(p) -> complex:
     return complex(p[0], p[1])
 
 
+def _dot(a, b):
+    """a . b = Re(conj(a) b) (0 when b is a scalar zero)."""
+    return 0.0 if _zero(b) else (a.conjugate() * b).real
+
+
+def _sub(a, b):
+    return a if _zero(b) else a - b
+
+
+def _sq(z):
+    """|z|^2."""
+    return 0.0 if _zero(z) else (z * z.conjugate()).real
+
+
+@dataclass(frozen=True)
+class Walk:
+    """The dyad walk over N driver positions: every link's motion and the joints' points.
+
+    ``links[name]`` is a :class:`velpoly.motion.LinkMotion`; ``joints[(link, point)]`` is
+    ``(P, V, A)`` (complex, V and A None for positions only) of each point the walk placed;
+    ``sine`` is the smallest |sin| of a dyad's two directions at each pose (the
+    transmission angle, zero at a dyad's toggle); ``reach`` the number of positions,
+    from the first, where every dyad closes.
+    """
+
+    links: dict
+    joints: dict
+    sine: np.ndarray
+    reach: int
+
+
+def walk(m: Mechanism, plan: DyadPlan, deltas, rate: float | None = None, accel: float = 0.0) -> Walk:
+    """Positions (and, given the driver's rate and acceleration, velocities and
+    accelerations) of every link, dyad by dyad, over all driver positions at once.
+
+    Positions: an RRR dyad's joint P2 is an intersection of the circles (P1, r1) and
+    (P3, r3): with d = P3 - P1, P2 = P1 + (s + i side h) d, s = (r1^2 - r3^2 + |d|^2) / (2 |d|^2),
+    h = sqrt(r1^2 / |d|^2 - s^2). An RRP dyad's joint is on the guide's line through G:
+    P2 = F + side sqrt(r^2 - |P1 - F|^2) e, F = G + ((P1 - G) . e) e.
+
+    Rates: each dyad is two vector equations of case 2a. For an RRR dyad
+    (u = P2 - P1, v = P2 - P3)::
+
+        u . V2 = u . V1,               v . V2 = v . V3
+        u . A2 = u . A1 - |V2 - V1|^2, v . A2 = v . A3 - |V2 - V3|^2
+
+    and omega_u = u x (V2 - V1) / |u|^2, alpha_u = u x (A2 - A1) / |u|^2. For an
+    RRP dyad (block on a guide g, path e, n = i e, G the guide's point at P2)
+    the second equation is n . V2 = n . V_G and
+    n . A2 = n . A_G + 2 omega_g e . (V2 - V_G) (Coriolis); the block turns with
+    its guide.
+    """
+    deltas = np.asarray(deltas, float)
+    n = len(deltas)
+    rates = rate is not None
+    P = {k: _c(v) for k, v in m.points.items()}
+    links = {m.frame.name: LinkMotion(0j, 0j, 1.0, 0.0, 0.0, 0.0, 0.0)}
+    kind, link, extra = plan.driver
+    if kind == "crank":
+        c = P[extra]
+        links[link] = LinkMotion(c, c, np.exp(1j * deltas), 0.0, 0.0, float(rate or 0.0), float(accel))
+    else:
+        e = complex(np.exp(1j * np.radians(extra)))
+        links[link] = LinkMotion(0j, deltas * e, 1.0, (rate or 0.0) * e, accel * e, 0.0, 0.0)
+    joints = {}
+
+    def at(lk, p):
+        hit = joints.get((lk, p))
+        if hit is None:
+            hit = joints[(lk, p)] = links[lk].point(P[p], rates)
+        return hit
+
+    bad = None
+    sine = None
+    for st in plan.steps:
+        if st[0] == "RRR":
+            _, u_, v_, p1, k1, p2, p3, k3, side = st
+            (a, V1, A1), (b, V3, A3) = at(k1, p1), at(k3, p3)
+            r1, r3 = abs(P[p2] - P[p1]), abs(P[p2] - P[p3])
+            d = b - a
+            if not isinstance(d, np.ndarray):
+                d = np.full(n, d)
+            inv = 1.0 / (d * d.conjugate()).real
+            s = (r1 * r1 - r3 * r3) * 0.5 * inv + 0.5
+            h2 = r1 * r1 * inv - s * s
+            c2 = a + (s + (1j * side) * np.sqrt(np.maximum(h2, 0.0))) * d
+            u, v = c2 - a, c2 - b
+            links[u_] = LinkMotion(P[p2], c2, u * (1.0 / (P[p2] - P[p1])))
+            links[v_] = LinkMotion(P[p2], c2, v * (1.0 / (P[p2] - P[p3])))
+            if rates:
+                det = (u.conjugate() * v).imag
+                k = 1j / det
+                V2 = (_dot(v, V3) * u - _dot(u, V1) * v) * k
+                W1, W3 = _sub(V2, V1), _sub(V2, V3)
+                A2 = ((_dot(v, A3) - _sq(W3)) * u - (_dot(u, A1) - _sq(W1)) * v) * k
+                links[u_] = links[u_].moving(V2, A2, (u.conjugate() * W1).imag * (1.0 / (r1 * r1)),
+                                             (u.conjugate() * _sub(A2, A1)).imag * (1.0 / (r1 * r1)))
+                links[v_] = links[v_].moving(V2, A2, (v.conjugate() * W3).imag * (1.0 / (r3 * r3)),
+                                             (v.conjugate() * _sub(A2, A3)).imag * (1.0 / (r3 * r3)))
+                here = np.abs(det) * (1.0 / (r1 * r3))
+            else:
+                V2 = A2 = None
+            joints[(u_, p1)], joints[(v_, p3)] = joints[(k1, p1)], joints[(k3, p3)]
+        else:
+            _, u_, v_, p1, k1, p2, g, dref, side = st
+            a, V1, A1 = at(k1, p1)
+            G = links[g]
+            e = G.rot * _c(dref)
+            through = G.place(P[p2])
+            r1 = abs(P[p2] - P[p1])
+            foot = through + _dot(e, a - through) * e
+            off = a - foot
+            h2 = r1 * r1 - (off * off.conjugate()).real
+            if not isinstance(h2, np.ndarray):
+                h2 = np.full(n, h2)
+            c2 = foot + (side * np.sqrt(np.maximum(h2, 0.0))) * e
+            u = c2 - a
+            links[u_] = LinkMotion(P[p2], c2, u * (1.0 / (P[p2] - P[p1])))
+            links[v_] = LinkMotion(P[p2], c2, G.rot)
+            if rates:
+                VG, AG = G.motion(c2 - G.p0)
+                nn = 1j * e
+                k = 1j / (u.conjugate() * nn).imag
+                V2 = (_dot(nn, VG) * u - _dot(u, V1) * nn) * k
+                W1 = _sub(V2, V1)
+                cor = 0.0 if _zero(G.omega) else 2 * G.omega * _dot(e, _sub(V2, VG))
+                A2 = ((_dot(nn, AG) + cor) * u - (_dot(u, A1) - _sq(W1)) * nn) * k
+                links[u_] = links[u_].moving(V2, A2, (u.conjugate() * W1).imag * (1.0 / (r1 * r1)),
+                                             (u.conjugate() * _sub(A2, A1)).imag * (1.0 / (r1 * r1)))
+                links[v_] = links[v_].moving(V2, A2, G.omega, G.alpha)
+                here = np.abs(_dot(u, e)) * (1.0 / r1)
+            else:
+                V2 = A2 = None
+            joints[(u_, p1)] = joints[(k1, p1)]
+        joints[(u_, p2)] = joints[(v_, p2)] = (c2, V2, A2)
+        miss = ~(h2 >= 0)
+        bad = miss if bad is None else bad | miss
+        if rates:
+            sine = here if sine is None else np.minimum(sine, here)
+    reach = n if bad is None or not bad.any() else int(np.argmax(bad))
+    return Walk(links, joints, np.ones(n) if sine is None else sine, reach)
+
+
 def assemble(m: Mechanism, index: dict, plan: DyadPlan, deltas) -> tuple[np.ndarray, int]:
     """Poses q (N, nq) at the driver positions ``deltas``, and how many are reachable.
 
     Positions are reachable up to (not including) the first one where a dyad
-    does not close; q beyond it is NaN. A link's pose is its origin o and turn
-    rot = e^(i theta); its point s (reference position) is at o + rot s.
+    does not close; q beyond it is NaN. A link's coordinates are the place of its
+    point whose reference position is the origin and its turn theta = arg(rot),
+    continuous from the reference pose.
     """
     deltas = np.asarray(deltas, float)
     n = len(deltas)
-    P = {k: _c(v) for k, v in m.points.items()}
-    one = np.ones(n, complex)
-    poses = {m.frame.name: (np.zeros(n, complex), one)}
-    kind, link, extra = plan.driver
-    if kind == "crank":
-        rot = np.exp(1j * deltas)
-        poses[link] = (P[extra] - rot * P[extra], rot)
-    else:
-        poses[link] = (deltas * np.exp(1j * np.radians(extra)), one)
-
-    def place(lk, s):
-        o, rot = poses[lk]
-        return o + rot * s
-
-    def pose_from(a, s1, c2, s2):
-        rot = (c2 - a) / (s2 - s1)
-        rot /= np.abs(rot)
-        return a - rot * s1, rot
-
-    bad = np.zeros(n, bool)
-    for st in plan.steps:
-        if st[0] == "RRR":
-            _, u, v, p1, k1, p2, p3, k3, side = st
-            a, b = place(k1, P[p1]), place(k3, P[p3])
-            r1, r2 = abs(P[p2] - P[p1]), abs(P[p2] - P[p3])
-            d = b - a
-            dist = np.abs(d)
-            along = (r1 * r1 - r2 * r2 + dist * dist) / (2 * dist)
-            h2 = r1 * r1 - along * along
-            bad |= ~(h2 >= 0) | (dist == 0)
-            e = d / dist
-            c2 = a + (along + side * 1j * np.sqrt(np.maximum(h2, 0.0))) * e
-            poses[u] = pose_from(a, P[p1], c2, P[p2])
-            poses[v] = pose_from(b, P[p3], c2, P[p2])
-        else:
-            _, u, v, p1, k1, p2, g, dref, side = st
-            a = place(k1, P[p1])
-            og, rotg = poses[g]
-            e = rotg * _c(dref)
-            through = place(g, P[p2])
-            r = abs(P[p2] - P[p1])
-            foot = through + (np.conj(e) * (a - through)).real * e
-            off = a - foot
-            h2 = r * r - (off.real ** 2 + off.imag ** 2)
-            bad |= ~(h2 >= 0)
-            c2 = foot + side * np.sqrt(np.maximum(h2, 0.0)) * e
-            poses[u] = pose_from(a, P[p1], c2, P[p2])
-            poses[v] = (c2 - rotg * P[p2], rotg)   # the block translates on its guide: it turns with it
-    reach = int(np.argmax(bad)) if bad.any() else n
-    q = np.zeros((n, 3 * len(index)))
+    w = walk(m, plan, deltas)
+    q = np.empty((n, 3 * len(index)))
+    kind, drv, _ = plan.driver
     for name, k in index.items():
-        o, rot = poses[name]
-        q[:, 3 * k], q[:, 3 * k + 1] = o.real, o.imag
-        th = np.angle(rot)
-        if name == link and kind == "crank":
-            th = deltas                       # the driver's own angle, exactly
-        q[:, 3 * k + 2] = th
+        lk = w.links[name]
+        q[:, 3 * k:3 * k + 2].view(complex)[:, 0] = lk.place(0j)
+        if name == drv and kind == "crank":
+            q[:, 3 * k + 2] = deltas                  # the driver's own angle, exactly
+        elif isinstance(lk.rot, np.ndarray):
+            q[:, 3 * k + 2] = np.arctan2(lk.rot.imag, lk.rot.real)
+        else:
+            q[:, 3 * k + 2] = 0.0
     # angles continuous with the reference pose (0), not wrapped into (-pi, pi]
     th = q[:, 2::3]
     if n:
         jumps = np.abs(np.diff(th, axis=0, prepend=0.0)).max(axis=0) > np.pi
         if jumps.any():
             th[:, jumps] = np.unwrap(np.concatenate([np.zeros((1, int(jumps.sum()))), th[:, jumps]]), axis=0)[1:]
-    q[reach:] = np.nan
-    return q, reach
+    q[w.reach:] = np.nan
+    return q, w.reach
 
 
-def rates(m: Mechanism, index: dict, plan: DyadPlan, q: np.ndarray, rate: float, accel: float):
-    """Velocities and accelerations dyad by dyad, in closed form: (q', q'', sine).
-
-    Each dyad is two vector equations of case 2a. For an RRR dyad with joint
-    P2 between links on P1 and P3 (u = P2 - P1, v = P2 - P3)::
-
-        u . V2 = u . V1,               v . V2 = v . V3
-        u . A2 = u . A1 - |V2 - V1|^2, v . A2 = v . A3 - |V2 - V3|^2
-
-    and omega_u = u x (V2 - V1) / |u|^2, alpha_u = u x (A2 - A1) / |u|^2. For an
-    RRP dyad (block on a guide g, path e, n = k x e, G the guide's point at P2)
-    the second equation is n . V2 = n . V_G and
-    n . A2 = n . A_G + 2 omega_g e . (V2 - V_G) (Coriolis); the block turns with
-    its guide. ``sine`` is the smallest |sin| of a dyad's two directions
-    (the transmission angle): zero exactly at a dyad's toggle.
-    """
-    n = len(q)
-    P = {k: _c(v) for k, v in m.points.items()}
-    zero = np.zeros(n)
-    frame = m.frame.name
-    state = {frame: (np.zeros(n, complex), np.zeros(n, complex), zero, zero, np.zeros(n, complex))}
-    pose = {frame: (np.zeros(n, complex), np.ones(n, complex))}
+def rates(w: Walk, index: dict, n: int) -> tuple[np.ndarray, np.ndarray]:
+    """The links' coordinate rates q' and q'' (N, nq) from a walk with velocities: the
+    place of each link's reference origin O moves at V_O = v0 + i omega (O - p0),
+    A_O = a0 + (i alpha - omega^2)(O - p0)."""
+    qd = np.empty((n, 3 * len(index)))
+    qdd = np.empty((n, 3 * len(index)))
     for name, k in index.items():
-        pose[name] = (q[:, 3 * k] + 1j * q[:, 3 * k + 1], np.exp(1j * q[:, 3 * k + 2]))
-
-    def place(lk, s):
-        o, rot = pose[lk]
-        return o + rot * s
-
-    def motion_at(lk, w):
-        vo, ao, om, al, o = state[lk]
-        r = w - o
-        return vo + 1j * om * r, ao + (1j * al - om * om) * r
-
-    def set_link(lk, w, v, a, om, al):
-        o = pose[lk][0]
-        r = w - o
-        state[lk] = (v - 1j * om * r, a - (1j * al - om * om) * r, om, al, o)
-
-    def solve2(r1, b1, r2, b2):   # x with Re(conj(r1) x) = b1, Re(conj(r2) x) = b2
-        det = (np.conj(r1) * r2).imag
-        return ((b1 * r2.imag - b2 * r1.imag) + 1j * (r1.real * b2 - r2.real * b1)) / det
-
-    def dot(a, b):
-        return (np.conj(a) * b).real
-
-    def cross(a, b):
-        return (np.conj(a) * b).imag
-
-    kind, link, extra = plan.driver
-    if kind == "crank":
-        w = place(link, P[extra])
-        zc = np.zeros(n, complex)
-        set_link(link, w, zc, zc, np.full(n, float(rate)), np.full(n, float(accel)))
-    else:
-        e = np.exp(1j * np.radians(extra))
-        state[link] = (np.full(n, rate * e), np.full(n, accel * e), zero, zero, pose[link][0])
-    sine = np.ones(n)
-    for st in plan.steps:
-        if st[0] == "RRR":
-            _, u_, v_, p1, k1, p2, p3, k3, _ = st
-            a1, a3, x2 = place(k1, P[p1]), place(k3, P[p3]), place(u_, P[p2])
-            V1, A1 = motion_at(k1, a1)
-            V3, A3 = motion_at(k3, a3)
-            u, v = x2 - a1, x2 - a3
-            V2 = solve2(u, dot(u, V1), v, dot(v, V3))
-            A2 = solve2(u, dot(u, A1) - np.abs(V2 - V1) ** 2, v, dot(v, A3) - np.abs(V2 - V3) ** 2)
-            uu, vv = np.abs(u) ** 2, np.abs(v) ** 2
-            sine = np.minimum(sine, np.abs(cross(u, v)) / np.sqrt(uu * vv))
-            set_link(u_, x2, V2, A2, cross(u, V2 - V1) / uu, cross(u, A2 - A1) / uu)
-            set_link(v_, x2, V2, A2, cross(v, V2 - V3) / vv, cross(v, A2 - A3) / vv)
-        else:
-            _, u_, v_, p1, k1, p2, g, dref, _ = st
-            a1, x2 = place(k1, P[p1]), place(u_, P[p2])
-            V1, A1 = motion_at(k1, a1)
-            VG, AG = motion_at(g, x2)
-            omg, alg = state[g][2], state[g][3]
-            e = pose[g][1] * _c(dref)
-            nn = 1j * e
-            u = x2 - a1
-            V2 = solve2(u, dot(u, V1), nn, dot(nn, VG))
-            A2 = solve2(u, dot(u, A1) - np.abs(V2 - V1) ** 2, nn, dot(nn, AG) + 2 * omg * dot(e, V2 - VG))
-            uu = np.abs(u) ** 2
-            sine = np.minimum(sine, np.abs(dot(u, e)) / np.sqrt(uu))
-            set_link(u_, x2, V2, A2, cross(u, V2 - V1) / uu, cross(u, A2 - A1) / uu)
-            set_link(v_, x2, V2, A2, omg, alg)
-    qd = np.zeros_like(q)
-    qdd = np.zeros_like(q)
-    for name, k in index.items():
-        vo, ao, om, al, _ = state[name]
-        qd[:, 3 * k], qd[:, 3 * k + 1], qd[:, 3 * k + 2] = vo.real, vo.imag, om
-        qdd[:, 3 * k], qdd[:, 3 * k + 1], qdd[:, 3 * k + 2] = ao.real, ao.imag, al
-    return qd, qdd, sine
+        lk = w.links[name]
+        vo, ao = lk.motion(lk.arm(0j))
+        qd[:, 3 * k:3 * k + 2].view(complex)[:, 0] = vo
+        qdd[:, 3 * k:3 * k + 2].view(complex)[:, 0] = ao
+        qd[:, 3 * k + 2], qdd[:, 3 * k + 2] = lk.omega, lk.alpha
+    return qd, qdd

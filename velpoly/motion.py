@@ -14,14 +14,16 @@ is evaluated at the point's current place. Relative motion along a path
 """
 from __future__ import annotations
 
-from dataclasses import dataclass
+import math
+from dataclasses import dataclass, replace
+from functools import cached_property
 
 import numpy as np
 
 from .constraints import Frame, contact_frame, contact_slip_equation, slider_coordinate
 from .model import Mechanism
 
-__all__ = ["Motion", "point_keys", "evaluate_motion", "wrap_deg"]
+__all__ = ["Motion", "LinkMotion", "point_keys", "evaluate_motion", "wrap_deg"]
 
 
 def wrap_deg(a):
@@ -33,6 +35,97 @@ def wrap_deg(a):
 
 def _perp(v):
     return np.stack([-v[..., 1], v[..., 0]], axis=-1)
+
+
+def _zero(x) -> bool:
+    """Whether x is a scalar zero: a motion that vanishes at every pose (the frame's)."""
+    return not isinstance(x, np.ndarray) and x == 0
+
+
+@dataclass(frozen=True)
+class LinkMotion:
+    """One link's motion over N poses, in complex numbers x + iy.
+
+    The link's point with reference position ``s0`` is at ``p0``, with velocity
+    ``v0`` and acceleration ``a0``; the link has turned by ``rot`` = e^(i theta)
+    (its modulus 1 up to rounding) and turns at ``omega``, ``alpha``. Any point s
+    of the link, at the arm r = rot (s - s0) from p0::
+
+        P = p0 + r,    V = v0 + i omega r,    A = a0 + (i alpha - omega^2) r
+
+    A value equal at every pose may be a scalar (the frame: p0 = s0 = 0, rot = 1,
+    the rest 0). v0, a0, omega, alpha are None when only positions are known.
+    """
+
+    s0: complex
+    p0: object
+    rot: object
+    v0: object = None
+    a0: object = None
+    omega: object = None
+    alpha: object = None
+
+    def arm(self, s: complex):
+        """rot (s - s0): from p0 to the link's point with reference position s."""
+        return 0.0 if s == self.s0 else self.rot * (s - self.s0)
+
+    def place(self, s: complex):
+        """Where the link's point with reference position s is."""
+        return self.p0 if s == self.s0 else self.p0 + self.rot * (s - self.s0)
+
+    @cached_property
+    def _spin(self):
+        """(i omega, i alpha - omega^2): V and A about p0 per unit arm."""
+        om, al = self.omega, self.alpha
+        return 1j * om, 1j * al - om * om
+
+    def motion(self, r):
+        """(V, A) of the link's point at the arm r from p0."""
+        if _zero(r):
+            return self.v0, self.a0
+        jw, k = self._spin
+        return (_plus(self.v0, 0.0 if _zero(jw) else jw * r),
+                _plus(self.a0, 0.0 if _zero(k) else k * r))
+
+    def point(self, s: complex, rates: bool = True):
+        """(P, V, A) of the link's point with reference position s (V, A None without rates)."""
+        r = self.arm(s)
+        p = _plus(self.p0, r)
+        return (p, *self.motion(r)) if rates else (p, None, None)
+
+    def moving(self, v0, a0, omega, alpha) -> "LinkMotion":
+        """The same positions with these rates."""
+        return replace(self, v0=v0, a0=a0, omega=omega, alpha=alpha)
+
+
+def _plus(a, b):
+    """a + b, skipping a scalar zero."""
+    return a if _zero(b) else b if _zero(a) else a + b
+
+
+def _xy(z, n: int) -> np.ndarray:
+    """Complex values (an array over the N poses, or one value for all) as (N, 2) x, y:
+    a view of a whole contiguous complex array."""
+    if isinstance(z, np.ndarray) and z.shape == (n,) and z.dtype == complex and z.flags.c_contiguous:
+        return z.view(np.float64).reshape(n, 2)
+    out = np.empty((n, 2))
+    out[:, 0], out[:, 1] = np.real(z), np.imag(z)
+    return out
+
+
+def _full(x, n: int) -> np.ndarray:
+    return x if isinstance(x, np.ndarray) else np.full(n, float(x))
+
+
+def _turn_deg(rot, base: float, n: int) -> np.ndarray:
+    """arg(rot) + base in degrees, wrapped into (-180, 180] like :func:`wrap_deg`."""
+    if not isinstance(rot, np.ndarray):
+        return np.full(n, float(wrap_deg(base + math.degrees(math.atan2(np.imag(rot), np.real(rot))))))
+    z = rot * complex(math.cos(math.radians(base)), math.sin(math.radians(base))) if base else rot
+    a = np.arctan2(z.imag, z.real)
+    a *= 180.0 / math.pi
+    a[a == -180.0] = 180.0
+    return a
 
 
 _KEYS: dict = {}
@@ -135,8 +228,13 @@ def _norm(v):
     return v / np.linalg.norm(v, axis=-1, keepdims=True)
 
 
-def evaluate_motion(m: Mechanism, index: dict, q, qd, qdd=None) -> Motion:
-    """Every output of FORMAT.md section 2, as arrays over the poses q."""
+def evaluate_motion(m: Mechanism, index: dict, q, qd, qdd=None, walk=None) -> Motion:
+    """Every output of FORMAT.md section 2, as arrays over the poses q.
+
+    ``walk``: the :class:`velpoly.dyads.Walk` that solved these poses (with
+    velocities and accelerations); the body points and the links' angles and
+    rates are then taken from it instead of being rebuilt from q, q', q''.
+    """
     q, qd = np.atleast_2d(q), np.atleast_2d(qd)
     qdd = None if qdd is None else np.atleast_2d(qdd)
     B = _Bodies(m, index, q, qd, qdd)
@@ -174,7 +272,9 @@ def evaluate_motion(m: Mechanism, index: dict, q, qd, qdd=None) -> Motion:
     position, velocity, acceleration = {}, {}, {}
     keys = point_keys(m)
     body = [(key, p, lk) for key, p, lk in keys if p not in contact_place and (p, lk) not in coincident_place]
-    if body:   # every body point at once: r = x_k + R(theta_k) s, V = V_O + omega x r', A = ...
+    if body and walk is not None:
+        _walk_points(walk, body, P, B.n, position, velocity, acceleration)
+    elif body:   # every body point at once: r = x_k + R(theta_k) s, V = V_O + omega x r', A = ...
         _body_points(B, index, body, P, position, velocity, acceleration)
     for key, p, lk in keys:
         if key in position:
@@ -190,6 +290,11 @@ def evaluate_motion(m: Mechanism, index: dict, q, qd, qdd=None) -> Motion:
     angle, omega, alpha = {}, {}, {}
     block_path = {s.block: s for s in m.sliders}
     for link in m.links:
+        if walk is not None:
+            lm = walk.links[link.name]
+            angle[link.name] = _turn_deg(lm.rot, _base_deg(link, block_path, P), B.n)
+            omega[link.name], alpha[link.name] = _full(lm.omega, B.n), _full(lm.alpha, B.n)
+            continue
         th = B.theta(link.name)
         if len(link.points) >= 2:
             d = P[link.points[1]] - P[link.points[0]]
@@ -227,6 +332,27 @@ def evaluate_motion(m: Mechanism, index: dict, q, qd, qdd=None) -> Motion:
         contacts.append({"slip_velocity": slip_v, "slip_acceleration": slip_a,
                          "normal": np.degrees(np.arctan2(u[:, 1], u[:, 0])), "place": w})
     return Motion(angle, omega, alpha, position, velocity, acceleration, sliders, contacts, slots)
+
+
+def _base_deg(link, block_path, P) -> float:
+    """The link's angle in the reference pose (degrees): its first two points' direction,
+    a block's path direction, else 0."""
+    if len(link.points) >= 2:
+        d = P[link.points[1]] - P[link.points[0]]
+        return math.degrees(math.atan2(d[1], d[0])) if np.hypot(*d) > 0 else 0.0
+    if link.name in block_path and block_path[link.name].centre is None:
+        return float(block_path[link.name].angle)
+    return 0.0
+
+
+def _walk_points(walk, body, P, n, position, velocity, acceleration):
+    """Body points from the dyad walk: the joints it placed as they are, any other point
+    of a link from the link's motion (P = p0 + r, V = v0 + i omega r, A = a0 + (i alpha - omega^2) r)."""
+    for key, p, lk in body:
+        hit = walk.joints.get((lk, p))
+        if hit is None:
+            hit = walk.links[lk].point(complex(*P[p]))
+        position[key], velocity[key], acceleration[key] = (_xy(z, n) for z in hit)
 
 
 def _body_points(B, index, body, P, position, velocity, acceleration):

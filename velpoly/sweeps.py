@@ -13,7 +13,7 @@ from functools import cached_property
 import numpy as np
 
 from .errors import InputError
-from .dyads import rates
+from .dyads import rates, walk
 from .kinematics import SINGULAR, Kinematics, accelerations, condition, prepare, velocities
 from .model import Mechanism
 from .motion import evaluate_motion, wrap_deg
@@ -81,28 +81,34 @@ def sweep(m: Mechanism, angles, kin: Kinematics | None = None) -> Sweep:
     else:
         # the first angle is reached the shorter way round; later ones continue from it
         first = float(wrap_deg(angles[0] - ref)) if len(angles) else 0.0
-        deltas = np.radians(first + np.concatenate([[0.0], np.cumsum(np.diff(angles))])) \
-            if len(angles) else angles
-    velocities(kin, np.zeros((1, kin.system.nq)), where="reference pose")   # regular, to tell its branch
+        deltas = (angles - (angles[0] - first)) * (np.pi / 180.0) if len(angles) else angles
+    plan = plan_for(kin.system)
+    # the drawn pose must be regular, to tell its branch; far from a dyad's toggle it is
+    screened = plan is not None and plan.margin > 1e-3
+    if not screened:
+        velocities(kin, np.zeros((1, kin.system.nq)), where="reference pose")
     r = reassemble(kin.system, list(kin.rows), deltas)
+    if screened and r.continued:    # the plan was not the mechanism's after all: check as before
+        velocities(kin, np.zeros((1, kin.system.nq)), where="reference pose")
     n = len(r.deltas)
     q = r.q
     stopped = r.stopped
-    plan = plan_for(kin.system)
     known_cond = None
+    w = None
     if n and plan is not None and not r.continued:
         # closed form, dyad by dyad; only poses near a dyad's toggle need the condition number
         drv = m.driver
-        qd, qdd, sine = rates(m, kin.system.index, plan, q, drv.speed if drv.is_slider else drv.omega,
-                              drv.accel if drv.is_slider else drv.alpha)
-        near = np.flatnonzero(sine < 1e-3)
+        rate, accel = (drv.speed, drv.accel) if drv.is_slider else (drv.omega, drv.alpha)
+        w = walk(m, plan, r.deltas, rate, accel)
+        near = np.flatnonzero(w.sine < 1e-3)
         if len(near):
             c = condition(kin, q[near])
             bad = near[~(c <= SINGULAR)]
             if len(bad):
-                k = int(bad[0])
-                n, q, qd, qdd = k, q[:k], qd[:k], qdd[:k]
-                stopped = "toggle"
+                n = int(bad[0])
+                q, stopped = q[:n], "toggle"
+                w = walk(m, plan, r.deltas[:n], rate, accel)
+        qd, qdd = rates(w, kin.system.index, n)
     else:
         qd, cond = velocities(kin, q, check=False) if n else (np.zeros((0, kin.system.nq)), np.zeros(0))
         if n and not np.all(cond <= SINGULAR):
@@ -114,7 +120,7 @@ def sweep(m: Mechanism, angles, kin: Kinematics | None = None) -> Sweep:
             qdd = accelerations(kin, q, qd)
         else:
             qdd = np.full_like(qd, np.nan)
-    mo = evaluate_motion(m, kin.system.index, q, qd, qdd) if n else None
+    mo = evaluate_motion(m, kin.system.index, q, qd, qdd, walk=w) if n else None
     if stopped:
         last = angles[n - 1] if n else (ref if ref is not None else 0.0)
         stopped = (f"stopped at a toggle after {last:g}" + ("" if m.driver.is_slider else " deg") +
