@@ -12,6 +12,7 @@ import math
 from pathlib import Path
 
 import numpy as np
+from shapely.geometry import box
 
 import velpoly
 from velpoly.polygons import ConstructionLine, Polygon, Step, Vector
@@ -92,3 +93,35 @@ def load_sixbar():
 def rotate(v, deg):
     t = math.radians(deg)
     return np.array([math.cos(t) * v[0] - math.sin(t) * v[1], math.sin(t) * v[0] + math.cos(t) * v[1]])
+
+
+def _page_texts(fig):
+    """The page's title, panel captions and step caption with their boxes (figure pixels)."""
+    r = fig.canvas.get_renderer()
+    out = []
+    for t in fig.texts:
+        gid = t.get_gid() or ""
+        if gid == "sheet-title" or gid.startswith("caption-") or gid == "step-caption":
+            bb = t.get_window_extent(r)
+            if gid == "step-caption":   # the box drawn round it
+                p = (0.3 * t.get_fontsize()) * fig.dpi / 72
+                bb = bb.expanded(1, 1).from_extents(bb.x0 - p, bb.y0 - p, bb.x1 + p, bb.y1 + p)
+            out.append((gid, box(bb.x0, bb.y0, bb.x1, bb.y1)))
+    return out
+
+
+def assert_page_texts_clear(fig):
+    """Title and captions inside the page, clear of each other and of the panels beneath them."""
+    W, H = fig.get_size_inches() * fig.dpi
+    page = box(0, 0, W, H)
+    texts = _page_texts(fig)
+    for gid, b in texts:
+        assert page.contains(b), f"{gid} runs off the page"
+    for i, (ga, a) in enumerate(texts):
+        for gb, b in texts[i + 1:]:
+            assert not a.intersects(b), f"{ga} and {gb} overlap"
+    panels = {ax.get_label(): ax.get_window_extent() for ax in fig.axes}
+    for gid, b in texts:
+        for name, bb in panels.items():
+            if name != "table" and gid != f"caption-{name}":
+                assert not b.intersects(box(bb.x0, bb.y0, bb.x1, bb.y1)), f"{gid} over the {name} panel"

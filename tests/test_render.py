@@ -16,6 +16,7 @@ import sys
 from pathlib import Path
 
 import numpy as np
+import shapely
 import pytest
 from matplotlib.backends.backend_agg import FigureCanvasAgg
 from matplotlib.figure import Figure
@@ -23,7 +24,7 @@ from shapely.geometry import Polygon as SPolygon
 from shapely.geometry import box
 
 import velpoly
-from render_contract import SIXBAR, load_sixbar, sixbar_acceleration, sixbar_velocity
+from render_contract import SIXBAR, assert_page_texts_clear, load_sixbar, sixbar_acceleration, sixbar_velocity
 from velpoly.errors import InputError
 from velpoly.render import canvas, sheet
 from velpoly.render.canvas import per_cm, tex, view_scale
@@ -704,3 +705,74 @@ def test_panels_draw_on_pyplots_current_axes(sixbar):
     art = draw_velocity_polygon(sol, polygon=poly)
     assert set(art.labels) == set(poly.images)
     plt.close(fig)
+
+
+# -- issue 6 audit: what a textbook editor rejected ---------------------------------------------------
+def test_link_image_is_the_hull_of_its_images(sixbar):
+    """A plate A, B, E, F with E on AB: its image is the triangle a b f (e on its side), similar to the
+    plate, not the figure a-b-e-f in file order (which shaded the triangle a e f)."""
+    from velpoly.polygons import Polygon
+    m, _ = sixbar
+    images = {"A": np.array([1.0, 0.0]), "B": np.array([0.0, 2.0]), "E": np.array([0.5, 1.0]),
+              "F": np.array([1.5, 1.5]), "D": np.zeros(2)}
+    poly = Polygon("velocity", "O_v", images, {k: k.lower() for k in images}, (),
+                   {"3": ("A", "B", "E", "F")}, {}, 0.0)
+    ax = _axes()
+    art = draw_polygon(poly, ax, mechanism=m)
+    (patch,) = art["images"]
+    shaded = SPolygon(patch.get_xy()[:-1] if len(patch.get_xy()) > 3 else patch.get_xy())
+    hull = SPolygon([images["A"], images["F"], images["B"]])
+    assert shaded.symmetric_difference(hull).area == pytest.approx(0.0, abs=1e-12)
+    assert all(shaded.buffer(1e-12).contains(shapely.Point(*v)) for v in images.values() if np.any(v))
+
+
+def test_legend_lists_only_the_kinds_drawn(sixbar):
+    """A component that is also an absolute vector (the slip of a block on the frame, drawn once, as
+    absolute) is not in the legend; the components drawn are."""
+    from dataclasses import replace
+
+    from velpoly.polygons import Step, Vector
+    m, sol = sixbar
+    poly = sixbar_acceleration(sol)
+    extra = Step(5, "known", "A_F along the path", (), (), (Vector(np.zeros(2), poly.images["F"], "slip", "A_F"),),
+                 {}, 1.0)
+    poly = replace(poly, steps=poly.steps + (extra,))
+    art = draw_polygon(poly, _axes((7, 6)), mechanism=m)
+    (leg,) = art["legend"]
+    texts = [t.get_text() for t in leg.get_texts()]
+    assert "slip along the path" not in texts
+    assert any(t.startswith("normal") for t in texts) and any(t.startswith("tangential") for t in texts)
+    drawn = {kind for kind, *_ in art.arrows}
+    assert drawn == {"absolute", "normal", "tangential"}
+
+
+def test_step_caption_has_its_own_room(sixbar):
+    """The frame's equation, boxed under the title, runs into no panel caption (it struck through
+    'Instant centres' and the three captions of the full sheet); the frames' panels are alike."""
+    m, sol = sixbar
+    cons = _cons(sol)
+    st = sheet.get_style("slides")
+    with rc_context(st):
+        for name in ("full", "poles"):
+            fr = sheet.frames(name, cons, True)
+            figs = [sheet.render_sheet(sol, name, st, cons=cons, frame=f) for f in (fr[0], fr[-1])]
+            for fig in figs:
+                assert_page_texts_clear(fig)
+            pos = [[tuple(ax.get_position().bounds) for ax in fig.axes] for fig in figs]
+            assert pos[0] == pos[1]
+
+
+def test_long_captions_fit_their_columns():
+    """Slide type: 'Acceleration polygon (1 cm = 20000 mm/s²)' ran into its neighbour and off the page."""
+    m = velpoly.load(ROOT / "velpoly" / "examples" / "sixbar.toml")
+    sol = velpoly.solve(m)
+    from velpoly.render.sheet import _fit_width
+    st = sheet.get_style("slides")
+    with rc_context(st):
+        fig = sheet.render_sheet(sol, "full", st, cons=_cons(sol))
+        cap = next(t for t in fig.texts if t.get_gid() == "caption-acceleration")
+        cap.set_text("Acceleration polygon   (1 cm = 20000 mm/s²)")
+        cap.set_fontsize(st.font_size)
+        _fit_width(fig, cap, fig.axes[0].get_position().width)
+        assert cap.get_fontsize() < st.font_size
+        assert_page_texts_clear(fig)

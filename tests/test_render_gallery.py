@@ -17,6 +17,7 @@ import pytest
 from shapely.geometry import box
 
 import velpoly
+from render_contract import assert_page_texts_clear
 from velpoly.errors import InputError
 from velpoly.render import sheet
 from velpoly.render.style import get_style, rc_context
@@ -66,6 +67,7 @@ def test_every_sheet_and_style_renders(path):
                 fig.savefig(buf, format="svg", metadata={"Date": None})
             svg = buf.getvalue()
             assert svg.startswith(b"<?xml") and b'id="results-table"' in svg
+            assert_page_texts_clear(fig)
             boxes = _label_boxes(fig)
             assert boxes, "no labels drawn"
             for (ta, a), (tb, b) in itertools.combinations(boxes, 2):

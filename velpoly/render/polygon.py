@@ -146,10 +146,12 @@ def draw_polygon(polygon, ax=None, *, mechanism=None, style="textbook", options=
     # shaded link images
     for z, (lk, img_keys) in enumerate(polygon.link_images.items()):
         if len(img_keys) >= 3 and all(k in known for k in img_keys):
-            pts = [tuple(map(float, polygon.images[k])) for k in img_keys]
-            shape = SPolygon(pts)
-            if shape.area <= (1e-9 * _size(polygon)) ** 2:
+            # the image is similar to the link, whose body is the hull of its points (a plate): the hull
+            # of the images, not the images in file order (A, B, E, F with E on AB would shade a, e, f)
+            hull = shapely.MultiPoint([tuple(map(float, polygon.images[k])) for k in img_keys]).convex_hull
+            if hull.geom_type != "Polygon" or hull.area <= (1e-9 * _size(polygon)) ** 2:
                 continue
+            pts = [tuple(map(float, xy)) for xy in hull.exterior.coords[:-1]]
             colour = link_colour(m, opts, st, lk) if m is not None else st.palette[z % len(st.palette)]
             from matplotlib.patches import Polygon as MPolygon
             patch = MPolygon(pts, closed=True, facecolor=colour, alpha=st.image_alpha, edgecolor="none",
@@ -191,12 +193,13 @@ def draw_polygon(polygon, ax=None, *, mechanism=None, style="textbook", options=
     tol = _REL_TOL * _size(polygon)
 
     def vec(kind, tail, head, label=""):
+        """Draw the vector unless it is null or already drawn; whether it was drawn."""
         tail, head = np.asarray(tail, float), np.asarray(head, float)
         if float(np.hypot(*(head - tail))) <= tol:
-            return
+            return False
         key = tuple(np.round(np.r_[tail, head] / tol).astype(np.int64))
         if key in drawn:   # one arrow a vector: an absolute one that is also relative (from O_v) stays absolute
-            return
+            return False
         drawn.add(key)
         ls, colour, f = st.kind_styles.get(kind, st.kind_styles["relative"])
         colour = st.ink if colour is None else colour
@@ -208,16 +211,16 @@ def draw_polygon(polygon, ax=None, *, mechanism=None, style="textbook", options=
         art.arrows.append((kind, tail, head, hd))
         pl.add_obstacle(poly)
         pl.add_obstacle(segment(tail, head).buffer(0.6 * pp), hard=False)
+        return True
 
     for k in keys:
         vec("absolute", origin, polygon.images[k], label=k)
     kinds = {"absolute"}
     for step in steps:
         for v in step.vectors:
-            if v.kind == "absolute":
-                vec("absolute", v.tail, v.head, label=v.label)
-            else:
-                vec(v.kind, v.tail, v.head, label=v.label)
+            # the legend lists the kinds drawn: a component that is also an absolute vector (the slip of a
+            # block on the frame, the normal acceleration of a crank) is drawn, and listed, as absolute
+            if vec(v.kind, v.tail, v.head, label=v.label):
                 kinds.add(v.kind)
 
     # the origin

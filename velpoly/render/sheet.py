@@ -170,11 +170,45 @@ def frames(sheet: str, cons: Constructions, steps: bool) -> list[Frame]:
     return out or [Frame()]
 
 
-def _page(fig, st, m, sol) -> None:
+def _fit_width(fig, text, width: float, smallest: float = 0.7) -> None:
+    """Shrink ``text``'s type until it is at most ``width`` (a fraction of the page) wide, down to
+    ``smallest`` of its size (a long caption in large slide type would run into its neighbour)."""
+    from .canvas import renderer_of
+    r = renderer_of(fig)
+    size = text.get_fontsize()
+    w = text.get_window_extent(r).width / (fig.get_figwidth() * fig.dpi)
+    if w > width:
+        text.set_fontsize(max(size * width / w * 0.99, size * smallest))
+
+
+def _page(fig, st, m, sol):
+    """The page's title (shrunk to the page's width where it must be); return it."""
     title = m.title
     if not at_file_pose(sol):   # drawn with --angle: say where the driver is
         title += f"  (driver at {sol.driver_angle:.4g}°)"
-    fig.text(0.5, 0.975, title, ha="center", va="top", fontsize=st.title_size, gid="sheet-title")
+    t = fig.text(0.5, 0.975, title, ha="center", va="top", fontsize=st.title_size, gid="sheet-title")
+    _fit_width(fig, t, 0.96)
+    return t
+
+
+def _step_caption(fig, st, title, caption: str) -> float:
+    """The frame's caption, boxed, under the title; return the height left above the panels (the
+    fraction of the page where the panels' captions must end)."""
+    from .canvas import renderer_of
+    r = renderer_of(fig)
+    hpx = fig.get_figheight() * fig.dpi
+    top = title.get_window_extent(r).y0 / hpx - 0.012
+    t = fig.text(0.5, top, caption, ha="center", va="top", fontsize=st.font_size * 1.1, gid="step-caption",
+                 bbox=dict(boxstyle="round,pad=0.3", facecolor=st.paper, edgecolor=st.ink, lw=st.thin_lw))
+    _fit_width(fig, t, 0.94)
+    # the room is that of a line with sub- and superscripts at the full size, whatever this frame's
+    # equation, so that every frame's panels are alike; the box's patch is laid out when drawn: the text's
+    # box grown by the pad (0.3 of the type size)
+    probe = fig.text(0.5, top, r"Step 1: $A^{t}_{B_{3}}$ (Mg)", ha="center", va="top", fontsize=st.font_size * 1.1)
+    bottom = min(probe.get_window_extent(r).y0, t.get_window_extent(r).y0)
+    probe.remove()
+    bottom -= (0.3 * st.font_size * 1.1 + st.thin_lw) * fig.dpi / 72
+    return bottom / hpx - 0.008
 
 
 def _poles_layout(sol, st, opts, cons: Constructions) -> str:
@@ -236,7 +270,14 @@ def render_sheet(sol, sheet: str = "full", style="textbook", *, cons: Constructi
             layout[k] = (l, b - 0.24 if b >= 0.3 else b, w, h + 0.24) if b >= 0.3 else (l, b, w, h)
     fig = Figure(figsize=st.figsize, dpi=72)   # text is measured at the dpi vector output is written at
     FigureCanvasAgg(fig)
-    _page(fig, st, m, sol)
+    title = _page(fig, st, m, sol)
+    if frame.caption:
+        # the frame's caption takes its own room under the title: the panels beneath it, their captions
+        # clear of it (the panels of every frame alike, so that frames do not jump)
+        limit = _step_caption(fig, st, title, frame.caption) - 1.35 * st.font_size / (72 * st.figsize[1]) - 0.004
+        for k, (l, b, w, h) in layout.items():
+            if k != "table" and b + h > limit:
+                layout[k] = (l, b, w, limit - b)
     axes = {name: fig.add_axes(rect, label=name) for name, rect in layout.items()}
     captions = {}
     if "mechanism" in axes:
@@ -269,8 +310,9 @@ def render_sheet(sol, sheet: str = "full", style="textbook", *, cons: Constructi
             continue
         pos = ax.get_position()
         text = _CAPTIONS[name] + (f"   ({captions[name]})" if name in captions else "")
-        fig.text(pos.x0 + pos.width / 2, pos.y1 + 0.004, text, ha="center", va="bottom", fontsize=st.font_size,
-                 style="italic", gid=f"caption-{name}")
+        cap = fig.text(pos.x0 + pos.width / 2, pos.y1 + 0.004, text, ha="center", va="bottom",
+                       fontsize=st.font_size, style="italic", gid=f"caption-{name}")
+        _fit_width(fig, cap, pos.width + 0.008)   # within its column: clear of its neighbours and the page's edge
     if "table" in axes:
         shows = {"velocity": ("velocity",), "acceleration": ("acceleration",), "poles": (),
                  "full": ("velocity", "acceleration")}[sheet]
@@ -278,10 +320,6 @@ def render_sheet(sol, sheet: str = "full", style="textbook", *, cons: Constructi
                            velocity=cons.velocity if "velocity" in shows else None,
                            acceleration=cons.acceleration if "acceleration" in shows else None,
                            poleset=cons.poles)
-    if frame.caption:
-        fig.text(0.5, 0.925, frame.caption, ha="center", va="top", fontsize=st.font_size * 1.1,
-                 gid="step-caption", bbox=dict(boxstyle="round,pad=0.3", facecolor=st.paper, edgecolor=st.ink,
-                                                lw=st.thin_lw))
     return fig
 
 
