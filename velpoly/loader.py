@@ -7,6 +7,7 @@ Every check of the input lives here. Each failure raises
 from __future__ import annotations
 
 import json
+import copy
 import math
 import os
 import re
@@ -858,7 +859,7 @@ def _build(ctx: _Ctx, data: dict, default_title: str) -> Mechanism:
 
     driver = _driver(ctx, _table(ctx, data, "driver"), lnames, frames[0].name, pins, sliders, links)
     reference = _reference(ctx, _table(ctx, data, "reference", required=False), lnames)
-    drawing = _table(ctx, data, "drawing", required=False)
+    drawing = copy.deepcopy(_table(ctx, data, "drawing", required=False))   # not shared with a caller's dict
     m = Mechanism(
         title=title, units=units,
         points=frozen_map({k: (float(v[0]), float(v[1])) for k, v in pts.items()}),
@@ -1014,7 +1015,8 @@ def _reference(ctx, r, lnames) -> Reference:
             elif not isinstance(v, str):
                 raise ctx.err(w, f"expected a string saying what is wrong with the printed value, got {_show(v)}",
                               hint='note = { V_B = "misprint: ..." }')
-        out[key] = frozen_map({str(k): v for k, v in t.items()})
+        # vectors become tuples: the model shares no list with the caller's dict (it is immutable)
+        out[key] = frozen_map({str(k): tuple(v) if isinstance(v, list) else v for k, v in t.items()})
     return Reference(source=src, **out)
 
 

@@ -235,7 +235,7 @@ def _row(key, printed, value, note):
         return Row(key, printed, None, None, None, note)
     if isinstance(value, np.ndarray):
         mag, ang = _polar(value)
-        if isinstance(printed, list):
+        if isinstance(printed, (list, tuple)):
             pm, pa = float(printed[0]), float(printed[1])
             if pm < 0:
                 pm, pa = -pm, pa + 180.0
@@ -270,11 +270,11 @@ def compare(sol) -> list[Row]:
     for key, v in ref.values.items():
         q = parse_key(m, key)
         value = evaluate(sol, q)
-        if q.kind == "P" and isinstance(v, list) and value is not None:
+        if q.kind == "P" and isinstance(v, (list, tuple)) and value is not None:
             # a pole's position is printed as [x, y]
             d = float(np.hypot(value[0] - v[0], value[1] - v[1]))
             rows.append(Row(key, (float(v[0]), float(v[1])), (float(value[0]), float(value[1])),
                             d / max(float(np.hypot(*v)), 1e-300), None, notes.get(key, "")))
             continue
-        rows.append(_row(key, list(v) if isinstance(v, list) else v, value, notes.get(key, "")))
+        rows.append(_row(key, list(v) if isinstance(v, (list, tuple)) else v, value, notes.get(key, "")))
     return rows
