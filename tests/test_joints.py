@@ -180,3 +180,92 @@ def test_a_contact_without_position_equation_allows_only_the_drawn_pose():
     with pytest.raises(velpoly.InputError) as err:
         velpoly.sweep(m, [30, 40])
     assert "centres of curvature" in err.value.hint
+
+
+# -- joints inferred from the links (FORMAT.md section 5) ------------------------------------------------
+def _pins(m):
+    return sorted((p.point, tuple(sorted(p.links))) for p in m.pins)
+
+
+def test_a_point_in_k_links_is_k_minus_1_pins():
+    """C is shared by the coupler 3, the rocker 4 and the bar 5 of a Watt-like six-bar: 2 pins there."""
+    t = """
+[points]
+A = [0, 0]
+D = [10, 0]
+G = [12, -9]
+B = { from = "A", length = 3, angle = 50 }
+C = { circles = [["B", 9], ["D", 7]], side = "right" }
+E = { circles = [["C", 6], ["G", 5]], side = "right" }
+[links]
+1 = { points = ["A", "D", "G"], frame = true }
+2 = { points = ["A", "B"] }
+3 = { points = ["B", "C"] }
+4 = { points = ["D", "C"] }
+5 = { points = ["C", "E"] }
+6 = { points = ["G", "E"] }
+[driver]
+link = 2
+omega = 2
+"""
+    m = velpoly.load(t)
+    at_c = [links for p, links in _pins(m) if p == "C"]
+    assert len(at_c) == 2 and {x for pair in at_c for x in pair} == {"3", "4", "5"}
+    assert len(m.pins) == 7                                  # A, B, D, E, G once and C twice
+    s = velpoly.solve(m)                                     # mobility 1: the pins are 14 equations
+    assert s.velocity["C"] == pytest.approx(s.body_velocity("5", s.position["C"]), abs=1e-12)
+    fd_check(m, 50)
+
+
+def test_a_slider_guide_listing_the_point_is_not_pinned_to_the_block():
+    from mechanisms import inverted_slider_crank
+    m = velpoly.load(inverted_slider_crank())                # A is listed by the crank 2, block 3, guide 4
+    assert _pins(m) == [("A", ("2", "3")), ("O2", ("1", "2")), ("O4", ("1", "4"))]
+    s = velpoly.solve(m)
+    assert {"A@3", "A@4"} <= set(s.position) and "A" not in s.position   # two carriers, moving apart
+
+
+def test_a_contact_point_is_never_a_pin_listed_or_not():
+    listed = WHEEL_ROLLING.replace('1 = { points = ["O2"]', '1 = { points = ["O2", "P"]').replace(
+        '4 = { points = ["C"] }', '4 = { points = ["C", "P"] }')
+    a, b = velpoly.load(WHEEL_ROLLING), velpoly.load(listed)
+    assert "P" not in {p.point for p in a.pins} | {p.point for p in b.pins}
+    sa, sb = velpoly.solve(a), velpoly.solve(b)
+    assert sb.omega["4"] == pytest.approx(sa.omega["4"], rel=1e-12)
+    assert sb.velocity["P@4"] == pytest.approx([0, 0], abs=1e-9)   # the wheel's point at the ground is at rest
+
+
+def test_slider_driver_closed_form():
+    """A centred slider-crank driven by its block: omega and alpha of the crank from x(theta)."""
+    from mechanisms import slider_crank
+    r, l, th, v, acc = 3.0, 10.0, math.radians(50), 2.0, -1.5
+    d = slider_crank(r, l, 0.0, 50.0)
+    d["driver"] = {"slider": "B", "speed": v, "accel": acc}
+    s = velpoly.solve(velpoly.load(d))
+    sn, cs = math.sin(th), math.cos(th)
+    root = math.sqrt(l * l - r * r * sn * sn)
+    x1 = -r * sn - r * r * sn * cs / root                    # dx/dtheta
+    x2 = -r * cs - r * r * (cs * cs - sn * sn) / root - r ** 4 * sn * sn * cs * cs / root ** 3
+    w = v / x1
+    assert s.omega["2"] == pytest.approx(w, rel=1e-9)
+    assert s.alpha["2"] == pytest.approx((acc - x2 * w * w) / x1, rel=1e-9)
+    assert s.velocity["B"] == pytest.approx([v, 0], abs=1e-12)
+    assert s.acceleration["B"] == pytest.approx([acc, 0], abs=1e-9)
+    out = s.to_dict()
+    assert out["driver"] == {"slider": "B", "speed": v, "accel": acc}
+    assert out["sliders"][0]["slip_velocity"] == pytest.approx(v) and out["sliders"][0]["slip_acceleration"] == \
+        pytest.approx(acc)
+
+
+def test_free_sliding_contact_reports_its_slip():
+    """A flat-faced follower on an eccentric cam slides: the slip is v_cam(P) - v_follower(P) along t."""
+    s = velpoly.solve(velpoly.load(CAM_FLAT))
+    c = s.to_dict()["contacts"][0]
+    a, b = c["links"]
+    u = s.motion.contacts[0]["normal"][0]
+    u = np.array([math.cos(math.radians(u)), math.sin(math.radians(u))]) if np.ndim(u) == 0 else np.asarray(u)
+    t = np.array([-u[1], u[0]])
+    rel = s.velocity[f"P@{a}"] - s.velocity[f"P@{b}"]
+    assert abs(np.dot(rel, u)) < 1e-9                         # no separation along the normal
+    assert c["slip_velocity"] == pytest.approx(np.dot(rel, t), rel=1e-12)
+    assert abs(c["slip_velocity"]) > 1.0                      # it does slide
