@@ -47,7 +47,7 @@ from .report import Table, fmt, render_table
 from .solution import driver_reference_angle
 from .sweeps import Sweep, sweep
 
-__all__ = ["cycle_angles", "run_cycle", "Centrodes", "centrodes", "cycle_columns", "cycle_csv",
+__all__ = ["cycle_angles", "run_cycle", "reachable_text", "Centrodes", "centrodes", "cycle_columns", "cycle_csv",
            "summary_table", "cycle_figure", "plot_cycle", "write_gif", "sweep_command"]
 
 FIGURE_SUFFIXES = (".svg", ".png", ".pdf")
@@ -798,6 +798,18 @@ def _toggle_links(kin: Kinematics, q_last) -> tuple[str, ...]:
     return involved_links(kin, q_last)
 
 
+def reachable_text(m: Mechanism, kin: Kinematics) -> str:
+    """``reachable on this branch: LO to HI deg`` for a crank driver (absolute driver angles, to the
+    degree, each toggle approached from the reference pose); empty for a slider driver, whose
+    stroke is the cycle."""
+    if m.driver.is_slider:
+        return ""
+    from .solution import reachable_range
+    lo, hi = reachable_range(kin)
+    ref = driver_reference_angle(m)
+    return f"reachable on this branch: {ref + lo:g} to {ref + hi:g} deg"
+
+
 def sweep_command(args) -> int:
     """``velpoly sweep FILE [--step DEG] [-o OUT] [--csv CSV] [--points P,Q] [--centrodes LINK]
     [--gif GIF] [--style]``: see docs/sweep.md."""
@@ -817,14 +829,17 @@ def sweep_command(args) -> int:
     bar.close()
     if len(sw.angles) < 2:
         links = _toggle_links(kin, sw.q[-1] if len(sw.q) else np.zeros(kin.system.nq))
+        reach = reachable_text(m, kin)
         raise PoseError(f"cannot sweep: {len(sw.angles)} pose(s) reachable from the reference pose"
-                        + (f" ({sw.stopped})" if sw.stopped else ""), where="driver", file=m.source,
+                        + (f" ({sw.stopped})" if sw.stopped else "") + (f"; {reach}" if reach else ""),
+                        where="driver", file=m.source,
                         links=links, hint="links " + ", ".join(links) + " come into line: draw the mechanism "
                         "in a pose away from the toggle")
     if sw.stopped:
         links = _toggle_links(kin, sw.q[-1])
+        reach = reachable_text(m, kin)
         print(f"warning: {m.source}: {sw.stopped} (links {', '.join(links)} come into line); "
-              f"the outputs hold the reachable part", file=sys.stderr)
+              + (f"{reach}; " if reach else "") + "the outputs hold the reachable part", file=sys.stderr)
     points = _parse_points(sw, getattr(args, "points", None))
     cen = None
     if getattr(args, "centrodes", None):
