@@ -25,7 +25,7 @@ import numpy as np
 __all__ = [
     "point", "ideal", "line_through", "meet", "join", "is_finite", "euclid", "line_direction",
     "rotate", "perp", "unit", "angle_deg", "from_polar", "intersect_lines", "collinear",
-    "line_angle_sine", "distance_point_line", "intersect_lines_batch", "rotate_batch",
+    "line_angle_sine", "distance_point_line", "intersect_lines_batch", "rotate_batch", "intersect_lines_z",
 ]
 
 
@@ -111,6 +111,23 @@ def intersect_lines(p, d, q, e):
     w = q - p
     s = (w[0] * e[1] - w[1] * e[0]) / den
     t = (w[0] * d[1] - w[1] * d[0]) / den
+    return p + s * d, s, t, sine
+
+
+def intersect_lines_z(p, d, q, e):
+    """:func:`intersect_lines` with the 2-vectors as complex numbers x + iy (Python scalars).
+
+    Solves p + s d = q + t e by the same formulas (cross products a x b = Im(conj(a) b)).
+    Returns ``(x, s, t, sine)``, x complex; parallel lines give ``x = None``.
+    """
+    den = (d.conjugate() * e).imag
+    scale = abs(d) * abs(e)
+    sine = abs(den) / scale if scale > 0 else 0.0
+    if den == 0:
+        return None, math.nan, math.nan, 0.0
+    w = q - p
+    s = (w.conjugate() * e).imag / den
+    t = (w.conjugate() * d).imag / den
     return p + s * d, s, t, sine
 
 

@@ -189,8 +189,11 @@ class _Geo:
         self.size = m.size
         self.tol = 1e-9 * self.size
         self.key, self.pos, self.own = {}, {}, {lk: [] for lk in self.links}
+        self.zpos = {}   # the same positions as complex numbers x + iy (what the replays compute with)
         for key, p, lk in point_keys(m):   # one key P for every carrier, or P@link for each
-            self.pos.setdefault(p, np.asarray(sol.position[key], float))
+            if p not in self.pos:
+                self.pos[p] = np.asarray(sol.position[key], float)
+                self.zpos[p] = _z(self.pos[p])
             for c in (m.carriers[p] if key == p else (lk,)):
                 self.key[(p, c)] = key
                 self.own[c].append(p)
@@ -275,7 +278,7 @@ class _Geo:
         return f"{n}@{lk}"
 
     def dist(self, n1, n2) -> float:
-        return float(np.hypot(*(self.pos[n1] - self.pos[n2])))
+        return abs(self.zpos[n1] - self.zpos[n2])
 
 
 # -- the plan (structure only, the same at both levels) ----------------------------------------------
@@ -413,11 +416,11 @@ class _Planner:
     def _save(self):
         g = self.g
         return (set(self.known), set(self.rk), {k: list(v) for k, v in self.kp.items()}, list(self.steps),
-                self.singular, dict(g.pos), {k: list(v) for k, v in g.extra.items()}, dict(g.names))
+                self.singular, dict(g.pos), dict(g.zpos), {k: list(v) for k, v in g.extra.items()}, dict(g.names))
 
     def _restore(self, saved):
         g = self.g
-        self.known, self.rk, self.kp, self.steps, self.singular, g.pos, g.extra, g.names = saved
+        self.known, self.rk, self.kp, self.steps, self.singular, g.pos, g.zpos, g.extra, g.names = saved
 
     def _trial(self) -> bool:
         """Trial solution (false position): assume an image on its one line, construct on, close.
@@ -598,6 +601,7 @@ class _Planner:
         while name in g.pos:
             name += "'"
         g.pos[name] = np.asarray(spos, float)
+        g.zpos[name] = _z(spos)
         g.extra[lk].append(name)
         g.names[(lk, name)] = name
         aux = [_Line(ln.base, ln.terms + (("normal", lk, p, name),), ln.direction, ("aux", ln, lk, p, name),
@@ -657,36 +661,61 @@ def _path_reason(g: _Geo, r: _Rel) -> str:
 
 
 # -- evaluating the plan: exact, or perturbed like a hand drawing ---------------------------------
+def _z(v) -> complex:
+    """The 2-vector (x, y) as the complex number x + iy."""
+    return complex(v[0], v[1])
+
+
+def _xy(z) -> np.ndarray:
+    """The complex number x + iy as the contract's 2-vector array (x, y)."""
+    return np.array((z.real, z.imag))
+
+
+def _dot(a, b):
+    """a . b of two 2-vectors written as complex numbers: Re(conj(a) b)."""
+    return (a.conjugate() * b).real
+
+
 class _Run:
-    """One replay of the plan at a level ('velocity' or 'acceleration') over n samples."""
+    """One replay of the plan at a level ('velocity' or 'acceleration') over n samples.
+
+    Vectors are complex numbers x + iy (k x v = i v, the cross product R x V = Im(conj(R) V)):
+    plain Python complex numbers in the exact run, numpy arrays of n samples in the
+    hand-drafting run; the same code serves both. Rates are floats or arrays likewise.
+    """
 
     def __init__(self, geo: _Geo, level: str, vel: "_Run | None" = None, n: int = 1,
                  rng=None, angle: float = 0.0, point: float = 0.0, record: bool = False):
         self.g, self.level, self.vel, self.n = geo, level, vel, n
         self.rng, self.angle, self.point = rng, angle, point
-        self.img, self.rate = {}, {geo.frame: np.zeros(n)}
+        self.zero = 0j if rng is None else np.zeros(n, complex)   # the image of a point at rest
+        self.img, self.rate = {}, {geo.frame: self._const(0.0)}
         self.record = record
         self.sine = 1.0        # conditioning of the last trial closure
         self.lines, self.vectors = [], []
         self.X = "V" if level == "velocity" else "A"
         self.origin = "O_v" if level == "velocity" else "O_a"
 
+    def _const(self, x: float):
+        """A rate known exactly: a float, or the same value for every sample."""
+        return x if self.rng is None else np.full(self.n, x)
+
     # drafting errors (none in the exact run)
     def _turn(self, v):
         """A drawn direction or vector, turned by the drafting error."""
-        v = np.broadcast_to(np.asarray(v, float), (self.n, 2))
         if self.rng is None:
             return v
-        return G.rotate_batch(v, self.rng.uniform(-self.angle, self.angle, self.n))
+        return v * np.exp(1j * self.rng.uniform(-self.angle, self.angle, self.n))
 
     def _mark(self, p):
         if self.rng is None:
             return p
-        return p + self.rng.uniform(-self.point, self.point, (self.n, 2))
+        e = self.rng.uniform(-self.point, self.point, (self.n, 2))
+        return p + (e[:, 0] + 1j * e[:, 1])
 
-    def image(self, place) -> np.ndarray:
+    def image(self, place):
         if self.g.grounded(place):
-            return np.zeros((self.n, 2))
+            return self.zero
         return self.img[self.g.canon(place)]
 
     def _set(self, place, v):
@@ -702,19 +731,19 @@ class _Run:
 
     def _vec(self, tail, head, kind, label):
         if self.record:
-            self.vectors.append(Vector(tail[0].copy(), head[0].copy(), kind, label))
+            self.vectors.append(Vector(_xy(tail), _xy(head), kind, label))
 
     # known terms -----------------------------------------------------------------------------------
     def terms(self, terms) -> list:
-        """The known vectors of a chain: [(kind, label, (n, 2) array)] (zero ones left out)."""
+        """The known vectors of a chain: [(kind, label, vector)] (zero ones left out)."""
         out = []
         for t in terms:
             if t[0] == "normal":
                 if self.level == "velocity":
                     continue
                 _, lk, q, w = t
-                om = self.vel.rate[lk][:, None]
-                r = self.g.pos[w] - self.g.pos[q]
+                om = self.vel.rate[lk]
+                r = self.g.zpos[w] - self.g.zpos[q]
                 out.append(("normal", f"A^n_{self.g.name((lk, w))}{self.g.name((lk, q))}", -om ** 2 * r))
             else:
                 _, i, sign, w = t
@@ -728,30 +757,28 @@ class _Run:
         rel = f"{w}{r.a}/{w}{r.b}"
         if self.level == "velocity":
             if r.source == "drive":
-                return [("slip", f"V_{rel}", m.driver.speed * np.broadcast_to(r.direction, (self.n, 2)))]
+                return [("slip", f"V_{rel}", m.driver.speed * _z(r.direction))]
             if r.source == "contact" and m.contacts[r.index].slip:
-                return [("slip", f"V_{rel}", m.contacts[r.index].slip * np.broadcast_to(r.direction, (self.n, 2)))]
+                return [("slip", f"V_{rel}", m.contacts[r.index].slip * _z(r.direction))]
             return []
         vel = self.vel
         vrel = vel.image((r.a, w)) - vel.image((r.b, w))
         out = []
         if r.source != "contact":
-            om = vel.rate[r.b][:, None]
-            cor = 2.0 * om * np.stack([-vrel[:, 1], vrel[:, 0]], axis=-1)
             if r.source == "drive":
-                out.append(("slip", f"A_{rel}", m.driver.accel * np.broadcast_to(r.direction, (self.n, 2))))
-            if r.b != g.frame:   # a guide on the frame has no Coriolis term
-                out.append(("coriolis", f"2 omega_{r.b} x V_{rel}", cor))
+                out.append(("slip", f"A_{rel}", m.driver.accel * _z(r.direction)))
+            if r.b != g.frame:   # a guide on the frame has no Coriolis term: 2 omega x V_rel
+                out.append(("coriolis", f"2 omega_{r.b} x V_{rel}", 2.0 * vel.rate[r.b] * 1j * vrel))
             if r.centre is not None:   # a circular relative path: V_rel^2 / rho towards its centre
-                k = g.pos[r.centre] - g.pos[w]
-                rho = math.hypot(*k)
-                speed2 = np.einsum("ij,ij->i", vrel, vrel)[:, None]
+                k = g.zpos[r.centre] - g.zpos[w]
+                rho = abs(k)
+                speed2 = vrel.real ** 2 + vrel.imag ** 2
                 out.append(("normal", f"A^n_{rel}", speed2 / rho * (k / rho)))
         else:  # a contact: the contact points' relative acceleration along the common normal
             out.append(("normal", f"A^n_{rel}", self._contact_normal(r, w, vrel)))
         return out
 
-    def _contact_normal(self, r: _Rel, w, vrel) -> np.ndarray:
+    def _contact_normal(self, r: _Rel, w, vrel):
         """(A_P(a) - A_P(b)) . u u from the equivalent linkage through the centres of curvature.
 
         The centres Ca, Cb stay D = la - lb apart (la = (P - Ca).u, lb = (P - Cb).u), the
@@ -762,25 +789,26 @@ class _Run:
         (flat on b) or ``lb (omega_a - omega_b)^2 - 2 omega_a slip`` (flat on a).
         """
         g, c = self.g, self.g.m.contacts[r.index]
-        u = -G.perp(r.direction)          # t = u turned +90 deg
+        t = _z(r.direction)
+        u = -1j * t                       # t = u turned +90 deg
         ca, cb = c.centres
-        p = g.pos[w]
+        p = g.zpos[w]
         wa, wb = self.vel.rate[r.a], self.vel.rate[r.b]
-        slip = vrel @ r.direction
+        slip = (vrel * t.conjugate()).real
         if ca is None:
-            lb = float(np.dot(p - g.pos[cb], u))
+            lb = _dot(p - g.zpos[cb], u)
             k = lb * (wa - wb) ** 2 - 2.0 * wa * slip
         elif cb is None:
-            la = float(np.dot(p - g.pos[ca], u))
+            la = _dot(p - g.zpos[ca], u)
             k = -la * (wa - wb) ** 2 - 2.0 * wb * slip
         else:
-            la, lb = float(np.dot(p - g.pos[ca], u)), float(np.dot(p - g.pos[cb], u))
+            la, lb = _dot(p - g.zpos[ca], u), _dot(p - g.zpos[cb], u)
             wv = (la * wa - lb * wb - slip) / (la - lb)
             k = wv ** 2 * (la - lb) - wa ** 2 * la + wb ** 2 * lb
-        return k[:, None] * u
+        return k * u
 
     # operations ------------------------------------------------------------------------------------
-    def chain(self, base, terms) -> tuple[np.ndarray, list]:
+    def chain(self, base, terms) -> tuple:
         """The tip of base image + known terms, drawn one after another."""
         tip = self.image(base)
         parts = []
@@ -795,14 +823,14 @@ class _Run:
         kind = op[0]
         if kind == "rate":
             drv = g.m.driver
-            self.rate[op[1]] = np.full(self.n, drv.omega if self.level == "velocity" else drv.alpha)
+            self.rate[op[1]] = self._const(drv.omega if self.level == "velocity" else drv.alpha)
         elif kind == "rate_eq":
             self.rate[op[1]] = self.rate[op[2]]
-        elif kind == "rate_from":
+        elif kind == "rate_from":   # omega = (R_WQ x (V_W - V_Q)) / |R_WQ|^2
             _, lk, q, w = op
-            r = g.pos[w] - g.pos[q]
+            r = g.zpos[w] - g.zpos[q]
             d = self.image((lk, w)) - self.image((lk, q))
-            self.rate[lk] = (r[0] * d[:, 1] - r[1] * d[:, 0]) / float(r @ r)
+            self.rate[lk] = (r.conjugate() * d).imag / (r.real ** 2 + r.imag ** 2)
         elif kind == "image":
             _, lk, q, w = op
             self._set((lk, w), self._rigid(lk, q, w))
@@ -819,18 +847,17 @@ class _Run:
 
     def _rigid(self, lk, q, w):
         """V_W = V_Q + omega x R_WQ  (A_W = A_Q + alpha x R_WQ - omega^2 R_WQ)."""
-        r = self.g.pos[w] - self.g.pos[q]
+        r = self.g.zpos[w] - self.g.zpos[q]
         base = self.image((lk, q))
-        rate = self.rate[lk][:, None]
-        pr = np.array([-r[1], r[0]])
+        rate = self.rate[lk]
         name_w, name_q = self.g.name((lk, w)), self.g.name((lk, q))
         if self.level == "velocity":
-            tip = self._mark(base + self._turn(rate * pr))
+            tip = self._mark(base + self._turn(rate * 1j * r))
             self._vec(base, tip, "relative", f"V_{name_w}{name_q}")
             return tip
-        om = self.vel.rate[lk][:, None]
+        om = self.vel.rate[lk]
         mid = self._mark(base + self._turn(-om ** 2 * r))
-        tip = self._mark(mid + self._turn(rate * pr))
+        tip = self._mark(mid + self._turn(rate * 1j * r))
         self._vec(base, mid, "normal", f"A^n_{name_w}{name_q}")
         self._vec(mid, tip, "tangential", f"A^t_{name_w}{name_q}")
         return tip
@@ -840,12 +867,12 @@ class _Run:
         for ln in (l1, l2):
             tip, parts = self.chain(ln.base, ln.terms)
             tips.append(tip)
-            dirs.append(self._turn(ln.direction))
+            dirs.append(self._turn(_z(ln.direction)))
             for k, lab, t0, t1 in parts:
                 self._vec(t0, t1, k, lab)
             if self.record:
                 label = _sum([self.base_label(ln.base)] + [lab for _, lab, _, _ in parts])
-                self.lines.append(ConstructionLine(tip[0].copy(), ln.direction.copy(), label, ln.reason))
+                self.lines.append(ConstructionLine(_xy(tip), ln.direction.copy(), label, ln.reason))
         x, _, _ = self._intersect(tips[0], dirs[0], tips[1], dirs[1])
         if x is None:   # the planner checked the directions; only a degenerate pose gets here
             raise SingularPoseError(f"parallel construction lines for {self.g.name(target)}",
@@ -856,20 +883,21 @@ class _Run:
             for ln, tip in zip((l1, l2), tips):
                 kind = "relative" if self.level == "velocity" or ln.unknown[0] == "aux" else (
                     "tangential" if ln.unknown[0] == "rigid" else "slip")
-                self.vectors.append(Vector(tip[0].copy(), x[0].copy(), kind, self.unknown_label(ln)))
+                self.vectors.append(Vector(_xy(tip), _xy(x), kind, self.unknown_label(ln)))
 
     def _intersect(self, p, d, q, e):
-        """(x, s, sine): where p + s d meets q + t e; the exact kernel in the exact run.
+        """(x, s, sine): where p + s d meets q + t e (:func:`velpoly.geometry.intersect_lines`).
 
         x is None when the lines are parallel (sine below SINE_LIMIT) in the exact run.
         """
         if self.rng is None:
-            x, s, _, sine = G.intersect_lines(p[0], d[0], q[0], e[0])
+            x, s, _, sine = G.intersect_lines_z(p, d, q, e)
             if x is None or sine < SINE_LIMIT:
                 return None, None, sine
-            return np.asarray(x, float)[None, :], np.array([s]), sine
-        x, s, _, sine = G.intersect_lines_batch(p, d, q, e)
-        return x, s, sine
+            return x, s, sine
+        xy = [np.stack((v.real, v.imag), axis=-1) for v in np.broadcast_arrays(p, d, q, e)]
+        x, s, _, sine = G.intersect_lines_batch(*xy)
+        return x[:, 0] + 1j * x[:, 1], s, sine
 
     def _trial(self, seed, line, sub, closure):
         """Two trial polygons with x = tip + tau e, then tau from the closing link.
@@ -880,24 +908,24 @@ class _Run:
         """
         lk, q, w = closure
         tip, parts = self.chain(line.base, line.terms)
-        e = self._turn(line.direction)
-        known = [np.hypot(*v.T) for v in self.img.values()] + [np.hypot(*tip.T)]
-        tau1 = np.maximum(np.max(known, axis=0), 1e-300) if known else np.ones(self.n)
+        e = self._turn(_z(line.direction))
+        known = [abs(v) for v in self.img.values()] + [abs(tip)]
+        tau1 = np.maximum(np.max(known, axis=0), 1e-300)
         start, record = (dict(self.img), dict(self.rate)), self.record
         self.record = False
         z = []
-        for tau in (np.zeros(self.n), tau1):
+        for tau in (0.0, tau1):
             self.img, self.rate = dict(start[0]), dict(start[1])
-            self._set(seed, tip + tau[:, None] * e)
+            self._set(seed, tip + tau * e)
             for o in sub:
                 self.do(o)
             z.append(self.image((lk, w)) - self.image((lk, q)))
-        r = self.g.pos[w] - self.g.pos[q]
-        rn = float(np.hypot(*r))
-        c = 0.0 if self.level == "velocity" else -self.vel.rate[lk][:, None] ** 2 * rn
+        r = self.g.zpos[w] - self.g.zpos[q]
+        rn = abs(r)
+        c = 0.0 if self.level == "velocity" else -self.vel.rate[lk] ** 2 * rn
         locus = z[1] - z[0]
-        target = np.broadcast_to(c * (r / rn), (self.n, 2))
-        x, s, sine = self._intersect(z[0], locus, target, self._turn(G.perp(r)))
+        target = c * (r / rn) + self.zero
+        x, s, sine = self._intersect(z[0], locus, target, self._turn(1j * r))
         self.sine = float(np.min(sine))
         if x is None:
             raise SingularPoseError(
@@ -906,20 +934,19 @@ class _Run:
                 where="pose", file=self.g.m.source, links=(lk,))
         tau = s * tau1
         self.img, self.rate, self.record = dict(start[0]), dict(start[1]), record
-        found = self._mark(tip + tau[:, None] * e)
+        found = self._mark(tip + tau * e)
         self._set(seed, found)
         if record:
             for k, lab, t0, t1 in parts:
                 self._vec(t0, t1, k, lab)
-            self.lines.append(ConstructionLine(z[0][0].copy(), G.unit(locus[0]), self.origin,
+            self.lines.append(ConstructionLine(_xy(z[0]), _xy(locus / abs(locus)), self.origin,
                                                f"locus of {self.X}_{w}{q} over the trial values"))
-            self.lines.append(ConstructionLine(target[0].copy(), G.unit(G.perp(r)), self.origin,
+            self.lines.append(ConstructionLine(_xy(target), _xy(1j * r / rn), self.origin,
                                                f"perpendicular to {q}{w}: link {lk} is rigid"))
-            self.lines.append(ConstructionLine(tip[0].copy(), line.direction.copy(),
+            self.lines.append(ConstructionLine(_xy(tip), line.direction.copy(),
                                                _sum([self.base_label(line.base)] + [p[1] for p in parts]),
                                                line.reason + " (the trial image's line)"))
-            self.vectors.append(Vector(tip[0].copy(), found[0].copy(), "relative",
-                                       self.unknown_label(line)))
+            self.vectors.append(Vector(_xy(tip), _xy(found), "relative", self.unknown_label(line)))
         for o in sub:
             self.do(o)
 
@@ -1023,7 +1050,7 @@ def _assemble(c: _Construction, sol, level: str, vel) -> tuple[Polygon, _Run]:
             run.do(op)
         for p in st.found:   # absolute vectors of the images located
             if not geo.grounded(p):
-                run._vec(np.zeros((1, 2)), run.image(p), "absolute", f"{run.X}_{geo.name(p)}")
+                run._vec(0j, run.image(p), "absolute", f"{run.X}_{geo.name(p)}")
         found = _found_keys(geo, st.found)
         aux = tuple(geo.aux_key(p) for p in st.found if geo.point_key(p) is None)
         kind = st.kind
@@ -1032,22 +1059,23 @@ def _assemble(c: _Construction, sol, level: str, vel) -> tuple[Polygon, _Run]:
             kind = "instant-centre"
         sine = min(run.sine, st.sine) if trial else st.sine
         steps.append(Step(i, kind, _equation(run, st, kind), tuple(run.lines), found, tuple(run.vectors),
-                          {lk: float(run.rate[lk][0]) for lk in st.omegas}, float(sine), aux, st.link))
-    images, labels = {}, {}
+                          {lk: float(run.rate[lk]) for lk in st.omegas}, float(sine), aux, st.link))
+    images, labels, zimages = {}, {}, {}
     for key, p, lk in point_keys(m):
-        images[key] = run.image((lk, p))[0].copy()
+        zimages[key] = run.image((lk, p))
+        images[key] = _xy(zimages[key])
         labels[key] = run.label((lk, p))
     auxiliary = {}
     for st in c.plan:
         for q in (q for p in st.found for q in geo.group(p)):
             if geo.point_key(q) is None and q[0] != geo.frame:
                 k = geo.aux_key(q)
-                auxiliary[k] = AuxiliaryPoint(k, q[0], geo.pos[q[1]].copy(), run.image(q)[0].copy(), run.label(q))
+                auxiliary[k] = AuxiliaryPoint(k, q[0], geo.pos[q[1]].copy(), _xy(run.image(q)), run.label(q))
     link_images = {k.name: tuple(geo.key[(p, k.name)] for p in k.points) for k in m.links}
-    rates = {lk: float(run.rate[lk][0]) for lk in geo.links}
-    analytic = sol.velocity if level == "velocity" else sol.acceleration
-    scale_ref = max((float(np.hypot(*v)) for v in analytic.values()), default=0.0)
-    err = max((float(np.hypot(*(images[k] - np.asarray(analytic[k], float)))) for k in images), default=0.0)
+    rates = {lk: float(run.rate[lk]) for lk in geo.links}
+    analytic = {k: _z(v) for k, v in (sol.velocity if level == "velocity" else sol.acceleration).items()}
+    scale_ref = max(map(abs, analytic.values()), default=0.0)
+    err = max((abs(zimages[k] - analytic[k]) for k in images), default=0.0)
     max_error = err / scale_ref if scale_ref > 0 else err
     return Polygon(level, run.origin, images, labels, tuple(steps), link_images, rates, max_error,
                    auxiliary, _figure_scale(images, auxiliary)), run
@@ -1086,11 +1114,11 @@ def _equation(run: _Run, st: _PStep, kind: str) -> str:
                  + (f"omega_{lk} x R_{op[3]}{op[2]}" if X == "V" else
                     f"alpha_{lk} x R_{op[3]}{op[2]} - omega_{lk}^2 R_{op[3]}{op[2]}")
                  for op in st.ops if op[0] == "image"]
-        om = float(run.rate[lk][0])
+        om = float(run.rate[lk])
         if X == "V":
             turn, scale = (90.0 if om >= 0 else -90.0), abs(om)
         else:
-            w = float(run.vel.rate[lk][0])
+            w = float(run.vel.rate[lk])
             turn, scale = math.degrees(math.atan2(om, -w * w)), math.hypot(om, w * w)
         what = "driver" if st.kind == "driver" else "image"
         return (f"{what} of link {lk}: similar to the link, turned {turn:+.4g} deg, scale {scale:.6g}: "
@@ -1146,7 +1174,7 @@ def hand_drafting(sol, samples: int = 400, seed: int = 20261122, angle_error: fl
         out[level] = {
             "scale": scale,
             rate_key: {lk: _interval(run.rate[lk]) for lk in c.geo.moving},
-            mag_key: {key: _interval(np.hypot(*run.image((lk, p)).T)) for key, p, lk in pk},
+            mag_key: {key: _interval(np.abs(run.image((lk, p)))) for key, p, lk in pk},
         }
         vel = run
     return out
