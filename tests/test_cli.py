@@ -280,3 +280,63 @@ def test_solve_does_not_import_matplotlib():
             "assert 'matplotlib' not in sys.modules, 'matplotlib imported'")
     r = subprocess.run([sys.executable, "-c", code, str(FOURBAR)], capture_output=True, text=True, timeout=60)
     assert r.returncode == 0, r.stderr
+
+
+# -- what `velpoly solve` prints ----------------------------------------------------------------------------
+SIXBAR = Path(velpoly.__file__).parent / "examples" / "sixbar.toml"     # FORMAT.md section 1's file
+
+
+def test_json_is_format_section_2():
+    """The example of FORMAT.md section 2, value by value, on the file of section 1."""
+    r = velpoly_cmd("solve", SIXBAR, "--json")
+    assert r.returncode == 0 and r.stderr == ""
+    d = json.loads(r.stdout)
+    assert list(d)[:4] == ["format", "title", "units", "driver"]
+    assert {"links", "points", "sliders", "contacts", "poles", "graphical"} <= set(d)
+    assert "slots" not in d and "warnings" not in d        # only for files with slots / poses with warnings
+    assert d["format"] == 1 and d["title"] == "Six-bar with a slider (crank at 30 deg, 60 rpm)"
+    assert d["units"] == {"length": "m"}
+    assert d["driver"] == {"link": "1", "angle": pytest.approx(30.0), "omega": pytest.approx(6.283185, abs=1e-6),
+                           "alpha": 0.0}
+    assert list(d["links"]) == ["0", "1", "2", "3", "4", "5"]
+    assert d["links"]["0"]["omega"] == 0.0 and d["links"]["0"]["alpha"] == 0.0
+    two = d["links"]["2"]
+    assert (two["angle"], two["omega"], two["alpha"]) == (pytest.approx(119.81, abs=5e-3),
+                                                          pytest.approx(-1.1307, abs=5e-5), pytest.approx(-22.33, abs=5e-3))
+    assert all(-180 < v["angle"] <= 180 for v in d["links"].values())
+    assert list(d["points"]) == ["A", "D", "B", "C", "E", "F"]
+    c = d["points"]["C"]
+    assert c["position"] == pytest.approx([-0.0689445, 0.422073], abs=5e-7)
+    assert c["velocity"] == pytest.approx([-0.0788, 1.0410], abs=5e-5)
+    assert c["acceleration"] == pytest.approx([2.8760, 1.0357], abs=5e-5)
+    (sl,) = d["sliders"]
+    assert (sl["block"], sl["guide"], sl["point"]) == ("5", "0", "F")
+    assert sl["slip_velocity"] == pytest.approx(1.64625, abs=5e-6)
+    assert sl["slip_acceleration"] == pytest.approx(3.29262, abs=5e-6)
+    assert sl["coriolis"] == pytest.approx([0.0, 0.0], abs=1e-12)
+    assert d["contacts"] == []
+    names = list(d["links"])
+    assert list(d["poles"]) == [f"{a}-{b}" for i, a in enumerate(names) for b in names[i + 1:]]
+    assert d["poles"]["0-1"]["position"] == pytest.approx([0.0, 0.0], abs=1e-12)
+    assert d["poles"]["0-5"]["position"] is None and d["poles"]["0-5"]["direction"] == pytest.approx(0.0, abs=1e-9)
+    assert set(d["graphical"]["max_error"]) == {"velocity", "acceleration"}
+    assert max(d["graphical"]["max_error"].values()) < 1e-9
+
+
+def test_the_table_shows_each_printed_value_beside_the_computed_one_and_the_deviation(tmp_path):
+    r = velpoly_cmd("solve", SIXBAR)
+    assert r.returncode == 0 and r.stderr == ""
+    part = r.stdout.split("Reference values (Problem 1.4.4 (Fig. 3.19))", 1)[1]
+    header, rule, *rows = part.strip().splitlines()
+    assert header.split()[:4] == ["quantity", "printed", "analytic", "deviation"]
+    row = {line.split()[0]: line.split() for line in rows}
+    assert row["omega_3"][1:3] == ["-2.82169", "-2.82169"] and row["omega_3"][3].endswith("%")
+    assert float(row["omega_3"][3].rstrip("%")) < 1e-3
+    assert row["V_F"][1:4] == ["1.64625", "∠", "90.000°"]
+    assert "misprints" in " ".join(row["alpha_4"])            # a note beside its value
+    # a wrong printed value shows as a large deviation (6.3 % off)
+    f = tmp_path / "wrong.toml"
+    f.write_text(SIXBAR.read_text().replace('"3" = -2.82169', '"3" = -3.0'))
+    r = velpoly_cmd("solve", f)
+    line = next(x for x in r.stdout.split("Reference values")[1].splitlines() if x.startswith("omega_3 "))
+    assert line.split()[1:3] == ["-3", "-2.82169"] and float(line.split()[3].rstrip("%")) == pytest.approx(5.94, abs=0.01)
