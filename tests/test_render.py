@@ -776,3 +776,27 @@ def test_long_captions_fit_their_columns():
         _fit_width(fig, cap, fig.axes[0].get_position().width)
         assert cap.get_fontsize() < st.font_size
         assert_page_texts_clear(fig)
+
+
+def test_typesetting_of_numbers_equations_and_reasons():
+    """Tables print minus signs and no computer exponents (A_A was '1e+05 ∠ 300.00°'); a deviation in
+    magnitude and direction reads '0.41 %, 0.21°'; equations and reasons subscript point names
+    ('perpendicular to O4B', 'omega_2^2' printed with its caret)."""
+    from types import SimpleNamespace
+
+    from velpoly.render.canvas import prose_tex
+    from velpoly.render.table import _dev, _fmt
+    assert [_fmt(x) for x in (1e5, 136550.3, -3.1853, 2.5e-9, 12.5)] == \
+        ["100000", "136550", "−3.1853", "2.5×10⁻⁹", "12.5"]
+    assert _dev(SimpleNamespace(deviation=0.0041, angle_error=0.21)) == "0.41 %, 0.21°"
+    eq = sheet.equation_tex("driver of link 2: turned +180 deg: A_A = A_O2 + alpha_2 x R_AO2 - omega_2^2 R_AO2")
+    assert "^" not in eq.replace("^{", "") and r"$\omega_{2}^{2}$" in eq and r"$A_{O_{2}}$" in eq
+    assert " − " in eq and "+180°" in eq
+    assert sheet.equation_tex("V_A3 = V_A2 + V_A3/A2") == r"$V_{A_{3}}$ = $V_{A_{2}}$ + $V_{A_{3}/A_{2}}$"
+    assert prose_tex("perpendicular to O4B") == "perpendicular to $O_{4}$B"
+    assert prose_tex("along the slot of 3 at A") == "along the slot of 3 at A"
+    from matplotlib.mathtext import MathTextParser
+    parser = MathTextParser("path")
+    for s in (eq, prose_tex("perpendicular to O4B")):   # mathtext accepts them
+        for part in s.split("$")[1::2]:
+            parser.parse("$" + part + "$")

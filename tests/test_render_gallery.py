@@ -11,6 +11,7 @@ from __future__ import annotations
 
 import io
 import itertools
+import re
 from pathlib import Path
 
 import pytest
@@ -68,6 +69,9 @@ def test_every_sheet_and_style_renders(path):
             svg = buf.getvalue()
             assert svg.startswith(b"<?xml") and b'id="results-table"' in svg
             assert_page_texts_clear(fig)
+            for ax in fig.axes:   # numbers with a minus sign, not a hyphen ('P_04 (-3.185, 0.1862)')
+                bad = [t.get_text() for t in ax.texts if re.search(r"(?<![\w.])-[0-9]", t.get_text())]
+                assert not bad, f"{name}/{style}: hyphen for minus in {bad}"
             boxes = _label_boxes(fig)
             assert boxes, "no labels drawn"
             for (ta, a), (tb, b) in itertools.combinations(boxes, 2):

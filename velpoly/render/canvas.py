@@ -16,7 +16,7 @@ import re
 import numpy as np
 
 __all__ = ["Artists", "nice_scale", "nice_length", "fit_view", "view_scale", "per_point", "per_cm",
-           "view_box", "border_point", "tex", "arrow", "get_ax", "renderer_of"]
+           "view_box", "border_point", "tex", "prose_tex", "arrow", "get_ax", "renderer_of"]
 
 CM = 1 / 2.54  # inches
 
@@ -179,6 +179,20 @@ def tex(label: str, math: bool = False) -> str:
     if not sub:
         return "$" + base + primes + "$"
     return "$" + base + "_{" + sub + "}" + primes + "$"
+
+
+_POINT_NAME = re.compile(r"(?<![a-z$])([A-Z])_?([0-9]+)")
+
+
+def prose_tex(s: str) -> str:
+    """Words naming points, with the points' subscripts: ``perpendicular to O4B`` -> ``perpendicular to
+    $O_{4}$B`` (a link's number, ``on 1``, stays as it is).
+
+    >>> prose_tex("perpendicular to O4B"), prose_tex("parallel to the path of B on 1")
+    ('perpendicular to $O_{4}$B', 'parallel to the path of B on 1')
+    """
+    s = str(s).replace("$", r"\$")
+    return _POINT_NAME.sub(lambda mo: "$" + mo.group(1) + "_{" + mo.group(2) + "}$", s)
 
 
 def arrow(ax, tail, head, *, lw: float, head_length: float, colour, linestyle="-", zorder=3,

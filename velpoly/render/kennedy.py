@@ -194,7 +194,7 @@ def draw_poles(sol, ax=None, *, style="textbook", options=None, poleset=None, up
                 text = label + r" $\infty$"
             else:
                 d = (p.position - c) / max(float(np.hypot(*(p.position - c))), 1e-300)
-                text = label + f" ({p.position[0]:.4g}, {p.position[1]:.4g})"
+                text = label + f" ({p.position[0]:.4g}, {p.position[1]:.4g})".replace("-", "−")
             tip = border_point(content, c, d, 0.2 * pc)
             tail = tip - d * 1.1 * pc
             sh, hd, poly = arrow(ax, tail, tip, lw=st.arrow_lw, head_length=st.head_length, colour=colour,

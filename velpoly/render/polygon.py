@@ -22,7 +22,7 @@ import shapely
 from shapely.geometry import Point, box
 from shapely.geometry import Polygon as SPolygon
 
-from .canvas import Artists, arrow, fit_view, get_ax, per_cm, per_point, tex, view_box, view_scale
+from .canvas import Artists, arrow, fit_view, get_ax, per_cm, per_point, prose_tex, tex, view_box, view_scale
 from .labels import placer, segment
 from .options import drawing_options
 from .scalebar import scale_bar
@@ -266,7 +266,7 @@ def draw_polygon(polygon, ax=None, *, mechanism=None, style="textbook", options=
         for line in art.get("construction", []):
             ln = line._velpoly_line
             xs, ys = line.get_data()
-            t = pl.place_along((xs[0], ys[0]), (xs[1], ys[1]), ln.reason, fontsize=st.small_size * 0.9,
+            t = pl.place_along((xs[0], ys[0]), (xs[1], ys[1]), prose_tex(ln.reason), fontsize=st.small_size * 0.9,
                                style="italic", zorder=6, gid=line.get_gid() + "-reason")
             if t is not None:
                 art.add("reasons", t)

@@ -76,20 +76,30 @@ def constructions(sol, sheet: str) -> Constructions:
     return Constructions(vel, acc, poles)
 
 
-_QUANTITY = re.compile(r"(?<![A-Za-z\\])(omega|alpha|theta|[VARP])(\^[nt])?_([A-Za-z0-9]+(?:/[A-Za-z0-9]+)?)")
+_QUANTITY = re.compile(r"(?<![A-Za-z\\])(omega|alpha|theta|[VARP])(\^[nt])?_([A-Za-z0-9]+(?:/[A-Za-z0-9]+)?)(\^[0-9])?")
+
+
+def _index(index: str) -> str:
+    """A subscript's point names with their own subscripts: ``AO2`` -> AO_{2}, ``B3/B4`` -> B_{3}/B_{4}."""
+    return index if index.isdigit() else re.sub(r"([A-Za-z])([0-9]+)", r"\1_{\2}", index)
 
 
 def equation_tex(eq: str) -> str:
-    """A step's vector equation in mathtext: ``V_CB`` -> $V_{CB}$, ``omega_3 x R`` -> $\\omega_{3}$ × R."""
+    """A step's vector equation in mathtext: ``V_CB`` -> $V_{CB}$, ``omega_3 x R`` -> $\\omega_{3}$ × R,
+    ``omega_2^2 R_AO2`` -> $\\omega_{2}^{2}$ $R_{AO_{2}}$, `` - `` -> `` − ``, ``deg`` -> °."""
     def sub(mo):
-        name, sup, index = mo.groups()
+        name, sup, index, power = mo.groups()
         name = {"omega": r"\omega", "alpha": r"\alpha", "theta": r"\theta"}.get(name, name)
-        return "$" + name + ("^{" + sup[1:] + "}" if sup else "") + "_{" + index + "}$"
+        out = "$" + name + ("^{" + sup[1:] + "}" if sup else "") + "_{" + _index(index) + "}"
+        if power and not sup:
+            return out + "^{" + power[1:] + "}$"
+        return out + "$" + (power or "")
     s = eq.replace("$", r"\$")
     s = _QUANTITY.sub(sub, s)
     s = re.sub(r"\bomega\b", r"$\\omega$", s)
     s = re.sub(r"\balpha\b", r"$\\alpha$", s)
-    return s.replace(" x ", " × ")
+    s = re.sub(r"([0-9]) deg\b", "\\1°", s)
+    return s.replace(" x ", " × ").replace(" - ", " − ")
 
 
 # -- layouts (fractions of the page: left, bottom, width, height) ----------------------------------

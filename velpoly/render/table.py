@@ -26,6 +26,25 @@ from .style import get_style
 __all__ = ["results_table", "draw_results_table", "at_file_pose"]
 
 
+_SUPERSCRIPT = str.maketrans("-0123456789", "⁻⁰¹²³⁴⁵⁶⁷⁸⁹")
+
+
+def _fmt(x, digits=5) -> str:
+    """A number as a table prints it: ``digits`` significant digits, a minus sign (not a hyphen), no
+    computer exponent: 1e+05 -> 100000, 1.3655e+05 -> 136550, 2.5e-09 -> 2.5×10⁻⁹."""
+    s = fmt(x, digits)
+    if "e" in s:
+        mant, _, e = s.partition("e")
+        e = int(e)
+        if -5 <= e < 8:
+            s = f"{float(s):.{max(digits - 1 - e, 0)}f}"
+            if "." in s:
+                s = s.rstrip("0").rstrip(".")
+        else:
+            s = f"{mant}×10" + str(e).translate(_SUPERSCRIPT)
+    return s.replace("-", "−")
+
+
 def _vec(v, digits=5) -> str:
     v = np.asarray(v, float)
     if not np.all(np.isfinite(v)):
@@ -33,7 +52,7 @@ def _vec(v, digits=5) -> str:
     mag = float(np.hypot(*v))
     if mag == 0:
         return "0"
-    return f"{fmt(mag, digits)} ∠ {math.degrees(math.atan2(v[1], v[0])) % 360:.2f}°"
+    return f"{_fmt(mag, digits)} ∠ {math.degrees(math.atan2(v[1], v[0])) % 360:.2f}°"
 
 
 def _q(symbol: str, index: str, unit: str = "") -> str:
@@ -71,7 +90,7 @@ def _parts(cell: str) -> list[tuple[str, float, float, str]]:
 
 
 def _num(x, digits=5) -> str:
-    return "–" if x is None else fmt(x, digits).replace("-", "−")
+    return "–" if x is None else _fmt(x, digits)
 
 
 def _dev(row) -> str:
@@ -84,7 +103,7 @@ def _dev(row) -> str:
     if row.angle_error is not None and row.angle_error > 5e-4:
         e = row.angle_error
         parts.append(f"{e:.0f}°" if e >= 10 else f"{e:.2g}°")
-    return " ".join(parts) or "0"
+    return ", ".join(parts) or "0"
 
 
 def _printed(row) -> str:
@@ -93,8 +112,8 @@ def _printed(row) -> str:
     v = row.printed
     if isinstance(v, tuple):
         if row.key.startswith("P"):
-            return f"({fmt(v[0], 5)}, {fmt(v[1], 5)})"
-        return f"{fmt(v[0], 5)} ∠ {v[1]:.2f}°"
+            return f"({_fmt(v[0], 5)}, {_fmt(v[1], 5)})"
+        return f"{_fmt(v[0], 5)} ∠ {v[1]:.2f}°"
     return _num(v)
 
 
@@ -186,8 +205,8 @@ def results_table(sol, sheet: str = "full", *, velocity=None, acceleration=None,
             continue
         comp = r.computed
         shown = "at infinity" if comp is None else (
-            f"{fmt(comp[0], 5)} ∠ {comp[1]:.2f}°" if isinstance(comp, tuple) and not key.startswith("P")
-            else (f"({fmt(comp[0], 5)}, {fmt(comp[1], 5)})" if isinstance(comp, tuple) else _num(comp)))
+            f"{_fmt(comp[0], 5)} ∠ {comp[1]:.2f}°" if isinstance(comp, tuple) and not key.startswith("P")
+            else (f"({_fmt(comp[0], 5)}, {_fmt(comp[1], 5)})" if isinstance(comp, tuple) else _num(comp)))
         rows.append((_key(key), "", "", shown, "", _printed(r), _dev(r)))
     columns = [(0, "quantity"), (1, "graphical"), (2, "hand-drawn, 95 %"), (3, "analytic"),
                (4, "instant centres"), (5, "reference"), (6, "deviation")]
@@ -215,7 +234,7 @@ def at_file_pose(sol) -> bool:
 def _where(pos, direction) -> str:
     if pos is None:
         return "undefined" if direction is None else f"∞ at {direction:.2f}°"
-    return f"({fmt(pos[0], 5)}, {fmt(pos[1], 5)})"
+    return f"({_fmt(pos[0], 5)}, {_fmt(pos[1], 5)})"
 
 
 _WIDTHS: dict = {}   # measured widths of the table's texts (points), by font, size and text: they never change
