@@ -25,9 +25,9 @@ from dataclasses import dataclass
 import numpy as np
 
 from .model import Mechanism
-from .motion import LinkMotion, _zero
+from .motion import LinkMotion, _arg, _zero
 
-__all__ = ["DyadPlan", "Walk", "dyad_plan", "walk", "assemble", "rates"]
+__all__ = ["DyadPlan", "Walk", "dyad_plan", "walk", "assemble", "coordinates", "rates"]
 
 
 @dataclass(frozen=True)
@@ -172,8 +172,27 @@ def _dot(a, b):
     return 0.0 if _zero(b) else (a.conjugate() * b).real
 
 
+def _re(ca, b):
+    """Re(ca b): with ca = conj(a), a . b (0 when b is a scalar zero)."""
+    return 0.0 if _zero(b) else (ca * b).real
+
+
 def _sub(a, b):
     return a if _zero(b) else a - b
+
+
+def _solver(det, r1, r2):
+    """(K1, K2) with x = b1 K1 + b2 K2 the solution of Re(conj(r1) x) = b1,
+    Re(conj(r2) x) = b2, det = Im(conj(r1) r2): K1 = -i r2 / det, K2 = i r1 / det."""
+    k = 1.0 / det
+    return (-1j * r2) * k, (1j * r1) * k
+
+
+def _lin(b1, K1, b2, K2):
+    """b1 K1 + b2 K2, skipping scalar zeros."""
+    if _zero(b2):
+        return 0.0 if _zero(b1) else b1 * K1
+    return b2 * K2 if _zero(b1) else b1 * K1 + b2 * K2
 
 
 def _sq(z):
@@ -257,15 +276,16 @@ def walk(m: Mechanism, plan: DyadPlan, deltas, rate: float | None = None, accel:
             links[u_] = LinkMotion(P[p2], c2, u * (1.0 / (P[p2] - P[p1])))
             links[v_] = LinkMotion(P[p2], c2, v * (1.0 / (P[p2] - P[p3])))
             if rates:
-                det = (u.conjugate() * v).imag
-                k = 1j / det
-                V2 = (_dot(v, V3) * u - _dot(u, V1) * v) * k
+                cu, cv = u.conjugate(), v.conjugate()
+                det = (cu * v).imag
+                K1, K3 = _solver(det, u, v)
+                V2 = _lin(_re(cu, V1), K1, _re(cv, V3), K3)
                 W1, W3 = _sub(V2, V1), _sub(V2, V3)
-                A2 = ((_dot(v, A3) - _sq(W3)) * u - (_dot(u, A1) - _sq(W1)) * v) * k
-                links[u_] = links[u_].moving(V2, A2, (u.conjugate() * W1).imag * (1.0 / (r1 * r1)),
-                                             (u.conjugate() * _sub(A2, A1)).imag * (1.0 / (r1 * r1)))
-                links[v_] = links[v_].moving(V2, A2, (v.conjugate() * W3).imag * (1.0 / (r3 * r3)),
-                                             (v.conjugate() * _sub(A2, A3)).imag * (1.0 / (r3 * r3)))
+                A2 = _lin(_sub(_re(cu, A1), _sq(W1)), K1, _sub(_re(cv, A3), _sq(W3)), K3)
+                links[u_] = links[u_].moving(V2, A2, (cu * W1).imag * (1.0 / (r1 * r1)),
+                                             (cu * _sub(A2, A1)).imag * (1.0 / (r1 * r1)))
+                links[v_] = links[v_].moving(V2, A2, (cv * W3).imag * (1.0 / (r3 * r3)),
+                                             (cv * _sub(A2, A3)).imag * (1.0 / (r3 * r3)))
                 here = np.abs(det) * (1.0 / (r1 * r3))
             else:
                 V2 = A2 = None
@@ -289,13 +309,14 @@ def walk(m: Mechanism, plan: DyadPlan, deltas, rate: float | None = None, accel:
             if rates:
                 VG, AG = G.motion(c2 - G.p0)
                 nn = 1j * e
-                k = 1j / (u.conjugate() * nn).imag
-                V2 = (_dot(nn, VG) * u - _dot(u, V1) * nn) * k
+                cu = u.conjugate()
+                K1, KG = _solver((cu * nn).imag, u, nn)
+                V2 = _lin(_re(cu, V1), K1, _dot(nn, VG), KG)
                 W1 = _sub(V2, V1)
                 cor = 0.0 if _zero(G.omega) else 2 * G.omega * _dot(e, _sub(V2, VG))
-                A2 = ((_dot(nn, AG) + cor) * u - (_dot(u, A1) - _sq(W1)) * nn) * k
-                links[u_] = links[u_].moving(V2, A2, (u.conjugate() * W1).imag * (1.0 / (r1 * r1)),
-                                             (u.conjugate() * _sub(A2, A1)).imag * (1.0 / (r1 * r1)))
+                A2 = _lin(_sub(_re(cu, A1), _sq(W1)), K1, _dot(nn, AG) + cor, KG)
+                links[u_] = links[u_].moving(V2, A2, (cu * W1).imag * (1.0 / (r1 * r1)),
+                                             (cu * _sub(A2, A1)).imag * (1.0 / (r1 * r1)))
                 links[v_] = links[v_].moving(V2, A2, G.omega, G.alpha)
                 here = np.abs(_dot(u, e)) * (1.0 / r1)
             else:
@@ -314,13 +335,20 @@ def assemble(m: Mechanism, index: dict, plan: DyadPlan, deltas) -> tuple[np.ndar
     """Poses q (N, nq) at the driver positions ``deltas``, and how many are reachable.
 
     Positions are reachable up to (not including) the first one where a dyad
-    does not close; q beyond it is NaN. A link's coordinates are the place of its
-    point whose reference position is the origin and its turn theta = arg(rot),
-    continuous from the reference pose.
+    does not close; q beyond it is NaN.
     """
+    w = walk(m, plan, deltas)
+    q = coordinates(w, index, plan, deltas)
+    q[w.reach:] = np.nan
+    return q, w.reach
+
+
+def coordinates(w: Walk, index: dict, plan: DyadPlan, deltas) -> np.ndarray:
+    """The links' coordinates q (N, nq) of a walk: the place of each link's point whose
+    reference position is the origin, O = p0 - rot s0, and its turn theta = arg(rot),
+    continuous from the reference pose (the crank's: the driver positions themselves)."""
     deltas = np.asarray(deltas, float)
     n = len(deltas)
-    w = walk(m, plan, deltas)
     q = np.empty((n, 3 * len(index)))
     kind, drv, _ = plan.driver
     for name, k in index.items():
@@ -329,17 +357,14 @@ def assemble(m: Mechanism, index: dict, plan: DyadPlan, deltas) -> tuple[np.ndar
         if name == drv and kind == "crank":
             q[:, 3 * k + 2] = deltas                  # the driver's own angle, exactly
         elif isinstance(lk.rot, np.ndarray):
-            q[:, 3 * k + 2] = np.arctan2(lk.rot.imag, lk.rot.real)
+            th = _arg(lk.rot)
+            # continuous with the reference pose (0), not wrapped into (-pi, pi]
+            if n > 1 and np.abs(np.diff(th)).max() > np.pi:
+                th = np.unwrap(np.concatenate([[0.0], th]))[1:]
+            q[:, 3 * k + 2] = th
         else:
             q[:, 3 * k + 2] = 0.0
-    # angles continuous with the reference pose (0), not wrapped into (-pi, pi]
-    th = q[:, 2::3]
-    if n:
-        jumps = np.abs(np.diff(th, axis=0, prepend=0.0)).max(axis=0) > np.pi
-        if jumps.any():
-            th[:, jumps] = np.unwrap(np.concatenate([np.zeros((1, int(jumps.sum()))), th[:, jumps]]), axis=0)[1:]
-    q[w.reach:] = np.nan
-    return q, w.reach
+    return q
 
 
 def rates(w: Walk, index: dict, n: int) -> tuple[np.ndarray, np.ndarray]:

@@ -117,12 +117,17 @@ def _full(x, n: int) -> np.ndarray:
     return x if isinstance(x, np.ndarray) else np.full(n, float(x))
 
 
+def _arg(z: np.ndarray) -> np.ndarray:
+    """arg z in (-pi, pi] (arctan2 of contiguous copies of the parts: twice as fast as of the
+    strided views)."""
+    return np.arctan2(z.imag.copy(), z.real.copy())
+
+
 def _turn_deg(rot, base: float, n: int) -> np.ndarray:
     """arg(rot) + base in degrees, wrapped into (-180, 180] like :func:`wrap_deg`."""
     if not isinstance(rot, np.ndarray):
         return np.full(n, float(wrap_deg(base + math.degrees(math.atan2(np.imag(rot), np.real(rot))))))
-    z = rot * complex(math.cos(math.radians(base)), math.sin(math.radians(base))) if base else rot
-    a = np.arctan2(z.imag, z.real)
+    a = _arg(rot * complex(math.cos(math.radians(base)), math.sin(math.radians(base))) if base else rot)
     a *= 180.0 / math.pi
     a[a == -180.0] = 180.0
     return a

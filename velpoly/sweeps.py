@@ -13,7 +13,7 @@ from functools import cached_property
 import numpy as np
 
 from .errors import InputError
-from .dyads import rates, walk
+from .dyads import coordinates, rates, walk
 from .kinematics import SINGULAR, Kinematics, accelerations, condition, prepare, velocities
 from .model import Mechanism
 from .motion import evaluate_motion, wrap_deg
@@ -63,6 +63,26 @@ class Sweep:
         return condition(self.kinematics or prepare(self.mechanism), self.q)
 
 
+def _walk(m: Mechanism, plan, deltas):
+    """The dyad walk with the driver's rates: every link's position, velocity and acceleration."""
+    drv = m.driver
+    rate, accel = (drv.speed, drv.accel) if drv.is_slider else (drv.omega, drv.alpha)
+    return walk(m, plan, deltas, rate, accel)
+
+
+def _closed_form(m: Mechanism, kin: Kinematics, plan, deltas):
+    """The dyad walk over all the driver positions, or None where the closed form does not
+    apply: :func:`velpoly.pose.reassemble` decides that, on a sample of the positions (up to
+    65, both ends included: the plan is structural), with the joint equations."""
+    n = len(deltas)
+    pick = np.arange(0, n, max(1, n // 64))
+    if pick[-1] != n - 1:
+        pick = np.append(pick, n - 1)
+    if reassemble(kin.system, list(kin.rows), deltas[pick]).continued:
+        return None
+    return _walk(m, plan, deltas)
+
+
 def sweep(m: Mechanism, angles, kin: Kinematics | None = None) -> Sweep:
     """Solve the mechanism at each driver angle (degrees, absolute), in the order given.
 
@@ -87,29 +107,28 @@ def sweep(m: Mechanism, angles, kin: Kinematics | None = None) -> Sweep:
     screened = plan is not None and plan.margin > 1e-3
     if not screened:
         velocities(kin, np.zeros((1, kin.system.nq)), where="reference pose")
-    r = reassemble(kin.system, list(kin.rows), deltas)
-    if screened and r.continued:    # the plan was not the mechanism's after all: check as before
-        velocities(kin, np.zeros((1, kin.system.nq)), where="reference pose")
-    n = len(r.deltas)
-    q = r.q
-    stopped = r.stopped
+    w = _closed_form(m, kin, plan, deltas) if plan is not None and len(deltas) else None
     known_cond = None
-    w = None
-    if n and plan is not None and not r.continued:
+    if w is not None:
         # closed form, dyad by dyad; only poses near a dyad's toggle need the condition number
-        drv = m.driver
-        rate, accel = (drv.speed, drv.accel) if drv.is_slider else (drv.omega, drv.alpha)
-        w = walk(m, plan, r.deltas, rate, accel)
+        n = w.reach
+        stopped = "toggle" if n < len(deltas) else ""
+        if n < len(deltas):
+            w = _walk(m, plan, deltas[:n])
+        q = coordinates(w, kin.system.index, plan, deltas[:n])
         near = np.flatnonzero(w.sine < 1e-3)
         if len(near):
             c = condition(kin, q[near])
             bad = near[~(c <= SINGULAR)]
             if len(bad):
-                n = int(bad[0])
-                q, stopped = q[:n], "toggle"
-                w = walk(m, plan, r.deltas[:n], rate, accel)
+                n, stopped = int(bad[0]), "toggle"
+                w, q = _walk(m, plan, deltas[:n]), q[:n]
         qd, qdd = rates(w, kin.system.index, n)
     else:
+        if screened:    # the plan was not the mechanism's after all: check as before
+            velocities(kin, np.zeros((1, kin.system.nq)), where="reference pose")
+        r = reassemble(kin.system, list(kin.rows), deltas)
+        n, q, stopped = len(r.deltas), r.q, r.stopped
         qd, cond = velocities(kin, q, check=False) if n else (np.zeros((0, kin.system.nq)), np.zeros(0))
         if n and not np.all(cond <= SINGULAR):
             k = int(np.argmin(cond <= SINGULAR))
