@@ -630,3 +630,65 @@ def test_near_singular_pose_warns(capsys):
 def test_no_warning_away_from_toggles(capsys):
     code, out, err = data_file(capsys, "fourbar.toml", "--json")
     assert code == 0 and err == [] and "warnings" not in json.loads(out)
+
+
+# -- the rest of docs/errors.md, one case each ------------------------------------------------------------
+B_LINE = 'B = { from = "A", length = 40, angle = 60 }'
+C_LINE = 'C = { circles = [["B", 120], ["D", 80]], near = [90, 80] }'
+C_ON_LINE = 'C = { circle = ["B", 120], line = LINE, near = [90, 80] }'
+REF = "alpha = 0\n[reference]\n"
+
+
+@pytest.mark.parametrize("base, old, new, where, gist", [
+    ("f", B_LINE, 'B = { from = "A", to = "D", length = 40, angle = 60 }', "points.B (line 8)",
+     "give one of 'from' and 'to', not both"),
+    ("f", B_LINE, 'B = { from = "A", length = 40, angle = 60, along = ["A", "D"] }', "points.B (line 8)",
+     "give one of 'angle' and 'along', not both"),
+    ("f", B_LINE, 'B = { from = "A", length = 40, along = "AD" }', "points.B.along (line 8)",
+     r'expected \["Q", "R"\], got "AD"'),
+    ("f", "[points]\nA = [0, 0]\nD = [100, 0]\n" + B_LINE + "\n" + C_LINE + "\n", "[points]\n", "points (line 5)",
+     "^no points$"),
+    ("f", C_LINE, C_ON_LINE.replace("LINE", "5"), "points.C.line (line 9)", "expected a line, got 5"),
+    ("f", C_LINE, C_ON_LINE.replace("LINE", '{ through = "D" }'), "points.C.line (line 9)",
+     "a line needs 'through' and 'angle'"),
+    ("f", C_LINE, C_ON_LINE.replace("LINE", '["D", "D"]'), "points.C.line (line 9)", "the line's two points coincide"),
+    ("f", C_LINE, C_ON_LINE.replace("LINE", '["A", "D"]').replace('["B", 120]', '"B"'), "points.C.circle (line 9)",
+     r'expected \["P", r\], got "B"'),
+    ("f", "near = [90, 80]", 'near = { from = "B" }', "points.C.near (line 9)", r'expected \{from = "P", angle = deg\}'),
+    ("s", 'angle = 0\n[driver]', 'centre = "C"\n[driver]', "sliders[0].centre (line 17)",
+     "the path's centre is the point 'C' itself"),
+    ("s", 'link = "1"\nomega = 10', 'slider = "C"', "driver (line 18)", "a slider driver needs 'speed'"),
+    ("g", 'links = ["2", "3"]', 'links = ["2", "3", "1"]', "contacts[0].links (line 15)",
+     r'expected links = \["a", "b"\], got a list'),
+    ("g", 'centres = ["O2", "O3"]', 'centres = "O2"', "contacts[0].centres (line 18)",
+     r'expected \["Ca", "Cb"\], got "O2"'),
+    ("f", "alpha = 0", REF + 'velocity = { "B" = 400 }', "reference.velocity.B (line 22)",
+     r"expected \[magnitude, direction in degrees\], got 400"),
+    ("f", "alpha = 0", REF + 'values = { V_B = [400, 30, 2] }', "reference.values.V_B (line 22)",
+     r"expected a magnitude or \[magnitude, direction\], got a list of 3"),
+    ("f", "alpha = 0", REF + "values = [1, 2]", "reference.values (line 22)", "expected a table, got a list"),
+])
+def test_more_input_errors(capsys, tmp_path, base, old, new, where, gist):
+    text = {"f": FOURBAR, "s": SLIDER, "g": GEARS}[base]
+    fails(capsys, tmp_path, edit(text, old, new), where, gist)
+
+
+def test_a_note_must_explain_a_printed_value(capsys, tmp_path):
+    # a note for V_B where no V_B is printed: a slip of the pen (the note would never be shown)
+    _, hint = fails(capsys, tmp_path, edit(FOURBAR, "alpha = 0", REF + 'note = { V_B = "misprint" }'),
+                    "reference.note.V_B (line 22)", "a note for 'V_B', which is no reference value")
+    assert "no printed values" in hint
+    _, hint = fails(capsys, tmp_path, edit(FOURBAR, "alpha = 0", REF + 'omega = { "3" = 1.0 }\nnote = { V_B = "x" }'),
+                    "reference.note.V_B (line 23)", "no reference value")
+    assert "omega_3" in hint
+    # a note keyed like its value, in each of the ways compare() reads it, is fine
+    for table, note in (('omega = { "3" = 1.0 }', "omega_3"), ('omega = { "3" = 1.0 }', '"3"'),
+                        ('velocity = { B = [400, 60] }', "V_B"), ('velocity = { B = [400, 60] }', "B"),
+                        ('acceleration = { C = [1, 2] }', "A_C"), ('speed = { C = 3 }', "V_C"),
+                        ('values = { V_CB = 3 }', "V_CB")):
+        velpoly.load(edit(FOURBAR, "alpha = 0", REF + f'{table}\nnote = {{ {note} = "x" }}'))
+
+
+def test_a_slot_of_no_radius(capsys, tmp_path):
+    fails(capsys, tmp_path, FOURBAR + '\n[[slots]]\npin = "C"\nlink = "3"\nslot = "4"\ncentre = "C"\n',
+          "slots[0].centre (line 26)", "the slot's centre is the point 'C' itself")

@@ -404,6 +404,10 @@ def _polar_construction(ctx, where, name, spec, pts):
         raise ctx.err(where, "give one of 'from' and 'to', not both",
                       hint="from = \"P\": P plus the vector; to = \"P\": P minus it")
     key = "from" if "from" in spec else "to"
+    if "along" in spec and "angle" in spec:
+        raise ctx.err(where, "give one of 'angle' and 'along', not both",
+                      hint="angle = deg: an absolute direction; along = [\"Q\", \"R\"] (with turn = deg): "
+                           "the direction from Q to R")
     _keys(ctx, where, spec, (key, "length", "along", "turn") if "along" in spec else (key, "length", "angle"))
     base = _ref(ctx, f"{where}.{key}", spec[key], pts, name)
     if "length" not in spec:

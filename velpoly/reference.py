@@ -116,14 +116,16 @@ def validate_reference(m, ctx=None) -> None:
             raise InputError(f"unknown quantity {key!r}", where=f"reference.values.{key}", file=m.source,
                              hint="keys in textbook notation: V_B, A_B, V_BA, V_B3/B4, omega_3, alpha_3, "
                                   "theta_3, R_BA, P_13, V_P24")
-    for key in list(m.reference.note):
-        known = (set(m.reference.values) | {f"omega_{k}" for k in m.reference.omega}
-                 | {f"alpha_{k}" for k in m.reference.alpha} | set(m.reference.speed)
-                 | set(m.reference.velocity) | set(m.reference.acceleration)
-                 | set(m.reference.omega) | set(m.reference.alpha))
-        if key not in known and parse_key(m, key) is None:
+    ref = m.reference
+    known = (set(ref.values) | {f"omega_{k}" for k in ref.omega} | {f"alpha_{k}" for k in ref.alpha}
+             | set(ref.speed) | {f"V_{p}" for p in ref.speed} | set(ref.velocity) | {f"V_{p}" for p in ref.velocity}
+             | set(ref.acceleration) | {f"A_{p}" for p in ref.acceleration} | set(ref.omega) | set(ref.alpha))
+    for key in list(ref.note):
+        if key not in known:   # a note explains a printed value: one that is not there is a slip of the pen
             raise InputError(f"a note for {key!r}, which is no reference value", where=f"reference.note.{key}",
-                             file=m.source)
+                             file=m.source, hint="key a note like the value it explains: "
+                             + (", ".join(sorted(known)[:12]) + ("..." if len(known) > 12 else "") if known
+                                else "there are no printed values to explain"))
 
 
 def relative_pole(sol, i: str, j: str):
