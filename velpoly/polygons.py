@@ -190,9 +190,10 @@ class _Geo:
         self.tol = 1e-9 * self.size
         self.key, self.pos, self.own = {}, {}, {lk: [] for lk in self.links}
         self.zpos = {}   # the same positions as complex numbers x + iy (what the replays compute with)
+        position = sol.position
         for key, p, lk in point_keys(m):   # one key P for every carrier, or P@link for each
             if p not in self.pos:
-                self.pos[p] = np.asarray(sol.position[key], float)
+                self.pos[p] = np.asarray(position[key], float)
                 self.zpos[p] = _z(self.pos[p])
             for c in (m.carriers[p] if key == p else (lk,)):
                 self.key[(p, c)] = key
@@ -259,7 +260,9 @@ class _Geo:
         return self.canon(place)[0] == self.frame
 
     def places(self, lk) -> list:
-        return self.own[lk] + [n for n in self.extra[lk] if n not in self.own[lk]]
+        """The link's points: its own, then the extra ones (curved sliders' centres, auxiliary points)."""
+        own, extra = self.own[lk], self.extra[lk]
+        return own + [n for n in extra if n not in own] if extra else own
 
     def point_key(self, place):
         """The point key of a place, or None (a coincident or auxiliary point)."""
@@ -329,7 +332,8 @@ class _Planner:
 
     # knowledge ---------------------------------------------------------------------------------
     def is_known(self, place) -> bool:
-        return self.g.grounded(place) or self.g.canon(place) in self.known
+        c = self.g.canon(place)
+        return c[0] == self.g.frame or c in self.known
 
     def full(self, lk) -> bool:
         return lk == self.g.frame or (lk in self.rk and bool(self.kp[lk]))
@@ -531,11 +535,11 @@ class _Planner:
         g = self.g
         seen = set()
         order = list(g.m.point_order) + [n for lk in g.links for n in g.extra[lk]]
-        cands = []
-        for n in order:
-            for lk in g.moving:
-                if n in g.places(lk):
-                    cands.append((lk, n))
+        carriers = {}   # point -> the moving links that carry it, in link order
+        for lk in g.moving:
+            for n in g.places(lk):
+                carriers.setdefault(n, []).append(lk)
+        cands = [(lk, n) for n in order for lk in carriers.get(n, ())]
         for r in g.rels:
             if r.at is not None:
                 cands += [(r.a, r.at), (r.b, r.at)]
@@ -979,9 +983,17 @@ class _Construction:
 
     def __init__(self, sol):
         self.ref = weakref.ref(sol)
-        self.geo = _Geo(sol)
-        self.plan = _Planner(self.geo).run()
+        self.geo = geo = _Geo(sol)
+        self.plan = _Planner(geo).run()
         self.polygons = {}
+        # what both levels report of the plan: each step's point keys and auxiliary points found,
+        # every auxiliary place (not a point key, not on the frame) and the links' image figures
+        self.found = [_found_keys(geo, st.found) for st in self.plan]
+        self.aux = [tuple(geo.aux_key(p) for p in st.found if geo.point_key(p) is None) for st in self.plan]
+        self.aux_places = {geo.aux_key(q): q for st in self.plan for p in st.found for q in geo.group(p)
+                           if geo.point_key(q) is None and q[0] != geo.frame}
+        m = sol.mechanism
+        self.link_images = {k.name: tuple(geo.key[(p, k.name)] for p in k.points) for k in m.links}
 
 
 _CACHE: dict = {}   # id(solution) -> _Construction, dropped when the solution is
@@ -1051,27 +1063,21 @@ def _assemble(c: _Construction, sol, level: str, vel) -> tuple[Polygon, _Run]:
         for p in st.found:   # absolute vectors of the images located
             if not geo.grounded(p):
                 run._vec(0j, run.image(p), "absolute", f"{run.X}_{geo.name(p)}")
-        found = _found_keys(geo, st.found)
-        aux = tuple(geo.aux_key(p) for p in st.found if geo.point_key(p) is None)
         kind = st.kind
         trial = bool(st.ops) and st.ops[0][0] == "trial"
         if kind == "auxiliary" and not trial and level == "velocity" and all(geo.grounded(ln.base) for ln in st.lines):
             kind = "instant-centre"
         sine = min(run.sine, st.sine) if trial else st.sine
-        steps.append(Step(i, kind, _equation(run, st, kind), tuple(run.lines), found, tuple(run.vectors),
-                          {lk: float(run.rate[lk]) for lk in st.omegas}, float(sine), aux, st.link))
+        steps.append(Step(i, kind, _equation(run, st, kind), tuple(run.lines), c.found[i], tuple(run.vectors),
+                          {lk: float(run.rate[lk]) for lk in st.omegas}, float(sine), c.aux[i], st.link))
     images, labels, zimages = {}, {}, {}
     for key, p, lk in point_keys(m):
         zimages[key] = run.image((lk, p))
         images[key] = _xy(zimages[key])
         labels[key] = run.label((lk, p))
-    auxiliary = {}
-    for st in c.plan:
-        for q in (q for p in st.found for q in geo.group(p)):
-            if geo.point_key(q) is None and q[0] != geo.frame:
-                k = geo.aux_key(q)
-                auxiliary[k] = AuxiliaryPoint(k, q[0], geo.pos[q[1]].copy(), _xy(run.image(q)), run.label(q))
-    link_images = {k.name: tuple(geo.key[(p, k.name)] for p in k.points) for k in m.links}
+    auxiliary = {k: AuxiliaryPoint(k, q[0], geo.pos[q[1]].copy(), _xy(run.image(q)), run.label(q))
+                 for k, q in c.aux_places.items()}
+    link_images = dict(c.link_images)
     rates = {lk: float(run.rate[lk]) for lk in geo.links}
     analytic = {k: _z(v) for k, v in (sol.velocity if level == "velocity" else sol.acceleration).items()}
     scale_ref = max(map(abs, analytic.values()), default=0.0)
@@ -1082,8 +1088,11 @@ def _assemble(c: _Construction, sol, level: str, vel) -> tuple[Polygon, _Run]:
 
 
 def _figure_scale(images, auxiliary, figure_mm: float = 120.0) -> float:
-    pts = np.array([[0.0, 0.0]] + [v for v in images.values()] + [a.image for a in auxiliary.values()])
-    extent = float(np.max(pts.max(axis=0) - pts.min(axis=0)))
+    """mm per unit that fits the origin, the images and the auxiliary images in ``figure_mm``."""
+    pts = [(0.0, 0.0)] + [(float(v[0]), float(v[1])) for v in images.values()] + \
+        [(float(a.image[0]), float(a.image[1])) for a in auxiliary.values()]
+    xs, ys = [x for x, _ in pts], [y for _, y in pts]
+    extent = max(max(xs) - min(xs), max(ys) - min(ys))
     return figure_mm / extent if extent > 0 else 1.0
 
 
