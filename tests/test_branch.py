@@ -229,6 +229,37 @@ def test_watt_sixbar_turns_on_both_loops_branches(branch_c, branch_f):
         assert np.all(side == (1 if br == 0 else -1)), (p, q, r)
 
 
+def stephenson_sixbar(side_b: str, side_d: str, mirror: bool) -> dict:
+    """A Stephenson III six-bar: the crank-rocker O2-A-B-O4 whose coupler carries C, and the dyad
+    C-D-O6 driven from that coupler point. ``mirror`` reflects it in the frame line (the other
+    branch of the first loop, with a second loop that still closes)."""
+    k = -1.0 if mirror else 1.0
+    return {
+        "title": "Stephenson III six-bar", "units": "mm",
+        "points": {"O2": [0.0, 0.0], "O4": [120.0, 0.0], "O6": [40.0, k * 160.0],
+                   "A": {"from": "O2", "length": 40.0, "angle": k * 45.0},
+                   "B": {"circles": [["A", 120.0], ["O4", 80.0]], "side": side_b},
+                   "C": {"from": "A", "length": 70.0, "along": ["A", "B"], "turn": k * 50.0},
+                   "D": {"circles": [["C", 90.0], ["O6", 60.0]], "side": side_d}},
+        "links": {"1": {"points": ["O2", "O4", "O6"], "frame": True}, "2": {"points": ["O2", "A"]},
+                  "3": {"points": ["A", "B", "C"]}, "4": {"points": ["O4", "B"]}, "5": {"points": ["C", "D"]},
+                  "6": {"points": ["O6", "D"]}},
+        "driver": {"link": "2", "omega": -10.0},
+    }
+
+
+@pytest.mark.parametrize("side_b, side_d, mirror", [("left", "left", False), ("left", "right", False),
+                                                    ("right", "right", True), ("right", "left", True)])
+def test_stephenson_sixbar_turns_on_both_loops_branches(side_b, side_d, mirror):
+    m = velpoly.load(stephenson_sixbar(side_b, side_d, mirror))
+    w = sweep_turn(m)
+    assert len(w.angles) == N and not w.stopped
+    assert_continuous(w, STEP)
+    assert_closes(w)
+    for (p, q, r), side in ((("A", "O4", "B"), side_b), (("C", "O6", "D"), side_d)):
+        assert np.all(orientation(w, p, q, r) == (1 if side == "left" else -1)), (p, q, r)
+
+
 @pytest.mark.parametrize("near_f", ["[-0.37, 0.19]", "[-0.37, 0.62]"])
 def test_textbook_sixbar_with_a_slider_on_either_branch(near_f):
     from mechanisms import SIXBAR_1_4_4
