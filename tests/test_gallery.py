@@ -202,3 +202,38 @@ def test_a_file_without_reference_values_shows_graphical_against_analytic():
         else:
             assert graphical == pytest.approx(analytic, rel=1e-9, abs=1e-9), key
     assert all(r[1] == "-" and r[4] == "-" for r in c.table.rows)
+
+
+# -- the book's values, strictly -----------------------------------------------------------------
+def _off_by_more_than_last_digit(r, units=1.0) -> bool:
+    """Whether a printed value differs from velpoly's by more than ``units`` of its last printed digit
+    (magnitude, direction or either coordinate); ``units=0.5``: whether it is not velpoly's value
+    correctly rounded."""
+    from test_kinematics import _printed_digits_unit as unit
+    p, c = r.printed, r.computed
+    if c is None:
+        return True
+    tol = lambda x: unit(x) * units * 1.0001 + 1e-12   # noqa: E731
+    if isinstance(p, tuple) and r.angle_error is None and r.key.startswith("P"):     # a pole [x, y]
+        return any(abs(a - b) > tol(a) for a, b in zip(p, c))
+    if isinstance(p, tuple):
+        return abs(p[0] - c[0]) > tol(p[0]) or (r.angle_error is not None and r.angle_error > tol(p[1]))
+    if r.key.startswith("theta"):
+        return r.angle_error > tol(p)
+    return abs(p - c) > tol(p)
+
+
+@pytest.mark.parametrize("path", sorted(GALLERY.glob("*.toml")), ids=lambda p: p.stem)
+def test_every_disagreement_with_the_book_has_a_note_and_every_note_a_disagreement(path):
+    """A gallery value the book prints either matches velpoly to its last printed digit, or a
+    `[reference] note` says which side is wrong; a note on a value the book rounds correctly would
+    be stale (one within a unit but not correctly rounded, e.g. truncated, may carry a note)."""
+    from velpoly.reference import compare
+    m = velpoly.load(path)
+    if not m.reference:
+        pytest.skip("no printed answers")
+    rows = compare(velpoly.solve(m))
+    unexplained = [r.key for r in rows if not r.note and _off_by_more_than_last_digit(r)]
+    stale = [r.key for r in rows if r.note and not _off_by_more_than_last_digit(r, units=0.5)]
+    assert not unexplained, f"book values off by more than their last digit, with no note: {unexplained}"
+    assert not stale, f"notes on values that match: {stale}"
