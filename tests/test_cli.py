@@ -93,15 +93,27 @@ def test_unknown_option_is_an_argparse_error(capsys):
     assert "unrecognized arguments: --angel" in capsys.readouterr().err
 
 
-def test_nan_angle_is_an_input_error(capsys):
-    assert main(["solve", str(FOURBAR), "--angle", "nan"]) == 2
+@pytest.mark.parametrize("value", ["nan", "inf", "-inf"])
+def test_a_non_finite_angle_is_an_input_error_about_the_option(capsys, value):
+    assert main(["solve", str(FOURBAR), f"--angle={value}"]) == 2
     err = capsys.readouterr().err.splitlines()
-    assert err[0].startswith(f"error: {FOURBAR}: ") and "finite" in err[0]
+    assert len(err) == 2 and err[0].startswith(f"error: {FOURBAR}: --angle: ") and "finite" in err[0]
+    assert err[1].startswith("hint: --angle DEG turns a crank driver")   # about the option, not the file
 
 
 def test_angle_for_a_slider_driver(capsys):
     assert main(["solve", str(DATA / "dead_centre.toml"), "--angle", "10"]) == 2
-    assert "a slider driver has no angle" in capsys.readouterr().err
+    err = capsys.readouterr().err.splitlines()
+    assert err[0].endswith("--angle: a slider driver has no angle") and "slider driver has none" in err[1]
+
+
+def test_a_step_too_fine_for_the_memory_is_an_input_error(capsys, tmp_path):
+    out = tmp_path / "cycle.csv"
+    assert main(["sweep", str(FOURBAR), "--step", "1e-9", "--csv", str(out)]) == 2
+    err = capsys.readouterr().err.splitlines()
+    assert err == [f"error: {FOURBAR}: --step: the step 1e-09 deg is too fine: 3.6e+11 poses a turn",
+                   "hint: use a step of at least 0.001 deg (e.g. --step 0.1)"]
+    assert not out.exists()
 
 
 @pytest.mark.parametrize("exc", [RuntimeError("boom"), ZeroDivisionError("float division by zero"),

@@ -122,7 +122,14 @@ def cmd_draw(args) -> int:
     return 0
 
 
+MIN_STEP = 1e-3   # degrees: 360 000 poses a turn; a finer step would only exhaust the memory
+
+
 def cmd_sweep(args) -> int:
+    step = getattr(args, "step", 1.0)
+    if step is not None and 0 < step < MIN_STEP:   # other bad steps are refused by the cycle itself
+        raise InputError(f"the step {step:g} deg is too fine: {360 / step:.3g} poses a turn",
+                         where="--step", hint=f"use a step of at least {MIN_STEP:g} deg (e.g. --step 0.1)")
     from .cycle import sweep_command
     return sweep_command(args)
 
@@ -199,9 +206,20 @@ def _explain(e: VelpolyError, args) -> None:
         if line:
             e.where = f"{e.where} (line {line})"
     print(f"error: {e.line()}", file=sys.stderr)
-    hint = e.hint_line() or ("check the file against the format in the README" if isinstance(e, InputError)
-                             else "choose another driver angle, or draw the mechanism in another pose")
+    hint = e.hint_line() or _default_hint(e)
     print(f"hint: {hint}", file=sys.stderr)
+
+
+def _default_hint(e: VelpolyError) -> str:
+    """The hint of an error raised without one: about the argument, the file or the pose."""
+    if not isinstance(e, InputError):
+        return "choose another driver angle, or draw the mechanism in another pose"
+    if e.where.startswith("--angle"):
+        return ("--angle DEG turns a crank driver to that absolute angle (a finite number of degrees, "
+                "counter-clockwise from +x); a slider driver has none")
+    if e.where.startswith("-"):
+        return f"check the command's options: velpoly {e.where} ... (see velpoly COMMAND --help)"
+    return "check the file against the format in the README"
 
 
 if __name__ == "__main__":  # pragma: no cover
