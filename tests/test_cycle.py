@@ -274,6 +274,21 @@ def test_cycle_figure_plots_every_quantity_with_units():
     assert xy[np.isfinite(xy[:, 0])] == pytest.approx(good)
 
 
+@pytest.mark.parametrize("style", ["textbook", "slides"])
+def test_a_long_title_and_the_stop_message_stay_on_the_figure(style):
+    d = fourbar(a=7, b=5, c=6, d=9, theta=60)
+    d["title"] = "A non-Grashof four-bar whose crank cannot turn round, drawn with a long title " * 2
+    m = velpoly.load(d)
+    sw = run_cycle(m, 5.0)
+    fig = cycle_figure(sw, style=style)
+    fig.draw_without_rendering()
+    title = fig._suptitle
+    box = title.get_window_extent()
+    assert "toggle after 85 deg" in title.get_text().replace("\n", " ")
+    assert 0 <= box.x0 and box.x1 <= fig.bbox.width                  # within the figure's width
+    assert all(ax.get_window_extent().y1 < box.y0 + 1 for ax in fig.axes)   # above the panels
+
+
 def test_plot_and_gif_are_written(tmp_path, capsys):
     f = write(tmp_path, slider_crank())
     plot, gif = tmp_path / "cycle.svg", tmp_path / "cycle.gif"

@@ -431,8 +431,20 @@ def cycle_figure(sw: Sweep, points=None, cen: Centrodes | None = None, style: st
                 ax.set_xticks(np.arange(math.ceil(lo / 45) * 45, hi + 1e-9, 45))
         if cen is not None:
             _plot_centrodes(sw, cen, axes[2, 0], axes[2, 1], style, kin or prepare(m))
-        fig.suptitle(m.title + (f"  [{sw.stopped}]" if sw.stopped else ""))
+        title_pt = 1.2 * float(matplotlib.rcParams["font.size"])      # suptitle: "large"
+        fig.suptitle(_wrapped_title(m.title, sw.stopped, size[0], title_pt))
     return fig
+
+
+def _wrapped_title(title: str, stopped: str, width_in: float, font_pt: float) -> str:
+    """The figure's title, and the stop message on lines of its own, wrapped to the figure's width
+    (a character taken as 0.6 em wide, a safe bound for the serif and sans-serif fonts used)."""
+    import textwrap
+    width = max(int(width_in * 72.0 / (0.6 * font_pt)), 40)
+    lines = textwrap.wrap(title, width) or [""]
+    if stopped:
+        lines += textwrap.wrap(f"[{stopped}]", width)
+    return "\n".join(lines)
 
 
 def plot_cycle(sw: Sweep, out, points=None, cen: Centrodes | None = None, style: str = "textbook",
