@@ -167,6 +167,29 @@ def test_a_failed_sweep_writes_nothing(capsys, tmp_path):
     assert list(tmp_path.iterdir()) == []
 
 
+@pytest.mark.parametrize("how", ["singular", "crash", "interrupt"])
+def test_a_failed_command_leaves_an_existing_output_as_it_was(capsys, tmp_path, monkeypatch, how):
+    """An output that exists already is untouched when the command fails, however it fails: a
+    singular pose (exit 3), a crash half-way through the drawing (exit 1), Ctrl-C (exit 130)."""
+    pytest.importorskip("matplotlib")
+    from velpoly.render import sheet
+    out, csv = tmp_path / "fig.svg", tmp_path / "cycle.csv"
+    out.write_text("the previous figure")
+    csv.write_text("the previous table")
+    src = DATA / ("toggle_fourbar.toml" if how == "singular" else "fourbar.toml")
+    if how != "singular":
+        def fail(*a, **kw):
+            raise KeyboardInterrupt if how == "interrupt" else RuntimeError("renderer crashed half-way")
+        monkeypatch.setattr(sheet, "draw_results_table", fail)
+    code = main(["draw", str(src), "-o", str(out), "--sheet", "velocity"])
+    assert code == {"singular": 3, "crash": 1, "interrupt": 130}[how]
+    if how == "singular":
+        assert main(["sweep", str(DATA / "dead_centre.toml"), "--csv", str(csv)]) == 3
+    assert "Traceback" not in capsys.readouterr().err
+    assert out.read_text() == "the previous figure" and csv.read_text() == "the previous table"
+    assert sorted(p.name for p in tmp_path.iterdir()) == ["cycle.csv", "fig.svg"]   # no temporary left
+
+
 def test_broken_pipe_is_quiet():
     p = subprocess.Popen([sys.executable, "-m", "velpoly", "solve", str(DATA / "fourbar.toml"), "--json"],
                          stdout=subprocess.PIPE, stderr=subprocess.PIPE)
