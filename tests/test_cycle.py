@@ -289,6 +289,19 @@ def test_a_long_title_and_the_stop_message_stay_on_the_figure(style):
     assert all(ax.get_window_extent().y1 < box.y0 + 1 for ax in fig.axes)   # above the panels
 
 
+def test_the_gif_polygon_scale_ignores_the_surge_at_a_toggle():
+    from velpoly.cycle import SURGE, _moving_keys, _polygon_scale_points
+    sw = run_cycle(velpoly.load(fourbar(a=7, b=5, c=6, d=9, theta=60, omega=-10.0)), 0.1)  # 60 down to -85.9
+    frames = np.arange(len(sw.angles))
+    keys = _moving_keys(sw)
+    top = np.max([np.hypot(*sw.velocity[k].T) for k in keys], axis=0)
+    assert top[-1] > 3 * SURGE * np.median(top)                 # the rocker's speed grows near the toggle
+    pts = _polygon_scale_points(sw, frames, keys)
+    assert np.hypot(*pts.T).max() <= SURGE * np.median(top)     # ... and does not set the scale
+    assert np.hypot(*pts.T).max() == pytest.approx(top[top <= SURGE * np.median(top)].max())
+    assert (pts == 0).all(axis=1).any()                          # O_v is always in view
+
+
 def test_plot_and_gif_are_written(tmp_path, capsys):
     f = write(tmp_path, slider_crank())
     plot, gif = tmp_path / "cycle.svg", tmp_path / "cycle.gif"

@@ -691,6 +691,20 @@ def solution_at(sw: Sweep, kin: Kinematics, i: int):
     return Solution(sw.mechanism, kin, q[0], qd[0], qdd[0], float(sw.condition[i]), mo, angle)
 
 
+SURGE = 4.0   # the GIF's polygon scale fits the frames whose top speed is within this factor of the median
+
+
+def _polygon_scale_points(sw: Sweep, frames, keys) -> np.ndarray:
+    """The velocity images the GIF's one polygon scale is chosen to show: those of every frame whose
+    largest speed is at most SURGE times the median frame's, so that the surge near a toggle (where
+    the speeds grow without bound) does not shrink every other frame's polygon to a dot; the frames
+    beyond run off the panel. O_v is always in."""
+    vel = np.stack([sw.velocity[k][frames] for k in keys]) if keys else np.zeros((0, len(frames), 2))
+    top = np.hypot(vel[..., 0], vel[..., 1]).max(axis=0) if keys else np.zeros(len(frames))
+    keep = top <= SURGE * np.median(top) + 1e-300
+    return np.vstack([vel[:, keep].reshape(-1, 2), np.zeros((1, 2))])
+
+
 def write_gif(sw: Sweep, out, kin: Kinematics | None = None, style: str = "textbook",
               cen: Centrodes | None = None, max_frames: int = GIF_FRAMES, progress: bool = True) -> Path:
     """An animated GIF of the mechanism beside its live velocity polygon (Pillow writer).
@@ -712,8 +726,7 @@ def write_gif(sw: Sweep, out, kin: Kinematics | None = None, style: str = "textb
     keys = _moving_keys(sw)
     u = m.units or "length"
     mech_box = _motion_box(sw)
-    vel = np.vstack([sw.velocity[k][frames] for k in keys] + [np.zeros((1, 2))])
-    vel_box = _box(vel)
+    vel_box = _box(_polygon_scale_points(sw, frames, keys))
     painter = _RenderPainter.create(style, mech_box, vel_box)
     xname, xunit = driver_label(m)
     bar = _Progress(len(frames), "velpoly sweep: GIF", min_total=2) if progress else None
