@@ -63,7 +63,9 @@ class Equation:
 class Frame:
     """The links' poses at some q as jets: the evaluation context of equations.
 
-    A link's jets (x, y, cos theta, sin theta, theta) are built on first use.
+    A link's jets (x, y, cos theta, sin theta, theta) are built on first use. Values only
+    at one pose (no gradients), the jets hold plain floats: the same rules, without
+    numpy's cost per operation on arrays of one element.
     """
 
     def __init__(self, system: "System", q: np.ndarray, qd: np.ndarray | None = None,
@@ -73,6 +75,7 @@ class Frame:
         qd = np.zeros_like(q) if qd is None else np.atleast_2d(qd)
         self.n, self.nq = n, (None if values_only else nq)
         self.values_only = values_only
+        self.scalar = values_only and n == 1
         self.q, self.qd = q, qd
         self._index = system.index
         self._cache = {}
@@ -83,14 +86,19 @@ class Frame:
             k = self._index.get(link)
             if k is None:
                 return None
-            q, qd = self.q, self.qd
-            vo = self.values_only
-            th = Jet.coordinate(q, qd, 3 * k + 2, vo)
-            b = (Jet.coordinate(q, qd, 3 * k, vo), Jet.coordinate(q, qd, 3 * k + 1, vo), th.cos(), th.sin(), th)
+            x, y, th = (self._coordinate(3 * k + i) for i in range(3))
+            b = (x, y, th.cos(), th.sin(), th)
             self._cache[link] = b
         return b
 
+    def _coordinate(self, i: int) -> Jet:
+        if self.scalar:
+            return Jet(float(self.q[0, i]), None, float(self.qd[0, i]), 0.0)
+        return Jet.coordinate(self.q, self.qd, i, self.values_only)
+
     def const(self, c) -> Jet:
+        if self.scalar:
+            return Jet(float(c), None, 0.0, 0.0)
         return Jet.const(c, self.n, self.nq)
 
     def theta(self, link: str) -> Jet:

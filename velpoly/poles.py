@@ -64,7 +64,7 @@ from dataclasses import dataclass, field
 
 import numpy as np
 
-from .geometry import from_polar, ideal, join, point
+from .geometry import from_polar, ideal, join
 from .motion import point_keys
 from .report import SECTIONS, Table, fmt
 from .solution import register_section
@@ -256,9 +256,11 @@ def _to_local(h, centre, scale) -> np.ndarray:
     return _unit(np.array([h[0] - centre[0] * h[2], h[1] - centre[1] * h[2], scale * h[2]]))
 
 
-def _local_point(x, centre, scale) -> np.ndarray:
-    """The frame point x as a unit homogeneous triple in normalised coordinates."""
-    return _unit(point((np.asarray(x, float) - centre) / scale))
+def _local_point(x, centre, scale) -> tuple:
+    """The frame point x as a unit homogeneous triple in normalised coordinates (floats)."""
+    u, v = (float(x[0]) - float(centre[0])) / scale, (float(x[1]) - float(centre[1])) / scale
+    n = math.sqrt(u * u + v * v + 1.0)
+    return (u / n, v / n, 1.0 / n)
 
 
 def _local_direction(deg) -> np.ndarray:
@@ -568,7 +570,7 @@ def _line(K, a, b, slot, vec, where, centre, scale):
 def _pole_line(label, through, l, ends, centre, scale) -> PoleLine:
     """A line's geometry for drawing: a finite point (a known pole where one is finite, else the
     foot of the perpendicular from the centre) and a unit direction, in frame coordinates."""
-    l0, l1, l2 = (float(v) for v in l)
+    l0, l1, l2 = map(float, l)
     nrm = math.hypot(l0, l1)
     if nrm < 1e-15:
         return PoleLine(label, through, None, None)
