@@ -258,70 +258,18 @@ def walk(m: Mechanism, plan: DyadPlan, deltas, rate: float | None = None, accel:
             hit = joints[(lk, p)] = links[lk].point(P[p], rates)
         return hit
 
-    bad = None
-    sine = None
+    bad = sine = None
     for st in plan.steps:
+        _, u_, v_, p1, k1, p2 = st[:6]
         if st[0] == "RRR":
-            _, u_, v_, p1, k1, p2, p3, k3, side = st
-            (a, V1, A1), (b, V3, A3) = at(k1, p1), at(k3, p3)
-            r1, r3 = abs(P[p2] - P[p1]), abs(P[p2] - P[p3])
-            d = b - a
-            if not isinstance(d, np.ndarray):
-                d = np.full(n, d)
-            inv = 1.0 / (d * d.conjugate()).real
-            s = (r1 * r1 - r3 * r3) * 0.5 * inv + 0.5
-            h2 = r1 * r1 * inv - s * s
-            c2 = a + (s + (1j * side) * np.sqrt(np.maximum(h2, 0.0))) * d
-            u, v = c2 - a, c2 - b
-            links[u_] = LinkMotion(P[p2], c2, u * (1.0 / (P[p2] - P[p1])))
-            links[v_] = LinkMotion(P[p2], c2, v * (1.0 / (P[p2] - P[p3])))
-            if rates:
-                cu, cv = u.conjugate(), v.conjugate()
-                det = (cu * v).imag
-                K1, K3 = _solver(det, u, v)
-                V2 = _lin(_re(cu, V1), K1, _re(cv, V3), K3)
-                W1, W3 = _sub(V2, V1), _sub(V2, V3)
-                A2 = _lin(_sub(_re(cu, A1), _sq(W1)), K1, _sub(_re(cv, A3), _sq(W3)), K3)
-                links[u_] = links[u_].moving(V2, A2, (cu * W1).imag * (1.0 / (r1 * r1)),
-                                             (cu * _sub(A2, A1)).imag * (1.0 / (r1 * r1)))
-                links[v_] = links[v_].moving(V2, A2, (cv * W3).imag * (1.0 / (r3 * r3)),
-                                             (cv * _sub(A2, A3)).imag * (1.0 / (r3 * r3)))
-                here = np.abs(det) * (1.0 / (r1 * r3))
-            else:
-                V2 = A2 = None
-            joints[(u_, p1)], joints[(v_, p3)] = joints[(k1, p1)], joints[(k3, p3)]
+            p3, k3 = st[6:8]
+            c2, V2, A2, h2, here = _rrr(links, u_, v_, at(k1, p1), at(k3, p3), P[p1], P[p2], P[p3], st[8], n,
+                                        rates)
+            joints[(v_, p3)] = joints[(k3, p3)]
         else:
-            _, u_, v_, p1, k1, p2, g, dref, side = st
-            a, V1, A1 = at(k1, p1)
-            G = links[g]
-            e = G.rot * _c(dref)
-            through = G.place(P[p2])
-            r1 = abs(P[p2] - P[p1])
-            foot = through + _dot(e, a - through) * e
-            off = a - foot
-            h2 = r1 * r1 - (off * off.conjugate()).real
-            if not isinstance(h2, np.ndarray):
-                h2 = np.full(n, h2)
-            c2 = foot + (side * np.sqrt(np.maximum(h2, 0.0))) * e
-            u = c2 - a
-            links[u_] = LinkMotion(P[p2], c2, u * (1.0 / (P[p2] - P[p1])))
-            links[v_] = LinkMotion(P[p2], c2, G.rot)
-            if rates:
-                VG, AG = G.motion(c2 - G.p0)
-                nn = 1j * e
-                cu = u.conjugate()
-                K1, KG = _solver((cu * nn).imag, u, nn)
-                V2 = _lin(_re(cu, V1), K1, _dot(nn, VG), KG)
-                W1 = _sub(V2, V1)
-                cor = 0.0 if _zero(G.omega) else 2 * G.omega * _dot(e, _sub(V2, VG))
-                A2 = _lin(_sub(_re(cu, A1), _sq(W1)), K1, _dot(nn, AG) + cor, KG)
-                links[u_] = links[u_].moving(V2, A2, (cu * W1).imag * (1.0 / (r1 * r1)),
-                                             (cu * _sub(A2, A1)).imag * (1.0 / (r1 * r1)))
-                links[v_] = links[v_].moving(V2, A2, G.omega, G.alpha)
-                here = np.abs(_dot(u, e)) * (1.0 / r1)
-            else:
-                V2 = A2 = None
-            joints[(u_, p1)] = joints[(k1, p1)]
+            c2, V2, A2, h2, here = _rrp(links, u_, v_, at(k1, p1), links[st[6]], P[p1], P[p2], st[7], st[8], n,
+                                        rates)
+        joints[(u_, p1)] = joints[(k1, p1)]
         joints[(u_, p2)] = joints[(v_, p2)] = (c2, V2, A2)
         miss = ~(h2 >= 0)
         bad = miss if bad is None else bad | miss
@@ -329,6 +277,68 @@ def walk(m: Mechanism, plan: DyadPlan, deltas, rate: float | None = None, accel:
             sine = here if sine is None else np.minimum(sine, here)
     reach = n if bad is None or not bad.any() else int(np.argmax(bad))
     return Walk(links, joints, np.ones(n) if sine is None else sine, reach)
+
+
+def _rrr(links, u_, v_, j1, j3, s1, s2, s3, side, n, rates):
+    """One RRR dyad: P2 (and V2, A2) from P1 on u's known neighbour and P3 on v's; sets the
+    motions of u and v. Returns (P2, V2, A2, h2, sine): h2 < 0 where the circles miss."""
+    (a, V1, A1), (b, V3, A3) = j1, j3
+    r1, r3 = abs(s2 - s1), abs(s2 - s3)
+    d = b - a
+    if not isinstance(d, np.ndarray):
+        d = np.full(n, d)
+    inv = 1.0 / (d * d.conjugate()).real
+    s = (r1 * r1 - r3 * r3) * 0.5 * inv + 0.5
+    h2 = r1 * r1 * inv - s * s
+    c2 = a + (s + (1j * side) * np.sqrt(np.maximum(h2, 0.0))) * d
+    u, v = c2 - a, c2 - b
+    links[u_] = LinkMotion(s2, c2, u * (1.0 / (s2 - s1)))
+    links[v_] = LinkMotion(s2, c2, v * (1.0 / (s2 - s3)))
+    if not rates:
+        return c2, None, None, h2, None
+    cu, cv = u.conjugate(), v.conjugate()
+    det = (cu * v).imag
+    K1, K3 = _solver(det, u, v)
+    V2 = _lin(_re(cu, V1), K1, _re(cv, V3), K3)
+    W1, W3 = _sub(V2, V1), _sub(V2, V3)
+    A2 = _lin(_sub(_re(cu, A1), _sq(W1)), K1, _sub(_re(cv, A3), _sq(W3)), K3)
+    links[u_] = links[u_].moving(V2, A2, (cu * W1).imag * (1.0 / (r1 * r1)),
+                                 (cu * _sub(A2, A1)).imag * (1.0 / (r1 * r1)))
+    links[v_] = links[v_].moving(V2, A2, (cv * W3).imag * (1.0 / (r3 * r3)),
+                                 (cv * _sub(A2, A3)).imag * (1.0 / (r3 * r3)))
+    return c2, V2, A2, h2, np.abs(det) * (1.0 / (r1 * r3))
+
+
+def _rrp(links, u_, v_, j1, G, s1, s2, dref, side, n, rates):
+    """One RRP dyad: the block v's joint P2 on its guide G's line, from P1 on u's known
+    neighbour; sets the motions of u and v. Returns (P2, V2, A2, h2, sine)."""
+    a, V1, A1 = j1
+    e = G.rot * _c(dref)
+    through = G.place(s2)
+    r1 = abs(s2 - s1)
+    foot = through + _dot(e, a - through) * e
+    off = a - foot
+    h2 = r1 * r1 - (off * off.conjugate()).real
+    if not isinstance(h2, np.ndarray):
+        h2 = np.full(n, h2)
+    c2 = foot + (side * np.sqrt(np.maximum(h2, 0.0))) * e
+    u = c2 - a
+    links[u_] = LinkMotion(s2, c2, u * (1.0 / (s2 - s1)))
+    links[v_] = LinkMotion(s2, c2, G.rot)
+    if not rates:
+        return c2, None, None, h2, None
+    VG, AG = G.motion(c2 - G.p0)
+    nn = 1j * e
+    cu = u.conjugate()
+    K1, KG = _solver((cu * nn).imag, u, nn)
+    V2 = _lin(_re(cu, V1), K1, _dot(nn, VG), KG)
+    W1 = _sub(V2, V1)
+    cor = 0.0 if _zero(G.omega) else 2 * G.omega * _dot(e, _sub(V2, VG))
+    A2 = _lin(_sub(_re(cu, A1), _sq(W1)), K1, _dot(nn, AG) + cor, KG)
+    links[u_] = links[u_].moving(V2, A2, (cu * W1).imag * (1.0 / (r1 * r1)),
+                                 (cu * _sub(A2, A1)).imag * (1.0 / (r1 * r1)))
+    links[v_] = links[v_].moving(V2, A2, G.omega, G.alpha)
+    return c2, V2, A2, h2, np.abs(_dot(u, e)) * (1.0 / r1)
 
 
 def assemble(m: Mechanism, index: dict, plan: DyadPlan, deltas) -> tuple[np.ndarray, int]:

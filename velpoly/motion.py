@@ -16,7 +16,6 @@ from __future__ import annotations
 
 import math
 from dataclasses import dataclass, replace
-from functools import cached_property
 
 import numpy as np
 
@@ -73,18 +72,13 @@ class LinkMotion:
         """Where the link's point with reference position s is."""
         return self.p0 if s == self.s0 else self.p0 + self.rot * (s - self.s0)
 
-    @cached_property
-    def _spin(self):
-        """(i omega, i alpha - omega^2): V and A about p0 per unit arm."""
-        om, al = self.omega, self.alpha
-        return 1j * om, 1j * al - om * om
-
     def motion(self, r):
         """(V, A) of the link's point at the arm r from p0."""
-        if _zero(r):
+        om, al = self.omega, self.alpha
+        if _zero(r) or (_zero(om) and _zero(al)):
             return self.v0, self.a0
-        jw, k = self._spin
-        return (_plus(self.v0, 0.0 if _zero(jw) else jw * r),
+        k = 1j * al - om * om
+        return (_plus(self.v0, 0.0 if _zero(om) else (1j * om) * r),
                 _plus(self.a0, 0.0 if _zero(k) else k * r))
 
     def point(self, s: complex, rates: bool = True):
@@ -108,13 +102,11 @@ def _xy(z, n: int) -> np.ndarray:
     a view of a whole contiguous complex array."""
     if isinstance(z, np.ndarray) and z.shape == (n,) and z.dtype == complex and z.flags.c_contiguous:
         return z.view(np.float64).reshape(n, 2)
+    if _zero(z):
+        return np.zeros((n, 2))
     out = np.empty((n, 2))
     out[:, 0], out[:, 1] = np.real(z), np.imag(z)
     return out
-
-
-def _full(x, n: int) -> np.ndarray:
-    return x if isinstance(x, np.ndarray) else np.full(n, float(x))
 
 
 def _arg(z: np.ndarray) -> np.ndarray:
@@ -296,9 +288,9 @@ def evaluate_motion(m: Mechanism, index: dict, q, qd, qdd=None, walk=None) -> Mo
     block_path = {s.block: s for s in m.sliders}
     for link in m.links:
         if walk is not None:
-            lm = walk.links[link.name]
-            angle[link.name] = _turn_deg(lm.rot, _base_deg(link, block_path, P), B.n)
-            omega[link.name], alpha[link.name] = _full(lm.omega, B.n), _full(lm.alpha, B.n)
+            angle[link.name] = _turn_deg(walk.links[link.name].rot, _base_deg(link, block_path, P), B.n)
+            omega[link.name] = B.theta(link.name, qd)
+            alpha[link.name] = B.theta(link.name, qdd) if qdd is not None else np.full(len(q), np.nan)
             continue
         th = B.theta(link.name)
         if len(link.points) >= 2:
