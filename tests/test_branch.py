@@ -260,6 +260,21 @@ def test_stephenson_sixbar_turns_on_both_loops_branches(side_b, side_d, mirror):
         assert np.all(orientation(w, p, q, r) == (1 if side == "left" else -1)), (p, q, r)
 
 
+@pytest.mark.parametrize("branch_c, branch_f", [(0, 1), (1, 0)])
+def test_watt_sixbar_at_an_angle_stays_on_both_drawn_branches(branch_c, branch_f):
+    m = velpoly.load(watt_sixbar(branch_c, branch_f))
+    ref = velpoly.solve(m).driver_angle
+    w = sweep_turn(m)
+    for angle in (-150.0, -60.0, 10.0, 140.0, 230.0):
+        s = velpoly.solve(m, angle=angle)
+        i = int(round(((angle - ref) % 360) / STEP))
+        for key in s.position:
+            assert s.position[key] == pytest.approx(w.position[key][i], abs=1e-9 * m.size), (angle, key)
+        for (p, q, r), br in ((("B", "D", "C"), branch_c), (("E", "G", "F"), branch_f)):
+            u, v = s.position[q] - s.position[p], s.position[r] - s.position[p]
+            assert np.sign(u[0] * v[1] - u[1] * v[0]) == (1 if br == 0 else -1), (angle, p, q, r)
+
+
 @pytest.mark.parametrize("near_f", ["[-0.37, 0.19]", "[-0.37, 0.62]"])
 def test_textbook_sixbar_with_a_slider_on_either_branch(near_f):
     from mechanisms import SIXBAR_1_4_4
