@@ -385,8 +385,7 @@ def rates(w: Walk, index: dict, n: int) -> tuple[np.ndarray, np.ndarray]:
     qdd = np.empty((n, 3 * len(index)))
     for name, k in index.items():
         lk = w.links[name]
-        vo, ao = lk.motion(lk.arm(0j))
-        qd[:, 3 * k:3 * k + 2].view(complex)[:, 0] = vo
-        qdd[:, 3 * k:3 * k + 2].view(complex)[:, 0] = ao
+        qd[:, 3 * k:3 * k + 2].view(complex)[:, 0], qdd[:, 3 * k:3 * k + 2].view(complex)[:, 0] = \
+            lk.motion(lk.arm(0j))
         qd[:, 3 * k + 2], qdd[:, 3 * k + 2] = lk.omega, lk.alpha
     return qd, qdd

@@ -72,14 +72,21 @@ class LinkMotion:
         """Where the link's point with reference position s is."""
         return self.p0 if s == self.s0 else self.p0 + self.rot * (s - self.s0)
 
-    def motion(self, r):
-        """(V, A) of the link's point at the arm r from p0."""
+    def velocity(self, r):
+        """V of the link's point at the arm r from p0."""
+        om = self.omega
+        return self.v0 if _zero(r) or _zero(om) else _plus(self.v0, (1j * om) * r)
+
+    def acceleration(self, r):
+        """A of the link's point at the arm r from p0."""
         om, al = self.omega, self.alpha
         if _zero(r) or (_zero(om) and _zero(al)):
-            return self.v0, self.a0
-        k = 1j * al - om * om
-        return (_plus(self.v0, 0.0 if _zero(om) else (1j * om) * r),
-                _plus(self.a0, 0.0 if _zero(k) else k * r))
+            return self.a0
+        return _plus(self.a0, (1j * al - om * om) * r)
+
+    def motion(self, r):
+        """(V, A) of the link's point at the arm r from p0."""
+        return self.velocity(r), self.acceleration(r)
 
     def point(self, s: complex, rates: bool = True):
         """(P, V, A) of the link's point with reference position s (V, A None without rates)."""
@@ -118,7 +125,8 @@ def _arg(z: np.ndarray) -> np.ndarray:
 def _turn_deg(rot, base: float, n: int) -> np.ndarray:
     """arg(rot) + base in degrees, wrapped into (-180, 180] like :func:`wrap_deg`."""
     if not isinstance(rot, np.ndarray):
-        return np.full(n, float(wrap_deg(base + math.degrees(math.atan2(np.imag(rot), np.real(rot))))))
+        a = (base + math.degrees(math.atan2(rot.imag, rot.real)) + 180.0) % 360.0 - 180.0
+        return np.full(n, 180.0 if a == -180.0 else a)
     a = _arg(rot * complex(math.cos(math.radians(base)), math.sin(math.radians(base))) if base else rot)
     a *= 180.0 / math.pi
     a[a == -180.0] = 180.0
@@ -216,6 +224,34 @@ class _Bodies:
         return self.origin(lk, self.qdd) + self.theta(lk, self.qdd)[:, None] * _perp(r) - om ** 2 * r
 
 
+class _WalkBodies(_Bodies):
+    """The same queries answered from the dyad walk's link motions (no cos/sin of q)."""
+
+    def __init__(self, walk, m, index, q, qd, qdd):
+        super().__init__(m, index, q, qd, qdd)
+        self.links = walk.links
+
+    def place(self, lk, s):
+        return _xy(self.links[lk].place(complex(s[0], s[1])), self.n)
+
+    def turn(self, lk, d):
+        return _xy(self.links[lk].rot * complex(d[0], d[1]), self.n)
+
+    def _arm(self, lk, w):
+        lm = self.links[lk]
+        return lm, (w[:, 0] + 1j * w[:, 1]) - lm.p0
+
+    def vel(self, lk, w):
+        lm, r = self._arm(lk, w)
+        return _xy(lm.velocity(r), self.n)
+
+    def acc(self, lk, w):
+        if self.qdd is None:
+            return np.full_like(w, np.nan)
+        lm, r = self._arm(lk, w)
+        return _xy(lm.acceleration(r), self.n)
+
+
 def _unit(deg):
     t = np.radians(deg)
     return np.array([np.cos(t), np.sin(t)])
@@ -234,7 +270,7 @@ def evaluate_motion(m: Mechanism, index: dict, q, qd, qdd=None, walk=None) -> Mo
     """
     q, qd = np.atleast_2d(q), np.atleast_2d(qd)
     qdd = None if qdd is None else np.atleast_2d(qdd)
-    B = _Bodies(m, index, q, qd, qdd)
+    B = _Bodies(m, index, q, qd, qdd) if walk is None else _WalkBodies(walk, m, index, q, qd, qdd)
     P = {k: np.array(v, float) for k, v in m.points.items()}
 
     # current places of points carried as coincident points
@@ -336,7 +372,7 @@ def _base_deg(link, block_path, P) -> float:
     a block's path direction, else 0."""
     if len(link.points) >= 2:
         d = P[link.points[1]] - P[link.points[0]]
-        return math.degrees(math.atan2(d[1], d[0])) if np.hypot(*d) > 0 else 0.0
+        return math.degrees(math.atan2(d[1], d[0])) if d[0] or d[1] else 0.0
     if link.name in block_path and block_path[link.name].centre is None:
         return float(block_path[link.name].angle)
     return 0.0
