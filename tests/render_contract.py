@@ -125,3 +125,30 @@ def assert_page_texts_clear(fig):
         for name, bb in panels.items():
             if name != "table" and gid != f"caption-{name}":
                 assert not b.intersects(box(bb.x0, bb.y0, bb.x1, bb.y1)), f"{gid} over the {name} panel"
+
+
+def legend_trouble(fig) -> list:
+    """What each polygon's legend (window box) runs over: the panel's border, lines (construction lines,
+    shafts), arrowheads. Empty when every legend sits clear."""
+    from shapely.geometry import LineString
+    r = fig.canvas.get_renderer()
+    out = []
+    for ax in fig.axes:
+        leg = ax.get_legend()
+        if leg is None:
+            continue
+        bb = leg.get_window_extent(r)
+        lb = box(bb.x0, bb.y0, bb.x1, bb.y1)
+        ab = ax.get_window_extent()
+        if not box(ab.x0 - 1, ab.y0 - 1, ab.x1 + 1, ab.y1 + 1).contains(lb):
+            out.append(("outside its panel", ax.get_label()))
+        for ln in ax.lines:
+            pts = ax.transData.transform(ln.get_xydata())
+            pts = pts[np.all(np.isfinite(pts), axis=1)]
+            if len(pts) >= 2 and LineString(pts).intersects(lb):
+                out.append(("over a line", ln.get_gid()))
+        for p in ax.patches:
+            if (p.get_gid() or "").startswith(("absolute", "normal", "tangential", "coriolis", "slip", "relative")) \
+                    and p.get_window_extent(r).overlaps(bb):
+                out.append(("over an arrowhead", p.get_gid()))
+    return out

@@ -800,3 +800,37 @@ def test_typesetting_of_numbers_equations_and_reasons():
     for s in (eq, prose_tex("perpendicular to O4B")):   # mathtext accepts them
         for part in s.split("$")[1::2]:
             parser.parse("$" + part + "$")
+
+
+def test_frames_put_everything_where_the_finished_construction_has_it(sixbar, tmp_path):
+    """--steps: the labels, scale bars, legend and views of every frame are those of the last frame
+    (the acceleration scale bar moved from the bottom to the top between frames, labels moved about)."""
+    m, sol = sixbar
+    cons = _cons(sol)
+    st = sheet.get_style("slides")
+    fr = sheet.frames("full", cons, True)
+    with rc_context(st):
+        last = sheet.render_sheet(sol, "full", st, cons=cons, frame=fr[-1])
+        first = sheet.render_sheet(sol, "full", st, cons=cons, frame=fr[0], pins=last._velpoly_pins)
+
+    def where(fig):
+        out = {}
+        for ax in fig.axes:
+            for t in ax.texts:
+                if t.get_gid():
+                    out[(ax.get_label(), t.get_gid())] = tuple(np.round(t.get_position(), 9))
+            for p in ax.patches:
+                if p.get_gid() == "scale-bar":
+                    out[(ax.get_label(), "bar")] = tuple(np.round(p.get_xy(), 9))
+            if ax.get_legend() is not None:
+                out[(ax.get_label(), "legend")] = tuple(t.get_text() for t in ax.get_legend().get_texts())
+            out[(ax.get_label(), "view")] = tuple(np.round(ax.get_xlim() + ax.get_ylim(), 9))
+        return out
+    a, b = where(first), where(last)
+    common = set(a) & set(b)
+    assert {("velocity", "bar"), ("acceleration", "bar"), ("velocity", "view"), ("acceleration", "view"),
+            ("velocity", "label-velocity-origin+A+D")} <= common
+    moved = {k: (a[k], b[k]) for k in common if a[k] != b[k]}
+    assert not moved
+    files = sheet.draw_to_file(sol, tmp_path / "s.svg", "velocity", steps=True, cons=cons)
+    assert len(files) == len(cons.velocity.steps)

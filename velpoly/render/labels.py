@@ -38,6 +38,10 @@ class LabelPlacer:
         self.soft: list = []
         self.boxes: list = []      # shapely polygons of placed labels
         self.texts: list = []      # their Text artists, same order
+        # where each label (by gid) went, and where it must go: the frames of a step sequence put every
+        # label, scale bar and legend where the finished construction has it, so that nothing jumps
+        self.placed: dict = {}
+        self.pins: dict = {}
 
     # -- obstacles ---------------------------------------------------------------------
     def add_obstacle(self, geom, hard: bool = True) -> None:
@@ -105,7 +109,14 @@ class LabelPlacer:
         pp = per_point(ax)
         view = view_box(ax)
         best = None
-        for ring_i, ring in enumerate((gap,) + tuple(r for r in RINGS if r > gap)):
+        pin = self.pins.get(gid) if gid else None
+        if pin is not None and pin[0] == "place":
+            c = np.asarray(pin[1], float)
+            b = box(c[0] - w / 2, c[1] - h / 2, c[0] + w / 2, c[1] + h / 2)
+            if view.contains(b) and self.free(b):
+                best = (0, c, b, pin[2])
+        rings = () if best is not None else (gap,) + tuple(r for r in RINGS if r > gap)
+        for ring_i, ring in enumerate(rings):
             for ang in _directions(prefer, 16 if ring_i >= 2 else 8):
                 if within is not None and abs((ang - (prefer or 45.0) + 180.0) % 360.0 - 180.0) > within + 1e-9:
                     continue
@@ -135,6 +146,8 @@ class LabelPlacer:
             self.overlapping.append(t)
         _, c, b, ring = best
         t.set_position((float(c[0]), float(c[1])))
+        if gid:
+            self.placed[gid] = ("place", (float(c[0]), float(c[1])), ring)
         if leader and ring >= 9.0:
             from matplotlib.lines import Line2D
             edge = _toward(b, anchor)
@@ -164,11 +177,16 @@ class LabelPlacer:
             t.set_gid(gid)
         w, h = self._size(t, pad)
         view = view_box(ax)
+        pin = self.pins.get(gid) if gid else None
+        if pin is not None and pin[0] == "at":
+            centres = [pin[1]] + list(centres)
         for c in centres:
             c = np.asarray(c, float)
             b = box(c[0] - w / 2, c[1] - h / 2, c[0] + w / 2, c[1] + h / 2)
             if view.contains(b) and self.free(b, soft=soft) and not any(g.intersects(b) for g in avoid):
                 t.set_position((float(c[0]), float(c[1])))
+                if gid:
+                    self.placed[gid] = ("at", (float(c[0]), float(c[1])))
                 self.boxes.append(b)
                 self.texts.append(t)
                 return t
@@ -202,16 +220,21 @@ class LabelPlacer:
         pp = per_point(ax)
         n = np.array([-u[1], u[0]])
         view = view_box(ax)
-        for frac in (0.78, 0.62, 0.46, 0.3):
-            for side in (1, -1):
-                c = p0 + u * (frac * length) + n * side * (offset * pp + h / 2)
-                b = affinity.rotate(box(c[0] - w / 2, c[1] - h / 2, c[0] + w / 2, c[1] + h / 2), ang,
-                                    origin=(c[0], c[1]))
-                if view.contains(b) and self.free(b, soft=True):
-                    t.set_position((float(c[0]), float(c[1])))
-                    self.boxes.append(b)
-                    self.texts.append(t)
-                    return t
+        pin = self.pins.get(gid) if gid else None
+        tries = [(f, side) for f in (0.78, 0.62, 0.46, 0.3) for side in (1, -1)]
+        if pin is not None and pin[0] == "along":
+            tries.insert(0, pin[1])
+        for frac, side in tries:
+            c = p0 + u * (frac * length) + n * side * (offset * pp + h / 2)
+            b = affinity.rotate(box(c[0] - w / 2, c[1] - h / 2, c[0] + w / 2, c[1] + h / 2), ang,
+                                origin=(c[0], c[1]))
+            if view.contains(b) and self.free(b, soft=True):
+                t.set_position((float(c[0]), float(c[1])))
+                if gid:
+                    self.placed[gid] = ("along", (frac, side))
+                self.boxes.append(b)
+                self.texts.append(t)
+                return t
         t.remove()
         return None
 

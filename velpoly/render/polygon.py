@@ -29,7 +29,7 @@ from .scalebar import scale_bar
 from .style import KIND_LABELS, get_style, link_colour
 
 __all__ = ["draw_polygon", "draw_velocity_polygon", "draw_acceleration_polygon", "polygon_bounds",
-           "known_keys", "image_groups"]
+           "known_keys", "image_groups", "legend_room"]
 
 _REL_TOL = 1e-9
 
@@ -233,6 +233,9 @@ def draw_polygon(polygon, ax=None, *, mechanism=None, style="textbook", options=
     pl.add_obstacle(o)
 
     # the legend before the labels, which then keep clear of it
+    pinned = pl.pins.get("legend")
+    if pinned is not None:    # a step frame: the finished construction's legend, so that it does not change
+        kinds = set(pinned[4])
     if not velocity and len(kinds) > 1:
         art.add("legend", *_legend(ax, st, [k for k in st.kind_styles if k in kinds]))
 
@@ -286,44 +289,105 @@ def _legend(ax, st, kinds) -> list:
     pl = placer(ax)
     locs = ("upper right", "upper left", "lower right", "lower left", "center right", "center left",
             "upper center", "lower center")
-    # the full legend, smaller, in two columns, both: the first free corner; else the one
-    # crossing the fewest marks, then lines
+    # the full legend, smaller, in two columns, both: the first free corner or side; else the first free
+    # place of a grid over the panel, nearest its border first (a polygon filling every corner leaves room
+    # elsewhere); else the place crossing the fewest marks, then lines
     variants = ((st.small_size, 1), (st.small_size * 0.85, 1), (st.small_size, 2), (st.small_size * 0.85, 2))
     geoms = np.array(pl.boxes + pl.hard + pl.soft, dtype=object)
     weights = np.array([10] * (len(pl.boxes) + len(pl.hard)) + [1] * len(pl.soft))
     inv = ax.transData.inverted()
 
-    def make(loc, size, ncol):
+    def make(size, ncol, at=(1.0, 1.0), loc="upper right", transform=None):
         return ax.legend(handles, [KIND_LABELS[k] for k in kinds], loc=loc, fontsize=size, ncol=ncol,
-                         handlelength=3.2 if ncol == 1 else 2.4, borderaxespad=0.3, columnspacing=1.0)
+                         handlelength=3.2 if ncol == 1 else 2.4, borderaxespad=0.0, columnspacing=1.0,
+                         bbox_to_anchor=at, bbox_transform=transform)
 
     vx0, vy0, vx1, vy1 = view_box(ax).bounds
     pp = per_point(ax)
-    best = None
-    for size, ncol in variants:
-        # measured once a variant; its box at each location computed as matplotlib places it
-        leg = make("upper right", size, ncol)
+    sizes = []
+    for size, ncol in variants:   # measured once a variant
+        leg = make(size, ncol)
         bb = leg.get_window_extent(pl.renderer)
         (x0, y0), (x1, y1) = inv.transform([[bb.x0, bb.y0], [bb.x1, bb.y1]])
-        w, h = abs(x1 - x0), abs(y1 - y0)
-        pad = 0.3 * size * pp
+        sizes.append((size, ncol, abs(x1 - x0), abs(y1 - y0)))
+    pc_ = per_cm(ax)
+    paper = [(w / pc_, h / pc_) for _, _, w, h in sizes]   # the variants' sizes in cm of paper
+
+    def spots(w, h, pad):
+        named = []
         for loc in locs:
             v, u = loc.split()
-            lx = {"left": vx0 + pad, "right": vx1 - pad - w, "center": (vx0 + vx1 - w) / 2}[u]
-            ly = {"lower": vy0 + pad, "upper": vy1 - pad - h, "center": (vy0 + vy1 - h) / 2}[v]
-            b = box(lx, ly, lx + w, ly + h)
-            hits = int(np.dot(shapely.intersects(geoms, b), weights)) if len(geoms) else 0
-            if best is None or hits < best[0]:
-                best = (hits, (loc, size, ncol), b)
-            if hits == 0:
+            named.append(({"left": vx0 + pad, "right": vx1 - pad - w, "center": (vx0 + vx1 - w) / 2}[u],
+                          {"lower": vy0 + pad, "upper": vy1 - pad - h, "center": (vy0 + vy1 - h) / 2}[v]))
+        lo_x, hi_x, lo_y, hi_y = vx0 + pad, vx1 - pad - w, vy0 + pad, vy1 - pad - h
+        grid = [(lo_x + (hi_x - lo_x) * i / 8, lo_y + (hi_y - lo_y) * j / 8) for i in range(9) for j in range(9)]
+        grid.sort(key=lambda c: (round(min(c[0] - lo_x, hi_x - c[0], c[1] - lo_y, hi_y - c[1]) / max(pad, 1e-300)),
+                                 -c[1], c[0]))
+        return named, grid
+
+    def hits_of(b):
+        return int(np.dot(shapely.intersects(geoms, b), weights)) if len(geoms) else 0
+
+    inside = view_box(ax).buffer(1e-9 * (vx1 - vx0))
+    best = None
+    pin = pl.pins.get("legend")
+    if pin is not None:       # a step frame: where the finished construction has it
+        size, ncol, (lx, ly) = pin[1], pin[2], pin[3]
+        w, h = next((w, h) for s_, n_, w, h in sizes if (s_, n_) == (size, ncol))
+        b = box(lx, ly, lx + w, ly + h)
+        best = (hits_of(b), (size, ncol), b)
+    for stage in (() if best is not None else (0, 1)):   # corners and sides of every variant, then the grids
+        for size, ncol, w, h in sizes:
+            pad = 0.3 * size * pp
+            for lx, ly in spots(w, h, pad)[stage]:
+                b = box(lx, ly, lx + w, ly + h)
+                if not inside.contains(b):   # a legend wider than the panel
+                    continue
+                hits = hits_of(b)
+                if best is None or hits < best[0]:
+                    best = (hits, (size, ncol), b)
+                if hits == 0:
+                    break
+            if best is not None and best[0] == 0:
                 break
-        if best[0] == 0:
+        if best is not None and best[0] == 0:
             break
-    _, (loc, size, ncol), b = best
-    leg = make(loc, size, ncol)
+    if best is None:   # wider than the panel in every variant: the smallest, at the upper right
+        size, ncol, w, h = min(sizes, key=lambda v: v[2])
+        b = box(vx1 - w, vy1 - h, vx1, vy1)
+        best = (hits_of(b) + 1, (size, ncol), b)
+    hits, (size, ncol), b = best
+    leg = make(size, ncol, at=(b.bounds[0], b.bounds[1]), loc="lower left", transform=ax.transData)
+    leg._velpoly_hits = hits
+    leg._velpoly_paper = paper
+    pl.placed["legend"] = ("legend", size, ncol, (float(b.bounds[0]), float(b.bounds[1])), tuple(kinds))
     pl.boxes.append(b)
     pl.texts.append(leg)
     return [leg]
+
+
+def legend_room(ax, bounds, paper, margin: float, label: float = 0.0):
+    """Bounds grown so that, fitted to ``ax`` with ``margin``, the polygon leaves a strip along the top or
+    the right of the panel for a legend of ``paper`` = [(width, height) cm, ...] (its variants), and a
+    label's room (``label`` pt of type) between them: the strip that draws the polygon largest.
+    Returns (bounds, scale)."""
+    from .canvas import _axes_cm, nice_scale
+    wcm, hcm = _axes_cm(ax)
+    x0, y0, x1, y1 = bounds
+    gap = 0.2 + 1.6 * label / 72 * 2.54
+    best = None
+    for lw, lh in paper:
+        for side in ("top", "right"):
+            w_room = wcm * (1 - 2 * margin) - (lw + gap if side == "right" else 0.0)
+            h_room = hcm * (1 - 2 * margin) - (lh + gap if side == "top" else 0.0)
+            if w_room <= 0 or h_room <= 0 or (side == "top" and lw > wcm * (1 - margin)) or \
+                    (side == "right" and lh > hcm * (1 - margin)):
+                continue
+            s = nice_scale(max((x1 - x0) / w_room, (y1 - y0) / h_room, 1e-300))
+            grown = (x0, y0, x1 + (lw + gap) * s, y1) if side == "right" else (x0, y0, x1, y1 + (lh + gap) * s)
+            if best is None or s < best[1]:
+                best = (grown, s)
+    return best if best is not None else (bounds, None)
 
 
 def draw_velocity_polygon(sol, ax=None, *, style="textbook", options=None, polygon=None, scale=None,

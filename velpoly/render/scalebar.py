@@ -72,6 +72,9 @@ def scale_bar(ax, style, units: str, power: int, *, target_cm: float = 2.5, gid:
     geoms = np.array(pl.boxes + pl.hard + pl.soft, dtype=object)
     weights = np.array([10] * (len(pl.boxes) + len(pl.hard)) + [1] * len(pl.soft))
     best = None
+    pin = pl.pins.get(gid)
+    if pin is not None and pin[0] == "bar":   # a step frame: where the finished construction has it
+        corners = [pin[1]]
     for c in corners:
         region = box(c[0] - 0.2 * pc, c[1] - 0.1 * pc, c[0] + right, c[1] + h + text_h + 0.1 * pc)
         hits = int(np.dot(shapely.intersects(geoms, region), weights)) if len(geoms) else 0
@@ -80,6 +83,7 @@ def scale_bar(ax, style, units: str, power: int, *, target_cm: float = 2.5, gid:
         if hits == 0:
             break
     bx, by = best[1]
+    pl.placed[gid] = ("bar", (float(bx), float(by)))
     out = []
     bar = Rectangle((bx, by), length, h, facecolor=style.paper, edgecolor=style.ink, lw=style.thin_lw * 1.4,
                     zorder=6, gid=gid)

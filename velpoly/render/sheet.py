@@ -26,11 +26,12 @@ from pathlib import Path
 
 from ..errors import InputError
 from ..fileio import atomic_path
-from .canvas import fit_view, view_scale
+from .canvas import fit_view, nice_scale, view_scale
 from .displacement import draw_mechanism, mark_auxiliary, mechanism_bounds
 from .kennedy import draw_kennedy_circle, draw_poles, pole_label
+from .labels import placer
 from .options import drawing_options
-from .polygon import draw_polygon, polygon_bounds
+from .polygon import draw_polygon, legend_room, polygon_bounds
 from .scalebar import scale_text
 from .style import get_style, rc_context
 from .table import at_file_pose, draw_results_table
@@ -224,7 +225,6 @@ def _step_caption(fig, st, title, caption: str) -> float:
 def _poles_layout(sol, st, opts, cons: Constructions) -> str:
     """The poles sheet's layout that draws the mechanism largest (the first of equals, in order:
     table beside the panel, beneath it, panel across the page)."""
-    from .canvas import nice_scale
     from .kennedy import poles_bounds
     names = ["poles", "poles-wide-table", "poles-wide"]
     if opts.scale is not None or cons.poles is None:
@@ -255,11 +255,14 @@ def _fits_beside(sol, st, cons: Constructions) -> bool:
 
 
 def render_sheet(sol, sheet: str = "full", style="textbook", *, cons: Constructions | None = None,
-                 frame: Frame | None = None):
+                 frame: Frame | None = None, pins: dict | None = None):
     """The matplotlib Figure of one sheet (one frame of it); no pyplot involved.
 
     Call inside :func:`velpoly.render.style.rc_context` for the style's fonts
-    (:func:`draw_to_file` does).
+    (:func:`draw_to_file` does). ``pins``: the ``_velpoly_pins`` of the
+    finished construction's figure (every figure has them): a step frame
+    then has its labels, scale bars, legend and scales where the finished
+    construction has them, so that nothing jumps from frame to frame.
     """
     from matplotlib.backends.backend_agg import FigureCanvasAgg
     from matplotlib.figure import Figure
@@ -289,6 +292,9 @@ def render_sheet(sol, sheet: str = "full", style="textbook", *, cons: Constructi
             if k != "table" and b + h > limit:
                 layout[k] = (l, b, w, limit - b)
     axes = {name: fig.add_axes(rect, label=name) for name, rect in layout.items()}
+    pins = pins or {}
+    for name, ax in axes.items():
+        placer(ax).pins = pins.get(name, {})
     captions = {}
     if "mechanism" in axes:
         ax = axes["mechanism"]
@@ -311,9 +317,28 @@ def render_sheet(sol, sheet: str = "full", style="textbook", *, cons: Constructi
             continue
         ax = axes[kind]
         user = opts.velocity_scale if kind == "velocity" else opts.acceleration_scale
-        s = fit_view(ax, polygon_bounds(poly), scale=user, margin=0.08)
+        pinned = pins.get(kind, {}).get("_scale")
+        s = fit_view(ax, polygon_bounds(poly), scale=user if pinned is None else pinned[1], margin=0.08)
+        if pinned is not None:   # the finished construction's view (it may leave a strip for the legend)
+            ax.set_xlim(*pinned[2])
+            ax.set_ylim(*pinned[3])
         ax.set_axis_off()
-        draw_polygon(poly, ax, mechanism=m, style=st, options=opts, upto=upto)
+        art = draw_polygon(poly, ax, mechanism=m, style=st, options=opts, upto=upto)
+        for attempt in range(3 if user is None and pinned is None else 0):
+            # a legend that finds no free place: the polygon fitted beside a strip kept for it (along the
+            # top or the right, whichever draws the polygon larger); else a round scale smaller
+            leg = art.get("legend")
+            if not leg or getattr(leg[0], "_velpoly_hits", 0) == 0:
+                break
+            bounds, room = polygon_bounds(poly), None
+            if attempt == 0:
+                bounds, room = legend_room(ax, bounds, leg[0]._velpoly_paper, 0.08, label=st.font_size)
+            ax.cla()
+            del ax._velpoly_placer
+            s = fit_view(ax, bounds, scale=room if room is not None else nice_scale(s * 1.001), margin=0.08)
+            ax.set_axis_off()
+            art = draw_polygon(poly, ax, mechanism=m, style=st, options=opts, upto=upto)
+        placer(ax).placed["_scale"] = ("scale", s, tuple(ax.get_xlim()), tuple(ax.get_ylim()))
         captions[kind] = scale_text(s, m.units, power)
     for name, ax in axes.items():
         if name == "table":
@@ -323,6 +348,7 @@ def render_sheet(sol, sheet: str = "full", style="textbook", *, cons: Constructi
         cap = fig.text(pos.x0 + pos.width / 2, pos.y1 + 0.004, text, ha="center", va="bottom",
                        fontsize=st.font_size, style="italic", gid=f"caption-{name}")
         _fit_width(fig, cap, pos.width + 0.008)   # within its column: clear of its neighbours and the page's edge
+    fig._velpoly_pins = {name: dict(placer(ax).placed) for name, ax in axes.items()}
     if "table" in axes:
         shows = {"velocity": ("velocity",), "acceleration": ("acceleration",), "poles": (),
                  "full": ("velocity", "acceleration")}[sheet]
@@ -364,17 +390,24 @@ def draw_to_file(sol, out, sheet: str = "full", style: str = "textbook", steps: 
     cons = cons if cons is not None else constructions(sol, sheet)
     pictures = frames(sheet, cons, steps)
     with rc_context(st):
+        # the finished construction first: every frame then puts things where it has them
+        last = render_sheet(sol, sheet, st, cons=cons, frame=pictures[-1])
+
+        def figures():
+            for fr in pictures[:-1]:
+                yield render_sheet(sol, sheet, st, cons=cons, frame=fr, pins=last._velpoly_pins)
+            yield last
         if steps and fmt == "pdf":
             from matplotlib.backends.backend_pdf import PdfPages
             with atomic_path(out) as tmp:
                 with PdfPages(tmp, metadata={"CreationDate": None, "ModDate": None}) as pdf:
-                    for fr in pictures:
-                        pdf.savefig(render_sheet(sol, sheet, st, cons=cons, frame=fr))
+                    for fig in figures():
+                        pdf.savefig(fig)
             return [out]
         blobs = []
-        for fr in pictures:
+        for fig in figures():
             buf = io.BytesIO()
-            _save(render_sheet(sol, sheet, st, cons=cons, frame=fr), buf, fmt, st)
+            _save(fig, buf, fmt, st)
             blobs.append(buf.getvalue())
     targets = [out] if not steps else [_numbered(out, i, len(blobs)) for i in range(1, len(blobs) + 1)]
     written = []
