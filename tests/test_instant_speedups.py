@@ -21,12 +21,15 @@ def test_values_and_second_terms_match_evaluate(path):
     phi, jac, h = system.evaluate(q, qd)
     assert np.array_equal(system.residual(q), phi)
     assert np.array_equal(system.second_terms(q, qd), h)
-    # one pose: the values pass runs on plain floats
+    # one pose (jets of plain floats) agrees with the same pose in a batch (jets of arrays)
     for k in range(len(q)):
-        phi1, _, h1 = system.evaluate(q[k:k + 1], qd[k:k + 1])
-        scale = max(1.0, np.abs(h1).max())
-        assert np.abs(system.second_terms(q[k:k + 1], qd[k:k + 1]) - h1).max() <= 1e-14 * scale
-        assert np.abs(system.residual(q[k:k + 1]) - phi1).max() <= 1e-14 * max(1.0, system.size)
+        phi1, jac1, h1 = system.evaluate(q[k:k + 1], qd[k:k + 1])
+        tol = 1e-14 * max(1.0, system.size, np.abs(h[k]).max(), np.abs(jac[k]).max())
+        assert np.abs(phi1[0] - phi[k]).max() <= tol
+        assert np.abs(jac1[0] - jac[k]).max() <= tol
+        assert np.abs(h1[0] - h[k]).max() <= tol
+        assert np.abs(system.second_terms(q[k:k + 1], qd[k:k + 1])[0] - h[k]).max() <= tol
+        assert np.abs(system.residual(q[k:k + 1])[0] - phi[k]).max() <= tol
     # the Jacobian against central differences of the values
     eps = 1e-6
     for k in range(system.nq):

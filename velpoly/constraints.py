@@ -63,19 +63,20 @@ class Equation:
 class Frame:
     """The links' poses at some q as jets: the evaluation context of equations.
 
-    A link's jets (x, y, cos theta, sin theta, theta) are built on first use. Values only
-    at one pose (no gradients), the jets hold plain floats: the same rules, without
-    numpy's cost per operation on arrays of one element.
+    A link's jets (x, y, cos theta, sin theta, theta) are built on first use. With
+    ``one_pose`` (q holds a single pose) the jets' values and rates are plain floats and
+    their gradients vectors (nq,): the same rules, without numpy's cost per operation on
+    arrays of one element.
     """
 
     def __init__(self, system: "System", q: np.ndarray, qd: np.ndarray | None = None,
-                 values_only: bool = False):
+                 values_only: bool = False, one_pose: bool = False):
         q = np.atleast_2d(q)
         n, nq = q.shape
         qd = np.zeros_like(q) if qd is None else np.atleast_2d(qd)
         self.n, self.nq = n, (None if values_only else nq)
         self.values_only = values_only
-        self.scalar = values_only and n == 1
+        self.scalar = one_pose and n == 1
         self.q, self.qd = q, qd
         self._index = system.index
         self._cache = {}
@@ -93,12 +94,16 @@ class Frame:
 
     def _coordinate(self, i: int) -> Jet:
         if self.scalar:
-            return Jet(float(self.q[0, i]), None, float(self.qd[0, i]), 0.0)
+            g = None
+            if not self.values_only:
+                g = np.zeros(self.nq)
+                g[i] = 1.0
+            return Jet(float(self.q[0, i]), g, float(self.qd[0, i]), 0.0)
         return Jet.coordinate(self.q, self.qd, i, self.values_only)
 
     def const(self, c) -> Jet:
         if self.scalar:
-            return Jet(float(c), None, 0.0, 0.0)
+            return Jet(float(c), None if self.values_only else np.zeros(self.nq), 0.0, 0.0)
         return Jet.const(c, self.n, self.nq)
 
     def theta(self, link: str) -> Jet:
@@ -257,7 +262,7 @@ class System:
         if driver and not crank:
             rest.append(self.driver)
         if rest:
-            f = Frame(self, q, qd)
+            f = Frame(self, q, qd, one_pose=True)
             for i, e in enumerate(rest, start=start):
                 j = e.fn(f)
                 phi[:, i], jac[:, i], h[:, i] = j.v, j.g, j.h
@@ -290,7 +295,7 @@ class System:
         if driver and not crank:
             rest.append(self.driver)
         if rest:
-            f = Frame(self, q, qd, values_only=True)
+            f = Frame(self, q, qd, values_only=True, one_pose=True)
             for i, e in enumerate(rest, start=start):
                 j = e.fn(f)
                 phi[:, i] = j.v

@@ -12,7 +12,9 @@ needs of it along a motion q(t):
 
 The rules are the chain and product rules, e.g. for a product
 ``(ab)'' = a'' b + 2 a' b' + a b''``. Every field has a leading axis over
-poses, so one evaluation serves a whole crank cycle. With ``q' = 0`` the
+poses, so one evaluation serves a whole crank cycle; for a single pose the
+values and rates may be plain floats and the gradient a vector (nq,) (the
+same rules, cheaper than arrays of one element). With ``q' = 0`` the
 rate terms vanish and only values and gradients are computed.
 """
 from __future__ import annotations
@@ -20,6 +22,11 @@ from __future__ import annotations
 import numpy as np
 
 __all__ = ["Jet"]
+
+
+def _col(v):
+    """v as the factor of a gradient: a column (N, 1) over poses, or one pose's float itself."""
+    return v[:, None] if isinstance(v, np.ndarray) else v
 
 
 class Jet:
@@ -71,7 +78,7 @@ class Jet:
     def __mul__(self, o):
         if isinstance(o, Jet):
             return Jet(self.v * o.v,
-                       None if self.g is None else self.g * o.v[:, None] + o.g * self.v[:, None],
+                       None if self.g is None else self.g * _col(o.v) + o.g * _col(self.v),
                        self.vd * o.v + self.v * o.vd,
                        self.h * o.v + 2.0 * self.vd * o.vd + self.v * o.h)
         o = np.asarray(o, float)
@@ -82,7 +89,7 @@ class Jet:
 
     def _unary(self, f, f1, f2):
         """f(self), given f, f' and f'' evaluated at ``self.v``."""
-        return Jet(f, None if self.g is None else self.g * f1[:, None], self.vd * f1,
+        return Jet(f, None if self.g is None else self.g * _col(f1), self.vd * f1,
                    self.h * f1 + f2 * self.vd ** 2)
 
     def cos(self):
@@ -106,7 +113,7 @@ class Jet:
         r2 = x.v ** 2 + y.v ** 2
         ang = np.arctan2(y.v, x.v)
         ang = ref + np.mod(ang - ref + np.pi, 2 * np.pi) - np.pi
-        g = None if x.g is None else (x.v[:, None] * y.g - y.v[:, None] * x.g) / r2[:, None]
+        g = None if x.g is None else (_col(x.v) * y.g - _col(y.v) * x.g) / _col(r2)
         cross_d = x.v * y.vd - y.v * x.vd
         vd = cross_d / r2
         h = (x.v * y.h - y.v * x.h) / r2 - 2.0 * cross_d * (x.v * x.vd + y.v * y.vd) / r2 ** 2

@@ -718,9 +718,8 @@ class _Run:
         return p + (e[:, 0] + 1j * e[:, 1])
 
     def image(self, place):
-        if self.g.grounded(place):
-            return self.zero
-        return self.img[self.g.canon(place)]
+        c = self.g.canon(place)
+        return self.zero if c[0] == self.g.frame else self.img[c]
 
     def _set(self, place, v):
         self.img[self.g.canon(place)] = v
