@@ -363,7 +363,8 @@ class _Kennedy:
         for a in range(n):
             self.S[a][a] = _UNDEFINED
             for b in range(a + 1, n):
-                if tw == 0 or _norm3([u - v for u, v in zip(T[a], T[b])]) <= limit:
+                ta, tb = T[a], T[b]
+                if tw == 0 or _norm3((ta[0] - tb[0], ta[1] - tb[1], ta[2] - tb[2])) <= limit:
                     self.S[a][b] = self.S[b][a] = _UNDEFINED
                     self.unknown -= 1
                     self.info[(a, b)] = dict(how="undefined", order=0, note="the links move alike")
@@ -559,8 +560,8 @@ def _locate(sol) -> PoleSet:
 def _line(K, a, b, slot, vec, where, centre, scale):
     """The contract's (pair of labels, via entry, PoleLine) of the line in ``slot`` used for P_ab."""
     if slot < K.n:
-        ka, kb = K.key(a, slot), K.key(b, slot)
-        ends = (where[min(a, slot), max(a, slot)], where[min(b, slot), max(b, slot)])
+        ka, kb = K.keys[a][slot], K.keys[b][slot]
+        ends = (where[(a, slot) if a < slot else (slot, a)], where[(b, slot) if b < slot else (slot, b)])
         return ((ka, kb), (K.names[a], K.names[b], K.names[slot]),
                 _pole_line(f"P_{ka} P_{kb}", (ka, kb), vec, ends, centre, scale))
     label, desc = K.constraints[(a, b)][slot - K.n]
@@ -604,9 +605,11 @@ def _pole_set(sol, K, centre, scale, found) -> PoleSet:
             if K.S[a][b] != _KNOWN:
                 where[a, b] = None
                 continue
-            h = K.H[a][b]
+            h, ta, tb = K.H[a][b], T[a], T[b]
             # the disagreement with the velocity solution: |P_ab x (T_a - T_b)|
-            err = max(err, _norm3(_cross3(h, [u - v for u, v in zip(T[a], T[b])])) / (tw or 1.0))
+            e = _norm3(_cross3(h, (ta[0] - tb[0], ta[1] - tb[1], ta[2] - tb[2])))
+            if e > err:
+                err = e
             hw = (scale * h[0] + c0 * h[2], scale * h[1] + c1 * h[2], h[2])
             nw = max(_norm3(hw), 1e-300)
             hw = (hw[0] / nw, hw[1] / nw, hw[2] / nw)
@@ -628,6 +631,7 @@ def _pole_set(sol, K, centre, scale, found) -> PoleSet:
             construction = tuple(p[2] for p in parts)
         poles[key] = Pole((names[a], names[b]), key, position, direction, info["how"], info["order"], via,
                           lines, construction, info.get("sine", 1.0), np.array(hw), info.get("note", ""))
+    err /= tw or 1.0
     cl = {K.key(a, b): tuple(_pole_line(desc, (), K.L[a][b][n + c], (), centre, scale)
                              for c, (_, desc) in enumerate(items))
           for (a, b), items in K.constraints.items()}
