@@ -353,13 +353,14 @@ def assemble(m: Mechanism, index: dict, plan: DyadPlan, deltas) -> tuple[np.ndar
     return q, w.reach
 
 
-def coordinates(w: Walk, index: dict, plan: DyadPlan, deltas) -> np.ndarray:
+def coordinates(w: Walk, index: dict, plan: DyadPlan, deltas, out=None) -> np.ndarray:
     """The links' coordinates q (N, nq) of a walk: the place of each link's point whose
     reference position is the origin, O = p0 - rot s0, and its turn theta = arg(rot),
-    continuous from the reference pose (the crank's: the driver positions themselves)."""
+    continuous from the reference pose (the crank's: the driver positions themselves).
+    ``out``: an (N, nq) array to fill."""
     deltas = np.asarray(deltas, float)
     n = len(deltas)
-    q = np.empty((n, 3 * len(index)))
+    q = np.empty((n, 3 * len(index))) if out is None else out
     kind, drv, _ = plan.driver
     for name, k in index.items():
         lk = w.links[name]
@@ -377,12 +378,11 @@ def coordinates(w: Walk, index: dict, plan: DyadPlan, deltas) -> np.ndarray:
     return q
 
 
-def rates(w: Walk, index: dict, n: int) -> tuple[np.ndarray, np.ndarray]:
+def rates(w: Walk, index: dict, n: int, out=None) -> tuple[np.ndarray, np.ndarray]:
     """The links' coordinate rates q' and q'' (N, nq) from a walk with velocities: the
     place of each link's reference origin O moves at V_O = v0 + i omega (O - p0),
-    A_O = a0 + (i alpha - omega^2)(O - p0)."""
-    qd = np.empty((n, 3 * len(index)))
-    qdd = np.empty((n, 3 * len(index)))
+    A_O = a0 + (i alpha - omega^2)(O - p0). ``out``: two (N, nq) arrays to fill."""
+    qd, qdd = (np.empty((n, 3 * len(index))), np.empty((n, 3 * len(index)))) if out is None else out
     for name, k in index.items():
         lk = w.links[name]
         qd[:, 3 * k:3 * k + 2].view(complex)[:, 0], qdd[:, 3 * k:3 * k + 2].view(complex)[:, 0] = \

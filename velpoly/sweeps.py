@@ -115,15 +115,18 @@ def sweep(m: Mechanism, angles, kin: Kinematics | None = None) -> Sweep:
         stopped = "toggle" if n < len(deltas) else ""
         if n < len(deltas):
             w = _walk(m, plan, deltas[:n])
-        q = coordinates(w, kin.system.index, plan, deltas[:n])
+        # q, q', q'' in one block: the three levels of the same coordinates
+        block = np.empty((3, n, kin.system.nq))
+        q = coordinates(w, kin.system.index, plan, deltas[:n], out=block[0])
         near = np.flatnonzero(w.sine < 1e-3)
         if len(near):
             c = condition(kin, q[near])
             bad = near[~(c <= SINGULAR)]
             if len(bad):
                 n, stopped = int(bad[0]), "toggle"
-                w, q = _walk(m, plan, deltas[:n]), q[:n]
-        qd, qdd = rates(w, kin.system.index, n)
+                w, block = _walk(m, plan, deltas[:n]), block[:, :n]
+                q = block[0]
+        qd, qdd = rates(w, kin.system.index, n, out=(block[1], block[2]))
     else:
         if screened:    # the plan was not the mechanism's after all: check as before
             velocities(kin, np.zeros((1, kin.system.nq)), where="reference pose")
