@@ -252,6 +252,8 @@ def accelerations(kin: Kinematics, q, qd, jac=None):
     drv = kin.mechanism.driver
     rhs[:, -1] += drv.accel if drv.is_slider else drv.alpha
     good = np.isfinite(rhs).all(axis=1) & np.isfinite(a).all(axis=(1, 2))
+    if good.all():
+        return np.linalg.solve(a, rhs[..., None])[..., 0]
     out = np.full(q.shape, np.nan)
     if good.any():
         out[good] = np.linalg.solve(a[good], rhs[good][..., None])[..., 0]
