@@ -692,3 +692,46 @@ def test_a_note_must_explain_a_printed_value(capsys, tmp_path):
 def test_a_slot_of_no_radius(capsys, tmp_path):
     fails(capsys, tmp_path, FOURBAR + '\n[[slots]]\npin = "C"\nlink = "3"\nslot = "4"\ncentre = "C"\n',
           "slots[0].centre (line 26)", "the slot's centre is the point 'C' itself")
+
+
+@pytest.mark.parametrize("base, old, new, where, gist", [
+    ("f", B_LINE, 'B = { length = 40, angle = 60 }', "points.B (line 8)", "incomplete construction: length, angle"),
+    ("f", B_LINE, 'B = { from = "A", length = 40, along = ["D", "D"] }', "points.B.along (line 8)",
+     "'D' and 'D' coincide: no direction"),
+    ("f", "length = 40", "length = 0", "links.2.points (line 13)",
+     "its first two points 'A' and 'B' coincide, so the link's angle is undefined"),
+    ("f", "A = [0, 0]", '"" = [0, 0]\nA = [0, 0]', 'points."" (line 6)', "a point's name is empty"),
+    ("f", "D = [100, 0]", 'D = [100, 0]\n"E\\tF" = [5, 5]', r"points.E\tF (line 8)",
+     "a point's name must not contain control characters"),
+    ("g", "K = [0, 10]", "K = [0, 10]\nZ = [0, 0]", "contacts[0].centres (line 19)",
+     "the two centres of curvature coincide"),
+    ("g", "omega = 10", 'omega = 10\n[reference]\nvelocity = { P = [1, 0] }', "reference.velocity.P (line 23)",
+     "point 'P' moves differently on links 2, 3: say which"),
+])
+def test_the_remaining_input_errors(capsys, tmp_path, base, old, new, where, gist):
+    text = edit({"f": FOURBAR, "g": GEARS}[base], old, new)
+    if "Z = [0, 0]" in text:   # a centre of link 3 at O2's place
+        text = edit(edit(text, '3 = { points = ["O3", "R"] }', '3 = { points = ["O3", "R", "Z"] }'),
+                    'centres = ["O2", "O3"]', 'centres = ["O2", "Z"]')
+    fails(capsys, tmp_path, text, where, gist)
+
+
+def test_a_driver_the_joints_hold_still(capsys, tmp_path):
+    # the crank 5 is pinned to the frame at A and at E: it cannot turn, though the four-bar can
+    text = edit(edit(FOURBAR, "D = [100, 0]", "D = [100, 0]\nE = [0, -30]"), '1 = { points = ["A", "D"]',
+                '1 = { points = ["A", "D", "E"]')
+    text = edit(edit(text, '4 = { points = ["D", "C"] }', '4 = { points = ["D", "C"] }\n5 = { points = ["A", "E"] }'),
+                'link = "2"', 'link = "5"')
+    fails(capsys, tmp_path, text, "driver (line 19)", "the driver's motion is fixed by the joints")
+
+
+def test_a_file_that_cannot_be_read(capsys, tmp_path, monkeypatch):
+    f = tmp_path / "locked.toml"
+    f.write_text(FOURBAR)
+
+    def denied(self, *a, **kw):
+        raise PermissionError(13, "Permission denied")
+    monkeypatch.setattr(Path, "read_text", denied)
+    assert main(["solve", str(f)]) == 2
+    assert capsys.readouterr().err.splitlines() == [f"error: {f}: cannot read: Permission denied",
+                                                    "hint: check the path and its permissions"]

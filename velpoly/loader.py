@@ -59,7 +59,12 @@ def _key_parts(dotted: str) -> list[str]:
     out = []
     for m in _PART_RE.finditer(dotted):
         k = m.group(0)
-        if k[:1] in "\"'":
+        if k[:1] == '"' and "\\" in k:   # a basic string's escapes, as TOML reads them ("E\tF")
+            try:
+                k = tomllib.loads("k = " + k)["k"]
+            except tomllib.TOMLDecodeError:
+                k = k[1:-1]
+        elif k[:1] in "\"'":
             k = k[1:-1]
         out.append(k)
     return out
@@ -70,7 +75,9 @@ def _where_parts(where: str) -> list:
     out: list = []
     for piece in where.split("."):
         m = re.fullmatch(r"(.*?)((?:\[\d+\])*)", piece)
-        if m.group(1):
+        if m.group(1) in ('""', "''"):   # an empty name, written as TOML writes it
+            out.append("")
+        elif m.group(1):
             out.append(m.group(1))
         out.extend(int(i) for i in re.findall(r"\[(\d+)\]", m.group(2)))
     return out
@@ -613,7 +620,7 @@ def _names(ctx, table: str, raw: dict, kind: str) -> list[tuple[str, Any]]:
         n = str(k)
         where = f"{table}.{n}"
         if not n.strip():
-            raise ctx.err(where, f"a {kind}'s name is empty", hint=f"give the {kind} a name")
+            raise ctx.err(f"{table}.{json.dumps(n)}", f"a {kind}'s name is empty", hint=f"give the {kind} a name")
         if n in seen:
             raise ctx.err(where, f"{kind} {n!r} is defined twice", hint="each name once")
         for c, why in (("@", "point keys are \"P@link\""),) + ((("-", "pole keys are \"i-j\""),)
