@@ -152,3 +152,28 @@ def legend_trouble(fig) -> list:
                     and p.get_window_extent(r).overlaps(bb):
                 out.append(("over an arrowhead", p.get_gid()))
     return out
+
+
+def reasons_too_close(fig, gap: float = 3.5) -> list:
+    """Construction reasons whose text comes within ``gap`` points of a label (they read as one:
+    '... the path of B on 1 O_v, o_1')."""
+    from shapely import affinity
+    r = fig.canvas.get_renderer()
+    out = []
+
+    def outline(t):
+        rot = t.get_rotation()
+        t.set_rotation(0)
+        bb = t.get_window_extent(r)
+        t.set_rotation(rot)
+        return affinity.rotate(box(bb.x0, bb.y0, bb.x1, bb.y1), rot, origin="centroid")
+    for ax in fig.axes:
+        reasons = [t for t in ax.texts if (t.get_gid() or "").endswith("-reason")]
+        labels = [t for t in ax.texts if (t.get_gid() or "").startswith("label-")]
+        for a in reasons:
+            oa = outline(a)
+            for b in labels:
+                d = oa.distance(outline(b)) * 72 / fig.dpi
+                if d < gap:
+                    out.append((a.get_text(), b.get_text(), round(d, 2)))
+    return out

@@ -193,10 +193,13 @@ class LabelPlacer:
         t.remove()
         return None
 
-    def place_along(self, p0, p1, s: str, *, offset: float = 1.5, gid: str | None = None, **text_kw):
+    def place_along(self, p0, p1, s: str, *, offset: float = 1.5, gid: str | None = None, pad: float = 1.0,
+                    **text_kw):
         """Write ``s`` along the segment p0-p1 (rotated to it), where it is free; None if nowhere.
 
-        Tried at fractions of the segment from its far end inwards, on either side.
+        Tried at fractions of the segment from its far end inwards, on either side. ``pad``: the
+        margin (points) kept between the text's ends and other labels or arrowheads, so that the
+        words do not run on into a label ("... the path of B on 1 O_v").
         """
         ax = self.ax
         p0, p1 = np.asarray(p0, float), np.asarray(p1, float)
@@ -218,17 +221,21 @@ class LabelPlacer:
             t.remove()
             return None
         pp = per_point(ax)
+        grow = max(pad - 1.0, 0.0) * pp
         n = np.array([-u[1], u[0]])
         view = view_box(ax)
         pin = self.pins.get(gid) if gid else None
-        tries = [(f, side) for f in (0.78, 0.62, 0.46, 0.3) for side in (1, -1)]
+        tries = [(f, side) for f in (0.78, 0.62, 0.46, 0.3, 0.7, 0.54, 0.38, 0.22) for side in (1, -1)]
         if pin is not None and pin[0] == "along":
             tries.insert(0, pin[1])
         for frac, side in tries:
             c = p0 + u * (frac * length) + n * side * (offset * pp + h / 2)
             b = affinity.rotate(box(c[0] - w / 2, c[1] - h / 2, c[0] + w / 2, c[1] + h / 2), ang,
                                 origin=(c[0], c[1]))
-            if view.contains(b) and self.free(b, soft=True):
+            # its ends kept ``pad`` from labels and arrowheads (the words must not run on into a label)
+            big = affinity.rotate(box(c[0] - w / 2 - grow, c[1] - h / 2, c[0] + w / 2 + grow, c[1] + h / 2), ang,
+                                  origin=(c[0], c[1]))
+            if view.contains(b) and self.free(b, soft=True) and (grow == 0 or self.free(big)):
                 t.set_position((float(c[0]), float(c[1])))
                 if gid:
                     self.placed[gid] = ("along", (frac, side))

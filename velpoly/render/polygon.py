@@ -269,8 +269,8 @@ def draw_polygon(polygon, ax=None, *, mechanism=None, style="textbook", options=
         for line in art.get("construction", []):
             ln = line._velpoly_line
             xs, ys = line.get_data()
-            t = pl.place_along((xs[0], ys[0]), (xs[1], ys[1]), prose_tex(ln.reason), fontsize=st.small_size * 0.9,
-                               style="italic", zorder=6, gid=line.get_gid() + "-reason")
+            t = pl.place_along((xs[0], ys[0]), (xs[1], ys[1]), prose_tex(ln.reason), pad=8.0,
+                               fontsize=st.small_size * 0.9, style="italic", zorder=6, gid=line.get_gid() + "-reason")
             if t is not None:
                 art.add("reasons", t)
 
