@@ -216,35 +216,38 @@ def pole_key(links, i: str, j: str) -> str:
 
 # -- twists ---------------------------------------------------------------------------------
 def _normalisation(sol) -> tuple[np.ndarray, float]:
-    pts = np.array(list(sol.position.values()), float)
-    pts = pts[np.all(np.isfinite(pts), axis=1)]
-    centre = 0.5 * (pts.min(axis=0) + pts.max(axis=0)) if len(pts) else np.zeros(2)
-    return centre, float(sol.mechanism.size)
+    """The centre of the points' bounding box (finite points) and the mechanism's size."""
+    pts = [(float(x), float(y)) for x, y in sol.position.values() if math.isfinite(x) and math.isfinite(y)]
+    if not pts:
+        return np.zeros(2), float(sol.mechanism.size)
+    xs, ys = [x for x, _ in pts], [y for _, y in pts]
+    return np.array((0.5 * (min(xs) + max(xs)), 0.5 * (min(ys) + max(ys)))), float(sol.mechanism.size)
 
 
 def link_twists(sol, centre=None, scale=None) -> np.ndarray:
     """Every link's twist as a homogeneous point, rows in file order: (-v_y, v_x, omega).
 
     v is the velocity of the link's body point at ``centre`` divided by
-    ``scale`` (coordinates x' = (x - centre) / scale). The pole of links i
-    and j is the homogeneous point T_i - T_j: ``V_i = V_j`` where
+    ``scale`` (coordinates x' = (x - centre) / scale): v = V_O + omega k x (centre - O).
+    The pole of links i and j is the homogeneous point T_i - T_j: ``V_i = V_j`` where
     ``(v_i - v_j) + (omega_i - omega_j) k x x' = 0``. The frame's row is zero.
     """
     if centre is None or scale is None:
         centre, scale = _normalisation(sol)
     index = sol.kinematics.system.index
-    out = np.zeros((len(sol.mechanism.links), 3))
-    for row, lk in enumerate(sol.mechanism.links):
+    c0, c1 = float(centre[0]), float(centre[1])
+    q, qd = sol.q.tolist(), sol.qd.tolist()
+    out = []
+    for lk in sol.mechanism.links:
         k = index.get(lk.name)
         if k is None:
+            out.append((0.0, 0.0, 0.0))
             continue
-        o = sol.q[3 * k:3 * k + 2]
-        v = sol.qd[3 * k:3 * k + 2]
-        w = sol.qd[3 * k + 2]
-        r = centre - o
-        vc = (v + w * np.array([-r[1], r[0]])) / scale
-        out[row] = (-vc[1], vc[0], w)
-    return out
+        rx, ry = c0 - q[3 * k], c1 - q[3 * k + 1]
+        w = qd[3 * k + 2]
+        vx, vy = (qd[3 * k] + w * -ry) / scale, (qd[3 * k + 1] + w * rx) / scale
+        out.append((-vy, vx, w))
+    return np.array(out).reshape(len(out), 3)
 
 
 def _unit(h) -> np.ndarray:
