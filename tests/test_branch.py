@@ -216,6 +216,16 @@ def test_driver_angle_in_the_file_stays_on_the_branch():
     assert s.driver_angle == pytest.approx(-120) and u[0] * v[1] - u[1] * v[0] < 0
 
 
+def test_driver_angle_in_the_file_beyond_the_toggle_exits_3_at_its_line(capsys, tmp_path):
+    f = tmp_path / "triple_rocker.toml"
+    f.write_text(fourbar(80, 60, 70, 100, theta=60.0, branch=0).replace("omega = 10.0", "omega = 10.0\nangle = 150"))
+    assert main(["solve", str(f)]) == 3
+    err = capsys.readouterr().err.splitlines()
+    assert len(err) == 2 and err[0].startswith(f"error: {f}: driver.angle (line 17): cannot assemble at driver "
+                                               "angle 150 deg: a toggle lies on the way"), err
+    assert re.search(r"reachable: -\d+(\.\d+)? to \d+(\.\d+)? deg \(links [\d, ]+\)$", err[0]), err[0]
+
+
 # -- six-bars ---------------------------------------------------------------------------------------------
 @pytest.mark.parametrize("branch_c, branch_f", [(0, 0), (0, 1), (1, 0), (1, 1)])
 def test_watt_sixbar_turns_on_both_loops_branches(branch_c, branch_f):
