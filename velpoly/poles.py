@@ -219,9 +219,10 @@ def _normalisation(sol) -> tuple[np.ndarray, float]:
     """The centre of the points' bounding box (finite points) and the mechanism's size."""
     pts = [(float(x), float(y)) for x, y in sol.position.values() if math.isfinite(x) and math.isfinite(y)]
     if not pts:
-        return np.zeros(2), float(sol.mechanism.size)
+        return np.zeros(2), float(sol.kinematics.system.size)
     xs, ys = [x for x, _ in pts], [y for _, y in pts]
-    return np.array((0.5 * (min(xs) + max(xs)), 0.5 * (min(ys) + max(ys)))), float(sol.mechanism.size)
+    # the mechanism's size, as the system took it from the mechanism once
+    return np.array((0.5 * (min(xs) + max(xs)), 0.5 * (min(ys) + max(ys)))), float(sol.kinematics.system.size)
 
 
 def link_twists(sol, centre=None, scale=None) -> np.ndarray:

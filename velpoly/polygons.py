@@ -186,7 +186,7 @@ class _Geo:
         self.frame = m.frame.name
         self.links = m.link_names
         self.moving = tuple(k.name for k in m.moving_links)
-        self.size = m.size
+        self.size = sol.kinematics.system.size   # m.size, computed once for the system
         self.tol = 1e-9 * self.size
         self.key, self.pos, self.own = {}, {}, {lk: [] for lk in self.links}
         self.zpos = {}   # the same positions as complex numbers x + iy (what the replays compute with)

@@ -113,13 +113,13 @@ class Solution:
 
     def place(self, link: str, point: str) -> np.ndarray:
         """Where the point of ``link`` that was at ``point`` in the reference pose is now."""
-        s = self.mechanism.position(point)
         k = self.kinematics.system.index.get(link)
         if k is None:
-            return s
-        th = self.q[3 * k + 2]
+            return self.mechanism.position(point)
+        sx, sy = self.mechanism.points[point]
+        x, y, th = self.q[3 * k:3 * k + 3].tolist()
         c, sn = math.cos(th), math.sin(th)
-        return self.q[3 * k:3 * k + 2] + np.array([c * s[0] - sn * s[1], sn * s[0] + c * s[1]])
+        return np.array((x + (c * sx - sn * sy), y + (sn * sx + c * sy)))
 
     # -- JSON -------------------------------------------------------------------------------
     def to_dict(self) -> dict:
