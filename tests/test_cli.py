@@ -381,3 +381,14 @@ def test_the_table_shows_each_printed_value_beside_the_computed_one_and_the_devi
     r = velpoly_cmd("solve", f)
     line = next(x for x in r.stdout.split("Reference values")[1].splitlines() if x.startswith("omega_3 "))
     assert line.split()[1:3] == ["-3", "-2.82169"] and float(line.split()[3].rstrip("%")) == pytest.approx(5.94, abs=0.01)
+
+
+def test_at_another_angle_the_printed_values_are_listed_not_compared():
+    """The book's answers belong to the file's pose: at --angle 40 they would be 50 % "off"."""
+    r = velpoly_cmd("solve", SIXBAR, "--angle", "40")
+    assert r.returncode == 0
+    part = r.stdout.split("Reference values (Problem 1.4.4 (Fig. 3.19))", 1)[1]
+    title, header, _, first = part.splitlines()[:4]
+    assert title == ": printed for the file's pose (driver at 30 deg), not compared at 40 deg"
+    assert header.split() == ["quantity", "printed", "note"] and first.split() == ["omega_1", "6.28319"]
+    assert "%" not in part

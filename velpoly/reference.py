@@ -250,6 +250,21 @@ def _row(key, printed, value, note):
     return Row(key, float(printed), value, _rel(float(printed), value), None, note)
 
 
+def file_pose_angle(m) -> float | None:
+    """The driver angle (deg) of the pose the file describes, to which its printed values belong:
+    ``driver.angle`` if the file gives one, else the reference pose's; None for a slider driver."""
+    from .solution import driver_reference_angle
+    if m.driver.is_slider:
+        return None
+    return m.driver.angle if m.driver.angle is not None else driver_reference_angle(m)
+
+
+def at_file_pose(sol) -> bool:
+    """Whether ``sol`` is the pose the file describes (so its printed values apply to it)."""
+    pose = file_pose_angle(sol.mechanism)
+    return pose is None or sol.driver_angle is None or abs(_angle_diff(sol.driver_angle, pose)) < 1e-9
+
+
 def compare(sol) -> list[Row]:
     """Every ``[reference]`` value beside the analytic one, in the file's order."""
     m = sol.mechanism

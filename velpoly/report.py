@@ -13,7 +13,7 @@ from dataclasses import dataclass
 
 import numpy as np
 
-from .reference import compare
+from .reference import at_file_pose, compare, file_pose_angle
 
 __all__ = ["Table", "render_table", "solution_tables", "solution_report", "fmt", "polar", "SECTIONS"]
 
@@ -103,22 +103,36 @@ def _show_value(v) -> str:
     return fmt(v)
 
 
+def _is_pole(r) -> bool:
+    """A pole's position, printed as [x, y] (P_13 or P13)."""
+    return r.key.startswith("P") and isinstance(r.printed, tuple) and r.key[1:2] in ("_", *"0123456789")
+
+
+def _pole_text(xy) -> str:
+    return "at infinity" if xy is None else f"({fmt(xy[0])}, {fmt(xy[1])})"
+
+
 def _reference(sol) -> Table | None:
     m = sol.mechanism
     if not m.reference:
         return None
+    title = "Reference values" + (f" ({m.reference.source})" if m.reference.source else "")
+    if not at_file_pose(sol):   # the book's values are for the file's pose: list them, compare nothing
+        pose = file_pose_angle(m)
+        rows = tuple((r.key, _pole_text(r.printed) if _is_pole(r) else _show_value(r.printed), r.note)
+                     for r in compare(sol))
+        return Table(f"{title}: printed for the file's pose (driver at {pose:g} deg), not compared at "
+                     f"{sol.driver_angle:g} deg", ("quantity", "printed", "note"), rows)
     rows = []
     for r in compare(sol):
-        if r.key.startswith("P") and isinstance(r.printed, tuple) and r.key[1:2] in ("_", *"0123456789"):
-            printed = f"({fmt(r.printed[0])}, {fmt(r.printed[1])})"
-            computed = "at infinity" if r.computed is None else f"({fmt(r.computed[0])}, {fmt(r.computed[1])})"
+        if _is_pole(r):
+            printed, computed = _pole_text(r.printed), _pole_text(r.computed)
         else:
             printed, computed = _show_value(r.printed), _show_value(r.computed)
         dev = [] if r.deviation is None else [f"{100 * r.deviation:.3g}%"]
         if r.angle_error is not None:
             dev.append(f"{r.angle_error:.3g}°")
         rows.append((r.key, printed, computed, " ".join(dev) or "-", r.note))
-    title = "Reference values" + (f" ({m.reference.source})" if m.reference.source else "")
     return Table(title, ("quantity", "printed", "analytic", "deviation", "note"), tuple(rows))
 
 
