@@ -269,3 +269,13 @@ def test_free_sliding_contact_reports_its_slip():
     assert abs(np.dot(rel, u)) < 1e-9                         # no separation along the normal
     assert c["slip_velocity"] == pytest.approx(np.dot(rel, t), rel=1e-12)
     assert abs(c["slip_velocity"]) > 1.0                      # it does slide
+    # the slip acceleration is the rate of the slip velocity (a central difference over the sweep)
+    m, h = s.mechanism, 1e-3
+    w = velpoly.sweep(m, s.driver_angle + h * np.array([-1.0, 0.0, 1.0]))
+    sv = w.contacts[0]["slip_velocity"]
+    rate = (sv[2] - sv[0]) / (2 * math.radians(h)) * m.driver.omega + sv[1] / m.driver.omega * m.driver.alpha
+    assert c["slip_acceleration"] == pytest.approx(rate, rel=1e-6)
+    # a prescribed slip (constant) has no position equation: only the drawn pose is analysed
+    slipping = velpoly.load(CAM_ROLLER.replace('kind = "rolling"', 'kind = "sliding"\nslip = 6.0'))
+    with pytest.raises(velpoly.InputError, match="no position equation"):
+        velpoly.sweep(slipping, [30.0, 31.0])
