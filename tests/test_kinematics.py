@@ -130,6 +130,14 @@ def fd_check(m, angle, h=1e-3):
         # alpha = d(omega)/d(theta) omega_driver + (omega / omega_driver) alpha_driver
         al = _rich(w.omega[link], hr) * omega + w.omega[link][2] / omega * alpha
         assert al == pytest.approx(w.alpha[link][2], abs=1e-6 * scale_al), link
+    # sliders, slots and contacts: the slip acceleration is the rate of the slip velocity
+    for kind in ("sliders", "slots", "contacts"):
+        for i, joint in enumerate(getattr(w, kind, None) or ()):
+            sv, sa = joint["slip_velocity"], joint.get("slip_acceleration")
+            if sa is None or not np.all(np.isfinite(sa)):
+                continue
+            rate = _rich(sv, hr) * omega + sv[2] / omega * alpha
+            assert rate == pytest.approx(sa[2], abs=1e-6 * (scale_a + abs(sa[2]))), (kind, i)
 
 
 def test_fd_problem_1_4_4():
