@@ -435,6 +435,12 @@ def test_newton_reassembles_a_mechanism_drawn_without_constructions():
     for key in w.position:                                     # the same pose after a turn
         assert np.abs(w.position[key][-1] - w.position[key][0]).max() < 1e-9, key
     fd_check(m, 100.0)
+    # the Coriolis term of a curved slot on a turning guide: 2 omega_3 x V_rel (FORMAT.md section 5)
+    s = velpoly.solve(m, angle=100.0)
+    vrel = s.velocity["A"] - s.body_velocity("3", s.position["A"])
+    cor = 2 * s.omega["3"] * np.array([-vrel[1], vrel[0]])
+    assert s.to_dict()["sliders"][0]["coriolis"] == pytest.approx(cor, abs=1e-9 * np.hypot(*cor))
+    assert np.hypot(*cor) > 1.0
 
 
 def _printed_digits_unit(x: float) -> float:
