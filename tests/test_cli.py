@@ -392,3 +392,17 @@ def test_at_another_angle_the_printed_values_are_listed_not_compared():
     assert title == ": printed for the file's pose (driver at 30 deg), not compared at 40 deg"
     assert header.split() == ["quantity", "printed", "note"] and first.split() == ["omega_1", "6.28319"]
     assert "%" not in part
+
+
+def test_an_error_without_a_hint_gets_one_for_what_it_is_about(capsys, monkeypatch):
+    cases = [(velpoly.InputError("not a folder", where="--source", file="g"),
+              "check the option --source (velpoly solve --help lists the options)"),
+             (velpoly.InputError("bad", where="points.B", file="f"), "check the file against the format in the README"),
+             (velpoly.SingularPoseError("singular", where="reference pose", file="f", links=("3", "4")),
+              "choose another driver angle, or draw the mechanism in another pose")]
+    for err, hint in cases:
+        def raise_it(args, err=err):
+            raise err
+        monkeypatch.setitem(velpoly.cli.COMMANDS, "solve", raise_it)
+        assert main(["solve", "f"]) == err.exit_code
+        assert capsys.readouterr().err.splitlines() == [f"error: {err.line()}", f"hint: {hint}"]

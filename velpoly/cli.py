@@ -206,11 +206,11 @@ def _explain(e: VelpolyError, args) -> None:
         if line:
             e.where = f"{e.where} (line {line})"
     print(f"error: {e.line()}", file=sys.stderr)
-    hint = e.hint_line() or _default_hint(e)
+    hint = e.hint_line() or _default_hint(e, getattr(args, "command", None) or "COMMAND")
     print(f"hint: {hint}", file=sys.stderr)
 
 
-def _default_hint(e: VelpolyError) -> str:
+def _default_hint(e: VelpolyError, command: str = "COMMAND") -> str:
     """The hint of an error raised without one: about the argument, the file or the pose."""
     if not isinstance(e, InputError):
         return "choose another driver angle, or draw the mechanism in another pose"
@@ -218,7 +218,7 @@ def _default_hint(e: VelpolyError) -> str:
         return ("--angle DEG turns a crank driver to that absolute angle (a finite number of degrees, "
                 "counter-clockwise from +x); a slider driver has none")
     if e.where.startswith("-"):
-        return f"check the command's options: velpoly {e.where} ... (see velpoly COMMAND --help)"
+        return f"check the option {e.where.split()[0]} (velpoly {command} --help lists the options)"
     return "check the file against the format in the README"
 
 
