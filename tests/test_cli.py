@@ -278,6 +278,14 @@ def test_writing_over_a_folder_is_an_input_error(tmp_path):
     assert [p.name for p in tmp_path.iterdir()] == ["out.svg"]
 
 
+def test_writing_under_a_file_is_an_input_error_naming_it(tmp_path):
+    (tmp_path / "out").write_text("a file")
+    for target in (tmp_path / "out" / "x.svg", tmp_path / "out" / "sub" / "x.svg"):
+        with pytest.raises(velpoly.InputError, match=f"cannot write: '{tmp_path / 'out'}' is a file, not a folder"):
+            atomic_write_text(target, "x")
+    assert [p.name for p in tmp_path.iterdir()] == ["out"] and (tmp_path / "out").read_text() == "a file"
+
+
 @pytest.mark.skipif(hasattr(os, "geteuid") and os.geteuid() == 0, reason="root writes anywhere")
 def test_an_unwritable_folder_is_an_input_error(tmp_path):
     ro = tmp_path / "ro"

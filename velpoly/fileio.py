@@ -38,6 +38,10 @@ def atomic_path(target):
     if target.is_dir():
         raise InputError("is a folder: cannot write a file there", file=str(target),
                          hint="give the output file's name")
+    blocker = next((p for p in (folder, *folder.parents) if p.exists()), None)
+    if blocker is not None and not blocker.is_dir():   # a file where the output's folder should be
+        raise InputError(f"cannot write: {str(blocker)!r} is a file, not a folder", file=str(target),
+                         hint="give an output path whose folders are folders")
     try:
         folder.mkdir(parents=True, exist_ok=True)
         fd, tmp = tempfile.mkstemp(prefix=f".{target.stem}.", suffix=target.suffix + ".part", dir=folder)
