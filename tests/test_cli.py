@@ -414,3 +414,23 @@ def test_an_error_without_a_hint_gets_one_for_what_it_is_about(capsys, monkeypat
         monkeypatch.setitem(velpoly.cli.COMMANDS, "solve", raise_it)
         assert main(["solve", "f"]) == err.exit_code
         assert capsys.readouterr().err.splitlines() == [f"error: {err.line()}", f"hint: {hint}"]
+
+
+def test_the_package_metadata():
+    """PEP 621 metadata as installed: the console script, the dependencies and the test extra."""
+    import importlib.metadata as md
+    import re as re_
+    import shutil
+    import tomllib
+    project = tomllib.loads((Path(__file__).resolve().parent.parent / "pyproject.toml").read_text())["project"]
+    assert project["name"] == "velpoly" and project["scripts"] == {"velpoly": "velpoly.cli:main"}
+    dist = md.distribution("velpoly")
+    assert [(e.name, e.value) for e in dist.entry_points if e.group == "console_scripts"] == \
+        [("velpoly", "velpoly.cli:main")]
+    names = {re_.split(r"[<>=;\s\[]", r, maxsplit=1)[0]: r for r in dist.requires}
+    assert {"numpy", "matplotlib", "shapely"} <= {n for n, r in names.items() if "extra ==" not in r}
+    assert {"pytest", "hypothesis"} <= {n for n, r in names.items() if 'extra == "test"' in r}
+    exe = shutil.which("velpoly")
+    if exe:   # the installed script runs the same main
+        r = subprocess.run([exe, "--version"], capture_output=True, text=True, timeout=60)
+        assert r.returncode == 0 and r.stdout.startswith("velpoly ")
