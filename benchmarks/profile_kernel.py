@@ -33,7 +33,8 @@ import numpy as np
 from bench_sweep import ANGLES_DEG, FOURBAR
 
 # the kernel functions timed, where they exist (the kernel changes; missing names are skipped)
-SWEEP_STAGES = ("prepare", "reassemble", "walk", "rates", "condition", "velocities", "accelerations", "evaluate_motion")
+SWEEP_STAGES = ("prepare", "_closed_form", "reassemble", "walk", "coordinates", "rates", "condition", "velocities",
+                "accelerations", "evaluate_motion")
 STAGES = {"velpoly.sweeps": SWEEP_STAGES,
           "velpoly.sweep": SWEEP_STAGES,        # the module's name before a4055dd
           "velpoly.solution": ("prepare", "reassemble", "velocities", "accelerations", "evaluate_motion"),
