@@ -20,6 +20,7 @@ plan and are assembled by continuation (:mod:`velpoly.pose`).
 """
 from __future__ import annotations
 
+import math
 from dataclasses import dataclass
 
 import numpy as np
@@ -108,8 +109,8 @@ def dyad_plan(m: Mechanism) -> DyadPlan | None:
                     if b is None or v in sliders or u in sliders:
                         continue
                     p3, k3 = b
-                    e = P[p3] - P[p1]
-                    f = P[p2] - P[p1]
+                    e = (P[p3] - P[p1]) / m.size       # in units of the size: no overflow
+                    f = (P[p2] - P[p1]) / m.size
                     cross = e[0] * f[1] - e[1] * f[0]
                     if np.hypot(*e) == 0:
                         continue
@@ -147,17 +148,17 @@ def _margin(m: Mechanism, steps, P) -> float:
     that can lose rank)."""
     out = np.inf
     for st in steps:
-        u = P[st[5]] - P[st[3]]
+        u = (P[st[5]] - P[st[3]]) / m.size     # in units of the size: no overflow
         lu = np.hypot(*u)
         if st[0] == "RRR":
-            v = P[st[5]] - P[st[6]]
+            v = (P[st[5]] - P[st[6]]) / m.size
             lv = np.hypot(*v)
             sine = abs(u[0] * v[1] - u[1] * v[0]) / (lu * lv) if lu * lv > 0 else 0.0
             arm = min(lu, lv)
         else:
             sine = abs(np.dot(u, st[7])) / lu if lu > 0 else 0.0
             arm = lu
-        out = min(out, sine * arm / m.size)
+        out = min(out, sine * arm)
     return float(out) if steps else 1.0
 
 
@@ -241,14 +242,18 @@ def walk(m: Mechanism, plan: DyadPlan, deltas, rate: float | None = None, accel:
     deltas = np.asarray(deltas, float)
     n = len(deltas)
     rates = rate is not None
-    P = {k: _c(v) for k, v in m.points.items()}
+    # lengths far from 1 are walked in units of a power of two near the size (exact), so that
+    # their squares neither overflow nor underflow
+    exp = math.frexp(m.size)[1]
+    unit = math.ldexp(1.0, exp) if abs(exp) > 200 else 1.0
+    P = {k: _c(v) / unit for k, v in m.points.items()}
     links = {m.frame.name: LinkMotion(0j, 0j, 1.0, 0.0, 0.0, 0.0, 0.0)}
     kind, link, extra = plan.driver
     if kind == "crank":
         c = P[extra]
         links[link] = LinkMotion(c, c, np.exp(1j * deltas), 0.0, 0.0, float(rate or 0.0), float(accel))
     else:
-        e = complex(np.exp(1j * np.radians(extra)))
+        e = complex(np.exp(1j * np.radians(extra))) / unit
         links[link] = LinkMotion(0j, deltas * e, 1.0, (rate or 0.0) * e, accel * e, 0.0, 0.0)
     joints = {}
 
@@ -276,7 +281,15 @@ def walk(m: Mechanism, plan: DyadPlan, deltas, rate: float | None = None, accel:
         if rates:
             sine = here if sine is None else np.minimum(sine, here)
     reach = n if bad is None or not bad.any() else int(np.argmax(bad))
+    if unit != 1.0:
+        links = {k: LinkMotion(lk.s0 * unit, lk.p0 * unit, lk.rot, _times(lk.v0, unit), _times(lk.a0, unit),
+                               lk.omega, lk.alpha) for k, lk in links.items()}
+        joints = {k: tuple(_times(x, unit) for x in j) for k, j in joints.items()}
     return Walk(links, joints, np.ones(n) if sine is None else sine, reach)
+
+
+def _times(x, unit):
+    return None if x is None else x * unit
 
 
 def _rrr(links, u_, v_, j1, j3, s1, s2, s3, side, n, rates):
