@@ -177,3 +177,25 @@ def reasons_too_close(fig, gap: float = 3.5) -> list:
                 if d < gap:
                     out.append((a.get_text(), b.get_text(), round(d, 2)))
     return out
+
+
+def leaders_crossing_labels(fig) -> list:
+    """Leader lines (from a label far from its anchor) that cross another label's box."""
+    from shapely.geometry import LineString
+    r = fig.canvas.get_renderer()
+    s = 0.3 * fig.dpi / 72
+    out = []
+    for ax in fig.axes:
+        texts = [t for t in ax.texts if (t.get_gid() or "").startswith(("label-", "link-number-", "driver-label",
+                                                                         "scale-bar", "kennedy-label-"))]
+        boxes = []
+        for t in texts:
+            bb = t.get_window_extent(r)
+            boxes.append((t, box(bb.x0 + s, bb.y0 + s, bb.x1 - s, bb.y1 - s)))
+        for t in texts:
+            ld = getattr(t, "_velpoly_leader", None)
+            if ld is None or ld.axes is None:
+                continue
+            line = LineString(ax.transData.transform(ld.get_xydata()))
+            out += [(t.get_text(), o.get_text()) for o, b in boxes if o is not t and line.intersects(b)]
+    return out

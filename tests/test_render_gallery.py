@@ -18,7 +18,7 @@ import pytest
 from shapely.geometry import box
 
 import velpoly
-from render_contract import assert_page_texts_clear, legend_trouble, reasons_too_close
+from render_contract import assert_page_texts_clear, leaders_crossing_labels, legend_trouble, reasons_too_close
 from velpoly.errors import InputError
 from velpoly.render import sheet
 from velpoly.render.style import get_style, rc_context
@@ -71,6 +71,7 @@ def test_every_sheet_and_style_renders(path):
             assert_page_texts_clear(fig)
             assert not legend_trouble(fig), f"{name}/{style}: the legend runs {legend_trouble(fig)[:3]}"
             assert not reasons_too_close(fig), f"{name}/{style}: reasons run into labels {reasons_too_close(fig)}"
+            assert not leaders_crossing_labels(fig), f"{name}/{style}: leaders cross {leaders_crossing_labels(fig)}"
             for ax in fig.axes:   # numbers with a minus sign, not a hyphen ('P_04 (-3.185, 0.1862)')
                 bad = [t.get_text() for t in ax.texts if re.search(r"(?<![\w.])-[0-9]", t.get_text())]
                 assert not bad, f"{name}/{style}: hyphen for minus in {bad}"

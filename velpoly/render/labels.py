@@ -26,6 +26,7 @@ __all__ = ["LabelPlacer", "placer", "segment"]
 
 # ring radii, in points of gap between the anchor and the box
 RINGS = (2.5, 5.0, 9.0, 14.0, 21.0, 30.0, 42.0, 58.0)
+FAR_RINGS = (9.0, 21.0, 42.0, 80.0, 105.0)   # finer directions, only when nothing above is free
 
 
 class LabelPlacer:
@@ -42,6 +43,7 @@ class LabelPlacer:
         # label, scale bar and legend where the finished construction has it, so that nothing jumps
         self.placed: dict = {}
         self.pins: dict = {}
+        self.leaders: list = []    # leader lines drawn (also hard obstacles)
 
     # -- obstacles ---------------------------------------------------------------------
     def add_obstacle(self, geom, hard: bool = True) -> None:
@@ -116,8 +118,16 @@ class LabelPlacer:
             if view.contains(b) and self.free(b):
                 best = (0, c, b, pin[2])
         rings = () if best is not None else (gap,) + tuple(r for r in RINGS if r > gap)
+        # when nothing is free within the rings (a crowd of labels and their leaders): farther out, in
+        # finer steps of direction, before giving up
+        rings = rings + tuple((r, True) for r in FAR_RINGS) if rings else rings
         for ring_i, ring in enumerate(rings):
-            for ang in _directions(prefer, 16 if ring_i >= 2 else 8):
+            far = isinstance(ring, tuple)
+            if far:
+                if best is not None:
+                    break
+                ring = ring[0]
+            for ang in _directions(prefer, 24 if far else 16 if ring_i >= 2 else 8):
                 if within is not None and abs((ang - (prefer or 45.0) + 180.0) % 360.0 - 180.0) > within + 1e-9:
                     continue
                 u = np.array([math.cos(math.radians(ang)), math.sin(math.radians(ang))])
@@ -127,6 +137,9 @@ class LabelPlacer:
                 b = box(c[0] - w / 2, c[1] - h / 2, c[0] + w / 2, c[1] + h / 2)
                 if not view.contains(b) or not self.free(b):
                     continue
+                if leader and ring >= 9.0 and self.boxes and bool(np.any(shapely.intersects(
+                        np.array(self.boxes, dtype=object), LineString([tuple(anchor), tuple(_toward(b, anchor))])))):
+                    continue   # its leader would cross another label
                 hits = self._soft_hits(b)
                 if best is None or hits < best[0]:
                     best = (hits, c, b, ring)
@@ -138,7 +151,29 @@ class LabelPlacer:
             t.remove()
             return self.place(anchor, s, prefer=prefer, gap=gap, leader=leader, gid=gid, obstacle=obstacle, pad=pad,
                               **text_kw)
-        if best is None:  # nothing free in view: fall back to the first ring's preferred spot
+        if best is None:
+            # nothing free: the place clear of every label (and of their leaders) covering the fewest
+            # arrowheads and pins, then lines
+            hard = np.array(self.hard, dtype=object)
+            boxes = np.array(self.boxes + self.leaders, dtype=object)   # what its box must keep off
+            labels_ = np.array(self.boxes, dtype=object)               # what its leader must not cross
+            for ring in (gap,) + tuple(r for r in RINGS if r > gap) + FAR_RINGS[3:] + (135.0,):
+                for ang in _directions(prefer, 16):
+                    u = np.array([math.cos(math.radians(ang)), math.sin(math.radians(ang))])
+                    c = anchor + u * (ring * pp + _half_extent(w, h, u))
+                    b = box(c[0] - w / 2, c[1] - h / 2, c[0] + w / 2, c[1] + h / 2)
+                    if not view.contains(b) or (len(boxes) and bool(np.any(shapely.intersects(boxes, b)))):
+                        continue
+                    crossed = int(np.count_nonzero(shapely.intersects(
+                        labels_, LineString([tuple(anchor), tuple(_toward(b, anchor))])))) \
+                        if leader and ring >= 9.0 and len(labels_) else 0
+                    score = (crossed, int(np.count_nonzero(shapely.intersects(hard, b))) if len(hard) else 0,
+                             self._soft_hits(b))
+                    if best is None or score < best[0]:
+                        best = (score, c, b, ring)
+            if best is not None:
+                self.overlapping.append(t)
+        if best is None:  # nothing clear of the labels in view: fall back to the first ring's preferred spot
             u = np.array([math.cos(math.radians(prefer or 45.0)), math.sin(math.radians(prefer or 45.0))])
             c = anchor + u * (gap * pp + _half_extent(w, h, u))
             b = box(c[0] - w / 2, c[1] - h / 2, c[0] + w / 2, c[1] + h / 2)
@@ -156,6 +191,9 @@ class LabelPlacer:
                         zorder=t.get_zorder())
             ax.add_line(ln)
             t._velpoly_leader = ln
+            if obstacle:   # later labels keep off it
+                self.leaders.append(LineString([tuple(start), tuple(edge)]).buffer(0.4 * pp))
+                self.hard.append(self.leaders[-1])
         if obstacle:
             self.boxes.append(b)
             self.texts.append(t)
