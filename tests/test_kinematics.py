@@ -496,3 +496,27 @@ def test_the_printed_digits_rule():
     assert _printed_digits_unit(0.651) == pytest.approx(1e-3)
     assert _printed_digits_unit(97.0) == 1 and _printed_digits_unit(1200.0) == 100
     assert _printed_digits_unit(6.28319) == pytest.approx(1e-5) and _printed_digits_unit(2.5e-05) == pytest.approx(1e-6)
+
+
+@pytest.mark.parametrize("scale", [1e-200, 1e-30, 1e30, 1e200])
+def test_constructions_hold_at_any_scale(scale):
+    """Compass constructions take their squares at the construction's own scale (a power of two,
+    exact): a mechanism drawn in units 1e200 times smaller or larger has the same shape."""
+    from velpoly.pose import circle_circle, circle_line
+    for got, want in ((circle_circle([0, 0], 5 * scale, [8 * scale, 0], 5 * scale), circle_circle([0, 0], 5, [8, 0], 5)),
+                      (circle_line([0, 0], 5 * scale, [0, 3 * scale], 0.0), circle_line([0, 0], 5, [0, 3], 0.0))):
+        for g, w in zip(got[:2], want[:2]):
+            assert np.asarray(g) == pytest.approx(np.asarray(w) * scale, rel=1e-15, abs=0)
+    d = fourbar(2, 8, 7, 9, theta=40.0, coupler=(3.0, 30.0))
+    base = velpoly.load(d)
+    for p in ("O4",):
+        d["points"][p] = [x * scale for x in d["points"][p]]
+    for p in ("A", "B", "E"):
+        spec = d["points"][p]
+        if "length" in spec:
+            spec["length"] *= scale
+        if "circles" in spec:
+            spec["circles"] = [[c, r * scale] for c, r in spec["circles"]]
+    m = velpoly.load(d)
+    for p in base.points:
+        assert m.position(p) == pytest.approx(base.position(p) * scale, rel=1e-12, abs=0), p

@@ -12,6 +12,8 @@ continuation stops there, with the reachable range.
 """
 from __future__ import annotations
 
+import math
+
 import numpy as np
 
 from .constraints import System
@@ -36,9 +38,12 @@ def circle_circle(p, r1: float, q, r2: float):
     if dist == 0.0:
         return p, p, (abs(r1 - r2) if r1 != r2 else float("inf"))
     gap = max(dist - (r1 + r2), abs(r1 - r2) - dist, 0.0)
-    a = (r1 * r1 - r2 * r2 + dist * dist) / (2 * dist)
-    h2 = r1 * r1 - a * a
-    h = np.sqrt(h2) if h2 > 0 else 0.0
+    k = _pow2(max(dist, r1, r2))   # squares in units of the construction: no overflow, no underflow (exact)
+    dk, r1k, r2k = dist * k, r1 * k, r2 * k
+    a = (r1k * r1k - r2k * r2k + dk * dk) / (2 * dk) / k
+    ak = a * k
+    h2 = r1k * r1k - ak * ak
+    h = np.sqrt(h2) / k if h2 > 0 else 0.0
     e = d / dist
     n = np.array([-e[1], e[0]])
     m = p + a * e
@@ -57,8 +62,17 @@ def circle_line(c, r: float, through, direction_deg: float):
     foot = p + np.dot(c - p, e) * e
     d = float(np.hypot(*(c - foot)))
     gap = max(d - r, 0.0)
-    h = np.sqrt(max(r * r - d * d, 0.0))
+    k = _pow2(max(r, d))   # as in circle_circle: the squares taken at the scale of the construction
+    rk, dk = r * k, d * k
+    h = np.sqrt(max(rk * rk - dk * dk, 0.0)) / k
     return foot - h * e, foot + h * e, gap
+
+
+def _pow2(x: float) -> float:
+    """A power of two near 1/x (1 for 0 or non-finite x): scaling by it is exact in floating point."""
+    if not (x > 0 and math.isfinite(x)):
+        return 1.0
+    return math.ldexp(1.0, -min(max(math.frexp(x)[1], -1000), 1000))   # 2^+-1000: finite
 
 
 # -- Newton and continuation -------------------------------------------------------
