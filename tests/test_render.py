@@ -845,3 +845,32 @@ def test_frames_put_everything_where_the_finished_construction_has_it(sixbar, tm
     assert not moved
     files = sheet.draw_to_file(sol, tmp_path / "s.svg", "velocity", steps=True, cons=cons)
     assert len(files) == len(cons.velocity.steps)
+
+
+def test_poles_at_infinity_are_labelled_arrows_beyond_the_mechanism():
+    """Each pole at infinity is an arrow pointing its way, beyond the mechanism (at the border of the
+    drawing), labelled 'P_ij ∞'; a finite pole out of reach is labelled with its position, minus signs
+    and all (ex3_4: P_16, P_17, P_67 at infinity, P_45 far away)."""
+    pytest.importorskip("velpoly.poles")
+    from velpoly.poles import locate_poles
+    from velpoly.render.displacement import mechanism_bounds
+    from velpoly.render.kennedy import draw_poles
+    sol = velpoly.solve(velpoly.load(ROOT / "gallery" / "ex3_4_slotted_lever.toml"))
+    ps = locate_poles(sol)
+    ax = _axes((9, 6))
+    art = draw_poles(sol, ax, poleset=ps)
+    x0, y0, x1, y1 = mechanism_bounds(sol)
+    inside = box(x0, y0, x1, y1)
+    heads = {h.get_gid()[len("pole-"):]: h for h in art.get("far", []) if hasattr(h, "get_xy") and h.get_gid()}
+    at_infinity = [k for k, p in ps.poles.items() if p.position is None and p.direction is not None]
+    assert at_infinity and set(at_infinity) <= set(heads)
+    vx0, vx1 = ax.get_xlim()
+    vy0, vy1 = ax.get_ylim()
+    for k, h in heads.items():
+        tip = h.get_xy()[0]
+        assert not inside.contains(shapely.Point(*tip)) and vx0 < tip[0] < vx1 and vy0 < tip[1] < vy1
+        text = art.labels[k].get_text()
+        if ps.poles[k].position is None:
+            assert text.endswith(r"$\infty$")
+        else:
+            assert "(" in text and "-" not in text.split("(")[1]

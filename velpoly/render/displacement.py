@@ -648,7 +648,8 @@ def mark_auxiliary(sol, ax, polygon, *, style="textbook") -> Artists:
                                  colour=st.ink, zorder=6, gid=f"auxiliary-{key}")
             pl.add_obstacle(poly)
             art.add("auxiliary", sh, hd)
-            t = pl.place(tip - d * 1.0 * pc, tex(name) + f" ({p[0]:.4g}, {p[1]:.4g})", prefer=math.degrees(
+            where = f" ({p[0]:.4g}, {p[1]:.4g})".replace("-", "−")
+            t = pl.place(tip - d * 1.0 * pc, tex(name) + where, prefer=math.degrees(
                 math.atan2(-d[1], -d[0])), fontsize=st.font_size * 0.9, fontstyle="italic", zorder=7,
                 gid=f"label-point-{key}")
             art.add("labels", t)
