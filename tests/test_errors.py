@@ -735,3 +735,17 @@ def test_a_file_that_cannot_be_read(capsys, tmp_path, monkeypatch):
     assert main(["solve", str(f)]) == 2
     assert capsys.readouterr().err.splitlines() == [f"error: {f}: cannot read: Permission denied",
                                                     "hint: check the path and its permissions"]
+
+
+def test_one_error_hierarchy():
+    """velpoly.VelpolyError is the root; input errors exit 2, pose errors 3 and name their links."""
+    assert issubclass(velpoly.InputError, velpoly.VelpolyError) and issubclass(velpoly.PoseError, velpoly.VelpolyError)
+    assert issubclass(velpoly.AssemblyError, velpoly.PoseError) and issubclass(velpoly.SingularPoseError, velpoly.PoseError)
+    assert not issubclass(velpoly.PoseError, velpoly.InputError)
+    assert (velpoly.InputError("x").exit_code, velpoly.AssemblyError("x").exit_code,
+            velpoly.SingularPoseError("x").exit_code) == (2, 3, 3)
+    e = velpoly.SingularPoseError("singular pose", where="reference pose", file="f.toml", hint="h", links=(3, "4"))
+    assert (e.what, e.where, e.file, e.hint, e.links) == ("singular pose", "reference pose", "f.toml", "h", ("3", "4"))
+    assert str(e) == e.line() == "f.toml: reference pose: singular pose (links 3, 4)"
+    assert velpoly.PoseError("toggle of links 2, 3", links=("2", "3")).line() == "toggle of links 2, 3"
+    assert velpoly.InputError("a\nb", where="points.A").line() == "points.A: a\\nb"
