@@ -100,7 +100,8 @@ def intersect_lines(p, d, q, e):
 
     Solves p + s d = q + t e. Returns ``(x, s, t, sine)``: the point, the two
     parameters and |sin| of the angle between the lines (its conditioning).
-    Parallel lines give ``x = None``.
+    Parallel lines give ``x = None`` (so do lines so nearly parallel that s or t
+    overflows).
     """
     p, d, q, e = (np.asarray(v, float) for v in (p, d, q, e))
     den = d[0] * e[1] - d[1] * e[0]
@@ -111,6 +112,8 @@ def intersect_lines(p, d, q, e):
     w = q - p
     s = (w[0] * e[1] - w[1] * e[0]) / den
     t = (w[0] * d[1] - w[1] * d[0]) / den
+    if not (math.isfinite(s) and math.isfinite(t)):
+        return None, math.nan, math.nan, sine
     return p + s * d, s, t, sine
 
 
@@ -128,6 +131,8 @@ def intersect_lines_z(p, d, q, e):
     w = q - p
     s = (w.conjugate() * e).imag / den
     t = (w.conjugate() * d).imag / den
+    if not (math.isfinite(s) and math.isfinite(t)):
+        return None, math.nan, math.nan, sine
     return p + s * d, s, t, sine
 
 
@@ -179,7 +184,7 @@ def intersect_lines_batch(p, d, q, e):
 
     Solves p + s d = q + t e for every leading index. Returns ``(x, s, t, sine)``
     with shapes (..., 2), (...), (...), (...); parallel pairs give NaN in x, s, t
-    and a sine of 0.
+    and a sine of 0 (pairs whose s or t overflows give NaN too, with their sine).
 
     >>> x, s, t, sine = intersect_lines_batch([[0, 0], [0, 0]], [[1, 0], [1, 0]],
     ...                                       [[2, 1], [0, 1]], [[0, 1], [1, 0]])
@@ -194,6 +199,8 @@ def intersect_lines_batch(p, d, q, e):
         sine = np.where(scale > 0, np.abs(den) / np.where(scale > 0, scale, 1.0), 0.0)
         s = np.where(den != 0, (w[..., 0] * e[..., 1] - w[..., 1] * e[..., 0]) / den, np.nan)
         t = np.where(den != 0, (w[..., 0] * d[..., 1] - w[..., 1] * d[..., 0]) / den, np.nan)
+        meets = np.isfinite(s) & np.isfinite(t)
+        s, t = np.where(meets, s, np.nan), np.where(meets, t, np.nan)
     return p + s[..., None] * d, s, t, sine
 
 

@@ -377,7 +377,8 @@ class _Kennedy:
         return self.keys[a][b]
 
     def set(self, a, b, h, info) -> None:
-        h = tuple(map(float, h))
+        if type(h) is not tuple:   # an array (a slider's pole at infinity, the velocity fallback)
+            h = tuple(map(float, h))
         self.H[a][b] = self.H[b][a] = h
         if self.S[a][b] == _UNKNOWN:
             self.unknown -= 1

@@ -518,7 +518,9 @@ class _Planner:
                 ks = [q for q in self.kp[lk] if g.dist(q, n) > g.tol]
                 if ks:
                     q = ks[0]
-                    out.append(_Line((lk, q), (("normal", lk, q, n),), G.unit(G.perp(g.pos[n] - g.pos[q])),
+                    r = g.zpos[n] - g.zpos[q]
+                    rn = abs(r)
+                    out.append(_Line((lk, q), (("normal", lk, q, n),), np.array((-r.imag / rn, r.real / rn)),
                                      ("rigid", lk, q, n), f"perpendicular to {q}{n}", (lk,)))
             for i, r in enumerate(g.rels):
                 if r.exact or r.at not in (None, n) or lk not in (r.a, r.b):
