@@ -874,3 +874,21 @@ def test_poles_at_infinity_are_labelled_arrows_beyond_the_mechanism():
             assert text.endswith(r"$\infty$")
         else:
             assert "(" in text and "-" not in text.split("(")[1]
+
+
+def test_current_chord_is_heavier_with_dashes_as_long(sixbar):
+    """--steps on the poles sheet: the chord of the pole just found is drawn heavier, its dashes as long on
+    paper as the other found chords' (matplotlib scaled them with the width: the chord ended in a gap)."""
+    pytest.importorskip("velpoly.poles")
+    from velpoly.poles import locate_poles
+    from velpoly.render.kennedy import draw_kennedy_circle
+    m, sol = sixbar
+    ps = locate_poles(sol)
+    found = sorted((p for p in ps.poles.values() if p.order > 0), key=lambda p: p.order)
+    assert len(found) >= 2
+    k = found[-1].order
+    art = draw_kennedy_circle(sol, _axes((4, 4)), poleset=ps, upto=k)
+    chords = {c.get_gid()[len("chord-"):]: c for c in art["chords"]}
+    heavy, other = chords[found[-1].key], chords[found[0].key]
+    assert heavy.get_linewidth() > other.get_linewidth()
+    np.testing.assert_allclose(heavy._dash_pattern[1], other._dash_pattern[1])

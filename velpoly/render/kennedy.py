@@ -255,7 +255,10 @@ def draw_kennedy_circle(sol, ax=None, *, style="textbook", options=None, poleset
         elif undefined and ch.order == 0:
             ls, lw = (0, (1, 2)), st.thin_lw * 1.5
         else:
-            ls, lw = (0, (5, 3)), st.link_lw * (1.8 if upto is not None and ch.order == last else 1.0)
+            heavy = 1.8 if upto is not None and ch.order == last else 1.0
+            # the dashes as long as the other chords' (matplotlib scales them with the width): a heavy
+            # chord keeps reaching its points instead of ending in a long gap
+            ls, lw = (0, (5 / heavy, 3 / heavy)), st.link_lw * heavy
         colour = st.ink if not (st.coloured and not ch.solid) else "#c0392b"
         line = Line2D([a[0], b[0]], [a[1], b[1]], lw=lw, linestyle=ls, color=colour, zorder=2,
                       gid=f"chord-{ch.key}")
