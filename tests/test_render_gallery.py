@@ -21,6 +21,7 @@ import velpoly
 from render_contract import assert_page_texts_clear, leaders_crossing_labels, legend_trouble, reasons_too_close
 from velpoly.errors import InputError
 from velpoly.render import sheet
+from velpoly.render.canvas import per_cm
 from velpoly.render.style import get_style, rc_context
 
 ROOT = Path(__file__).resolve().parent.parent
@@ -72,6 +73,13 @@ def test_every_sheet_and_style_renders(path):
             assert not legend_trouble(fig), f"{name}/{style}: the legend runs {legend_trouble(fig)[:3]}"
             assert not reasons_too_close(fig), f"{name}/{style}: reasons run into labels {reasons_too_close(fig)}"
             assert not leaders_crossing_labels(fig), f"{name}/{style}: leaders cross {leaders_crossing_labels(fig)}"
+            for ax in fig.axes:   # each caption's scale is its panel's (a legend's strip changes it)
+                cap = next((t.get_text() for t in fig.texts if t.get_gid() == f"caption-{ax.get_label()}"), "")
+                said = re.search(r"1 cm = ([0-9.e+-]+)", cap)
+                if said:
+                    assert per_cm(ax) == pytest.approx(float(said.group(1)), rel=1e-9), f"{name}/{style}: {cap}"
+                    bar = next(p for p in ax.patches if p.get_gid() == "scale-bar")
+                    assert 1.0 - 1e-9 <= bar.get_width() / per_cm(ax) <= 2.5 + 1e-9
             for ax in fig.axes:   # numbers with a minus sign, not a hyphen ('P_04 (-3.185, 0.1862)')
                 bad = [t.get_text() for t in ax.texts if re.search(r"(?<![\w.])-[0-9]", t.get_text())]
                 assert not bad, f"{name}/{style}: hyphen for minus in {bad}"
