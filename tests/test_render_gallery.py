@@ -73,6 +73,8 @@ def test_every_sheet_and_style_renders(path):
             assert not legend_trouble(fig), f"{name}/{style}: the legend runs {legend_trouble(fig)[:3]}"
             assert not reasons_too_close(fig), f"{name}/{style}: reasons run into labels {reasons_too_close(fig)}"
             assert not leaders_crossing_labels(fig), f"{name}/{style}: leaders cross {leaders_crossing_labels(fig)}"
+            sizes = {t.get_fontsize() for t in fig.texts if (t.get_gid() or "").startswith("caption-")}
+            assert len(sizes) == 1, f"{name}/{style}: captions in sizes {sizes}"
             for ax in fig.axes:   # each caption's scale is its panel's (a legend's strip changes it)
                 cap = next((t.get_text() for t in fig.texts if t.get_gid() == f"caption-{ax.get_label()}"), "")
                 said = re.search(r"1 cm = ([0-9.e+-]+)", cap)

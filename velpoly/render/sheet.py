@@ -340,6 +340,7 @@ def render_sheet(sol, sheet: str = "full", style="textbook", *, cons: Constructi
             art = draw_polygon(poly, ax, mechanism=m, style=st, options=opts, upto=upto)
         placer(ax).placed["_scale"] = ("scale", s, tuple(ax.get_xlim()), tuple(ax.get_ylim()))
         captions[kind] = scale_text(s, m.units, power)
+    caps = []
     for name, ax in axes.items():
         if name == "table":
             continue
@@ -348,6 +349,9 @@ def render_sheet(sol, sheet: str = "full", style="textbook", *, cons: Constructi
         cap = fig.text(pos.x0 + pos.width / 2, pos.y1 + 0.004, text, ha="center", va="bottom",
                        fontsize=st.font_size, style="italic", gid=f"caption-{name}")
         _fit_width(fig, cap, pos.width + 0.008)   # within its column: clear of its neighbours and the page's edge
+        caps.append(cap)
+    for cap in caps:   # the captions of a sheet in one size, that of the one that had to shrink most
+        cap.set_fontsize(min(c.get_fontsize() for c in caps))
     fig._velpoly_pins = {name: dict(placer(ax).placed) for name, ax in axes.items()}
     if "table" in axes:
         shows = {"velocity": ("velocity",), "acceleration": ("acceleration",), "poles": (),
