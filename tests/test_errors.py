@@ -749,3 +749,27 @@ def test_one_error_hierarchy():
     assert str(e) == e.line() == "f.toml: reference pose: singular pose (links 3, 4)"
     assert velpoly.PoseError("toggle of links 2, 3", links=("2", "3")).line() == "toggle of links 2, 3"
     assert velpoly.InputError("a\nb", where="points.A").line() == "points.A: a\\nb"
+
+
+@pytest.mark.parametrize("base, old, new, where, gist", [
+    ("f", 'omega = "10 rad/s"', "omega = 1e200", "driver.omega (line 19)",
+     r"1e\+200 rad/s is too large: speeds of 1.52e\+202 mm/s \(at most 1e\+100\)"),
+    ("f", "alpha = 0", "alpha = 1e300", "driver.alpha (line 20)", r"1e\+300 rad/s\^2 is too large: accelerations"),
+    ("f", "alpha = 0", "alpha = 1.7e308", "driver.alpha (line 20)", r"accelerations of beyond 1e\+308"),
+    ("f", "D = [100, 0]", "D = [100, 0]\nZ = [1e120, 0]", "points (line 5)",
+     r"the mechanism's size 1e\+120 mm is out of range \(1e-100 to 1e\+100\)"),
+    ("s", 'link = "1"\nomega = 10', 'slider = "C"\nspeed = 1e150', "driver.speed (line 20)", "too large: speeds of 1e"),
+])
+def test_numbers_beyond_what_the_arithmetic_holds(capsys, tmp_path, base, old, new, where, gist):
+    """A size or a driver motion whose speeds or accelerations would overflow (or vanish) is an input
+    error, never an internal error or a silently NaN result."""
+    text = edit({"f": FOURBAR, "s": SLIDER}[base], old, new)
+    if "Z = " in text:
+        text = edit(text, '1 = { points = ["A", "D"]', '1 = { points = ["A", "D", "Z"]')
+    fails(capsys, tmp_path, text, where, gist)
+
+
+def test_tiny_mechanisms_are_out_of_range_too(capsys, tmp_path):
+    text = FOURBAR.replace("[100, 0]", "[1e-118, 0]").replace("length = 40", "length = 4e-119")
+    text = text.replace('[["B", 120], ["D", 80]], near = [90, 80]', '[["B", 1.2e-118], ["D", 8e-119]], near = [9e-119, 8e-119]')
+    fails(capsys, tmp_path, text, "points (line 5)", "the mechanism's size .* mm is out of range")

@@ -498,19 +498,20 @@ def test_the_printed_digits_rule():
     assert _printed_digits_unit(6.28319) == pytest.approx(1e-5) and _printed_digits_unit(2.5e-05) == pytest.approx(1e-6)
 
 
-@pytest.mark.parametrize("scale", [1e-200, 1e-30, 1e30, 1e200])
-def test_constructions_hold_at_any_scale(scale):
+@pytest.mark.parametrize("scale", [1e-90, 1e-30, 1e30, 1e90])
+def test_constructions_and_kinematics_hold_at_any_scale(scale):
     """Compass constructions take their squares at the construction's own scale (a power of two,
-    exact): a mechanism drawn in units 1e200 times smaller or larger has the same shape."""
+    exact), even 1e200 times smaller or larger; a mechanism drawn in units 1e90 times smaller or
+    larger (the range velpoly accepts: docs/errors.md) has the same shape, omegas and alphas."""
     from velpoly.pose import circle_circle, circle_line
-    for got, want in ((circle_circle([0, 0], 5 * scale, [8 * scale, 0], 5 * scale), circle_circle([0, 0], 5, [8, 0], 5)),
-                      (circle_line([0, 0], 5 * scale, [0, 3 * scale], 0.0), circle_line([0, 0], 5, [0, 3], 0.0))):
-        for g, w in zip(got[:2], want[:2]):
-            assert np.asarray(g) == pytest.approx(np.asarray(w) * scale, rel=1e-15, abs=0)
+    for k in (scale, scale ** 2 if scale > 1 else scale ** 2.2):   # up to 1e+-198
+        for got, want in ((circle_circle([0, 0], 5 * k, [8 * k, 0], 5 * k), circle_circle([0, 0], 5, [8, 0], 5)),
+                          (circle_line([0, 0], 5 * k, [0, 3 * k], 0.0), circle_line([0, 0], 5, [0, 3], 0.0))):
+            for g, w in zip(got[:2], want[:2]):
+                assert np.asarray(g) == pytest.approx(np.asarray(w) * k, rel=1e-15, abs=0)
     d = fourbar(2, 8, 7, 9, theta=40.0, coupler=(3.0, 30.0))
     base = velpoly.load(d)
-    for p in ("O4",):
-        d["points"][p] = [x * scale for x in d["points"][p]]
+    d["points"]["O4"] = [x * scale for x in d["points"]["O4"]]
     for p in ("A", "B", "E"):
         spec = d["points"][p]
         if "length" in spec:
@@ -520,3 +521,9 @@ def test_constructions_hold_at_any_scale(scale):
     m = velpoly.load(d)
     for p in base.points:
         assert m.position(p) == pytest.approx(base.position(p) * scale, rel=1e-12, abs=0), p
+    for angle in (None, 150.0):
+        a, b = velpoly.solve(base, angle=angle), velpoly.solve(m, angle=angle)
+        for link in a.omega:
+            assert b.omega[link] == pytest.approx(a.omega[link], rel=1e-9, abs=1e-12)
+            assert b.alpha[link] == pytest.approx(a.alpha[link], rel=1e-9, abs=1e-12)
+        assert b.acceleration["E"] == pytest.approx(a.acceleration["E"] * scale, rel=1e-9, abs=0)

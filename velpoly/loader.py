@@ -666,6 +666,7 @@ def _build(ctx: _Ctx, data: dict, default_title: str) -> Mechanism:
             raise ctx.err(f"points.{pname}", "the construction gives no finite position",
                           hint="check its lengths and angles")
     size = _size(pts)
+    _check_size(ctx, pts)
 
     # links
     raw_links = _table(ctx, data, "links")
@@ -878,8 +879,48 @@ def _build(ctx: _Ctx, data: dict, default_title: str) -> Mechanism:
         slots=tuple(slots), driver=driver, reference=reference, drawing=frozen_map(drawing),
         carriers=frozen_map(carriers), source=ctx.file, point_order=tuple(pts),
     )
+    _check_range(ctx, m)
     _check_reference(ctx, m)
     return m
+
+
+# Floating point holds about 1e+-308: the kinematics squares speeds and multiplies rates by lengths,
+# so the sizes, speeds and accelerations a file may ask for are bounded well inside that range.
+SIZE_RANGE = (1e-100, 1e100)    # the mechanism's size (its points' bounding-box diagonal), length units
+MAX_SPEED = 1e100               # the driver's speeds: |omega| x size, |speed|
+MAX_ACCEL = 1e200               # and accelerations: (omega^2 + |alpha|) x size, |accel|
+
+
+def _check_size(ctx, pts: dict) -> None:
+    """The mechanism's size (as Mechanism.size: its points' bounding-box diagonal) inside SIZE_RANGE."""
+    size = _size(pts)
+    if not SIZE_RANGE[0] <= size <= SIZE_RANGE[1]:
+        raise ctx.err("points", f"the mechanism's size {_length(ctx, size)} is out of range "
+                      f"({SIZE_RANGE[0]:g} to {SIZE_RANGE[1]:g})",
+                      hint="the arithmetic would overflow or underflow: give the lengths in other units")
+
+
+def _check_range(ctx, m: Mechanism) -> None:
+    """The driver's motion inside the range the arithmetic holds (the size is checked with the
+    points): else speeds or accelerations would overflow or vanish (an input error, never a wrong number)."""
+    size = m.size
+    d = m.driver
+    if d.is_slider:
+        speed, accel = abs(d.speed), abs(d.accel)
+        checks = (("driver.speed", speed, MAX_SPEED, f"{d.speed:g}"), ("driver.accel", accel, MAX_ACCEL, f"{d.accel:g}"))
+    else:
+        speed, accel = abs(d.omega) * size, (d.omega * d.omega + abs(d.alpha)) * size
+        checks = (("driver.omega", speed, MAX_SPEED, f"{d.omega:g} rad/s"),
+                  ("driver.alpha" if abs(d.alpha) > d.omega * d.omega else "driver.omega", accel, MAX_ACCEL,
+                   f"{d.alpha:g} rad/s^2" if abs(d.alpha) > d.omega * d.omega else f"{d.omega:g} rad/s"))
+    unit = m.units or "length units"
+    for where, value, limit, shown in checks:
+        if not value <= limit:
+            what, per = ("speeds", "/s") if limit == MAX_SPEED else ("accelerations", "/s^2")
+            reach = f"{value:.3g}" if math.isfinite(value) else "beyond 1e+308"
+            raise ctx.err(where, f"{shown} is too large: {what} of {reach} {unit}{per} (at most {limit:g})",
+                          hint="check the driver's value and its unit (omega in rad/s or rpm), and give the "
+                               "lengths in units that keep the numbers within range")
 
 
 def _contact_centres(ctx, where, cs, owners, p, pts, listed, owned, point_ref, size):
