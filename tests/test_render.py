@@ -892,3 +892,14 @@ def test_current_chord_is_heavier_with_dashes_as_long(sixbar):
     heavy, other = chords[found[-1].key], chords[found[0].key]
     assert heavy.get_linewidth() > other.get_linewidth()
     np.testing.assert_allclose(heavy._dash_pattern[1], other._dash_pattern[1])
+
+
+def test_current_step_lines_are_heavier_with_dashes_as_long(sixbar):
+    """A step frame draws its own construction lines heavier, dashed like the earlier steps' on paper."""
+    m, sol = sixbar
+    poly = sixbar_velocity(sol)
+    art = draw_polygon(poly, _axes(), mechanism=m, upto=4)
+    lines = {ln.get_gid().split("-")[1]: ln for ln in art["construction"]}
+    heavy, earlier = lines["4"], lines["2"]
+    assert heavy.get_linewidth() > earlier.get_linewidth()
+    np.testing.assert_allclose(heavy._dash_pattern[1], earlier._dash_pattern[1])

@@ -180,8 +180,9 @@ def draw_polygon(polygon, ax=None, *, mechanism=None, style="textbook", options=
                 continue
             (x0, y0), (x1, y1) = seg.coords[0], seg.coords[-1]
             trial = li >= 2     # a trial solution's own lines, beyond the two intersected
-            line = Line2D([x0, x1], [y0, y1], lw=st.thin_lw * (1.6 if current and not trial else 1.0),
-                          color=st.ink, linestyle=(0, (1, 2)) if trial else (0, (6, 3)), zorder=1.5,
+            heavy = 1.6 if current and not trial else 1.0   # the current step's lines; dashes as long as the others'
+            line = Line2D([x0, x1], [y0, y1], lw=st.thin_lw * heavy, color=st.ink,
+                          linestyle=(0, (1, 2)) if trial else (0, (6 / heavy, 3 / heavy)), zorder=1.5,
                           gid=f"construction-{step.index}-{li}-{ln.base_label}")
             line._velpoly_line = ln
             ax.add_line(line)
