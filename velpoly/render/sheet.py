@@ -193,8 +193,9 @@ def _fit_width(fig, text, width: float, smallest: float = 0.7) -> None:
 
 
 def _page(fig, st, m, sol):
-    """The page's title (shrunk to the page's width where it must be); return it."""
-    title = m.title
+    """The page's title, typeset like a step's equation (``omega_2`` -> omega with subscript 2, ``30 deg``
+    -> 30°) and shrunk to the page's width where it must be; return it."""
+    title = equation_tex(m.title)
     if not at_file_pose(sol):   # drawn with --angle: say where the driver is
         title += f"  (driver at {sol.driver_angle:.4g}°)"
     t = fig.text(0.5, 0.975, title, ha="center", va="top", fontsize=st.title_size, gid="sheet-title")
