@@ -208,6 +208,19 @@ def test_fd_random_inverted_slider_cranks(r, d, theta, omega, alpha):
     assert np.dot(arel, e) == pytest.approx(sl["slip_acceleration"], abs=1e-9 * (1 + np.hypot(*a3)))
 
 
+
+@pytest.mark.parametrize("omega, alpha", [(40.0, 0.0), (-7.3, 2.9), (0.1, -1e3)])
+def test_the_driver_reads_its_input_exactly(omega, alpha):
+    """The crank's omega and alpha are the file's, to the last bit (the linear solve is not allowed to
+    turn 40 rad/s into 39.99999999999999); its points move with exactly that omega."""
+    for d in (inverted_slider_crank(3.0, 7.0, 45.0, omega, alpha), SIXBAR_1_4_4):
+        m = velpoly.load(d)
+        s = velpoly.solve(m)
+        drv = m.driver
+        out = s.to_dict()["links"][drv.link]
+        assert out["omega"] == drv.omega and out["alpha"] == drv.alpha
+        assert s.omega[drv.link] == drv.omega
+
 def test_sweep_one_turn_is_continuous_and_closes():
     m = velpoly.load(fourbar(2, 8, 7, 9))   # Grashof crank-rocker
     ref = velpoly.solve(m).driver_angle

@@ -232,7 +232,19 @@ def velocities(kin: Kinematics, q, check: bool = True, where: str = "pose", jac=
         a[bad] = np.eye(a.shape[1])
         rhs[bad] = np.nan
     qd = np.linalg.solve(a, rhs[..., None])[..., 0]
+    _exact_crank(kin, qd, kin.mechanism.driver.omega)
     return qd, cond
+
+
+def _exact_crank(kin: Kinematics, rates: np.ndarray, value: float) -> None:
+    """Write the crank's prescribed rate (theta_d' = omega, theta_d'' = alpha) into its column.
+
+    The driver's row makes that column equal the input up to the solve's round-off;
+    the input itself is exact (a driver given as 40 rad/s reads 40, not 39.99999999999999).
+    """
+    if kin.system.crank >= 0:
+        col = rates[:, 3 * kin.system.crank + 2]
+        col[np.isfinite(col)] = value
 
 
 def accelerations(kin: Kinematics, q, qd, jac=None):
@@ -253,8 +265,11 @@ def accelerations(kin: Kinematics, q, qd, jac=None):
     rhs[:, -1] += drv.accel if drv.is_slider else drv.alpha
     good = np.isfinite(rhs).all(axis=1) & np.isfinite(a).all(axis=(1, 2))
     if good.all():
-        return np.linalg.solve(a, rhs[..., None])[..., 0]
-    out = np.full(q.shape, np.nan)
-    if good.any():
-        out[good] = np.linalg.solve(a[good], rhs[good][..., None])[..., 0]
+        out = np.linalg.solve(a, rhs[..., None])[..., 0]
+    else:
+        out = np.full(q.shape, np.nan)
+        if good.any():
+            out[good] = np.linalg.solve(a[good], rhs[good][..., None])[..., 0]
+    if not drv.is_slider:
+        _exact_crank(kin, out, drv.alpha)
     return out
