@@ -49,3 +49,37 @@ def test_accelerations_with_the_velocities_jacobian(path):
     qd, _ = velocities(kin, q, jac=jac)
     assert np.array_equal(qd, velocities(kin, q)[0])
     assert np.array_equal(accelerations(kin, q, qd, jac=jac), accelerations(kin, q, qd), equal_nan=True)
+
+
+@pytest.mark.parametrize("path", FILES, ids=lambda p: p.stem)
+@pytest.mark.parametrize("with_qdd", [True, False])
+def test_evaluate_motion_one_pose_matches_the_batch(path, with_qdd):
+    """evaluate_motion at one pose (plain floats) equals the same pose in a batch (arrays)."""
+    from velpoly.motion import evaluate_motion
+    m = velpoly.load(path)
+    rng = np.random.default_rng(3)
+    index = prepare(m).system.index
+    nq = 3 * len(index)
+    q, qd, qdd = (rng.normal(size=(2, nq)) * 0.3 for _ in range(3))
+    qdd = qdd if with_qdd else None
+    one = evaluate_motion(m, index, q[:1], qd[:1], None if qdd is None else qdd[:1])
+    two = evaluate_motion(m, index, q, qd, qdd)
+
+    def same(a, b):
+        a, b = np.asarray(a, float), np.asarray(b, float)[:1]
+        assert a.shape == b.shape
+        assert np.array_equal(np.isnan(a), np.isnan(b))
+        ok = ~np.isnan(a)
+        assert np.all(np.abs(a[ok] - b[ok]) <= 1e-13 * max(1.0, np.abs(b[ok]).max(initial=0.0)))
+    for name in ("angle", "omega", "alpha", "position", "velocity", "acceleration"):
+        x, y = getattr(one, name), getattr(two, name)
+        assert list(x) == list(y)
+        for k in x:
+            same(x[k], y[k])
+    for name in ("sliders", "slots", "contacts"):
+        x, y = getattr(one, name), getattr(two, name)
+        assert len(x) == len(y)
+        for r, s in zip(x, y):
+            assert list(r) == list(s)
+            for k in r:
+                same(r[k], s[k])

@@ -19,7 +19,7 @@ from dataclasses import dataclass, replace
 
 import numpy as np
 
-from .constraints import Frame, contact_frame, contact_slip_equation, slider_coordinate
+from .constraints import Frame, contact_frame, contact_slip_equation
 from .model import Mechanism
 
 __all__ = ["Motion", "LinkMotion", "point_keys", "evaluate_motion", "wrap_deg"]
@@ -30,6 +30,12 @@ def wrap_deg(a):
     a = np.asarray(a, float)
     w = np.mod(a + 180.0, 360.0) - 180.0
     return np.where(w == -180.0, 180.0, w)
+
+
+def _wrap1(a: float) -> float:
+    """:func:`wrap_deg` of one float (the same operations, on floats)."""
+    w = (a + 180.0) % 360.0 - 180.0
+    return 180.0 if w == -180.0 else w
 
 
 def _perp(v):
@@ -270,6 +276,8 @@ def evaluate_motion(m: Mechanism, index: dict, q, qd, qdd=None, walk=None) -> Mo
     """
     q, qd = np.atleast_2d(q), np.atleast_2d(qd)
     qdd = None if qdd is None else np.atleast_2d(qdd)
+    if walk is None and len(q) == 1 and not m.contacts:
+        return _evaluate_one(m, index, q, qd, qdd)
     B = _Bodies(m, index, q, qd, qdd) if walk is None else _WalkBodies(walk, m, index, q, qd, qdd)
     P = {k: np.array(v, float) for k, v in m.points.items()}
 
@@ -344,12 +352,11 @@ def evaluate_motion(m: Mechanism, index: dict, q, qd, qdd=None, walk=None) -> Mo
     sliders = []
     for s in m.sliders:
         d = _path_dir(B, s, P)
-        sliders.append(_relative(B, s.block, s.guide, B.place(s.block, P[s.point]), d,
-                                 slider_coordinate(m, s), q, qd, qdd, m))
+        sliders.append(_relative(B, s.block, s.guide, B.place(s.block, P[s.point]), d, q, qd, qdd))
     slots = []
     for s in m.slots:
         d = _path_dir(B, s, P, block=s.link, guide=s.slot, point=s.pin)
-        slots.append(_relative(B, s.link, s.slot, B.place(s.link, P[s.pin]), d, None, q, qd, qdd, m))
+        slots.append(_relative(B, s.link, s.slot, B.place(s.link, P[s.pin]), d, q, qd, qdd))
     contacts = []
     for c in m.contacts:
         a, b = c.links
@@ -444,7 +451,7 @@ def _path_dir(B, s, P, block=None, guide=None, point=None):
     return _perp(_norm(r))
 
 
-def _relative(B, block, guide, w, d, coord_eq, q, qd, qdd, m):
+def _relative(B, block, guide, w, d, q, qd, qdd):
     v_rel = B.vel(block, w) - B.vel(guide, w)
     slip_v = np.einsum("ij,ij->i", v_rel, d)
     om_g = B.theta(guide, qd)
@@ -456,3 +463,123 @@ def _relative(B, block, guide, w, d, coord_eq, q, qd, qdd, m):
         slip_a = np.einsum("ij,ij->i", a_rel, d)
     return {"slip_velocity": slip_v, "slip_acceleration": slip_a, "coriolis": cor,
             "direction": np.degrees(np.arctan2(d[:, 1], d[:, 0]))}
+
+
+class _Link1:
+    """One link's motion at one pose in plain floats: origin (x, y), turn (c, s) = (cos, sin)
+    theta, origin velocity (vx, vy), omega, origin acceleration (ax, ay), alpha (NaN without
+    q''). The frame is all zeros with c = 1."""
+
+    __slots__ = ("x", "y", "c", "s", "vx", "vy", "om", "ax", "ay", "al")
+
+    def __init__(self, k, q, qd, qdd):
+        if k is None:
+            self.x = self.y = self.s = self.vx = self.vy = self.om = 0.0
+            self.c = 1.0
+            self.ax = self.ay = self.al = math.nan if qdd is None else 0.0   # unknown without q''
+            return
+        i = 3 * k
+        self.x, self.y, th = q[i:i + 3]
+        self.c, self.s = math.cos(th), math.sin(th)
+        self.vx, self.vy, self.om = qd[i:i + 3]
+        self.ax, self.ay, self.al = (math.nan,) * 3 if qdd is None else qdd[i:i + 3]
+
+    def turn(self, dx, dy):
+        """R(theta) d."""
+        return self.c * dx - self.s * dy, self.s * dx + self.c * dy
+
+    def place(self, sx, sy):
+        """r = x + R(theta) s: where the link's point with reference position s is."""
+        rx, ry = self.turn(sx, sy)
+        return self.x + rx, self.y + ry
+
+    def vel(self, wx, wy):
+        """V = V_O + omega x r of the link's point now at w, r = w - x."""
+        rx, ry = wx - self.x, wy - self.y
+        return self.vx + self.om * -ry, self.vy + self.om * rx
+
+    def acc(self, wx, wy):
+        """A = A_O + alpha x r - omega^2 r of the link's point now at w, r = w - x."""
+        rx, ry = wx - self.x, wy - self.y
+        w2 = self.om * self.om
+        return self.ax + self.al * -ry - w2 * rx, self.ay + self.al * rx - w2 * ry
+
+
+def _evaluate_one(m: Mechanism, index: dict, q, qd, qdd) -> Motion:
+    """:func:`evaluate_motion` at one pose without contacts, in plain floats.
+
+    The same equations, operation for operation: a body point P = x + R(theta) s,
+    V_P = V_O + omega x (P - x), A_P = A_O + alpha x (P - x) - omega^2 (P - x); along a
+    path with unit direction d, V_rel = V_P(block) - V_P(guide), slip V_rel . d, Coriolis
+    2 omega_guide x V_rel, A_rel = A_P(block) - A_P(guide) - Coriolis, slip A_rel . d.
+    Arrays are built only for the returned Motion (shape (1, 2) per point, (1,) per value).
+    """
+    q0, qd0 = q[0].tolist(), qd[0].tolist()
+    qdd0 = None if qdd is None else qdd[0].tolist()
+    P = m.points
+    L = {lk.name: _Link1(index.get(lk.name), q0, qd0, qdd0) for lk in m.links}
+
+    def vec(x, y):
+        return np.array(((x, y),))
+
+    # a slider's point on its guide, a slot's pin on the slot link: where the block (pin link) has it
+    coincident = {(s.point, s.guide): s.block for s in m.sliders}
+    coincident.update({(s.pin, s.slot): s.link for s in m.slots})
+    position, velocity, acceleration = {}, {}, {}
+    for key, p, lk in point_keys(m):
+        b = L[lk]
+        wx, wy = L[coincident.get((p, lk), lk)].place(*P[p])
+        position[key] = vec(wx, wy)
+        velocity[key] = vec(*b.vel(wx, wy))
+        acceleration[key] = vec(*b.acc(wx, wy))
+
+    def path_dir(s, block, guide, point):
+        """The path's unit direction now (ccw about K for a circle)."""
+        if s.centre is None:
+            t = math.radians(s.angle)
+            return L[guide].turn(math.cos(t), math.sin(t))
+        bx, by = L[block].place(*P[point])
+        kx, ky = L[guide].place(*P[s.centre])
+        rx, ry = bx - kx, by - ky
+        n = math.sqrt(rx * rx + ry * ry)
+        return -(ry / n), rx / n
+
+    angle, omega, alpha = {}, {}, {}
+    block_path = {s.block: s for s in m.sliders}
+    for link in m.links:
+        b, name = L[link.name], link.name
+        k = index.get(name)
+        th = 0.0 if k is None else q0[3 * k + 2]
+        if len(link.points) >= 2:
+            (x0, y0), (x1, y1) = P[link.points[0]], P[link.points[1]]
+            dx, dy = float(x1) - float(x0), float(y1) - float(y0)
+            base = math.degrees(math.atan2(dy, dx)) if math.hypot(dx, dy) > 0 else 0.0
+            a = _wrap1(base + math.degrees(th))
+        elif name in block_path:
+            s = block_path[name]
+            dx, dy = path_dir(s, s.block, s.guide, s.point)
+            a = _wrap1(math.degrees(math.atan2(dy, dx)))
+        else:
+            a = _wrap1(math.degrees(th))
+        angle[name] = np.array((a,))
+        omega[name] = np.array((b.om,))
+        alpha[name] = np.array((b.al,))
+
+    def relative(s, block, guide, point):
+        dx, dy = path_dir(s, block, guide, point)
+        wx, wy = L[block].place(*P[point])
+        (bvx, bvy), (gvx, gvy) = L[block].vel(wx, wy), L[guide].vel(wx, wy)
+        rvx, rvy = bvx - gvx, bvy - gvy
+        om2 = 2.0 * L[guide].om
+        cx, cy = om2 * -rvy, om2 * rvx
+        if qdd is None:
+            slip_a = math.nan
+        else:
+            (bax, bay), (gax, gay) = L[block].acc(wx, wy), L[guide].acc(wx, wy)
+            slip_a = (bax - gax - cx) * dx + (bay - gay - cy) * dy
+        return {"slip_velocity": np.array((rvx * dx + rvy * dy,)), "slip_acceleration": np.array((slip_a,)),
+                "coriolis": vec(cx, cy), "direction": np.array((math.degrees(math.atan2(dy, dx)),))}
+
+    sliders = [relative(s, s.block, s.guide, s.point) for s in m.sliders]
+    slots = [relative(s, s.link, s.slot, s.pin) for s in m.slots]
+    return Motion(angle, omega, alpha, position, velocity, acceleration, sliders, [], slots)
