@@ -90,7 +90,7 @@ class Jet:
     def _unary(self, f, f1, f2):
         """f(self), given f, f' and f'' evaluated at ``self.v``."""
         return Jet(f, None if self.g is None else self.g * _col(f1), self.vd * f1,
-                   self.h * f1 + f2 * self.vd ** 2)
+                   self.h * f1 + f2 * (self.vd * self.vd))
 
     def cos(self):
         c, s = np.cos(self.v), np.sin(self.v)

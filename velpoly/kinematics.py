@@ -225,7 +225,7 @@ def velocities(kin: Kinematics, q, check: bool = True, where: str = "pose", jac=
             f"{'inf' if not np.isfinite(cond[i]) else f'{cond[i]:.3g}'})",
             where=where, file=kin.mechanism.source,
             links=_involved(kin.system, a[i], list(kin.rows), True),
-            hint="links in line (a toggle or dead centre): choose another driver angle")
+            hint="links in line (a toggle or dead centre) or two pins at one place: choose another driver angle")
     rhs = np.broadcast_to(_rates(kin), a.shape[:2]).copy()
     if bad.any():
         a = a.copy()

@@ -632,7 +632,7 @@ class _Planner:
             raise SingularPoseError(
                 f"singular pose: the construction lines locating the image of {g.name(t)} are parallel "
                 f"({l1.reason}; {l2.reason}; sine {sine:.2g})", where="pose", file=g.m.source, links=links,
-                hint="links in line (a toggle or dead centre): choose another driver angle")
+                hint="links in line (a toggle or dead centre) or two pins at one place: choose another driver angle")
         left = [lk for lk in g.moving if not self.full(lk)]
         raise ConstructionError(
             f"no graphical construction order: links {', '.join(left)} form a group that neither a dyad "
@@ -831,11 +831,11 @@ class _Run:
             self.rate[op[1]] = self._const(drv.omega if self.level == "velocity" else drv.alpha)
         elif kind == "rate_eq":
             self.rate[op[1]] = self.rate[op[2]]
-        elif kind == "rate_from":   # omega = (R_WQ x (V_W - V_Q)) / |R_WQ|^2
+        elif kind == "rate_from":   # omega = (R_WQ x (V_W - V_Q)) / |R_WQ|^2 = Im((V_W - V_Q) / R_WQ)
             _, lk, q, w = op
             r = g.zpos[w] - g.zpos[q]
             d = self.image((lk, w)) - self.image((lk, q))
-            self.rate[lk] = (r.conjugate() * d).imag / (r.real ** 2 + r.imag ** 2)
+            self.rate[lk] = (d / r).imag
         elif kind == "image":
             _, lk, q, w = op
             self._set((lk, w), self._rigid(lk, q, w))

@@ -34,7 +34,8 @@ from .options import drawing_options
 from .polygon import draw_polygon, legend_room, polygon_bounds
 from .scalebar import scale_text
 from .style import get_style, rc_context
-from .table import at_file_pose, draw_results_table
+from ..reference import at_file_pose
+from .table import draw_results_table
 
 __all__ = ["SHEETS", "Constructions", "constructions", "render_sheet", "frames", "draw_to_file", "mechanism_svg",
            "equation_tex"]

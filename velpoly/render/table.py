@@ -23,7 +23,7 @@ from .canvas import Artists, get_ax, renderer_of
 from .kennedy import pole_label
 from .style import get_style
 
-__all__ = ["results_table", "draw_results_table", "at_file_pose"]
+__all__ = ["results_table", "draw_results_table"]
 
 
 _SUPERSCRIPT = str.maketrans("-0123456789", "⁻⁰¹²³⁴⁵⁶⁷⁸⁹")
@@ -127,7 +127,7 @@ def results_table(sol, sheet: str = "full", *, velocity=None, acceleration=None,
     reference and its deviation from the analytic value (when the file has
     a ``[reference]``).
     """
-    from ..reference import compare
+    from ..reference import at_file_pose, compare
     m = sol.mechanism
     # the book's values belong to the pose the file describes, not to another driver angle
     refs = {r.key: r for r in compare(sol)} if m.reference and at_file_pose(sol) else {}
@@ -219,16 +219,6 @@ def results_table(sol, sheet: str = "full", *, velocity=None, acceleration=None,
     elif m.reference and not refs:
         title += f"; no reference values at this driver angle ({sol.driver_angle:.4g}°)"
     return Table(title, tuple(header), tuple(rows))
-
-
-def at_file_pose(sol) -> bool:
-    """Whether ``sol`` is at the pose the file describes (its driver angle, else its reference pose)."""
-    from ..solution import driver_reference_angle
-    m = sol.mechanism
-    if m.driver.is_slider or sol.driver_angle is None:
-        return True
-    pose = m.driver.angle if m.driver.angle is not None else driver_reference_angle(m)
-    return abs((sol.driver_angle - pose + 180.0) % 360.0 - 180.0) < 1e-9
 
 
 def _where(pos, direction) -> str:
