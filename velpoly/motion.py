@@ -512,26 +512,27 @@ def _evaluate_one(m: Mechanism, index: dict, q, qd, qdd) -> Motion:
     V_P = V_O + omega x (P - x), A_P = A_O + alpha x (P - x) - omega^2 (P - x); along a
     path with unit direction d, V_rel = V_P(block) - V_P(guide), slip V_rel . d, Coriolis
     2 omega_guide x V_rel, A_rel = A_P(block) - A_P(guide) - Coriolis, slip A_rel . d.
-    Arrays are built only for the returned Motion (shape (1, 2) per point, (1,) per value).
+    Arrays are built only for the returned Motion: one block per kind, whose views are the
+    values (shape (1, 2) per point, (1,) per link value).
     """
     q0, qd0 = q[0].tolist(), qd[0].tolist()
     qdd0 = None if qdd is None else qdd[0].tolist()
     P = m.points
     L = {lk.name: _Link1(index.get(lk.name), q0, qd0, qdd0) for lk in m.links}
 
-    def vec(x, y):
-        return np.array(((x, y),))
-
     # a slider's point on its guide, a slot's pin on the slot link: where the block (pin link) has it
     coincident = {(s.point, s.guide): s.block for s in m.sliders}
     coincident.update({(s.pin, s.slot): s.link for s in m.slots})
-    position, velocity, acceleration = {}, {}, {}
-    for key, p, lk in point_keys(m):
+    keys = point_keys(m)
+    rows = []   # per key: x, y, Vx, Vy, Ax, Ay
+    for _, p, lk in keys:
         b = L[lk]
         wx, wy = L[coincident.get((p, lk), lk)].place(*P[p])
-        position[key] = vec(wx, wy)
-        velocity[key] = vec(*b.vel(wx, wy))
-        acceleration[key] = vec(*b.acc(wx, wy))
+        rows.append((wx, wy, *b.vel(wx, wy), *b.acc(wx, wy)))
+    pva = np.array(rows).reshape(len(keys), 3, 1, 2)
+    position = {key: pva[i, 0] for i, (key, _, _) in enumerate(keys)}
+    velocity = {key: pva[i, 1] for i, (key, _, _) in enumerate(keys)}
+    acceleration = {key: pva[i, 2] for i, (key, _, _) in enumerate(keys)}
 
     def path_dir(s, block, guide, point):
         """The path's unit direction now (ccw about K for a circle)."""
@@ -544,7 +545,7 @@ def _evaluate_one(m: Mechanism, index: dict, q, qd, qdd) -> Motion:
         n = math.sqrt(rx * rx + ry * ry)
         return -(ry / n), rx / n
 
-    angle, omega, alpha = {}, {}, {}
+    rows = []   # per link: angle, omega, alpha
     block_path = {s.block: s for s in m.sliders}
     for link in m.links:
         b, name = L[link.name], link.name
@@ -561,9 +562,9 @@ def _evaluate_one(m: Mechanism, index: dict, q, qd, qdd) -> Motion:
             a = _wrap1(math.degrees(math.atan2(dy, dx)))
         else:
             a = _wrap1(math.degrees(th))
-        angle[name] = np.array((a,))
-        omega[name] = np.array((b.om,))
-        alpha[name] = np.array((b.al,))
+        rows.append((a, b.om, b.al))
+    links = np.array(rows).T.reshape(3, len(rows), 1)
+    angle, omega, alpha = ({lk.name: t[i] for i, lk in enumerate(m.links)} for t in links)
 
     def relative(s, block, guide, point):
         dx, dy = path_dir(s, block, guide, point)
@@ -577,8 +578,9 @@ def _evaluate_one(m: Mechanism, index: dict, q, qd, qdd) -> Motion:
         else:
             (bax, bay), (gax, gay) = L[block].acc(wx, wy), L[guide].acc(wx, wy)
             slip_a = (bax - gax - cx) * dx + (bay - gay - cy) * dy
-        return {"slip_velocity": np.array((rvx * dx + rvy * dy,)), "slip_acceleration": np.array((slip_a,)),
-                "coriolis": vec(cx, cy), "direction": np.array((math.degrees(math.atan2(dy, dx)),))}
+        t = np.array((rvx * dx + rvy * dy, slip_a, cx, cy, math.degrees(math.atan2(dy, dx))))
+        return {"slip_velocity": t[0:1], "slip_acceleration": t[1:2], "coriolis": t[2:4].reshape(1, 2),
+                "direction": t[4:5]}
 
     sliders = [relative(s, s.block, s.guide, s.point) for s in m.sliders]
     slots = [relative(s, s.link, s.slot, s.pin) for s in m.slots]
