@@ -83,3 +83,14 @@ def test_evaluate_motion_one_pose_matches_the_batch(path, with_qdd):
             assert list(r) == list(s)
             for k in r:
                 same(r[k], s[k])
+
+
+def test_wrap_deg_float_equals_wrap_deg():
+    from velpoly.motion import wrap_deg, wrap_deg_float
+    values = [0.0, -0.0, 180.0, -180.0, 540.0, -540.0, 359.99999999999994, 1e-300, -1e-300,
+              179.99999999999997, -179.99999999999997, 1e17, -7e15 + 0.5, 720.0, 30.000000000000004]
+    values += list(np.random.default_rng(5).uniform(-2000, 2000, 200))
+    for a in values:
+        w = wrap_deg_float(float(a))
+        assert type(w) is float
+        assert w == float(wrap_deg(a)) and -180.0 < w <= 180.0

@@ -22,7 +22,7 @@ import numpy as np
 from .constraints import Frame, contact_frame, contact_slip_equation
 from .model import Mechanism
 
-__all__ = ["Motion", "LinkMotion", "point_keys", "evaluate_motion", "wrap_deg"]
+__all__ = ["Motion", "LinkMotion", "point_keys", "evaluate_motion", "wrap_deg", "wrap_deg_float"]
 
 
 def wrap_deg(a):
@@ -32,7 +32,7 @@ def wrap_deg(a):
     return np.where(w == -180.0, 180.0, w)
 
 
-def _wrap1(a: float) -> float:
+def wrap_deg_float(a: float) -> float:
     """:func:`wrap_deg` of one float (the same operations, on floats)."""
     w = (a + 180.0) % 360.0 - 180.0
     return 180.0 if w == -180.0 else w
@@ -555,13 +555,13 @@ def _evaluate_one(m: Mechanism, index: dict, q, qd, qdd) -> Motion:
             (x0, y0), (x1, y1) = P[link.points[0]], P[link.points[1]]
             dx, dy = float(x1) - float(x0), float(y1) - float(y0)
             base = math.degrees(math.atan2(dy, dx)) if math.hypot(dx, dy) > 0 else 0.0
-            a = _wrap1(base + math.degrees(th))
+            a = wrap_deg_float(base + math.degrees(th))
         elif name in block_path:
             s = block_path[name]
             dx, dy = path_dir(s, s.block, s.guide, s.point)
-            a = _wrap1(math.degrees(math.atan2(dy, dx)))
+            a = wrap_deg_float(math.degrees(math.atan2(dy, dx)))
         else:
-            a = _wrap1(math.degrees(th))
+            a = wrap_deg_float(math.degrees(th))
         rows.append((a, b.om, b.al))
     links = np.array(rows).T.reshape(3, len(rows), 1)
     angle, omega, alpha = ({lk.name: t[i] for i, lk in enumerate(m.links)} for t in links)

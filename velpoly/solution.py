@@ -16,7 +16,7 @@ import numpy as np
 from .errors import AssemblyError, InputError
 from .kinematics import WARN, Kinematics, accelerations, prepare, velocities
 from .model import Mechanism
-from .motion import Motion, evaluate_motion, wrap_deg
+from .motion import Motion, evaluate_motion, wrap_deg_float
 from .pose import reassemble
 
 __all__ = ["Solution", "solve", "driver_reference_angle", "reachable_range"]
@@ -29,8 +29,8 @@ def driver_reference_angle(m: Mechanism) -> float | None:
     lk = m.link(m.driver.link)
     if len(lk.points) < 2:  # a one-point crank: its angle is its rotation from the reference pose
         return 0.0
-    a, b = m.position(lk.points[0]), m.position(lk.points[1])
-    return float(wrap_deg(math.degrees(math.atan2(*(b - a)[::-1]))))
+    (ax, ay), (bx, by) = m.points[lk.points[0]], m.points[lk.points[1]]
+    return wrap_deg_float(math.degrees(math.atan2(float(by) - float(ay), float(bx) - float(ax))))
 
 
 def reachable_range(kin: Kinematics, limit: float = 360.0, step: float = 1.0) -> tuple[float, float]:
@@ -208,7 +208,7 @@ def solve(m: Mechanism, angle: float | None = None) -> Solution:
             raise InputError("a slider driver has no angle", where="--angle", file=m.source)
         if not math.isfinite(target):
             raise InputError(f"the driver angle must be finite, got {target}", where="driver.angle", file=m.source)
-        delta = float(wrap_deg(target - ref))
+        delta = wrap_deg_float(float(target) - ref)
         if abs(delta) > 1e-12:
             velocities(kin, q, where="reference pose")   # regular, to tell its branch (else exit 3)
             r = reassemble(kin.system, list(kin.rows), [math.radians(delta)])
@@ -220,7 +220,7 @@ def solve(m: Mechanism, angle: float | None = None) -> Solution:
                     where="driver.angle", file=m.source, links=tuple(kin.system.index),
                     hint="choose an angle in the reachable range")
             q = r.q
-        angle_now = float(wrap_deg(ref + delta))
+        angle_now = wrap_deg_float(ref + delta)
     else:
         angle_now = ref
     _, jac, _ = kin.system.evaluate(q)   # one Jacobian for the velocities and the accelerations
