@@ -347,3 +347,54 @@ def test_reassembly_from_a_singular_reference_pose_is_a_pose_error(how):
             assert w.stopped
     except velpoly.PoseError:
         pass
+
+
+# -- a drag link through a rolling contact (formerly issue 3 of gallery/SOLVER_ISSUES.md) ----------------------
+GALLERY = __import__("pathlib").Path(__file__).resolve().parent.parent / "gallery"
+
+
+def rolling_drag_link(radius: float = 4.0) -> str:
+    """Fig. 3.15 (a) with a circular cam of ``radius`` about Q on the normal CP: the four-bar A-C-Q-B
+    (AB = 1.999, CQ = 1 + radius), a drag link in which every link turns round; the wheel turns fast."""
+    text = (GALLERY / "fig3_15a_rolling.toml").read_text()
+    a = 'A = { to = "C", length = 5.646, angle = 85.694 }'
+    assert a in text and 'centres = ["C", "flat"]' in text
+    return text.replace(a, f'{a}\nQ = {{ from = "P", length = {radius}, angle = 315 }}') \
+               .replace('centres = ["C", "flat"]', 'centres = ["C", "Q"]')
+
+
+def test_rolling_drag_link_solves_at_every_integer_angle():
+    # the batched correction of a pose 5 deg past its knot missed (167 deg exited 3, "reachable: -197 to
+    # 118"): such a pose is retried step by step from the nearest converged pose before it is a toggle
+    m = velpoly.load(rolling_drag_link())
+    w = velpoly.sweep(m, np.arange(0.0, 360.0, 1.0))
+    assert len(w.angles) == 360 and not w.stopped
+    for angle in range(-179, 181):
+        s = velpoly.solve(m, angle=float(angle))
+        assert s.driver_angle == pytest.approx(angle)
+        j = angle % 360                                   # the same pose on the sweep
+        for key in ("A", "C", "P@3"):
+            assert s.position[key] == pytest.approx(w.position[key][j], abs=1e-9 * m.size), (angle, key)
+            assert s.velocity[key] == pytest.approx(w.velocity[key][j], rel=1e-8, abs=1e-8), (angle, key)
+
+
+def test_rolling_drag_link_solves_at_167_from_the_command_line(capsys, tmp_path):
+    f = tmp_path / "drag_link.toml"
+    f.write_text(rolling_drag_link())
+    assert main(["solve", str(f), "--angle", "167"]) == 0
+    capsys.readouterr()
+
+
+@pytest.mark.parametrize("radius", [4.0, 5.0])
+@pytest.mark.parametrize("step", [0.25, 1.0, 2.0, 3.0])
+@pytest.mark.parametrize("direction", [1.0, -1.0])
+def test_rolling_drag_link_sweeps_a_whole_turn_at_any_step(radius, step, direction):
+    # the stops used to depend on the step (after 118.5 deg with 0.25, 166 with 2): no toggle at all
+    m = velpoly.load(rolling_drag_link(radius))
+    w = velpoly.sweep(m, direction * np.arange(0.0, 360.0 + step / 2, step))
+    assert len(w.angles) == len(np.arange(0.0, 360.0 + step / 2, step)) and not w.stopped, w.stopped
+    assert_continuous(w, step)
+    assert_closes(w)
+    assert np.abs(w.contacts[0]["slip_velocity"]).max() < 1e-9            # it rolls
+    ca = w.position["C"] - w.position["Q"]
+    assert np.hypot(*ca.T) == pytest.approx(1.0 + radius, rel=1e-12)      # the profiles touch

@@ -6,8 +6,10 @@ position is reached by continuation from the reference pose along the
 branch the user drew: the driver is stepped, each pose predicted from the
 velocities of the last (q(delta + h) ~ q + h q') and corrected by Newton's
 method on the constraint equations, Phi(q) = 0. Poses between the steps are
-corrected all at once (one batched Newton over every remaining pose). A
-pose where the Jacobian degenerates or Newton cannot converge is a toggle:
+corrected all at once (one batched Newton over every remaining pose); a pose
+that batch misses is retried step by step, halving the step, from the
+nearest pose already found. A pose where the Jacobian degenerates or Newton
+cannot converge even with the step halved (to 1e-6) is a toggle:
 continuation stops there, with the reachable range.
 """
 from __future__ import annotations
@@ -171,7 +173,9 @@ def reassemble(system: System, rows: list[int], deltas, coarse: float | None = N
     a crank, lengths for a slider), followed in the order given, each pose
     continued from the previous one. ``rows`` are the independent
     constraint rows plus the driver's (last). Stops before the first
-    position that cannot be reached without crossing a toggle.
+    position that cannot be reached without crossing a toggle: one that the
+    sequential continuation (:func:`_step`, halving the step) cannot reach
+    either, not merely one the batched correction missed.
     """
     if not system.holonomic:
         bad = next(i for i, c in enumerate(system.mechanism.contacts) if c.centres is None or c.slip is not None)
@@ -222,9 +226,20 @@ def reassemble(system: System, rows: list[int], deltas, coarse: float | None = N
     guess = kq[attach] + h[:, None] * qd[attach]
     out, ok, _ = _newton(system, rows, guess, deltas)
     ok &= _drift(system, out - guess) <= _drift_bound(system, h, qd[attach])
-    if not ok.all():
-        first = int(np.argmin(ok))
-        return Reassembly(deltas[:first], out[:first], "toggle", continued=True)
+    # 3. a pose the batched correction missed (a poor prediction where the links turn fast) is
+    #    retried sequentially, with the knots' halving, from the nearest pose already converged
+    #    on its knot's stretch; it is a toggle only if that fails too, and then the sweep stops there.
+    for i in np.flatnonzero(~ok):
+        same = np.flatnonzero(ok & (attach == attach[i]))
+        j = same[np.argmin(np.abs(deltas[same] - deltas[i]))] if len(same) else -1
+        if j >= 0 and abs(deltas[j] - deltas[i]) < abs(h[i]):
+            d0, q0 = float(deltas[j]), out[j:j + 1]
+        else:
+            d0, q0 = float(kd[attach[i]]), kq[attach[i]][None, :]
+        nxt = _step(system, rows, q0, system.evaluate(q0)[1][:, rows], d0, float(deltas[i]))
+        if nxt is None:
+            return Reassembly(deltas[:i], out[:i], "toggle", continued=True)
+        out[i], ok[i] = nxt[0][0], True
     return Reassembly(deltas, out, stopped, continued=True)
 
 
