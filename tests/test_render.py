@@ -911,3 +911,25 @@ def test_page_title_is_typeset_like_an_equation(tmp_path):
     fig = sheet.render_sheet(sol, "velocity")
     title = next(t for t in fig.texts if t.get_gid() == "sheet-title").get_text()
     assert r"$\omega_{2}$ = 10 rad/s ccw" in title and "omega_2" not in title
+
+
+def test_a_deviation_the_file_explains_is_marked():
+    """A book value with a ``[reference] note`` (a misprint) carries † in the drawn table, which its title
+    explains; the book's values without a note carry none."""
+    from velpoly.polygons import velocity_polygon
+    from velpoly.reference import compare
+    from velpoly.render.table import NOTED, _printed, results_table
+    sol = velpoly.solve(velpoly.load(ROOT / "gallery" / "ex3_10_rolling_contact.toml"))
+    refs = compare(sol)
+    noted = {_printed(r) for r in refs if r.note}
+    plain = {_printed(r) for r in refs if not r.note}
+    t = results_table(sol, "velocity", velocity=velocity_polygon(sol))
+    col = t.header.index("reference")
+    seen = {True: 0, False: 0}
+    for row in t.rows:
+        if not row[col]:
+            continue
+        mark = row[-1].endswith(NOTED)
+        assert row[col] in (noted if mark else plain), row
+        seen[mark] += 1
+    assert seen[True] and seen[False] and NOTED in t.title

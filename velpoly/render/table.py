@@ -93,6 +93,9 @@ def _num(x, digits=5) -> str:
     return "–" if x is None else _fmt(x, digits)
 
 
+NOTED = "†"   # marks a deviation that the file's [reference] note explains (a misprint, a rounded value)
+
+
 def _dev(row) -> str:
     if row is None:
         return ""
@@ -103,7 +106,7 @@ def _dev(row) -> str:
     if row.angle_error is not None and row.angle_error > 5e-4:
         e = row.angle_error
         parts.append(f"{e:.0f}°" if e >= 10 else f"{e:.2g}°")
-    return ", ".join(parts) or "0"
+    return (", ".join(parts) or "0") + (f" {NOTED}" if getattr(row, "note", "") else "")
 
 
 def _printed(row) -> str:
@@ -218,6 +221,8 @@ def results_table(sol, sheet: str = "full", *, velocity=None, acceleration=None,
         title += f"; reference values: {m.reference.source}"
     elif m.reference and not refs:
         title += f"; no reference values at this driver angle ({sol.driver_angle:.4g}°)"
+    if any(r[-1].endswith(NOTED) for r in rows):
+        title += f"; {NOTED} the book's value is explained in a note (velpoly solve FILE)"
     return Table(title, tuple(header), tuple(rows))
 
 
@@ -306,13 +311,14 @@ def draw_results_table(sol, ax=None, *, sheet: str = "full", style="textbook", v
     title = ax.text(0, 1, t.title, fontsize=size * 1.1, va="top", ha="left", style="italic", gid="results-table")
     tw = title.get_window_extent(r).width * 72 / fig.dpi
     lines = 1
-    if tw > width_pt:   # a long title (a long source) wraps to the table's width
+    wrap_pt = min(width_pt, max(need, 0.6 * width_pt))   # the table's own width (not less than 0.6 of the room)
+    if tw > wrap_pt:   # a long title (a long source) wraps to the table's width
         import textwrap
-        wrapped = textwrap.wrap(t.title, max(20, int(len(t.title) * width_pt / tw * 0.97)))
+        wrapped = textwrap.wrap(t.title, max(20, int(len(t.title) * wrap_pt / tw * 0.97)))
         title.set_text("\n".join(wrapped))
         lines = len(wrapped)
     art.add("title", title)
-    top = height_pt - 1.6 * size * 1.1 - (lines - 1) * 1.25 * size * 1.1
+    top = height_pt - 1.6 * size * 1.1 - (lines - 1) * 1.4 * size * 1.1
     room = max(int((top - 1.9 * line_h) // line_h), 1)      # rows a block has room for
     rows = list(t.rows)
     bgap = 3.0 * size
