@@ -1,11 +1,13 @@
 """Contacts, slots and curved paths: velocities and accelerations against finite differences,
 and against the closed forms of simple cases (tolerances 1e-9 relative for closed forms)."""
+import dataclasses
 import math
 
 import numpy as np
 import pytest
 
 import velpoly
+from velpoly.cli import main
 from mechanisms import CAM_FLAT, CAM_ROLLER, SLOTTED_LEVER, WHEEL_ROLLING
 from test_kinematics import fd_check
 
@@ -275,7 +277,129 @@ def test_free_sliding_contact_reports_its_slip():
     sv = w.contacts[0]["slip_velocity"]
     rate = (sv[2] - sv[0]) / (2 * math.radians(h)) * m.driver.omega + sv[1] / m.driver.omega * m.driver.alpha
     assert c["slip_acceleration"] == pytest.approx(rate, rel=1e-6)
-    # a prescribed slip (constant) has no position equation: only the drawn pose is analysed
+    # a prescribed slip (constant in time) with the driver accelerating (CAM_ROLLER's alpha = -2): the
+    # pose at another angle depends on the driver's history, so only the drawn pose is analysed
     slipping = velpoly.load(CAM_ROLLER.replace('kind = "rolling"', 'kind = "sliding"\nslip = 6.0'))
-    with pytest.raises(velpoly.InputError, match="no position equation"):
+    with pytest.raises(velpoly.InputError, match=r"contacts\[0\]: only the drawn pose .*constant in time and "
+                       r"the driver accelerates \(alpha = -2\).*history") as err:
         velpoly.sweep(slipping, [30.0, 31.0])
+    assert "alpha = 0" in err.value.hint
+
+
+# -- a prescribed slip over a cycle (formerly issue 2 of gallery/SOLVER_ISSUES.md) ----------------------------
+# The integrated slip sigma(q) grows at the slip s, constant in time; with the driver at a constant rate
+# omega_d the time is d(q) / omega_d, so sigma(q) - s d(q) / omega_d = 0 holds in positions.
+def slipping_cam(slip: float, omega: float = 10.0) -> str:
+    """CAM_ROLLER (a roller of radius 5 on a circular cam of radius 25) sliding with ``slip``, alpha = 0."""
+    return CAM_ROLLER.replace('kind = "rolling"', f'kind = "sliding"\nslip = {slip}') \
+                     .replace("alpha = -2\n", "").replace("omega = 10", f"omega = {omega}")
+
+
+SLIDING_WHEEL = """
+title = "wheel sliding on the ground, its centre driven along it"
+units = "mm"
+[points]
+O = [0, 0]
+C = [0, 20]
+P = { from = "C", length = 20, angle = -90 }
+[links]
+1 = { points = ["O"], frame = true }
+3 = { points = ["C"] }
+4 = { points = ["C"] }
+[[sliders]]
+block = "3"
+guide = "1"
+point = "C"
+angle = 0
+[[contacts]]
+links = ["4", "1"]
+point = "P"
+kind = "sliding"
+slip = 3
+centres = ["C", "flat"]
+[driver]
+slider = "C"
+speed = 5
+"""
+
+
+def assert_rates_are_those_of_the_poses(w, rate, h):
+    """q' = dq/dd * rate (central differences over the triples of driver positions h apart) to 1e-6."""
+    for i in range(1, len(w.angles) - 1, 3):
+        fd = (w.q[i + 1] - w.q[i - 1]) / (2 * h) * rate
+        assert np.abs(fd - w.qd[i]).max() <= 1e-6 * np.abs(w.qd[i]).max(), w.angles[i]
+
+
+@pytest.mark.parametrize("slip, omega", [(6.0, 10.0), (60.0, 10.0), (-60.0, 10.0), (60.0, -10.0)])
+def test_prescribed_slip_sweeps_with_the_driver_at_a_constant_rate(slip, omega):
+    m = velpoly.load(slipping_cam(slip, omega))
+    rolling = velpoly.load(CAM_ROLLER.replace("alpha = -2\n", "").replace("omega = 10", f"omega = {omega}"))
+    turns = 5 * np.sign(omega) * np.arange(0, 361, 2.0) + 30.0      # five turns: s t / D = 6 rad at slip 60
+    w, wr = velpoly.sweep(m, turns), velpoly.sweep(rolling, turns)
+    assert len(w.angles) == len(turns) and not w.stopped
+    assert np.abs(w.contacts[0]["slip_velocity"] - slip).max() <= 1e-9 * abs(slip)
+    # the cam and the follower move as when rolling; the roller turns s / r faster, and by s t / r more
+    for key in ("K", "R"):
+        assert w.position[key] == pytest.approx(wr.position[key], abs=1e-9 * m.size)
+        assert w.velocity[key] == pytest.approx(wr.velocity[key], abs=1e-9 * abs(omega) * m.size)
+    assert w.omega["4"] - wr.omega["4"] == pytest.approx(np.full(len(turns), slip / 5), rel=1e-9)
+    t = np.radians(turns - 30.0) / omega
+    k = 3 * list(m.moving_links).index(m.link("4")) + 2
+    assert w.q[:, k] - wr.q[:, k] == pytest.approx(slip * t / 5, abs=1e-9)
+    # velocities against differences of the poses, anywhere on the way; accelerations too
+    h = 1e-3
+    base = 30.0 + np.array([17.0, 400.0, 1000.0, 1700.0]) * np.sign(omega)
+    fine = velpoly.sweep(m, np.concatenate([[30.0], (base[:, None] + h * np.array([-1, 0, 1])).ravel()]))
+    assert len(fine.angles) == 13
+    fine = dataclasses.replace(fine, angles=fine.angles[1:], q=fine.q[1:], qd=fine.qd[1:])
+    assert_rates_are_those_of_the_poses(fine, omega, math.radians(h))
+    fd_check(m, 200.0)
+    # at the reference angle the sweep is the drawn pose's solution, elsewhere that of solve(angle)
+    ref, there = velpoly.solve(m), velpoly.solve(m, angle=200.0)
+    i = int(np.flatnonzero(turns == 200.0 if omega > 0 else turns == 200.0 - 360.0)[0])
+    for s, j in ((ref, 0), (there, i)):
+        assert s.omega["4"] == pytest.approx(w.omega["4"][j], rel=1e-12)
+        assert s.to_dict()["contacts"][0]["slip_velocity"] == pytest.approx(slip, rel=1e-12)
+        for key in s.position:
+            assert s.position[key] == pytest.approx(w.position[key][j], abs=1e-9 * m.size), key
+            assert s.velocity[key] == pytest.approx(w.velocity[key][j], rel=1e-9, abs=1e-9), key
+            assert s.acceleration[key] == pytest.approx(w.acceleration[key][j], rel=1e-9, abs=1e-9), key
+
+
+def test_prescribed_slip_sweeps_with_a_slider_driver_at_a_constant_speed():
+    # the wheel's centre at speed v, slip s = v + r omega_4 on the ground: omega_4 = (s - v) / r and the
+    # wheel's angle after a displacement x is (s - v) / r * x / v
+    m = velpoly.load(SLIDING_WHEEL)
+    x = np.linspace(-50.0, 50.0, 101)
+    w = velpoly.sweep(m, x)
+    assert len(w.angles) == 101 and not w.stopped
+    assert w.omega["4"] == pytest.approx(np.full(101, (3 - 5) / 20), rel=1e-12)
+    assert np.radians(w.angle["4"]) == pytest.approx((3 - 5) / 20 * x / 5, abs=1e-12)
+    assert np.abs(w.contacts[0]["slip_velocity"] - 3).max() < 1e-12
+    assert_rates_are_those_of_the_poses(velpoly.sweep(m, np.array([0.0, 7.0, 7.001, 7.002])[1:]), 5.0, 1e-3)
+    s = velpoly.solve(m)
+    assert s.velocity["P@4"] == pytest.approx(w.velocity["P@4"][50], abs=1e-12)
+
+
+@pytest.mark.parametrize("change, why", [("alpha = 0.5", r"the driver accelerates \(alpha = 0\.5\)"),
+                                         ("omega = 0", "the driver is at rest")])
+def test_prescribed_slip_needs_a_constant_non_zero_driver_rate_away_from_the_drawn_pose(change, why, capsys, tmp_path):
+    text = slipping_cam(6.0).replace("omega = 10.0", "omega = 10.0\nalpha = 0.5") if change.startswith("alpha") \
+        else slipping_cam(6.0, 0.0)
+    m = velpoly.load(text)
+    velpoly.solve(m)                                           # the drawn pose is analysed as ever
+    with pytest.raises(velpoly.InputError, match=why + ".*depends on the driver's history"):
+        velpoly.solve(m, angle=60.0)
+    f = tmp_path / "slipping.toml"
+    f.write_text(text)
+    assert main(["solve", str(f), "--angle", "60"]) == 2
+    err = capsys.readouterr().err.splitlines()
+    assert err[0].startswith(f"error: {f}: contacts[0]") and "constant in time" in err[0], err
+
+
+def test_zero_prescribed_slip_sweeps_whatever_the_driver_rate():
+    # slip = 0 integrates to sigma(q) = 0: rolling, with or without alpha
+    m = velpoly.load(CAM_ROLLER.replace('kind = "rolling"', 'kind = "sliding"\nslip = 0'))
+    rolling = velpoly.load(CAM_ROLLER)
+    w, wr = velpoly.sweep(m, 30 + np.arange(0, 361, 3.0)), velpoly.sweep(rolling, 30 + np.arange(0, 361, 3.0))
+    assert len(w.angles) == 121 and w.omega["4"] == pytest.approx(wr.omega["4"], rel=1e-12, abs=1e-12)

@@ -18,8 +18,11 @@ Each joint contributes scalar equations Phi(q) = 0 (FORMAT.md section 5):
 * contact with centres Ca, Cb:         |r_b(Cb) - r_a(Ca)| - D = 0   (a flat: the
                                        distance of the centre from the flat)       (1)
   and, rolling or with a prescribed slip, the integrated slip
-                                       la (theta_a - phi) - lb (theta_b - phi)     (1)
-  whose rate is the slip (V_P(a) - V_P(b)) . t (zero when rolling);
+                                       sigma = la (theta_a - phi) - lb (theta_b - phi)   (1)
+  whose rate is the slip (V_P(a) - V_P(b)) . t (zero when rolling; a
+  prescribed slip s is constant in time, so sigma = s t: in positions,
+  with the driver at a constant rate, sigma - s d(q) / omega_d = 0, see
+  :attr:`System.positions`);
 * contact given by ``normal`` only:    velocity rows (V_P(a) - V_P(b)) . u = 0
                                        (and . t = slip), at the reference pose only.
 
@@ -29,12 +32,14 @@ or the slider's displacement along its path s = delta.
 """
 from __future__ import annotations
 
+import dataclasses
 import functools
 from dataclasses import dataclass
 from typing import Callable
 
 import numpy as np
 
+from .errors import InputError
 from .jet import Jet
 from .model import Mechanism
 
@@ -49,7 +54,12 @@ class Equation:
     ``dim`` is 1 for an equation in lengths and 0 for one in angles (for
     scaling). ``holonomic`` is False for velocity-only rows (contacts given
     by a normal, prescribed slips); ``rate`` is the prescribed value of the
-    equation's rate (a slip speed; zero for ordinary joints).
+    equation's rate (a slip speed; zero for ordinary joints). ``timed``
+    marks an equation whose value grows at its constant ``rate`` along the
+    motion, fn(q(t)) = rate t (a prescribed slip's integrated slip): it
+    holds in positions once time is a function of the driver's position.
+    Its ``fn(f, sigma)`` takes the value sigma it is expected to have there
+    (default 0), by which an angle in it is unwrapped over many turns.
     """
 
     label: str
@@ -58,6 +68,7 @@ class Equation:
     dim: int = 1
     holonomic: bool = True
     rate: float = 0.0
+    timed: bool = False
 
 
 class Frame:
@@ -243,6 +254,30 @@ class System:
     def holonomic(self) -> bool:
         return all(e.holonomic for e in self.equations)
 
+    @functools.cached_property
+    def positions(self) -> "System":
+        """The equations in positions alone, for reassembly (:func:`velpoly.pose.reassemble`).
+
+        Every joint equation is one already, except a prescribed slip's. Its
+        integrated slip sigma(q) (0 at the reference pose) grows at the slip s,
+        constant in time (FORMAT.md section 5): sigma(q(t)) = s t. With the
+        driver at a constant rate omega_d (a crank's alpha = 0, a slider
+        driver's accel = 0; omega_d its omega or speed) the time is a function
+        of the driver's coordinate d(q) (theta_d, or the slider's displacement;
+        0 at the reference pose), t = d(q) / omega_d, and the slip holds in
+        positions::
+
+            sigma(q) - s d(q) / omega_d = 0
+
+        Its rate is s - s = 0 and its second rate sigma'' - s d'' / omega_d =
+        sigma'' (d'' = 0): the velocities and accelerations are those of the
+        prescribed slip. Raises InputError when a row has no position form: a
+        contact given by its normal (velocity rows only), or a non-zero slip
+        with the driver accelerating or at rest (the slip accumulated on the
+        way to a driver position then depends on the driver's history).
+        """
+        return _position_system(self)
+
     def evaluate(self, q, qd=None, driver: bool = True):
         """Values, Jacobian and h-terms of every equation (and the driver's last).
 
@@ -321,6 +356,46 @@ class System:
         col[1::3] = L
         row = np.array([1.0 / L if e.dim == 1 else 1.0 for e in self.equations + (self.driver,)])
         return row, col
+
+
+def _position_system(system: System) -> System:
+    """:attr:`System.positions` (see there)."""
+    if system.holonomic:
+        return system
+    m = system.mechanism
+    if not all(e.holonomic or e.timed for e in system.equations):
+        bad = next(i for i, c in enumerate(m.contacts) if c.centres is None)
+        raise InputError("only the drawn pose can be analysed: this contact, given by its normal, has no "
+                         "position equation", where=f"contacts[{bad}]", file=m.source,
+                         hint="give the contact's centres of curvature to analyse other driver positions "
+                              "or a whole cycle")
+    drv = m.driver
+    rate, accel, name = (drv.speed, drv.accel, "accel") if drv.is_slider else (drv.omega, drv.alpha, "alpha")
+    timed = [e for e in system.equations if e.timed and e.rate != 0.0]
+    if timed and (accel != 0.0 or rate == 0.0):
+        bad = next(i for i, c in enumerate(m.contacts) if c.slip)
+        why = (f"the driver accelerates ({name} = {accel:g})" if accel != 0.0 else "the driver is at rest")
+        raise InputError(f"only the drawn pose can be analysed: the prescribed slip is constant in time and {why}, "
+                         "so the slip accumulated on the way to another driver position, and with it the pose "
+                         "there, depends on the driver's history, not on its position",
+                         where=f"contacts[{bad}]", file=m.source,
+                         hint=(f"give the driver a constant rate ({name} = 0)" if accel != 0.0 else
+                               f"give the driver a non-zero {'speed' if drv.is_slider else 'omega'}")
+                              + " to analyse other driver positions or a whole cycle")
+    d = system.driver.fn
+
+    def in_positions(e: Equation) -> Equation:
+        if not e.timed:
+            return e
+        k = e.rate / rate if e.rate != 0.0 else 0.0     # s / omega_d: t = d(q) / omega_d
+        if k == 0.0:
+            return Equation(e.label, e.links, e.fn, e.dim)
+
+        def fn(f, g=e.fn, k=k):
+            t = k * d(f)                  # s t = s d(q) / omega_d: the slip so far
+            return g(f, t.v) - t
+        return Equation(e.label, e.links, fn, e.dim)
+    return dataclasses.replace(system, equations=tuple(in_positions(e) for e in system.equations))
 
 
 def build_system(m: Mechanism) -> System:
@@ -468,12 +543,13 @@ def _contact_equations(m: Mechanism, c, P, with_slip: bool = False):
             d = _sub(f.point(b, B), f.point(a, A))
             return _dot(d, d).sqrt() - D
 
-        def slip_eq(f):
+        def slip_eq(f, sigma=0.0):
             d = _sub(f.point(b, B), f.point(a, A))
             ta, tb = f.theta(a), f.theta(b)
-            # the line of centres' turn, unwrapped near the value rolling implies,
-            # phi = (la theta_a - lb theta_b) / D, so that it stays continuous over many turns
-            near = phi0 + (la * ta.v - lb * tb.v) / D
+            # the line of centres' turn, unwrapped near the value that the slip sigma implies
+            # (D = la - lb), phi = (la theta_a - lb theta_b - sigma) / D, so that it stays
+            # continuous over many turns (sigma = 0 rolling, s t with a prescribed slip s)
+            near = phi0 + (la * ta.v - lb * tb.v - sigma) / D
             phi = Jet.atan2(d[1], d[0], near) - phi0
             return la * (ta - phi) - lb * (tb - phi)
     else:
@@ -489,11 +565,11 @@ def _contact_equations(m: Mechanism, c, P, with_slip: bool = False):
         def normal_eq(f):
             return _dot(_sub(f.point(cur, C), f.point(fl, p)), f.direction(fl, uu)) + l_
 
-        def slip_eq(f):
+        def slip_eq(f, sigma=0.0):
             return _dot(_sub(f.point(cur, C), f.point(fl, p)), f.direction(fl, tt)) \
                 + l_ * (f.theta(cur) - f.theta(fl))
     out = [Equation(lab, (a, b), normal_eq)]
-    slip = Equation(lab, (a, b), slip_eq, holonomic=c.slip is None, rate=rate)
+    slip = Equation(lab, (a, b), slip_eq, holonomic=c.slip is None, rate=rate, timed=c.slip is not None)
     if tangential:
         out.append(slip)
     return (out, slip) if with_slip else out

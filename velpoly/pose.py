@@ -20,7 +20,6 @@ import numpy as np
 
 from .constraints import System
 from .dyads import assemble, dyad_plan
-from .errors import InputError
 
 __all__ = ["circle_circle", "circle_line", "Reassembly", "reassemble", "select_rows"]
 
@@ -172,18 +171,14 @@ def reassemble(system: System, rows: list[int], deltas, coarse: float | None = N
     ``deltas`` are driver displacements from the reference pose (radians for
     a crank, lengths for a slider), followed in the order given, each pose
     continued from the previous one. ``rows`` are the independent
-    constraint rows plus the driver's (last). Stops before the first
+    constraint rows plus the driver's (last); the equations are those of
+    :attr:`System.positions` (a prescribed slip integrated over the time the
+    driver takes at its constant rate). Stops before the first
     position that cannot be reached without crossing a toggle: one that the
     sequential continuation (:func:`_step`, halving the step) cannot reach
     either, not merely one the batched correction missed.
     """
-    if not system.holonomic:
-        bad = next(i for i, c in enumerate(system.mechanism.contacts) if c.centres is None or c.slip is not None)
-        raise InputError("only the drawn pose can be analysed: this contact, given by its normal or with a "
-                         "prescribed slip, has no position equation", where=f"contacts[{bad}]",
-                         file=system.mechanism.source,
-                         hint="give the contact's centres of curvature (and no slip) to analyse other driver "
-                              "positions or a whole cycle")
+    system = system.positions   # a prescribed slip in positions, or InputError (no position equation)
     deltas = np.asarray(deltas, float).ravel()
     n = len(deltas)
     nq = system.nq
