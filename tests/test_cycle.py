@@ -8,6 +8,7 @@ i.e. at cos(theta) = (a^2 + d^2 - (b + c)^2) / (2 a d) = 9 / 126: theta = +-85.9
 import csv
 import io
 import math
+import re
 
 import numpy as np
 import pytest
@@ -123,7 +124,10 @@ def test_sweep_command_warns_at_the_toggle_and_writes_the_reachable_part(tmp_pat
     code, stdout, err = run(capsys, "sweep", f, "--csv", out)
     assert code == 0
     assert err.startswith("warning: ") and "toggle after 85 deg" in err and "links 3, 4 come into line" in err
-    assert "reachable on this branch: -85 to 85 deg" in err      # both toggles, to the degree
+    # both toggles (|AO4| = b + c: cos theta = (a^2 + d^2 - (b + c)^2) / 2ad = 9/126, 85.904 deg), to 0.01 deg
+    lo, hi = (float(x) for x in re.search(r"reachable on this branch: (\S+) to (\S+) deg", err).groups())
+    toggle = math.degrees(math.acos(9 / 126))
+    assert toggle - 0.02 <= hi <= toggle and -toggle <= lo <= -toggle + 0.02, err
     rows = list(csv.DictReader(out.open()))
     assert len(rows) == 26
     assert float(rows[0]["driver"]) == 60 and float(rows[-1]["driver"]) == 85

@@ -824,8 +824,8 @@ def _toggle_links(kin: Kinematics, q_last) -> tuple[str, ...]:
 
 
 def reachable_text(m: Mechanism, kin: Kinematics) -> str:
-    """``reachable on this branch: LO to HI deg`` for a crank driver (absolute driver angles, to the
-    degree, each toggle approached from the reference pose); empty for a slider driver, whose
+    """``reachable on this branch: LO to HI deg`` for a crank driver (absolute driver angles, to
+    0.01 degree, each toggle approached from the reference pose); empty for a slider driver, whose
     stroke is the cycle."""
     if m.driver.is_slider:
         return ""

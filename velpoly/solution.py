@@ -33,13 +33,22 @@ def driver_reference_angle(m: Mechanism) -> float | None:
     return wrap_deg_float(math.degrees(math.atan2(float(by) - float(ay), float(bx) - float(ax))))
 
 
-def reachable_range(kin: Kinematics, limit: float = 360.0, step: float = 1.0) -> tuple[float, float]:
-    """Driver displacements (degrees) reachable from the reference pose on its branch."""
+def reachable_range(kin: Kinematics, limit: float = 360.0, step: float = 1.0,
+                    resolution: float = 0.01) -> tuple[float, float]:
+    """Driver displacements (degrees) reachable from the reference pose on its branch, each end to
+    ``resolution`` degrees: followed in ``step``-degree steps to the last pose before a toggle, then
+    in ``resolution`` steps across the next ``step`` (one more continuation each way)."""
     out = []
     for sign in (1.0, -1.0):
-        d = np.radians(np.arange(step, limit + step / 2, step)) * sign
-        r = reassemble(kin.system, list(kin.rows), d)
-        out.append(float(np.degrees(r.deltas[-1])) if len(r.deltas) else 0.0)
+        coarse = np.arange(step, limit + step / 2, step)
+        r = reassemble(kin.system, list(kin.rows), np.radians(coarse) * sign)
+        last = float(np.degrees(abs(r.deltas[-1]))) if len(r.deltas) else 0.0
+        if last < limit:
+            fine = np.arange(last + resolution, min(last + step, limit) + resolution / 2, resolution)
+            path = np.concatenate([coarse[coarse <= last + 1e-9], fine])
+            r = reassemble(kin.system, list(kin.rows), np.radians(path) * sign)
+            last = float(np.degrees(abs(r.deltas[-1]))) if len(r.deltas) else 0.0
+        out.append(sign * round(last / resolution) * resolution)
     return out[1], out[0]
 
 
@@ -205,7 +214,8 @@ def solve(m: Mechanism, angle: float | None = None) -> Solution:
     target = angle if angle is not None else drv.angle
     if target is not None:
         if drv.is_slider:
-            raise InputError("a slider driver has no angle", where="--angle", file=m.source)
+            raise InputError("a slider driver has no angle", where="--angle", file=m.source,
+                             hint="a slider driver is placed where the file draws it: leave out the angle")
         if not math.isfinite(target):
             raise InputError(f"the driver angle must be finite, got {target}", where="driver.angle", file=m.source)
         delta = wrap_deg_float(float(target) - ref)
