@@ -64,10 +64,14 @@ class Sweep:
 
 
 def _walk(m: Mechanism, plan, deltas):
-    """The dyad walk with the driver's rates: every link's position, velocity and acceleration."""
+    """The dyad walk with the driver's rates: every link's position, velocity and acceleration.
+
+    Past a dyad's toggle the walk's square roots and divisions give NaN or inf; those poses are
+    cut off by ``reach`` and the condition screen, so numpy is not let to warn about them."""
     drv = m.driver
     rate, accel = (drv.speed, drv.accel) if drv.is_slider else (drv.omega, drv.alpha)
-    return walk(m, plan, deltas, rate, accel)
+    with np.errstate(divide="ignore", invalid="ignore", over="ignore"):
+        return walk(m, plan, deltas, rate, accel)
 
 
 def _closed_form(m: Mechanism, kin: Kinematics, plan, deltas):
