@@ -260,18 +260,20 @@ def test_cycle_figure_plots_every_quantity_with_units():
     axes = fig.axes
     assert len(axes) == 6
     omega_ax, alpha_ax, speed_ax, acc_ax = axes[:4]
-    assert omega_ax.get_ylabel() == "omega (rad/s)" and speed_ax.get_ylabel() == "|V| (mm/s)"
+    assert omega_ax.get_ylabel() == r"$\omega$ (rad/s)" and speed_ax.get_ylabel() == "|V| (mm/s)"
     assert acc_ax.get_ylabel() == "|A| (mm/s²)" and "deg" in omega_ax.get_xlabel()
     for ax in axes[:4]:
         assert ax.get_legend() is not None and ax.xaxis.get_gridlines()[0].get_visible()
     lines = {ln.get_label(): ln for ln in omega_ax.lines}
-    assert set(lines) == {"omega_2", "omega_3", "omega_4"}
-    assert lines["omega_3"].get_ydata() == pytest.approx(sw.omega["3"])
-    assert lines["omega_3"].get_xdata() == pytest.approx(sw.angles)
+    assert set(lines) == {r"$\omega_{2}$", r"$\omega_{3}$", r"$\omega_{4}$"}
+    assert lines[r"$\omega_{3}$"].get_ydata() == pytest.approx(sw.omega["3"])
+    assert lines[r"$\omega_{3}$"].get_xdata() == pytest.approx(sw.angles)
     speeds = {ln.get_label(): ln for ln in speed_ax.lines}
-    assert set(speeds) == {"|V_B|", "|V_E|"}
-    assert speeds["|V_E|"].get_ydata() == pytest.approx(np.hypot(*sw.velocity["E"].T))
+    assert set(speeds) == {"$|V_{B}|$", "$|V_{E}|$"}
+    assert speeds["$|V_{E}|$"].get_ydata() == pytest.approx(np.hypot(*sw.velocity["E"].T))
     fixed = [ln for ln in axes[4].lines if ln.get_label() == "fixed centrode of link 3"][0]
+    from velpoly.cycle import _quantity
+    assert _quantity("V", "P@2", "|") == "$|V_{P@2}|$" and _quantity("V", "a{b}", "|") == "|V_a{b}|"
     xy = np.column_stack([fixed.get_xdata(), fixed.get_ydata()])
     good = centrodes(sw, "3", kin).fixed
     good = good[np.isfinite(good[:, 0])]

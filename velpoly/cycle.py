@@ -32,6 +32,7 @@ import csv
 import dataclasses
 import io
 import math
+import re
 import sys
 import tempfile
 from dataclasses import dataclass
@@ -366,7 +367,7 @@ def _style_rc(style: str) -> dict:
     if style == "slides":
         rc.update({"font.size": 13, "axes.titlesize": 15, "axes.labelsize": 13, "lines.linewidth": 2.0})
     else:
-        rc.update({"font.family": "serif", "font.size": 9, "lines.linewidth": 1.1})
+        rc.update({"font.family": "serif", "mathtext.fontset": "dejavuserif", "font.size": 9, "lines.linewidth": 1.1})
     return rc
 
 
@@ -383,6 +384,18 @@ def _series_style(i: int, n_points: int, style: str) -> dict:
             "marker": _MARKERS[(i // len(_LINESTYLES)) % len(_MARKERS)], "markevery": every, "markersize": 3.5}
 
 
+_PLAIN_INDEX = re.compile(r"[A-Za-z0-9@'.]+")
+
+
+def _quantity(symbol: str, index: str, bars: str = "") -> str:
+    """A curve's label as a book prints it: ``omega_3`` as omega with subscript 3, ``|V_B|`` with
+    subscript B; an index mathtext cannot hold (``$``, braces ...) stays plain text."""
+    if not _PLAIN_INDEX.fullmatch(index):
+        plain = {r"\omega": "omega", r"\alpha": "alpha"}.get(symbol, symbol)
+        return f"{bars}{plain}_{index}{bars}"
+    return f"${bars}{symbol}_{{{index}}}{bars}$"
+
+
 def cycle_figure(sw: Sweep, points=None, cen: Centrodes | None = None, style: str = "textbook",
                  kin: Kinematics | None = None):
     """The figure of the cycle (a matplotlib Figure, not attached to pyplot).
@@ -392,7 +405,8 @@ def cycle_figure(sw: Sweep, points=None, cen: Centrodes | None = None, style: st
     driver's position, and, with ``cen``, the fixed centrode (frame
     coordinates, the mechanism drawn at the first pose) and the moving
     centrode (the link's own coordinates). Each curve's label is its
-    quantity (``omega_3``, ``|V_B|``), as in the CSV and the summary.
+    quantity, typeset (omega with subscript 3, |V_B| with subscript B; the CSV's columns
+    are named ``omega_3``, ``|V_B|``).
     """
     from matplotlib.figure import Figure
     import matplotlib
@@ -408,14 +422,14 @@ def cycle_figure(sw: Sweep, points=None, cen: Centrodes | None = None, style: st
         fig = Figure(figsize=size, layout="constrained")
         axes = fig.subplots(n_rows, 2, squeeze=False)
         panels = [
-            (axes[0, 0], "Angular velocities", "omega (rad/s)",
-             [(f"omega_{k.name}", sw.omega[k.name]) for k in m.moving_links]),
-            (axes[0, 1], "Angular accelerations", "alpha (rad/s²)",
-             [(f"alpha_{k.name}", sw.alpha[k.name]) for k in m.moving_links]),
+            (axes[0, 0], "Angular velocities", r"$\omega$ (rad/s)",
+             [(_quantity(r"\omega", k.name), sw.omega[k.name]) for k in m.moving_links]),
+            (axes[0, 1], "Angular accelerations", r"$\alpha$ (rad/s²)",
+             [(_quantity(r"\alpha", k.name), sw.alpha[k.name]) for k in m.moving_links]),
             (axes[1, 0], "Speeds", f"|V| ({u}/s)",
-             [(f"|V_{k}|", np.hypot(*sw.velocity[k].T)) for k in keys]),
+             [(_quantity("V", k, "|"), np.hypot(*sw.velocity[k].T)) for k in keys]),
             (axes[1, 1], "Accelerations", f"|A| ({u}/s²)",
-             [(f"|A_{k}|", np.hypot(*sw.acceleration[k].T)) for k in keys]),
+             [(_quantity("A", k, "|"), np.hypot(*sw.acceleration[k].T)) for k in keys]),
         ]
         for ax, title, ylabel, series in panels:
             for i, (label, y) in enumerate(series):
