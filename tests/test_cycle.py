@@ -372,14 +372,11 @@ def test_progress_bar_only_on_a_terminal():
 # -- every gallery mechanism -------------------------------------------------------------------
 GALLERY = sorted((__import__("pathlib").Path(__file__).resolve().parent.parent / "gallery").glob("*.toml"))
 # the gallery files that cannot turn round, with their reachable driver range (absolute, degrees)
-PARTIAL = {"fig3_15a_rolling": (-61.0, 151.0)}   # a flat-faced cam: see the file's comments
-# velpoly has no position equation for a contact with a prescribed slip (gallery/SOLVER_ISSUES.md)
-NO_CYCLE = {"fig3_15b_sliding"}
+PARTIAL = {"fig3_15a_rolling": (-61.0, 151.0),    # a flat-faced cam: see the file's comments
+           "fig3_15b_sliding": (-61.0, 151.0)}    # the same lever and cam; the slip turns the wheel only
 
 
-@pytest.mark.parametrize("path", [pytest.param(p, marks=pytest.mark.xfail(
-    strict=True, raises=velpoly.VelpolyError, reason="prescribed slip: no position equation (SOLVER_ISSUES.md)"))
-    if p.stem in NO_CYCLE else p for p in GALLERY], ids=[p.stem for p in GALLERY])
+@pytest.mark.parametrize("path", GALLERY, ids=[p.stem for p in GALLERY])
 def test_every_gallery_mechanism_sweeps_its_cycle(path):
     """`velpoly sweep` on each gallery file: the whole turn on the drawn branch (or the reachable part,
     with the toggle named), continuous, and the CSV with a row per pose and every column filled."""
