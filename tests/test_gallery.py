@@ -245,14 +245,15 @@ def test_fig3_15b_sweeps_the_cycle_of_case_a_with_the_wheel_slipping(tmp_path, c
     part of case (a)'s cycle (its flat-faced cam stops at the same toggle), every link and point as in
     case (a) but wheel 3, which turns s / r3 faster and by s t / r3 more (r3 = 1, t = theta_4 / omega_4)."""
     import csv
-    cols = {}
+    cols, warned = {}, {}
     for case in ("fig3_15a_rolling", "fig3_15b_sliding"):
         out = tmp_path / f"{case}.csv"
         code, _, err = run(capsys, "sweep", GALLERY / f"{case}.toml", "--step", "2", "--csv", out)
-        assert code == 0, err
-        assert "stopped at a toggle after 150 deg" in err and "reachable on this branch: -61 to 150 deg" in err, err
+        assert code == 0 and "stopped at a toggle after 150 deg" in err, err
+        warned[case] = err.replace(case, "CASE").replace(str(out), "OUT")
         rows = list(csv.DictReader(out.read_text().splitlines()))
         cols[case] = {k: np.array([float(r[k]) for r in rows]) for k in rows[0]}
+    assert warned["fig3_15b_sliding"] == warned["fig3_15a_rolling"]     # the same toggle, the same range
     a, b = cols["fig3_15a_rolling"], cols["fig3_15b_sliding"]
     assert list(a) == list(b) and len(b["driver"]) == 76
     wheel = {"theta_3", "omega_3", "slip_velocity_P_3/4"} | {k for k in b if k.endswith("_P@3")}
