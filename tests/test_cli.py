@@ -104,7 +104,7 @@ def test_a_non_finite_angle_is_an_input_error_about_the_option(capsys, value):
 def test_angle_for_a_slider_driver(capsys):
     assert main(["solve", str(DATA / "dead_centre.toml"), "--angle", "10"]) == 2
     err = capsys.readouterr().err.splitlines()
-    assert err[0].endswith("--angle: a slider driver has no angle") and "slider driver has none" in err[1]
+    assert err[0].endswith("--angle: a slider driver has no angle") and err[1] == "hint: a slider driver is placed where the file draws it: leave out the angle"
 
 
 def test_a_step_too_fine_for_the_memory_is_an_input_error(capsys, tmp_path):
