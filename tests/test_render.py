@@ -445,6 +445,40 @@ def test_poles_are_drawn_where_they_are(sixbar):
     _no_overlaps(ax, art["labels"] + art["link_numbers"] + [a for a in art["far"] if hasattr(a, "get_text")])
 
 
+@pytest.mark.parametrize("stem,key", [("problem_1_4_4_sixbar", "0-4"), ("ex3_4_slotted_lever", "4-5"),
+                                      ("watt_sixbar", "1-3")])
+def test_far_pole_arrow_stands_on_its_kennedy_line_at_the_border(stem, key):
+    """A finite pole too far to show is an arrow at the panel's border, on a Kennedy line that located it
+    where that line leaves the view, pointing along it towards the pole: a reader follows it to the pole
+    (it used to stand beside the mechanism, on no line: P_04 of Problem 1.4.4 by the slider)."""
+    pytest.importorskip("velpoly.poles")
+    from shapely.geometry import LineString, Point
+    from velpoly.render.canvas import view_box
+    sol = velpoly.solve(velpoly.load(ROOT / "gallery" / f"{stem}.toml"))
+    cons = sheet.constructions(sol, "poles")
+    pole = cons.poles.poles[key]
+    assert pole.position is not None
+    fig = sheet.render_sheet(sol, "poles", cons=cons)
+    ax = next(a for a in fig.axes if any((ln.get_gid() or "").startswith("kennedy-line-") for ln in a.lines))
+    view = view_box(ax)
+    assert not view.contains(Point(*pole.position))
+    heads = [h for h in ax.patches if h.get_gid() == f"pole-{key}"]
+    assert len(heads) == 1
+    xy = heads[0].get_xy()
+    tip, base = xy[0], (xy[1] + xy[3]) / 2
+    d = (tip - base) / np.hypot(*(tip - base))
+    to_pole = (pole.position - tip) / np.hypot(*(pole.position - tip))
+    assert abs(_cross(d, to_pole)) < 1e-9 and np.dot(d, to_pole) > 0      # pointing at the pole
+    inset = 0.2 * per_cm(ax)
+    # the tip stands ``inset`` back along the line from where the line leaves the view
+    assert view.exterior.distance(Point(*(tip + d * inset))) < 1e-9 * sol.mechanism.size
+    lines = [LineString(np.column_stack(ln.get_data())) for ln in ax.lines
+             if (ln.get_gid() or "").startswith(f"kennedy-line-{key}-")]
+    assert lines and min(ln.distance(Point(*tip)) for ln in lines) < 1e-9 * sol.mechanism.size
+    label = next(t for t in ax.texts if t.get_gid() == f"label-pole-{key}")
+    assert f"{pole.position[0]:.4g}".replace("-", "−") in label.get_text()
+
+
 def test_mechanism_labels_keep_off_the_kennedy_lines():
     """The Kennedy lines are known before the mechanism's labels are placed: no point label and not the
     driver's value lies across one (Watt six-bar: omega_2 and O_2 used to sit on the lines through P_12)."""

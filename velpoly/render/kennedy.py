@@ -4,9 +4,10 @@ Drawn from :mod:`velpoly.poles`' objects (a :class:`~velpoly.poles.PoleSet`
 and its :func:`~velpoly.poles.kennedy_circle`). On the mechanism, each pole
 P_ij is marked and labelled; a pole at infinity (a relative translation) is
 an arrow at the border of the view pointing its way, labelled ``P_ij ∞``, and
-a finite pole too far to show is an arrow towards it labelled with its
-position. The Kennedy lines that located each pole (P_ik P_jk and P_il P_jl)
-are drawn thin through their poles. On the Kennedy circle the links are
+a finite pole outside the view is an arrow at the border on its Kennedy line,
+pointing along it towards the pole, labelled with its position. The Kennedy
+lines that located each pole (P_ik P_jk and P_il P_jl) are drawn thin through
+their poles. On the Kennedy circle the links are
 points on a circle (the first at the top, the others clockwise), poles known
 by inspection are solid chords, and poles found are dashed chords numbered
 in the order of their discovery.
@@ -27,7 +28,7 @@ from .style import get_style
 __all__ = ["draw_poles", "draw_kennedy_circle", "pole_label", "shown_poles", "REACH"]
 
 NUMBER_SPOTS = (0.3, 0.7, 0.5, 0.4, 0.6, 0.22, 0.78, 0.35, 0.65, 0.45, 0.55)  # along a chord, tried in turn
-REACH = 2.5   # finite poles within REACH mechanism sizes of the mechanism are drawn where they are
+REACH = 2.5   # the view holds the finite poles within REACH mechanism sizes of the mechanism
 
 
 def pole_label(links: tuple[str, str]) -> str:
@@ -67,6 +68,32 @@ def poles_bounds(sol, ps) -> tuple[float, float, float, float]:
             x0, y0 = min(x0, p.position[0]), min(y0, p.position[1])
             x1, y1 = max(x1, p.position[0]), max(y1, p.position[1])
     return x0, y0, x1, y1
+
+
+def far_pole_arrow(view, pole, lines, centre, inset: float) -> tuple[np.ndarray, np.ndarray]:
+    """Where the arrow to a finite pole out of view stands: ``(tip, unit direction towards the pole)``.
+
+    On the pole's Kennedy line (``lines``: each as drawn, clipped to the view) where it leaves the view
+    towards the pole, ``inset`` back inside, so that a reader follows the arrow along the line to the
+    pole; of several lines, the one that leaves the view nearest the pole. Without a line leaving the
+    view (a pole known by inspection), on the line from ``centre`` towards the pole, at the view's border.
+    """
+    pole = np.asarray(pole, float)
+    best = None
+    for xy in lines:
+        a, b = np.asarray(xy[0], float), np.asarray(xy[-1], float)
+        end, other = (a, b) if np.hypot(*(a - pole)) <= np.hypot(*(b - pole)) else (b, a)
+        u = end - other
+        if float(np.hypot(*u)) <= inset:
+            continue
+        u = u / float(np.hypot(*u))
+        dist = float(np.hypot(*(pole - end)))
+        if best is None or dist < best[0]:
+            best = (dist, end - u * inset, u)
+    if best is not None:
+        return best[1], best[2]
+    d = (pole - centre) / max(float(np.hypot(*(pole - centre))), 1e-300)
+    return border_point(view, centre, d, inset), d
 
 
 def draw_poles(sol, ax=None, *, style="textbook", options=None, poleset=None, upto: int | None = None,
@@ -109,6 +136,7 @@ def draw_poles(sol, ax=None, *, style="textbook", options=None, poleset=None, up
     # the Kennedy lines (drawn under everything else), known before the mechanism's labels are placed so
     # that these keep clear of them
     klines = []
+    pole_lines = {}   # each finite pole's Kennedy lines as drawn (clipped to the view)
     vb = view_box(ax)
     for p in shown:
         if p.order == 0:
@@ -135,6 +163,8 @@ def draw_poles(sol, ax=None, *, style="textbook", options=None, poleset=None, up
             if seg.is_empty or seg.geom_type != "LineString":
                 continue
             klines.append((np.asarray(seg.coords), heavy, f"kennedy-line-{p.key}-{ln.label}"))
+            if p.position is not None:
+                pole_lines.setdefault(p.key, []).append(np.asarray(seg.coords))
 
     for xy, _, _ in klines:
         pl.add_obstacle(segment(xy[0], xy[-1]), hard=False)
@@ -148,7 +178,7 @@ def draw_poles(sol, ax=None, *, style="textbook", options=None, poleset=None, up
         art.labels = {}
         art.point_labels = mech.labels
     view = view_box(ax)
-    # arrows to poles out of reach stand at the border of what is drawn, not of the whole panel
+    # arrows to poles at infinity stand at the border of what is drawn, not of the whole panel
     from shapely.geometry import box as sbox
     bx0, by0, bx1, by1 = poles_bounds(sol, ps)
     content = sbox(bx0 - 1.6 * pc, by0 - 1.6 * pc, bx1 + 1.6 * pc, by1 + 1.6 * pc).intersection(view)
@@ -162,7 +192,6 @@ def draw_poles(sol, ax=None, *, style="textbook", options=None, poleset=None, up
 
     # the poles
     c = _centre(sol)
-    reach = REACH * sol.mechanism.size
     pins = {pin.point for pin in sol.mechanism.pins}
     pin_places = [np.asarray(sol.position[k], float) for k in sol.position if k.split("@")[0] in pins]
     tol = 1e-9 * sol.mechanism.size
@@ -171,8 +200,7 @@ def draw_poles(sol, ax=None, *, style="textbook", options=None, poleset=None, up
             continue   # undefined: the links move alike (listed in the table)
         colour = st.ink if not st.coloured else "#c0392b"
         label = pole_label(p.links)
-        if p.position is not None and view.contains(Point(*p.position)) and \
-                float(np.hypot(*(p.position - c))) <= reach:
+        if p.position is not None and view.contains(Point(*p.position)):   # in view: where it is
             q = np.asarray(p.position, float)
             on_pin = any(float(np.hypot(*(q - w))) <= tol for w in pin_places)
             if not on_pin:
@@ -192,10 +220,10 @@ def draw_poles(sol, ax=None, *, style="textbook", options=None, poleset=None, up
             if p.position is None:
                 d = np.array([math.cos(math.radians(p.direction)), math.sin(math.radians(p.direction))])
                 text = label + r" $\infty$"
+                tip = border_point(content, c, d, 0.2 * pc)
             else:
-                d = (p.position - c) / max(float(np.hypot(*(p.position - c))), 1e-300)
                 text = label + f" ({p.position[0]:.4g}, {p.position[1]:.4g})".replace("-", "−")
-            tip = border_point(content, c, d, 0.2 * pc)
+                tip, d = far_pole_arrow(view, p.position, pole_lines.get(p.key, ()), c, 0.2 * pc)
             tail = tip - d * 1.1 * pc
             sh, hd, poly = arrow(ax, tail, tip, lw=st.arrow_lw, head_length=st.head_length, colour=colour,
                                  zorder=6, gid=f"pole-{p.key}")
