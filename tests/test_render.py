@@ -543,6 +543,39 @@ def test_results_table_is_drawn_within_its_axes(sixbar):
     assert art.shown + sum(1 for c in art["cells"] if c.get_text().startswith("…")) >= 1
 
 
+def test_results_table_blocks_show_only_their_columns():
+    """A table set in blocks side by side: each block heads only the columns that have values in its rows
+    (Example 3.4's poles sheet: the second block, poles' positions only, used to repeat empty "instant
+    centres", "reference" and "deviation" headers), and every value of the rows drawn is drawn."""
+    pytest.importorskip("velpoly.poles")
+    from velpoly.render.table import results_table
+    sol = velpoly.solve(velpoly.load(ROOT / "gallery" / "ex3_4_slotted_lever.toml"))
+    with rc_context(sheet.get_style("textbook")):
+        fig = sheet.render_sheet(sol, "poles")
+    ax = next(a for a in fig.axes if any(t.get_gid() == "results-table" for t in a.texts))
+    cells = [t for t in ax.texts if t.get_gid() != "results-table"]
+    starts = sorted(t.get_position()[0] for t in cells if t.get_text() == "quantity")
+    assert len(starts) >= 2                                   # the table is split
+    head_y = next(t.get_position()[1] for t in cells if t.get_text() == "quantity")
+    header = [t for t in cells if abs(t.get_position()[1] - head_y) < 1e-12]
+    body = [t for t in cells if t.get_position()[1] < head_y - 1e-12]
+    for t in header:
+        x = t.get_position()[0]
+        below = [c for c in body if abs(c.get_position()[0] - x) < 1e-12 and c.get_text().strip()]
+        assert below, f"an empty column headed {t.get_text()!r} at x = {x:.3f}"
+    # the blocks stand apart, and no value is lost
+    block = np.searchsorted(starts, [t.get_position()[0] + 1e-12 for t in cells]) - 1
+    r = fig.canvas.get_renderer()
+    to_ax = ax.transAxes.inverted()
+    for b in range(len(starts) - 1):
+        right = max(to_ax.transform(t.get_window_extent(r))[1][0] for t, k in zip(cells, block) if k == b)
+        assert right < starts[b + 1]
+    drawn = {t.get_text() for t in body}
+    table = results_table(sol, "poles", poleset=sheet.constructions(sol, "poles").poles)
+    for row in table.rows:
+        assert all(v in drawn for v in row[1:] if v), row
+
+
 # -- sheets and files ------------------------------------------------------------------------------------
 def _cons(sol):
     from velpoly.render.sheet import Constructions

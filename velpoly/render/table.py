@@ -249,7 +249,8 @@ def draw_results_table(sol, ax=None, *, sheet: str = "full", style="textbook", v
     Artists
         Roles ``cells`` (Texts, row by row), ``rules`` and ``title``;
         ``artists.table`` is the Table drawn, ``artists.shown`` the number of
-        its rows drawn, ``artists.size`` its type size (points, after any shrinking).
+        its rows drawn, ``artists.size`` its type size (points, after any shrinking),
+        ``artists.blocks`` each block's column names.
     """
     import matplotlib
     from matplotlib.lines import Line2D
@@ -327,10 +328,7 @@ def draw_results_table(sol, ax=None, *, sheet: str = "full", style="textbook", v
         blocks = max(1, min(3, int((width_pt + bgap) // (need + bgap)), -(-len(rows) // room)))
     per = min(room, -(-len(rows) // blocks))          # rows shared evenly between the blocks
     shown = rows if len(rows) <= per * blocks else rows[:per * blocks - 1]
-    xs = np.cumsum([0.0] + [w + gap for w in widths[:-1]])
-    total = min(need, width_pt)
-
-    def rule(x0, y, lw):
+    def rule(x0, y, lw, total):
         ln = Line2D([x0 / width_pt, (x0 + total) / width_pt], [y / height_pt] * 2, lw=lw, color=st.ink,
                     transform=ax.transAxes)
         ax.add_line(ln)
@@ -348,28 +346,40 @@ def draw_results_table(sol, ax=None, *, sheet: str = "full", style="textbook", v
             x += w * size / st.small_size
 
     bottom = top
+    x0 = 0.0
+    art.blocks = []
+    f = size / st.small_size
     for b in range(blocks):
         chunk = shown[b * per:(b + 1) * per]
         if not chunk and b:
             break
-        x0 = b * (need + bgap)
+        # a block shows the columns that have values in its rows (the quantity always): a second block of
+        # poles' positions prints no empty "instant centres" or "reference" beside them; one block, the table
+        cols = [i for i in range(len(t.header)) if i == 0 or any(row[i] for row in chunk)] if blocks > 1 \
+            else list(range(len(t.header)))
+        wb = [max(sum(widths_at[row[i]]) for row in (t.header, *chunk)) * f for i in cols] if blocks > 1 \
+            else widths
+        xs = np.cumsum([0.0] + [w + gap for w in wb[:-1]])
+        total = min(sum(wb) + gap * (len(wb) - 1), width_pt)
+        art.blocks.append(tuple(t.header[i] for i in cols))
         y = top
-        rule(x0, y, st.link_lw)
+        rule(x0, y, st.link_lw, total)
         y -= line_h
-        for x, text in zip(xs, t.header):
-            cell(x0 + x, y, text)
+        for x, i in zip(xs, cols):
+            cell(x0 + x, y, t.header[i])
         y -= 0.45 * size
-        rule(x0, y, st.thin_lw)
+        rule(x0, y, st.thin_lw, total)
         for row in chunk:
             y -= line_h
-            for x, text in zip(xs, row):
-                cell(x0 + x, y, text)
+            for x, i in zip(xs, cols):
+                cell(x0 + x, y, row[i])
         if b == blocks - 1 and len(shown) < len(rows):
             y -= line_h
             cell(x0, y, f"… {len(rows) - len(shown)} more rows: velpoly solve FILE", style="italic")
         y -= 0.6 * size
         bottom = min(bottom, y)
-        rule(x0, y, st.link_lw)
+        rule(x0, y, st.link_lw, total)
+        x0 += total + bgap
     art.shown = len(shown)
     art.size = size
     return art
