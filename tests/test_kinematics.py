@@ -270,6 +270,39 @@ def test_json_matches_contract():
         assert -180 < v["angle"] <= 180
 
 
+def _count_newton(monkeypatch):
+    """A list that grows by one at each call of the continuation's Newton corrector."""
+    import velpoly.pose as pose
+    calls, real = [], pose._newton
+    monkeypatch.setattr(pose, "_newton", lambda *a, **k: calls.append(1) or real(*a, **k))
+    return calls
+
+
+def test_the_closed_form_check_tells_a_wrong_branch_and_a_wrong_mechanism():
+    """The joint equations on the walk's poses refuse a plan that is not the mechanism's; both
+    assemblies satisfy them, so the plan's sides are checked against the drawn pose."""
+    from dataclasses import replace
+    import velpoly.pose as pose
+    from velpoly.dyads import assemble, draws_the_reference, dyad_plan
+    from velpoly.kinematics import prepare
+    for m in (velpoly.load(EXAMPLE_3_6), velpoly.load(slider_crank())):
+        kin = prepare(m)
+        system, rows = kin.system.positions, list(kin.rows)
+        plan = dyad_plan(m)
+        assert draws_the_reference(m, plan)
+        deltas = np.radians(np.arange(0.0, 50.0, 1.0))
+        q, reach = assemble(m, system.index, plan, deltas)
+        assert reach == len(deltas) and pose.check_closed_form(system, rows, q, deltas)
+        other = replace(plan, steps=plan.steps[:-1] + (plan.steps[-1][:-1] + (-plan.steps[-1][-1],),))
+        assert not draws_the_reference(m, other)
+        q2, _ = assemble(m, system.index, other, deltas)
+        assert pose.check_closed_form(system, rows, q2, deltas)    # the other branch: joints hold
+        wrong = q.copy()
+        wrong[len(deltas) // 2, 3 * system.index[plan.steps[-1][1]]] += 1e-6 * m.size
+        assert not pose.check_closed_form(system, rows, wrong, deltas)  # a joint open: refused
+        assert not pose.check_closed_form(system, rows, q, deltas + 1e-3)  # at other positions
+
+
 @pytest.mark.parametrize("text", [SIXBAR_1_4_4, EXAMPLE_3_6, "slider-crank"])
 def test_closed_form_dyads_equal_continuation(text, monkeypatch):
     """The vectorised dyad assembly and Newton continuation find the same branch (1e-9)."""
@@ -279,9 +312,12 @@ def test_closed_form_dyads_equal_continuation(text, monkeypatch):
     assert dyad_plan(m) is not None
     ref = velpoly.solve(m).driver_angle
     angles = ref + np.arange(0, 360, 7.0)
+    newton = _count_newton(monkeypatch)
     fast = velpoly.sweep(m, angles)
-    monkeypatch.setattr(pose, "_closed_form", lambda *a: None)
+    assert not newton, "the sweep with a dyad plan continued"
+    monkeypatch.setattr(pose, "check_closed_form", lambda *a: False)   # every walk refused
     slow = velpoly.sweep(m, angles)
+    assert newton, "the sweep without the closed form did not continue"
     assert len(fast.angles) == len(slow.angles) == len(angles)
     vmax = max(np.abs(v).max() for v in slow.velocity.values())
     amax = max(np.abs(a).max() for a in slow.acceleration.values())
@@ -298,9 +334,12 @@ def test_closed_form_stops_at_the_toggle_like_continuation(monkeypatch):
     m = velpoly.load(fourbar(4, 5, 6, 9))   # non-Grashof: the crank cannot turn round
     ref = velpoly.solve(m).driver_angle
     angles = ref + np.arange(0, 360, 1.0)
+    newton = _count_newton(monkeypatch)
     fast = velpoly.sweep(m, angles)
-    monkeypatch.setattr(pose, "_closed_form", lambda *a: None)
+    assert not newton
+    monkeypatch.setattr(pose, "check_closed_form", lambda *a: False)
     slow = velpoly.sweep(m, angles)
+    assert newton
     assert fast.stopped and slow.stopped
     assert abs(len(fast.angles) - len(slow.angles)) <= 1
 

@@ -28,7 +28,7 @@ import numpy as np
 from .model import Mechanism
 from .motion import LinkMotion, _arg, _zero
 
-__all__ = ["DyadPlan", "Walk", "dyad_plan", "walk", "assemble", "coordinates", "rates"]
+__all__ = ["DyadPlan", "Walk", "dyad_plan", "draws_the_reference", "walk", "assemble", "coordinates", "rates"]
 
 
 @dataclass(frozen=True)
@@ -137,7 +137,27 @@ def dyad_plan(m: Mechanism) -> DyadPlan | None:
     for p in m.pins:
         if ("pin", frozenset(p.links)) not in used:
             return None
-    return DyadPlan(driver, tuple(steps), _margin(m, steps, P))
+    plan = DyadPlan(driver, tuple(steps), _margin(m, steps, P))
+    return plan if draws_the_reference(m, plan) else None
+
+
+def draws_the_reference(m: Mechanism, plan: DyadPlan) -> bool:
+    """Whether the plan's walk at the reference driver position puts every dyad's joint where
+    it is drawn: the sides it takes are the drawn pose's.
+
+    Both assemblies of a dyad satisfy the joint equations, so the equations cannot tell the
+    branch; this can. From the drawn pose the walk stays on its branch as long as no dyad
+    reaches a toggle (where the walk stops). The other branch's joint is 2 h |P1P3| away (h the
+    dyad's height), so 1e-7 of the size tells them apart wherever they differ visibly.
+    """
+    with np.errstate(divide="ignore", invalid="ignore", over="ignore"):
+        w = walk(m, plan, np.zeros(1))
+    tol = 1e-7 * m.size
+    for st in plan.steps:
+        at = w.joints[(st[1], st[5])][0]
+        if not abs(complex(at[0] if isinstance(at, np.ndarray) else at) - _c(m.points[st[5]])) <= tol:
+            return False
+    return True
 
 
 def _margin(m: Mechanism, steps, P) -> float:

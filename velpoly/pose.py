@@ -21,7 +21,7 @@ import numpy as np
 from .constraints import System
 from .dyads import assemble, dyad_plan
 
-__all__ = ["circle_circle", "circle_line", "Reassembly", "reassemble", "select_rows"]
+__all__ = ["circle_circle", "circle_line", "Reassembly", "reassemble", "select_rows", "check_closed_form"]
 
 
 # -- compass and ruler ----------------------------------------------------------
@@ -258,14 +258,27 @@ def _closed_form(system: System, rows, deltas) -> Reassembly | None:
     if plan is None or len(deltas) == 0:
         return None
     q, reach = assemble(m, system.index, plan, deltas)
-    if reach:
-        # the plan is structural: checking a sample of the poses (ends included) verifies it
-        pick = np.unique(np.r_[np.arange(0, reach, max(1, reach // 64)), reach - 1])
-        phi = system.residual(q[pick])[:, rows]
-        phi[:, -1] -= deltas[pick]
-        if not np.all(np.abs(phi) <= 1e-9 * max(system.size, 1.0)):
-            return None   # not the mechanism the plan assumed: use continuation
+    if not check_closed_form(system, rows, q[:reach], deltas[:reach]):
+        return None   # not the mechanism the plan assumed: use continuation
     return Reassembly(deltas[:reach], q[:reach], "toggle" if reach < len(deltas) else "")
+
+
+def check_closed_form(system: System, rows, q, deltas) -> bool:
+    """Whether the poses ``q`` (N, nq) that a dyad walk found at the driver positions
+    ``deltas`` satisfy the joint equations (``system``: :attr:`System.positions`; ``rows`` the
+    independent rows plus the driver's), to 1e-9 of the size; True for no poses.
+
+    The plan is structural: a sample of the poses (up to 65, both ends included) verifies it.
+    Both assembly branches satisfy the joints: the branch is the drawn one because the plan's
+    sides reproduce the drawn pose (:func:`velpoly.dyads.dyad_plan` checks that).
+    """
+    n = len(deltas)
+    if n == 0:
+        return True
+    pick = np.unique(np.r_[np.arange(0, n, max(1, n // 64)), n - 1])
+    phi = system.residual(q[pick])[:, rows]
+    phi[:, -1] -= deltas[pick]
+    return bool(np.all(np.abs(phi) <= 1e-9 * max(system.size, 1.0)))
 
 
 def _scaled(system, dq):

@@ -17,6 +17,7 @@ from .dyads import coordinates, rates, walk
 from .kinematics import SINGULAR, Kinematics, accelerations, condition, prepare, velocities
 from .model import Mechanism
 from .motion import evaluate_motion, wrap_deg
+from . import pose
 from .pose import plan_for, reassemble
 from .solution import driver_reference_angle
 
@@ -74,19 +75,6 @@ def _walk(m: Mechanism, plan, deltas):
         return walk(m, plan, deltas, rate, accel)
 
 
-def _closed_form(m: Mechanism, kin: Kinematics, plan, deltas):
-    """The dyad walk over all the driver positions, or None where the closed form does not
-    apply: :func:`velpoly.pose.reassemble` decides that, on a sample of the positions (up to
-    65, both ends included: the plan is structural), with the joint equations."""
-    n = len(deltas)
-    pick = np.arange(0, n, max(1, n // 64))
-    if pick[-1] != n - 1:
-        pick = np.append(pick, n - 1)
-    if reassemble(kin.system, list(kin.rows), deltas[pick]).continued:
-        return None
-    return _walk(m, plan, deltas)
-
-
 def sweep(m: Mechanism, angles, kin: Kinematics | None = None) -> Sweep:
     """Solve the mechanism at each driver angle (degrees, absolute), in the order given.
 
@@ -111,17 +99,23 @@ def sweep(m: Mechanism, angles, kin: Kinematics | None = None) -> Sweep:
     screened = plan is not None and plan.margin > 1e-3
     if not screened:
         velocities(kin, np.zeros((1, kin.system.nq)), where="reference pose")
-    w = _closed_form(m, kin, plan, deltas) if plan is not None and len(deltas) else None
+    # the closed form, dyad by dyad, walked once; only poses near a dyad's toggle need the
+    # condition number. The plan's sides are the drawn pose's (dyad_plan checks that the walk
+    # reproduces it); the joint equations on a sample of the walk's poses check that the plan is
+    # the mechanism's, or the sweep falls back to continuation.
+    w = _walk(m, plan, deltas) if plan is not None and len(deltas) else None
     known_cond = None
     if w is not None:
-        # closed form, dyad by dyad; only poses near a dyad's toggle need the condition number
         n = w.reach
         stopped = "toggle" if n < len(deltas) else ""
         if n < len(deltas):
-            w = _walk(m, plan, deltas[:n])
+            w = _walk(m, plan, deltas[:n])     # past a toggle the walk is NaN: walked to it only
         # q, q', q'' in one block: the three levels of the same coordinates
         block = np.empty((3, n, kin.system.nq))
         q = coordinates(w, kin.system.index, plan, deltas[:n], out=block[0])
+        if not pose.check_closed_form(kin.system.positions, list(kin.rows), q, deltas[:n]):
+            w = None                           # not the mechanism the plan assumed
+    if w is not None:
         near = np.flatnonzero(w.sine < 1e-3)
         if len(near):
             c = condition(kin, q[near])
