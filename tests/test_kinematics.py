@@ -344,6 +344,21 @@ def test_closed_form_stops_at_the_toggle_like_continuation(monkeypatch):
     assert abs(len(fast.angles) - len(slow.angles)) <= 1
 
 
+@pytest.mark.parametrize("angles", [[-100.0, -99.0], [100.0, 105.0, 200.0, 105.0], [100.0, 50.0, 0.0, -100.0, -105.0]])
+def test_closed_form_follows_the_path_between_positions_like_continuation(monkeypatch, angles):
+    """A toggle between two requested positions stops the closed form too: -100 is reached from the
+    drawn 100 the shorter way, across the toggle at 109.47 deg (cos = -1/3), so not at all; a jump
+    from 105 to 200 crosses it; going down through 0 crosses none."""
+    import velpoly.pose as pose
+    m = velpoly.load(fourbar(4, 5, 6, 9, theta=100.0))
+    fast = velpoly.sweep(m, np.array(angles))
+    monkeypatch.setattr(pose, "check_closed_form", lambda *a: False)
+    slow = velpoly.sweep(m, np.array(angles))
+    assert len(fast.angles) == len(slow.angles) and bool(fast.stopped) == bool(slow.stopped)
+    if len(slow.angles):
+        assert np.allclose(fast.position["B"], slow.position["B"], atol=1e-9)
+
+
 def test_import_is_light_and_the_api_names_stay_functions():
     """`velpoly --help` imports no numpy; importing every module keeps load/solve/sweep callable."""
     import subprocess
