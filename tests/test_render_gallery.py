@@ -1,6 +1,6 @@
 """Every example renders in every sheet and style, with the real constructions.
 
-velpoly/examples/sixbar.toml and every gallery/*.toml present: each sheet
+every built-in example (velpoly/examples/*.toml, the gallery's files): each sheet
 (velocity, acceleration, poles, full) in each style (textbook, slides) as
 SVG, with no two labels overlapping. A file whose contacts are given by
 their normals only has no acceleration sheet (an InputError saying that
@@ -23,9 +23,10 @@ from velpoly.errors import InputError
 from velpoly.render import sheet
 from velpoly.render.canvas import per_cm
 from velpoly.render.style import get_style, rc_context
+from paths import GALLERY_FILES
 
 ROOT = Path(__file__).resolve().parent.parent
-FILES = [ROOT / "velpoly" / "examples" / "sixbar.toml"] + sorted((ROOT / "gallery").glob("*.toml"))
+FILES = GALLERY_FILES
 
 
 def _label_boxes(fig):

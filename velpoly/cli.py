@@ -68,8 +68,12 @@ def build_parser() -> argparse.ArgumentParser:
     g = sub.add_parser("gallery", help="rebuild the gallery's figures and README")
     g.add_argument("-o", "--output", default=None, help="output folder (default: the source folder)")
     g.add_argument("--source", default=None, help="folder of the example *.toml files (default: the "
-                   "repository's gallery/)")
+                   "built-in examples)")
     g.add_argument("--style", choices=STYLES, default="textbook")
+    g.add_argument("names", nargs="*", metavar="NAME", help="build only these examples (default: all)")
+
+    x = sub.add_parser("examples", help="list the built-in examples, or print one to start a file from")
+    x.add_argument("name", nargs="?", metavar="NAME", help="the example to print (its TOML text)")
     return p
 
 
@@ -144,7 +148,20 @@ def cmd_gallery(args) -> int:
     return gallery_command(args)
 
 
-COMMANDS = {"solve": cmd_solve, "draw": cmd_draw, "sweep": cmd_sweep, "demo": cmd_demo, "gallery": cmd_gallery}
+def cmd_examples(args) -> int:
+    from .gallery import example_path, example_titles
+    if args.name:
+        sys.stdout.write(example_path(args.name).read_text(encoding="utf-8"))
+        return 0
+    rows = example_titles()
+    width = max(len(name) for name, _ in rows)
+    for name, title in rows:
+        print(f"{name:<{width}}  {one_line(title)}")
+    return 0
+
+
+COMMANDS = {"solve": cmd_solve, "draw": cmd_draw, "sweep": cmd_sweep, "demo": cmd_demo, "gallery": cmd_gallery,
+            "examples": cmd_examples}
 
 
 def main(argv=None) -> int:
