@@ -61,6 +61,7 @@ def _q(symbol: str, index: str, unit: str = "") -> str:
 
 
 _GREEK = {"omega": r"\omega", "alpha": r"\alpha", "theta": r"\theta"}
+_COMPONENT_MARK = {"n": "ⁿ", "t": "ᵗ", "c": "ᶜ", "s": "ˢ"}   # of the components A^n, A^t, A^c, A^s
 
 
 def _key(key: str) -> str:
@@ -68,13 +69,15 @@ def _key(key: str) -> str:
     bars = key.startswith("|") and key.endswith("|")
     body = key.strip("|")
     sym, sep, idx = body.partition("_")
+    if sym[1:2] == "^" and sym[2:] in _COMPONENT_MARK:   # a component as books print it: A^c_B3/B4 -> Aᶜ_B3/B4
+        sym = sym[0] + _COMPONENT_MARK[sym[2:]]
     if not sep or not idx or not sym.isalpha():
         return key
     out = _q(_GREEK.get(sym, sym), idx)
     return f"|{out}|" if bars else out
 
 
-_RICH = re.compile(r"^(\|?)\$(\\?[A-Za-z]+)_\{([^}$]*)\}\$(\|?)(.*)$")
+_RICH = re.compile(r"^(\|?)\$(\\?[A-Za-z]+[ⁿᵗᶜˢ]?)_\{([^}$]*)\}\$(\|?)(.*)$")
 _SYMBOLS = {r"\omega": "ω", r"\alpha": "α", r"\theta": "θ"}
 
 
