@@ -242,3 +242,56 @@ def test_every_gallery_note_is_keyed_by_its_value():
     for path in GALLERY_FILES:
         ref = velpoly.load(path).reference
         assert set(ref.note) <= set(value_keys(ref)), path.name
+
+
+# -- 5. the branch each compass construction takes, and the other one ---------------------------------
+def _switched(spec: dict, switch: str) -> dict:
+    import tomllib
+    return {**{k: v for k, v in spec.items() if k not in ("near", "side")}, **tomllib.loads(switch)}
+
+
+@pytest.mark.parametrize("seed", SEEDS)
+def test_each_compass_construction_lists_the_other_intersection_and_how_to_take_it(seed):
+    from mechanisms import fourbar
+    rng = random.Random(seed)
+    while True:   # a four-bar that assembles at this crank angle
+        a, b, c, d = (rng.uniform(1, 10) for _ in range(4))
+        mech = fourbar(a, b, c, d, theta=rng.uniform(-180, 180), branch=rng.choice(["left", "right"]))
+        if seed % 2:   # a sketch point near the intersection instead of a side
+            mech["points"]["B"] = {"circles": mech["points"]["B"]["circles"], "near": [rng.uniform(-9, 9), 0]}
+        try:
+            m = velpoly.load(mech)
+        except InputError:
+            continue
+        break
+    (con,) = m.constructions
+    assert con.point == "B" and con.kind == "circles" and con.chosen == pytest.approx(m.position("B"), abs=0)
+    A, O4 = m.position("A"), m.position("O4")
+    for p in (con.chosen, con.other):   # both on both circles
+        assert np.hypot(*(np.asarray(p) - A)) == pytest.approx(b, rel=1e-12)
+        assert np.hypot(*(np.asarray(p) - O4)) == pytest.approx(c, rel=1e-12)
+    cross = (O4 - A)[0] * (np.asarray(con.chosen) - A)[1] - (O4 - A)[1] * (np.asarray(con.chosen) - A)[0]
+    assert con.side == ("left" if cross > 0 else "right")
+    other = velpoly.load({**mech, "points": {**mech["points"], "B": _switched(mech["points"]["B"], con.switch)}})
+    assert np.allclose(other.position("B"), con.other, rtol=0, atol=1e-12 * m.size)
+    assert other.constructions[0].other == pytest.approx(con.chosen, abs=1e-12 * m.size)
+    # a circle and a line: the slider-crank's block
+    s = slider_crank(r=rng.uniform(1, 3), l=rng.uniform(4, 9), e=rng.uniform(-1, 1), theta=rng.uniform(-180, 180),
+                     path=rng.uniform(-90, 90))
+    m = velpoly.load(s)
+    (con,) = m.constructions
+    assert con.kind == "circle and line" and con.side is None
+    sw = velpoly.load({**s, "points": {**s["points"], "B": _switched(s["points"]["B"], con.switch)}})
+    assert np.allclose(sw.position("B"), con.other, rtol=0, atol=1e-9 * m.size)
+
+
+def test_solve_prints_the_compass_constructions(capsys):
+    from paths import example
+    assert main(["solve", str(example("problem_1_4_4_sixbar"))]) == 0
+    out = capsys.readouterr().out
+    part = out.split("Compass constructions", 1)[1].split("\n\n", 1)[0].splitlines()
+    assert part[1].split() == ["point", "construction", "taken", "other", "picked", "by", "for", "the", "other", "write"]
+    c, f = part[3], part[4]
+    assert c.startswith("C      circles B 0.4, D 0.37") and "(-0.0689445, 0.422073) left" in c
+    assert "(0.522022, 0.154016) right" in c and c.rstrip().endswith('side = "right"')
+    assert f.startswith("F") and "(-0.37, 0.623247)" in f and 'near = { from = "E", angle = 108.17 }' in f

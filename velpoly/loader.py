@@ -18,7 +18,7 @@ from typing import Any, Mapping
 import numpy as np
 
 from .errors import InputError, VelpolyError
-from .model import (Contact, Driver, Link, Mechanism, Pin, Reference, Slider, Slot,
+from .model import (Construction, Contact, Driver, Link, Mechanism, Pin, Reference, Slider, Slot,
                     frozen_map)
 from .pose import circle_circle, circle_line
 
@@ -36,6 +36,7 @@ class _Ctx:
         self.text = text
         self.units = ""
         self.point_names: tuple[str, ...] = ()   # every name in [points], in file order
+        self.compass: list[Construction] = []     # the compass constructions met, in file order
 
     def err(self, where: str, what: str, hint: str = "") -> InputError:
         line = locate(self.text, where)
@@ -380,13 +381,22 @@ def _two_circles(ctx, where, name, spec, pts):
                        "check the lengths (the links cannot reach)"))
     if np.hypot(*(left - right)) <= 2 * TANGENT * max(r1, r2, dist):
         left = right = 0.5 * (left + right)   # tangent to within rounding: on the line of centres
+    given = f"circles {cs[0][0]} {r1:g}, {cs[1][0]} {r2:g}"
     if "side" in spec:
         side = spec["side"]
         if side not in ("left", "right"):
             raise ctx.err(where + ".side", f"expected \"left\" or \"right\", got {_show(side)}",
                           hint="the side of the directed line from the first centre to the second")
-        return left if side == "left" else right
-    return _pick(ctx, where, (left, right), spec["near"], pts, name)
+        chosen = left if side == "left" else right
+    else:
+        chosen = _pick(ctx, where, (left, right), spec["near"], pts, name)
+        side = "left" if chosen is left else "right"
+    other = right if chosen is left else left
+    touch = other is chosen or (left == right).all()
+    ctx.compass.append(Construction(
+        name, "circles", given, _pair(chosen), None if touch else _pair(other), _rule(spec), side,
+        "" if touch else f'side = "{"right" if side == "left" else "left"}"'))
+    return chosen
 
 
 def _circle_and_line(ctx, where, name, spec, pts):
@@ -411,7 +421,35 @@ def _circle_and_line(ctx, where, name, spec, pts):
                            "check the radius and the line")
     if np.hypot(*(a - b)) <= 2 * TANGENT * max(r, float(np.hypot(*(centre - through)))):
         a = b = 0.5 * (a + b)   # tangent to within rounding
-    return _pick(ctx, where, (a, b), spec["near"], pts, name)
+    chosen = _pick(ctx, where, (a, b), spec["near"], pts, name)
+    other = b if chosen is a else a
+    touch = (a == b).all()
+    d = other - centre
+    line = spec["line"]
+    shown = (f"{line[0]}-{line[1]}" if isinstance(line, list) else
+             f"through {line['through'] if isinstance(line['through'], str) else '(%g, %g)' % _pair(through)} "
+             f"at {line['angle']:g} deg")
+    ctx.compass.append(Construction(
+        name, "circle and line", f"circle {c[0]} {r:g}, line {shown}", _pair(chosen), None if touch else _pair(other),
+        _rule(spec), None,
+        "" if touch else f'near = {{ from = "{c[0]}", angle = {math.degrees(math.atan2(d[1], d[0])):.2f} }}'))
+    return chosen
+
+
+def _pair(v) -> tuple[float, float]:
+    return (float(v[0]), float(v[1]))
+
+
+def _rule(spec) -> str:
+    """How a compass construction picks its intersection, as the file writes it."""
+    if "side" in spec:
+        return f'side = "{spec["side"]}"'
+    near = spec["near"]
+    if isinstance(near, dict):
+        return f'near = {{ from = "{near["from"]}", angle = {near["angle"]:g} }}'
+    if isinstance(near, list):
+        return f"near = [{near[0]:g}, {near[1]:g}]"
+    return f'near = "{near}"'
 
 
 def _polar_construction(ctx, where, name, spec, pts):
@@ -914,6 +952,7 @@ def _build(ctx: _Ctx, data: dict, default_title: str) -> Mechanism:
         links=tuple(links), pins=tuple(pins), sliders=tuple(sliders), contacts=tuple(contacts),
         slots=tuple(slots), driver=driver, reference=reference, drawing=frozen_map(drawing),
         carriers=frozen_map(carriers), source=ctx.file, point_order=tuple(pts),
+        constructions=tuple(ctx.compass),
     )
     _check_range(ctx, m)
     _check_reference(ctx, m)

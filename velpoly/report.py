@@ -103,6 +103,24 @@ def _show_value(v) -> str:
     return fmt(v)
 
 
+def _compass(sol) -> Table | None:
+    """Each compass construction of the file: the intersection it takes and the other one (the branch
+    the drawing is on, and what to write for the other)."""
+    cons = sol.mechanism.constructions
+    if not cons:
+        return None
+
+    def xy(p):
+        return f"({fmt(p[0])}, {fmt(p[1])})"
+    rows = tuple((c.point, c.given, xy(c.chosen) + (f" {c.side}" if c.side else ""),
+                  "-" if c.other is None else xy(c.other) + (f" {'right' if c.side == 'left' else 'left'}"
+                                                             if c.side else ""),
+                  c.rule, c.switch or "(the two touch: one point)") for c in cons)
+    return Table("Compass constructions of the file (reference pose): the intersection taken and the other one; "
+                 "left/right of the line from the first centre to the second",
+                 ("point", "construction", "taken", "other", "picked by", "for the other write"), rows)
+
+
 def _is_pole(r) -> bool:
     """A pole's position, printed as [x, y] (P_13 or P13)."""
     return r.key.startswith("P") and isinstance(r.printed, tuple) and r.key[1:2] in ("_", *"0123456789")
@@ -146,6 +164,9 @@ def solution_tables(sol) -> list[Table]:
     from .solution import load_sections
     load_sections()
     out = [_links(sol), _points(sol), *_joints(sol)]
+    compass = _compass(sol)
+    if compass is not None:
+        out.append(compass)
     for fn in SECTIONS:
         t = fn(sol)
         if t is None:
