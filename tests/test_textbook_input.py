@@ -295,3 +295,35 @@ def test_solve_prints_the_compass_constructions(capsys):
     assert c.startswith("C      circles B 0.4, D 0.37") and "(-0.0689445, 0.422073) left" in c
     assert "(0.522022, 0.154016) right" in c and c.rstrip().endswith('side = "right"')
     assert f.startswith("F") and "(-0.37, 0.623247)" in f and 'near = { from = "E", angle = 108.17 }' in f
+
+
+# -- 8. a point of links pinned together is one row in the tables -------------------------------------
+@pytest.mark.parametrize("seed", SEEDS[:4])
+def test_a_pinned_pair_is_shown_once_and_the_json_keeps_its_keys(seed):
+    from velpoly.polygons import acceleration_polygon, velocity_polygon
+    from velpoly.render.table import results_table
+    from velpoly.report import pinned_keys, solution_report
+    m = velpoly.load(lever(seed))
+    s = velpoly.solve(m)
+    assert {"A@2", "A@3", "A@4"} <= set(s.to_dict()["points"])              # FORMAT.md section 5
+    for table in (s.velocity, s.acceleration):   # pinned: equal (to rounding)
+        assert np.allclose(table["A@2"], table["A@3"], rtol=0, atol=1e-12 * np.hypot(*table["A@2"]))
+    assert pinned_keys(m) == {"A@2": ("A", ("2", "3")), "A@3": None}
+    rows = [line for line in solution_report(s).split("Points\n", 1)[1].split("\n\n", 1)[0].splitlines()[2:]]
+    labels = [r.split("  ")[0] for r in rows]
+    assert "A (on 2 and 3)" in labels and "A@4" in labels and not {"A@2", "A@3"} & set(labels)
+    row = rows[labels.index("A (on 2 and 3)")]
+    assert row.split("  ")[-1].strip().startswith(f"{np.hypot(*s.acceleration['A@2']):.6g}"[:5])
+    t = results_table(s, "full", velocity=velocity_polygon(s), acceleration=acceleration_polygon(s))
+    names = [r[0] for r in t.rows]
+    assert "$V_{A}$ (on 2 and 3)" in names and "$A_{A}$ (on 2 and 3)" in names
+    assert not any(n.startswith(("$V_{A3}$", "$A_{A3}$", "$V_{A2}$", "$A_{A2}$")) for n in names)
+    assert "$V_{A4}$" in names
+
+
+def test_three_links_pinned_at_a_point_and_a_guide():
+    from velpoly.report import on_links, pinned_keys
+    assert on_links(("2", "3", "5")) == "2, 3 and 5" and on_links(("2", "3")) == "2 and 3"
+    m = velpoly.load(lever(0))
+    assert pinned_keys(velpoly.load(slider_crank())) == {}    # one key per point: nothing to merge
+    assert pinned_keys(m)["A@2"] == ("A", ("2", "3"))

@@ -15,7 +15,8 @@ import numpy as np
 
 from .reference import at_file_pose, compare, file_pose_angle
 
-__all__ = ["Table", "render_table", "solution_tables", "solution_report", "fmt", "polar", "SECTIONS"]
+__all__ = ["Table", "render_table", "solution_tables", "solution_report", "fmt", "polar", "SECTIONS",
+           "pinned_keys", "on_links"]
 
 
 @dataclass(frozen=True)
@@ -63,10 +64,46 @@ def _links(sol) -> Table:
     return Table("Links", ("link", "angle (deg)", "omega (rad/s)", "alpha (rad/s^2)"), tuple(rows))
 
 
+def pinned_keys(m) -> dict:
+    """How tables show each point key: ``{key: (point, links)}`` for keys ``P@a`` of links pinned together
+    at P (two or more, so one row "P (on a and b)" stands for them all: they move alike), the first
+    key of each such group only; other keys are absent (the key itself is shown) or map to None (a
+    pinned key after the first: no row of its own). JSON keys stay as FORMAT.md section 5 says."""
+    out: dict = {}
+    for p in m.point_order:
+        carriers = m.carriers.get(p, ())
+        groups = [{lk} for lk in carriers]
+        for pin in m.pins:
+            if pin.point != p:
+                continue
+            hit = [g for g in groups if g & set(pin.links)]
+            if len(hit) == 2:
+                groups.remove(hit[1])
+                hit[0] |= hit[1]
+        if len(groups) < 2:
+            continue   # one key P: pinned alike by structure
+        for g in groups:
+            if len(g) < 2:
+                continue
+            links = [lk for lk in carriers if lk in g]
+            out[f"{p}@{links[0]}"] = (p, tuple(links))
+            out.update({f"{p}@{lk}": None for lk in links[1:]})
+    return out
+
+
+def on_links(links) -> str:
+    """``2 and 3``, ``2, 3 and 5``."""
+    return " and ".join(links) if len(links) < 3 else ", ".join(links[:-1]) + " and " + links[-1]
+
+
 def _points(sol) -> Table:
     rows = []
+    pinned = pinned_keys(sol.mechanism)
     for key, p in sol.position.items():
-        rows.append((key, f"({fmt(p[0])}, {fmt(p[1])})", polar(sol.velocity[key]), polar(sol.acceleration[key])))
+        if key in pinned and pinned[key] is None:
+            continue   # shown with the first key of its pinned group
+        label = f"{pinned[key][0]} (on {on_links(pinned[key][1])})" if key in pinned else key
+        rows.append((label, f"({fmt(p[0])}, {fmt(p[1])})", polar(sol.velocity[key]), polar(sol.acceleration[key])))
     u = sol.mechanism.units
     return Table("Points", ("point", f"position ({u})", f"velocity ({u}/s)", f"acceleration ({u}/s^2)"),
                  tuple(rows))
