@@ -327,3 +327,16 @@ def test_three_links_pinned_at_a_point_and_a_guide():
     m = velpoly.load(lever(0))
     assert pinned_keys(velpoly.load(slider_crank())) == {}    # one key per point: nothing to merge
     assert pinned_keys(m)["A@2"] == ("A", ("2", "3"))
+
+
+# -- 9. a notebook shows a Solution as the tables of `velpoly solve` -----------------------------------
+def test_a_solution_shows_its_tables_in_a_notebook():
+    from velpoly.report import solution_report, solution_tables
+    m = velpoly.load(_with_reference(lever(2), omega={"4": 1.0}, note={"omega_4": "a <misprint> & more"}))
+    s = velpoly.solve(m)
+    html = s._repr_html_()
+    tables = solution_tables(s)
+    assert html.count("<table>") == len(tables) and html.count("<tr>") == sum(len(t.rows) + 1 for t in tables)
+    assert "a &lt;misprint&gt; &amp; more" in html and "<misprint>" not in html
+    assert html.startswith("<h4>&lt;dict&gt;</h4>") and solution_report(s).splitlines()[1] in html   # title <dict>
+    assert "A (on 2 and 3)" in html

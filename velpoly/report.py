@@ -16,7 +16,7 @@ import numpy as np
 from .reference import at_file_pose, compare, file_pose_angle
 
 __all__ = ["Table", "render_table", "solution_tables", "solution_report", "fmt", "polar", "SECTIONS",
-           "pinned_keys", "on_links"]
+           "pinned_keys", "on_links", "solution_html"]
 
 
 @dataclass(frozen=True)
@@ -249,17 +249,37 @@ def render_table(t: Table, style: str = "text") -> str:
     return "\n".join(lines) + "\n"
 
 
+def _head(sol) -> tuple[str, str]:
+    """The report's title and its driver's line."""
+    m = sol.mechanism
+    if m.driver.is_slider:
+        return m.title, (f"driver: slider {m.driver.slider}, speed {fmt(m.driver.speed)} {m.units}/s, "
+                         f"accel {fmt(m.driver.accel)} {m.units}/s^2")
+    return m.title, (f"driver: link {m.driver.link} at {sol.driver_angle:.4f} deg, omega {fmt(m.driver.omega)} "
+                     f"rad/s, alpha {fmt(m.driver.alpha)} rad/s^2")
+
+
+def _html_table(t: Table) -> str:
+    from html import escape
+    head = "".join(f"<th>{escape(str(h))}</th>" for h in t.header)
+    body = "".join("<tr>" + "".join(f"<td>{escape(str(c))}</td>" for c in r) + "</tr>" for r in t.rows)
+    return (f"<table><caption style=\"text-align:left\">{escape(t.title)}</caption><thead><tr>{head}</tr>"
+            f"</thead><tbody>{body}</tbody></table>")
+
+
+def solution_html(sol) -> str:
+    """The report of ``velpoly solve`` as HTML: what a notebook shows for a Solution."""
+    from html import escape
+    title, driver = _head(sol)
+    out = [f"<h4>{escape(title)}</h4>", f"<p>{escape(driver)}</p>"]
+    out += [_html_table(t) for t in solution_tables(sol)]
+    out += [f"<p>warning: {escape(w)}</p>" for w in sol.warnings]
+    return "\n".join(out)
+
+
 def solution_report(sol, style: str = "text") -> str:
     """The whole readable report of ``velpoly solve``."""
-    m = sol.mechanism
-    head = [m.title]
-    if m.driver.is_slider:
-        head.append(f"driver: slider {m.driver.slider}, speed {fmt(m.driver.speed)} {m.units}/s, "
-                    f"accel {fmt(m.driver.accel)} {m.units}/s^2")
-    else:
-        head.append(f"driver: link {m.driver.link} at {sol.driver_angle:.4f} deg, omega {fmt(m.driver.omega)} rad/s, "
-                    f"alpha {fmt(m.driver.alpha)} rad/s^2")
-    out = "\n".join(head) + "\n\n" + "\n".join(render_table(t, style) for t in solution_tables(sol))
+    out = "\n".join(_head(sol)) + "\n\n" + "\n".join(render_table(t, style) for t in solution_tables(sol))
     for w in sol.warnings:
         out += f"\nwarning: {w}\n"
     return out
