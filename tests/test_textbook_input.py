@@ -314,6 +314,9 @@ def test_a_pinned_pair_is_shown_once_and_the_json_keeps_its_keys(seed):
     assert "A (on 2 and 3)" in labels and "A@4" in labels and not {"A@2", "A@3"} & set(labels)
     row = rows[labels.index("A (on 2 and 3)")]
     assert row.split("  ")[-1].strip().startswith(f"{np.hypot(*s.acceleration['A@2']):.6g}"[:5])
+    report = solution_report(s)   # and the polygons' tables of the same report
+    assert "V_A (on 2 and 3) (a" in report and "A_A (on 2 and 3) (a" in report
+    assert "V_A@2" not in report and "V_A@3" not in report and "V_A@4 (a4)" in report
     t = results_table(s, "full", velocity=velocity_polygon(s), acceleration=acceleration_polygon(s))
     names = [r[0] for r in t.rows]
     assert "$V_{A}$ (on 2 and 3)" in names and "$A_{A}$ (on 2 and 3)" in names
