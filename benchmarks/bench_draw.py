@@ -70,11 +70,11 @@ def svg_counts(path: Path) -> dict:
 
 def main(argv=None) -> int:
     p = parser(__doc__.splitlines()[0])
-    p.add_argument("--file", help="mechanism file to draw (default: velpoly/examples/sixbar.toml)")
+    p.add_argument("--file", help="mechanism file to draw (default: velpoly/examples/problem_1_4_4_sixbar.toml)")
     args = p.parse_args(argv)
     import velpoly
     notes: list[str] = []
-    mech = Path(args.file) if args.file else Path(velpoly.__file__).parent / "examples" / "sixbar.toml"
+    mech = Path(args.file) if args.file else Path(velpoly.__file__).parent / "examples" / "problem_1_4_4_sixbar.toml"
     exe = shutil.which("velpoly")
     base_cmd = [exe] if exe else [sys.executable, "-m", "velpoly"]
     target_row = lambda value, met, note="": row("draw --sheet full: velpoly / bare matplotlib",  # noqa: E731

@@ -2,7 +2,7 @@
 
     python benchmarks/bench_instant.py [--repeats 5] [--json OUT]
 
-* instant: ``velpoly/examples/sixbar.toml`` loaded once, then
+* instant: ``velpoly/examples/problem_1_4_4_sixbar.toml`` loaded once, then
   ``velpoly.solve(m)`` (pose, velocities, accelerations) plus, where the
   modules exist, ``velpoly.polygons.velocity_polygon``,
   ``acceleration_polygon`` and ``velpoly.poles.locate_poles``; a module not
@@ -48,7 +48,7 @@ def main(argv=None) -> int:
     args = parser(__doc__.splitlines()[0]).parse_args(argv)
     import velpoly
     notes: list[str] = []
-    path = Path(velpoly.__file__).parent / "examples" / "sixbar.toml"
+    path = Path(velpoly.__file__).parent / "examples" / "problem_1_4_4_sixbar.toml"
     m = velpoly.load(path)
     parts = instant_parts(notes)
 

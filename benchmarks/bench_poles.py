@@ -60,7 +60,7 @@ def main(argv=None) -> int:
 
     t_poles = best_of(lambda: locate_poles(sol, cached=False), args.repeats, 10)
     t_ic = best_of(lambda: instant_centre_velocities(sol, ps), args.repeats, 10)
-    six = velpoly.solve(velpoly.load(Path(velpoly.__file__).parent / "examples" / "sixbar.toml"))
+    six = velpoly.solve(velpoly.load(Path(velpoly.__file__).parent / "examples" / "problem_1_4_4_sixbar.toml"))
     t_six = best_of(lambda: locate_poles(six, cached=False), args.repeats, 100)
 
     print(f"{sol.mechanism.title}: {n} links, {len(ps)} poles "

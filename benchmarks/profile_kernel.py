@@ -164,7 +164,7 @@ def main(argv=None) -> int:
     args = p.parse_args(argv)
     import velpoly
     m4 = velpoly.load(FOURBAR)
-    m6 = velpoly.load(Path(velpoly.__file__).parent / "examples" / "sixbar.toml")
+    m6 = velpoly.load(Path(velpoly.__file__).parent / "examples" / "problem_1_4_4_sixbar.toml")
     breakdown("four-bar sweep, 3600 poses", lambda: velpoly.sweep(m4, ANGLES_DEG), runs=10)
     parts = []
     for mod_name, names in (("velpoly.polygons", ("velocity_polygon", "acceleration_polygon")),

@@ -2,7 +2,7 @@
 
 The figures are drawn from velpoly.polygons' objects (Polygon, Step,
 ConstructionLine, Vector); these are built by hand for the six-bar of
-velpoly/examples/sixbar.toml, the way a textbook constructs them, so that the
+velpoly/examples/problem_1_4_4_sixbar.toml, the way a textbook constructs them, so that the
 drawing code is tested against known geometry independently of how
 velpoly.polygons plans its constructions.
 """
@@ -17,7 +17,7 @@ from shapely.geometry import box
 import velpoly
 from velpoly.polygons import ConstructionLine, Polygon, Step, Vector
 
-SIXBAR = Path(velpoly.__file__).parent / "examples" / "sixbar.toml"
+from paths import SIXBAR  # noqa: E402
 
 
 def _unit(v):

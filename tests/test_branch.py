@@ -350,7 +350,7 @@ def test_reassembly_from_a_singular_reference_pose_is_a_pose_error(how):
 
 
 # -- a drag link through a rolling contact (formerly issue 3 of gallery/SOLVER_ISSUES.md) ----------------------
-GALLERY = __import__("pathlib").Path(__file__).resolve().parent.parent / "gallery"
+from paths import EXAMPLES as GALLERY  # noqa: E402
 
 
 def rolling_drag_link(radius: float = 4.0) -> str:

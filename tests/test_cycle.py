@@ -370,7 +370,7 @@ def test_progress_bar_only_on_a_terminal():
 
 
 # -- every gallery mechanism -------------------------------------------------------------------
-GALLERY = sorted((__import__("pathlib").Path(__file__).resolve().parent.parent / "gallery").glob("*.toml"))
+from paths import GALLERY_FILES as GALLERY  # noqa: E402
 # the gallery files that cannot turn round, with their reachable driver range (absolute, degrees)
 PARTIAL = {"fig3_15a_rolling": (-61.0, 151.0),    # a flat-faced cam: see the file's comments
            "fig3_15b_sliding": (-61.0, 151.0)}    # the same lever and cam; the slip turns the wheel only

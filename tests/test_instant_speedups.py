@@ -6,9 +6,10 @@ import pytest
 
 import velpoly
 from velpoly.kinematics import accelerations, prepare, velocities
+from paths import GALLERY_FILES
 
 ROOT = Path(__file__).resolve().parent.parent
-FILES = sorted((ROOT / "gallery").glob("*.toml")) + [ROOT / "velpoly" / "examples" / "sixbar.toml"]
+FILES = GALLERY_FILES
 
 
 @pytest.mark.parametrize("path", FILES, ids=lambda p: p.stem)

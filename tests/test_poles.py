@@ -22,6 +22,7 @@ from velpoly.poles import (ALIKE, FAR, instant_centre_velocities, kennedy_circle
 from velpoly.reference import evaluate, parse_key, relative_pole
 from velpoly.report import SECTIONS, render_table, solution_report
 from mechanisms import EXAMPLE_3_6, fourbar, inverted_slider_crank, set_path_angle, slider_crank
+from paths import GALLERY_FILES, SIXBAR
 
 TOL = 1e-9
 SETTINGS = dict(max_examples=50, deadline=None, suppress_health_check=[HealthCheck.filter_too_much,
@@ -330,7 +331,7 @@ def test_parallelogram_poles_at_infinity_and_a_translating_coupler():
 
 
 def test_poles_of_the_sixbar_example_and_the_json_section():
-    s = velpoly.solve(velpoly.load("velpoly/examples/sixbar.toml"))
+    s = velpoly.solve(velpoly.load(SIXBAR))
     ps = check_all(s)
     assert len(ps) == 15 and hows(ps)["pin"] == 6 and hows(ps)["slider"] == 1
     d = s.to_dict()["poles"]
@@ -345,7 +346,7 @@ def test_poles_of_the_sixbar_example_and_the_json_section():
 
 
 def test_kennedy_circle_has_n_points_and_every_chord():
-    s = velpoly.solve(velpoly.load("velpoly/examples/sixbar.toml"))
+    s = velpoly.solve(velpoly.load(SIXBAR))
     ps = locate_poles(s)
     kc = kennedy_circle(ps)
     n = len(ps.links)
@@ -705,7 +706,7 @@ def test_twenty_link_chains(seed):
 
 def test_gallery_mechanisms_if_present():
     import pathlib
-    files = sorted(pathlib.Path(__file__).resolve().parent.parent.glob("gallery/*.toml"))
+    files = GALLERY_FILES
     checked = 0
     for f in files:
         try:

@@ -32,6 +32,7 @@ from velpoly.render.displacement import draw_mechanism
 from velpoly.render.labels import LabelPlacer
 from velpoly.render.polygon import draw_polygon
 from velpoly.render.style import rc_context
+from paths import EXAMPLES
 
 ROOT = Path(__file__).resolve().parent.parent
 
@@ -283,7 +284,7 @@ def test_slotted_lever_is_drawn_under_its_crank_and_clear_of_its_pins():
     """Crank-shaper: the slotted lever 4 lies under the crank 2, its slot stops short of its pin B (B's
     label is not inside the bar), and the driver's arc crosses no other link."""
     from shapely.geometry import LineString, Point
-    sol = velpoly.solve(velpoly.load(ROOT / "gallery" / "crank_shaper.toml"))
+    sol = velpoly.solve(velpoly.load(EXAMPLES / "crank_shaper.toml"))
     ax = _axes((5, 6))
     with rc_context(sheet.get_style("textbook")):
         art = draw_mechanism(sol, ax)
@@ -333,7 +334,7 @@ def test_labels_of_close_images_stand_apart_on_their_own_sides(sixbar):
 def test_driver_value_sits_by_its_arc_over_no_link(stem, name, style):
     """The omega arrow goes where its value can stand next to it, over no link's outline (ex3_6's poles
     sheet in slides had it across link 4 and the label of P_14)."""
-    sol = velpoly.solve(velpoly.load(ROOT / "gallery" / f"{stem}.toml"))
+    sol = velpoly.solve(velpoly.load(EXAMPLES / f"{stem}.toml"))
     st = sheet.get_style(style)
     with rc_context(st):
         fig = sheet.render_sheet(sol, name, st)
@@ -385,8 +386,8 @@ def test_kennedy_circle_has_n_points_and_all_chords(sixbar):
     assert len(art["chords"]) == sum(1 for p in ps.poles.values() if p.order <= 2)
 
 
-@pytest.mark.parametrize("path", [ROOT / "gallery" / "ex3_6_fourbar.toml", SIXBAR,
-                                  ROOT / "gallery" / "watt_sixbar.toml"], ids=lambda p: p.stem)
+@pytest.mark.parametrize("path", [EXAMPLES / "ex3_6_fourbar.toml", SIXBAR,
+                                  EXAMPLES / "watt_sixbar.toml"], ids=lambda p: p.stem)
 def test_kennedy_numbers_sit_on_their_own_chord_clear_of_crossings(path):
     """Each order number lies on its chord, meets no other chord (so no crossing: on a four-bar the
     diagonals cross at the centre) and no other number or link label."""
@@ -454,7 +455,7 @@ def test_far_pole_arrow_stands_on_its_kennedy_line_at_the_border(stem, key):
     pytest.importorskip("velpoly.poles")
     from shapely.geometry import LineString, Point
     from velpoly.render.canvas import view_box
-    sol = velpoly.solve(velpoly.load(ROOT / "gallery" / f"{stem}.toml"))
+    sol = velpoly.solve(velpoly.load(EXAMPLES / f"{stem}.toml"))
     cons = sheet.constructions(sol, "poles")
     pole = cons.poles.poles[key]
     assert pole.position is not None
@@ -486,7 +487,7 @@ def test_mechanism_labels_keep_off_the_kennedy_lines():
     from shapely.geometry import LineString
     from velpoly.poles import locate_poles
     from velpoly.render.kennedy import draw_poles
-    sol = velpoly.solve(velpoly.load(ROOT / "gallery" / "watt_sixbar.toml"))
+    sol = velpoly.solve(velpoly.load(EXAMPLES / "watt_sixbar.toml"))
     st = sheet.get_style("textbook")
     ax = _axes((7.5, 6.9))
     with rc_context(st):
@@ -549,7 +550,7 @@ def test_results_table_blocks_show_only_their_columns():
     centres", "reference" and "deviation" headers), and every value of the rows drawn is drawn."""
     pytest.importorskip("velpoly.poles")
     from velpoly.render.table import results_table
-    sol = velpoly.solve(velpoly.load(ROOT / "gallery" / "ex3_4_slotted_lever.toml"))
+    sol = velpoly.solve(velpoly.load(EXAMPLES / "ex3_4_slotted_lever.toml"))
     with rc_context(sheet.get_style("textbook")):
         fig = sheet.render_sheet(sol, "poles")
     ax = next(a for a in fig.axes if any(t.get_gid() == "results-table" for t in a.texts))
@@ -657,7 +658,7 @@ def test_poles_sheet_layouts_draw_the_mechanism_large():
                 assert a.intersection(b).area == 0, name
     st = sheet.get_style("textbook")
     for stem, largest, layout in (("ex3_6_fourbar", 10.0, "poles-wide"), ("crank_shaper", 80.0, "poles")):
-        sol = velpoly.solve(velpoly.load(ROOT / "gallery" / f"{stem}.toml"))
+        sol = velpoly.solve(velpoly.load(EXAMPLES / f"{stem}.toml"))
         with rc_context(st):
             fig = sheet.render_sheet(sol, "poles", st)
         axes = {ax.get_label(): ax for ax in fig.axes}
@@ -842,7 +843,7 @@ def test_step_caption_has_its_own_room(sixbar):
 
 def test_long_captions_fit_their_columns():
     """Slide type: 'Acceleration polygon (1 cm = 20000 mm/s²)' ran into its neighbour and off the page."""
-    m = velpoly.load(ROOT / "velpoly" / "examples" / "sixbar.toml")
+    m = velpoly.load(SIXBAR)
     sol = velpoly.solve(m)
     from velpoly.render.sheet import _fit_width
     st = sheet.get_style("slides")
@@ -922,7 +923,7 @@ def test_poles_at_infinity_are_labelled_arrows_beyond_the_mechanism():
     from velpoly.poles import locate_poles
     from velpoly.render.displacement import mechanism_bounds
     from velpoly.render.kennedy import draw_poles
-    sol = velpoly.solve(velpoly.load(ROOT / "gallery" / "ex3_4_slotted_lever.toml"))
+    sol = velpoly.solve(velpoly.load(EXAMPLES / "ex3_4_slotted_lever.toml"))
     ps = locate_poles(sol)
     ax = _axes((9, 6))
     art = draw_poles(sol, ax, poleset=ps)
@@ -974,7 +975,7 @@ def test_current_step_lines_are_heavier_with_dashes_as_long(sixbar):
 
 def test_page_title_is_typeset_like_an_equation(tmp_path):
     """A title's ``omega_2`` and ``deg`` read as a book prints them, not as file text."""
-    sol = velpoly.solve(velpoly.load(ROOT / "gallery" / "ex3_5_slider_crank.toml"))
+    sol = velpoly.solve(velpoly.load(EXAMPLES / "ex3_5_slider_crank.toml"))
     fig = sheet.render_sheet(sol, "velocity")
     title = next(t for t in fig.texts if t.get_gid() == "sheet-title").get_text()
     assert r"$\omega_{2}$ = 10 rad/s ccw" in title and "omega_2" not in title
@@ -986,7 +987,7 @@ def test_a_deviation_the_file_explains_is_marked():
     from velpoly.polygons import velocity_polygon
     from velpoly.reference import compare
     from velpoly.render.table import NOTED, _printed, results_table
-    sol = velpoly.solve(velpoly.load(ROOT / "gallery" / "ex3_10_rolling_contact.toml"))
+    sol = velpoly.solve(velpoly.load(EXAMPLES / "ex3_10_rolling_contact.toml"))
     refs = compare(sol)
     noted = {_printed(r) for r in refs if r.note}
     plain = {_printed(r) for r in refs if not r.note}

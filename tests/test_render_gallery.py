@@ -1,6 +1,6 @@
 """Every example renders in every sheet and style, with the real constructions.
 
-velpoly/examples/sixbar.toml and every gallery/*.toml present: each sheet
+Every built-in example (velpoly/examples/*.toml, the gallery's files): each sheet
 (velocity, acceleration, poles, full) as SVG, with no two labels overlapping:
 one style per file (alternating textbook and slides through the sorted
 files), and both styles for the few files in ``BOTH_STYLES`` (a four-bar, a
@@ -26,9 +26,10 @@ from velpoly.errors import InputError
 from velpoly.render import sheet
 from velpoly.render.canvas import per_cm
 from velpoly.render.style import get_style, rc_context
+from paths import GALLERY_FILES
 
 ROOT = Path(__file__).resolve().parent.parent
-FILES = [ROOT / "velpoly" / "examples" / "sixbar.toml"] + sorted((ROOT / "gallery").glob("*.toml"))
+FILES = GALLERY_FILES
 STYLES = ("textbook", "slides")
 BOTH_STYLES = {"ex3_6_fourbar", "problem_1_4_4_sixbar", "ex3_4_slotted_lever", "ex3_10_rolling_contact"}
 

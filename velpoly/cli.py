@@ -22,54 +22,91 @@ __all__ = ["main", "build_parser"]
 
 SHEETS = ("velocity", "acceleration", "poles", "full")
 STYLES = ("textbook", "slides")
+SHEET_HELP = {
+    "velocity": "the mechanism to scale and its velocity polygon, with the results table",
+    "acceleration": "the mechanism and its acceleration polygon (normal, tangential, Coriolis, slip components)",
+    "poles": "the mechanism with every instant centre, the Kennedy lines and the Kennedy circle",
+    "full": "the mechanism, both polygons and the results table (the default)",
+    "displacement": "the space diagram alone with its data: a problem handout, no answers",
+}
+STYLE_HELP = {
+    "textbook": "black on white, serif type, hatched ground, thin lines; A4 landscape",
+    "slides": "colour (each link and each kind of vector its colour), large sans-serif type; 16:9",
+}
+STYLES_HELP = "textbook (black on white, A4) or slides (colour, 16:9); default: textbook"
+ANGLE_HELP = "driver angle in degrees, absolute (counter-clockwise from +x; default: the file's pose)"
 
 
 def build_parser() -> argparse.ArgumentParser:
     p = argparse.ArgumentParser(prog="velpoly", description="Graphical kinematics of planar mechanisms: "
-                                "velocity and acceleration polygons, instant centres, textbook figures.")
+                                "velocity and acceleration polygons, instant centres, textbook figures.",
+                                epilog="example:\n  velpoly examples ex3_6_fourbar > fourbar.toml && "
+                                       "velpoly draw fourbar.toml -o fourbar.pdf",
+                                formatter_class=argparse.RawDescriptionHelpFormatter)
     p.add_argument("--version", action="version", version="velpoly " + _version())
     p.add_argument("--debug", action="store_true", help="show the traceback of an error")
     # --debug is also accepted after the command (velpoly solve FILE --debug)
     debug = argparse.ArgumentParser(add_help=False)
     debug.add_argument("--debug", action="store_true", default=argparse.SUPPRESS,
                        help="show the traceback of an error")
-    sub = p.add_subparsers(dest="command", metavar="COMMAND", parser_class=_sub_parser(debug))
+    sub = p.add_subparsers(dest="command", metavar="COMMAND", parser_class=_sub_parser(debug),
+                           help="what to do (velpoly COMMAND --help says more)")
 
-    s = sub.add_parser("solve", help="analytic positions, velocities, accelerations, poles")
-    s.add_argument("file")
-    s.add_argument("--angle", type=float, help="driver angle in degrees (absolute)")
-    s.add_argument("--json", action="store_true", help="print the JSON results (FORMAT.md section 2)")
+    def command(name, help, example, description=None):
+        """A subcommand whose help ends with an example."""
+        return sub.add_parser(name, help=help, description=description or help[:1].upper() + help[1:] + ".",
+                              epilog="example:\n  " + example, formatter_class=argparse.RawDescriptionHelpFormatter)
+
+    s = command("solve", "analytic positions, velocities, accelerations, poles, and the book's values beside them",
+                "velpoly solve fourbar.toml --angle 40")
+    s.add_argument("file", help="the mechanism file (TOML, FORMAT.md section 1)")
+    s.add_argument("--angle", type=float, metavar="DEG", help=ANGLE_HELP)
+    s.add_argument("--json", action="store_true", help="print the JSON results (FORMAT.md section 2) instead of tables")
     s.add_argument("--format", choices=("text", "markdown", "latex", "csv"), default="text",
-                   help="table style of the readable output")
+                   help="table style of the readable output (default: text)")
 
-    d = sub.add_parser("draw", help="textbook figure(s): SVG, PNG or PDF by the output's suffix")
-    d.add_argument("file")
-    d.add_argument("-o", "--output", help="output file (default: FILE's name with .svg)")
-    d.add_argument("--sheet", choices=SHEETS, default="full")
+    d = command("draw", "textbook figure(s): SVG, PNG or PDF by the output's suffix",
+                "velpoly draw fourbar.toml -o fourbar.pdf --sheet velocity --style slides",
+                description="Draw a textbook figure of the mechanism: SVG, PNG or PDF by the output's suffix.\n\n"
+                            "sheets:\n" + "\n".join(f"  {k:<13} {SHEET_HELP.get(k, '')}" for k in SHEETS) +
+                            "\n\nstyles:\n" + "\n".join(f"  {k:<13} {STYLE_HELP.get(k, '')}" for k in STYLES))
+    d.add_argument("file", help="the mechanism file (TOML)")
+    d.add_argument("-o", "--output", metavar="OUT", help="output file: .svg, .png or .pdf (default: FILE's name with .svg)")
+    d.add_argument("--sheet", choices=SHEETS, default="full", help="what to draw (listed above; default: full)")
     d.add_argument("--steps", action="store_true", help="one construction step a frame (multi-page PDF "
-                   "or numbered SVG/PNG files)")
-    d.add_argument("--angle", type=float, help="driver angle in degrees (absolute)")
-    d.add_argument("--style", choices=STYLES, default="textbook")
+                   "or numbered SVG/PNG files), for slides")
+    d.add_argument("--angle", type=float, metavar="DEG", help=ANGLE_HELP)
+    d.add_argument("--style", choices=STYLES, default="textbook", help="the look (listed above; default: textbook)")
 
-    w = sub.add_parser("sweep", help="a whole driver cycle: plots and a table")
-    w.add_argument("file")
-    w.add_argument("--step", type=float, default=1.0, help="driver step in degrees (default 1)")
-    w.add_argument("-o", "--output", help="plot file (SVG, PNG or PDF)")
+    w = command("sweep", "a whole driver cycle: plots and a table",
+                "velpoly sweep fourbar.toml --step 5 -o cycle.svg --csv cycle.csv")
+    w.add_argument("file", help="the mechanism file (TOML)")
+    w.add_argument("--step", type=float, default=1.0, metavar="DEG", help="driver step in degrees (default 1)")
+    w.add_argument("-o", "--output", metavar="OUT", help="plot file (SVG, PNG or PDF)")
     w.add_argument("--csv", help="CSV file of every quantity over the cycle")
     w.add_argument("--points", help="comma-separated points whose speeds to plot (default: all)")
     w.add_argument("--centrodes", metavar="LINK", help="draw the fixed and moving centrodes of this link")
     w.add_argument("--gif", help="animated GIF of the mechanism with its velocity polygon")
-    w.add_argument("--style", choices=STYLES, default="textbook")
+    w.add_argument("--style", choices=STYLES, default="textbook", help=STYLES_HELP)
 
-    e = sub.add_parser("demo", help="the main job on a built-in example, no file needed")
-    e.add_argument("-o", "--output", default="out", help="output folder (default: out/)")
-    e.add_argument("--style", choices=STYLES, default="textbook")
+    e = command("demo", "the main job on a built-in example, no file needed: the full sheet and the comparison "
+                "with the book", "velpoly demo -o out")
+    e.add_argument("-o", "--output", default="out", metavar="DIR", help="output folder (default: out/)")
+    e.add_argument("--style", choices=STYLES, default="textbook", help=STYLES_HELP)
 
-    g = sub.add_parser("gallery", help="rebuild the gallery's figures and README")
-    g.add_argument("-o", "--output", default=None, help="output folder (default: the source folder)")
-    g.add_argument("--source", default=None, help="folder of the example *.toml files (default: the "
-                   "repository's gallery/)")
-    g.add_argument("--style", choices=STYLES, default="textbook")
+    g = command("gallery", "build the gallery: every built-in example's sheet and its comparison with the book",
+                "velpoly gallery -o my-gallery")
+    g.add_argument("-o", "--output", default=None, metavar="DIR", help="output folder (default: the checkout's "
+                   "gallery/, or ./gallery outside a checkout)")
+    g.add_argument("--source", default=None, metavar="DIR", help="folder of the example *.toml files (default: "
+                   "the built-in examples)")
+    g.add_argument("--style", choices=STYLES, default="textbook", help=STYLES_HELP)
+    g.add_argument("names", nargs="*", metavar="NAME", help="build only these examples (default: all)")
+
+    x = command("examples", "list the built-in examples, or print one to start a file from",
+                "velpoly examples ex3_4_slotted_lever > lever.toml")
+    x.add_argument("name", nargs="?", metavar="NAME", help="the example to print (its TOML text); without it, "
+                   "list them all with their titles")
     return p
 
 
@@ -144,7 +181,20 @@ def cmd_gallery(args) -> int:
     return gallery_command(args)
 
 
-COMMANDS = {"solve": cmd_solve, "draw": cmd_draw, "sweep": cmd_sweep, "demo": cmd_demo, "gallery": cmd_gallery}
+def cmd_examples(args) -> int:
+    from .gallery import example_path, example_titles
+    if args.name:
+        sys.stdout.write(example_path(args.name).read_text(encoding="utf-8"))
+        return 0
+    rows = example_titles()
+    width = max(len(name) for name, _ in rows)
+    for name, title in rows:
+        print(f"{name:<{width}}  {one_line(title)}")
+    return 0
+
+
+COMMANDS = {"solve": cmd_solve, "draw": cmd_draw, "sweep": cmd_sweep, "demo": cmd_demo, "gallery": cmd_gallery,
+            "examples": cmd_examples}
 
 
 def main(argv=None) -> int:

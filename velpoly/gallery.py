@@ -26,11 +26,13 @@ from .fileio import atomic_write_text
 from .reference import Quantity, compare, evaluate, parse_key
 from .report import Table, fmt, render_table
 
-__all__ = ["example_path", "comparison", "comparison_text", "Comparison", "top_comments", "example_markdown",
+__all__ = ["example_path", "example_files", "example_titles", "EXAMPLES", "comparison", "comparison_text", "Comparison", "top_comments", "example_markdown",
            "build_gallery", "GalleryResult", "find_gallery", "demo_command", "gallery_command",
            "FiguresUnavailable"]
 
-DEMO_EXAMPLE = "sixbar"
+EXAMPLES = Path(__file__).resolve().parent / "examples"   # package data: every gallery file
+DEMO_EXAMPLE = "problem_1_4_4_sixbar"   # the example of FORMAT.md section 1
+DEMO_OUTPUT = "sixbar"                  # the stem of the demo's output files
 
 
 class FiguresUnavailable(VelpolyError):
@@ -51,11 +53,40 @@ def _draw_to_file():
 
 
 def example_path(name: str = DEMO_EXAMPLE) -> Path:
-    """The path of a built-in example file (``velpoly/examples/NAME.toml``)."""
-    path = Path(__file__).resolve().parent / "examples" / f"{name}.toml"
-    if not path.is_file():
-        raise InputError(f"no built-in example {name!r}", where="examples", file=str(path))
+    """The path of a built-in example file (``velpoly/examples/NAME.toml``; NAME may end in .toml)."""
+    stem = _stem(name)
+    path = EXAMPLES / f"{stem}.toml"
+    if not stem or "/" in stem or "\\" in stem or not path.is_file():
+        names = [p.stem for p in example_files()]
+        close = [n for n in names if stem and stem.lower() in n.lower()]
+        raise InputError(f"no built-in example {name!r}", where="examples",
+                         hint=f"did you mean {' or '.join(close[:4])}? (`velpoly examples` lists them)" if close
+                         else "`velpoly examples` lists them: " + ", ".join(names))
     return path
+
+
+def _stem(name: str) -> str:
+    """An example's name without a trailing .toml."""
+    return name[:-5] if name.endswith(".toml") else name
+
+
+def example_files() -> list[Path]:
+    """Every built-in example file (the gallery's), in natural name order."""
+    return sorted(EXAMPLES.glob("*.toml"), key=_natural)
+
+
+def example_titles() -> list[tuple[str, str]]:
+    """``(name, title)`` of every built-in example, in natural name order (the title as the file gives
+    it, else its name)."""
+    import tomllib
+    out = []
+    for path in example_files():
+        try:
+            title = tomllib.loads(path.read_text(encoding="utf-8")).get("title", path.stem)
+        except (OSError, UnicodeDecodeError, tomllib.TOMLDecodeError):
+            title = path.stem
+        out.append((path.stem, str(title)))
+    return out
 
 
 # -- graphical values ----------------------------------------------------------------------------
@@ -437,19 +468,28 @@ def example_markdown(path, sol, figure: str | None) -> str:
 
 
 # -- the gallery ---------------------------------------------------------------------------------
-def find_gallery(start=None) -> Path:
-    """The repository's gallery folder: ``gallery/`` holding ``*.toml`` files in the current folder
-    or one above it, else the one beside the installed package (an editable install)."""
+def _checkout(folder: Path) -> bool:
+    """Whether ``folder`` is a velpoly checkout: its gallery/ page beside the examples' package folder."""
+    return (folder / "gallery").is_dir() and (folder / "velpoly" / "examples").is_dir()
+
+
+def find_gallery(start=None) -> Path | None:
+    """The gallery folder of a velpoly checkout (``gallery/``, its README and figures), found from
+    ``start`` (default: the current folder) or one above it, else the one beside the package (an
+    editable install); None when velpoly runs from an installed wheel outside any checkout."""
     here = Path(start or Path.cwd()).resolve()
     for folder in (here, *here.parents):
-        g = folder / "gallery"
-        if g.is_dir() and any(g.glob("*.toml")):
-            return g
-    g = Path(__file__).resolve().parent.parent / "gallery"
-    if g.is_dir() and any(g.glob("*.toml")):
-        return g
-    raise InputError("no gallery folder found (a folder gallery/ with *.toml files)", where="gallery",
-                     hint="run from the repository, or give --source DIR")
+        if _checkout(folder):
+            return folder / "gallery"
+    root = Path(__file__).resolve().parent.parent
+    return root / "gallery" if _checkout(root) else None
+
+
+def _gallery_source(out: Path) -> Path:
+    """The example files a gallery folder is built from: its checkout's velpoly/examples/ for a
+    checkout's gallery/, else the package's."""
+    root = out.resolve().parent
+    return root / "velpoly" / "examples" if out.name == "gallery" and _checkout(root) else EXAMPLES
 
 
 @dataclass(frozen=True)
@@ -468,28 +508,45 @@ def _error_line(e: BaseException, path: Path) -> str:
     return f"{path.name}: internal error: {type(e).__name__}: {e}"
 
 
-def build_gallery(source, out=None, style: str = "textbook", draw=None, log=None) -> GalleryResult:
+def build_gallery(source=None, out=None, style: str = "textbook", draw=None, log=None,
+                  copy: bool | None = None, names=None) -> GalleryResult:
     """Rebuild every example of ``source`` (its ``*.toml`` files, in natural name order) into ``out``.
 
-    For each file: the full sheet as ``figures/NAME.png``; then ``README.md`` with a
-    section per example. A failing example is reported (``log`` gets its error
-    line) and left out of the README's sections but listed at its end; the
-    others are built.
+    ``source`` defaults to the built-in examples, ``out`` to ``source``. For each
+    file: the full sheet as ``figures/NAME.png``; then ``README.md`` with a section
+    per example. A failing example is reported (``log`` gets its error line) and
+    left out of the README's sections but listed at its end; the others are built.
+    ``copy`` (default: when the built-in examples are drawn into a folder other than
+    their checkout's gallery/, e.g. from an installed wheel) also writes each file
+    as ``out/NAME.toml``, so that the folder stands alone and its README links
+    to files beside it. ``names`` (file stems) builds only those examples.
     """
     from . import load, solve
-    source = Path(source)
+    source = Path(source) if source is not None else EXAMPLES
     out = Path(out) if out is not None else source
+    if copy is None:   # the built-in examples drawn anywhere but their own checkout's gallery
+        copy = source.resolve() == EXAMPLES and out.resolve() not in (EXAMPLES, EXAMPLES.parent.parent / "gallery")
     if not source.is_dir():
         raise InputError("not a folder", where="--source", file=str(source))
     files = sorted(source.glob("*.toml"), key=_natural)
     if not files:
         raise InputError("no *.toml files in the gallery folder", where="--source", file=str(source))
+    if names:
+        stems = {p.stem: p for p in files}
+        for n in names:
+            if _stem(n) not in stems:
+                raise InputError(f"no example {n!r} in {source}", where="gallery",
+                                 hint="`velpoly examples` lists the built-in ones: name them without .toml")
+        files = [p for p in files if p.stem in {_stem(n) for n in names}]
     draw = draw or _draw_to_file()
     written, built, failed, sections = [], [], [], []
     for path in files:
         try:
             m = load(path)
             sol = solve(m)
+            if copy:
+                written.append(atomic_write_text(out / path.name, path.read_text(encoding="utf-8")))
+                path = out / path.name
             target = out / "figures" / f"{path.stem}.png"
             figs = draw(sol, target, sheet="full", style=style, steps=False)
             written += list(figs)
@@ -521,7 +578,12 @@ def _relative(path: Path, base: Path) -> str:
 
 def _readme(sections, failed, source: Path, out: Path) -> str:
     used: set = set()
-    src = "" if source.resolve() == out.resolve() else f" --source {_relative(source, Path.cwd())}"
+    args = ""
+    if not (out.name == "gallery" and _gallery_source(out).resolve() == source.resolve()):   # not a checkout's own
+        if source.resolve() != EXAMPLES:
+            args += f" --source {_relative(source, Path.cwd())}"
+        if out.resolve() != source.resolve():
+            args += f" -o {_relative(out, Path.cwd())}"
     lines = [
         "# Gallery",
         "",
@@ -534,8 +596,9 @@ def _readme(sections, failed, source: Path, out: Path) -> str:
         "speed or acceleration; the mechanism's size for positions). Where the book disagrees, the",
         "notes and the file's comments say why.",
         "",
-        f"This page is generated: `velpoly gallery{src}` rebuilds it and every figure from the",
-        "`*.toml` files beside it (do not edit it by hand).",
+        f"This page is generated: `velpoly gallery{args}` rebuilds it and every figure from the",
+        "mechanism files it links to (do not edit it by hand). The files ship with velpoly:",
+        "`velpoly examples` lists them, `velpoly examples NAME` prints one to start a problem from.",
         "",
     ]
     if sections:
@@ -563,9 +626,9 @@ def demo_command(args) -> int:
     sol = solve(m)
     written = []
     for suffix in (".svg", ".png"):
-        written += list(draw(sol, out / f"{DEMO_EXAMPLE}{suffix}", sheet="full", style=style, steps=False))
-    written.append(atomic_write_text(out / f"{DEMO_EXAMPLE}-results.txt", comparison_text(sol, "text")))
-    written.append(atomic_write_text(out / f"{DEMO_EXAMPLE}-results.md", comparison_text(sol, "markdown")))
+        written += list(draw(sol, out / f"{DEMO_OUTPUT}{suffix}", sheet="full", style=style, steps=False))
+    written.append(atomic_write_text(out / f"{DEMO_OUTPUT}-results.txt", comparison_text(sol, "text")))
+    written.append(atomic_write_text(out / f"{DEMO_OUTPUT}-results.md", comparison_text(sol, "markdown")))
     book = f"the book's values ({m.reference.source})" if m.reference.source else "the book's values"
     print(f"{m.title}: the full sheet and the comparison with {book} are in {out}/")
     for p in written:
@@ -576,16 +639,23 @@ def demo_command(args) -> int:
 def gallery_command(args) -> int:
     """``velpoly gallery [-o DIR] [--source DIR]``: rebuild every figure and README.md.
 
+    The default source is the built-in examples (a checkout's velpoly/examples/ for its
+    gallery/); the default output is the checkout's gallery/ where velpoly runs from
+    one, else ./gallery.
+
     One failing example is reported with its error line and does not stop the
     others; the exit status is 1 if any failed.
     """
-    source = Path(args.source) if getattr(args, "source", None) else find_gallery()
-    out = Path(args.output) if getattr(args, "output", None) else source
+    if getattr(args, "output", None):
+        out = Path(args.output)
+    else:   # a checkout's gallery/, else a folder gallery/ here (an installed velpoly has no gallery of its own)
+        out = find_gallery() or Path("gallery")
+    source = Path(args.source) if getattr(args, "source", None) else _gallery_source(out)
     style = getattr(args, "style", "textbook") or "textbook"
 
     def log(line):
         print(f"error: {line}", file=sys.stderr)
-    result = build_gallery(source, out, style=style, log=log)
+    result = build_gallery(source, out, style=style, log=log, names=getattr(args, "names", None))
     for p in result.written:
         print(p)
     n = len(result.built) + len(result.failed)

@@ -18,7 +18,7 @@ from typing import Any, Mapping
 import numpy as np
 
 from .errors import InputError, VelpolyError
-from .model import (Contact, Driver, Link, Mechanism, Pin, Reference, Slider, Slot,
+from .model import (Construction, Contact, Driver, Link, Mechanism, Pin, Reference, Slider, Slot,
                     frozen_map)
 from .pose import circle_circle, circle_line
 
@@ -36,6 +36,7 @@ class _Ctx:
         self.text = text
         self.units = ""
         self.point_names: tuple[str, ...] = ()   # every name in [points], in file order
+        self.compass: list[Construction] = []     # the compass constructions met, in file order
 
     def err(self, where: str, what: str, hint: str = "") -> InputError:
         line = locate(self.text, where)
@@ -214,7 +215,11 @@ _OMEGA_UNITS = {
 }
 _ALPHA_UNITS = {"rad/s^2": 1.0, "rad/s2": 1.0, "rad/s²": 1.0, "rad/s/s": 1.0,
                 "deg/s^2": math.pi / 180, "deg/s2": math.pi / 180}
-_RATE_RE = re.compile(r"\s*([-+]?(?:\d+\.?\d*|\.\d+)(?:[eE][-+]?\d+)?)\s*(\S+?)(?:\s+(cw|ccw))?\s*",
+# a sense in words, as books write it (any case): the clockwise ones reverse the sign
+SENSES = {"cw": -1.0, "clockwise": -1.0, "ccw": 1.0, "counterclockwise": 1.0, "counter-clockwise": 1.0,
+          "anticlockwise": 1.0, "anti-clockwise": 1.0}
+_RATE_RE = re.compile(r"\s*([-+]?(?:\d+\.?\d*|\.\d+)(?:[eE][-+]?\d+)?)\s*(\S+?)(?:\s+("
+                      + "|".join(sorted(map(re.escape, SENSES), key=len, reverse=True)) + r"))?\s*",
                       flags=re.IGNORECASE)
 
 
@@ -229,8 +234,8 @@ def _parse_rate(text: str, units: Mapping[str, float]) -> float:
     x = float(value) * units[unit]
     if not math.isfinite(x):
         raise ValueError(text)
-    if sense and sense.lower() == "cw":
-        x = -x
+    if sense:
+        x *= SENSES[sense.lower()]
     return x + 0.0   # no negative zero
 
 
@@ -238,12 +243,16 @@ def parse_omega(v: Any) -> float:
     """An angular velocity in rad/s (ccw positive) from a number or ``"NUMBER UNIT [cw|ccw]"``.
 
     UNIT is rad/s, rpm (r/min, rev/min), deg/s or rev/s (rps, Hz), case-insensitive;
-    ``cw`` reverses the sign (FORMAT.md section 5). Raises ValueError otherwise.
+    the sense is ``cw`` or ``clockwise`` (which reverse the sign), ``ccw``, ``counterclockwise``,
+    ``counter-clockwise``, ``anticlockwise`` or ``anti-clockwise``, in any case (FORMAT.md
+    sections 1 and 5). Raises ValueError otherwise.
 
     >>> round(parse_omega("60 rpm"), 6)
     6.283185
     >>> parse_omega("-10 rad/s cw")
     10.0
+    >>> parse_omega("10 rad/s Clockwise")
+    -10.0
     """
     if isinstance(v, bool):
         raise ValueError(v)
@@ -372,13 +381,22 @@ def _two_circles(ctx, where, name, spec, pts):
                        "check the lengths (the links cannot reach)"))
     if np.hypot(*(left - right)) <= 2 * TANGENT * max(r1, r2, dist):
         left = right = 0.5 * (left + right)   # tangent to within rounding: on the line of centres
+    given = f"circles {cs[0][0]} {r1:g}, {cs[1][0]} {r2:g}"
     if "side" in spec:
         side = spec["side"]
         if side not in ("left", "right"):
             raise ctx.err(where + ".side", f"expected \"left\" or \"right\", got {_show(side)}",
                           hint="the side of the directed line from the first centre to the second")
-        return left if side == "left" else right
-    return _pick(ctx, where, (left, right), spec["near"], pts, name)
+        chosen = left if side == "left" else right
+    else:
+        chosen = _pick(ctx, where, (left, right), spec["near"], pts, name)
+        side = "left" if chosen is left else "right"
+    other = right if chosen is left else left
+    touch = other is chosen or (left == right).all()
+    ctx.compass.append(Construction(
+        name, "circles", given, _pair(chosen), None if touch else _pair(other), _rule(spec), side,
+        "" if touch else f'side = "{"right" if side == "left" else "left"}"'))
+    return chosen
 
 
 def _circle_and_line(ctx, where, name, spec, pts):
@@ -403,7 +421,35 @@ def _circle_and_line(ctx, where, name, spec, pts):
                            "check the radius and the line")
     if np.hypot(*(a - b)) <= 2 * TANGENT * max(r, float(np.hypot(*(centre - through)))):
         a = b = 0.5 * (a + b)   # tangent to within rounding
-    return _pick(ctx, where, (a, b), spec["near"], pts, name)
+    chosen = _pick(ctx, where, (a, b), spec["near"], pts, name)
+    other = b if chosen is a else a
+    touch = (a == b).all()
+    d = other - centre
+    line = spec["line"]
+    shown = (f"{line[0]}-{line[1]}" if isinstance(line, list) else
+             f"through {line['through'] if isinstance(line['through'], str) else '(%g, %g)' % _pair(through)} "
+             f"at {line['angle']:g} deg")
+    ctx.compass.append(Construction(
+        name, "circle and line", f"circle {c[0]} {r:g}, line {shown}", _pair(chosen), None if touch else _pair(other),
+        _rule(spec), None,
+        "" if touch else f'near = {{ from = "{c[0]}", angle = {math.degrees(math.atan2(d[1], d[0])):.2f} }}'))
+    return chosen
+
+
+def _pair(v) -> tuple[float, float]:
+    return (float(v[0]), float(v[1]))
+
+
+def _rule(spec) -> str:
+    """How a compass construction picks its intersection, as the file writes it."""
+    if "side" in spec:
+        return f'side = "{spec["side"]}"'
+    near = spec["near"]
+    if isinstance(near, dict):
+        return f'near = {{ from = "{near["from"]}", angle = {near["angle"]:g} }}'
+    if isinstance(near, list):
+        return f"near = [{near[0]:g}, {near[1]:g}]"
+    return f'near = "{near}"'
 
 
 def _polar_construction(ctx, where, name, spec, pts):
@@ -439,6 +485,40 @@ def _polar_construction(ctx, where, name, spec, pts):
         ang = _num(ctx, where + ".angle", spec["angle"])
     v = L * np.array([math.cos(math.radians(ang)), math.sin(math.radians(ang))])
     return base + v if key == "from" else base - v
+
+
+_PATH_KEYS = ("angle", "along", "centre")
+
+
+def _path_angle(ctx, where, entry, pts, what: str) -> float | None:
+    """The direction (deg) of a slider's path or a slot: ``angle = deg``, or ``along = ["P", "Q"]``
+    (from P to Q at the reference pose); None for a circular one (``centre``). Exactly one is given."""
+    given = [k for k in _PATH_KEYS if k in entry]
+    if len(given) != 1:
+        raise ctx.err(where, f"give the {what} as exactly one of 'angle', 'along' and 'centre'" +
+                      (f" ({' and '.join(given)} are given)" if given else ""),
+                      hint=f"angle = deg or along = [\"P\", \"Q\"] (a straight {what}: the line P -> Q), "
+                           f"or centre = \"K\" (a circular one)")
+    if "angle" in entry:
+        return _num(ctx, where + ".angle", entry["angle"])
+    if "centre" in entry:
+        return None
+    al, w = entry["along"], where + ".along"
+    if not (isinstance(al, list) and len(al) == 2):
+        raise ctx.err(w, f"expected [\"P\", \"Q\"], got {_show(al)}",
+                      hint=f"the {what} runs in the direction from P to Q (two points' names), e.g. [\"O4\", \"B\"]")
+    ends = []
+    for name in al:
+        name = _name(ctx, w, name, "a point's name")
+        if name not in pts:
+            raise ctx.err(w, f"unknown point {name!r}",
+                          hint="define it in [points]" + (": " + ", ".join(pts) if len(pts) <= 20 else ""))
+        ends.append(pts[name])
+    if _coincide(*ends):
+        raise ctx.err(w, f"{str(al[0])!r} and {str(al[1])!r} coincide: no direction",
+                      hint="name two points that are apart")
+    d = ends[1] - ends[0]
+    return math.degrees(math.atan2(d[1], d[0]))
 
 
 def _coincide(p, q) -> bool:
@@ -753,9 +833,10 @@ def _build(ctx: _Ctx, data: dict, default_title: str) -> Mechanism:
     sliders = []
     for i, s in enumerate(_array_of_tables(ctx, data, "sliders")):
         where = f"sliders[{i}]"
-        _keys(ctx, where, s, ("block", "guide", "point", "angle", "centre"))
+        _keys(ctx, where, s, ("block", "guide", "point", "angle", "along", "centre"))
         require(where, s, ("block", "guide", "point"),
-                'a slider has block = "5", guide = "0", point = "F" and angle = deg (or centre = "K")')
+                'a slider has block = "5", guide = "0", point = "F" and angle = deg (or along = ["P", "Q"], '
+                'or centre = "K")')
         b, g = link_ref(where + ".block", s["block"]), link_ref(where + ".guide", s["guide"])
         p = point_ref(where + ".point", s["point"])
         if b == g:
@@ -764,11 +845,7 @@ def _build(ctx: _Ctx, data: dict, default_title: str) -> Mechanism:
         if p not in ctx_link(links, b).points:
             raise ctx.err(where + ".point", f"point {p!r} is not a point of the block {b!r}",
                           hint=f"list {p!r} in links.{b}")
-        if ("angle" in s) == ("centre" in s):
-            raise ctx.err(where, "give the path as exactly one of 'angle' and 'centre'" +
-                          (" (both are given)" if "angle" in s else ""),
-                          hint="angle = deg (a straight path) or centre = \"K\" (a circular one)")
-        ang = _num(ctx, where + ".angle", s["angle"]) if "angle" in s else None
+        ang = _path_angle(ctx, where, s, pts, "path")
         cen = point_ref(where + ".centre", s["centre"]) if "centre" in s else None
         if cen is not None:
             path_centre(where + ".centre", cen, p, g, "path")
@@ -780,9 +857,10 @@ def _build(ctx: _Ctx, data: dict, default_title: str) -> Mechanism:
     slots = []
     for i, s in enumerate(_array_of_tables(ctx, data, "slots")):
         where = f"slots[{i}]"
-        _keys(ctx, where, s, ("pin", "link", "slot", "angle", "centre"))
+        _keys(ctx, where, s, ("pin", "link", "slot", "angle", "along", "centre"))
         require(where, s, ("pin", "link", "slot"),
-                'a slot has pin = "P", link = "3" (carries the pin), slot = "4" and angle = deg (or centre = "K")')
+                'a slot has pin = "P", link = "3" (carries the pin), slot = "4" and angle = deg (or '
+                'along = ["P", "Q"], or centre = "K")')
         p = point_ref(where + ".pin", s["pin"])
         lk, sk = link_ref(where + ".link", s["link"]), link_ref(where + ".slot", s["slot"])
         if lk == sk:
@@ -790,11 +868,7 @@ def _build(ctx: _Ctx, data: dict, default_title: str) -> Mechanism:
                           hint="the pin of one link slides in a slot of another")
         if p not in ctx_link(links, lk).points:
             raise ctx.err(where + ".pin", f"point {p!r} is not a point of link {lk!r}", hint=f"list it in links.{lk}")
-        if ("angle" in s) == ("centre" in s):
-            raise ctx.err(where, "give the slot's path as exactly one of 'angle' and 'centre'" +
-                          (" (both are given)" if "angle" in s else ""),
-                          hint="angle = deg (a straight slot) or centre = \"K\" (a circular one)")
-        ang = _num(ctx, where + ".angle", s["angle"]) if "angle" in s else None
+        ang = _path_angle(ctx, where, s, pts, "slot")
         cen = point_ref(where + ".centre", s["centre"]) if "centre" in s else None
         if cen is not None:
             path_centre(where + ".centre", cen, p, sk, "slot")
@@ -878,6 +952,7 @@ def _build(ctx: _Ctx, data: dict, default_title: str) -> Mechanism:
         links=tuple(links), pins=tuple(pins), sliders=tuple(sliders), contacts=tuple(contacts),
         slots=tuple(slots), driver=driver, reference=reference, drawing=frozen_map(drawing),
         carriers=frozen_map(carriers), source=ctx.file, point_order=tuple(pts),
+        constructions=tuple(ctx.compass),
     )
     _check_range(ctx, m)
     _check_reference(ctx, m)
@@ -970,8 +1045,11 @@ def _size(pts) -> float:
     return d or 1.0
 
 
-_OMEGA_HINT = ('a number in rad/s, or "NUMBER UNIT [cw|ccw]" with UNIT rad/s, rpm, deg/s or rev/s '
-               '(e.g. "60 rpm", "10 rad/s cw")')
+_OMEGA_HINT = ('a number in rad/s, or "NUMBER UNIT [SENSE]" with UNIT rad/s, rpm, deg/s or rev/s and SENSE '
+               'cw, ccw, clockwise or anticlockwise (e.g. "60 rpm", "10 rad/s clockwise")')
+
+
+_ALPHA_HINT = 'a number in rad/s^2, or "NUMBER rad/s^2 [SENSE]" (SENSE cw, ccw, clockwise or anticlockwise)'
 
 
 def _driver(ctx, d, lnames, frame, pins, sliders, links) -> Driver:
@@ -1021,10 +1099,10 @@ def _driver(ctx, d, lnames, frame, pins, sliders, links) -> Driver:
         alpha = parse_alpha(d.get("alpha", 0.0))
     except ValueError:
         raise ctx.err("driver.alpha", f"cannot read {_show(d['alpha'])} as an angular acceleration",
-                      hint='a number in rad/s^2, or "NUMBER rad/s^2 [cw|ccw]"') from None
+                      hint=_ALPHA_HINT) from None
     if not math.isfinite(alpha):
         raise ctx.err("driver.alpha", f"must be finite, got {_show(alpha)}",
-                      hint='a number in rad/s^2, or "NUMBER rad/s^2 [cw|ccw]"')
+                      hint=_ALPHA_HINT)
     angle = _num(ctx, "driver.angle", d["angle"]) if "angle" in d else None
     return Driver(link=link, omega=omega, alpha=alpha, angle=angle)
 
@@ -1037,7 +1115,6 @@ def _reference(ctx, r, lnames) -> Reference:
     if not isinstance(src, str):
         raise ctx.err("reference.source", f"expected a string, got {_show(src)}", hint='source = "Example 3.6"')
     out = {}
-    vector = "expected [magnitude, direction in degrees]"
     for key in ("omega", "alpha", "speed", "velocity", "acceleration", "values", "note"):
         t = r.get(key, {})
         if not isinstance(t, dict):
@@ -1052,15 +1129,11 @@ def _reference(ctx, r, lnames) -> Reference:
                 _num(ctx, w, v)
             elif key == "speed":
                 _num(ctx, w, v)
-            elif key in ("velocity", "acceleration"):
-                if not (isinstance(v, list) and len(v) == 2):
-                    raise ctx.err(w, f"{vector}, got {_show(v)}", hint="e.g. [435.2, 21.7]")
-                _num(ctx, w, v[0]), _num(ctx, w, v[1])
-            elif key == "values":
+            elif key in ("velocity", "acceleration", "values"):   # [magnitude, direction] or a bare magnitude
                 if isinstance(v, list):
                     if len(v) != 2:
                         raise ctx.err(w, f"expected a magnitude or [magnitude, direction], got a list of {len(v)}",
-                                      hint="a vector is [magnitude, direction in degrees]")
+                                      hint="a vector is [magnitude, direction in degrees], e.g. [435.2, 21.7]")
                     _num(ctx, w, v[0]), _num(ctx, w, v[1])
                 else:
                     _num(ctx, w, v)

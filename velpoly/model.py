@@ -25,7 +25,7 @@ from typing import Mapping
 import numpy as np
 
 __all__ = [
-    "Link", "Pin", "Slider", "Contact", "Slot", "Driver", "Reference", "Mechanism",
+    "Link", "Pin", "Slider", "Contact", "Slot", "Driver", "Reference", "Mechanism", "Construction",
     "frozen_map",
 ]
 
@@ -151,6 +151,27 @@ class Reference:
 
 
 @dataclass(frozen=True)
+class Construction:
+    """A compass construction of ``[points]`` (two circles, or a circle and a line): the
+    intersection the file picks and the other one, at the reference pose.
+
+    ``rule``: how the file picks (``near = [x, y]``, ``side = "left"``...); ``side``: the
+    chosen one's side of the directed line between the two circles' centres (None for a
+    circle and a line); ``other`` is None where the two touch; ``switch``: what to write
+    instead of ``rule`` to take the other one.
+    """
+
+    point: str
+    kind: str                  # "circles" or "circle and line"
+    given: str                 # the construction as written, short: 'circles B 0.4, D 0.37'
+    chosen: tuple
+    other: tuple | None
+    rule: str
+    side: str | None = None
+    switch: str = ""
+
+
+@dataclass(frozen=True)
 class Mechanism:
     """A planar mechanism at its reference pose.
 
@@ -173,6 +194,7 @@ class Mechanism:
     carriers: Mapping = field(default_factory=frozen_map)  # point -> tuple of link names
     source: str = ""  # the file's name, for messages
     point_order: tuple[str, ...] = ()
+    constructions: tuple[Construction, ...] = ()  # the compass constructions of [points], in file order
 
     # -- lookups -------------------------------------------------------------
     @property

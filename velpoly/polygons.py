@@ -62,7 +62,7 @@ from . import geometry as G
 from .errors import InputError, SingularPoseError, VelpolyError
 from .kinematics import SINGULAR
 from .motion import point_keys
-from .report import SECTIONS, Table, fmt, polar
+from .report import SECTIONS, Table, fmt, on_links, pinned_keys, polar
 from .solution import register_section
 
 __all__ = [
@@ -1213,6 +1213,7 @@ def _tables(sol):
     if sol.has_accelerations:
         polys.append(acceleration_polygon(sol))
     hd = hand_drafting(sol)
+    pinned = pinned_keys(sol.mechanism)
     out = []
     for poly in polys:
         vel = poly.kind == "velocity"
@@ -1227,8 +1228,11 @@ def _tables(sol):
             lo, hi = h["omega" if vel else "alpha"][lk]
             rows.append((f"{rname}_{lk}", fmt(poly.rates[lk]), fmt(analytic_rate[lk]), f"{fmt(lo, 4)} .. {fmt(hi, 4)}"))
         for key, img in poly.images.items():
+            if key in pinned and pinned[key] is None:
+                continue   # a point of links pinned together: one row, with the first key's
             lo, hi = h["speed" if vel else "magnitude"][key]
-            rows.append((f"{pname}_{key} ({poly.labels[key]})", polar(img), polar(analytic_pt[key]),
+            name = f"{pname}_{pinned[key][0]} (on {on_links(pinned[key][1])})" if key in pinned else f"{pname}_{key}"
+            rows.append((f"{name} ({poly.labels[key]})", polar(img), polar(analytic_pt[key]),
                          f"{fmt(lo, 4)} .. {fmt(hi, 4)}"))
         rows.append(("max error (relative to the largest)", f"{poly.max_error:.2g}", "", ""))
         title = (f"{poly.kind.capitalize()} polygon ({len(poly.steps)} steps): graphical and analytic, "

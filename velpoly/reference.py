@@ -11,10 +11,15 @@ Keys of ``values`` are read the way books print them:
 ``R_BA``       position of B relative to A
 ``P_13``       position of the pole of links 1 and 3, ``[x, y]``
 ``V_P24``      velocity of the pole P_24
+``A^n_BA``     normal component of A_BA (B and A on one link): -omega^2 R_BA
+``A^t_BA``     tangential component of A_BA: alpha x R_BA
+``A^c_B3/B4``  Coriolis component of A_B3/B4: 2 omega_4 x V_B3/B4 (B4 on the guide or slot)
+``A^s_B3/B4``  acceleration of sliding: A_B3/B4 - A^c_B3/B4, the relative acceleration in link 4
 =============  ==============================================================
 
 A vector is ``[magnitude, direction]`` (a negative magnitude reverses it) or
-a bare magnitude.
+a bare magnitude. A ``note`` is keyed by the value it explains, in the same
+notation (``omega_3``, ``V_B``, ``A^c_B3/B4``).
 """
 from __future__ import annotations
 
@@ -26,7 +31,8 @@ import numpy as np
 
 from .errors import InputError
 
-__all__ = ["Quantity", "parse_key", "validate_reference", "compare", "Row", "relative_pole"]
+__all__ = ["Quantity", "parse_key", "validate_reference", "compare", "Row", "relative_pole", "value_keys",
+           "note_for", "COMPONENTS"]
 
 
 @dataclass(frozen=True)
@@ -35,12 +41,15 @@ class Quantity:
 
     kind: 'V' or 'A' (difference of point refs), 'R' (position difference),
     'omega', 'alpha', 'theta' (a link), 'P' (pole position), 'VP'/'AP' (pole motion).
-    ``refs`` are (point, link-or-None) pairs; ``links`` link names.
+    ``refs`` are (point, link-or-None) pairs; ``links`` link names. ``part`` names a
+    component of an acceleration difference ('n', 't', 'c', 's'; kind 'A'): for 'n'
+    and 't' both refs carry the link they share, for 'c' and 's' each its own link.
     """
 
     kind: str
     refs: tuple = ()
     links: tuple = ()
+    part: str = ""
 
 
 def _point_refs(m, s: str, count: int):
@@ -78,8 +87,37 @@ def _two_links(m, s: str):
     return None
 
 
+COMPONENTS = {"n": "normal", "t": "tangential", "c": "Coriolis", "s": "sliding"}
+
+
+def _component(m, part: str, body: str) -> Quantity | None:
+    """``A^n_BA``/``A^t_BA`` (B and A on one link, named or shared) or ``A^c_B3/B4``/``A^s_B3/B4``
+    (coincident points of two named links); None if the body does not read so."""
+    if part in "nt":
+        if "/" in body:
+            return None
+        refs = _point_refs(m, body, 2)
+        if not refs:
+            return None
+        (b, lb), (a, la) = refs
+        named = {lk for lk in (lb, la) if lk}
+        shared = [lk for lk in m.link_names if lk in m.carriers.get(b, ()) and lk in m.carriers.get(a, ())]
+        if len(named) > 1 or (named and named.pop() not in shared) or not shared:
+            return None
+        lk = lb or la or shared[0]
+        return Quantity("A", refs=((b, lk), (a, lk)), links=(lk,), part=part)
+    a, sep, b = body.partition("/")
+    ra, rb = _point_refs(m, a, 1), _point_refs(m, b, 1) if sep else None
+    if not (ra and rb) or ra[0][1] is None or rb[0][1] is None or ra[0][1] == rb[0][1]:
+        return None
+    return Quantity("A", refs=(ra[0], rb[0]), links=(ra[0][1], rb[0][1]), part=part)
+
+
 def parse_key(m, key: str) -> Quantity | None:
     """Read a textbook key; None if it cannot be read for this mechanism."""
+    mo = re.fullmatch(r"A\^([ntcs])_(.+)", key)
+    if mo:
+        return _component(m, *mo.groups())
     mo = re.fullmatch(r"(omega|alpha|theta)_?(.+)", key)
     if mo and mo.group(2) in m.link_names:
         return Quantity(mo.group(1), links=(mo.group(2),))
@@ -113,19 +151,72 @@ def validate_reference(m, ctx=None) -> None:
     """Raise InputError for a ``values`` key that cannot be read (FORMAT.md section 1)."""
     for key in m.reference.values:
         if parse_key(m, key) is None:
-            raise InputError(f"unknown quantity {key!r}", where=f"reference.values.{key}", file=m.source,
+            mo = re.fullmatch(r"A\^([ntcs])_(.+)", key)
+            raise InputError(f"unknown quantity {key!r}" + (f": {_component_trouble(m, *mo.groups())}" if mo else ""),
+                             where=f"reference.values.{key}", file=m.source,
                              hint="keys in textbook notation: V_B, A_B, V_BA, V_B3/B4, omega_3, alpha_3, "
-                                  "theta_3, R_BA, P_13, V_P24")
+                                  "theta_3, R_BA, P_13, V_P24, A^n_BA, A^t_BA, A^c_B3/B4, A^s_B3/B4")
     ref = m.reference
-    known = (set(ref.values) | {f"omega_{k}" for k in ref.omega} | {f"alpha_{k}" for k in ref.alpha}
-             | set(ref.speed) | {f"V_{p}" for p in ref.speed} | set(ref.velocity) | {f"V_{p}" for p in ref.velocity}
-             | set(ref.acceleration) | {f"A_{p}" for p in ref.acceleration} | set(ref.omega) | set(ref.alpha))
+    known = value_keys(ref)
     for key in list(ref.note):
-        if key not in known:   # a note explains a printed value: one that is not there is a slip of the pen
-            raise InputError(f"a note for {key!r}, which is no reference value", where=f"reference.note.{key}",
-                             file=m.source, hint="key a note like the value it explains: "
-                             + (", ".join(sorted(known)[:12]) + ("..." if len(known) > 12 else "") if known
-                                else "there are no printed values to explain"))
+        if key in known:
+            continue
+        bare = _bare_targets(ref, key)
+        if len(bare) == 1:   # an older file's bare key ("3", "B") that names one printed value: still read
+            continue
+        if len(bare) > 1:
+            raise InputError(f"a note for {key!r}, which names {' and '.join(bare)}", where=f"reference.note.{key}",
+                             file=m.source, hint="key a note by the one value it explains: " + " or ".join(bare))
+        # a note explains a printed value: one that is not there is a slip of the pen
+        raise InputError(f"a note for {key!r}, which is no reference value", where=f"reference.note.{key}",
+                         file=m.source, hint="key a note like the value it explains: "
+                         + (", ".join(sorted(known)[:12]) + ("..." if len(known) > 12 else "") if known
+                            else "there are no printed values to explain"))
+
+
+def value_keys(ref) -> list[str]:
+    """The textbook key of every printed value (what a note is keyed by), in the file's order."""
+    keys = [f"omega_{k}" for k in ref.omega] + [f"alpha_{k}" for k in ref.alpha]
+    keys += [f"V_{p}" for p in ref.speed] + [f"|V_{p}|" for p in ref.speed]
+    keys += [f"V_{p}" for p in ref.velocity] + [f"A_{p}" for p in ref.acceleration] + list(ref.values)
+    return list(dict.fromkeys(keys))
+
+
+def _bare_targets(ref, key: str) -> list[str]:
+    """The printed values an older file's bare note key names: a link ("3": omega_3, alpha_3) or a
+    point ("B": V_B, |V_B|, A_B)."""
+    out = [f"{kind}_{key}" for kind, table in (("omega", ref.omega), ("alpha", ref.alpha)) if key in table]
+    if key in ref.speed or key in ref.velocity:
+        out.append(f"V_{key}")
+    if key in ref.acceleration:
+        out.append(f"A_{key}")
+    return out
+
+
+def note_for(ref, key: str) -> str:
+    """The note on the printed value ``key`` (a key of :func:`value_keys` or a row's ``|V_B|``): keyed
+    by the value, or (an older file) by the bare link or point that names this value alone."""
+    if key in ref.note:
+        return ref.note[key]
+    if key.startswith("|V_") and key[1:-1] in ref.note:
+        return ref.note[key[1:-1]]
+    mo = re.fullmatch(r"(?:omega|alpha|V|A)_(.+)", key.strip("|"))
+    if mo and mo.group(1) in ref.note and len(_bare_targets(ref, mo.group(1))) == 1:
+        return ref.note[mo.group(1)]
+    return ""
+
+
+def _component_trouble(m, part: str, body: str) -> str:
+    """Why ``A^part_body`` reads as no component here (for the error message)."""
+    what = COMPONENTS[part]
+    if part in "nt":
+        refs = _point_refs(m, body, 2) if "/" not in body else None
+        if not refs:
+            return f"the {what} component is A^{part}_BA of two points B and A on one link"
+        return (f"{refs[0][0]!r} and {refs[1][0]!r} are not on one link: the {what} component of A_BA needs "
+                f"both points on one link")
+    return (f"the {what} component is A^{part}_B3/B4, the point B of two links named by their numbers "
+            f"(B3 on link 3 relative to B4 on link 4, the guide or slot)")
 
 
 def relative_pole(sol, i: str, j: str):
@@ -178,8 +269,33 @@ def _ref_vec(sol, ref, acc: bool):
     return sol.body_acceleration(lk, w) if acc else sol.body_velocity(lk, w)
 
 
+def _perp(v) -> np.ndarray:
+    return np.array([-v[1], v[0]], float)
+
+
+def _part(sol, q: Quantity) -> np.ndarray:
+    """A component of an acceleration difference (``q.part``).
+
+    n, t (B and A on link k): A_BA = alpha_k x R_BA - omega_k^2 R_BA; the normal part
+    -omega_k^2 R_BA, the tangential alpha_k x R_BA. c, s (coincident points B3, B4 of links
+    3 and 4): A_B3 = A_B4 + 2 omega_4 x V_B3/B4 + A_rel, the Coriolis part 2 omega_4 x V_B3/B4
+    and the acceleration of sliding A_rel = A_B3/B4 - 2 omega_4 x V_B3/B4 (B3 relative to link 4).
+    """
+    if q.part in "nt":
+        lk = q.links[0]
+        r = _place(sol, *q.refs[0]) - _place(sol, *q.refs[1])
+        return -sol.omega[lk] ** 2 * r if q.part == "n" else sol.alpha[lk] * _perp(r)
+    v_rel = _ref_vec(sol, q.refs[0], False) - _ref_vec(sol, q.refs[1], False)
+    coriolis = 2.0 * sol.omega[q.links[1]] * _perp(v_rel)
+    if q.part == "c":
+        return coriolis
+    return _ref_vec(sol, q.refs[0], True) - _ref_vec(sol, q.refs[1], True) - coriolis
+
+
 def evaluate(sol, q: Quantity):
     """The computed value of a parsed key: a vector (2,), a scalar, or None (a pole at infinity)."""
+    if q.part:
+        return _part(sol, q)
     if q.kind in ("omega", "alpha"):
         return (sol.omega if q.kind == "omega" else sol.alpha)[q.links[0]]
     if q.kind == "theta":
@@ -265,25 +381,29 @@ def at_file_pose(sol) -> bool:
     return pose is None or sol.driver_angle is None or abs(_angle_diff(sol.driver_angle, pose)) < 1e-9
 
 
+def _printed(v):
+    """A printed value as _row reads it: a vector [magnitude, direction] as a list, a magnitude as a number."""
+    return list(v) if isinstance(v, (list, tuple)) else v
+
+
 def compare(sol) -> list[Row]:
     """Every ``[reference]`` value beside the analytic one, in the file's order."""
     m = sol.mechanism
     ref = m.reference
-    notes = ref.note
     rows = []
     for lk, v in ref.omega.items():
-        rows.append(_row(f"omega_{lk}", v, sol.omega[lk], notes.get(f"omega_{lk}", notes.get(lk, ""))))
+        rows.append(_row(f"omega_{lk}", v, sol.omega[lk], note_for(ref, f"omega_{lk}")))
     for lk, v in ref.alpha.items():
-        rows.append(_row(f"alpha_{lk}", v, sol.alpha[lk], notes.get(f"alpha_{lk}", notes.get(lk, ""))))
+        rows.append(_row(f"alpha_{lk}", v, sol.alpha[lk], note_for(ref, f"alpha_{lk}")))
     for p, v in ref.speed.items():
         rows.append(_row(f"|V_{p}|", v, evaluate(sol, parse_key(m, f"V_{p}") or Quantity("V", ((p, None),))),
-                         notes.get(p, notes.get(f"V_{p}", ""))))
-    for p, v in ref.velocity.items():
-        rows.append(_row(f"V_{p}", list(v), evaluate(sol, parse_key(m, f"V_{p}") or Quantity("V", ((p, None),))),
-                         notes.get(p, notes.get(f"V_{p}", ""))))
+                         note_for(ref, f"|V_{p}|")))
+    for p, v in ref.velocity.items():   # [magnitude, direction], or a bare magnitude
+        rows.append(_row(f"V_{p}", _printed(v), evaluate(sol, parse_key(m, f"V_{p}") or Quantity("V", ((p, None),))),
+                         note_for(ref, f"V_{p}")))
     for p, v in ref.acceleration.items():
-        rows.append(_row(f"A_{p}", list(v), evaluate(sol, parse_key(m, f"A_{p}") or Quantity("A", ((p, None),))),
-                         notes.get(p, notes.get(f"A_{p}", ""))))
+        rows.append(_row(f"A_{p}", _printed(v), evaluate(sol, parse_key(m, f"A_{p}") or Quantity("A", ((p, None),))),
+                         note_for(ref, f"A_{p}")))
     for key, v in ref.values.items():
         q = parse_key(m, key)
         value = evaluate(sol, q)
@@ -291,7 +411,7 @@ def compare(sol) -> list[Row]:
             # a pole's position is printed as [x, y]
             d = float(np.hypot(value[0] - v[0], value[1] - v[1]))
             rows.append(Row(key, (float(v[0]), float(v[1])), (float(value[0]), float(value[1])),
-                            d / max(float(np.hypot(*v)), 1e-300), None, notes.get(key, "")))
+                            d / max(float(np.hypot(*v)), 1e-300), None, note_for(ref, key)))
             continue
-        rows.append(_row(key, list(v) if isinstance(v, (list, tuple)) else v, value, notes.get(key, "")))
+        rows.append(_row(key, _printed(v), value, note_for(ref, key)))
     return rows

@@ -15,7 +15,8 @@ import numpy as np
 
 from .reference import at_file_pose, compare, file_pose_angle
 
-__all__ = ["Table", "render_table", "solution_tables", "solution_report", "fmt", "polar", "SECTIONS"]
+__all__ = ["Table", "render_table", "solution_tables", "solution_report", "fmt", "polar", "SECTIONS",
+           "pinned_keys", "on_links", "solution_html"]
 
 
 @dataclass(frozen=True)
@@ -63,10 +64,46 @@ def _links(sol) -> Table:
     return Table("Links", ("link", "angle (deg)", "omega (rad/s)", "alpha (rad/s^2)"), tuple(rows))
 
 
+def pinned_keys(m) -> dict:
+    """How tables show each point key: ``{key: (point, links)}`` for keys ``P@a`` of links pinned together
+    at P (two or more, so one row "P (on a and b)" stands for them all: they move alike), the first
+    key of each such group only; other keys are absent (the key itself is shown) or map to None (a
+    pinned key after the first: no row of its own). JSON keys stay as FORMAT.md section 5 says."""
+    out: dict = {}
+    for p in m.point_order:
+        carriers = m.carriers.get(p, ())
+        groups = [{lk} for lk in carriers]
+        for pin in m.pins:
+            if pin.point != p:
+                continue
+            hit = [g for g in groups if g & set(pin.links)]
+            if len(hit) == 2:
+                groups.remove(hit[1])
+                hit[0] |= hit[1]
+        if len(groups) < 2:
+            continue   # one key P: pinned alike by structure
+        for g in groups:
+            if len(g) < 2:
+                continue
+            links = [lk for lk in carriers if lk in g]
+            out[f"{p}@{links[0]}"] = (p, tuple(links))
+            out.update({f"{p}@{lk}": None for lk in links[1:]})
+    return out
+
+
+def on_links(links) -> str:
+    """``2 and 3``, ``2, 3 and 5``."""
+    return " and ".join(links) if len(links) < 3 else ", ".join(links[:-1]) + " and " + links[-1]
+
+
 def _points(sol) -> Table:
     rows = []
+    pinned = pinned_keys(sol.mechanism)
     for key, p in sol.position.items():
-        rows.append((key, f"({fmt(p[0])}, {fmt(p[1])})", polar(sol.velocity[key]), polar(sol.acceleration[key])))
+        if key in pinned and pinned[key] is None:
+            continue   # shown with the first key of its pinned group
+        label = f"{pinned[key][0]} (on {on_links(pinned[key][1])})" if key in pinned else key
+        rows.append((label, f"({fmt(p[0])}, {fmt(p[1])})", polar(sol.velocity[key]), polar(sol.acceleration[key])))
     u = sol.mechanism.units
     return Table("Points", ("point", f"position ({u})", f"velocity ({u}/s)", f"acceleration ({u}/s^2)"),
                  tuple(rows))
@@ -101,6 +138,24 @@ def _show_value(v) -> str:
         if len(v) == 2:
             return f"{fmt(v[0])} ∠ {v[1]:.3f}°"
     return fmt(v)
+
+
+def _compass(sol) -> Table | None:
+    """Each compass construction of the file: the intersection it takes and the other one (the branch
+    the drawing is on, and what to write for the other)."""
+    cons = sol.mechanism.constructions
+    if not cons:
+        return None
+
+    def xy(p):
+        return f"({fmt(p[0])}, {fmt(p[1])})"
+    rows = tuple((c.point, c.given, xy(c.chosen) + (f" {c.side}" if c.side else ""),
+                  "-" if c.other is None else xy(c.other) + (f" {'right' if c.side == 'left' else 'left'}"
+                                                             if c.side else ""),
+                  c.rule, c.switch or "(the two touch: one point)") for c in cons)
+    return Table("Compass constructions of the file (reference pose): the intersection taken and the other one; "
+                 "left/right of the line from the first centre to the second",
+                 ("point", "construction", "taken", "other", "picked by", "for the other write"), rows)
 
 
 def _is_pole(r) -> bool:
@@ -146,6 +201,9 @@ def solution_tables(sol) -> list[Table]:
     from .solution import load_sections
     load_sections()
     out = [_links(sol), _points(sol), *_joints(sol)]
+    compass = _compass(sol)
+    if compass is not None:
+        out.append(compass)
     for fn in SECTIONS:
         t = fn(sol)
         if t is None:
@@ -191,17 +249,37 @@ def render_table(t: Table, style: str = "text") -> str:
     return "\n".join(lines) + "\n"
 
 
+def _head(sol) -> tuple[str, str]:
+    """The report's title and its driver's line."""
+    m = sol.mechanism
+    if m.driver.is_slider:
+        return m.title, (f"driver: slider {m.driver.slider}, speed {fmt(m.driver.speed)} {m.units}/s, "
+                         f"accel {fmt(m.driver.accel)} {m.units}/s^2")
+    return m.title, (f"driver: link {m.driver.link} at {sol.driver_angle:.4f} deg, omega {fmt(m.driver.omega)} "
+                     f"rad/s, alpha {fmt(m.driver.alpha)} rad/s^2")
+
+
+def _html_table(t: Table) -> str:
+    from html import escape
+    head = "".join(f"<th>{escape(str(h))}</th>" for h in t.header)
+    body = "".join("<tr>" + "".join(f"<td>{escape(str(c))}</td>" for c in r) + "</tr>" for r in t.rows)
+    return (f"<table><caption style=\"text-align:left\">{escape(t.title)}</caption><thead><tr>{head}</tr>"
+            f"</thead><tbody>{body}</tbody></table>")
+
+
+def solution_html(sol) -> str:
+    """The report of ``velpoly solve`` as HTML: what a notebook shows for a Solution."""
+    from html import escape
+    title, driver = _head(sol)
+    out = [f"<h4>{escape(title)}</h4>", f"<p>{escape(driver)}</p>"]
+    out += [_html_table(t) for t in solution_tables(sol)]
+    out += [f"<p>warning: {escape(w)}</p>" for w in sol.warnings]
+    return "\n".join(out)
+
+
 def solution_report(sol, style: str = "text") -> str:
     """The whole readable report of ``velpoly solve``."""
-    m = sol.mechanism
-    head = [m.title]
-    if m.driver.is_slider:
-        head.append(f"driver: slider {m.driver.slider}, speed {fmt(m.driver.speed)} {m.units}/s, "
-                    f"accel {fmt(m.driver.accel)} {m.units}/s^2")
-    else:
-        head.append(f"driver: link {m.driver.link} at {sol.driver_angle:.4f} deg, omega {fmt(m.driver.omega)} rad/s, "
-                    f"alpha {fmt(m.driver.alpha)} rad/s^2")
-    out = "\n".join(head) + "\n\n" + "\n".join(render_table(t, style) for t in solution_tables(sol))
+    out = "\n".join(_head(sol)) + "\n\n" + "\n".join(render_table(t, style) for t in solution_tables(sol))
     for w in sol.warnings:
         out += f"\nwarning: {w}\n"
     return out

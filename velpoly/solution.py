@@ -130,6 +130,10 @@ class Solution:
         c, sn = math.cos(th), math.sin(th)
         return np.array((x + (c * sx - sn * sy), y + (sn * sx + c * sy)))
 
+    def _repr_html_(self) -> str:   # a notebook shows the tables of `velpoly solve`
+        from .report import solution_html
+        return solution_html(self)
+
     # -- JSON -------------------------------------------------------------------------------
     def to_dict(self) -> dict:
         """The JSON object of FORMAT.md section 2."""

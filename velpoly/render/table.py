@@ -61,6 +61,7 @@ def _q(symbol: str, index: str, unit: str = "") -> str:
 
 
 _GREEK = {"omega": r"\omega", "alpha": r"\alpha", "theta": r"\theta"}
+_COMPONENT_MARK = {"n": "ⁿ", "t": "ᵗ", "c": "ᶜ", "s": "ˢ"}   # of the components A^n, A^t, A^c, A^s
 
 
 def _key(key: str) -> str:
@@ -68,13 +69,15 @@ def _key(key: str) -> str:
     bars = key.startswith("|") and key.endswith("|")
     body = key.strip("|")
     sym, sep, idx = body.partition("_")
+    if sym[1:2] == "^" and sym[2:] in _COMPONENT_MARK:   # a component as books print it: A^c_B3/B4 -> Aᶜ_B3/B4
+        sym = sym[0] + _COMPONENT_MARK[sym[2:]]
     if not sep or not idx or not sym.isalpha():
         return key
     out = _q(_GREEK.get(sym, sym), idx)
     return f"|{out}|" if bars else out
 
 
-_RICH = re.compile(r"^(\|?)\$(\\?[A-Za-z]+)_\{([^}$]*)\}\$(\|?)(.*)$")
+_RICH = re.compile(r"^(\|?)\$(\\?[A-Za-z]+[ⁿᵗᶜˢ]?)_\{([^}$]*)\}\$(\|?)(.*)$")
 _SYMBOLS = {r"\omega": "ω", r"\alpha": "α", r"\theta": "θ"}
 
 
@@ -131,6 +134,7 @@ def results_table(sol, sheet: str = "full", *, velocity=None, acceleration=None,
     a ``[reference]``).
     """
     from ..reference import at_file_pose, compare
+    from ..report import on_links, pinned_keys
     m = sol.mechanism
     # the book's values belong to the pose the file describes, not to another driver angle
     refs = {r.key: r for r in compare(sol)} if m.reference and at_file_pose(sol) else {}
@@ -171,13 +175,19 @@ def results_table(sol, sheet: str = "full", *, velocity=None, acceleration=None,
             rows.append((_q(r"\omega", lk, "rad/s"), "" if g is None else _num(g), drafted("velocity", "omega", lk),
                          _num(sol.omega[lk]),
                          _num(ic["omega"][lk]) if ic else "", _printed(r), _dev(r)))
+    pinned = pinned_keys(m)   # a point of links pinned together: one row "V_B (on 2 and 3)"
+
+    def point_label(symbol, key):
+        if key not in pinned:
+            return _q(symbol, key)
+        return _q(symbol, pinned[key][0]) + f" (on {on_links(pinned[key][1])})"
     if velocity is not None:
         for key in velocity.images:
             v = sol.velocity.get(key)
-            if v is None or float(np.hypot(*v)) == 0:
+            if v is None or float(np.hypot(*v)) == 0 or (key in pinned and pinned[key] is None):
                 continue
             r = ref_for(f"V_{key}", f"|V_{key}|")
-            rows.append((_q("V", key), _vec(velocity.images[key]), drafted("velocity", "speed", key), _vec(v),
+            rows.append((point_label("V", key), _vec(velocity.images[key]), drafted("velocity", "speed", key), _vec(v),
                          _vec(ic["velocity"][key]) if ic and key in ic["velocity"] else "", _printed(r), _dev(r)))
     if acceleration is not None:
         for lk in moving:
@@ -189,10 +199,11 @@ def results_table(sol, sheet: str = "full", *, velocity=None, acceleration=None,
                          _num(sol.alpha[lk]), "", _printed(r), _dev(r)))
         for key in acceleration.images:
             a = sol.acceleration.get(key)
-            if a is None or not np.all(np.isfinite(a)) or float(np.hypot(*a)) == 0:
+            if a is None or not np.all(np.isfinite(a)) or float(np.hypot(*a)) == 0 or \
+                    (key in pinned and pinned[key] is None):
                 continue
             r = ref_for(f"A_{key}")
-            rows.append((_q("A", key), _vec(acceleration.images[key]), drafted("acceleration", "magnitude", key),
+            rows.append((point_label("A", key), _vec(acceleration.images[key]), drafted("acceleration", "magnitude", key),
                          _vec(a), "", _printed(r), _dev(r)))
     if poleset is not None and sheet == "poles":
         from ..reference import relative_pole

@@ -1,0 +1,107 @@
+"""The examples ship with the package (issue 18, item 6): a wheel built from this checkout, installed in a
+fresh virtual environment, lists and prints the examples and builds the gallery and the demo from
+outside any checkout, with no repository files at hand.
+
+Marked ``wheel`` (it runs by default; ``-m "not wheel"`` leaves it out). It skips, saying why, only where
+no wheel can be built (no build backend reachable); every other failure fails.
+"""
+from __future__ import annotations
+
+import os
+import shutil
+import subprocess
+import sys
+import venv
+from pathlib import Path
+
+import pytest
+
+from paths import EXAMPLES, ROOT
+
+pytestmark = pytest.mark.wheel
+
+
+def _build_wheel(tmp: Path) -> Path:
+    """A wheel of a copy of the package (the build writes no build/ into the checkout)."""
+    src = tmp / "src"
+    src.mkdir()
+    for name in ("pyproject.toml", "README.md"):
+        shutil.copy(ROOT / name, src / name)
+    shutil.copytree(ROOT / "velpoly", src / "velpoly", ignore=shutil.ignore_patterns("__pycache__"))
+    dist = tmp / "dist"
+    errors = []
+    for extra in ([], ["--no-build-isolation"]):   # isolation fetches setuptools; without, the installed one
+        r = subprocess.run([sys.executable, "-m", "pip", "wheel", "--no-deps", "-q", *extra, "-w", str(dist),
+                            str(src)], capture_output=True, text=True, timeout=300)
+        wheels = sorted(dist.glob("velpoly-*.whl"))
+        if r.returncode == 0 and wheels:
+            return wheels[0]
+        errors.append((r.stderr or r.stdout).strip().splitlines()[-1:] or ["(no output)"])
+    pytest.skip(f"cannot build a wheel here: {errors}")
+
+
+@pytest.fixture(scope="module")
+def installed(tmp_path_factory):
+    """(python, velpoly script, environment, working folder) of a fresh venv holding the wheel."""
+    tmp = tmp_path_factory.mktemp("wheel")
+    wheel = _build_wheel(tmp)
+    env_dir = tmp / "venv"
+    # system site-packages give numpy, matplotlib and shapely without a network; the wheel goes on top
+    venv.EnvBuilder(system_site_packages=True, with_pip=False).create(env_dir)
+    bindir = env_dir / ("Scripts" if os.name == "nt" else "bin")
+    python = bindir / ("python.exe" if os.name == "nt" else "python")
+    r = subprocess.run([sys.executable, "-m", "pip", "--python", str(python), "install", "-q", "--no-deps", "--ignore-installed",
+                        "--no-index", str(wheel)], capture_output=True, text=True, timeout=300)
+    assert r.returncode == 0, r.stderr
+    env = {k: v for k, v in os.environ.items() if k not in ("PYTHONPATH", "PYTHONHOME")}
+    work = tmp / "elsewhere"
+    work.mkdir()
+    return python, bindir / "velpoly", env, work
+
+
+def _run(installed, *args, timeout=120):
+    python, script, env, work = installed
+    return subprocess.run([str(script), *map(str, args)], capture_output=True, text=True, cwd=work, env=env,
+                          timeout=timeout)
+
+
+def test_the_installed_package_is_the_wheel(installed):
+    python, _, env, work = installed
+    r = subprocess.run([str(python), "-c", "import velpoly; print(velpoly.__file__)"], capture_output=True,
+                       text=True, cwd=work, env=env)
+    assert r.returncode == 0, r.stderr
+    installed_at = Path(r.stdout.strip()).resolve()
+    assert ROOT not in installed_at.parents and Path(python).parent.parent.resolve() in installed_at.parents
+
+
+def test_examples_lists_every_gallery_file_and_prints_one(installed):
+    r = _run(installed, "examples")
+    assert r.returncode == 0, r.stderr
+    names = [line.split()[0] for line in r.stdout.splitlines()]
+    assert sorted(names) == sorted(p.stem for p in EXAMPLES.glob("*.toml")) and len(names) >= 19
+    assert "ex3_6_fourbar  " in r.stdout and "Example 3.6: four-bar" in r.stdout
+    r = _run(installed, "examples", "ex3_4_slotted_lever")
+    assert r.returncode == 0 and r.stdout == (EXAMPLES / "ex3_4_slotted_lever.toml").read_text(encoding="utf-8")
+    r = _run(installed, "examples", "ex3_4")
+    assert r.returncode == 2 and "no built-in example 'ex3_4'" in r.stderr and "ex3_4_slotted_lever" in r.stderr
+
+
+def test_gallery_and_demo_from_the_wheel(installed):
+    work = installed[3]
+    # two examples keep the test short; the whole gallery is the same path 19 times (checked by hand: 38 s)
+    r = _run(installed, "gallery", "-o", "site", "ex3_6_fourbar", "ex3_4_slotted_lever")
+    assert r.returncode == 0, r.stderr
+    site = work / "site"
+    for stem in ("ex3_6_fourbar", "ex3_4_slotted_lever"):
+        assert (site / "figures" / f"{stem}.png").read_bytes().startswith(b"\x89PNG")
+        # the folder stands alone: the files its README links to are beside it
+        assert (site / f"{stem}.toml").read_text(encoding="utf-8") == (EXAMPLES / f"{stem}.toml").read_text(
+            encoding="utf-8")
+    readme = (site / "README.md").read_text(encoding="utf-8")
+    assert "](ex3_6_fourbar.toml)" in readme and "](figures/ex3_4_slotted_lever.png)" in readme
+    assert "`velpoly gallery -o site`" in readme and "site-packages" not in readme
+    r = _run(installed, "demo", "-o", "out")
+    assert r.returncode == 0, r.stderr
+    for name in ("sixbar.svg", "sixbar.png", "sixbar-results.txt", "sixbar-results.md"):
+        assert (work / "out" / name).stat().st_size > 0
+    assert "omega_3" in (work / "out" / "sixbar-results.txt").read_text(encoding="utf-8")
