@@ -266,7 +266,7 @@ def test_a_failure_in_the_rename_leaves_no_temporary_file(tmp_path, monkeypatch)
     def full_disk(src, dst):
         raise OSError(28, "No space left on device")
     monkeypatch.setattr(os, "replace", full_disk)
-    with pytest.raises(velpoly.InputError, match="cannot write: No space left on device"):
+    with pytest.raises(velpoly.InputError, match=f"cannot write {out}: No space left on device"):
         atomic_write_text(out, "new")
     assert [p.name for p in tmp_path.iterdir()] == ["data.csv"] and out.read_text() == "old"
 
