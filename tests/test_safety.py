@@ -205,3 +205,176 @@ def test_a_ctrl_c_swallowed_in_a_callback_still_stops_the_run(tmp_path, capsys, 
     err = capsys.readouterr().err
     assert err.splitlines() == ["error: interrupted"] and "Exception ignored" not in err
     assert list(tmp_path.iterdir()) == []
+
+
+# -- 8. the Python API: every wrong argument is a VelpolyError that is a TypeError or ValueError ------------
+import numpy as np
+from hypothesis import HealthCheck, given, settings, strategies as st
+
+M = velpoly.load(FOURBAR)
+
+
+def _api_error(fn, *a, **k) -> velpoly.VelpolyError:
+    import warnings
+    with warnings.catch_warnings():
+        warnings.simplefilter("error")          # no numpy warning leaks
+        try:
+            fn(*a, **k)
+        except velpoly.VelpolyError as e:
+            assert isinstance(e, (TypeError, ValueError)), type(e)
+            return e
+    raise AssertionError(f"no error for {a} {k}")
+
+
+@pytest.mark.parametrize("call, where, gist", [
+    (lambda: velpoly.solve(None), "m", "expected a velpoly.Mechanism, got None"),
+    (lambda: velpoly.solve("f.toml"), "m", "got the string 'f.toml'"),
+    (lambda: velpoly.solve({"points": {}}), "m", "got a dict"),
+    (lambda: velpoly.sweep(None, [30.0]), "m", "got None"),
+    (lambda: velpoly.solve(M, angle="30"), "angle", "got the string '30'"),
+    (lambda: velpoly.solve(M, angle=[30]), "angle", "got a list"),
+    (lambda: velpoly.solve(M, angle=True), "angle", "got the boolean True"),
+    (lambda: velpoly.solve(M, angle=1 + 0j), "angle", "got a complex number"),
+    (lambda: velpoly.solve(M, angle=np.array([30.0])), "angle", "got an array of shape (1,)"),
+    (lambda: velpoly.solve(M, angle=float("nan")), "angle", "must be finite"),
+    (lambda: velpoly.solve(M, angle=10 ** 400), "angle", "must be finite"),
+    (lambda: velpoly.sweep(M, "abc"), "angles", "got the string 'abc'"),
+    (lambda: velpoly.sweep(M, [[60, 61], [62]]), "angles", "rows of different lengths"),
+    (lambda: velpoly.sweep(M, (a for a in (60.0, 61.0))), "angles", "got a generator"),
+    (lambda: velpoly.sweep(M, 60.0), "angles", "got a float"),
+    (lambda: velpoly.sweep(M, np.ones((2, 3))), "angles", "got shape (2, 3)"),
+    (lambda: velpoly.sweep(M, np.array([60 + 1j, 61])), "angles", "got complex numbers"),
+    (lambda: velpoly.sweep(M, [True, False]), "angles", "got booleans"),
+    (lambda: velpoly.sweep(M, [60, "61"]), "angles", "got strings"),
+    (lambda: velpoly.sweep(M, [60, None]), "angles", "got None"),
+    (lambda: velpoly.sweep(M, [60, float("inf")]), "angles", "finite"),
+    (lambda: velpoly.load(None), "source", "cannot load a NoneType"),
+    (lambda: velpoly.loads(3), "text", "expected TOML text"),
+])
+def test_a_wrong_api_argument_is_a_velpoly_error_naming_it(call, where, gist):
+    e = _api_error(call)
+    assert e.where == where and gist in e.what, (e.where, e.what)
+
+
+@settings(max_examples=60, deadline=None, suppress_health_check=[HealthCheck.too_slow])
+@given(st.one_of(st.booleans(), st.text(max_size=5), st.complex_numbers(), st.binary(max_size=3),
+                 st.lists(st.floats(), max_size=3), st.dictionaries(st.text(max_size=2), st.integers(), max_size=2),
+                 st.floats(allow_nan=True, allow_infinity=True).filter(lambda x: not np.isfinite(x))))
+def test_fuzz_solve_s_angle(angle):
+    e = _api_error(velpoly.solve, M, angle=angle)
+    assert e.where == "angle"
+
+
+_reals = st.one_of(st.floats(-720, 720), st.integers(-720, 720))
+_bad_element = st.one_of(st.none(), st.booleans(), st.text(min_size=1, max_size=3), st.complex_numbers(),
+                         st.floats(allow_nan=True, allow_infinity=True).filter(lambda x: not np.isfinite(x)),
+                         st.lists(_reals, min_size=2, max_size=2))
+
+
+@settings(max_examples=60, deadline=None, suppress_health_check=[HealthCheck.too_slow])
+@given(st.lists(_reals, max_size=4), _bad_element, st.integers(0, 4),
+       st.sampled_from(["list", "tuple", "array"]))
+def test_fuzz_sweep_s_angles(good, bad, at, container):
+    angles = list(good)
+    angles.insert(min(at, len(angles)), bad)
+    if container == "tuple":
+        angles = tuple(angles)
+    elif container == "array":
+        try:
+            angles = np.array(angles, dtype=object)
+        except ValueError:
+            return
+    e = _api_error(velpoly.sweep, M, angles)
+    assert e.where == "angles"
+
+
+@settings(max_examples=20, deadline=None, suppress_health_check=[HealthCheck.too_slow])
+@given(st.lists(st.floats(0.0, 30.0), min_size=1, max_size=5), st.sampled_from(["list", "tuple", "array", "f32"]))
+def test_fuzz_good_angles_sweep_as_floats_do(offsets, container):
+    angles = [60.0 + x for x in offsets]
+    given_ = {"list": angles, "tuple": tuple(angles), "array": np.array(angles),
+              "f32": [np.float32(a) for a in angles]}[container]
+    w, ref = velpoly.sweep(M, given_), velpoly.sweep(M, np.array(angles, dtype=np.float32 if container == "f32" else float))
+    assert np.array_equal(w.angles, ref.angles) and np.array_equal(w.omega["3"], ref.omega["3"])
+
+
+def test_numpy_scalar_angles_are_numbers():
+    for a in (np.float64(70), np.float32(70), np.int64(70), np.array(70.0), 70):
+        assert velpoly.solve(M, angle=a).driver_angle == 70.0
+
+
+def _fourbar_dict():
+    import tomllib
+    return tomllib.loads(FOURBAR.read_text())
+
+
+def test_load_accepts_tuples_and_numpy_scalars_and_leaves_the_dict_alone():
+    d = _fourbar_dict()
+    d["points"] = {"A": (np.float64(0), np.int64(0)), "D": np.array([100.0, 0.0]),
+                   "B": {"from": "A", "length": np.float32(40), "angle": np.int32(60)},
+                   "C": {"circles": (("B", 120), ("D", np.float64(80))), "near": (90, 80)}}
+    d["links"] = {np.int64(1): {"points": ("A", "D"), "frame": np.bool_(True)}, "2": {"points": ["A", "B"]},
+                  "3": {"points": ("B", "C")}, "4": {"points": ["D", "C"]}}
+    before = repr(d)
+    s, ref = velpoly.solve(velpoly.load(d)), velpoly.solve(velpoly.load(_fourbar_dict()))
+    assert s.to_dict() == {**ref.to_dict(), "source": "<dict>"} or s.omega == ref.omega
+    assert s.omega == ref.omega and repr(d) == before
+
+
+def test_loads_and_load_of_text():
+    text = FOURBAR.read_text()
+    assert velpoly.loads(text).title == velpoly.load(text).title == "Crank-rocker four-bar"   # a newline: text
+    with pytest.raises(velpoly.InputError) as e:
+        velpoly.load("[points]")                          # one line: a file's name, and not one
+    assert e.value.what == "no such file: this is TOML text, not a file's name" and "velpoly.loads(text)" in e.value.hint
+    with pytest.raises(velpoly.InputError, match=r"points \(line 1\): no points"):
+        velpoly.loads("[points]")                         # loads reads it as text
+    assert velpoly.loads(text.encode()).title == "Crank-rocker four-bar"
+
+
+# -- 6. nesting and memory ---------------------------------------------------------------------------------
+@pytest.mark.parametrize("text, where", [
+    ("format = 1\n[points]\nA = " + "[" * 3000 + "0" + "]" * 3000 + "\n", "points.A (line 3)"),
+    ("[points]\nA = " + "{b = " * 3000 + "1" + "}" * 3000 + "\n", "points.A (line 2)"),
+    ("[" + ".".join(["points"] + ["x"] * 5000) + "]\n", "points.x.x.x.x.x..."),
+    ("[drawing]\nq = " + "[" * 40 + "]" * 40 + "\n", "drawing.q[0][0][0][0]..."),
+])
+def test_deep_nesting_is_exit_2_naming_the_entry(tmp_path, capsys, text, where):
+    f = tmp_path / "deep.toml"
+    f.write_text(text)
+    assert main(["solve", str(f)]) == 2
+    err = capsys.readouterr().err.splitlines()
+    assert err[0].startswith(f"error: {f}: {where}") and err[0].endswith("nested more than 32 levels deep"), err
+
+
+def test_a_deep_dict_is_an_input_error():
+    deep = cur = {}
+    for _ in range(5000):
+        cur["a"] = cur = {}
+    with pytest.raises(velpoly.InputError, match=r"points\.a\.a\.a\.a\.a\.\.\.: nested more than 32 levels deep"):
+        velpoly.load({"points": deep})
+
+
+# -- 5 and 9. names and [drawing] checked on load -------------------------------------------------------------
+@pytest.mark.parametrize("name", ["A\nx", "A\tB", "A\x7f", "A\x85", "A\u2028B", "\x00"])
+def test_a_name_with_a_control_character_is_exit_2(tmp_path, capsys, name):
+    import json
+    f = tmp_path / "c.toml"
+    f.write_text(FOURBAR.read_text().replace('"C"', json.dumps(name)).replace("\nC = ", f"\n{json.dumps(name)} = "))
+    assert main(["solve", str(f)]) == 2
+    err = capsys.readouterr().err.splitlines()
+    assert len(err) == 2 and err[0].endswith("a point's name must not contain control characters") and "(line 9)" in err[0]
+
+
+@pytest.mark.parametrize("drawing, gist", [("scal = 1", "unknown drawing option 'scal'"),
+                                           ("scale = -1", "expected a positive number"),
+                                           ('label_points = ["Z"]', "unknown point 'Z'"),
+                                           ('link_numbers = "roman"', "expected one of circled, plain, none")])
+def test_drawing_keys_are_checked_on_load(tmp_path, capsys, drawing, gist):
+    f = tmp_path / "d.toml"
+    f.write_text(FOURBAR.read_text() + f"\n[drawing]\n{drawing}\n")
+    for command in ("solve", "draw"):
+        assert main([command, str(f), *(["-o", str(tmp_path / "x.svg")] if command == "draw" else [])]) == 2
+        err = capsys.readouterr().err.splitlines()
+        assert gist in err[0] and "(line 23)" in err[0], err
+    assert not (tmp_path / "x.svg").exists()

@@ -352,7 +352,9 @@ def _explain(e: VelpolyError, args) -> None:
     file = getattr(args, "file", None)
     if file and not e.file:
         e.with_file(file)
-    if getattr(args, "angle", None) is not None and e.where == "driver.angle":
+    if getattr(args, "angle", None) is not None and e.where in ("driver.angle", "angle"):
+        if e.where == "angle":   # the API's argument: the hint about the option applies
+            e.hint = ""
         e.where = "--angle"
     if file and e.where and "(line " not in e.where and e.file == file:
         from .loader import locate

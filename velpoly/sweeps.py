@@ -12,7 +12,7 @@ from functools import cached_property
 
 import numpy as np
 
-from .errors import InputError
+from .arguments import check_angles, check_mechanism
 from .dyads import coordinates, rates, walk
 from .kinematics import SINGULAR, Kinematics, accelerations, condition, prepare, velocities
 from .model import Mechanism
@@ -99,10 +99,8 @@ def sweep(m: Mechanism, angles, kin: Kinematics | None = None) -> Sweep:
     crossing a toggle (``Sweep.stopped`` says so). For a slider driver the
     values are displacements along its path from the reference position.
     """
+    m, angles = check_mechanism(m), check_angles(angles)   # a wrong argument: an error naming it
     kin = kin or prepare(m)
-    angles = np.asarray(angles, float).ravel()
-    if not np.all(np.isfinite(angles)):
-        raise InputError("the angles must be finite numbers", where="angles", file=m.source)
     ref = driver_reference_angle(m)
     if m.driver.is_slider:
         deltas = angles.copy()
