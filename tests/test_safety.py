@@ -378,3 +378,54 @@ def test_drawing_keys_are_checked_on_load(tmp_path, capsys, drawing, gist):
         err = capsys.readouterr().err.splitlines()
         assert gist in err[0] and "(line 23)" in err[0], err
     assert not (tmp_path / "x.svg").exists()
+
+
+# -- 6. memory: a sweep's estimate is checked before anything is allocated ---------------------------------
+def _many_points(tmp_path) -> Path:
+    extra = [f'P{i} = {{ from = "B", length = {10 + 0.1 * i:.1f}, along = ["B", "C"], turn = {0.7 * i:.1f} }}'
+             for i in range(496)]
+    text = FOURBAR.read_text().replace("\n[links]", "\n" + "\n".join(extra) + "\n\n[links]")
+    text = text.replace('3 = { points = ["B", "C"] }',
+                        '3 = { points = ["B", "C", ' + ", ".join(f'"P{i}"' for i in range(496)) + "] }")
+    f = tmp_path / "many.toml"
+    f.write_text(text)
+    return f
+
+
+def test_a_sweep_beyond_the_memory_budget_is_exit_2_naming_step_and_poses(tmp_path, capsys):
+    f = _many_points(tmp_path)
+    out = tmp_path / "c.csv"
+    t0 = time.perf_counter()
+    assert main(["sweep", str(f), "--step", "0.001", "--csv", str(out)]) == 2
+    assert time.perf_counter() - t0 < 10        # refused before the work, not after
+    err = capsys.readouterr().err.splitlines()
+    assert err[0] == "velpoly sweep: --step 0.001 deg computes up to 360000 poses"
+    assert err[1].startswith(f"error: {f}: --step: 360000 poses would need about ")
+    assert err[1].endswith("GB, beyond the sweep's memory budget of 2 GB")
+    assert err[2].startswith("hint: use a coarser --step: ") and not out.exists()
+
+
+def test_the_memory_estimate_bounds_the_measured_peak():
+    """The estimate is at least the peak tracemalloc measures, and not wildly above it."""
+    import tracemalloc
+    from velpoly.sweeps import memory_estimate
+    sys.path.insert(0, str(Path(__file__).parent))
+    from test_branch import chain
+    m = velpoly.load(chain(6))
+    n = 2000
+    tracemalloc.start()
+    try:
+        w = velpoly.sweep(m, 70 + np.arange(n) * 360 / n)
+        peak = tracemalloc.get_traced_memory()[1]
+    finally:
+        tracemalloc.stop()
+    est = memory_estimate(m, w.kinematics, n)
+    assert len(w.angles) == n and peak <= est <= 1.6 * peak, (peak, est)
+
+
+def test_the_api_sweep_checks_its_budget(monkeypatch):
+    import velpoly.sweeps
+    monkeypatch.setattr(velpoly.sweeps, "MEMORY_BUDGET", 100_000)
+    with pytest.raises(velpoly.InputError, match=r"^.*angles: 1000 poses would need about .* GB, beyond"):
+        velpoly.sweep(M, 60 + np.arange(1000) * 0.1)
+    assert len(velpoly.sweep(M, 60 + np.arange(10) * 0.1).angles) == 10

@@ -46,7 +46,7 @@ from .kinematics import Kinematics, prepare
 from .model import Mechanism
 from .report import Table, fmt, render_table
 from .solution import driver_reference_angle
-from .sweeps import Sweep, sweep
+from .sweeps import MEMORY_BUDGET, Sweep, check_memory, memory_estimate, sweep
 
 __all__ = ["cycle_angles", "run_cycle", "reachable_text", "Centrodes", "centrodes", "cycle_columns", "cycle_csv",
            "summary_table", "cycle_figure", "plot_cycle", "write_gif", "sweep_command"]
@@ -860,6 +860,10 @@ def sweep_command(args) -> int:
     step = _check_step(getattr(args, "step", 1.0))
     m = load(args.file)
     kin = prepare(m)
+    poses = max(int(math.ceil(360.0 / step - 1e-9)), 1)   # as cycle_angles: a turn, or each half-stroke
+    check_memory(m, kin, poses, where="--step",
+                 hint=f"use a coarser --step: {360 * memory_estimate(m, kin, poses) / poses / MEMORY_BUDGET:.2g} "
+                      "deg or more for this mechanism")
     long = 360.0 / step >= 2000 or gif_out is not None or m.driver.is_slider
     bar = _Progress(1, "velpoly sweep: solving", min_total=1 if long else 10 ** 9)
     bar.advance(0)
