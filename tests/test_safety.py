@@ -382,14 +382,9 @@ def test_drawing_keys_are_checked_on_load(tmp_path, capsys, drawing, gist):
 
 # -- 6. memory: a sweep's estimate is checked before anything is allocated ---------------------------------
 def _many_points(tmp_path) -> Path:
-    extra = [f'P{i} = {{ from = "B", length = {10 + 0.1 * i:.1f}, along = ["B", "C"], turn = {0.7 * i:.1f} }}'
-             for i in range(496)]
-    text = FOURBAR.read_text().replace("\n[links]", "\n" + "\n".join(extra) + "\n\n[links]")
-    text = text.replace('3 = { points = ["B", "C"] }',
-                        '3 = { points = ["B", "C", ' + ", ".join(f'"P{i}"' for i in range(496)) + "] }")
-    f = tmp_path / "many.toml"
-    f.write_text(text)
-    return f
+    sys.path.insert(0, str(Path(__file__).parent))
+    from test_cli import many_points
+    return many_points(tmp_path)
 
 
 def test_a_sweep_beyond_the_memory_budget_is_exit_2_naming_step_and_poses(tmp_path, capsys):
