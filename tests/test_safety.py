@@ -546,3 +546,12 @@ def test_names_are_drawn_as_written_in_the_cycle_plots():
     shown = _shown(cycle_figure(sw, cen=centrodes(sw, "{")))
     for name in NASTY_POINTS + [NASTY_TITLE, "x ($\\sqrt{$)", "|V_x_{y}^z\\|", "omega_%#&~ 1", "link {"]:
         assert _appears(name, shown), name
+
+
+def test_angles_beyond_reason_are_refused_before_any_walk():
+    e = _api_error(velpoly.sweep, M, [60.0, 1e20])
+    assert e.where == "angles" and "too large (at most 1e+06 deg either way)" in e.what
+    e = _api_error(velpoly.solve, M, angle=1e308)
+    assert e.where == "angle" and "too large" in e.what
+    e = _api_error(velpoly.sweep, M, [0.0, 9e5] * 3000)     # each gap walked: about 9e8 poses
+    assert e.what.startswith("6000 poses (and ") and "more walked between them" in e.what

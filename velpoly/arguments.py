@@ -16,7 +16,9 @@ import numpy as np
 from .errors import ArgumentTypeError, ArgumentValueError
 from .model import Mechanism
 
-__all__ = ["check_mechanism", "check_angle", "check_angles"]
+__all__ = ["check_mechanism", "check_angle", "check_angles", "MAX_ANGLE"]
+
+MAX_ANGLE = 1e6   # degrees: beyond, an angle's rounding error nears 1e-10 deg and a sweep's walk grows huge
 
 
 def _kind(v) -> str:
@@ -63,12 +65,15 @@ def check_angle(angle, name: str = "angle") -> float | None:
     if not math.isfinite(x):
         raise ArgumentValueError(f"the driver angle must be finite, got {angle}", where=name,
                                  hint=f"{name} is a finite number of degrees")
+    if abs(x) > MAX_ANGLE:
+        raise ArgumentValueError(f"the driver angle {x:g} deg is too large (at most {MAX_ANGLE:g} deg either way)",
+                                 where=name, hint="give the angle within a turn or a few (it is absolute)")
     return x
 
 
-def check_angles(angles, name: str = "angles") -> np.ndarray:
-    """``angles`` must be a 1-D sequence (a list, a tuple, a range, a 1-D array) of finite real numbers;
-    returned as a float array."""
+def check_angles(angles, name: str = "angles", limit: float = MAX_ANGLE, unit: str = "deg") -> np.ndarray:
+    """``angles`` must be a 1-D sequence (a list, a tuple, a range, a 1-D array) of finite real numbers,
+    none larger than ``limit`` in size; returned as a float array."""
     hint = f"{name} is a 1-D sequence of degrees, e.g. 30 + np.arange(0, 360, 5.0)"
     if isinstance(angles, (str, bytes, dict, set, frozenset)) or not hasattr(angles, "__len__") \
             or not hasattr(angles, "__getitem__"):
@@ -105,4 +110,7 @@ def check_angles(angles, name: str = "angles") -> np.ndarray:
         a = a.astype(float)
     if not np.all(np.isfinite(a)):
         raise ArgumentValueError("the angles must be finite numbers", where=name, hint=hint)
+    if len(a) and np.abs(a).max() > limit:
+        raise ArgumentValueError(f"a value of {np.abs(a).max():g} {unit} is too large (at most {limit:g} {unit} either way)",
+                                 where=name, hint=hint)
     return a

@@ -12,8 +12,8 @@ from functools import cached_property
 
 import numpy as np
 
-from .arguments import check_angles, check_mechanism
-from .errors import InputError
+from .arguments import MAX_ANGLE, check_angles, check_mechanism
+from .errors import ArgumentValueError
 from .dyads import coordinates, rates, walk
 from .kinematics import SINGULAR, Kinematics, accelerations, condition, prepare, velocities
 from .model import Mechanism
@@ -111,15 +111,32 @@ def memory_estimate(m: Mechanism, kin: Kinematics, n: int) -> int:
     return int(n * peak)
 
 
-def check_memory(m: Mechanism, kin: Kinematics, n: int, where: str = "angles", hint: str = "") -> None:
-    """Refuse a sweep of ``n`` poses whose :func:`memory_estimate` is beyond MEMORY_BUDGET: an
-    InputError naming ``where`` and the number of poses, before anything is allocated."""
-    need = memory_estimate(m, kin, n)
+def check_memory(m: Mechanism, kin: Kinematics, n: int, where: str = "angles", hint: str = "",
+                 walked: int = 0) -> None:
+    """Refuse a sweep of ``n`` poses (and ``walked`` more on the path between them) whose
+    :func:`memory_estimate` is beyond MEMORY_BUDGET: an InputError naming ``where`` and the number
+    of poses, before anything is allocated."""
+    need = memory_estimate(m, kin, n + walked)
     if need > MEMORY_BUDGET:
-        most = int(MEMORY_BUDGET / max(need / max(n, 1), 1))
-        raise InputError(f"{n} poses would need about {need / 1e9:.3g} GB, beyond the sweep's memory "
+        most = int(MEMORY_BUDGET / max(need / max(n + walked, 1), 1))
+        poses = f"{n} poses" + (f" (and {walked} more walked between them)" if walked > n else "")
+        raise ArgumentValueError(f"{poses} would need about {need / 1e9:.3g} GB, beyond the sweep's memory "
                          f"budget of {MEMORY_BUDGET / 1e9:.3g} GB", where=where, file=m.source,
-                         hint=hint or f"sweep at most about {most} poses of this mechanism at once")
+                         hint=hint or (f"sweep at most about {most} poses of this mechanism at once"
+                                       + (", angles closer together (the path between them is walked)"
+                                          if walked > n else "")))
+
+
+WALK_LIMIT = 1e4   # a slider driver's displacements, in mechanism sizes (MAX_ANGLE for a crank's degrees)
+
+
+def _walk_poses(m: Mechanism, angles: np.ndarray) -> int:
+    """About how many poses walking the path between the angles takes (the gaps wider than a
+    continuation step are walked, as ``_path_reach`` does): for the memory estimate."""
+    if len(angles) < 2:
+        return 0
+    travel = float(np.abs(np.diff(angles)).sum()) + 180.0 * (not m.driver.is_slider)
+    return int(travel / (0.04 * m.size if m.driver.is_slider else 6.0))
 
 
 def sweep(m: Mechanism, angles, kin: Kinematics | None = None) -> Sweep:
@@ -130,9 +147,12 @@ def sweep(m: Mechanism, angles, kin: Kinematics | None = None) -> Sweep:
     crossing a toggle (``Sweep.stopped`` says so). For a slider driver the
     values are displacements along its path from the reference position.
     """
-    m, angles = check_mechanism(m), check_angles(angles)   # a wrong argument: an error naming it
+    m = check_mechanism(m)   # a wrong argument: an error naming it
+    slider = m.driver.is_slider   # a slider's "angles" are displacements (length units)
+    angles = check_angles(angles, limit=WALK_LIMIT * m.size if slider else MAX_ANGLE,
+                          unit=m.units or "length units" if slider else "deg")
     kin = kin or prepare(m)
-    check_memory(m, kin, len(angles))
+    check_memory(m, kin, len(angles), walked=_walk_poses(m, angles))
     ref = driver_reference_angle(m)
     if m.driver.is_slider:
         deltas = angles.copy()
