@@ -555,3 +555,37 @@ def test_angles_beyond_reason_are_refused_before_any_walk():
     assert e.where == "angle" and "too large" in e.what
     e = _api_error(velpoly.sweep, M, [0.0, 9e5] * 3000)     # each gap walked: about 9e8 poses
     assert e.what.startswith("6000 poses (and ") and "more walked between them" in e.what
+
+
+def test_a_terminal_output_is_written_into(capsys):
+    """A pseudo-terminal given as an output (its path is under /dev): written through, never replaced."""
+    master, slave = os.openpty()
+    try:
+        name = os.ttyname(slave)
+        got = []
+
+        def read():
+            data = b""
+            while b"\n60," not in data and len(data) < 10 ** 6:
+                data += os.read(master, 65536)
+            got.append(data)
+        reader = threading.Thread(target=read, daemon=True)
+        reader.start()
+        assert main(["sweep", str(FOURBAR), "--step", "30", "--csv", name]) == 0
+        reader.join(timeout=30)
+        assert stat.S_ISCHR(os.stat(name).st_mode) and got and got[0].startswith(b"driver,")
+    finally:
+        os.close(master)
+        os.close(slave)
+
+
+def test_ctrl_c_during_draw_is_exit_130_and_leaves_nothing(tmp_path):
+    f = copy_fourbar(tmp_path)
+    p = subprocess.Popen([sys.executable, "-m", "velpoly", "draw", str(f), "--steps", "-o", str(tmp_path / "s.pdf")],
+                         stdout=subprocess.PIPE, stderr=subprocess.PIPE, env=dict(os.environ, PYTHONPATH=str(ROOT)))
+    time.sleep(1.0)   # importing, solving or drawing: wherever it is, Ctrl-C stops it
+    p.send_signal(signal.SIGINT)
+    _, err = p.communicate(timeout=60)
+    assert p.returncode == 130, err
+    assert err.decode().splitlines() == ["error: interrupted"]
+    assert sorted(x.name for x in tmp_path.iterdir()) == ["m.toml"]
