@@ -41,7 +41,7 @@ from pathlib import Path
 import numpy as np
 
 from .errors import InputError, PoseError
-from .fileio import atomic_path, atomic_write_bytes, atomic_write_text
+from .fileio import atomic_path, atomic_write_bytes, atomic_write_text, raise_if_interrupted
 from .kinematics import Kinematics, prepare
 from .model import Mechanism
 from .report import Table, fmt, render_table
@@ -769,6 +769,7 @@ def write_gif(sw: Sweep, out, kin: Kinematics | None = None, style: str = "textb
                         mech_done = True
                         vel_done = painter.polygon_frame(ax_v, sol)
                     except Exception as e:  # a figure module failure: finish with line drawings
+                        raise_if_interrupted()   # (not Ctrl-C's aftermath: that stops the GIF)
                         print(f"warning: {m.source}: the textbook drawing failed ({type(e).__name__}: {e}); "
                               f"the GIF uses line drawings", file=sys.stderr)
                         painter = None

@@ -22,7 +22,7 @@ from pathlib import Path
 import numpy as np
 
 from .errors import InputError, VelpolyError
-from .fileio import atomic_write_text
+from .fileio import atomic_write_text, raise_if_interrupted
 from .reference import Quantity, compare, evaluate, parse_key
 from .report import Table, fmt, render_table
 
@@ -500,6 +500,7 @@ def build_gallery(source, out=None, style: str = "textbook", draw=None, log=None
             sections.append((m.title, text))
             built.append(path)
         except Exception as e:  # one example's failure must not stop the others
+            raise_if_interrupted()   # unless it is Ctrl-C's aftermath: then nothing more is built
             line = _error_line(e, path)
             failed.append((path, line))
             if log:

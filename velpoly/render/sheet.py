@@ -423,8 +423,9 @@ def draw_to_file(sol, out, sheet: str = "full", style: str = "textbook", steps: 
                 tmp.write_bytes(data)
             written.append(target)
     except BaseException:
-        for p in written:
-            p.unlink(missing_ok=True)
+        for p in written:   # the frames written so far: regular files only (never a FIFO or a device)
+            if p.is_file() and not p.is_symlink():
+                p.unlink(missing_ok=True)
         raise
     return written
 
