@@ -266,7 +266,7 @@ def test_a_failure_in_the_rename_leaves_no_temporary_file(tmp_path, monkeypatch)
     def full_disk(src, dst):
         raise OSError(28, "No space left on device")
     monkeypatch.setattr(os, "replace", full_disk)
-    with pytest.raises(velpoly.InputError, match="cannot write: No space left on device"):
+    with pytest.raises(velpoly.InputError, match=f"cannot write {out}: No space left on device"):
         atomic_write_text(out, "new")
     assert [p.name for p in tmp_path.iterdir()] == ["data.csv"] and out.read_text() == "old"
 
@@ -299,14 +299,20 @@ def test_an_unwritable_folder_is_an_input_error(tmp_path):
 
 
 # -- scale --------------------------------------------------------------------------------------------------
-def test_a_file_with_500_points(tmp_path):
+def many_points(folder: Path) -> Path:
+    """The four-bar with 496 more points on its coupler (500 in all), written to ``folder/many.toml``."""
     extra = [f'P{i} = {{ from = "B", length = {10 + 0.1 * i:.1f}, along = ["B", "C"], turn = {0.7 * i:.1f} }}'
              for i in range(496)]
     text = FOURBAR.read_text().replace("\n[links]", "\n" + "\n".join(extra) + "\n\n[links]")
     text = text.replace('3 = { points = ["B", "C"] }',
                         '3 = { points = ["B", "C", ' + ", ".join(f'"P{i}"' for i in range(496)) + "] }")
-    f = tmp_path / "many.toml"
+    f = folder / "many.toml"
     f.write_text(text)
+    return f
+
+
+def test_a_file_with_500_points(tmp_path):
+    f = many_points(tmp_path)
     t0 = time.perf_counter()
     s = velpoly.solve(velpoly.load(f))
     assert time.perf_counter() - t0 < 5.0

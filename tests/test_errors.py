@@ -142,7 +142,7 @@ def test_not_utf8(capsys, tmp_path):
 def test_load_api_errors_and_empty_text():
     with pytest.raises(velpoly.InputError, match="the file is empty"):
         velpoly.load("")
-    with pytest.raises(velpoly.InputError, match="cannot load a int"):
+    with pytest.raises(velpoly.InputError, match="cannot load an int"):
         velpoly.load(3)
 
 

@@ -696,9 +696,12 @@ def test_drawing_options_are_checked(drawing, where, what):
     from velpoly.render.options import drawing_options
     data = tomllib.loads(SIXBAR.read_text())
     data["drawing"] = drawing
-    m = velpoly.load(data)
-    with pytest.raises(InputError) as e:
-        drawing_options(m)
+    with pytest.raises(InputError) as e:   # checked on load, by the rules draw applies
+        velpoly.load(data)
+    assert e.value.where == where and what in e.value.what + e.value.hint
+    good = velpoly.load({**data, "drawing": {}})
+    with pytest.raises(InputError) as e:   # and by drawing_options itself, on a Mechanism made otherwise
+        drawing_options(__import__("dataclasses").replace(good, drawing=drawing))
     assert e.value.where == where and what in e.value.what + e.value.hint
 
 

@@ -11,7 +11,9 @@ from __future__ import annotations
 
 import argparse
 import json
+import math
 import os
+import signal
 import sys
 import warnings
 from pathlib import Path
@@ -147,6 +149,9 @@ def cmd_solve(args) -> int:
 
 def cmd_draw(args) -> int:
     out = Path(args.output) if args.output else Path(Path(args.file).stem + ".svg")
+    if not args.output:   # the default name can be the input's own (a file named mech.svg)
+        from .fileio import check_not_input
+        check_not_input(out, args.file, "-o", default=True)
     if out.suffix.lower() not in (".svg", ".png", ".pdf"):
         raise InputError(f"unknown figure type {out.suffix or '(none)'!r}", where="-o", file=str(out),
                          hint="end the output's name with .svg, .png or .pdf")
@@ -160,6 +165,7 @@ def cmd_draw(args) -> int:
 
 
 MIN_STEP = 1e-3   # degrees: 360 000 poses a turn; a finer step would only exhaust the memory
+LONG_SWEEP = 10_000   # poses: a sweep this long says how many it computes
 
 
 def cmd_sweep(args) -> int:
@@ -167,6 +173,9 @@ def cmd_sweep(args) -> int:
     if step is not None and 0 < step < MIN_STEP:   # other bad steps are refused by the cycle itself
         raise InputError(f"the step {step:g} deg is too fine: {360 / step:.3g} poses a turn",
                          where="--step", hint=f"use a step of at least {MIN_STEP:g} deg (e.g. --step 0.1)")
+    if step is not None and math.isfinite(step) and step > 0 and 360 / step >= LONG_SWEEP:
+        print(f"velpoly sweep: --step {step:g} deg computes up to {math.ceil(360 / step - 1e-9)} poses",
+              file=sys.stderr)
     from .cycle import sweep_command
     return sweep_command(args)
 
@@ -197,8 +206,135 @@ COMMANDS = {"solve": cmd_solve, "draw": cmd_draw, "sweep": cmd_sweep, "demo": cm
             "examples": cmd_examples}
 
 
+OUTPUT_OPTIONS = (("output", "-o"), ("csv", "--csv"), ("gif", "--gif"))
+
+
+class Terminated(BaseException):
+    """SIGTERM, raised so that every ``finally`` runs (temporary files and folders are removed)."""
+
+
+def _on_signal(signum, frame):
+    from .fileio import note_interrupt
+    note_interrupt()
+    raise Terminated if signum == signal.SIGTERM else KeyboardInterrupt
+
+
+def _unraisable(hook):
+    """``sys.unraisablehook`` that records a Ctrl-C Python had to swallow (in a callback or ``__del__``)."""
+    def unraisable(u):
+        if isinstance(u.exc_value, (KeyboardInterrupt, Terminated)):
+            from .fileio import note_interrupt
+            note_interrupt()
+            return
+        hook(u)
+    return unraisable
+
+
+def _install_signals() -> dict:
+    """Ctrl-C and SIGTERM raise (KeyboardInterrupt, Terminated) and are remembered even if swallowed."""
+    old = {}
+    for sig in (signal.SIGINT, signal.SIGTERM):
+        try:
+            old[sig] = signal.signal(sig, _on_signal)
+        except (ValueError, OSError):   # not the main thread
+            pass
+    return old
+
+
+class _Stdout:
+    """Standard output whose write errors (no space, no permission) are input errors naming it."""
+
+    def __init__(self, stream):
+        self._stream = stream
+
+    def _guard(self, fn, *a):
+        try:
+            return fn(*a)
+        except BrokenPipeError:
+            raise
+        except OSError as e:
+            raise StdoutError(e) from None
+
+    def write(self, text):
+        return self._guard(self._stream.write, text)
+
+    def flush(self):
+        return self._guard(self._stream.flush)
+
+    def __getattr__(self, name):
+        return getattr(self._stream, name)
+
+
+class StdoutError(InputError):
+    """Standard output cannot be written: ``cannot write standard output: REASON``."""
+
+    def __init__(self, e: OSError):
+        super().__init__(f"cannot write standard output: {e.strerror or e}",
+                         hint="check where the output is redirected (a full disk, a read-only file)")
+
+
+def _silence_stdout() -> None:
+    """Point stdout at devnull so the interpreter's final flush cannot fail again."""
+    try:
+        devnull = os.open(os.devnull, os.O_WRONLY)
+        os.dup2(devnull, sys.stdout.fileno())
+    except (OSError, AttributeError, ValueError):
+        pass
+
+
+def _check_outputs(args) -> None:
+    """No output option names the input file (FORMAT.md section 3); the input is never written."""
+    from .fileio import check_not_input, forget_inputs, protect_input
+    forget_inputs()
+    file = getattr(args, "file", None)
+    if not file:
+        return
+    protect_input(file)
+    for attr, option in OUTPUT_OPTIONS:
+        check_not_input(getattr(args, attr, None), file, option)
+
+
 def main(argv=None) -> int:
     """Run the ``velpoly`` command; returns the exit status (FORMAT.md section 3)."""
+    old_signals = _install_signals()
+    old_hook, sys.unraisablehook = sys.unraisablehook, _unraisable(sys.unraisablehook)
+    stdout = sys.stdout
+    try:
+        return _main(argv)
+    except KeyboardInterrupt:   # before the command ran (parsing the arguments)
+        print("error: interrupted", file=sys.stderr)
+        return 130
+    except Terminated:
+        print("error: terminated", file=sys.stderr)
+        return 143
+    finally:
+        if sys.stdout is not stdout and isinstance(sys.stdout, _Stdout):
+            sys.stdout = stdout
+        from .fileio import interrupted
+        if argv is None and interrupted():
+            # the program (not a caller in Python) stops now: objects a library left half-built when
+            # interrupted may fail in their __del__ at exit, which is no news to the user
+            sys.unraisablehook = lambda u: None
+        else:
+            sys.unraisablehook = old_hook
+        for sig, handler in old_signals.items():
+            signal.signal(sig, handler)
+
+
+def _interruption(e: BaseException | None):
+    """The KeyboardInterrupt or Terminated that ``e`` was raised while handling (None if none): an
+    interruption is remembered even when a callback swallowed it."""
+    seen = set()
+    while e is not None and id(e) not in seen:
+        if isinstance(e, (KeyboardInterrupt, Terminated)):
+            return e
+        seen.add(id(e))
+        e = e.__context__
+    from .fileio import interrupted
+    return KeyboardInterrupt() if interrupted() else None
+
+
+def _main(argv) -> int:
     parser = build_parser()
     args = parser.parse_args(argv)
     if not args.command:
@@ -209,12 +345,27 @@ def main(argv=None) -> int:
             stream.reconfigure(errors="backslashreplace")
         except (AttributeError, ValueError, OSError):
             pass
+    from .fileio import raise_if_interrupted
     try:
-        with warnings.catch_warnings():
-            if not args.debug:  # numpy's overflow chatter is not for users: errors say what is wrong
-                warnings.simplefilter("ignore", RuntimeWarning)
-            return COMMANDS[args.command](args)
+        try:
+            sys.stdout = _Stdout(sys.stdout)
+            with warnings.catch_warnings():
+                if not args.debug:  # numpy's overflow chatter is not for users: errors say what is wrong
+                    warnings.simplefilter("ignore", RuntimeWarning)
+                _check_outputs(args)
+                status = COMMANDS[args.command](args)
+                raise_if_interrupted()   # a Ctrl-C swallowed inside a callback still stops the run
+                sys.stdout.flush()
+                return status
+        except Exception:
+            # an error raised while unwinding from Ctrl-C or SIGTERM (a library's cleanup failing on
+            # its half-done work) is the interruption, not a bug
+            if _interruption(sys.exc_info()[1]) is not None and not args.debug:
+                raise _interruption(sys.exc_info()[1]) from None
+            raise
     except VelpolyError as e:
+        if isinstance(e, StdoutError):
+            _silence_stdout()
         if args.debug:
             raise
         _explain(e, args)
@@ -222,13 +373,19 @@ def main(argv=None) -> int:
     except KeyboardInterrupt:
         print("error: interrupted", file=sys.stderr)
         return 130
+    except Terminated:
+        print("error: terminated", file=sys.stderr)
+        return 143
     except BrokenPipeError:  # the reader of our output went away (velpoly solve F | head)
-        try:  # point stdout at devnull so the interpreter's final flush cannot fail again
-            devnull = os.open(os.devnull, os.O_WRONLY)
-            os.dup2(devnull, sys.stdout.fileno())
-        except (OSError, AttributeError, ValueError):
-            pass
+        _silence_stdout()
         return 0
+    except MemoryError:
+        if args.debug:
+            raise
+        where = getattr(args, "file", "") or "velpoly"
+        print(f"error: {one_line(where)}: out of memory", file=sys.stderr)
+        print("hint: ask for less at once (a coarser --step, fewer points)", file=sys.stderr)
+        return 2
     except Exception as e:  # an internal error: still one line, never a traceback
         if args.debug:
             raise
@@ -245,7 +402,9 @@ def _explain(e: VelpolyError, args) -> None:
     file = getattr(args, "file", None)
     if file and not e.file:
         e.with_file(file)
-    if getattr(args, "angle", None) is not None and e.where == "driver.angle":
+    if getattr(args, "angle", None) is not None and e.where in ("driver.angle", "angle"):
+        if e.where == "angle":   # the API's argument: the hint about the option applies
+            e.hint = ""
         e.where = "--angle"
     if file and e.where and "(line " not in e.where and e.file == file:
         from .loader import locate

@@ -41,12 +41,12 @@ from pathlib import Path
 import numpy as np
 
 from .errors import InputError, PoseError
-from .fileio import atomic_path, atomic_write_bytes, atomic_write_text
+from .fileio import atomic_path, atomic_write_bytes, atomic_write_text, raise_if_interrupted
 from .kinematics import Kinematics, prepare
 from .model import Mechanism
 from .report import Table, fmt, render_table
 from .solution import driver_reference_angle
-from .sweeps import Sweep, sweep
+from .sweeps import MEMORY_BUDGET, Sweep, check_memory, memory_estimate, sweep
 
 __all__ = ["cycle_angles", "run_cycle", "reachable_text", "Centrodes", "centrodes", "cycle_columns", "cycle_csv",
            "summary_table", "cycle_figure", "plot_cycle", "write_gif", "sweep_command"]
@@ -387,12 +387,18 @@ def _series_style(i: int, n_points: int, style: str) -> dict:
 _PLAIN_INDEX = re.compile(r"[A-Za-z0-9@'.]+")
 
 
+def _literal(text: str) -> str:
+    """A text with the user's names drawn as written (no mathtext from a name): see render.canvas.literal."""
+    from .render.canvas import literal
+    return literal(text)
+
+
 def _quantity(symbol: str, index: str, bars: str = "") -> str:
     """A curve's label as a book prints it: ``omega_3`` as omega with subscript 3, ``|V_B|`` with
     subscript B; an index mathtext cannot hold (``$``, braces ...) stays plain text."""
     if not _PLAIN_INDEX.fullmatch(index):
         plain = {r"\omega": "omega", r"\alpha": "alpha"}.get(symbol, symbol)
-        return f"{bars}{plain}_{index}{bars}"
+        return _literal(f"{bars}{plain}_{index}{bars}")
     return f"${bars}{symbol}_{{{index}}}{bars}$"
 
 
@@ -426,16 +432,16 @@ def cycle_figure(sw: Sweep, points=None, cen: Centrodes | None = None, style: st
              [(_quantity(r"\omega", k.name), sw.omega[k.name]) for k in m.moving_links]),
             (axes[0, 1], "Angular accelerations", r"$\alpha$ (rad/s²)",
              [(_quantity(r"\alpha", k.name), sw.alpha[k.name]) for k in m.moving_links]),
-            (axes[1, 0], "Speeds", f"|V| ({u}/s)",
+            (axes[1, 0], "Speeds", _literal(f"|V| ({u}/s)"),
              [(_quantity("V", k, "|"), np.hypot(*sw.velocity[k].T)) for k in keys]),
-            (axes[1, 1], "Accelerations", f"|A| ({u}/s²)",
+            (axes[1, 1], "Accelerations", _literal(f"|A| ({u}/s²)"),
              [(_quantity("A", k, "|"), np.hypot(*sw.acceleration[k].T)) for k in keys]),
         ]
         for ax, title, ylabel, series in panels:
             for i, (label, y) in enumerate(series):
                 ax.plot(x, y, label=label, **_series_style(i, len(x), style))
             ax.set_title(title)
-            ax.set_xlabel(f"{xname} ({xunit})")
+            ax.set_xlabel(_literal(f"{xname} ({xunit})"))
             ax.set_ylabel(ylabel)
             ax.grid(True)
             if series:
@@ -458,7 +464,7 @@ def _wrapped_title(title: str, stopped: str, width_in: float, font_pt: float) ->
     lines = textwrap.wrap(title, width) or [""]
     if stopped:
         lines += textwrap.wrap(f"[{stopped}]", width)
-    return "\n".join(lines)
+    return _literal("\n".join(lines))
 
 
 def plot_cycle(sw: Sweep, out, points=None, cen: Centrodes | None = None, style: str = "textbook",
@@ -481,17 +487,17 @@ def _plot_centrodes(sw: Sweep, cen: Centrodes, ax_fixed, ax_moving, style: str, 
     moving = _break_at_infinity(cen.moving, om)
     # the mechanism at the first pose, for orientation, and the view: the mechanism's motion
     _draw_lines(ax_fixed, sw, 0, style, labels=True)
-    ax_fixed.plot(fixed[:, 0], fixed[:, 1], label=f"fixed centrode of link {lk}", **line)
+    ax_fixed.plot(fixed[:, 0], fixed[:, 1], label=_literal(f"fixed centrode of link {lk}"), **line)
     if cen.defined[0]:
         ax_fixed.plot(*cen.fixed[0], "o", color=line["color"], markersize=4,
-                      label=f"P_{_pole_name(m, lk)} at the first pose")
+                      label=_literal(f"P_{_pole_name(m, lk)} at the first pose"))
         carried = _break_at_infinity(cen.carried(sw, kin, 0), om)
         ax_fixed.plot(carried[:, 0], carried[:, 1], linestyle="--", color=line["color"], linewidth=0.8,
                       label="moving centrode (carried by the link)")
     _view(ax_fixed, _motion_box(sw), margin=0.35)
-    ax_fixed.set_title(f"Fixed centrode of link {lk} (frame coordinates)")
-    ax_fixed.set_xlabel(f"x ({u})")
-    ax_fixed.set_ylabel(f"y ({u})")
+    ax_fixed.set_title(_literal(f"Fixed centrode of link {lk} (frame coordinates)"))
+    ax_fixed.set_xlabel(_literal(f"x ({u})"))
+    ax_fixed.set_ylabel(_literal(f"y ({u})"))
     ax_fixed.legend(fontsize="small")
     # the moving centrode in the link's own coordinates, with the link's outline (reference pose)
     link = m.link(lk)
@@ -500,15 +506,15 @@ def _plot_centrodes(sw: Sweep, cen: Centrodes, ax_fixed, ax_moving, style: str, 
         ax_moving.fill(pts[:, 0], pts[:, 1], facecolor="0.85", edgecolor="black", linewidth=1.0)
     for p, xy in zip(link.points, pts):
         ax_moving.plot(*xy, "o", markerfacecolor="white", markeredgecolor="black", markersize=5)
-        ax_moving.annotate(p, xy, xytext=(4, 4), textcoords="offset points")
-    ax_moving.plot(moving[:, 0], moving[:, 1], label=f"moving centrode of link {lk}", **line)
+        ax_moving.annotate(_literal(p), xy, xytext=(4, 4), textcoords="offset points")
+    ax_moving.plot(moving[:, 0], moving[:, 1], label=_literal(f"moving centrode of link {lk}"), **line)
     box = _box(np.vstack([pts, cen.moving[cen.defined]]) if cen.defined.any() else pts)
     size = max(box[2] - box[0], box[3] - box[1], m.size * 0.1)
     c = pts.mean(axis=0)
     _view(ax_moving, (c[0] - size, c[1] - size, c[0] + size, c[1] + size), margin=0.0, cap=(pts, 3 * m.size))
-    ax_moving.set_title(f"Moving centrode of link {lk} (its own coordinates)")
-    ax_moving.set_xlabel(f"x ({u})")
-    ax_moving.set_ylabel(f"y ({u})")
+    ax_moving.set_title(_literal(f"Moving centrode of link {lk} (its own coordinates)"))
+    ax_moving.set_xlabel(_literal(f"x ({u})"))
+    ax_moving.set_ylabel(_literal(f"y ({u})"))
     ax_moving.legend(fontsize="small")
 
 
@@ -559,7 +565,7 @@ def _scale_bar(ax, unit: str) -> list:
     out = ax.plot([x, x + length], [y, y], "-", color="black", linewidth=1.2)
     out += ax.plot([x, x, np.nan, x + length, x + length], [y - tick, y + tick, np.nan, y - tick, y + tick], "-",
                    color="black", linewidth=1.0)
-    out.append(ax.annotate(f"{length:g} {unit}".strip(), (x + length / 2, y), xytext=(0, 3),
+    out.append(ax.annotate(_literal(f"{length:g} {unit}".strip()), (x + length / 2, y), xytext=(0, 3),
                            textcoords="offset points", ha="center", va="bottom", fontsize="small"))
     return out
 
@@ -620,13 +626,13 @@ def _draw_lines(ax, sw: Sweep, i: int, style: str, labels: bool = True) -> list:
             p = key.split("@")[0]
             if p not in named:
                 named.add(p)
-                artists.append(ax.annotate(p, xy, xytext=(4, 4), textcoords="offset points", fontsize="small"))
+                artists.append(ax.annotate(_literal(p), xy, xytext=(4, 4), textcoords="offset points", fontsize="small"))
     return artists
 
 
 def _image_label(key: str) -> str:
     p, _, lk = key.partition("@")
-    return p.lower() + lk
+    return _literal(p.lower() + lk)
 
 
 def _draw_velocity_polygon(ax, sw: Sweep, i: int, keys, style: str) -> list:
@@ -748,7 +754,7 @@ def write_gif(sw: Sweep, out, kin: Kinematics | None = None, style: str = "textb
         fig = Figure(figsize=(9.0, 4.5), dpi=GIF_DPI)
         ax_m = fig.add_axes((0.01, 0.02, 0.57, 0.86))
         ax_v = fig.add_axes((0.60, 0.02, 0.39, 0.86))
-        fig.suptitle(m.title, fontsize="medium")
+        fig.suptitle(_literal(m.title), fontsize="medium")
         tmp = Path(tmpdir) / "cycle.gif"
         writer = PillowWriter(fps=1000.0 / GIF_FRAME_MS)
         with writer.saving(fig, str(tmp), dpi=GIF_DPI):
@@ -763,6 +769,7 @@ def write_gif(sw: Sweep, out, kin: Kinematics | None = None, style: str = "textb
                         mech_done = True
                         vel_done = painter.polygon_frame(ax_v, sol)
                     except Exception as e:  # a figure module failure: finish with line drawings
+                        raise_if_interrupted()   # (not Ctrl-C's aftermath: that stops the GIF)
                         print(f"warning: {m.source}: the textbook drawing failed ({type(e).__name__}: {e}); "
                               f"the GIF uses line drawings", file=sys.stderr)
                         painter = None
@@ -781,7 +788,7 @@ def write_gif(sw: Sweep, out, kin: Kinematics | None = None, style: str = "textb
                 if not mech_done:
                     _view(ax_m, mech_box, margin=0.12)
                     _scale_bar(ax_m, u)
-                ax_m.set_title(f"{xname}: {sw.angles[i]:.4g} {xunit}", fontsize="small")
+                ax_m.set_title(_literal(f"{xname}: {sw.angles[i]:.4g} {xunit}"), fontsize="small")
                 if not vel_done:
                     _draw_velocity_polygon(ax_v, sw, i, keys, style)
                     _view(ax_v, vel_box, margin=0.12)
@@ -860,6 +867,10 @@ def sweep_command(args) -> int:
     step = _check_step(getattr(args, "step", 1.0))
     m = load(args.file)
     kin = prepare(m)
+    poses = max(int(math.ceil(360.0 / step - 1e-9)), 1)   # as cycle_angles: a turn, or each half-stroke
+    check_memory(m, kin, poses, where="--step",
+                 hint=f"use a coarser --step: {360 * memory_estimate(m, kin, poses) / poses / MEMORY_BUDGET:.2g} "
+                      "deg or more for this mechanism")
     long = 360.0 / step >= 2000 or gif_out is not None or m.driver.is_slider
     bar = _Progress(1, "velpoly sweep: solving", min_total=1 if long else 10 ** 9)
     bar.advance(0)

@@ -10,7 +10,8 @@ from __future__ import annotations
 
 import re
 
-__all__ = ["VelpolyError", "InputError", "PoseError", "AssemblyError", "SingularPoseError", "one_line"]
+__all__ = ["VelpolyError", "InputError", "ArgumentTypeError", "ArgumentValueError", "PoseError", "AssemblyError",
+           "SingularPoseError", "one_line", "control_character"]
 
 
 class VelpolyError(Exception):
@@ -64,15 +65,29 @@ def one_line(text: str) -> str:
     two\\nlines
     """
     text = str(text)
-    if all(ch >= " " and ch != "\x7f" for ch in text):
+    if not any(control_character(ch) for ch in text):
         return text
-    return "".join(ch if ch >= " " and ch != "\x7f" else repr(ch)[1:-1] for ch in text)
+    return "".join(ascii(ch)[1:-1] if control_character(ch) else ch for ch in text)
+
+
+def control_character(ch: str) -> bool:
+    """A control character (C0, DEL, C1) or a line or paragraph separator (U+2028, U+2029): never
+    printed raw in a message, never part of a name."""
+    return ch < " " or "\x7f" <= ch <= "\x9f" or ch in "\u2028\u2029"
 
 
 class InputError(VelpolyError):
     """The mechanism file (or an argument) is wrong: exit status 2."""
 
     exit_code = 2
+
+
+class ArgumentTypeError(InputError, TypeError):
+    """A Python API argument of the wrong type (``solve(None)``, ``angle="30"``): ``where`` names it."""
+
+
+class ArgumentValueError(InputError, ValueError):
+    """A Python API argument of the right type but a wrong value (``angle=nan``, 2-D angles)."""
 
 
 class PoseError(VelpolyError):

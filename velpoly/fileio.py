@@ -1,22 +1,42 @@
-"""Atomic output files: a failed run leaves no partial file.
+"""Output files: a failed run leaves no partial file, and no output replaces an input or a special file.
 
-Every file velpoly writes goes first to a temporary file in the same
-folder, which is renamed over the target only when complete (``os.replace``
-is atomic on one file system). On any failure the temporary file is
-removed and an existing target is left untouched. The new file gets the
-permissions an ordinary new file would (``0o666`` less the umask), not the
-private ``0o600`` of a temporary file. Input files are never written.
+A regular output file (or a missing one) is written first to a temporary file in
+the same folder, renamed over the target only when complete (``os.replace`` is
+atomic on one file system). On any failure -- an error, Ctrl-C, SIGTERM turned into
+an exception by the command line -- the temporary file is removed and an existing
+target is left untouched. The new file gets the permissions an ordinary new file
+would (``0o666`` less the umask), not the private ``0o600`` of a temporary file.
+A symbolic link is followed: the file it names is replaced, the link stays.
+
+Anything else that already exists at the target -- a FIFO, a device such as
+``/dev/null``, a terminal -- is written straight through, never replaced (a
+rename would turn a FIFO into a regular file, and, run as root, replace a device
+for the whole machine). So is a path under ``/dev`` or ``/proc`` (``/dev/stdout``).
+
+Input files are never written: the command line registers its input with
+:func:`protect_input`, and a target that is the same file (a hard link or a
+symbolic link to it, too) is an :class:`~velpoly.errors.InputError`. A write
+that fails (no space, no permission) is an InputError ``cannot write OUT: REASON``.
+
+Interruptions: :func:`note_interrupt` records a Ctrl-C even where Python could
+not raise it (inside a callback whose exceptions are ignored); an output is
+then never committed (:func:`raise_if_interrupted`).
 """
 from __future__ import annotations
 
 import contextlib
 import os
+import stat
 import tempfile
 from pathlib import Path
 
 from .errors import InputError
 
-__all__ = ["atomic_path", "atomic_write_text", "atomic_write_bytes"]
+__all__ = ["atomic_path", "atomic_write_text", "atomic_write_bytes", "protect_input", "forget_inputs",
+           "same_file", "check_not_input", "cannot_write", "note_interrupt", "interrupted", "raise_if_interrupted"]
+
+_INPUTS: dict[tuple[int, int], str] = {}   # (device, inode) of each input file -> its name as given
+_INTERRUPTED: list[bool] = [False]
 
 
 def _umask() -> int:
@@ -25,19 +45,110 @@ def _umask() -> int:
     return mask
 
 
+# -- inputs are never outputs ---------------------------------------------------------------------
+def _identity(path) -> tuple[int, int] | None:
+    try:
+        st = os.stat(path)
+    except (OSError, ValueError):
+        return None
+    return st.st_dev, st.st_ino
+
+
+def protect_input(path) -> None:
+    """Register ``path`` as an input of this run: no output may be written over it."""
+    ident = _identity(path)
+    if ident is not None:
+        _INPUTS[ident] = str(path)
+
+
+def forget_inputs() -> None:
+    """Forget every registered input (a new run starts)."""
+    _INPUTS.clear()
+    _INTERRUPTED[0] = False
+
+
+def same_file(a, b) -> bool:
+    """``a`` and ``b`` are one existing file (the same path, a hard link or a symbolic link to it)."""
+    ia = _identity(a)
+    return ia is not None and ia == _identity(b)
+
+
+def check_not_input(out, inp, option: str, default: bool = False) -> None:
+    """Refuse an output ``out`` (given by ``option``, or its ``default`` name) that is the input file
+    ``inp``: an InputError naming the option (exit 2)."""
+    if out is not None and inp is not None and same_file(out, inp):
+        what = "the default output" if default else "the output"
+        raise InputError(f"{what} {str(out)!r} is the input file: an output never replaces its input",
+                         where=option, file=str(inp), hint=f"give {option} another file name"
+                         if not default else f"give the output's name with {option} OUT")
+
+
+def cannot_write(target, e: BaseException) -> InputError:
+    """The error of a failed write: ``cannot write OUT: REASON``."""
+    reason = getattr(e, "strerror", None) or str(e) or type(e).__name__
+    return InputError(f"cannot write {target}: {reason}",
+                      hint="check the output's folder is writable and the disk has room")
+
+
+# -- interruptions ---------------------------------------------------------------------------------
+def note_interrupt() -> None:
+    """Record that the run was interrupted (Ctrl-C, SIGTERM): no output is committed after it."""
+    _INTERRUPTED[0] = True
+
+
+def interrupted() -> bool:
+    """Whether the run was interrupted (Ctrl-C, SIGTERM), even where the interrupt was swallowed."""
+    return _INTERRUPTED[0]
+
+
+def raise_if_interrupted() -> None:
+    """Raise KeyboardInterrupt if the run was interrupted, even where the interrupt itself was swallowed."""
+    if _INTERRUPTED[0]:
+        raise KeyboardInterrupt
+
+
+def _special(target: Path, st) -> bool:
+    """A target written straight through: an existing non-regular file, or a path under /dev or /proc."""
+    if st is not None and not stat.S_ISREG(st.st_mode):
+        return True
+    return os.path.abspath(target).startswith(("/dev/", "/proc/"))
+
+
 @contextlib.contextmanager
 def atomic_path(target):
-    """Yield a temporary path beside ``target``; rename it over ``target`` on success.
+    """Yield the path to write ``target`` through: a temporary path beside it, renamed over it on success.
 
-    On any exception the temporary file is removed and ``target`` is left
-    as it was. Failing to create or rename the file is an
-    :class:`~velpoly.errors.InputError` naming the target.
+    A target that exists and is not a regular file (a FIFO, a device, a
+    terminal) is yielded itself: written straight through, never replaced.
+    On any exception the temporary file is removed and ``target`` is left as
+    it was. Failing to create, write or rename the file is an
+    :class:`~velpoly.errors.InputError` ``cannot write OUT: REASON``; a
+    target that is an input file of this run (:func:`protect_input`) is
+    refused before anything is written.
     """
     target = Path(target)
-    folder = target.parent if str(target.parent) else Path(".")
+    ident = _identity(target)
+    if ident is not None and ident in _INPUTS:
+        raise InputError(f"the output {str(target)!r} is the input file: an output never replaces its input",
+                         file=_INPUTS[ident], hint="give the output another file name (-o OUT)")
     if target.is_dir():
         raise InputError("is a folder: cannot write a file there", file=str(target),
                          hint="give the output file's name")
+    try:
+        st = os.stat(target)
+    except (FileNotFoundError, NotADirectoryError):   # absent (a file where a folder should be: below)
+        st = None
+    except OSError as e:
+        raise cannot_write(target, e) from None
+    if _special(target, st):
+        try:
+            yield target
+        except OSError as e:
+            raise cannot_write(target, e) from None
+        return
+    if target.is_symlink():   # replace the file the link names, not the link
+        target = Path(os.path.realpath(target))
+    folder = target.parent if str(target.parent) else Path(".")
     blocker = next((p for p in (folder, *folder.parents) if p.exists()), None)
     if blocker is not None and not blocker.is_dir():   # a file where the output's folder should be
         raise InputError(f"cannot write: {str(blocker)!r} is a file, not a folder", file=str(target),
@@ -46,18 +157,17 @@ def atomic_path(target):
         folder.mkdir(parents=True, exist_ok=True)
         fd, tmp = tempfile.mkstemp(prefix=f".{target.stem}.", suffix=target.suffix + ".part", dir=folder)
     except OSError as e:
-        raise InputError(f"cannot write: {e.strerror or e}", file=str(target),
-                         hint="check the output folder exists and is writable") from None
+        raise cannot_write(target, e) from None
     os.close(fd)
     try:
-        yield Path(tmp)
         try:
-            mode = (target.stat().st_mode & 0o7777) if target.exists() else (0o666 & ~_umask())
+            yield Path(tmp)
+            raise_if_interrupted()
+            mode = (st.st_mode & 0o7777) if st is not None else (0o666 & ~_umask())
             os.chmod(tmp, mode)
             os.replace(tmp, target)
         except OSError as e:
-            raise InputError(f"cannot write: {e.strerror or e}", file=str(target),
-                             hint="check the output is writable") from None
+            raise cannot_write(target, e) from None
     except BaseException:
         with contextlib.suppress(OSError):
             os.unlink(tmp)
@@ -65,12 +175,12 @@ def atomic_path(target):
 
 
 def atomic_write_bytes(target, data: bytes) -> Path:
-    """Write ``data`` to ``target`` atomically; returns the target's path."""
+    """Write ``data`` to ``target`` (atomically where it is a regular file); returns the target's path."""
     with atomic_path(target) as tmp:
         tmp.write_bytes(data)
     return Path(target)
 
 
 def atomic_write_text(target, text: str) -> Path:
-    """Write ``text`` (UTF-8) to ``target`` atomically; returns the target's path."""
+    """Write ``text`` (UTF-8) to ``target`` (atomically where it is a regular file); returns the target's path."""
     return atomic_write_bytes(target, text.encode("utf-8"))

@@ -17,12 +17,12 @@ from typing import Any, Mapping
 
 import numpy as np
 
-from .errors import InputError, VelpolyError
+from .errors import ArgumentTypeError, InputError, VelpolyError, control_character
 from .model import (Construction, Contact, Driver, Link, Mechanism, Pin, Reference, Slider, Slot,
                     frozen_map)
 from .pose import circle_circle, circle_line
 
-__all__ = ["load", "locate", "parse_omega", "parse_alpha"]
+__all__ = ["load", "loads", "locate", "parse_omega", "parse_alpha"]
 
 TOP_KEYS = ("format", "title", "units", "points", "links", "sliders", "contacts", "slots",
             "driver", "reference", "drawing")
@@ -75,7 +75,7 @@ def _where_parts(where: str) -> list:
     """``sliders[0].guide`` -> ['sliders', 0, 'guide']."""
     out: list = []
     for piece in where.split("."):
-        m = re.fullmatch(r"(.*?)((?:\[\d+\])*)", piece)
+        m = re.fullmatch(r"(.*?)((?:\[\d+\])*)", piece, flags=re.DOTALL)
         if m.group(1) in ('""', "''"):   # an empty name, written as TOML writes it
             out.append("")
         elif m.group(1):
@@ -84,8 +84,9 @@ def _where_parts(where: str) -> list:
     return out
 
 
-def _scan_brackets(line: str, depth: int, in_ml: str | None) -> tuple[int, str | None]:
-    """Bracket depth and open multi-line string after ``line`` (strings and comments skipped)."""
+def _scan_brackets(line: str, depth: int, in_ml: str | None, peak: list | None = None) -> tuple[int, str | None]:
+    """Bracket depth and open multi-line string after ``line`` (strings and comments skipped); the
+    deepest depth inside the line is kept in ``peak[0]`` if given."""
     i, n = 0, len(line)
     while i < n:
         if in_ml:
@@ -109,6 +110,8 @@ def _scan_brackets(line: str, depth: int, in_ml: str | None) -> tuple[int, str |
             continue
         if c in "[{":
             depth += 1
+            if peak is not None and depth > peak[0]:
+                peak[0] = depth
         elif c in "]}":
             depth = max(depth - 1, 0)
         i += 1
@@ -576,23 +579,29 @@ def _pick(ctx, where, cands, near, pts, name) -> np.ndarray:
 
 # -- the whole file -----------------------------------------------------------------------------
 def load(source, *, name: str | None = None) -> Mechanism:
-    """Read a mechanism from a file path, TOML text, or a dict.
+    """Read a mechanism from a file path, a dict, or TOML text with a newline in it (FORMAT.md section 4).
 
-    A string is a path when it is one line that names a file or has no
-    ``=``; otherwise it is TOML text. Input files are only read, never
-    written. Raises :class:`~velpoly.errors.InputError` (a
+    A string on one line is a file's path (TOML text on one line, such as
+    ``"[points]"``, is refused with a pointer to :func:`loads`); a string with
+    a newline is TOML text. A dict's values may be tuples, numpy scalars or
+    1-D arrays where the file has lists and numbers. Input files are only
+    read, never written. Raises :class:`~velpoly.errors.InputError` (a
     :class:`VelpolyError`) naming the file, the entry and what is wrong.
     """
     text = None
-    if isinstance(source, dict):
-        data, file = source, name or "<dict>"
-    elif isinstance(source, os.PathLike) or (isinstance(source, str) and source.strip() and "\n" not in source
-                                            and (os.path.exists(source) or "=" not in source)):
+    if isinstance(source, Mapping):
+        file = name or "<dict>"
+        data = _plain(source, file)
+    elif isinstance(source, os.PathLike) or (isinstance(source, str) and source.strip() and "\n" not in source):
         path = Path(source)
         file = name or str(source)
         try:
             text = path.read_text(encoding="utf-8")
         except FileNotFoundError:
+            if isinstance(source, str) and _looks_like_toml(source):
+                raise InputError("no such file: this is TOML text, not a file's name", file=file,
+                                 hint="read TOML text with velpoly.loads(text) (velpoly.load reads text "
+                                      "only with a newline in it)") from None
             raise InputError("no such file", file=file, hint="check the path") from None
         except IsADirectoryError:
             raise InputError("is a directory, not a mechanism file", file=file,
@@ -600,28 +609,120 @@ def load(source, *, name: str | None = None) -> Mechanism:
         except UnicodeDecodeError:
             raise InputError("not a text (UTF-8) file", file=file,
                              hint="a mechanism file is TOML text in UTF-8") from None
-        except OSError as e:
-            raise InputError(f"cannot read: {e.strerror or e}", file=file, hint="check the path and its permissions") from None
+        except (OSError, ValueError) as e:   # ValueError: a NUL character in the path
+            raise InputError(f"cannot read: {getattr(e, 'strerror', None) or e}", file=file,
+                             hint="check the path and its permissions") from None
         if text.startswith("\ufeff"):   # a byte-order mark, as some editors write
             text = text[1:]
         data = _parse_toml(text, file)
         if name is None:
             name = path.name
     elif isinstance(source, str):
-        text, file = source, name or "<text>"
-        data = _parse_toml(text, file)
+        return loads(source, name=name)
     else:
-        raise InputError(f"cannot load a {type(source).__name__}: give a path, TOML text or a dict",
-                         file=name or "", hint="velpoly.load(\"fourbar.toml\")")
+        raise ArgumentTypeError(f"cannot load {_a(type(source).__name__)}: give a path, a dict or TOML text",
+                                where="source", file=name or "",
+                                hint="velpoly.load(\"fourbar.toml\"), or velpoly.loads(text) for TOML text")
+    return _load_data(data, file, text, name)
+
+
+def loads(text: str, *, name: str | None = None) -> Mechanism:
+    """Read a mechanism from TOML text (one line or many): ``velpoly.loads('format = 1\\n[points]...')``.
+
+    ``name`` is what errors call it (default ``<text>``). Raises
+    :class:`~velpoly.errors.InputError` naming the entry and what is wrong.
+    """
+    if isinstance(text, (bytes, bytearray)):
+        try:
+            text = bytes(text).decode("utf-8")
+        except UnicodeDecodeError:
+            raise InputError("not UTF-8 text", where="text", file=name or "<text>",
+                             hint="TOML text is UTF-8") from None
+    if not isinstance(text, str):
+        raise ArgumentTypeError(f"expected TOML text (a string), got {_a(type(text).__name__)}", where="text",
+                                file=name or "", hint="velpoly.load(path) reads a file, velpoly.load(d) a dict")
+    file = name or "<text>"
+    if text.startswith("\ufeff"):
+        text = text[1:]
+    return _load_data(_parse_toml(text, file), file, text, name)
+
+
+def _a(noun: str) -> str:
+    return ("an " if noun[:1].lower() in "aeiou" else "a ") + noun
+
+
+def _looks_like_toml(s: str) -> bool:
+    """A one-line string that is TOML rather than a path: a [table] header or a key = value."""
+    t = s.strip()
+    return t.startswith("[") or "=" in t or t.startswith("#")
+
+
+def _load_data(data: dict, file: str, text: str | None, name: str | None) -> Mechanism:
     ctx = _Ctx(file, text)
     try:
         return _build(ctx, data, default_title=name or file)
     except VelpolyError as e:
         raise e.with_file(file)
+    except RecursionError:   # pragma: no cover (nesting is limited by _plain first)
+        raise InputError(f"nested too deeply (more than {MAX_DEPTH} levels)", file=file,
+                         hint="a mechanism file's entries nest a few levels at most") from None
     except (TypeError, ValueError, KeyError, IndexError, AttributeError) as e:  # pragma: no cover
         # every input is checked above; this is a last line of defence, never a traceback
         raise InputError(f"malformed entry ({type(e).__name__}: {e})", file=file,
                          hint="please report this file: velpoly should have named the entry") from None
+
+
+MAX_DEPTH = 32   # levels of tables and lists: a mechanism file nests 4 or 5 at most
+
+
+def _plain(data, file: str) -> dict:
+    """``data`` (a dict, or what TOML gave) as plain TOML values: tuples and 1-D arrays become lists,
+    numpy scalars Python numbers, and no entry nested deeper than MAX_DEPTH (an InputError naming it,
+    never a RecursionError). The caller's dict is not changed."""
+    def where_of(path):
+        out = ""
+        for k in path:
+            out += f"[{k}]" if isinstance(k, int) else (f".{k}" if out else str(k))
+        return out
+
+    def conv(v, path):
+        if isinstance(v, Mapping) or isinstance(v, (list, tuple)) or (isinstance(v, np.ndarray) and v.ndim):
+            if len(path) >= MAX_DEPTH:
+                shown = where_of(path[:6]) + ("..." if len(path) > 6 else "")
+                raise InputError(f"nested more than {MAX_DEPTH} levels deep", where=shown, file=file,
+                                 hint="a mechanism file's entries nest a few levels at most: "
+                                      "check the brackets and table headers")
+            if isinstance(v, Mapping):
+                return {key(k): conv(x, path + [key(k)]) for k, x in v.items()}
+            return [conv(x, path + [i]) for i, x in enumerate(v)]
+        if isinstance(v, (np.generic, np.ndarray)):   # a numpy scalar or 0-d array
+            return v.item() if isinstance(v, np.generic) or v.ndim == 0 else v
+        return v
+
+    def key(k):
+        return k.item() if isinstance(k, np.generic) else k
+    return conv(data, [])
+
+
+def _deep_entry(text: str) -> tuple[str, int | None]:
+    """The entry (``table.key``) and line where the text's brackets nest deeper than MAX_DEPTH."""
+    table, key, depth, in_ml = "", "", 0, None
+    for no, line in enumerate(text.splitlines(), start=1):
+        if depth == 0 and not in_ml:
+            h = _HEADER_RE.match(line)
+            if h:
+                table, key = ".".join(_key_parts(h.group(2))), ""
+                if len(_key_parts(h.group(2))) > MAX_DEPTH:
+                    return table[:60], no
+                continue
+            a = _ASSIGN_RE.match(line)
+            if a:
+                key = ".".join(_key_parts(a.group(1)))
+        peak = [depth]
+        depth, in_ml = _scan_brackets(line, depth, in_ml, peak)
+        if peak[0] > MAX_DEPTH:
+            return ".".join(p for p in (table, key) if p)[:60], no
+    return "", None
 
 
 def _parse_toml(text: str, file: str) -> dict:
@@ -629,7 +730,13 @@ def _parse_toml(text: str, file: str) -> dict:
         raise InputError("the file is empty", file=file,
                          hint="a mechanism file has [points], [links] and [driver] tables (see the README)")
     try:
-        return tomllib.loads(text)
+        return _plain(tomllib.loads(text), file)
+    except RecursionError:   # tomllib reads nested brackets recursively
+        entry, line = _deep_entry(text)
+        raise InputError(f"nested more than {MAX_DEPTH} levels deep", file=file,
+                         where=f"{entry} (line {line})" if entry and line else (f"line {line}" if line else entry),
+                         hint="a mechanism file's entries nest a few levels at most: "
+                              "check the brackets") from None
     except tomllib.TOMLDecodeError as e:
         msg = str(e)
         m = re.search(r"\s*\(at line (\d+), column (\d+)\)\s*$", msg)
@@ -709,8 +816,10 @@ def _names(ctx, table: str, raw: dict, kind: str) -> list[tuple[str, Any]]:
                 raise ctx.err(where, f"a {kind}'s name must not contain {c!r} ({why})",
                               hint=f"rename {kind} {n!r}" + (" (textbooks number links: 1, 2, 3)"
                                                              if kind == "link" else ""))
-        if any(ord(ch) < 32 for ch in n):
-            raise ctx.err(where, f"a {kind}'s name must not contain control characters", hint=f"rename {n!r}")
+        if any(control_character(ch) for ch in n):
+            raise ctx.err(where, f"a {kind}'s name must not contain control characters",
+                          hint=f"rename {kind} {json.dumps(n)} (a line break, a tab or another control "
+                               "character cannot be drawn or printed as a name)")
         seen.add(n)
         out.append((n, spec))
     return out
@@ -956,7 +1065,20 @@ def _build(ctx: _Ctx, data: dict, default_title: str) -> Mechanism:
     )
     _check_range(ctx, m)
     _check_reference(ctx, m)
+    _check_drawing(ctx, m)
     return m
+
+
+def _check_drawing(ctx, m: Mechanism) -> None:
+    """The [drawing] table checked on load, by the rules ``draw`` applies (velpoly.render.options, which
+    imports matplotlib only to check a colour): a file ``solve`` accepts, ``draw`` accepts too."""
+    if not m.drawing:
+        return
+    from .render.options import drawing_options
+    try:
+        drawing_options(m)
+    except InputError as e:
+        raise ctx.err(e.where, e.what, e.hint) from None
 
 
 # Floating point holds about 1e+-308: the kinematics squares speeds and multiplies rates by lengths,

@@ -18,6 +18,7 @@ from .kinematics import WARN, Kinematics, accelerations, prepare, velocities
 from .model import Mechanism
 from .motion import Motion, evaluate_motion, wrap_deg_float
 from .pose import reassemble
+from .arguments import check_angle, check_mechanism
 
 __all__ = ["Solution", "solve", "driver_reference_angle", "reachable_range"]
 
@@ -210,6 +211,7 @@ def solve(m: Mechanism, angle: float | None = None) -> Solution:
     pose, on the drawn branch. Without ``angle``, the file's ``driver.angle``
     applies if given.
     """
+    m, angle = check_mechanism(m), check_angle(angle)   # a wrong argument: an error naming it
     kin = prepare(m)
     nq = kin.system.nq
     q = np.zeros((1, nq))

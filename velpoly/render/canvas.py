@@ -153,6 +153,38 @@ def view_box(ax):
     return box(x0, y0, x1, y1)
 
 
+def literal(s) -> str:
+    r"""A user's text (a name, a title, units) for a matplotlib Text, drawn as written: ``$`` escaped so
+    it starts no mathtext, a backslash set as mathtext's backslash (so none escapes a ``$`` after it).
+
+    >>> print(literal("$B$"), literal("a\\b"))
+    \$B\$ a$\backslash$b
+    """
+    return r"$\backslash$".join(part.replace("$", r"\$") for part in str(s).split("\\"))
+
+
+_MATH_ESCAPES = {"\\": r"{\backslash}", "{": r"\{", "}": r"\}", "$": r"\$"}
+
+
+def math_literal(s) -> str:
+    r"""A user's text for inside mathtext (a subscript ``$\omega_{...}$``), drawn as written: ASCII
+    letters and digits as they are, braces, ``$`` and backslash escaped, other ASCII signs and spaces
+    as ``\text{...}`` (mathtext would read ``_ ^ % # ~`` or drop spaces); other characters as they are.
+
+    >>> print(math_literal("3"), math_literal("a_b"), math_literal("{x}"))
+    3 a\text{_}b \{x\}
+    """
+    out = []
+    for ch in str(s):
+        if ch in _MATH_ESCAPES:
+            out.append(_MATH_ESCAPES[ch])
+        elif ch.isascii() and not ch.isalnum():
+            out.append(r"\text{" + ch + "}")
+        else:
+            out.append(ch)
+    return "".join(out)
+
+
 _SIMPLE = re.compile(r"^([A-Za-z]+)(?:_([0-9A-Za-z]+)|([0-9]+))?('*)$")
 
 
@@ -162,7 +194,7 @@ def tex(label: str, math: bool = False) -> str:
     Letters, then a subscript (digits, or anything after ``_``), then primes.
     Only a subscript needs mathtext; primes become the prime sign (′), so
     plain labels stay plain text (set ``fontstyle="italic"`` on the Text).
-    Any other label is returned as it is, with ``$`` and ``_`` escaped.
+    Any other label is drawn as it is written (:func:`literal`).
     ``math=True`` gives mathtext always (for a label beside mathtext ones).
 
     >>> tex("b4"), tex("c'"), tex("P_13"), tex("F@5"), tex("B")
@@ -171,7 +203,7 @@ def tex(label: str, math: bool = False) -> str:
     s = str(label)
     m = _SIMPLE.match(s)
     if not m:
-        return s.replace("$", r"\$").replace("_", r"\_")
+        return literal(s)
     base, sub, digits, primes = m.groups()
     sub = sub or digits
     if not sub and not math:
@@ -191,7 +223,7 @@ def prose_tex(s: str) -> str:
     >>> prose_tex("perpendicular to O4B"), prose_tex("parallel to the path of B on 1")
     ('perpendicular to $O_{4}$B', 'parallel to the path of B on 1')
     """
-    s = str(s).replace("$", r"\$")
+    s = literal(s)
     return _POINT_NAME.sub(lambda mo: "$" + mo.group(1) + "_{" + mo.group(2) + "}$", s)
 
 

@@ -17,7 +17,8 @@ import numpy as np
 from shapely.geometry import LineString, MultiPoint, Point
 from shapely.geometry import Polygon as SPolygon
 
-from .canvas import Artists, arrow, border_point, fit_view, get_ax, per_cm, per_point, tex, view_box, view_scale
+from .canvas import (Artists, arrow, border_point, fit_view, get_ax, literal, math_literal, per_cm, per_point, tex,
+                     view_box, view_scale)
 from .labels import placer
 from .options import drawing_options
 from .scalebar import scale_bar, unit_label
@@ -469,7 +470,7 @@ class _Drawing:
                                   lw=st.thin_lw * 1.4)
             if len(pts) >= 3:
                 # a plate: its number inside, at the centroid, if there is room
-                t = self.ax.text(*anchor, lk, ha="center", va="center", gid=f"link-number-{lk}", **kw)
+                t = self.ax.text(*anchor, literal(lk), ha="center", va="center", gid=f"link-number-{lk}", **kw)
                 b = self.pl.box_of(t, pad=3.5 if "bbox" in kw else 1.0)
                 if g.contains(b) and self.pl.free(b):
                     self.pl.boxes.append(b)
@@ -481,7 +482,7 @@ class _Drawing:
             t = None
             if len(pts) == 2:
                 # a bar: its number beside it, near its middle, on the side clear of everything
-                probe = self.ax.text(*anchor, lk, ha="center", va="center", **kw)
+                probe = self.ax.text(*anchor, literal(lk), ha="center", va="center", **kw)
                 w, h = self.pl._size(probe, pad)
                 probe.remove()
                 u = (b - a) / max(np.hypot(*(b - a)), 1e-300)
@@ -489,11 +490,11 @@ class _Drawing:
                 spots = [a + (b - a) * f + side * n * off for f in (0.5, 0.38, 0.62, 0.27, 0.73)
                          for side in (1, -1)]
                 if np.hypot(*(b - a)) > 2 * off:
-                    t = self.pl.place_at(spots, lk, gid=f"link-number-{lk}", pad=pad, soft=True, **kw)
+                    t = self.pl.place_at(spots, literal(lk), gid=f"link-number-{lk}", pad=pad, soft=True, **kw)
                     if t is None:   # nothing clear of every line beside it: clear of marks and labels
-                        t = self.pl.place_at(spots, lk, gid=f"link-number-{lk}", pad=pad, **kw)
+                        t = self.pl.place_at(spots, literal(lk), gid=f"link-number-{lk}", pad=pad, **kw)
             if t is None:
-                t = self.pl.place(anchor, lk, prefer=prefer, gap=2.0, gid=f"link-number-{lk}", pad=pad, **kw)
+                t = self.pl.place(anchor, literal(lk), prefer=prefer, gap=2.0, gid=f"link-number-{lk}", pad=pad, **kw)
             self.art.add("link_numbers", t)
 
     def driver(self, ground_dir):
@@ -512,7 +513,7 @@ class _Drawing:
                                  zorder=6, gid="driver-arrow")
             self.art.add("driver", sh, hd)
             self.pl.add_obstacle(poly)
-            text = f"$V_{{{drv.slider}}}$ = {abs(drv.speed):.4g} {unit_label(m.units, 1)}"
+            text = f"$V_{{{math_literal(drv.slider)}}}$ = {abs(drv.speed):.4g} {unit_label(m.units, 1)}"
             t = self.pl.place((a + b) / 2, text, prefer=math.degrees(math.atan2(n[1], n[0])),
                               fontsize=st.small_size * 1.15, zorder=7, gid="driver-label")
             self.art.add("driver", t)
@@ -533,7 +534,7 @@ class _Drawing:
         # another link (a slotted lever passing by the pivot), a block or a label: then the next gap
         others = [g for lk, g in getattr(self, "geoms", {}).items() if lk != drv.link]
         others += [g for lk, g in self.block_geom.items() if lk != drv.link] + list(self.pl.boxes)
-        lk = drv.link
+        lk = math_literal(drv.link)
         text = rf"$\omega_{{{lk}}}$ = {abs(drv.omega):.4g} rad/s {'ccw' if drv.omega >= 0 else 'cw'}"
         if drv.alpha:
             text += "\n" + rf"$\alpha_{{{lk}}}$ = {abs(drv.alpha):.4g} rad/s² {'ccw' if drv.alpha >= 0 else 'cw'}"

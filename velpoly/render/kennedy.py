@@ -19,7 +19,8 @@ import math
 import numpy as np
 from shapely.geometry import LineString, Point
 
-from .canvas import Artists, arrow, border_point, fit_view, get_ax, per_cm, per_point, view_box, view_scale
+from .canvas import (Artists, arrow, border_point, fit_view, get_ax, math_literal, per_cm, per_point, view_box,
+                     view_scale)
 from .displacement import draw_mechanism, mechanism_bounds, shape_patch
 from .labels import placer, segment
 from .options import drawing_options
@@ -35,7 +36,7 @@ def pole_label(links: tuple[str, str]) -> str:
     """``$P_{13}$``, or ``$P_{2,10}$`` when a link's name is longer than one character."""
     i, j = links
     sub = f"{i}{j}" if len(i) == 1 and len(j) == 1 else f"{i},{j}"
-    return "$P_{" + sub.replace("_", r"\_") + "}$"
+    return "$P_{" + math_literal(sub) + "}$"
 
 
 def shown_poles(ps, upto: int | None = None) -> list:

@@ -11,7 +11,7 @@ import numpy as np
 import shapely
 from shapely.geometry import box
 
-from .canvas import nice_length, per_cm, per_point, view_box
+from .canvas import literal, nice_length, per_cm, per_point, view_box
 from .labels import placer
 
 __all__ = ["scale_bar", "unit_label", "scale_text"]
@@ -23,7 +23,7 @@ def unit_label(units: str, power: int) -> str:
     """The unit of a length (power 0), a velocity (1) or an acceleration (2)."""
     if not units:
         return ("", "s⁻¹", "s⁻²")[power]
-    return units + _POWERS[power]
+    return literal(units) + _POWERS[power]
 
 
 def scale_text(value: float, units: str, power: int) -> str:

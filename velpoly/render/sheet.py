@@ -26,7 +26,7 @@ from pathlib import Path
 
 from ..errors import InputError
 from ..fileio import atomic_path
-from .canvas import fit_view, nice_scale, view_scale
+from .canvas import fit_view, literal, nice_scale, view_scale
 from .displacement import draw_mechanism, mark_auxiliary, mechanism_bounds
 from .kennedy import draw_kennedy_circle, draw_poles, pole_label
 from .labels import placer
@@ -96,7 +96,7 @@ def equation_tex(eq: str) -> str:
         if power and not sup:
             return out + "^{" + power[1:] + "}$"
         return out + "$" + (power or "")
-    s = eq.replace("$", r"\$")
+    s = literal(eq)   # a user's name or title in it is drawn as written
     s = _QUANTITY.sub(sub, s)
     s = re.sub(r"\bomega\b", r"$\\omega$", s)
     s = re.sub(r"\balpha\b", r"$\\alpha$", s)
@@ -157,8 +157,8 @@ def _pole_caption(p) -> str:
         if len(ln) == 2 and "-" in str(ln[0]):
             lines.append(pole_label(tuple(ln[0].split("-"))) + pole_label(tuple(ln[1].split("-"))))
         else:
-            lines.append(" ".join(map(str, ln)))
-    what = f"{pole_label(p.links)} ({p.how})"
+            lines.append(literal(" ".join(map(str, ln))))
+    what = f"{pole_label(p.links)} ({literal(p.how)})"
     return what + (": on " + " and ".join(lines) if lines else "")
 
 
@@ -423,8 +423,9 @@ def draw_to_file(sol, out, sheet: str = "full", style: str = "textbook", steps: 
                 tmp.write_bytes(data)
             written.append(target)
     except BaseException:
-        for p in written:
-            p.unlink(missing_ok=True)
+        for p in written:   # the frames written so far: regular files only (never a FIFO or a device)
+            if p.is_file() and not p.is_symlink():
+                p.unlink(missing_ok=True)
         raise
     return written
 

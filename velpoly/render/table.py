@@ -19,8 +19,7 @@ import re
 import numpy as np
 
 from ..report import Table, fmt
-from .canvas import Artists, get_ax, renderer_of
-from .kennedy import pole_label
+from .canvas import Artists, get_ax, literal, renderer_of
 from .style import get_style
 
 __all__ = ["results_table", "draw_results_table"]
@@ -56,8 +55,20 @@ def _vec(v, digits=5) -> str:
 
 
 def _q(symbol: str, index: str, unit: str = "") -> str:
-    """A quantity's name in mathtext: ``$\\omega_{3}$ (rad/s)``, ``$V_{B}$``."""
-    return "$" + symbol + "_{" + index.replace("@", "").replace("_", r"\_") + "}$" + (f" ({unit})" if unit else "")
+    """A quantity's name as mathtext: ``$\\omega_{3}$ (rad/s)``, ``$V_{B}$``; the cell is drawn piece by
+    piece (:func:`_parts`), each piece as written. An index with a brace, ``$`` or backslash in it
+    (a user's name) stays one plain piece: ``V_{x}``."""
+    index = index.replace("@", "")
+    unit = f" ({unit})" if unit else ""
+    if any(c in index for c in "{}$\\"):
+        return f"{_SYMBOLS.get(symbol, symbol)}_{index}{unit}"
+    return "$" + symbol + "_{" + index + "}$" + unit
+
+
+def _pole(links: tuple[str, str]) -> str:
+    """A relative pole's name, as :func:`velpoly.render.kennedy.pole_label` writes it."""
+    i, j = links
+    return _q("P", f"{i}{j}" if len(i) == 1 and len(j) == 1 else f"{i},{j}")
 
 
 _GREEK = {"omega": r"\omega", "alpha": r"\alpha", "theta": r"\theta"}
@@ -85,11 +96,11 @@ def _parts(cell: str) -> list[tuple[str, float, float, str]]:
     """A cell as pieces (text, size factor, baseline shift in ems, font style): ``$V_{B}$`` -> V, B lowered."""
     m = _RICH.match(cell)
     if not m:
-        return [(cell, 1.0, 0.0, "normal")]
+        return [(literal(cell), 1.0, 0.0, "normal")]
     bar, sym, sub, bar2, rest = m.groups()
-    return [(bar + _SYMBOLS.get(sym, sym), 1.0, 0.0, "italic"),
-            (sub, 0.72, -0.28, "normal" if sub[:1].isdigit() else "italic"),
-            (bar2 + rest, 1.0, 0.0, "normal")]
+    return [(literal(bar + _SYMBOLS.get(sym, sym)), 1.0, 0.0, "italic"),
+            (literal(sub), 0.72, -0.28, "normal" if sub[:1].isdigit() else "italic"),
+            (literal(bar2 + rest), 1.0, 0.0, "normal")]
 
 
 def _num(x, digits=5) -> str:
@@ -210,7 +221,7 @@ def results_table(sol, sheet: str = "full", *, velocity=None, acceleration=None,
         for p in sorted((p for p in poleset.poles.values() if p.order > 0), key=lambda p: p.order):
             pos, direction = relative_pole(sol, *p.links)
             r = ref_for(f"P_{p.links[0]}{p.links[1]}", f"P{p.links[0]}{p.links[1]}")
-            rows.append((pole_label(p.links) + f"  ({p.order})", _where(p.position, p.direction), "",
+            rows.append((_pole(p.links) + f"  ({p.order})", _where(p.position, p.direction), "",
                          _where(pos, direction), "", _printed(r), _dev(r)))
     related = {"velocity": ("V", "|V", "omega"), "acceleration": ("A", "alpha"), "poles": ("P", "V_P", "omega"),
                "full": ("V", "|V", "omega", "A", "alpha")}[sheet]
@@ -320,14 +331,14 @@ def draw_results_table(sol, ax=None, *, sheet: str = "full", style="textbook", v
         widths = measure(size)
         need = sum(widths) + gap * (len(widths) - 1)
     line_h = 1.45 * size
-    title = ax.text(0, 1, t.title, fontsize=size * 1.1, va="top", ha="left", style="italic", gid="results-table")
+    title = ax.text(0, 1, literal(t.title), fontsize=size * 1.1, va="top", ha="left", style="italic", gid="results-table")
     tw = title.get_window_extent(r).width * 72 / fig.dpi
     lines = 1
     wrap_pt = min(width_pt, max(need, 0.6 * width_pt))   # the table's own width (not less than 0.6 of the room)
     if tw > wrap_pt:   # a long title (a long source) wraps to the table's width
         import textwrap
         wrapped = textwrap.wrap(t.title, max(20, int(len(t.title) * wrap_pt / tw * 0.97)))
-        title.set_text("\n".join(wrapped))
+        title.set_text(literal("\n".join(wrapped)))
         lines = len(wrapped)
     art.add("title", title)
     top = height_pt - 1.6 * size * 1.1 - (lines - 1) * 1.4 * size * 1.1
