@@ -22,6 +22,7 @@ import pytest
 import velpoly
 from velpoly.cli import main
 from velpoly.fileio import atomic_write_text
+from paths import example
 
 DATA = Path(__file__).parent / "data"
 FOURBAR = DATA / "fourbar.toml"
@@ -430,7 +431,7 @@ def test_the_api_sweep_checks_its_budget(monkeypatch):
 def _gallery_source(tmp_path) -> Path:
     src = tmp_path / "mine"
     src.mkdir()
-    shutil.copy(ROOT / "gallery" / "ex3_6_fourbar.toml", src / "ex3_6_fourbar.toml")
+    shutil.copy(example("ex3_6_fourbar"), src / "ex3_6_fourbar.toml")
     return src
 
 

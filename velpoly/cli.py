@@ -98,8 +98,8 @@ def build_parser() -> argparse.ArgumentParser:
 
     g = command("gallery", "build the gallery: every built-in example's sheet and its comparison with the book",
                 "velpoly gallery -o my-gallery")
-    g.add_argument("-o", "--output", default=None, metavar="DIR", help="output folder (default: the checkout's "
-                   "gallery/, or ./gallery outside a checkout)")
+    g.add_argument("-o", "--output", default=None, metavar="DIR", help="output folder (default: the --source "
+                   "folder if given, else the checkout's gallery/, or ./gallery outside a checkout)")
     g.add_argument("--source", default=None, metavar="DIR", help="folder of the example *.toml files (default: "
                    "the built-in examples)")
     g.add_argument("--style", choices=STYLES, default="textbook", help=STYLES_HELP)

@@ -672,14 +672,16 @@ def gallery_command(args) -> int:
     """``velpoly gallery [-o DIR] [--source DIR]``: rebuild every figure and README.md.
 
     The default source is the built-in examples (a checkout's velpoly/examples/ for its
-    gallery/); the default output is the checkout's gallery/ where velpoly runs from
-    one, else ./gallery.
+    gallery/); the default output is the ``--source`` folder when one is given, else the
+    checkout's gallery/ where velpoly runs from one, else ./gallery.
 
     One failing example is reported with its error line and does not stop the
     others; the exit status is 1 if any failed.
     """
     if getattr(args, "output", None):
         out = Path(args.output)
+    elif getattr(args, "source", None):   # a folder of the user's own examples is built in place
+        out = Path(args.source)
     else:   # a checkout's gallery/, else a folder gallery/ here (an installed velpoly has no gallery of its own)
         out = find_gallery() or Path("gallery")
     source = Path(args.source) if getattr(args, "source", None) else _gallery_source(out)
