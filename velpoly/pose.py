@@ -19,9 +19,10 @@ import math
 import numpy as np
 
 from .constraints import System
-from .dyads import assemble, dyad_plan
+from .dyads import assemble, dyad_plan, walk
 
-__all__ = ["circle_circle", "circle_line", "Reassembly", "reassemble", "select_rows", "check_closed_form"]
+__all__ = ["circle_circle", "circle_line", "Reassembly", "reassemble", "select_rows", "check_closed_form",
+           "walked_reach", "TOUCH"]
 
 
 # -- compass and ruler ----------------------------------------------------------
@@ -186,11 +187,14 @@ def reassemble(system: System, rows: list[int], deltas, coarse: float | None = N
     if fast is not None:
         return fast
     if coarse is None:
-        coarse = np.radians(6.0) if not system.mechanism.driver.is_slider else 0.04 * system.size
+        coarse = _coarse(system)
     # 1. knots: a sequential continuation, never stepping farther than `coarse`;
     #    every requested position is attached to the knot before it.
     knot_d, knot_q = [0.0], [np.zeros(nq)]
     jac = system.evaluate(np.zeros((1, nq)))[1][:, rows]
+    # the drawn branch keeps the sign of the Jacobian's determinant: it changes only through a
+    # singular pose, as at a change point, where Newton would carry on along the other branch
+    sign = _orientation(jac)[0]
     attach = np.empty(n, int)
     stopped = ""
     q = np.zeros((1, nq))
@@ -199,7 +203,7 @@ def reassemble(system: System, rows: list[int], deltas, coarse: float | None = N
             start = knot_d[-1]
             k = int(np.floor(abs(d - start) / coarse))   # whole steps of `coarse` towards d
             for target in start + np.sign(d - start) * coarse * np.arange(1, k + 1):
-                nxt = _step(system, rows, q, jac, knot_d[-1], target)
+                nxt = _step(system, rows, q, jac, knot_d[-1], target, sign)
                 if nxt is None:
                     stopped = "toggle"
                     break
@@ -219,8 +223,10 @@ def reassemble(system: System, rows: list[int], deltas, coarse: float | None = N
     qd = _velocity(system, rows, kq)
     h = deltas - kd[attach]
     guess = kq[attach] + h[:, None] * qd[attach]
-    out, ok, _ = _newton(system, rows, guess, deltas)
+    out, ok, jo = _newton(system, rows, guess, deltas)
     ok &= _drift(system, out - guess) <= _drift_bound(system, h, qd[attach])
+    ok &= _orientation(jo) == sign
+    ok &= _smooth(system, out - kq[attach], h[:, None] * qd[attach], h[:, None] * _velocity(system, rows, out, jo))
     # 3. a pose the batched correction missed (a poor prediction where the links turn fast) is
     #    retried sequentially, with the knots' halving, from the nearest pose already converged
     #    on its knot's stretch; it is a toggle only if that fails too, and then the sweep stops there.
@@ -231,11 +237,16 @@ def reassemble(system: System, rows: list[int], deltas, coarse: float | None = N
             d0, q0 = float(deltas[j]), out[j:j + 1]
         else:
             d0, q0 = float(kd[attach[i]]), kq[attach[i]][None, :]
-        nxt = _step(system, rows, q0, system.evaluate(q0)[1][:, rows], d0, float(deltas[i]))
+        nxt = _step(system, rows, q0, system.evaluate(q0)[1][:, rows], d0, float(deltas[i]), sign)
         if nxt is None:
             return Reassembly(deltas[:i], out[:i], "toggle", continued=True)
         out[i], ok[i] = nxt[0][0], True
     return Reassembly(deltas, out, stopped, continued=True)
+
+
+def _coarse(system: System) -> float:
+    """The longest continuation step: 6 degrees for a crank, 4% of the size for a slider."""
+    return 0.04 * system.size if system.mechanism.driver.is_slider else np.radians(6.0)
 
 
 _PLANS: dict = {}
@@ -260,7 +271,114 @@ def _closed_form(system: System, rows, deltas) -> Reassembly | None:
     q, reach = assemble(m, system.index, plan, deltas)
     if not check_closed_form(system, rows, q[:reach], deltas[:reach]):
         return None   # not the mechanism the plan assumed: use continuation
+    reach = min(reach, walked_reach(m, plan, deltas, _coarse(system)))
     return Reassembly(deltas[:reach], q[:reach], "toggle" if reach < len(deltas) else "")
+
+
+# A dyad whose squared transmission sine (its closure, :func:`velpoly.dyads.closure`) dips to TOUCH
+# between two driver positions touches a toggle or a change point there: the branches meet, and
+# the walk, which keeps each dyad's drawn side, would come out on the other one. 1e-12 (a sine of
+# 1e-6) is the floor to which the bottom of such a double root is found in floating point.
+TOUCH = 1e-12
+_TRIGGER = 1e-6   # a dip whose estimated bottom lies below this (or below half its ends) is searched
+
+
+def _quiet_walk(m, plan, deltas, rate=None):
+    """The dyad walk without numpy's warnings past a toggle (NaN there, screened by the callers)."""
+    with np.errstate(divide="ignore", invalid="ignore", over="ignore"):
+        return walk(m, plan, np.asarray(deltas, float), rate, 0.0)
+
+
+def walked_reach(m, plan, deltas, coarse: float, w=None, rate: float | None = None) -> int:
+    """How many of ``deltas`` a dyad walk reaches on the drawn branch: from the drawn pose (0) to
+    the first, then each from the one before, never across a position where a dyad's circles miss
+    each other (a toggle, a gap between two arcs of a double rocker) or touch (a toggle, or the
+    change point of a parallelogram or a kite, where the walk would go on in the crossed assembly).
+
+    The way is walked in steps no longer than ``coarse`` (driver units); where the positions are
+    that close and start at the drawn pose, ``w``, their walk with the driver's ``rate``, serves.
+    Every dyad's closure mu (:func:`velpoly.dyads.closure`) must stay positive at the steps and
+    between them: where its slope along the way turns from falling to rising and the cubic through
+    the two ends' values and slopes comes near zero, its lowest point is found (regula falsi on
+    the slope) and must lie above TOUCH.
+    """
+    deltas = np.asarray(deltas, float).ravel()
+    n = len(deltas)
+    if n == 0:
+        return 0
+    steps = np.abs(np.diff(np.concatenate([[0.0], deltas])))
+    if (w is not None and rate and math.isfinite(rate) and deltas[0] == 0.0 and steps.max() <= coarse
+            and len(w.closure_rate) and w.closure_rate[0] is not None):
+        path, ends = deltas, np.arange(n)
+        mu, dmu = np.array(w.closure), np.array(w.closure_rate) / rate
+    else:
+        counts = np.maximum(np.ceil(steps / coarse).astype(int), 1)
+        knots = np.concatenate([[0.0], deltas])
+        path = np.concatenate([[0.0]] + [np.linspace(a, b, c + 1)[1:]
+                                         for a, b, c in zip(knots[:-1], knots[1:], counts)])
+        ends = np.cumsum(counts)                  # where each of the deltas stands on the path
+        pw = _quiet_walk(m, plan, path, 1.0)
+        mu, dmu = np.array(pw.closure), np.array(pw.closure_rate)
+    if mu.size == 0:
+        return n
+    # NaN (a dyad before it open) counts as open; so does a position at the bottom of a dip to
+    # zero (mu and its slope both vanish there: a change point, not a toggle's simple root)
+    closed = np.all(mu >= 0, axis=0) & ~np.any((mu <= TOUCH) & (np.abs(dmu) <= 1e-5), axis=0)
+    closed[0] = True                             # the drawn pose, checked on its own
+    stop = len(path) if closed.all() else int(np.argmin(closed))
+    if stop > 1:
+        way = np.sign(np.diff(path[:stop]))
+        g0, g1 = dmu[:, :stop - 1] * way, dmu[:, 1:stop] * way
+        dips = (g0 <= 0) & (g1 >= 0) & ((g0 < 0) | (g1 > 0))
+        js, ks = np.nonzero(dips)
+        if len(ks):
+            length = np.abs(np.diff(path))[ks]
+            m0, m1 = mu[js, ks], mu[js, ks + 1]
+            t = np.linspace(0.0, 1.0, 17)[:, None]     # the cubic Hermite through the ends
+            cubic = ((2 * t ** 3 - 3 * t ** 2 + 1) * m0 + (t ** 3 - 2 * t ** 2 + t) * length * g0[js, ks]
+                     + (-2 * t ** 3 + 3 * t ** 2) * m1 + (t ** 3 - t ** 2) * length * g1[js, ks])
+            low = cubic.min(axis=0) < np.maximum(_TRIGGER, 0.5 * np.minimum(m0, m1))
+            unit = m.size if m.driver.is_slider else 1.0
+            for i in np.argsort(ks, kind="stable")[low[np.argsort(ks, kind="stable")]]:
+                k = int(ks[i])
+                if k + 1 >= stop:
+                    break
+                if _touches(m, plan, int(js[i]), path[k], path[k + 1], g0[js[i], k], g1[js[i], k], unit):
+                    stop = k if k > 0 and mu[:, k].min() <= TOUCH else k + 1
+                    break
+    return int(np.searchsorted(ends, stop))
+
+
+def _touches(m, plan, j, a, b, ga, gb, unit) -> bool:
+    """Whether dyad j's closure comes down to TOUCH between driver positions a and b, where its
+    slope along the way from a to b is ga <= 0 at a and gb >= 0 at b: the slope's zero (the
+    lowest point) by regula falsi, Illinois-style, checking the closure at each trial."""
+    way = 1.0 if b > a else -1.0
+    lo, hi, glo, ghi = float(a), float(b), float(ga), float(gb)
+    last = 0
+    for _ in range(80):
+        x = hi - ghi * (hi - lo) / (ghi - glo) if ghi != glo else 0.5 * (lo + hi)
+        if not (min(lo, hi) < x < max(lo, hi)):
+            x = 0.5 * (lo + hi)
+        pw = _quiet_walk(m, plan, [x], 1.0)
+        mu, g = float(pw.closure[j][0]), float(pw.closure_rate[j][0]) * way
+        if not mu > TOUCH:
+            return True
+        if g < 0:
+            lo, glo = x, g
+            if last < 0:
+                ghi *= 0.5
+            last = -1
+        elif g > 0:
+            hi, ghi = x, g
+            if last > 0:
+                glo *= 0.5
+            last = 1
+        else:
+            return False
+        if abs(hi - lo) <= 1e-13 * unit + 4e-16 * max(abs(lo), abs(hi)):
+            return False
+    return False
 
 
 def check_closed_form(system: System, rows, q, deltas) -> bool:
@@ -306,20 +424,38 @@ def _drift_bound(system, h, qd):
     return 0.5 * np.abs(h) * rate + 1e-9
 
 
-def _step(system, rows, q, jac, d0, d1):
+def _orientation(jac) -> np.ndarray:
+    """The signs of the determinants of square Jacobians (N, n, n): +1, -1 (0 if singular)."""
+    return np.linalg.slogdet(jac)[0]
+
+
+def _smooth(system, chord, t0, t1) -> np.ndarray:
+    """Whether each step's chord q1 - q0 agrees with the trapezoid of its end tangents h q'(0), h q'(1)
+    to a tenth of its length: true on a smooth branch for steps short against its curvature, false
+    for a step from or onto a singular pose (where the tangent is meaningless and Newton may leave
+    on the other branch of a change point)."""
+    c = _scaled(system, chord)
+    err = np.abs(c - 0.5 * _scaled(system, t0 + t1)).max(axis=1)
+    return err <= 0.1 * np.abs(c).max(axis=1) + 1e-12     # NaN (a singular tangent): False
+
+
+def _step(system, rows, q, jac, d0, d1, sign):
     """One continuation step of the knots from driver position d0 to d1.
 
     Returns (q, jac) at d1, or None at a toggle (Newton fails, the pose
-    jumps away from the prediction, or the equations become singular).
+    jumps away from the prediction, the equations become singular, the
+    Jacobian's determinant no longer has the drawn pose's ``sign``: a singular
+    pose was crossed, or the step is not smooth: it starts or ends on one).
     """
     h = d1 - d0
     qd = _velocity(system, rows, q, jac)
     guess = q + h * qd
     qn, ok, jn = _newton(system, rows, guess, np.array([d1]))
     if ok[0] and _drift(system, qn - guess)[0] <= _drift_bound(system, np.array([h]), qd)[0] \
-            and _cond(system, rows, jn)[0] <= 1e10:
+            and _cond(system, rows, jn)[0] <= 1e10 and _orientation(jn)[0] == sign \
+            and _smooth(system, qn - q, h * qd, h * _velocity(system, rows, qn, jn))[0]:
         return qn, jn
     if abs(h) < 1e-6:
         return None
-    mid = _step(system, rows, q, jac, d0, d0 + h / 2)   # near a toggle: halve the step
-    return None if mid is None else _step(system, rows, mid[0], mid[1], d0 + h / 2, d1)
+    mid = _step(system, rows, q, jac, d0, d0 + h / 2, sign)   # near a toggle: halve the step
+    return None if mid is None else _step(system, rows, mid[0], mid[1], d0 + h / 2, d1, sign)

@@ -18,7 +18,7 @@ from .kinematics import SINGULAR, Kinematics, accelerations, condition, prepare,
 from .model import Mechanism
 from .motion import evaluate_motion, wrap_deg
 from . import pose
-from .pose import plan_for, reassemble
+from .pose import plan_for, reassemble, walked_reach
 from .solution import driver_reference_angle
 
 __all__ = ["Sweep", "sweep"]
@@ -75,22 +75,6 @@ def _walk(m: Mechanism, plan, deltas):
         return walk(m, plan, deltas, rate, accel)
 
 
-def _path_reach(m: Mechanism, plan, deltas, system) -> int:
-    """How many of ``deltas`` the sweep's path reaches: from the drawn pose (0) to the first, then
-    from each to the next. The walk places each position on its own, so a toggle lying between
-    two of them (a first angle reached the shorter way round only across a toggle; a jump of
-    angles) is found by walking the gaps wider than a continuation step, as ``reassemble`` does."""
-    coarse = 0.04 * system.size if m.driver.is_slider else np.radians(6.0)
-    knots = np.concatenate([[0.0], deltas])
-    counts = np.ceil(np.abs(np.diff(knots)) / coarse).astype(int)
-    if counts.max(initial=0) <= 1:
-        return len(deltas)
-    counts = np.maximum(counts, 1)
-    path = np.concatenate([np.linspace(a, b, c + 1)[1:] for a, b, c in zip(knots[:-1], knots[1:], counts)])
-    ends = np.cumsum(counts) - 1                 # where each of the deltas stands on the path
-    return int(np.searchsorted(ends, _walk(m, plan, path).reach))
-
-
 def sweep(m: Mechanism, angles, kin: Kinematics | None = None) -> Sweep:
     """Solve the mechanism at each driver angle (degrees, absolute), in the order given.
 
@@ -122,7 +106,8 @@ def sweep(m: Mechanism, angles, kin: Kinematics | None = None) -> Sweep:
     w = _walk(m, plan, deltas) if plan is not None and len(deltas) else None
     known_cond = None
     if w is not None:
-        n = min(w.reach, _path_reach(m, plan, deltas, kin.system))
+        rate = m.driver.speed if m.driver.is_slider else m.driver.omega
+        n = min(w.reach, walked_reach(m, plan, deltas, pose._coarse(kin.system), w, rate))
         stopped = "toggle" if n < len(deltas) else ""
         if n < len(deltas):
             w = _walk(m, plan, deltas[:n])     # past a toggle the walk is NaN: walked to it only
