@@ -314,9 +314,10 @@ def walked_reach(m, plan, deltas, coarse: float, w=None, rate: float | None = No
     else:
         counts = np.maximum(np.ceil(steps / coarse).astype(int), 1)
         knots = np.concatenate([[0.0], deltas])
-        path = np.concatenate([[0.0]] + [np.linspace(a, b, c + 1)[1:]
-                                         for a, b, c in zip(knots[:-1], knots[1:], counts)])
         ends = np.cumsum(counts)                  # where each of the deltas stands on the path
+        seg = np.repeat(np.arange(n), counts)     # each segment in `counts` equal steps
+        j = np.arange(1, ends[-1] + 1) - np.repeat(ends - counts, counts)
+        path = np.concatenate([[0.0], knots[seg] + (knots[seg + 1] - knots[seg]) * (j / counts[seg])])
         pw = _quiet_walk(m, plan, path, 1.0)
         mu, dmu = np.array(pw.closure), np.array(pw.closure_rate)
     if mu.size == 0:
@@ -334,10 +335,8 @@ def walked_reach(m, plan, deltas, coarse: float, w=None, rate: float | None = No
         if len(ks):
             length = np.abs(np.diff(path))[ks]
             m0, m1 = mu[js, ks], mu[js, ks + 1]
-            t = np.linspace(0.0, 1.0, 17)[:, None]     # the cubic Hermite through the ends
-            cubic = ((2 * t ** 3 - 3 * t ** 2 + 1) * m0 + (t ** 3 - 2 * t ** 2 + t) * length * g0[js, ks]
-                     + (-2 * t ** 3 + 3 * t ** 2) * m1 + (t ** 3 - t ** 2) * length * g1[js, ks])
-            low = cubic.min(axis=0) < np.maximum(_TRIGGER, 0.5 * np.minimum(m0, m1))
+            low = _hermite_low(m0, m1, length * g0[js, ks], length * g1[js, ks]) \
+                < np.maximum(_TRIGGER, 0.5 * np.minimum(m0, m1))
             unit = m.size if m.driver.is_slider else 1.0
             for i in np.argsort(ks, kind="stable")[low[np.argsort(ks, kind="stable")]]:
                 k = int(ks[i])
@@ -347,6 +346,20 @@ def walked_reach(m, plan, deltas, coarse: float, w=None, rate: float | None = No
                     stop = k if k > 0 and mu[:, k].min() <= TOUCH else k + 1
                     break
     return int(np.searchsorted(ends, stop))
+
+
+def _hermite_low(m0, m1, s0, s1) -> np.ndarray:
+    """The lowest value on [0, 1] of the cubics with values m0, m1 and slopes s0, s1 at 0 and 1:
+    c0 + c1 t + c2 t^2 + c3 t^3, at the ends and where c1 + 2 c2 t + 3 c3 t^2 = 0."""
+    c1, c2, c3 = s0, 3 * (m1 - m0) - 2 * s0 - s1, 2 * (m0 - m1) + s0 + s1
+    with np.errstate(divide="ignore", invalid="ignore"):
+        root = np.sqrt(np.maximum(c2 * c2 - 3 * c3 * c1, 0.0))
+        ts = [(-c2 + root) / (3 * c3), (-c2 - root) / (3 * c3), -c1 / (2 * c2)]
+    low = np.minimum(m0, m1)
+    for t in ts:
+        t = np.clip(np.nan_to_num(t, nan=0.0, posinf=0.0, neginf=0.0), 0.0, 1.0)
+        low = np.minimum(low, m0 + t * (c1 + t * (c2 + t * c3)))
+    return low
 
 
 def _touches(m, plan, j, a, b, ga, gb, unit) -> bool:
@@ -426,7 +439,8 @@ def _drift_bound(system, h, qd):
 
 def _orientation(jac) -> np.ndarray:
     """The signs of the determinants of square Jacobians (N, n, n): +1, -1 (0 if singular)."""
-    return np.linalg.slogdet(jac)[0]
+    with np.errstate(invalid="ignore"):          # NaN where Newton failed: sign NaN, never equal
+        return np.linalg.slogdet(jac)[0]
 
 
 def _smooth(system, chord, t0, t1) -> np.ndarray:
