@@ -22,7 +22,7 @@ from .constraints import System
 from .dyads import assemble, dyad_plan, walk
 
 __all__ = ["circle_circle", "circle_line", "Reassembly", "reassemble", "select_rows", "check_closed_form",
-           "walked_reach", "TOUCH"]
+           "walked_reach", "slot_travel", "TOUCH"]
 
 
 # -- compass and ruler ----------------------------------------------------------
@@ -101,11 +101,12 @@ class Reassembly:
     ended early, or is empty.
     """
 
-    def __init__(self, deltas, q, stopped="", continued=False):
+    def __init__(self, deltas, q, stopped="", continued=False, leaves=None):
         self.deltas = deltas
         self.q = q
         self.stopped = stopped
         self.continued = continued   # True when found by continuation, not the closed-form dyads
+        self.leaves = leaves         # (slot index, end point, driver position) where a pin leaves its slot
 
 
 def _newton(system: System, rows, q, targets, iters=30, tol=1e-12):
@@ -177,15 +178,25 @@ def reassemble(system: System, rows: list[int], deltas, coarse: float | None = N
     driver takes at its constant rate). Stops before the first
     position that cannot be reached without crossing a toggle: one that the
     sequential continuation (:func:`_step`, halving the step) cannot reach
-    either, not merely one the batched correction missed.
+    either, not merely one the batched correction missed; or, for a pin in
+    a slot with ``ends``, before the first position past the one where the
+    pin reaches an end (``stopped`` is then "slot" and ``leaves`` says where).
     """
     system = system.positions   # a prescribed slip in positions, or InputError (no position equation)
     deltas = np.asarray(deltas, float).ravel()
-    n = len(deltas)
-    nq = system.nq
     fast = _closed_form(system, rows, deltas)
     if fast is not None:
         return fast
+    ends = [i for i, s in enumerate(system.mechanism.slots) if s.ends]
+    r, kd, kq, attach, sign = _continue(system, rows, deltas, coarse)
+    return _within_slots(system, rows, r, ends, kd, kq, attach, sign) if ends else r
+
+
+def _continue(system, rows, deltas, coarse):
+    """:func:`reassemble` by continuation; also returns the knots (driver positions and poses),
+    the knot each reached position was continued from, and the determinant's sign."""
+    n = len(deltas)
+    nq = system.nq
     if coarse is None:
         coarse = _coarse(system)
     # 1. knots: a sequential continuation, never stepping farther than `coarse`;
@@ -215,11 +226,10 @@ def reassemble(system: System, rows: list[int], deltas, coarse: float | None = N
                 break
         attach[idx] = len(knot_d) - 1
     deltas, attach = deltas[:n], attach[:n]
+    kd, kq = np.array(knot_d), np.array(knot_q)
     if n == 0:
-        return Reassembly(deltas, np.zeros((0, nq)), stopped, continued=True)
+        return Reassembly(deltas, np.zeros((0, nq)), stopped, continued=True), kd, kq, attach, sign
     # 2. every requested pose at once: predicted from its knot, corrected by batched Newton
-    kq = np.array(knot_q)
-    kd = np.array(knot_d)
     qd = _velocity(system, rows, kq)
     h = deltas - kd[attach]
     guess = kq[attach] + h[:, None] * qd[attach]
@@ -239,9 +249,111 @@ def reassemble(system: System, rows: list[int], deltas, coarse: float | None = N
             d0, q0 = float(kd[attach[i]]), kq[attach[i]][None, :]
         nxt = _step(system, rows, q0, system.evaluate(q0)[1][:, rows], d0, float(deltas[i]), sign)
         if nxt is None:
-            return Reassembly(deltas[:i], out[:i], "toggle", continued=True)
+            return Reassembly(deltas[:i], out[:i], "toggle", continued=True), kd, kq, attach[:i], sign
         out[i], ok[i] = nxt[0][0], True
-    return Reassembly(deltas, out, stopped, continued=True)
+    return Reassembly(deltas, out, stopped, continued=True), kd, kq, attach, sign
+
+
+def slot_travel(m, index: dict, q, slots=None) -> np.ndarray:
+    """Where each pin stands in its bounded slot at the poses q (N, nq): (N, len(slots)) slip
+    coordinates t = (P - S1) . e / (S2 - S1) . e, 0 at the end S1 and 1 at S2 (e the slot's
+    direction on the slot link; P the pin on its link, S1 and S2 on the slot link)."""
+    q = np.atleast_2d(q)
+    slots = [i for i, s in enumerate(m.slots) if s.ends] if slots is None else slots
+    out = np.empty((len(q), len(slots)))
+    for col, i in enumerate(slots):
+        s = m.slots[i]
+        e = np.array([math.cos(math.radians(s.angle)), math.sin(math.radians(s.angle))])
+        s1, s2 = (np.array(m.points[n], float) for n in s.ends)
+        pin = _place(m, index, q, s.link, s.pin)
+        k = index.get(s.slot)
+        th = q[:, 3 * k + 2] if k is not None else np.zeros(len(q))
+        ew = np.stack([np.cos(th) * e[0] - np.sin(th) * e[1], np.sin(th) * e[0] + np.cos(th) * e[1]], axis=1)
+        d = pin - _place(m, index, q, s.slot, s.ends[0])
+        out[:, col] = np.einsum("ij,ij->i", d, ew) / float(np.dot(s2 - s1, e))
+    return out
+
+
+def _place(m, index, q, link, point):
+    """(N, 2): where the point of ``link`` drawn at ``point`` is at the poses q."""
+    p = np.array(m.points[point], float)
+    k = index.get(link)
+    if k is None:
+        return np.broadcast_to(p, (len(q), 2))
+    x, y, th = q[:, 3 * k], q[:, 3 * k + 1], q[:, 3 * k + 2]
+    c, s = np.cos(th), np.sin(th)
+    return np.stack([x + c * p[0] - s * p[1], y + s * p[0] + c * p[1]], axis=1)
+
+
+def _within_slots(system, rows, r, ends, kd, kq, attach, sign):
+    """Cut a continuation where a pin reaches an end of its slot (FORMAT.md: the end of the motion).
+
+    The way runs through the knots and the reached positions in order (each position after the
+    knots made on the way to it); at the first of them whose pin stands beyond an end, the
+    driver position where it reaches that end is found by regula falsi between it and the one
+    before (poses continued from the nearest inside), to 1e-10 of a radian (or of the size)."""
+    m = system.mechanism
+    index = system.index
+    tk = slot_travel(m, index, kq, ends)
+    tr = slot_travel(m, index, r.q, ends) if len(r.q) else np.zeros((0, len(ends)))
+    inside = lambda t: (t >= 0) & (t <= 1)     # noqa: E731
+    ik, ir = inside(tk).all(axis=1), inside(tr).all(axis=1)
+    prev = (0.0, kq[0], tk[0])      # the last position on the way inside the slots
+    last_knot = 0
+    n = len(r.deltas)
+    for i in range(n + 1):
+        top = attach[i] if i < n else len(kd) - 1
+        for j in range(last_knot + 1, top + 1):
+            if not ik[j]:
+                return _cut(system, rows, r, i, ends, prev, (kd[j], tk[j]), sign)
+            prev = (kd[j], kq[j], tk[j])
+        last_knot = max(last_knot, top)
+        if i == n:
+            break
+        if not ir[i]:
+            return _cut(system, rows, r, i, ends, prev, (r.deltas[i], tr[i]), sign)
+        prev = (r.deltas[i], r.q[i], tr[i])
+    return r
+
+
+def _cut(system, rows, r, i, ends, inside, outside, sign):
+    """The reassembly up to (not including) position i, and where the pin leaves its slot between
+    the driver positions ``inside`` (d, q, t) and ``outside`` (d, t)."""
+    m = system.mechanism
+    d0, q0, t0 = inside
+    d1, t1 = outside
+    col = int(np.argmax((t1 < 0) | (t1 > 1)))
+    bound = 0.0 if t1[col] < 0 else 1.0
+    f0, f1 = t0[col] - bound, t1[col] - bound
+    lo, hi = float(d0), float(d1)
+    q_lo = np.asarray(q0)[None, :]
+    unit = m.size if m.driver.is_slider else 1.0
+    last = 0
+    for _ in range(100):
+        if abs(hi - lo) <= 1e-10 * unit:
+            break
+        x = hi - f1 * (hi - lo) / (f1 - f0) if f1 != f0 else 0.5 * (lo + hi)
+        if not (min(lo, hi) < x < max(lo, hi)):
+            x = 0.5 * (lo + hi)
+        nxt = _step(system, rows, q_lo, system.evaluate(q_lo)[1][:, rows], lo, x, sign)
+        if nxt is None:         # a toggle before the end: the motion stops there
+            hi, f1 = x, f1
+            break
+        f = float(slot_travel(m, system.index, nxt[0], [ends[col]])[0, 0]) - bound
+        if (f < 0) == (f0 < 0):
+            lo, f0, q_lo = x, f, nxt[0]
+            if last < 0:
+                f1 *= 0.5
+            last = -1
+        else:
+            hi, f1 = x, f
+            if last > 0:
+                f0 *= 0.5
+            last = 1
+    s = m.slots[ends[col]]
+    where = 0.5 * (lo + hi)
+    return Reassembly(r.deltas[:i], r.q[:i], "slot", continued=True,
+                      leaves=(ends[col], s.ends[int(bound)], where))
 
 
 def _coarse(system: System) -> float:

@@ -32,7 +32,9 @@ class Sweep:
     from the reference position), ``omega[link]``, ``alpha[link]`` and
     ``angle[link]`` of shape (N,), ``position[key]``, ``velocity[key]``,
     ``acceleration[key]`` of shape (N, 2); ``stopped`` tells why the sweep
-    ended before the last requested angle (empty if it did not);
+    ended before the last requested angle (empty if it did not); ``leaves`` is
+    ``(pin, slot link, driver angle)`` where the sweep stopped because a pin
+    reached an end of its slot (FORMAT.md ``ends``), else None;
     ``condition`` is each pose's condition number (computed on first use:
     exact above 1e6, a close estimate below).
     """
@@ -54,6 +56,7 @@ class Sweep:
     stopped: str = ""
     kinematics: Kinematics | None = field(default=None, repr=False, compare=False)
     known_condition: np.ndarray | None = field(default=None, repr=False, compare=False)
+    leaves: tuple | None = None
 
     @cached_property
     def condition(self) -> np.ndarray:
@@ -95,6 +98,7 @@ def sweep(m: Mechanism, angles, kin: Kinematics | None = None) -> Sweep:
         first = float(wrap_deg(angles[0] - ref)) if len(angles) else 0.0
         deltas = (angles - (angles[0] - first)) * (np.pi / 180.0) if len(angles) else angles
     plan = plan_for(kin.system)
+    leaves = None
     # the drawn pose must be regular, to tell its branch; far from a dyad's toggle it is
     screened = plan is not None and plan.margin > 1e-3
     if not screened:
@@ -131,6 +135,11 @@ def sweep(m: Mechanism, angles, kin: Kinematics | None = None) -> Sweep:
             velocities(kin, np.zeros((1, kin.system.nq)), where="reference pose")
         r = reassemble(kin.system, list(kin.rows), deltas)
         n, q, stopped = len(r.deltas), r.q, r.stopped
+        if r.leaves is not None:
+            sl = m.slots[r.leaves[0]]
+            at = r.leaves[2] if m.driver.is_slider else \
+                float(angles[0] - (first if len(angles) else 0.0) + np.degrees(r.leaves[2]))
+            leaves = (sl.pin, sl.slot, at)
         qd, cond = velocities(kin, q, check=False) if n else (np.zeros((0, kin.system.nq)), np.zeros(0))
         if n and not np.all(cond <= SINGULAR):
             k = int(np.argmin(cond <= SINGULAR))
@@ -142,13 +151,20 @@ def sweep(m: Mechanism, angles, kin: Kinematics | None = None) -> Sweep:
         else:
             qdd = np.full_like(qd, np.nan)
     mo = evaluate_motion(m, kin.system.index, q, qd, qdd, walk=w) if n else None
-    if stopped:
+    if stopped and leaves is not None and stopped == "slot":
+        stopped = (f"pin {leaves[0]} leaves the slot of {leaves[1]} at " +
+                   (f"{leaves[2]:g}" if m.driver.is_slider else f"{leaves[2]:.1f} deg") +
+                   f": {len(angles) - n} of {len(angles)} positions not reached")
+    elif stopped:
+        leaves = None
         last = angles[n - 1] if n else (ref if ref is not None else 0.0)
         stopped = (f"stopped at a toggle after {last:g}" + ("" if m.driver.is_slider else " deg") +
                    f": {len(angles) - n} of {len(angles)} positions not reached on this branch")
+    else:
+        leaves = None
 
     def get(attr):
         return getattr(mo, attr) if mo is not None else {}
     return Sweep(m, angles[:n], get("angle"), get("omega"), get("alpha"), get("position"),
                  get("velocity"), get("acceleration"), get("sliders") or [], get("contacts") or [],
-                 get("slots") or [], q, qd, qdd, stopped, kin, known_cond)
+                 get("slots") or [], q, qd, qdd, stopped, kin, known_cond, leaves)
