@@ -408,7 +408,7 @@ def walked_reach(m, plan, deltas, coarse: float, w=None, rate: float | None = No
     change point of a parallelogram or a kite, where the walk would go on in the crossed assembly).
 
     The way is walked in steps no longer than ``coarse`` (driver units); where the positions are
-    that close and start at the drawn pose, ``w``, their walk with the driver's ``rate``, serves.
+    that close, ``w``, their walk with the driver's ``rate``, serves (with the drawn pose's).
     Every dyad's closure mu (:func:`velpoly.dyads.closure`) must stay positive at the steps and
     between them: where its slope along the way turns from falling to rising and the cubic through
     the two ends' values and slopes comes near zero, its lowest point is found (regula falsi on
@@ -419,10 +419,14 @@ def walked_reach(m, plan, deltas, coarse: float, w=None, rate: float | None = No
     if n == 0:
         return 0
     steps = np.abs(np.diff(np.concatenate([[0.0], deltas])))
-    if (w is not None and rate and math.isfinite(rate) and deltas[0] == 0.0 and steps.max() <= coarse
+    if (w is not None and rate and math.isfinite(rate) and steps.max() <= coarse
             and len(w.closure_rate) and w.closure_rate[0] is not None):
         path, ends = deltas, np.arange(n)
         mu, dmu = np.array(w.closure), np.array(w.closure_rate) / rate
+        if deltas[0] != 0.0:                      # the way starts at the drawn pose
+            mu0, dmu0 = _drawn_closure(m, plan)
+            path, ends = np.concatenate([[0.0], deltas]), ends + 1
+            mu, dmu = np.concatenate([mu0, mu], axis=1), np.concatenate([dmu0, dmu], axis=1)
     else:
         counts = np.maximum(np.ceil(steps / coarse).astype(int), 1)
         knots = np.concatenate([[0.0], deltas])
@@ -436,42 +440,63 @@ def walked_reach(m, plan, deltas, coarse: float, w=None, rate: float | None = No
         return n
     # NaN (a dyad before it open) counts as open; so does a position at the bottom of a dip to
     # zero (mu and its slope both vanish there: a change point, not a toggle's simple root)
-    closed = np.all(mu >= 0, axis=0) & ~np.any((mu <= TOUCH) & (np.abs(dmu) <= 1e-5), axis=0)
-    closed[0] = True                             # the drawn pose, checked on its own
-    stop = len(path) if closed.all() else int(np.argmin(closed))
+    stop = len(path)
+    if not mu[:, 1:].min(initial=np.inf) > TOUCH:
+        closed = np.all(mu >= 0, axis=0) & ~np.any((mu <= TOUCH) & (np.abs(dmu) <= 1e-5), axis=0)
+        closed[0] = True                         # the drawn pose, checked on its own
+        stop = len(path) if closed.all() else int(np.argmin(closed))
     if stop > 1:
         way = np.sign(np.diff(path[:stop]))
         g0, g1 = dmu[:, :stop - 1] * way, dmu[:, 1:stop] * way
-        dips = (g0 <= 0) & (g1 >= 0) & ((g0 < 0) | (g1 > 0))
-        js, ks = np.nonzero(dips)
+        # the slope along the way goes from falling (or flat) to rising (or flat), not flat to flat
+        js, ks = np.nonzero(np.sign(g1) - np.sign(g0) > 0)
         if len(ks):
-            length = np.abs(np.diff(path))[ks]
-            m0, m1 = mu[js, ks], mu[js, ks + 1]
-            low = _hermite_low(m0, m1, length * g0[js, ks], length * g1[js, ks]) \
-                < np.maximum(_TRIGGER, 0.5 * np.minimum(m0, m1))
             unit = m.size if m.driver.is_slider else 1.0
-            for i in np.argsort(ks, kind="stable")[low[np.argsort(ks, kind="stable")]]:
-                k = int(ks[i])
+            for i in np.argsort(ks, kind="stable"):
+                j, k = int(js[i]), int(ks[i])
                 if k + 1 >= stop:
                     break
-                if _touches(m, plan, int(js[i]), path[k], path[k + 1], g0[js[i], k], g1[js[i], k], unit):
+                m0, m1, length = float(mu[j, k]), float(mu[j, k + 1]), abs(float(path[k + 1] - path[k]))
+                if _hermite_low(m0, m1, length * float(g0[j, k]), length * float(g1[j, k])) \
+                        >= max(_TRIGGER, 0.5 * min(m0, m1)):
+                    continue        # a shallow dip, far above zero
+                if _touches(m, plan, j, path[k], path[k + 1], g0[j, k], g1[j, k], unit):
                     stop = k if k > 0 and mu[:, k].min() <= TOUCH else k + 1
                     break
     return int(np.searchsorted(ends, stop))
 
 
-def _hermite_low(m0, m1, s0, s1) -> np.ndarray:
-    """The lowest value on [0, 1] of the cubics with values m0, m1 and slopes s0, s1 at 0 and 1:
+def _hermite_low(m0: float, m1: float, s0: float, s1: float) -> float:
+    """The lowest value on [0, 1] of the cubic with values m0, m1 and slopes s0, s1 at 0 and 1:
     c0 + c1 t + c2 t^2 + c3 t^3, at the ends and where c1 + 2 c2 t + 3 c3 t^2 = 0."""
     c1, c2, c3 = s0, 3 * (m1 - m0) - 2 * s0 - s1, 2 * (m0 - m1) + s0 + s1
-    with np.errstate(divide="ignore", invalid="ignore"):
-        root = np.sqrt(np.maximum(c2 * c2 - 3 * c3 * c1, 0.0))
-        ts = [(-c2 + root) / (3 * c3), (-c2 - root) / (3 * c3), -c1 / (2 * c2)]
-    low = np.minimum(m0, m1)
+    ts = []
+    if c3 != 0.0:
+        disc = c2 * c2 - 3 * c3 * c1
+        if disc >= 0.0:
+            root = math.sqrt(disc)
+            ts += [(-c2 + root) / (3 * c3), (-c2 - root) / (3 * c3)]
+    elif c2 != 0.0:
+        ts.append(-c1 / (2 * c2))
+    low = min(m0, m1)
     for t in ts:
-        t = np.clip(np.nan_to_num(t, nan=0.0, posinf=0.0, neginf=0.0), 0.0, 1.0)
-        low = np.minimum(low, m0 + t * (c1 + t * (c2 + t * c3)))
+        if 0.0 < t < 1.0:
+            low = min(low, m0 + t * (c1 + t * (c2 + t * c3)))
     return low
+
+
+_DRAWN: dict = {}
+
+
+def _drawn_closure(m, plan):
+    """The dyads' closures and slopes (per unit driver motion) at the drawn pose, cached per plan."""
+    key = id(plan)
+    if key not in _DRAWN or _DRAWN[key][0] is not plan:
+        if len(_DRAWN) > 64:
+            _DRAWN.clear()
+        w0 = _quiet_walk(m, plan, [0.0], 1.0)
+        _DRAWN[key] = (plan, np.array(w0.closure), np.array(w0.closure_rate))
+    return _DRAWN[key][1:]
 
 
 def _touches(m, plan, j, a, b, ga, gb, unit) -> bool:
