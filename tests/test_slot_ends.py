@@ -216,3 +216,26 @@ def test_command_line_messages(capsys, tmp_path):
     assert "warning: " in err and "pin P leaves the slot of wheel at 45.0 deg: 334 of 360 positions not reached" in err
     assert "the pin is in its slot from -45 to 45 deg" in err
     assert len((tmp_path / "g.csv").read_text().splitlines()) == 1 + 26
+
+
+@pytest.mark.parametrize("before", [31.0, 31.3])     # 31: the end at a continuation step exactly
+def test_a_pin_that_overshoots_an_end_between_two_steps_still_leaves(before):
+    """The pin's farthest reach from C passes the outer end by a window of 2 deg only: narrower
+    than a continuation step (6 deg) and than the sweep's steps (5 deg). ``solve`` 5 deg past the
+    window and a 5-deg sweep across it both see the pin leave, where the closed form says."""
+    a, e, psi = 1.0, 2.0, 0.0
+    far = psi + 180.0                                   # A opposite C: |AC| = e + a
+    half = math.radians(1.0)
+    r_hi = float(rho(a, e, psi, far + math.degrees(half)))
+    theta = far - before
+    m = velpoly.load(drive(a, e, psi, theta, 0.5, r_hi, omega=2.0))
+    want = exit_angle(a, e, psi, theta, 1.0, 0.5, r_hi, span=60.0)
+    assert abs(want - (far - 1.0)) < 1e-9
+    with pytest.raises(velpoly.PoseError, match=rf"leaves the slot of wheel at its end S2 at {want:g} deg"):
+        velpoly.solve(m, angle=far + 6.0)
+    w = velpoly.sweep(m, theta + 5.0 * np.arange(12))   # theta + 30 is in the window, +25 and +35 are not
+    assert w.leaves is not None and abs(w.leaves[2] - want) < 1e-6 and len(w.angles) == 7
+    w = velpoly.sweep(m, theta + 4.0 * np.arange(12))   # +28 and +32 both miss the window
+    assert w.leaves is not None and abs(w.leaves[2] - want) < 1e-6 and len(w.angles) == 8
+    free = velpoly.load(drive(a, e, psi, theta, 0.5, r_hi, omega=2.0, ends=False))
+    assert len(velpoly.sweep(free, theta + 5.0 * np.arange(12)).angles) == 12

@@ -289,31 +289,84 @@ def _within_slots(system, rows, r, ends, kd, kq, attach, sign):
     """Cut a continuation where a pin reaches an end of its slot (FORMAT.md: the end of the motion).
 
     The way runs through the knots and the reached positions in order (each position after the
-    knots made on the way to it); at the first of them whose pin stands beyond an end, the
-    driver position where it reaches that end is found by regula falsi between it and the one
-    before (poses continued from the nearest inside), to 1e-10 of a radian (or of the size)."""
+    knots made on the way to it). Each pin's slip coordinate t must stay in [0, 1]: at the way's
+    points, and between two of them where the cubic through their t and slopes dt/d(driver)
+    leaves [0, 1] (the pose at its extreme is continued and checked: a pin that overshoots an end
+    and comes back within a step). At the first point beyond an end, the driver position where
+    the pin reaches it is found by regula falsi between that point and the one before (poses
+    continued from the nearest inside), to 1e-10 of a radian (or of the size)."""
     m = system.mechanism
-    index = system.index
-    tk = slot_travel(m, index, kq, ends)
-    tr = slot_travel(m, index, r.q, ends) if len(r.q) else np.zeros((0, len(ends)))
-    inside = lambda t: (t >= 0) & (t <= 1)     # noqa: E731
-    ik, ir = inside(tk).all(axis=1), inside(tr).all(axis=1)
-    prev = (0.0, kq[0], tk[0])      # the last position on the way inside the slots
-    last_knot = 0
+    nq = system.nq
     n = len(r.deltas)
+    # the way: (driver position, pose, reached position index it leads to)
+    order = []
+    last_knot = 0
     for i in range(n + 1):
         top = attach[i] if i < n else len(kd) - 1
-        for j in range(last_knot + 1, top + 1):
-            if not ik[j]:
-                return _cut(system, rows, r, i, ends, prev, (kd[j], tk[j]), sign)
-            prev = (kd[j], kq[j], tk[j])
+        order += [(kd[j], kq[j], i) for j in range(last_knot + 1, top + 1)]
         last_knot = max(last_knot, top)
-        if i == n:
-            break
-        if not ir[i]:
-            return _cut(system, rows, r, i, ends, prev, (r.deltas[i], tr[i]), sign)
-        prev = (r.deltas[i], r.q[i], tr[i])
+        if i < n:
+            order.append((r.deltas[i], r.q[i], i))
+    if not order:
+        return r
+    d = np.array([0.0] + [o[0] for o in order])
+    q = np.vstack([kq[:1]] + [o[1][None, :] for o in order]).reshape(-1, nq)
+    t, slope = _travel_and_slope(system, rows, q, ends)
+    for k in range(1, len(d)):
+        i = order[k - 1][2]
+        prev = (d[k - 1], q[k - 1], t[k - 1])
+        if not np.all((t[k] >= 0) & (t[k] <= 1)):
+            return _cut(system, rows, r, i, ends, prev, (d[k], t[k]), sign)
+        h = d[k] - d[k - 1]
+        for c in range(len(ends)):
+            s0, s1 = slope[k - 1, c] * h, slope[k, c] * h
+            low, at_low = _hermite_extreme(t[k - 1, c], t[k, c], s0, s1)
+            high, at_high = _hermite_extreme(-t[k - 1, c], -t[k, c], -s0, -s1)
+            for over, at in ((low < 0, at_low), (-high > 1, at_high)):
+                if not over:
+                    continue
+                x = float(d[k - 1] + at * h)
+                nxt = _step(system, rows, q[k - 1][None, :], system.evaluate(q[k - 1][None, :])[1][:, rows],
+                            float(d[k - 1]), x, sign)
+                if nxt is None:
+                    continue
+                tx = slot_travel(m, system.index, nxt[0], ends)[0]
+                if not np.all((tx >= 0) & (tx <= 1)):
+                    return _cut(system, rows, r, i, ends, prev, (x, tx), sign)
     return r
+
+
+def _travel_and_slope(system, rows, q, ends):
+    """Each bounded slot's slip coordinate t at the poses q and its rate per unit driver motion
+    (central differences along the continuation's tangent)."""
+    m = system.mechanism
+    qd = _velocity(system, rows, q)
+    eps = 1e-6 * (m.size if m.driver.is_slider else 1.0)
+    t = slot_travel(m, system.index, q, ends)
+    slope = (slot_travel(m, system.index, q + eps * qd, ends) - slot_travel(m, system.index, q - eps * qd, ends)) \
+        / (2 * eps)
+    return t, slope
+
+
+def _hermite_extreme(m0: float, m1: float, s0: float, s1: float) -> tuple[float, float]:
+    """The lowest value on [0, 1] of the cubic with values m0, m1 and slopes s0, s1 at 0 and 1,
+    and where it lies (a fraction of the interval)."""
+    c1, c2, c3 = s0, 3 * (m1 - m0) - 2 * s0 - s1, 2 * (m0 - m1) + s0 + s1
+    ts = []
+    if c3 != 0.0:
+        disc = c2 * c2 - 3 * c3 * c1
+        if disc >= 0.0:
+            root = math.sqrt(disc)
+            ts += [(-c2 + root) / (3 * c3), (-c2 - root) / (3 * c3)]
+    elif c2 != 0.0:
+        ts.append(-c1 / (2 * c2))
+    low, at = (m0, 0.0) if m0 <= m1 else (m1, 1.0)
+    for x in ts:
+        if 0.0 < x < 1.0:
+            v = m0 + x * (c1 + x * (c2 + x * c3))
+            if v < low:
+                low, at = v, x
+    return low, at
 
 
 def _cut(system, rows, r, i, ends, inside, outside, sign):
@@ -329,6 +382,8 @@ def _cut(system, rows, r, i, ends, inside, outside, sign):
     q_lo = np.asarray(q0)[None, :]
     unit = m.size if m.driver.is_slider else 1.0
     last = 0
+    if f0 == 0.0:               # the last position inside is at the end itself
+        hi = lo
     for _ in range(100):
         if abs(hi - lo) <= 1e-10 * unit:
             break
@@ -467,22 +522,8 @@ def walked_reach(m, plan, deltas, coarse: float, w=None, rate: float | None = No
 
 
 def _hermite_low(m0: float, m1: float, s0: float, s1: float) -> float:
-    """The lowest value on [0, 1] of the cubic with values m0, m1 and slopes s0, s1 at 0 and 1:
-    c0 + c1 t + c2 t^2 + c3 t^3, at the ends and where c1 + 2 c2 t + 3 c3 t^2 = 0."""
-    c1, c2, c3 = s0, 3 * (m1 - m0) - 2 * s0 - s1, 2 * (m0 - m1) + s0 + s1
-    ts = []
-    if c3 != 0.0:
-        disc = c2 * c2 - 3 * c3 * c1
-        if disc >= 0.0:
-            root = math.sqrt(disc)
-            ts += [(-c2 + root) / (3 * c3), (-c2 - root) / (3 * c3)]
-    elif c2 != 0.0:
-        ts.append(-c1 / (2 * c2))
-    low = min(m0, m1)
-    for t in ts:
-        if 0.0 < t < 1.0:
-            low = min(low, m0 + t * (c1 + t * (c2 + t * c3)))
-    return low
+    """The lowest value on [0, 1] of the cubic with values m0, m1 and slopes s0, s1 at 0 and 1."""
+    return _hermite_extreme(m0, m1, s0, s1)[0]
 
 
 _DRAWN: dict = {}
