@@ -240,3 +240,20 @@ def test_a_double_rocker_stays_on_its_own_arc():
     for other in (-60.0, -30.0, 0.0, 90.0):
         with pytest.raises(velpoly.PoseError, match=r"reachable: 25\.21 to 64\.62 deg"):
             velpoly.solve(m, angle=other)
+
+
+@pytest.mark.parametrize("which", ["fourbar", "slider-crank", "offset slider-crank", "six-bar"])
+def test_the_closure_rate_is_the_closure_derivative(which):
+    """The walk's closure slope (what the dip search follows) against central differences."""
+    from tests.mechanisms import SIXBAR_1_4_4, slider_crank
+    src = {"fourbar": fourbar(), "slider-crank": slider_crank(), "offset slider-crank": slider_crank(e=-2, path=30),
+           "six-bar": SIXBAR_1_4_4}[which]
+    m = velpoly.load(src)
+    plan = pose.plan_for(velpoly.solve(m).kinematics.system)
+    x, h = np.radians(np.linspace(-20, 20, 9)), 1e-6
+    w = pose._quiet_walk(m, plan, x, 1.0)
+    fd = (np.array(pose._quiet_walk(m, plan, x + h, 1.0).closure)
+          - np.array(pose._quiet_walk(m, plan, x - h, 1.0).closure)) / (2 * h)
+    assert fd.shape == (len(plan.steps), 9)
+    assert np.abs(fd - np.array(w.closure_rate)).max() < 1e-8
+    assert np.all(np.array(w.closure) > 0)
