@@ -877,6 +877,11 @@ def sweep_command(args) -> int:
     sw = run_cycle(m, step, kin)
     bar.advance()
     bar.close()
+    if len(sw.angles) < 2 and sw.leaves is not None:
+        sl = next(s for s in m.slots if s.pin == sw.leaves[0] and s.slot == sw.leaves[1])
+        raise PoseError(f"cannot sweep: {len(sw.angles)} pose(s) reachable from the reference pose ({sw.stopped})",
+                        where="driver", file=m.source, links=(sl.link, sl.slot),
+                        hint="draw the pin inside its slot, away from the slot's ends")
     if len(sw.angles) < 2:
         links = _toggle_links(kin, sw.q[-1] if len(sw.q) else np.zeros(kin.system.nq))
         reach = reachable_text(m, kin)
@@ -885,7 +890,11 @@ def sweep_command(args) -> int:
                         where="driver", file=m.source,
                         links=links, hint="links " + ", ".join(links) + " come into line: draw the mechanism "
                         "in a pose away from the toggle")
-    if sw.stopped:
+    if sw.stopped and sw.leaves is not None:
+        reach = reachable_text(m, kin).replace("reachable on this branch:", "the pin is in its slot from")
+        print(f"warning: {m.source}: {sw.stopped}" + (f"; {reach}" if reach else "") +
+              "; the outputs hold the part before", file=sys.stderr)
+    elif sw.stopped:
         links = _toggle_links(kin, sw.q[-1])
         reach = reachable_text(m, kin)
         print(f"warning: {m.source}: {sw.stopped} (links {', '.join(links)} come into line); "

@@ -28,7 +28,7 @@ import numpy as np
 from .model import Mechanism
 from .motion import LinkMotion, _arg, _zero
 
-__all__ = ["DyadPlan", "Walk", "dyad_plan", "draws_the_reference", "walk", "assemble", "coordinates", "rates"]
+__all__ = ["DyadPlan", "Walk", "closure", "dyad_plan", "draws_the_reference", "walk", "assemble", "coordinates", "rates"]
 
 
 @dataclass(frozen=True)
@@ -229,13 +229,18 @@ class Walk:
     ``(P, V, A)`` (complex, V and A None for positions only) of each point the walk placed;
     ``sine`` is the smallest |sin| of a dyad's two directions at each pose (the
     transmission angle, zero at a dyad's toggle); ``reach`` the number of positions,
-    from the first, where every dyad closes.
+    from the first, where every dyad closes. ``closure`` holds, per dyad, the square of its
+    transmission sine as a smooth function of the pose, negative where the dyad cannot close
+    (:func:`closure`), and ``closure_rate`` its rate of change (per second, with rates; else
+    None): a dip of it to zero between two positions is a toggle or a change point on the way.
     """
 
     links: dict
     joints: dict
     sine: np.ndarray
     reach: int
+    closure: tuple = ()
+    closure_rate: tuple = ()
 
 
 def walk(m: Mechanism, plan: DyadPlan, deltas, rate: float | None = None, accel: float = 0.0) -> Walk:
@@ -284,6 +289,7 @@ def walk(m: Mechanism, plan: DyadPlan, deltas, rate: float | None = None, accel:
         return hit
 
     bad = sine = None
+    mus, dmus = [], []
     for st in plan.steps:
         _, u_, v_, p1, k1, p2 = st[:6]
         if st[0] == "RRR":
@@ -296,6 +302,9 @@ def walk(m: Mechanism, plan: DyadPlan, deltas, rate: float | None = None, accel:
                                         rates)
         joints[(u_, p1)] = joints[(k1, p1)]
         joints[(u_, p2)] = joints[(v_, p2)] = (c2, V2, A2)
+        mu, dmu = closure(st, links, joints, P, n, rates)
+        mus.append(mu)
+        dmus.append(dmu)
         miss = ~(h2 >= 0)
         bad = miss if bad is None else bad | miss
         if rates:
@@ -305,7 +314,53 @@ def walk(m: Mechanism, plan: DyadPlan, deltas, rate: float | None = None, accel:
         links = {k: LinkMotion(lk.s0 * unit, lk.p0 * unit, lk.rot, _times(lk.v0, unit), _times(lk.a0, unit),
                                lk.omega, lk.alpha) for k, lk in links.items()}
         joints = {k: tuple(_times(x, unit) for x in j) for k, j in joints.items()}
-    return Walk(links, joints, np.ones(n) if sine is None else sine, reach)
+    return Walk(links, joints, np.ones(n) if sine is None else sine, reach, tuple(mus), tuple(dmus))
+
+
+def closure(st, links, joints, P, n, rates):
+    """How near one dyad of a walk is to a toggle: mu = sin^2 of its transmission angle, written
+    as a polynomial in the pose that stays smooth through the toggle and turns negative past it,
+    and its rate (None without rates).
+
+    RRR (d = P3 - P1, D2 = |d|^2): the circles (P1, r1), (P3, r3) meet where
+    mu = (r1^2 D2 - ((r1^2 - r3^2 + D2) / 2)^2) / (r1^2 r3^2) >= 0 (zero when tangent, or when
+    P1 and P3 coincide: a kite's change point); mu' = (r1^2 - (r1^2 - r3^2 + D2) / 2) D2' / (r1^2 r3^2),
+    D2' = 2 d . (V3 - V1). RRP (path e on the guide g, sigma = e x (P1 - P2) the distance of P1
+    from the path): mu = 1 - sigma^2 / r1^2, sigma' = e x (V1 - V_g(P2)) + omega_g e . (P2 - P1),
+    mu' = -2 sigma sigma' / r1^2."""
+    _, u_, v_, p1, k1, p2 = st[:6]
+    a, V1, _ = joints[(k1, p1)]
+    r1 = abs(P[p2] - P[p1])
+    if st[0] == "RRR":
+        p3, k3 = st[6:8]
+        b, V3, _ = joints[(k3, p3)]
+        r3 = abs(P[p2] - P[p3])
+        d = b - a
+        D2 = (d * np.conjugate(d)).real
+        k = 1.0 / (r1 * r1 * r3 * r3)
+        half = 0.5 * (r1 * r1 - r3 * r3 + D2)
+        mu = (r1 * r1 * D2 - half * half) * k
+        dmu = None
+        if rates:
+            dmu = (r1 * r1 - half) * (2.0 * _dot(d, _sub(V3, V1))) * k
+    else:
+        G = links[st[6]]
+        e = G.rot * _c(st[7])
+        c2 = joints[(u_, p2)][0]
+        u = c2 - a
+        sigma = -(np.conjugate(e) * u).imag
+        mu = 1.0 - sigma * sigma / (r1 * r1)
+        dmu = None
+        if rates:
+            VG = G.velocity(c2 - G.p0)
+            ds = (np.conjugate(e) * _sub(V1, VG)).imag if not (_zero(V1) and _zero(VG)) else 0.0
+            if not _zero(G.omega):
+                ds = ds + G.omega * _dot(e, u)
+            dmu = -2.0 * sigma * ds / (r1 * r1)
+    mu = np.broadcast_to(np.asarray(mu, float), (n,))
+    if dmu is not None:
+        dmu = np.broadcast_to(np.asarray(dmu, float), (n,))
+    return mu, dmu
 
 
 def _times(x, unit):

@@ -966,7 +966,7 @@ def _build(ctx: _Ctx, data: dict, default_title: str) -> Mechanism:
     slots = []
     for i, s in enumerate(_array_of_tables(ctx, data, "slots")):
         where = f"slots[{i}]"
-        _keys(ctx, where, s, ("pin", "link", "slot", "angle", "along", "centre"))
+        _keys(ctx, where, s, ("pin", "link", "slot", "angle", "along", "centre", "ends"))
         require(where, s, ("pin", "link", "slot"),
                 'a slot has pin = "P", link = "3" (carries the pin), slot = "4" and angle = deg (or '
                 'along = ["P", "Q"], or centre = "K")')
@@ -983,7 +983,9 @@ def _build(ctx: _Ctx, data: dict, default_title: str) -> Mechanism:
             path_centre(where + ".centre", cen, p, sk, "slot")
         if p in ctx_link(links, sk).points:
             coincident.add((p, sk))
-        slots.append(Slot(p, lk, sk, ang, cen))
+        ends = _slot_ends(ctx, where + ".ends", s["ends"], p, sk, ang, pts, listed, owned, point_ref) \
+            if "ends" in s else None
+        slots.append(Slot(p, lk, sk, ang, cen, ends))
 
     # contacts
     contacts = []
@@ -1118,6 +1120,38 @@ def _check_range(ctx, m: Mechanism) -> None:
             raise ctx.err(where, f"{shown} is too large: {what} of {reach} {unit}{per} (at most {limit:g})",
                           hint="check the driver's value and its unit (omega in rad/s or rpm), and give the "
                                "lengths in units that keep the numbers within range")
+
+
+def _slot_ends(ctx, where, v, pin, slot, angle, pts, listed, owned, point_ref):
+    """A straight slot's ``ends = ["S1", "S2"]``: two points of the slot link (or listed in no link:
+    the slot link's), apart along the slot, with the pin between them at the reference pose."""
+    if not isinstance(v, list) or len(v) != 2:
+        raise ctx.err(where, "give the slot's ends as two points", hint='ends = ["S1", "S2"]: two points of '
+                      f"link {slot!r} at the ends of the slot")
+    if angle is None:
+        raise ctx.err(where, "only a straight slot has ends", hint="give the slot's path by angle = deg, "
+                      "or leave out 'ends' (a circular slot is unbounded)")
+    names = tuple(point_ref(f"{where}[{i}]", x) for i, x in enumerate(v))
+    for i, n in enumerate(names):
+        if n not in listed:
+            owned.setdefault(n, []).append(slot)
+        elif slot not in listed[n]:
+            raise ctx.err(f"{where}[{i}]", f"the end {n!r} is not a point of the slot's link {slot!r}",
+                          hint=f"a slot's ends are cut in its link: list {n!r} in links.{slot}, or in no link")
+    e = np.array([math.cos(math.radians(angle)), math.sin(math.radians(angle))])
+    s1, s2, p = (np.asarray(pts[n], float) for n in (*names, pin))
+    length = float(np.dot(s2 - s1, e))
+    size = max(float(np.ptp(np.array(list(pts.values()), float), axis=0).max()), 1e-300)
+    if abs(length) <= 1e-9 * size:
+        raise ctx.err(where, f"the ends {names[0]!r} and {names[1]!r} are not apart along the slot",
+                      hint="the ends bound the slot along its path: two points at either end of it")
+    t = float(np.dot(p - s1, e)) / length
+    if not -1e-9 <= t <= 1 + 1e-9:
+        raise ctx.err(where, f"the pin {pin!r} is not between the ends {names[0]!r} and {names[1]!r} of the slot "
+                      f"in the drawn pose (it is {abs(min(t, 1 - t)) * abs(length):.6g} beyond "
+                      f"{names[0] if t < 0 else names[1]!r})",
+                      hint="draw the pin inside its slot, or give the slot's true ends")
+    return names
 
 
 def _contact_centres(ctx, where, cs, owners, p, pts, listed, owned, point_ref, size):

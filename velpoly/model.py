@@ -101,6 +101,9 @@ class Slot:
     The slot's path at the pin is straight (``angle``, fixed to the slot link)
     or circular about the slot link's point ``centre``. One constraint:
     ``(V_P(link) - V_P(slot)) . n = 0``, n the path's normal.
+    ``ends``: two points of the slot link bounding a straight slot (or None: unbounded);
+    the pin's slip coordinate (P - S1) . e / (S2 - S1) . e stays in [0, 1], and reaching
+    0 or 1 ends the motion.
     """
 
     pin: str
@@ -108,6 +111,7 @@ class Slot:
     slot: str
     angle: float | None = None
     centre: str | None = None
+    ends: tuple[str, str] | None = None
 
 
 @dataclass(frozen=True)

@@ -19,9 +19,10 @@ import math
 import numpy as np
 
 from .constraints import System
-from .dyads import assemble, dyad_plan
+from .dyads import assemble, dyad_plan, walk
 
-__all__ = ["circle_circle", "circle_line", "Reassembly", "reassemble", "select_rows", "check_closed_form"]
+__all__ = ["circle_circle", "circle_line", "Reassembly", "reassemble", "select_rows", "check_closed_form",
+           "walked_reach", "slot_travel", "TOUCH"]
 
 
 # -- compass and ruler ----------------------------------------------------------
@@ -100,11 +101,12 @@ class Reassembly:
     ended early, or is empty.
     """
 
-    def __init__(self, deltas, q, stopped="", continued=False):
+    def __init__(self, deltas, q, stopped="", continued=False, leaves=None):
         self.deltas = deltas
         self.q = q
         self.stopped = stopped
         self.continued = continued   # True when found by continuation, not the closed-form dyads
+        self.leaves = leaves         # (slot index, end point, driver position) where a pin leaves its slot
 
 
 def _newton(system: System, rows, q, targets, iters=30, tol=1e-12):
@@ -176,21 +178,34 @@ def reassemble(system: System, rows: list[int], deltas, coarse: float | None = N
     driver takes at its constant rate). Stops before the first
     position that cannot be reached without crossing a toggle: one that the
     sequential continuation (:func:`_step`, halving the step) cannot reach
-    either, not merely one the batched correction missed.
+    either, not merely one the batched correction missed; or, for a pin in
+    a slot with ``ends``, before the first position past the one where the
+    pin reaches an end (``stopped`` is then "slot" and ``leaves`` says where).
     """
     system = system.positions   # a prescribed slip in positions, or InputError (no position equation)
     deltas = np.asarray(deltas, float).ravel()
-    n = len(deltas)
-    nq = system.nq
     fast = _closed_form(system, rows, deltas)
     if fast is not None:
         return fast
+    ends = [i for i, s in enumerate(system.mechanism.slots) if s.ends]
+    r, kd, kq, attach, sign = _continue(system, rows, deltas, coarse)
+    return _within_slots(system, rows, r, ends, kd, kq, attach, sign) if ends else r
+
+
+def _continue(system, rows, deltas, coarse):
+    """:func:`reassemble` by continuation; also returns the knots (driver positions and poses),
+    the knot each reached position was continued from, and the determinant's sign."""
+    n = len(deltas)
+    nq = system.nq
     if coarse is None:
-        coarse = np.radians(6.0) if not system.mechanism.driver.is_slider else 0.04 * system.size
+        coarse = _coarse(system)
     # 1. knots: a sequential continuation, never stepping farther than `coarse`;
     #    every requested position is attached to the knot before it.
     knot_d, knot_q = [0.0], [np.zeros(nq)]
     jac = system.evaluate(np.zeros((1, nq)))[1][:, rows]
+    # the drawn branch keeps the sign of the Jacobian's determinant: it changes only through a
+    # singular pose, as at a change point, where Newton would carry on along the other branch
+    sign = _orientation(jac)[0]
     attach = np.empty(n, int)
     stopped = ""
     q = np.zeros((1, nq))
@@ -199,7 +214,7 @@ def reassemble(system: System, rows: list[int], deltas, coarse: float | None = N
             start = knot_d[-1]
             k = int(np.floor(abs(d - start) / coarse))   # whole steps of `coarse` towards d
             for target in start + np.sign(d - start) * coarse * np.arange(1, k + 1):
-                nxt = _step(system, rows, q, jac, knot_d[-1], target)
+                nxt = _step(system, rows, q, jac, knot_d[-1], target, sign)
                 if nxt is None:
                     stopped = "toggle"
                     break
@@ -211,16 +226,17 @@ def reassemble(system: System, rows: list[int], deltas, coarse: float | None = N
                 break
         attach[idx] = len(knot_d) - 1
     deltas, attach = deltas[:n], attach[:n]
+    kd, kq = np.array(knot_d), np.array(knot_q)
     if n == 0:
-        return Reassembly(deltas, np.zeros((0, nq)), stopped, continued=True)
+        return Reassembly(deltas, np.zeros((0, nq)), stopped, continued=True), kd, kq, attach, sign
     # 2. every requested pose at once: predicted from its knot, corrected by batched Newton
-    kq = np.array(knot_q)
-    kd = np.array(knot_d)
     qd = _velocity(system, rows, kq)
     h = deltas - kd[attach]
     guess = kq[attach] + h[:, None] * qd[attach]
-    out, ok, _ = _newton(system, rows, guess, deltas)
+    out, ok, jo = _newton(system, rows, guess, deltas)
     ok &= _drift(system, out - guess) <= _drift_bound(system, h, qd[attach])
+    ok &= _orientation(jo) == sign
+    ok &= _smooth(system, out - kq[attach], h[:, None] * qd[attach], h[:, None] * _velocity(system, rows, out, jo))
     # 3. a pose the batched correction missed (a poor prediction where the links turn fast) is
     #    retried sequentially, with the knots' halving, from the nearest pose already converged
     #    on its knot's stretch; it is a toggle only if that fails too, and then the sweep stops there.
@@ -231,11 +247,173 @@ def reassemble(system: System, rows: list[int], deltas, coarse: float | None = N
             d0, q0 = float(deltas[j]), out[j:j + 1]
         else:
             d0, q0 = float(kd[attach[i]]), kq[attach[i]][None, :]
-        nxt = _step(system, rows, q0, system.evaluate(q0)[1][:, rows], d0, float(deltas[i]))
+        nxt = _step(system, rows, q0, system.evaluate(q0)[1][:, rows], d0, float(deltas[i]), sign)
         if nxt is None:
-            return Reassembly(deltas[:i], out[:i], "toggle", continued=True)
+            return Reassembly(deltas[:i], out[:i], "toggle", continued=True), kd, kq, attach[:i], sign
         out[i], ok[i] = nxt[0][0], True
-    return Reassembly(deltas, out, stopped, continued=True)
+    return Reassembly(deltas, out, stopped, continued=True), kd, kq, attach, sign
+
+
+def slot_travel(m, index: dict, q, slots=None) -> np.ndarray:
+    """Where each pin stands in its bounded slot at the poses q (N, nq): (N, len(slots)) slip
+    coordinates t = (P - S1) . e / (S2 - S1) . e, 0 at the end S1 and 1 at S2 (e the slot's
+    direction on the slot link; P the pin on its link, S1 and S2 on the slot link)."""
+    q = np.atleast_2d(q)
+    slots = [i for i, s in enumerate(m.slots) if s.ends] if slots is None else slots
+    out = np.empty((len(q), len(slots)))
+    for col, i in enumerate(slots):
+        s = m.slots[i]
+        e = np.array([math.cos(math.radians(s.angle)), math.sin(math.radians(s.angle))])
+        s1, s2 = (np.array(m.points[n], float) for n in s.ends)
+        pin = _place(m, index, q, s.link, s.pin)
+        k = index.get(s.slot)
+        th = q[:, 3 * k + 2] if k is not None else np.zeros(len(q))
+        ew = np.stack([np.cos(th) * e[0] - np.sin(th) * e[1], np.sin(th) * e[0] + np.cos(th) * e[1]], axis=1)
+        d = pin - _place(m, index, q, s.slot, s.ends[0])
+        out[:, col] = np.einsum("ij,ij->i", d, ew) / float(np.dot(s2 - s1, e))
+    return out
+
+
+def _place(m, index, q, link, point):
+    """(N, 2): where the point of ``link`` drawn at ``point`` is at the poses q."""
+    p = np.array(m.points[point], float)
+    k = index.get(link)
+    if k is None:
+        return np.broadcast_to(p, (len(q), 2))
+    x, y, th = q[:, 3 * k], q[:, 3 * k + 1], q[:, 3 * k + 2]
+    c, s = np.cos(th), np.sin(th)
+    return np.stack([x + c * p[0] - s * p[1], y + s * p[0] + c * p[1]], axis=1)
+
+
+def _within_slots(system, rows, r, ends, kd, kq, attach, sign):
+    """Cut a continuation where a pin reaches an end of its slot (FORMAT.md: the end of the motion).
+
+    The way runs through the knots and the reached positions in order (each position after the
+    knots made on the way to it). Each pin's slip coordinate t must stay in [0, 1]: at the way's
+    points, and between two of them where the cubic through their t and slopes dt/d(driver)
+    leaves [0, 1] (the pose at its extreme is continued and checked: a pin that overshoots an end
+    and comes back within a step). At the first point beyond an end, the driver position where
+    the pin reaches it is found by regula falsi between that point and the one before (poses
+    continued from the nearest inside), to 1e-10 of a radian (or of the size)."""
+    m = system.mechanism
+    nq = system.nq
+    n = len(r.deltas)
+    # the way: (driver position, pose, reached position index it leads to)
+    order = []
+    last_knot = 0
+    for i in range(n + 1):
+        top = attach[i] if i < n else len(kd) - 1
+        order += [(kd[j], kq[j], i) for j in range(last_knot + 1, top + 1)]
+        last_knot = max(last_knot, top)
+        if i < n:
+            order.append((r.deltas[i], r.q[i], i))
+    if not order:
+        return r
+    d = np.array([0.0] + [o[0] for o in order])
+    q = np.vstack([kq[:1]] + [o[1][None, :] for o in order]).reshape(-1, nq)
+    t, slope = _travel_and_slope(system, rows, q, ends)
+    for k in range(1, len(d)):
+        i = order[k - 1][2]
+        prev = (d[k - 1], q[k - 1], t[k - 1])
+        if not np.all((t[k] >= 0) & (t[k] <= 1)):
+            return _cut(system, rows, r, i, ends, prev, (d[k], t[k]), sign)
+        h = d[k] - d[k - 1]
+        for c in range(len(ends)):
+            s0, s1 = slope[k - 1, c] * h, slope[k, c] * h
+            low, at_low = _hermite_extreme(t[k - 1, c], t[k, c], s0, s1)
+            high, at_high = _hermite_extreme(-t[k - 1, c], -t[k, c], -s0, -s1)
+            for over, at in ((low < 0, at_low), (-high > 1, at_high)):
+                if not over:
+                    continue
+                x = float(d[k - 1] + at * h)
+                nxt = _step(system, rows, q[k - 1][None, :], system.evaluate(q[k - 1][None, :])[1][:, rows],
+                            float(d[k - 1]), x, sign)
+                if nxt is None:
+                    continue
+                tx = slot_travel(m, system.index, nxt[0], ends)[0]
+                if not np.all((tx >= 0) & (tx <= 1)):
+                    return _cut(system, rows, r, i, ends, prev, (x, tx), sign)
+    return r
+
+
+def _travel_and_slope(system, rows, q, ends):
+    """Each bounded slot's slip coordinate t at the poses q and its rate per unit driver motion
+    (central differences along the continuation's tangent)."""
+    m = system.mechanism
+    qd = _velocity(system, rows, q)
+    eps = 1e-6 * (m.size if m.driver.is_slider else 1.0)
+    t = slot_travel(m, system.index, q, ends)
+    slope = (slot_travel(m, system.index, q + eps * qd, ends) - slot_travel(m, system.index, q - eps * qd, ends)) \
+        / (2 * eps)
+    return t, slope
+
+
+def _hermite_extreme(m0: float, m1: float, s0: float, s1: float) -> tuple[float, float]:
+    """The lowest value on [0, 1] of the cubic with values m0, m1 and slopes s0, s1 at 0 and 1,
+    and where it lies (a fraction of the interval)."""
+    c1, c2, c3 = s0, 3 * (m1 - m0) - 2 * s0 - s1, 2 * (m0 - m1) + s0 + s1
+    ts = []
+    if c3 != 0.0:
+        disc = c2 * c2 - 3 * c3 * c1
+        if disc >= 0.0:
+            root = math.sqrt(disc)
+            ts += [(-c2 + root) / (3 * c3), (-c2 - root) / (3 * c3)]
+    elif c2 != 0.0:
+        ts.append(-c1 / (2 * c2))
+    low, at = (m0, 0.0) if m0 <= m1 else (m1, 1.0)
+    for x in ts:
+        if 0.0 < x < 1.0:
+            v = m0 + x * (c1 + x * (c2 + x * c3))
+            if v < low:
+                low, at = v, x
+    return low, at
+
+
+def _cut(system, rows, r, i, ends, inside, outside, sign):
+    """The reassembly up to (not including) position i, and where the pin leaves its slot between
+    the driver positions ``inside`` (d, q, t) and ``outside`` (d, t)."""
+    m = system.mechanism
+    d0, q0, t0 = inside
+    d1, t1 = outside
+    col = int(np.argmax((t1 < 0) | (t1 > 1)))
+    bound = 0.0 if t1[col] < 0 else 1.0
+    f0, f1 = t0[col] - bound, t1[col] - bound
+    lo, hi = float(d0), float(d1)
+    q_lo = np.asarray(q0)[None, :]
+    unit = m.size if m.driver.is_slider else 1.0
+    last = 0
+    if f0 == 0.0:               # the last position inside is at the end itself
+        hi = lo
+    for _ in range(100):
+        if abs(hi - lo) <= 1e-10 * unit:
+            break
+        x = hi - f1 * (hi - lo) / (f1 - f0) if f1 != f0 else 0.5 * (lo + hi)
+        if not (min(lo, hi) < x < max(lo, hi)):
+            x = 0.5 * (lo + hi)
+        nxt = _step(system, rows, q_lo, system.evaluate(q_lo)[1][:, rows], lo, x, sign)
+        if nxt is None:         # a toggle before the end: the motion stops there
+            hi, f1 = x, f1
+            break
+        f = float(slot_travel(m, system.index, nxt[0], [ends[col]])[0, 0]) - bound
+        if (f < 0) == (f0 < 0):
+            lo, f0, q_lo = x, f, nxt[0]
+            if last < 0:
+                f1 *= 0.5
+            last = -1
+        else:
+            hi, f1 = x, f
+            if last > 0:
+                f0 *= 0.5
+            last = 1
+    s = m.slots[ends[col]]
+    where = 0.5 * (lo + hi)
+    return Reassembly(r.deltas[:i], r.q[:i], "slot", continued=True,
+                      leaves=(ends[col], s.ends[int(bound)], where))
+
+
+def _coarse(system: System) -> float:
+    """The longest continuation step: 6 degrees for a crank, 4% of the size for a slider."""
+    return 0.04 * system.size if system.mechanism.driver.is_slider else np.radians(6.0)
 
 
 _PLANS: dict = {}
@@ -260,7 +438,138 @@ def _closed_form(system: System, rows, deltas) -> Reassembly | None:
     q, reach = assemble(m, system.index, plan, deltas)
     if not check_closed_form(system, rows, q[:reach], deltas[:reach]):
         return None   # not the mechanism the plan assumed: use continuation
+    reach = min(reach, walked_reach(m, plan, deltas, _coarse(system)))
     return Reassembly(deltas[:reach], q[:reach], "toggle" if reach < len(deltas) else "")
+
+
+# A dyad whose squared transmission sine (its closure, :func:`velpoly.dyads.closure`) dips to TOUCH
+# between two driver positions touches a toggle or a change point there: the branches meet, and
+# the walk, which keeps each dyad's drawn side, would come out on the other one. 1e-12 (a sine of
+# 1e-6) is the floor to which the bottom of such a double root is found in floating point.
+TOUCH = 1e-12
+_TRIGGER = 1e-6   # a dip whose estimated bottom lies below this (or below half its ends) is searched
+
+
+def _quiet_walk(m, plan, deltas, rate=None):
+    """The dyad walk without numpy's warnings past a toggle (NaN there, screened by the callers)."""
+    with np.errstate(divide="ignore", invalid="ignore", over="ignore"):
+        return walk(m, plan, np.asarray(deltas, float), rate, 0.0)
+
+
+def walked_reach(m, plan, deltas, coarse: float, w=None, rate: float | None = None) -> int:
+    """How many of ``deltas`` a dyad walk reaches on the drawn branch: from the drawn pose (0) to
+    the first, then each from the one before, never across a position where a dyad's circles miss
+    each other (a toggle, a gap between two arcs of a double rocker) or touch (a toggle, or the
+    change point of a parallelogram or a kite, where the walk would go on in the crossed assembly).
+
+    The way is walked in steps no longer than ``coarse`` (driver units); where the positions are
+    that close, ``w``, their walk with the driver's ``rate``, serves (with the drawn pose's).
+    Every dyad's closure mu (:func:`velpoly.dyads.closure`) must stay positive at the steps and
+    between them: where its slope along the way turns from falling to rising and the cubic through
+    the two ends' values and slopes comes near zero, its lowest point is found (regula falsi on
+    the slope) and must lie above TOUCH.
+    """
+    deltas = np.asarray(deltas, float).ravel()
+    n = len(deltas)
+    if n == 0:
+        return 0
+    steps = np.abs(np.diff(np.concatenate([[0.0], deltas])))
+    if (w is not None and rate and math.isfinite(rate) and steps.max() <= coarse
+            and len(w.closure_rate) and w.closure_rate[0] is not None):
+        path, ends = deltas, np.arange(n)
+        mu, dmu = np.array(w.closure), np.array(w.closure_rate) / rate
+        if deltas[0] != 0.0:                      # the way starts at the drawn pose
+            mu0, dmu0 = _drawn_closure(m, plan)
+            path, ends = np.concatenate([[0.0], deltas]), ends + 1
+            mu, dmu = np.concatenate([mu0, mu], axis=1), np.concatenate([dmu0, dmu], axis=1)
+    else:
+        counts = np.maximum(np.ceil(steps / coarse).astype(int), 1)
+        knots = np.concatenate([[0.0], deltas])
+        ends = np.cumsum(counts)                  # where each of the deltas stands on the path
+        seg = np.repeat(np.arange(n), counts)     # each segment in `counts` equal steps
+        j = np.arange(1, ends[-1] + 1) - np.repeat(ends - counts, counts)
+        path = np.concatenate([[0.0], knots[seg] + (knots[seg + 1] - knots[seg]) * (j / counts[seg])])
+        pw = _quiet_walk(m, plan, path, 1.0)
+        mu, dmu = np.array(pw.closure), np.array(pw.closure_rate)
+    if mu.size == 0:
+        return n
+    # NaN (a dyad before it open) counts as open; so does a position at the bottom of a dip to
+    # zero (mu and its slope both vanish there: a change point, not a toggle's simple root)
+    stop = len(path)
+    if not mu[:, 1:].min(initial=np.inf) > TOUCH:
+        closed = np.all(mu >= 0, axis=0) & ~np.any((mu <= TOUCH) & (np.abs(dmu) <= 1e-5), axis=0)
+        closed[0] = True                         # the drawn pose, checked on its own
+        stop = len(path) if closed.all() else int(np.argmin(closed))
+    if stop > 1:
+        way = np.sign(np.diff(path[:stop]))
+        g0, g1 = dmu[:, :stop - 1] * way, dmu[:, 1:stop] * way
+        # the slope along the way goes from falling (or flat) to rising (or flat), not flat to flat
+        js, ks = np.nonzero(np.sign(g1) - np.sign(g0) > 0)
+        if len(ks):
+            unit = m.size if m.driver.is_slider else 1.0
+            for i in np.argsort(ks, kind="stable"):
+                j, k = int(js[i]), int(ks[i])
+                if k + 1 >= stop:
+                    break
+                m0, m1, length = float(mu[j, k]), float(mu[j, k + 1]), abs(float(path[k + 1] - path[k]))
+                if _hermite_low(m0, m1, length * float(g0[j, k]), length * float(g1[j, k])) \
+                        >= max(_TRIGGER, 0.5 * min(m0, m1)):
+                    continue        # a shallow dip, far above zero
+                if _touches(m, plan, j, path[k], path[k + 1], g0[j, k], g1[j, k], unit):
+                    stop = k if k > 0 and mu[:, k].min() <= TOUCH else k + 1
+                    break
+    return int(np.searchsorted(ends, stop))
+
+
+def _hermite_low(m0: float, m1: float, s0: float, s1: float) -> float:
+    """The lowest value on [0, 1] of the cubic with values m0, m1 and slopes s0, s1 at 0 and 1."""
+    return _hermite_extreme(m0, m1, s0, s1)[0]
+
+
+_DRAWN: dict = {}
+
+
+def _drawn_closure(m, plan):
+    """The dyads' closures and slopes (per unit driver motion) at the drawn pose, cached per plan."""
+    key = id(plan)
+    if key not in _DRAWN or _DRAWN[key][0] is not plan:
+        if len(_DRAWN) > 64:
+            _DRAWN.clear()
+        w0 = _quiet_walk(m, plan, [0.0], 1.0)
+        _DRAWN[key] = (plan, np.array(w0.closure), np.array(w0.closure_rate))
+    return _DRAWN[key][1:]
+
+
+def _touches(m, plan, j, a, b, ga, gb, unit) -> bool:
+    """Whether dyad j's closure comes down to TOUCH between driver positions a and b, where its
+    slope along the way from a to b is ga <= 0 at a and gb >= 0 at b: the slope's zero (the
+    lowest point) by regula falsi, Illinois-style, checking the closure at each trial."""
+    way = 1.0 if b > a else -1.0
+    lo, hi, glo, ghi = float(a), float(b), float(ga), float(gb)
+    last = 0
+    for _ in range(80):
+        x = hi - ghi * (hi - lo) / (ghi - glo) if ghi != glo else 0.5 * (lo + hi)
+        if not (min(lo, hi) < x < max(lo, hi)):
+            x = 0.5 * (lo + hi)
+        pw = _quiet_walk(m, plan, [x], 1.0)
+        mu, g = float(pw.closure[j][0]), float(pw.closure_rate[j][0]) * way
+        if not mu > TOUCH:
+            return True
+        if g < 0:
+            lo, glo = x, g
+            if last < 0:
+                ghi *= 0.5
+            last = -1
+        elif g > 0:
+            hi, ghi = x, g
+            if last > 0:
+                glo *= 0.5
+            last = 1
+        else:
+            return False
+        if abs(hi - lo) <= 1e-13 * unit + 4e-16 * max(abs(lo), abs(hi)):
+            return False
+    return False
 
 
 def check_closed_form(system: System, rows, q, deltas) -> bool:
@@ -306,20 +615,39 @@ def _drift_bound(system, h, qd):
     return 0.5 * np.abs(h) * rate + 1e-9
 
 
-def _step(system, rows, q, jac, d0, d1):
+def _orientation(jac) -> np.ndarray:
+    """The signs of the determinants of square Jacobians (N, n, n): +1, -1 (0 if singular)."""
+    with np.errstate(invalid="ignore"):          # NaN where Newton failed: sign NaN, never equal
+        return np.linalg.slogdet(jac)[0]
+
+
+def _smooth(system, chord, t0, t1) -> np.ndarray:
+    """Whether each step's chord q1 - q0 agrees with the trapezoid of its end tangents h q'(0), h q'(1)
+    to a tenth of its length: true on a smooth branch for steps short against its curvature, false
+    for a step from or onto a singular pose (where the tangent is meaningless and Newton may leave
+    on the other branch of a change point)."""
+    c = _scaled(system, chord)
+    err = np.abs(c - 0.5 * _scaled(system, t0 + t1)).max(axis=1)
+    return err <= 0.1 * np.abs(c).max(axis=1) + 1e-12     # NaN (a singular tangent): False
+
+
+def _step(system, rows, q, jac, d0, d1, sign):
     """One continuation step of the knots from driver position d0 to d1.
 
     Returns (q, jac) at d1, or None at a toggle (Newton fails, the pose
-    jumps away from the prediction, or the equations become singular).
+    jumps away from the prediction, the equations become singular, the
+    Jacobian's determinant no longer has the drawn pose's ``sign``: a singular
+    pose was crossed, or the step is not smooth: it starts or ends on one).
     """
     h = d1 - d0
     qd = _velocity(system, rows, q, jac)
     guess = q + h * qd
     qn, ok, jn = _newton(system, rows, guess, np.array([d1]))
     if ok[0] and _drift(system, qn - guess)[0] <= _drift_bound(system, np.array([h]), qd)[0] \
-            and _cond(system, rows, jn)[0] <= 1e10:
+            and _cond(system, rows, jn)[0] <= 1e10 and _orientation(jn)[0] == sign \
+            and _smooth(system, qn - q, h * qd, h * _velocity(system, rows, qn, jn))[0]:
         return qn, jn
     if abs(h) < 1e-6:
         return None
-    mid = _step(system, rows, q, jac, d0, d0 + h / 2)   # near a toggle: halve the step
-    return None if mid is None else _step(system, rows, mid[0], mid[1], d0 + h / 2, d1)
+    mid = _step(system, rows, q, jac, d0, d0 + h / 2, sign)   # near a toggle: halve the step
+    return None if mid is None else _step(system, rows, mid[0], mid[1], d0 + h / 2, d1, sign)

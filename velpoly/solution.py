@@ -38,11 +38,15 @@ def reachable_range(kin: Kinematics, limit: float = 360.0, step: float = 1.0,
                     resolution: float = 0.01) -> tuple[float, float]:
     """Driver displacements (degrees) reachable from the reference pose on its branch, each end to
     ``resolution`` degrees: followed in ``step``-degree steps to the last pose before a toggle, then
-    in ``resolution`` steps across the next ``step`` (one more continuation each way)."""
+    in ``resolution`` steps across the next ``step`` (one more continuation each way). An end where
+    a pin leaves its bounded slot is given to 1e-6 degree (where it reaches the slot's end)."""
     out = []
     for sign in (1.0, -1.0):
         coarse = np.arange(step, limit + step / 2, step)
         r = reassemble(kin.system, list(kin.rows), np.radians(coarse) * sign)
+        if r.leaves is not None:    # a pin leaves its slot: that end is known to 1e-8 deg
+            out.append(round(float(np.degrees(r.leaves[2])), 6))
+            continue
         last = float(np.degrees(abs(r.deltas[-1]))) if len(r.deltas) else 0.0
         if last < limit:
             fine = np.arange(last + resolution, min(last + step, limit) + resolution / 2, resolution)
@@ -228,6 +232,15 @@ def solve(m: Mechanism, angle: float | None = None) -> Solution:
         if abs(delta) > 1e-12:
             velocities(kin, q, where="reference pose")   # regular, to tell its branch (else exit 3)
             r = reassemble(kin.system, list(kin.rows), [math.radians(delta)])
+            if len(r.deltas) == 0 and r.leaves is not None:
+                lo, hi = reachable_range(kin)
+                sl = m.slots[r.leaves[0]]
+                raise AssemblyError(
+                    f"cannot assemble at driver angle {target:g} deg: pin {sl.pin} leaves the slot of "
+                    f"{sl.slot} at its end {r.leaves[1]} at {wrap_deg_float(ref + math.degrees(r.leaves[2])):g} "
+                    f"deg; the pin is in the slot from {ref + lo:g} to {ref + hi:g} deg",
+                    where="driver.angle", file=m.source, links=(sl.link, sl.slot),
+                    hint="choose an angle in that range (the slot's ends bound the motion)")
             if len(r.deltas) == 0:
                 lo, hi = reachable_range(kin)
                 raise AssemblyError(

@@ -19,7 +19,7 @@ from .kinematics import SINGULAR, Kinematics, accelerations, condition, prepare,
 from .model import Mechanism
 from .motion import evaluate_motion, wrap_deg
 from . import pose
-from .pose import plan_for, reassemble
+from .pose import plan_for, reassemble, walked_reach
 from .solution import driver_reference_angle
 
 __all__ = ["Sweep", "sweep", "memory_estimate", "check_memory", "MEMORY_BUDGET"]
@@ -33,7 +33,9 @@ class Sweep:
     from the reference position), ``omega[link]``, ``alpha[link]`` and
     ``angle[link]`` of shape (N,), ``position[key]``, ``velocity[key]``,
     ``acceleration[key]`` of shape (N, 2); ``stopped`` tells why the sweep
-    ended before the last requested angle (empty if it did not);
+    ended before the last requested angle (empty if it did not); ``leaves`` is
+    ``(pin, slot link, driver angle)`` where the sweep stopped because a pin
+    reached an end of its slot (FORMAT.md ``ends``), else None;
     ``condition`` is each pose's condition number (computed on first use:
     exact above 1e6, a close estimate below).
     """
@@ -55,6 +57,7 @@ class Sweep:
     stopped: str = ""
     kinematics: Kinematics | None = field(default=None, repr=False, compare=False)
     known_condition: np.ndarray | None = field(default=None, repr=False, compare=False)
+    leaves: tuple | None = None
 
     @cached_property
     def condition(self) -> np.ndarray:
@@ -74,22 +77,6 @@ def _walk(m: Mechanism, plan, deltas):
     rate, accel = (drv.speed, drv.accel) if drv.is_slider else (drv.omega, drv.alpha)
     with np.errstate(divide="ignore", invalid="ignore", over="ignore"):
         return walk(m, plan, deltas, rate, accel)
-
-
-def _path_reach(m: Mechanism, plan, deltas, system) -> int:
-    """How many of ``deltas`` the sweep's path reaches: from the drawn pose (0) to the first, then
-    from each to the next. The walk places each position on its own, so a toggle lying between
-    two of them (a first angle reached the shorter way round only across a toggle; a jump of
-    angles) is found by walking the gaps wider than a continuation step, as ``reassemble`` does."""
-    coarse = 0.04 * system.size if m.driver.is_slider else np.radians(6.0)
-    knots = np.concatenate([[0.0], deltas])
-    counts = np.ceil(np.abs(np.diff(knots)) / coarse).astype(int)
-    if counts.max(initial=0) <= 1:
-        return len(deltas)
-    counts = np.maximum(counts, 1)
-    path = np.concatenate([np.linspace(a, b, c + 1)[1:] for a, b, c in zip(knots[:-1], knots[1:], counts)])
-    ends = np.cumsum(counts) - 1                 # where each of the deltas stands on the path
-    return int(np.searchsorted(ends, _walk(m, plan, path).reach))
 
 
 MEMORY_BUDGET = 2_000_000_000   # bytes a sweep may use (docs/sweep.md): beyond it, refused before any work
@@ -132,7 +119,7 @@ WALK_LIMIT = 1e4   # a slider driver's displacements, in mechanism sizes (MAX_AN
 
 def _walk_poses(m: Mechanism, angles: np.ndarray) -> int:
     """About how many poses walking the path between the angles takes (the gaps wider than a
-    continuation step are walked, as ``_path_reach`` does): for the memory estimate."""
+    continuation step are walked, as ``pose.walked_reach`` does): for the memory estimate."""
     if len(angles) < 2:
         return 0
     travel = float(np.abs(np.diff(angles)).sum()) + 180.0 * (not m.driver.is_slider)
@@ -161,6 +148,7 @@ def sweep(m: Mechanism, angles, kin: Kinematics | None = None) -> Sweep:
         first = float(wrap_deg(angles[0] - ref)) if len(angles) else 0.0
         deltas = (angles - (angles[0] - first)) * (np.pi / 180.0) if len(angles) else angles
     plan = plan_for(kin.system)
+    leaves = None
     # the drawn pose must be regular, to tell its branch; far from a dyad's toggle it is
     screened = plan is not None and plan.margin > 1e-3
     if not screened:
@@ -172,7 +160,8 @@ def sweep(m: Mechanism, angles, kin: Kinematics | None = None) -> Sweep:
     w = _walk(m, plan, deltas) if plan is not None and len(deltas) else None
     known_cond = None
     if w is not None:
-        n = min(w.reach, _path_reach(m, plan, deltas, kin.system))
+        rate = m.driver.speed if m.driver.is_slider else m.driver.omega
+        n = min(w.reach, walked_reach(m, plan, deltas, pose._coarse(kin.system), w, rate))
         stopped = "toggle" if n < len(deltas) else ""
         if n < len(deltas):
             w = _walk(m, plan, deltas[:n])     # past a toggle the walk is NaN: walked to it only
@@ -196,6 +185,11 @@ def sweep(m: Mechanism, angles, kin: Kinematics | None = None) -> Sweep:
             velocities(kin, np.zeros((1, kin.system.nq)), where="reference pose")
         r = reassemble(kin.system, list(kin.rows), deltas)
         n, q, stopped = len(r.deltas), r.q, r.stopped
+        if r.leaves is not None:
+            sl = m.slots[r.leaves[0]]
+            at = r.leaves[2] if m.driver.is_slider else \
+                float(angles[0] - (first if len(angles) else 0.0) + np.degrees(r.leaves[2]))
+            leaves = (sl.pin, sl.slot, at)
         qd, cond = velocities(kin, q, check=False) if n else (np.zeros((0, kin.system.nq)), np.zeros(0))
         if n and not np.all(cond <= SINGULAR):
             k = int(np.argmin(cond <= SINGULAR))
@@ -207,13 +201,20 @@ def sweep(m: Mechanism, angles, kin: Kinematics | None = None) -> Sweep:
         else:
             qdd = np.full_like(qd, np.nan)
     mo = evaluate_motion(m, kin.system.index, q, qd, qdd, walk=w) if n else None
-    if stopped:
+    if stopped and leaves is not None and stopped == "slot":
+        stopped = (f"pin {leaves[0]} leaves the slot of {leaves[1]} at " +
+                   (f"{leaves[2]:g}" if m.driver.is_slider else f"{leaves[2]:.1f} deg") +
+                   f": {len(angles) - n} of {len(angles)} positions not reached")
+    elif stopped:
+        leaves = None
         last = angles[n - 1] if n else (ref if ref is not None else 0.0)
         stopped = (f"stopped at a toggle after {last:g}" + ("" if m.driver.is_slider else " deg") +
                    f": {len(angles) - n} of {len(angles)} positions not reached on this branch")
+    else:
+        leaves = None
 
     def get(attr):
         return getattr(mo, attr) if mo is not None else {}
     return Sweep(m, angles[:n], get("angle"), get("omega"), get("alpha"), get("position"),
                  get("velocity"), get("acceleration"), get("sliders") or [], get("contacts") or [],
-                 get("slots") or [], q, qd, qdd, stopped, kin, known_cond)
+                 get("slots") or [], q, qd, qdd, stopped, kin, known_cond, leaves)
