@@ -440,7 +440,7 @@ class _Planner:
         """
         best = None
         for t in self._targets(every=True):
-            lines = self.lines_on(t)
+            lines = self.lines_for(t)
             if not lines:
                 continue
             saved = self._save()
@@ -524,32 +524,7 @@ class _Planner:
         return list(dict.fromkeys([r.prefer] + self.kp[r.a] + self.kp[r.b]))
 
     def lines_on(self, place) -> list[_Line]:
-        """Every line through known images that the unknown image of ``place`` lies on.
-
-        Besides the direct lines (a link's rigidity, a joint's path), a slider driver whose
-        other side is not located yet carries that side's lines over, offset by the known
-        slip: a block driven along a turning guide, ``V_A3 = V_O4 + V_A4O4 + V_A3/A4``, lies
-        on the line through o4 + V_A3/A4 perpendicular to O4A (case 2a with a known slip).
-        """
-        g = self.g
-        out = self._direct_lines(place)
-        c = g.canon(place)
-        for lk, n in g.group(place):
-            for i, r in enumerate(g.rels):
-                if r.source != "drive" or r.at not in (None, n) or lk not in (r.a, r.b):
-                    continue   # (contacts keep the equivalent linkage's lines, as the books draw them)
-                partner, sign = (r.b, 1) if lk == r.a else (r.a, -1)
-                pp = (partner, n)
-                if g.canon(pp) == c or self.is_known(pp) or self.full(partner):
-                    continue   # known: an equality step, not a line
-                for ln in self._direct_lines(pp):
-                    out.append(_Line(ln.base, ln.terms + (("rel", i, sign, n),), ln.direction, ln.unknown,
-                                     f"{ln.reason}, offset by the driver's slip of {n}{r.a} on {n}{r.b}",
-                                     tuple(dict.fromkeys(ln.links + (r.a, r.b)))))
-        return out
-
-    def _direct_lines(self, place) -> list[_Line]:
-        """The lines of ``place``'s own links' rigidity and of the joints' free paths."""
+        """Every line through known images that the unknown image of ``place`` lies on."""
         g = self.g
         out = []
         for lk, n in g.group(place):
@@ -569,6 +544,29 @@ class _Planner:
                 if self.is_known(pp) or self.full(partner):
                     out.append(_Line(pp, (("rel", i, sign, n),), r.direction, ("path", i, sign, n),
                                      _path_reason(g, r), (r.a, r.b)))
+        return out
+
+    def lines_for(self, place) -> list[_Line]:
+        """The lines of :meth:`lines_on` (a link's rigidity, a joint's path) and, for a slider
+        driver whose other side is not located yet, that side's lines carried over, offset by the
+        known slip: a block driven along a turning guide, ``V_A3 = V_O4 + V_A4O4 + V_A3/A4``, lies
+        on the line through o4 + V_A3/A4 perpendicular to O4A (case 2a with a known slip).
+        """
+        g = self.g
+        out = self.lines_on(place)
+        c = g.canon(place)
+        for lk, n in g.group(place):
+            for i, r in enumerate(g.rels):
+                if r.source != "drive" or r.at not in (None, n) or lk not in (r.a, r.b):
+                    continue   # (contacts keep the equivalent linkage's lines, as the books draw them)
+                partner, sign = (r.b, 1) if lk == r.a else (r.a, -1)
+                pp = (partner, n)
+                if g.canon(pp) == c or self.is_known(pp) or self.full(partner):
+                    continue   # known: an equality step, not a line
+                for ln in self.lines_on(pp):
+                    out.append(_Line(ln.base, ln.terms + (("rel", i, sign, n),), ln.direction, ln.unknown,
+                                     f"{ln.reason}, offset by the driver's slip of {n}{r.a} on {n}{r.b}",
+                                     tuple(dict.fromkeys(ln.links + (r.a, r.b)))))
         return out
 
     def _targets(self, every: bool = False):
@@ -598,7 +596,7 @@ class _Planner:
 
     def _intersection(self) -> bool:
         for t in self._targets():
-            lines = self.lines_on(t)
+            lines = self.lines_for(t)
             best = _best_pair(lines)
             if best is None:
                 continue
@@ -626,7 +624,7 @@ class _Planner:
                 continue
             one = []
             for n in g.places(lk):
-                ls = self.lines_on((lk, n))
+                ls = self.lines_for((lk, n))
                 if ls:
                     one.append((n, ls[0]))
             for i in range(len(one)):
