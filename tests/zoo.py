@@ -179,8 +179,10 @@ class Draft:
         if self.slots:
             mech["slots"] = [{**sl, **({"angle": sl["angle"] + phi} if "angle" in sl else {})}
                              for sl in self.slots]
-        if self.contacts:
-            mech["contacts"] = [dict(ct) for ct in self.contacts]
+        if self.contacts:   # a contact given by its normal: the normal turns with the drawing
+            mech["contacts"] = [{**ct, **({"normal": self.normal + phi} if "normal" in ct else {}),
+                                 **({"slip": ct["slip"] * k * size} if "slip" in ct else {})}
+                                for ct in self.contacts]
         if "slider" in mech["driver"]:
             mech["driver"]["speed"] *= k * size
             mech["driver"]["accel"] *= k * size
@@ -262,7 +264,7 @@ def gen_fourbar(rng, variant=None):
 # -- slider-cranks ---------------------------------------------------------------------------------------
 def gen_slider_crank(rng, variant=None):
     """Crank 2 (O2 A), rod 3 (A B), block 4 on a frame path offset e (0: through the pivot)."""
-    variant = variant or _any(rng, ("offset crank", "through crank", "offset slider", "through slider"))
+    variant = variant or _any(rng, SLIDER_CRANKS)
     d = Draft(rng, f"slider-crank {variant}")
     r = rng.uniform(0.5, 1.0)
     l = rng.uniform(1.8, 4.0)
@@ -270,6 +272,21 @@ def gen_slider_crank(rng, variant=None):
     theta = rng.uniform(-180, 180)
     O2 = d.point("O2", (0.0, 0.0))
     A = d.point("A", pol(O2, r, theta))
+    if "curved" in variant:   # the block in a circular slot of the frame about K
+        B = d.point("B", pol(A, l, rng.uniform(-60, 60)))
+        K = d.point("K", pol(B, rng.uniform(1.0, 3.0) * l, ang(A, B) + _side(rng) * rng.uniform(50, 130)))
+        need(transmission(A, B, pol(B, 1.0, ang(K, B) + 90)) >= MIN_SINE)
+        d.link(1, "O2", "K", frame=True)
+        d.link(2, "O2", "A")
+        d.link(3, "A", "B")
+        d.link(4, "B")
+        d.sliders.append({"block": "4", "guide": "1", "point": "B", "centre": "K"})
+        need(transmission(O2, A, B) >= 0.1)
+        if "slider" in variant:
+            d.slider_driver("B")
+        else:
+            d.crank_driver(2)
+        return d.finish()
     B = line_circle(A, l, (0.0, e), 0.0, (A[0] + _side(rng) * 2 * l, e))
     need(transmission(A, B, (B[0] + 1, B[1])) >= MIN_SINE)
     d.point("B", B)
@@ -288,7 +305,8 @@ def gen_slider_crank(rng, variant=None):
     return d.finish()
 
 
-INVERTED = ("through both crank", "through block slider", "through both slider", "through guide-lists slider",
+SLIDER_CRANKS = ("offset crank", "through crank", "offset slider", "through slider", "curved crank", "curved slider")
+INVERTED = ("curved crank", "curved slider", "through both crank", "through block slider", "through both slider", "through guide-lists slider",
             "offset block slider", "offset both crank", "offset both slider", "second-pin slider",
             "second-pin crank", "swinging-block slider", "swinging-block crank", "rocker slider")
 
@@ -312,7 +330,17 @@ def gen_inverted(rng, variant=None):
     offset = 0.0 if "through" in variant else rng.uniform(15, 50) * _side(rng)
     path = ang(O4, A) + offset
     d.link(1, "O2", "O4", frame=True)
-    if "swinging-block" in variant:
+    if "curved" in variant:
+        # the block 3 (pinned to crank 2 at A) in a circular slot of the rocker 4 about its point K
+        d.point("A", A)
+        K = d.point("K", pol(A, rng.uniform(0.5, 1.5) * dist(A, O4), ang(A, O4) + rng.uniform(30, 150) * _side(rng)))
+        d.link(2, "O2", "A")
+        d.link(3, "A")
+        d.link(4, "O4", "K", *(["A"] if rng.random() < 0.5 else []))
+        d.sliders.append({"block": "3", "guide": "4", "point": "A", "centre": "K"})
+        need(transmission(O2, A, pol(A, 1.0, ang(K, A) + 90)) >= MIN_SINE)
+        drive_point = "A"
+    elif "swinging-block" in variant:
         # the block 3 turns about O4 on the frame, the guide 4 (pinned to crank 2 at A) slides in it
         d.point("A", A)
         path = ang(A, O4) + offset
@@ -532,15 +560,16 @@ def gen_slot(rng, variant=None):
 
 
 # -- contacts ----------------------------------------------------------------------------------------------
-CONTACTS = ("wheel on ground", "gears", "internal gears", "cam flat follower", "cam roller follower",
+CONTACTS = ("wheel on ground", "wheel slipping on ground", "cam flat follower by its normal", "gears", "internal gears", "cam flat follower", "cam roller follower",
             "cam curved follower", "cam oscillating follower")
 
 
 def gen_contact(rng, variant=None):
     variant = variant or _any(rng, CONTACTS)
     d = Draft(rng, f"contact {variant}")
-    if variant == "wheel on ground":
-        # crank 2 (O2 A), rod 3 (A C), wheel 4 (C) rolling on the ground (the frame's flat)
+    if variant.startswith("wheel"):
+        # crank 2 (O2 A), rod 3 (A C), wheel 4 (C) rolling on the ground (the frame's flat), or
+        # sliding on it with a prescribed slip
         R = rng.uniform(0.3, 1.0)
         O2 = d.point("O2", (0.0, rng.uniform(1.5, 3.0)))
         A = d.point("A", pol(O2, rng.uniform(0.3, 0.8), rng.uniform(-180, 180)))
@@ -553,8 +582,12 @@ def gen_contact(rng, variant=None):
         d.link(2, "O2", "A")
         d.link(3, "A", "C")
         d.link(4, "C")
-        d.contacts.append({"links": ["4", "1"], "point": "P", "kind": "rolling", "centres": ["C", "flat"]})
+        contact = {"links": ["4", "1"], "point": "P", "kind": "rolling", "centres": ["C", "flat"]}
+        d.contacts.append(contact)
         d.crank_driver(2)
+        if "slipping" in variant:   # a slip constant in time: other poses only at a constant omega
+            contact.update(kind="sliding", slip=float(rng.uniform(-3, 3)))
+            d.driver["alpha"] = 0.0
     elif variant in ("gears", "internal gears"):
         r2 = rng.uniform(0.4, 1.2)
         r3 = rng.uniform(0.4, 1.2) + (r2 + 0.3 if variant == "internal gears" else 0.0)
@@ -569,7 +602,7 @@ def gen_contact(rng, variant=None):
         d.link(3, "O3", "T3")
         d.contacts.append({"links": ["2", "3"], "point": "P", "kind": "rolling", "centres": ["O2", "O3"]})
         d.crank_driver(2)
-    elif variant in ("cam flat follower", "cam roller follower", "cam curved follower"):
+    elif variant.startswith(("cam flat", "cam roller", "cam curved")):
         # an eccentric circular cam 2 (O centre of rotation, K centre of its profile, radius rho)
         e, rho = rng.uniform(0.2, 0.6), rng.uniform(1.0, 2.0)
         O = d.point("O", (0.0, 0.0))
@@ -578,13 +611,16 @@ def gen_contact(rng, variant=None):
         off = rng.uniform(-0.3, 0.3)
         d.link(1, "O", frame=True)
         d.link(2, "O", "K")
-        if variant == "cam flat follower":
+        if variant.startswith("cam flat"):
             u = path + rng.uniform(-20, 20)                 # the flat's normal
             P = d.point("P", pol(K, rho, u))
             F = d.point("F", pol(P, rng.uniform(0.5, 1.0), u - 90))
             d.link(3, "F")
             d.sliders.append({"block": "3", "guide": "1", "point": "F", "angle": path})
             d.contacts.append({"links": ["2", "3"], "point": "P", "kind": "sliding", "centres": ["K", "flat"]})
+            if variant.endswith("by its normal"):           # the curvature not given: velocities only
+                d.contacts[-1] = {"links": ["2", "3"], "point": "P", "kind": "sliding", "normal": "NORMAL"}
+                d.normal = u
         else:
             rr = rng.uniform(0.2, 0.6)
             # the roller's (or the curved face's) centre R on the follower's line x = off
@@ -603,6 +639,8 @@ def gen_contact(rng, variant=None):
                 d.sliders.append({"block": "3", "guide": "1", "point": "S", "angle": path})
                 d.contacts.append({"links": ["2", "3"], "point": "P", "kind": "sliding", "centres": ["K", "R"]})
         d.crank_driver(2)
+        if variant.endswith("by its normal"):
+            d.offsets = (None,)   # no position equation: only the drawn pose can be analysed
     else:   # cam oscillating follower: follower 3 about O3 with a curved face (centre C), sliding
         e, rho = rng.uniform(0.2, 0.6), rng.uniform(0.8, 1.5)
         O = d.point("O", (0.0, 0.0))
@@ -622,7 +660,7 @@ def gen_contact(rng, variant=None):
 
 KINDS = {
     "four-bar": (gen_fourbar, GRASHOF),
-    "slider-crank": (gen_slider_crank, ("offset crank", "through crank", "offset slider", "through slider")),
+    "slider-crank": (gen_slider_crank, SLIDER_CRANKS),
     "inverted slider-crank": (gen_inverted, INVERTED),
     "six-bar": (gen_sixbar, SIXBARS),
     "slot": (gen_slot, ("straight through", "straight offset", "circular", "straight six-bar", "circular six-bar")),
