@@ -19,7 +19,7 @@ to 100 units), so that nothing depends on the frame lying along +x.
 from __future__ import annotations
 
 import math
-from dataclasses import dataclass
+from dataclasses import dataclass, field, replace
 
 import numpy as np
 
@@ -36,6 +36,7 @@ class Specimen:
     kind: str
     mech: dict
     offsets: tuple
+    drawn: object = field(default=None, compare=False, repr=False)   # velpoly.solve at the drawn pose
 
 
 class Redraw(Exception):
@@ -688,8 +689,9 @@ def specimen(rng, kind, variant=None, tries=200) -> Specimen:
             sp = gen(rng, variant)
         except Redraw:
             continue
-        if velpoly.solve(velpoly.load(sp.mech)).condition <= MAX_CONDITION:
-            return sp
+        sol = velpoly.solve(velpoly.load(sp.mech))
+        if sol.condition <= MAX_CONDITION:
+            return replace(sp, drawn=sol)
     raise RuntimeError(f"no regular draw of {kind} {variant} in {tries} tries")
 
 
