@@ -17,6 +17,7 @@ accepts, each solved at its drawn pose and at other driver angles, and checked:
 from __future__ import annotations
 
 import collections
+import json
 import math
 
 import numpy as np
@@ -174,6 +175,88 @@ def test_inverted_slider_driven_uses_case_2a():
 
 # rendering is slow: a few specimens only, where the drawing has the most to draw (blocks on turning
 # guides, slots, contacts, a six-bar driven by its slider, an eight-bar), both sheets, as SVG
+def test_slider_driver_on_a_turning_guide_lines_are_the_books():
+    """At the data level: the block's point X (pinned to crank 2 about O2) is found where the line
+    through o2 perpendicular to O2X meets the line through o4 + V_X3/X4 (the driver's slip, speed
+    along the path) perpendicular to O4X; in the acceleration polygon the offset line starts at
+    o4' + A^n_X4O4 + A_X3/X4 + 2 omega_4 x V_X3/X4, every term from the analytic solve."""
+    n = 0
+    for sp in BY_KIND["inverted"]:
+        drv = sp.mech["driver"]
+        if not drv.get("slider") or "swinging" in sp.kind or "curved" in sp.kind:
+            continue
+        sol = sp.drawn
+        m = sol.mechanism
+        o4 = sol.position["O4"]
+        d = np.array([math.cos(math.radians(sol.motion.sliders[0]["direction"][0])),
+                      math.sin(math.radians(sol.motion.sliders[0]["direction"][0]))])
+        w4 = sol.omega["4"]
+        vrel = m.driver.speed * d
+        scale = max(np.abs(v).max() for v in sol.velocity.values())
+        ascale = max(np.abs(v).max() for v in sol.acceleration.values())
+        for poly in (velocity_polygon(sol), acceleration_polygon(sol)):
+            st = next(st for st in poly.steps if st.kind == "intersection")
+            x_pos = sol.position["A@2" if "A@2" in sol.position else "A"]
+            r = x_pos - o4
+            off = [ln for ln in st.lines if "offset by the driver's slip" in ln.reason]
+            crank = [ln for ln in st.lines if ln.reason == "perpendicular to O2A"]
+            assert len(off) == 1 and len(crank) == 1, [ln.reason for ln in st.lines]
+            if poly.kind == "velocity":
+                base, tol = vrel, 1e-9 * scale
+                x_img = sol.velocity["A@2" if "A@2" in sol.velocity else "A"]
+            else:
+                base = -w4 ** 2 * r + m.driver.accel * d + 2 * w4 * np.array([-vrel[1], vrel[0]])
+                tol = 1e-9 * ascale
+                x_img = sol.acceleration["A@2" if "A@2" in sol.acceleration else "A"]
+            assert np.abs(off[0].base - base).max() <= tol
+            assert abs(float(np.dot(off[0].direction, r))) <= 1e-9 * np.linalg.norm(r)
+            a_pos = x_pos - sol.position["O2"]
+            assert abs(float(np.dot(crank[0].direction, a_pos))) <= 1e-9 * np.linalg.norm(a_pos)
+            for ln in st.lines:   # the image found lies on both lines
+                e = x_img - ln.base
+                assert abs(e[0] * ln.direction[1] - e[1] * ln.direction[0]) <= tol
+        n += 1
+    assert n >= 15
+
+
+def test_slider_driver_files_solve_from_the_command_line(tmp_path, capsys):
+    """The hydraulic boom (cylinder 4 about O4 drives the block 3 pinned to the boom 2 at A): exit 0,
+    as TOML through the CLI, the path through the pivot and offset from it; --angle stays exit 2."""
+    from velpoly.cli import main
+    for offset in (0.0, 25.0):
+        path = tmp_path / "boom.toml"
+        o4, a = (2.0, 0.0), (1.5 * math.cos(math.radians(60)), 1.5 * math.sin(math.radians(60)))
+        angle = math.degrees(math.atan2(a[1] - o4[1], a[0] - o4[0])) + offset
+        path.write_text(f"""title = "hydraulic boom"
+[points]
+O2 = [0, 0]
+O4 = [2, 0]
+A = {{ from = "O2", length = 1.5, angle = 60 }}
+C = {{ from = "O4", length = 4, along = ["O4", "A"] }}
+[links]
+1 = {{ points = ["O2", "O4"], frame = true }}
+2 = {{ points = ["O2", "A"] }}
+3 = {{ points = ["A"] }}
+4 = {{ points = ["O4", "C", "A"] }}
+[[sliders]]
+block = "3"
+guide = "4"
+point = "A"
+angle = {angle!r}
+[driver]
+slider = "A"
+speed = 0.5
+accel = 0.1
+""")
+        assert main(["solve", str(path), "--json"]) == 0
+        out = json.loads(capsys.readouterr().out)
+        assert out["graphical"]["max_error"]["velocity"] <= TOL
+        assert out["graphical"]["max_error"]["acceleration"] <= TOL
+        assert abs(out["sliders"][0]["slip_velocity"] - 0.5) <= 1e-12
+        assert main(["solve", str(path), "--angle", "30"]) == 2
+        assert "a slider driver has no angle" in capsys.readouterr().err
+
+
 RENDER = ("inverted slider-crank offset both slider", "pin in a slot circular six-bar", "contact cam roller follower",
           "six-bar quick-return slider")
 
