@@ -425,6 +425,7 @@ def _frame_pivot(rng, d: Draft, name, near):
 
 
 SIXBARS = ("watt I", "watt II", "stephenson I", "stephenson III", "stephenson III by its binary",
+           "stephenson III ternary-driven triad", "stephenson III ternary class IV",
            "slider on frame", "slider on coupler point", "quick-return crank", "quick-return slider",
            "quick-return ram")
 
@@ -444,6 +445,8 @@ def gen_sixbar(rng, variant=None):
     variant = variant or _any(rng, SIXBARS)
     if variant.startswith("quick-return"):
         return gen_quick_return(rng, variant)
+    if variant.startswith("stephenson III ternary"):
+        return gen_stephenson_ternaries(rng, variant)
     d = Draft(rng, f"six-bar {variant}")
     cls = _any(rng, ("crank-rocker", "double-crank", "double-rocker", "triple-rocker"))
     fourbar_pose(rng, cls, d, couplers=False)
@@ -467,6 +470,29 @@ def gen_sixbar(rng, variant=None):
     d.crank_driver(driver)
     if rng.random() < 0.2 and "slider" in variant:
         d.slider_driver("F")
+    return d.finish()
+
+
+def gen_stephenson_ternaries(rng, variant):
+    """Stephenson III drawn the other way: the ternary T1 (O1 P Q) about O1 on the frame, the
+    ternary T2 (S U R) hung on the binaries P-S, Q-U and O4-R. Driven by T1 the rest is a triad (no
+    dyad: an auxiliary point); driven by O4-R, two ternaries joined by two binaries (a class IV
+    group: the trial solution)."""
+    d = Draft(rng, f"six-bar {variant}")
+    O1, O4 = d.point("O1", (0.0, 0.0)), d.point("O4", (rng.uniform(1.5, 2.5), rng.uniform(-0.3, 0.3)))
+    P = d.point("P", pol(O1, rng.uniform(0.3, 0.6), rng.uniform(20, 80)))
+    Q = d.point("Q", pol(O1, rng.uniform(0.3, 0.6), ang(O1, P) + rng.uniform(40, 100)))
+    R = d.point("R", pol(O4, rng.uniform(0.5, 1.0), rng.uniform(60, 120)))
+    S = d.point("S", pol(P, rng.uniform(0.6, 1.0), rng.uniform(40, 80)))
+    U = d.point("U", pol(Q, rng.uniform(0.5, 1.0), rng.uniform(60, 120)))
+    need(min(transmission(P, S, R), transmission(Q, U, R), transmission(O4, R, S)) >= MIN_SINE)
+    d.link(0, "O1", "O4", frame=True)
+    d.link(1, "O1", "P", "Q")
+    d.link(2, "P", "S")
+    d.link(3, "Q", "U")
+    d.link(4, "O4", "R")
+    d.link(5, "S", "U", "R")
+    d.crank_driver(4 if variant.endswith("class IV") else 1)
     return d.finish()
 
 

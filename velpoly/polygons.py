@@ -951,7 +951,7 @@ class _Run:
         lk, q, w = closure
         tip, parts = self.chain(line.base, line.terms)
         e = self._turn(_z(line.direction))
-        known = [abs(v) for v in self.img.values()] + [abs(tip), self._level_scale()]
+        known = [abs(v) for v in self.img.values()] + [abs(tip), self._const(self._level_scale())]
         tau1 = np.maximum(np.max(known, axis=0), 1e-300)
         start, record = (dict(self.img), dict(self.rate)), self.record
         self.record = False
