@@ -426,6 +426,7 @@ def _frame_pivot(rng, d: Draft, name, near):
 
 SIXBARS = ("watt I", "watt II", "stephenson I", "stephenson III", "stephenson III by its binary",
            "stephenson III ternary-driven triad", "stephenson III ternary class IV",
+           "floating guide crank", "floating guide slider", "floating guide lists the point slider",
            "slider on frame", "slider on coupler point", "quick-return crank", "quick-return slider",
            "quick-return ram")
 
@@ -447,6 +448,8 @@ def gen_sixbar(rng, variant=None):
         return gen_quick_return(rng, variant)
     if variant.startswith("stephenson III ternary"):
         return gen_stephenson_ternaries(rng, variant)
+    if variant.startswith("floating guide"):
+        return gen_floating_guide(rng, variant)
     d = Draft(rng, f"six-bar {variant}")
     cls = _any(rng, ("crank-rocker", "double-crank", "double-rocker", "triple-rocker"))
     fourbar_pose(rng, cls, d, couplers=False)
@@ -493,6 +496,32 @@ def gen_stephenson_ternaries(rng, variant):
     d.link(4, "O4", "R")
     d.link(5, "S", "U", "R")
     d.crank_driver(4 if variant.endswith("class IV") else 1)
+    return d.finish()
+
+
+def gen_floating_guide(rng, variant):
+    """A block on a guide that no pivot holds: crank 2 (O2 A), block 3 at A sliding on the guide 4
+    (B C), which hangs on the rockers 5 (O5 B) and 6 (O6 C). Driven by the crank or by the block
+    along the guide (neither side of the driven slip then has a known image: an instant centre, an
+    auxiliary point or a trial solution)."""
+    d = Draft(rng, f"six-bar {variant}")
+    O2 = d.point("O2", (0.0, 0.0))
+    A = d.point("A", pol(O2, rng.uniform(0.6, 1.0), rng.uniform(-180, 180)))
+    B = d.point("B", pol(A, rng.uniform(1.2, 2.0), rng.uniform(-30, 30)))
+    C = d.point("C", pol(A, rng.uniform(1.0, 1.8), ang(A, B) + rng.uniform(40, 80)))
+    d.point("O5", pol(B, rng.uniform(0.8, 1.5), rng.uniform(-150, -30)))
+    d.point("O6", pol(C, rng.uniform(0.8, 1.5), rng.uniform(30, 150)))
+    d.link(1, "O2", "O5", "O6", frame=True)
+    d.link(2, "O2", "A")
+    d.link(3, "A")
+    d.link(4, "B", "C", *(["A"] if "lists" in variant else []))
+    d.link(5, "O5", "B")
+    d.link(6, "O6", "C")
+    d.sliders.append({"block": "3", "guide": "4", "point": "A", "angle": ang(A, B) + rng.uniform(-25, 25)})
+    if variant.endswith("slider"):
+        d.slider_driver("A")
+    else:
+        d.crank_driver(2)
     return d.finish()
 
 
