@@ -175,6 +175,7 @@ class _Rel:
     direction: np.ndarray
     exact: bool
     centre: str | None = None
+    prefer: str | None = None   # where a relation that holds everywhere (at None) is best applied
 
 
 class _Geo:
@@ -215,7 +216,10 @@ class _Geo:
             else:
                 self.rate_eq.append((s.block, s.guide))
             if drv.is_slider and drv.slider == s.point:
-                self.rels.append(_Rel("drive", i, s.block, s.guide, s.point, d, True, s.centre))
+                # on a straight path block and guide turn together: the driver's slip is the
+                # relative velocity of every pair of coincident points, not only at the block's point
+                at = s.point if s.centre is not None else None
+                self.rels.append(_Rel("drive", i, s.block, s.guide, at, d, True, s.centre, s.point))
             elif s.centre is None:
                 self.rels.append(_Rel("slider", i, s.block, s.guide, None, d, False))
         for i, (s, r) in enumerate(zip(m.slots, mo.slots)):
@@ -436,7 +440,7 @@ class _Planner:
         """
         best = None
         for t in self._targets(every=True):
-            lines = self.lines_on(t)
+            lines = self.lines_for(t)
             if not lines:
                 continue
             saved = self._save()
@@ -497,17 +501,27 @@ class _Planner:
         for i, r in enumerate(self.g.rels):
             if not r.exact:
                 continue
-            pa, pb = (r.a, r.at), (r.b, r.at)
-            for src, dst, sign in ((pb, pa, 1), (pa, pb, -1)):
-                if self.is_known(dst) or not (self.is_known(src) or self.full(src[0])):
-                    continue
-                s = _PStep("driver" if r.source == "drive" else "known", target=self.g.canon(dst), rel=i)
-                self.ensure(src, s)
-                s.ops.append(("equal", dst, src, i, sign))
-                self.mark(dst, s)
-                self.add(s)
-                return True
+            for n in self._rel_points(r):
+                pa, pb = (r.a, n), (r.b, n)
+                for src, dst, sign in ((pb, pa, 1), (pa, pb, -1)):
+                    if self.is_known(dst) or not (self.is_known(src) or self.full(src[0])):
+                        continue
+                    if r.at is None and (self.full(dst[0]) or (n != r.prefer and self.g.grounded(src))):
+                        continue   # only to give a link an image it lacks (no spare points)
+                    s = _PStep("driver" if r.source == "drive" else "known", target=self.g.canon(dst), rel=i)
+                    self.ensure(src, s)
+                    s.ops.append(("equal", dst, src, i, sign))
+                    self.mark(dst, s)
+                    self.add(s)
+                    return True
         return False
+
+    def _rel_points(self, r: _Rel) -> list:
+        """Where a known relative motion is applied: its point, or (a straight slider driver's,
+        which holds at every coincident point) its block's point first, then the known ones."""
+        if r.at is not None:
+            return [r.at]
+        return list(dict.fromkeys([r.prefer] + self.kp[r.a] + self.kp[r.b]))
 
     def lines_on(self, place) -> list[_Line]:
         """Every line through known images that the unknown image of ``place`` lies on."""
@@ -530,6 +544,29 @@ class _Planner:
                 if self.is_known(pp) or self.full(partner):
                     out.append(_Line(pp, (("rel", i, sign, n),), r.direction, ("path", i, sign, n),
                                      _path_reason(g, r), (r.a, r.b)))
+        return out
+
+    def lines_for(self, place) -> list[_Line]:
+        """The lines of :meth:`lines_on` (a link's rigidity, a joint's path) and, for a slider
+        driver whose other side is not located yet, that side's lines carried over, offset by the
+        known slip: a block driven along a turning guide, ``V_A3 = V_O4 + V_A4O4 + V_A3/A4``, lies
+        on the line through o4 + V_A3/A4 perpendicular to O4A (case 2a with a known slip).
+        """
+        g = self.g
+        out = self.lines_on(place)
+        c = g.canon(place)
+        for lk, n in g.group(place):
+            for i, r in enumerate(g.rels):
+                if r.source != "drive" or r.at not in (None, n) or lk not in (r.a, r.b):
+                    continue   # (contacts keep the equivalent linkage's lines, as the books draw them)
+                partner, sign = (r.b, 1) if lk == r.a else (r.a, -1)
+                pp = (partner, n)
+                if g.canon(pp) == c or self.is_known(pp) or self.full(partner):
+                    continue   # known: an equality step, not a line
+                for ln in self.lines_on(pp):
+                    out.append(_Line(ln.base, ln.terms + (("rel", i, sign, n),), ln.direction, ln.unknown,
+                                     f"{ln.reason}, offset by the driver's slip of {n}{r.a} on {n}{r.b}",
+                                     tuple(dict.fromkeys(ln.links + (r.a, r.b)))))
         return out
 
     def _targets(self, every: bool = False):
@@ -559,7 +596,7 @@ class _Planner:
 
     def _intersection(self) -> bool:
         for t in self._targets():
-            lines = self.lines_on(t)
+            lines = self.lines_for(t)
             best = _best_pair(lines)
             if best is None:
                 continue
@@ -587,7 +624,7 @@ class _Planner:
                 continue
             one = []
             for n in g.places(lk):
-                ls = self.lines_on((lk, n))
+                ls = self.lines_for((lk, n))
                 if ls:
                     one.append((n, ls[0]))
             for i in range(len(one)):
@@ -914,7 +951,7 @@ class _Run:
         lk, q, w = closure
         tip, parts = self.chain(line.base, line.terms)
         e = self._turn(_z(line.direction))
-        known = [abs(v) for v in self.img.values()] + [abs(tip)]
+        known = [abs(v) for v in self.img.values()] + [abs(tip), self._const(self._level_scale())]
         tau1 = np.maximum(np.max(known, axis=0), 1e-300)
         start, record = (dict(self.img), dict(self.rate)), self.record
         self.record = False
@@ -954,6 +991,21 @@ class _Run:
             self.vectors.append(Vector(_xy(tip), _xy(found), "relative", self.unknown_label(line)))
         for o in sub:
             self.do(o)
+
+    def _level_scale(self) -> float:
+        """A speed (acceleration) of the mechanism's size from the driver and the known terms alone,
+        so that a trial value is not lost in rounding when every image located so far is zero
+        (a slider driver or a prescribed slip is the only motion known)."""
+        g, m = self.g, self.g.m
+        drv = m.driver
+        slips = [abs(c.slip) for c in m.contacts if c.slip]
+        if self.level == "velocity":
+            return max([abs(drv.speed) if drv.is_slider else abs(drv.omega) * g.size] + slips)
+        vel = self.vel
+        w = max([float(np.max(np.abs(x))) for x in vel.rate.values()] + [0.0])
+        v = max([float(np.max(np.abs(x))) for x in vel.img.values()] + slips + [0.0])
+        acc = abs(drv.accel) if drv.is_slider else abs(drv.alpha) * g.size
+        return max(acc, w * w * g.size, w * v)
 
     def unknown_label(self, ln: _Line) -> str:
         """How the line's unknown component reads: V_BA, A^t_BA, V_B3/B4, ..."""

@@ -1,0 +1,277 @@
+"""The mechanism zoo (tests/zoo.py): at least 300 generated mechanisms of every kind the contract
+accepts, each solved at its drawn pose and at other driver angles, and checked:
+
+* it loads (valid, mobility 1) and solves at its drawn pose, which the generator made regular;
+  at another driver angle it solves, or the analytic solve says why not (a toggle on the way:
+  AssemblyError; a singular pose: SingularPoseError from the analytic Jacobian), never the
+  graphical construction failing on a regular pose;
+* the graphical construction equals the analytic solve to 1e-9 (relative to the largest value),
+  both polygons; the JSON of ``velpoly solve --json`` builds;
+* every Kennedy triple is collinear and every found pole lies on both of its construction lines
+  (``check_poles`` of test_poles);
+* the analytic values equal finite differences of the pose (a sample, and every slider driver);
+* a few of them draw their full and poles sheets.
+
+``check_solution(sol)`` is the hook every solved pose goes through: add further checks there.
+"""
+from __future__ import annotations
+
+import collections
+import json
+import math
+
+import numpy as np
+import pytest
+
+import velpoly
+from velpoly.errors import AssemblyError, SingularPoseError
+from velpoly.kinematics import WARN
+from velpoly.polygons import acceleration_polygon, hand_drafting, velocity_polygon
+from velpoly.solution import driver_reference_angle
+
+import zoo
+from test_poles import check_poles
+
+try:   # the arrow-sense checks (tests/checks_arrows.py), where that module is in the tree
+    from checks_arrows import assert_arrows_true
+except ImportError:
+    assert_arrows_true = None
+
+SEED = 20261125
+COUNT = 6 * len(zoo.variants())   # 6 of each (kind, variant) pair: 324
+TOL = 1e-9
+SPECIMENS = zoo.zoo(SEED, COUNT)
+BY_KIND = collections.defaultdict(list)
+for _s in SPECIMENS:
+    BY_KIND[_s.kind.split(" ")[0]].append(_s)
+
+
+def check_solution(sol):
+    """Every check one solved pose must pass (the hook: add checks here)."""
+    v = velocity_polygon(sol)
+    assert v.max_error <= TOL, f"velocity polygon off by {v.max_error:.3g}"
+    if sol.has_accelerations:
+        a = acceleration_polygon(sol)
+        assert a.max_error <= TOL, f"acceleration polygon off by {a.max_error:.3g}"
+    check_poles(sol)
+    d = sol.to_dict()
+    assert d["graphical"]["max_error"]["velocity"] <= TOL
+    if assert_arrows_true is not None:
+        assert_arrows_true(sol)
+
+
+def fd_check(sol, rel=1e-6):
+    """The analytic velocities, accelerations, omegas and alphas against finite differences of the
+    pose along the driver (a crank's angle or a slider's displacement u, five poses, fourth order):
+    V = dp/du u', A = d2p/du2 u'^2 + dp/du u''."""
+    m = sol.mechanism
+    drv = m.driver
+    steps = np.array([-2.0, -1.0, 0.0, 1.0, 2.0])
+    if drv.is_slider:   # a step small beside the shortest link (a crank may be 1/20 of the size)
+        xy = np.array(list(m.points.values()), float)
+        gaps = np.hypot(*(xy[:, None, :] - xy[None, :, :]).transpose(2, 0, 1))
+        h = 2e-4 * gaps[np.triu_indices(len(xy), 1)].min()
+        w = velpoly.sweep(m, steps * h)
+        rate, accel = drv.speed, drv.accel
+    else:
+        h = 2e-4   # rad
+        w = velpoly.sweep(m, sol.driver_angle + steps * math.degrees(h))
+        rate, accel = drv.omega, drv.alpha
+    assert len(w.angles) == 5, w.stopped
+    tracks = {}   # key -> (analytic velocity, acceleration, the five poses' positions)
+    for key in sol.velocity:
+        p, _, lk = key.partition("@")
+        if lk and (any(s.point == p and s.guide == lk for s in m.sliders)
+                   or any(s.pin == p and s.slot == lk for s in m.slots) or any(c.point == p for c in m.contacts)):
+            continue   # the guide's (slot's, profile's) point now under the block: not one material point
+        tracks[key] = (sol.velocity[key], sol.acceleration[key], np.asarray(w.position[key], float))
+    for lk in m.link_names:
+        theta = np.radians(np.unwrap(np.asarray(w.angle[lk], float), period=360.0))
+        tracks["theta_" + lk] = (sol.omega[lk], sol.alpha[lk], theta)
+    vmax = max(float(np.max(np.abs(v))) for v, _, _ in tracks.values())
+    amax = max(float(np.max(np.abs(a))) for _, a, _ in tracks.values()) if sol.has_accelerations else 0.0
+    amax = max(amax, vmax * vmax / m.size)
+    for key, (v, a, x) in tracks.items():
+        d1 = (-x[4] + 8 * x[3] - 8 * x[1] + x[0]) / (12 * h)
+        d2 = (-x[4] + 16 * x[3] - 30 * x[2] + 16 * x[1] - x[0]) / (12 * h * h)
+        assert np.max(np.abs(v - d1 * rate)) <= rel * vmax, (key, v, d1 * rate)
+        if sol.has_accelerations:   # the second difference loses ~eps / h^2 of the size
+            assert np.max(np.abs(a - (d2 * rate ** 2 + d1 * accel))) <= 100 * rel * amax, (key, a, d2, d1)
+
+
+def _solve_all(specimens):
+    """Solve every specimen at each of its driver offsets; check each solved pose.
+
+    Returns (failures, counts). A failure is any exception other than the analytic solve's own
+    AssemblyError (a toggle on the way to the angle) or SingularPoseError (the Jacobian singular),
+    and those too at a specimen's drawn pose, which the generator made regular.
+    """
+    failures, counts = [], collections.Counter()
+    for k, sp in enumerate(specimens):
+        m = sp.drawn.mechanism   # the generator loaded and solved it at its drawn pose
+        ref = driver_reference_angle(m)
+        for off in sp.offsets:
+            try:
+                sol = sp.drawn if off is None else velpoly.solve(m, ref + off)
+            except (AssemblyError, SingularPoseError) as e:
+                counts["not reached"] += 1
+                if off is None:
+                    failures.append((sp.kind, "drawn pose", repr(e)))
+                continue
+            except Exception as e:   # noqa: BLE001
+                failures.append((sp.kind, off, repr(e)[:400]))
+                continue
+            try:
+                check_solution(sol)
+                if off is None and (m.driver.is_slider or k % 6 == 0) and sol.condition < WARN and \
+                        all(c.centres is not None for c in m.contacts):   # (a normal alone: no other pose)
+                    fd_check(sol)
+                    counts["finite differences"] += 1
+                if off is None and k % 8 == 0:   # the replay of the plan with drafting errors runs too
+                    h = hand_drafting(sol, samples=16)
+                    assert all(np.isfinite(v).all() for v in h["velocity"]["speed"].values())
+            except Exception as e:   # noqa: BLE001 -- collect them all, report together
+                failures.append((sp.kind, off, f"condition {sol.condition:.3g}", repr(e)[:400]))
+                continue
+            counts["solved"] += 1
+    return failures, counts
+
+
+def test_zoo_is_big_and_covers_every_kind():
+    assert len(SPECIMENS) >= 300
+    kinds = {sp.kind for sp in SPECIMENS}
+    for kind, (_, variants) in zoo.KINDS.items():
+        for v in variants:
+            assert any(k.endswith(v) for k in kinds), (kind, v)
+    assert any(sp.mech["driver"].get("slider") for sp in BY_KIND["inverted"])
+    # the same seed, the same zoo
+    again = zoo.zoo(SEED, 20)
+    assert [s.mech for s in again] == [s.mech for s in SPECIMENS[:20]]
+
+
+@pytest.mark.parametrize("kind", sorted(BY_KIND))
+def test_zoo(kind):
+    failures, counts = _solve_all(BY_KIND[kind])
+    assert not failures, f"{len(failures)} failures:\n" + "\n".join(map(str, failures[:20]))
+    # most poses solve (so the checks ran): every drawn pose, and most of the others
+    offsets = sum(len(sp.offsets) for sp in BY_KIND[kind])
+    assert counts["solved"] >= len(BY_KIND[kind]) and counts["solved"] >= 0.8 * offsets, counts
+
+
+def test_inverted_slider_driven_uses_case_2a():
+    """A slider driver on a turning guide: the block's image is found by the ordinary dyad step,
+    its two lines through known images (the other link's, and the guide's offset by the slip)."""
+    n = 0
+    for sp in BY_KIND["inverted"]:
+        if not sp.mech["driver"].get("slider"):
+            continue
+        sol = velpoly.solve(velpoly.load(sp.mech))
+        for poly in (velocity_polygon(sol), acceleration_polygon(sol)):
+            kinds = [st.kind for st in poly.steps]
+            assert "auxiliary" not in kinds and "instant-centre" not in kinds, (sp.kind, kinds)
+            assert any("offset by the driver's slip" in ln.reason
+                       for st in poly.steps if st.kind == "intersection" for ln in st.lines) \
+                or kinds[:2] == ["known", "driver"], (sp.kind, kinds)
+        n += 1
+    assert n >= 20
+
+
+# rendering is slow: a few specimens only, where the drawing has the most to draw (blocks on turning
+# guides, slots, contacts, a six-bar driven by its slider, an eight-bar), both sheets, as SVG
+def test_slider_driver_on_a_turning_guide_lines_are_the_books():
+    """At the data level: the block's point X (pinned to crank 2 about O2) is found where the line
+    through o2 perpendicular to O2X meets the line through o4 + V_X3/X4 (the driver's slip, speed
+    along the path) perpendicular to O4X; in the acceleration polygon the offset line starts at
+    o4' + A^n_X4O4 + A_X3/X4 + 2 omega_4 x V_X3/X4, every term from the analytic solve."""
+    n = 0
+    for sp in BY_KIND["inverted"]:
+        drv = sp.mech["driver"]
+        if not drv.get("slider") or "swinging" in sp.kind or "curved" in sp.kind:
+            continue
+        sol = sp.drawn
+        m = sol.mechanism
+        o4 = sol.position["O4"]
+        d = np.array([math.cos(math.radians(sol.motion.sliders[0]["direction"][0])),
+                      math.sin(math.radians(sol.motion.sliders[0]["direction"][0]))])
+        w4 = sol.omega["4"]
+        vrel = m.driver.speed * d
+        scale = max(np.abs(v).max() for v in sol.velocity.values())
+        ascale = max(np.abs(v).max() for v in sol.acceleration.values())
+        for poly in (velocity_polygon(sol), acceleration_polygon(sol)):
+            st = next(st for st in poly.steps if st.kind == "intersection")
+            x_pos = sol.position["A@2" if "A@2" in sol.position else "A"]
+            r = x_pos - o4
+            off = [ln for ln in st.lines if "offset by the driver's slip" in ln.reason]
+            crank = [ln for ln in st.lines if ln.reason == "perpendicular to O2A"]
+            assert len(off) == 1 and len(crank) == 1, [ln.reason for ln in st.lines]
+            if poly.kind == "velocity":
+                base, tol = vrel, 1e-9 * scale
+                x_img = sol.velocity["A@2" if "A@2" in sol.velocity else "A"]
+            else:
+                base = -w4 ** 2 * r + m.driver.accel * d + 2 * w4 * np.array([-vrel[1], vrel[0]])
+                tol = 1e-9 * ascale
+                x_img = sol.acceleration["A@2" if "A@2" in sol.acceleration else "A"]
+            assert np.abs(off[0].base - base).max() <= tol
+            assert abs(float(np.dot(off[0].direction, r))) <= 1e-9 * np.linalg.norm(r)
+            a_pos = x_pos - sol.position["O2"]
+            assert abs(float(np.dot(crank[0].direction, a_pos))) <= 1e-9 * np.linalg.norm(a_pos)
+            for ln in st.lines:   # the image found lies on both lines
+                e = x_img - ln.base
+                assert abs(e[0] * ln.direction[1] - e[1] * ln.direction[0]) <= tol
+        n += 1
+    assert n >= 15
+
+
+def test_slider_driver_files_solve_from_the_command_line(tmp_path, capsys):
+    """The hydraulic boom (cylinder 4 about O4 drives the block 3 pinned to the boom 2 at A): exit 0,
+    as TOML through the CLI, the path through the pivot and offset from it; --angle stays exit 2."""
+    from velpoly.cli import main
+    for offset in (0.0, 25.0):
+        path = tmp_path / "boom.toml"
+        o4, a = (2.0, 0.0), (1.5 * math.cos(math.radians(60)), 1.5 * math.sin(math.radians(60)))
+        angle = math.degrees(math.atan2(a[1] - o4[1], a[0] - o4[0])) + offset
+        path.write_text(f"""title = "hydraulic boom"
+[points]
+O2 = [0, 0]
+O4 = [2, 0]
+A = {{ from = "O2", length = 1.5, angle = 60 }}
+C = {{ from = "O4", length = 4, along = ["O4", "A"] }}
+[links]
+1 = {{ points = ["O2", "O4"], frame = true }}
+2 = {{ points = ["O2", "A"] }}
+3 = {{ points = ["A"] }}
+4 = {{ points = ["O4", "C", "A"] }}
+[[sliders]]
+block = "3"
+guide = "4"
+point = "A"
+angle = {angle!r}
+[driver]
+slider = "A"
+speed = 0.5
+accel = 0.1
+""")
+        assert main(["solve", str(path), "--json"]) == 0
+        out = json.loads(capsys.readouterr().out)
+        assert out["graphical"]["max_error"]["velocity"] <= TOL
+        assert out["graphical"]["max_error"]["acceleration"] <= TOL
+        assert abs(out["sliders"][0]["slip_velocity"] - 0.5) <= 1e-12
+        assert main(["solve", str(path), "--angle", "30"]) == 2
+        assert "a slider driver has no angle" in capsys.readouterr().err
+
+
+RENDER = ("inverted slider-crank offset both slider", "pin in a slot circular six-bar", "contact cam roller follower",
+          "six-bar quick-return slider")
+
+
+@pytest.mark.parametrize("kind", RENDER)
+def test_zoo_sheets_draw(kind, tmp_path):
+    """The full and poles sheets of a few specimens draw (Agg/SVG, no error, a real drawing)."""
+    from velpoly.render import draw_to_file
+    sp = next(s for s in SPECIMENS if s.kind.endswith(kind))
+    sol = velpoly.solve(velpoly.load(sp.mech))
+    for sheet in ("full", "poles"):
+        out = draw_to_file(sol, tmp_path / f"{sheet}.svg", sheet=sheet)
+        assert out and all(p.stat().st_size > 10_000 for p in out)
+        text = out[0].read_text()
+        assert text.count("<path") > 20
