@@ -536,7 +536,8 @@ class _Drawing:
             if frame in links:
                 ground_dir[point] = self.ground_pivot(point, sorted(links - {frame}))
         self.draw_hatches()
-        self.art.bodies = dict(geoms)
+        self.art.bodies = dict(geoms)                # link -> its drawn body (shapely), for checks
+        self.art.slot_cuts = dict(self.slot_cuts)    # slot index -> (link, centre line, cut)
         for z, lk in enumerate(order):
             if lk in geoms:
                 self.patch(geoms[lk], "links", 2 + 0.01 * z, link_fill(m, self.opts, st, lk), gid=f"link-{lk}")
@@ -759,8 +760,12 @@ def draw_mechanism(sol, ax=None, *, style="textbook", options=None, scale: float
     -------
     Artists
         Roles ``links``, ``ground``, ``guides``, ``sliders``, ``pins``,
-        ``points``, ``labels``, ``link_numbers``, ``driver``, ``scale_bar``;
-        ``.labels`` maps each point key to its label.
+        ``points``, ``labels``, ``link_numbers``, ``driver``, ``scale_bar``,
+        ``equivalent`` (a sliding contact's dashed equivalent linkage);
+        ``.labels`` maps each point key to its label, ``.bodies`` each moving
+        link to its drawn body (shapely), ``.slot_cuts`` each moving link's slot
+        (by index) to ``(link, centre line, cut)``. Every ground hatch (a
+        LineCollection) has ``_velpoly_exempt``: the links it may touch.
     """
     ax = get_ax(ax)
     st = get_style(style)
