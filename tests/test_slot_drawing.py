@@ -25,7 +25,7 @@ from velpoly.render.displacement import draw_mechanism
 import mechanisms as M
 
 GALLERY = sorted(glob.glob(os.path.join(os.path.dirname(__file__), "..", "gallery", "*.toml")))
-CASES = [(seed, a, drv, circ) for seed in range(4) for a in (20.0, 110.0, 200.0, 290.0)
+CASES = [(seed, a, drv, circ) for seed, a in enumerate((20.0, 110.0, 200.0, 290.0, 65.0, 245.0))
          for drv, circ in (("pin", False), ("slot", False), ("pin", True), ("slot", True))]
 
 
