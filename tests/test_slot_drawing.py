@@ -149,3 +149,28 @@ def test_gallery_ground_crosses_no_moving_link(path):
     assert _check_ground(art, tol) >= 1
     if sol.mechanism.slots:
         _check_slot(sol, art, tol)
+
+
+@pytest.mark.parametrize("seed,angle,follower", [(0, 20.0, "curved"), (1, 200.0, "curved"), (2, 110.0, "flat"),
+                                                 (3, 290.0, "flat"), (4, 65.0, "translating")])
+def test_sliding_cam_ground_and_equivalent_linkage(seed, angle, follower):
+    """A sliding cam: ground clear of the moving links; its equivalent linkage drawn dashed, joining the
+    two centres of curvature (or a block at the centre facing a flat), and named in the caption."""
+    from velpoly.render.displacement import equivalent_linkage_note
+    sol = velpoly.solve(velpoly.load(M.sliding_cam(seed, angle, follower)))
+    art, tol = _drawn(sol)
+    _check_ground(art, tol)
+    c = sol.mechanism.contacts[0]
+    lines = [ln for ln in art.get("equivalent", []) if hasattr(ln, "get_xydata")]
+    assert lines and all(ln.get_linestyle() == "--" for ln in lines)
+    centres = [np.asarray(sol.place(lk, n), float) for lk, n in zip(c.links, c.centres) if n is not None]
+    xy = np.asarray(lines[0].get_xydata())
+    if len(centres) == 2:   # the coupler: from one centre to the other
+        assert np.allclose(sorted(map(tuple, xy)), sorted(map(tuple, centres)), atol=tol)
+    else:                   # the block's path: through the centre, along the common tangent
+        t = np.array([-math.sin(math.radians(float(sol.motion.contacts[0]["normal"][0]))),
+                      math.cos(math.radians(float(sol.motion.contacts[0]["normal"][0])))])
+        assert LineString([tuple(p) for p in xy]).distance(Point(*centres[0])) <= tol
+        e = xy[-1] - xy[0]
+        assert abs(float(e[0] * t[1] - e[1] * t[0])) <= tol * np.hypot(*e)
+    assert equivalent_linkage_note(sol.mechanism) == "dashed: equivalent linkage"
