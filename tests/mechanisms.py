@@ -232,3 +232,139 @@ angle = 95.7
 link = 2
 omega = "30 rad/s"
 """
+
+
+# -- seeded generators of joints whose polygons have Coriolis, slip and contact terms ----------------
+# Each takes a seed (the dimensions, speeds and variant) and the angle of the pose's free crank in
+# degrees (the pose: solving other driver angles of these joints walks the cycle, which is slow); a
+# straight path is given by its angle, through the guide's pivot or offset from it.
+def _rng(seed):
+    import random
+    return random.Random(seed)
+
+
+def _driver(rng, link):
+    return {"link": link, "omega": rng.choice((-1, 1)) * rng.uniform(2.0, 20.0), "alpha": rng.uniform(-50.0, 50.0)}
+
+
+def _polar(p, r, deg):
+    return [p[0] + r * math.cos(math.radians(deg)), p[1] + r * math.sin(math.radians(deg))]
+
+
+def _direction(p, q):
+    return math.degrees(math.atan2(q[1] - p[1], q[0] - p[0]))
+
+
+def block_on_driven_crank(seed, angle=60.0):
+    """Crank O2A drives block 3 (pinned at A) along rocker 4 (pivot O4): the guide's point A4 is found
+    from the block's image (the Coriolis and slip terms subtracted)."""
+    rng = _rng(seed)
+    r, d = rng.uniform(2.0, 4.0), rng.uniform(5.0, 9.0)
+    m = inverted_slider_crank(r=r, d=d, theta=angle)
+    m["driver"] = _driver(rng, "2")
+    through = _direction([d, 0.0], _polar([0.0, 0.0], r, angle))
+    m["sliders"][0]["angle"] = through if rng.random() < 0.5 else through + rng.uniform(-40, 40)
+    m["title"] = f"block on a rocking guide {seed}"
+    return m
+
+
+def block_on_driving_guide(seed, angle=60.0):
+    """A driven slotted arm 2 (pivot O2) carries block 3, pinned at B to rocker 4 (pivot O4): the block's
+    point B is found from the guide's point under it (the terms added; Whitworth-like)."""
+    rng = _rng(seed)
+    d, c = rng.uniform(3.0, 6.0), rng.uniform(2.0, 4.5)
+    b = _polar([d, 0.0], c, angle)
+    through = _direction([0.0, 0.0], b)
+    return {
+        "title": f"block on a driven guide {seed}",
+        "points": {"O2": [0.0, 0.0], "O4": [d, 0.0], "B": b, "G": _polar([0.0, 0.0], d + c + 2.0, through + 5.0)},
+        "links": {"1": {"points": ["O2", "O4"], "frame": True}, "2": {"points": ["O2", "G"]},
+                  "3": {"points": ["B"]}, "4": {"points": ["O4", "B"]}},
+        "sliders": [{"block": "3", "guide": "2", "point": "B",
+                     "angle": through if rng.random() < 0.5 else through + rng.uniform(-40, 40)}],
+        "driver": _driver(rng, "2"),
+    }
+
+
+def pin_in_slot(seed, angle=60.0, driver="pin", circular=False):
+    """Crank 2 (O1A) with its pin A in a slot of lever 3 (pivot C), straight or circular about K.
+
+    ``driver = "pin"``: the crank drives (the slot's point A3 is found from the pin's image);
+    ``"slot"``: the lever drives the crank (the pin's image from the slot's point under it).
+    """
+    rng = _rng(seed)
+    c = rng.uniform(4.0, 8.0)
+    a = rng.uniform(1.5, 0.7 * c)
+    cc = [rng.uniform(-1, 1), -c]
+    pa = _polar([0.0, 0.0], a, angle)
+    ca = _direction(cc, pa)
+    pts = {"O1": [0.0, 0.0], "C": cc, "A": pa, "D": _polar(cc, c + a + 2.0, ca + rng.uniform(-20, 20))}
+    slot = {"pin": "A", "link": "2", "slot": "3"}
+    lever = ["C", "D"]
+    if circular:
+        pts["K"] = _polar(pa, rng.uniform(2.0, 8.0), rng.uniform(0, 360))
+        slot["centre"] = "K"
+        lever.append("K")
+    else:
+        slot["angle"] = ca if rng.random() < 0.5 else ca + rng.uniform(-40, 40)
+    return {
+        "title": f"pin in a {'circular' if circular else 'straight'} slot, {driver} driven {seed}",
+        "points": pts,
+        "links": {"1": {"points": ["O1", "C"], "frame": True}, "2": {"points": ["O1", "A"]},
+                  "3": {"points": lever}},
+        "slots": [slot],
+        "driver": _driver(rng, "2" if driver == "pin" else "3"),
+    }
+
+
+def sliding_cam(seed, angle=60.0, follower="curved"):
+    """Disc cam 2 (centre K at ``angle``, pivot O2) sliding on a follower 3: ``follower`` "curved" (an
+    arm pivoted at O3 with a face of centre C3), "flat" (an arm with a flat face), or "translating" (a
+    block on a vertical frame guide with a curved face of centre R)."""
+    rng = _rng(seed)
+    e, rk = rng.uniform(0.5, 2.0), rng.uniform(3.0, 5.0)
+    k = _polar([0.0, 0.0], e, angle)
+    pts = {"O2": [0.0, 0.0], "K": k}
+    links = {"1": {"points": ["O2"], "frame": True}, "2": {"points": ["O2", "K"]}}
+    m = {"title": f"sliding cam, {follower} follower {seed}", "points": pts, "links": links,
+         "driver": _driver(rng, "2")}
+    if follower == "translating":
+        r3 = rng.uniform(1.0, 3.0)
+        x = rng.uniform(-0.4, 0.4) * (rk + r3)
+        pts["R"] = {"circle": ["K", rk + r3], "line": {"through": [x, 0.0], "angle": 90}, "near": [x, 20.0]}
+        pts["P"] = {"from": "K", "length": rk, "along": ["K", "R"]}
+        pts["F"] = {"from": "R", "length": 3.0, "angle": 90}
+        links["3"] = {"points": ["R", "F"]}
+        m["sliders"] = [{"block": "3", "guide": "1", "point": "R", "angle": 90}]
+        centres = ["K", "R"]
+    elif follower == "curved":
+        r3, l3 = rng.uniform(1.0, 3.0), rng.uniform(5.0, 8.0)
+        pts["O3"] = [rng.uniform(-2, 2), rk + r3 + 2.0]
+        pts["C3"] = {"circles": [["K", rk + r3], ["O3", l3]], "side": rng.choice(("left", "right"))}
+        pts["P"] = {"from": "K", "length": rk, "along": ["K", "C3"]}
+        links["1"]["points"].append("O3")
+        links["3"] = {"points": ["O3", "C3"]}
+        centres = ["K", "C3"]
+    else:
+        ang = rng.uniform(45, 135)
+        pts["P"] = {"from": "K", "length": rk, "angle": ang}
+        pts["E"] = {"from": "P", "length": rng.uniform(2.0, 5.0), "angle": ang + 90}
+        pts["O3"] = {"from": "E", "length": rng.uniform(2.0, 5.0), "angle": ang + rng.uniform(20, 70)}
+        links["1"]["points"].append("O3")
+        links["3"] = {"points": ["O3", "E"]}
+        centres = ["K", "flat"]
+    m["contacts"] = [{"links": ["2", "3"], "point": "P", "kind": "sliding", "centres": centres}]
+    return m
+
+
+ARROW_GENERATORS = {
+    "block on a driven crank": block_on_driven_crank,
+    "block on a driving guide": block_on_driving_guide,
+    "pin in a straight slot, pin driven": lambda s, a: pin_in_slot(s, a, "pin"),
+    "pin in a straight slot, slot driven": lambda s, a: pin_in_slot(s, a, "slot"),
+    "pin in a circular slot, pin driven": lambda s, a: pin_in_slot(s, a, "pin", circular=True),
+    "pin in a circular slot, slot driven": lambda s, a: pin_in_slot(s, a, "slot", circular=True),
+    "sliding cam, curved follower": lambda s, a: sliding_cam(s, a, "curved"),
+    "sliding cam, flat follower": lambda s, a: sliding_cam(s, a, "flat"),
+    "sliding cam, translating follower": lambda s, a: sliding_cam(s, a, "translating"),
+}

@@ -87,15 +87,31 @@ class ConstructionLine:
 
 @dataclass(frozen=True)
 class Vector:
-    """An arrow of the polygon, from ``tail`` to ``head``.
+    """An arrow of the polygon, from ``tail`` to ``head``, in its own true sense.
 
     ``kind``: 'absolute' | 'relative' | 'normal' | 'tangential' | 'coriolis' | 'slip'.
+    ``head - tail`` is exactly the quantity ``label`` names (never its negative: where a
+    construction starts from the other side of an equation, the arrow is drawn ending at
+    the known image, so that the arrows still run tip to tail). ``of`` says which quantity,
+    in point keys (``"B"``, ``"P@3"``) or auxiliary keys (``"A@4"``, ``"S3@3"``), for checks:
+
+    * ``("point", K)``: V_K (A_K), drawn from the origin;
+    * ``("difference", W, Q)``: V_W - V_Q (A_W - A_Q): a rigid link's V_WQ, a rolling
+      contact's A_P3/P4;
+    * ``("normal", link, W, Q)``: -omega_link^2 R_WQ; ``("tangential", link, W, Q)``: alpha_link x R_WQ;
+    * ``("coriolis", guide, A, B)``: 2 omega_guide x (V_A - V_B);
+    * ``("slip", A, B, guide, K)``: the motion of A relative to the guide's point B under it:
+      V_A - V_B; at acceleration level A_A - A_B - 2 omega_guide x V_AB, less the path's own
+      normal term V_AB^2 / rho towards K on a circular path (K None: straight);
+    * ``("path-normal", A, B, K)``: |V_A - V_B|^2 / |R_AK| towards K (a circular relative path);
+    * ``("sum", ((sign, of), ...))``: a sum of the above (an auxiliary point's unknown).
     """
 
     tail: np.ndarray
     head: np.ndarray
     kind: str
     label: str
+    of: tuple = ()
 
 
 @dataclass(frozen=True)
@@ -283,6 +299,10 @@ class _Geo:
     def aux_key(self, place) -> str:
         lk, n = place
         return f"{n}@{lk}"
+
+    def qkey(self, place) -> str:
+        """The key a vector's ``of`` names a place by: its point key, else its auxiliary key."""
+        return self.point_key(place) or self.aux_key(place)
 
     def dist(self, n1, n2) -> float:
         return abs(self.zpos[n1] - self.zpos[n2])
@@ -539,6 +559,8 @@ class _Planner:
             for i, r in enumerate(g.rels):
                 if r.exact or r.at not in (None, n) or lk not in (r.a, r.b):
                     continue
+                if r.source == "contact" and g.m.contacts[r.index].centres is not None:
+                    continue   # a sliding contact with centres: the equivalent linkage's lines ('centre')
                 partner, sign = (r.b, 1) if lk == r.a else (r.a, -1)
                 pp = (partner, n)
                 if self.is_known(pp) or self.full(partner):
@@ -771,13 +793,17 @@ class _Run:
         """The label of a line's base image: the origin for points that do not move."""
         return self.origin if self.g.grounded(place) else self.label(place)
 
-    def _vec(self, tail, head, kind, label):
+    def _vec(self, tail, head, kind, label, of=()):
         if self.record:
-            self.vectors.append(Vector(_xy(tail), _xy(head), kind, label))
+            self.vectors.append(Vector(_xy(tail), _xy(head), kind, label, of))
 
     # known terms -----------------------------------------------------------------------------------
     def terms(self, terms) -> list:
-        """The known vectors of a chain: [(kind, label, vector)] (zero ones left out)."""
+        """The known vectors of a chain: [(kind, label, vector, of, sign)].
+
+        ``vector`` is the quantity ``label`` names, in its true sense; the chain adds it
+        ``sign`` times (-1 where the line starts from the other side of the joint's equation).
+        """
         out = []
         for t in terms:
             if t[0] == "normal":
@@ -786,38 +812,66 @@ class _Run:
                 _, lk, q, w = t
                 om = self.vel.rate[lk]
                 r = self.g.zpos[w] - self.g.zpos[q]
-                out.append(("normal", f"A^n_{self.g.name((lk, w))}{self.g.name((lk, q))}", -om ** 2 * r))
+                out.append(("normal", f"A^n_{self.g.name((lk, w))}{self.g.name((lk, q))}", -om ** 2 * r,
+                            ("normal", lk, self.g.qkey((lk, w)), self.g.qkey((lk, q))), 1))
             else:
                 _, i, sign, w = t
-                out += [(k, (lab if sign > 0 else "-" + lab), sign * v) for k, lab, v in self.rel_terms(i, w)]
+                out += [(k, lab, v, of, sign) for k, lab, v, of in self.rel_terms(i, w)]
         return out
 
+    def term_labels(self, terms) -> list:
+        """The chain's terms as written in its equation: "-2 omega_4 x V_A3/A4" where subtracted."""
+        return [("-" if sg < 0 else "") + lab for _, lab, _, _, sg in self.terms(terms)]
+
+    def rel_keys(self, r: _Rel, w) -> tuple:
+        """The keys of a joint's two places at w (a's, b's) and of its relative path's centre."""
+        g = self.g
+        k = g.qkey((r.b, r.centre)) if r.centre is not None else None
+        return g.qkey((r.a, w)), g.qkey((r.b, w)), k
+
     def rel_terms(self, i, w) -> list:
-        """Known relative motion of a joint, a relative to b, at the place of w."""
+        """Known relative motion of a joint, a relative to b, at the place of w: [(kind, label, vector, of)].
+
+        Blocks, pins in slots and the equivalent linkage's centres of curvature:
+        ``A_a = A_b + 2 omega_b x V_a/b (Coriolis) + V_a/b^2 / rho (towards the centre of a
+        circular path) + A_a/b (slip along the path)``. An exact contact (rolling, or a
+        prescribed slip): ``A_Pa = A_Pb + 2 omega_b x V_Pa/Pb + A_Pa/Pb``, the last the contact
+        points' relative acceleration on b (along the common normal, from the equivalent linkage).
+        """
         g, r = self.g, self.g.rels[i]
         m = g.m
         rel = f"{w}{r.a}/{w}{r.b}"
+        ka, kb, kk = self.rel_keys(r, w)
+        slip_of = ("slip", ka, kb, r.b, kk)
         if self.level == "velocity":
             if r.source == "drive":
-                return [("slip", f"V_{rel}", m.driver.speed * _z(r.direction))]
+                return [("slip", f"V_{rel}", m.driver.speed * _z(r.direction), slip_of)]
             if r.source == "contact" and m.contacts[r.index].slip:
-                return [("slip", f"V_{rel}", m.contacts[r.index].slip * _z(r.direction))]
+                return [("slip", f"V_{rel}", m.contacts[r.index].slip * _z(r.direction), slip_of)]
             return []
         vel = self.vel
         vrel = vel.image((r.a, w)) - vel.image((r.b, w))
         out = []
+        coriolis = 2.0 * vel.rate[r.b] * 1j * vrel
+        cor = ("coriolis", f"2 omega_{r.b} x V_{rel}", coriolis, ("coriolis", r.b, ka, kb))
         if r.source != "contact":
             if r.source == "drive":
-                out.append(("slip", f"A_{rel}", m.driver.accel * _z(r.direction)))
+                out.append(("slip", f"A_{rel}", m.driver.accel * _z(r.direction), slip_of))
             if r.b != g.frame:   # a guide on the frame has no Coriolis term: 2 omega x V_rel
-                out.append(("coriolis", f"2 omega_{r.b} x V_{rel}", 2.0 * vel.rate[r.b] * 1j * vrel))
+                out.append(cor)
             if r.centre is not None:   # a circular relative path: V_rel^2 / rho towards its centre
                 k = g.zpos[r.centre] - g.zpos[w]
                 rho = abs(k)
                 speed2 = vrel.real ** 2 + vrel.imag ** 2
-                out.append(("normal", f"A^n_{rel}", speed2 / rho * (k / rho)))
-        else:  # a contact: the contact points' relative acceleration along the common normal
-            out.append(("normal", f"A^n_{rel}", self._contact_normal(r, w, vrel)))
+                out.append(("normal", f"A^n_{rel}", speed2 / rho * (k / rho), ("path-normal", ka, kb, kk)))
+        elif m.contacts[r.index].kind == "rolling":   # no slip: the contact points' relative acceleration
+            out.append(("relative", f"A_{rel}", self._contact_normal(r, w, vrel), ("difference", ka, kb)))
+        else:   # a prescribed slip: Coriolis, and the rest of the relative acceleration on b
+            rest = self._contact_normal(r, w, vrel)
+            if r.b != g.frame:
+                out.append(cor)
+                rest = rest - coriolis
+            out.append(("relative", f"A_{rel}", rest, ("slip", ka, kb, r.b, None)))
         return out
 
     def _contact_normal(self, r: _Rel, w, vrel):
@@ -851,14 +905,29 @@ class _Run:
 
     # operations ------------------------------------------------------------------------------------
     def chain(self, base, terms) -> tuple:
-        """The tip of base image + known terms, drawn one after another."""
+        """The tip of base image + known terms, and the arrows drawn: (tip, [(kind, label, tail, head, of)]).
+
+        Every arrow points in the true sense of what its label names and they run tip to tail:
+        a subtracted term (the line starts from the known image on the other side of the
+        equation, b3' to find b4' in ``A_B3 = A_B4 + 2 omega_4 x V_B3/B4 + A_B3/B4``) is drawn
+        back from the image, ending at it, and comes first; added terms follow, forwards.
+        """
         tip = self.image(base)
         parts = []
-        for kind, lab, v in self.terms(terms):
+        ts = self.terms(terms)
+        for kind, lab, v, of, sign in [t for t in ts if t[4] < 0]:
+            new = self._mark(tip - self._turn(v))
+            parts.append((kind, lab, new, tip, of))
+            tip = new
+        for kind, lab, v, of, sign in [t for t in ts if t[4] > 0]:
             new = self._mark(tip + self._turn(v))
-            parts.append((kind, lab, tip, new))
+            parts.append((kind, lab, tip, new, of))
             tip = new
         return tip, parts
+
+    def _draw(self, parts):
+        for k, lab, t0, t1, of in parts:
+            self._vec(t0, t1, k, lab, of)
 
     def do(self, op):
         g = self.g
@@ -880,8 +949,7 @@ class _Run:
             _, dst, src, i, sign = op
             tip, parts = self.chain(src, (("rel", i, sign, dst[1]),))
             self._set(dst, tip)
-            for k, lab, t0, t1 in parts:
-                self._vec(t0, t1, k, lab)
+            self._draw(parts)
         elif kind == "meet":
             self._meet(*op[1:])
         elif kind == "trial":
@@ -893,15 +961,16 @@ class _Run:
         base = self.image((lk, q))
         rate = self.rate[lk]
         name_w, name_q = self.g.name((lk, w)), self.g.name((lk, q))
+        kw, kq = self.g.qkey((lk, w)), self.g.qkey((lk, q))
         if self.level == "velocity":
             tip = self._mark(base + self._turn(rate * 1j * r))
-            self._vec(base, tip, "relative", f"V_{name_w}{name_q}")
+            self._vec(base, tip, "relative", f"V_{name_w}{name_q}", ("difference", kw, kq))
             return tip
         om = self.vel.rate[lk]
         mid = self._mark(base + self._turn(-om ** 2 * r))
         tip = self._mark(mid + self._turn(rate * 1j * r))
-        self._vec(base, mid, "normal", f"A^n_{name_w}{name_q}")
-        self._vec(mid, tip, "tangential", f"A^t_{name_w}{name_q}")
+        self._vec(base, mid, "normal", f"A^n_{name_w}{name_q}", ("normal", lk, kw, kq))
+        self._vec(mid, tip, "tangential", f"A^t_{name_w}{name_q}", ("tangential", lk, kw, kq))
         return tip
 
     def _meet(self, target, l1, l2):
@@ -910,10 +979,9 @@ class _Run:
             tip, parts = self.chain(ln.base, ln.terms)
             tips.append(tip)
             dirs.append(self._turn(_z(ln.direction)))
-            for k, lab, t0, t1 in parts:
-                self._vec(t0, t1, k, lab)
+            self._draw(parts)
             if self.record:
-                label = _sum([self.base_label(ln.base)] + [lab for _, lab, _, _ in parts])
+                label = _sum([self.base_label(ln.base)] + self.term_labels(ln.terms))
                 self.lines.append(ConstructionLine(_xy(tip), ln.direction.copy(), label, ln.reason))
         x, _, _ = self._intersect(tips[0], dirs[0], tips[1], dirs[1])
         if x is None:   # the planner checked the directions; only a degenerate pose gets here
@@ -923,9 +991,7 @@ class _Run:
         self._set(target, x)
         if self.record:
             for ln, tip in zip((l1, l2), tips):
-                kind = "relative" if self.level == "velocity" or ln.unknown[0] == "aux" else (
-                    "tangential" if ln.unknown[0] == "rigid" else "slip")
-                self.vectors.append(Vector(_xy(tip), _xy(x), kind, self.unknown_label(ln)))
+                self.vectors.append(self.unknown_vector(ln, tip, x))
 
     def _intersect(self, p, d, q, e):
         """(x, s, sine): where p + s d meets q + t e (:func:`velpoly.geometry.intersect_lines`).
@@ -979,16 +1045,15 @@ class _Run:
         found = self._mark(tip + tau * e)
         self._set(seed, found)
         if record:
-            for k, lab, t0, t1 in parts:
-                self._vec(t0, t1, k, lab)
+            self._draw(parts)
             self.lines.append(ConstructionLine(_xy(z[0]), _xy(locus / abs(locus)), self.origin,
                                                f"locus of {self.X}_{w}{q} over the trial values"))
             self.lines.append(ConstructionLine(_xy(target), _xy(1j * r / rn), self.origin,
                                                f"perpendicular to {q}{w}: link {lk} is rigid"))
             self.lines.append(ConstructionLine(_xy(tip), line.direction.copy(),
-                                               _sum([self.base_label(line.base)] + [p[1] for p in parts]),
+                                               _sum([self.base_label(line.base)] + self.term_labels(line.terms)),
                                                line.reason + " (the trial image's line)"))
-            self.vectors.append(Vector(_xy(tip), _xy(found), "relative", self.unknown_label(line)))
+            self.vectors.append(self.unknown_vector(line, tip, found))
         for o in sub:
             self.do(o)
 
@@ -1007,21 +1072,48 @@ class _Run:
         acc = abs(drv.accel) if drv.is_slider else abs(drv.alpha) * g.size
         return max(acc, w * w * g.size, w * v)
 
-    def unknown_label(self, ln: _Line) -> str:
-        """How the line's unknown component reads: V_BA, A^t_BA, V_B3/B4, ..."""
+    def unknown(self, ln: _Line) -> tuple:
+        """The line's unknown component: (label, sign, of, kind), the line adding ``sign`` times it.
+
+        V_BA, A^t_BA (the rigid link's), V_B3/B4 or A_B3/B4 (the slip of a relative to b,
+        subtracted where the line starts from a's image), or for an auxiliary point S reached
+        from X the sum of X's unknown and V_SX (A^t_SX), which lie along one line.
+        """
         u = ln.unknown
         g = self.g
+        vel = self.level == "velocity"
         if u[0] == "rigid":
             _, lk, q, w = u
-            return (f"V_{g.name((lk, w))}{g.name((lk, q))}" if self.level == "velocity"
-                    else f"A^t_{g.name((lk, w))}{g.name((lk, q))}")
+            kw, kq = g.qkey((lk, w)), g.qkey((lk, q))
+            if vel:
+                return f"V_{g.name((lk, w))}{g.name((lk, q))}", 1, ("difference", kw, kq), "relative"
+            return f"A^t_{g.name((lk, w))}{g.name((lk, q))}", 1, ("tangential", lk, kw, kq), "tangential"
         if u[0] == "path":
             _, i, sign, w = u
             r = g.rels[i]
-            a, b = (r.a, r.b) if sign > 0 else (r.b, r.a)
-            return f"{self.X}_{w}{a}/{w}{b}"
+            ka, kb, kk = self.rel_keys(r, w)
+            return (f"{self.X}_{w}{r.a}/{w}{r.b}", sign, ("slip", ka, kb, r.b, kk),
+                    "relative" if vel else "slip")
         _, inner, lk, p, s = u
-        return f"{self.unknown_label(inner)} + {self.X}{'' if self.level == 'velocity' else '^t'}_{s}{p}"
+        lab, sign, of, _ = self.unknown(inner)
+        ks, kp = g.qkey((lk, s)), g.qkey((lk, p))
+        t_of = ("difference", ks, kp) if vel else ("tangential", lk, ks, kp)
+        label = _sum([("-" if sign < 0 else "") + lab, f"{self.X}{'' if vel else '^t'}_{s}{p}"])
+        return label, 1, ("sum", ((sign, of), (1, t_of))), "relative"
+
+    def unknown_label(self, ln: _Line) -> str:
+        """How the line's unknown component reads in its equation: V_BA, A^t_BA, -A_B3/B4, ..."""
+        lab, sign, _, _ = self.unknown(ln)
+        return ("-" if sign < 0 else "") + lab
+
+    def unknown_vector(self, ln: _Line, tip, x) -> Vector:
+        """The arrow of the line's unknown, between the tip of its known chain and the image x found.
+
+        True sense: from the tip to x where the line adds it, from x to the tip where it subtracts it.
+        """
+        lab, sign, of, kind = self.unknown(ln)
+        t0, t1 = (tip, x) if sign > 0 else (x, tip)
+        return Vector(_xy(t0), _xy(t1), kind, lab, of)
 
     def run(self, steps):
         for st in steps:
@@ -1115,7 +1207,7 @@ def _assemble(c: _Construction, sol, level: str, vel) -> tuple[Polygon, _Run]:
             run.do(op)
         for p in st.found:   # absolute vectors of the images located
             if not geo.grounded(p):
-                run._vec(0j, run.image(p), "absolute", f"{run.X}_{geo.name(p)}")
+                run._vec(0j, run.image(p), "absolute", f"{run.X}_{geo.name(p)}", ("point", geo.qkey(p)))
         kind = st.kind
         trial = bool(st.ops) and st.ops[0][0] == "trial"
         if kind == "auxiliary" and not trial and level == "velocity" and all(geo.grounded(ln.base) for ln in st.lines):
@@ -1188,7 +1280,7 @@ def _equation(run: _Run, st: _PStep, kind: str) -> str:
     t = st.target
     if st.ops and st.ops[0][0] == "trial":
         _, _, seed, _, (lk, q, w) = st.ops[0]
-        terms = [lab for _, lab, _ in run.terms(seed.terms)]
+        terms = run.term_labels(seed.terms)
         rhs = "0" if X == "V" else f"-omega_{lk}^2 |R_{w}{q}|^2"
         return (f"trial solution: {X}_{g.name(t)} = " + _sum([f"{X}_{g.name(seed.base)}"] + terms
                                                              + [run.unknown_label(seed)])
@@ -1196,7 +1288,7 @@ def _equation(run: _Run, st: _PStep, kind: str) -> str:
                   f"({X}_{w} - {X}_{q}) . R_{w}{q} = {rhs}, which fixes the assumed value")
     chains = []
     for ln in st.lines:
-        terms = [lab for _, lab, _ in run.terms(ln.terms)]
+        terms = run.term_labels(ln.terms)
         chains.append(_sum([f"{X}_{g.name(ln.base)}"] + terms + [run.unknown_label(ln)]))
     head = f"{X}_{g.name(t)} = " + " = ".join(chains)
     if kind == "instant-centre":

@@ -16,6 +16,7 @@ import math
 import numpy as np
 from shapely.geometry import LineString, MultiPoint, Point
 from shapely.geometry import Polygon as SPolygon
+from shapely.ops import unary_union
 
 from .canvas import (Artists, arrow, border_point, fit_view, get_ax, literal, math_literal, per_cm, per_point, tex,
                      view_box, view_scale)
@@ -24,7 +25,8 @@ from .options import drawing_options
 from .scalebar import scale_bar, unit_label
 from .style import get_style, link_fill
 
-__all__ = ["draw_mechanism", "mechanism_bounds", "shape_patch", "link_bodies", "mark_auxiliary"]
+__all__ = ["draw_mechanism", "mechanism_bounds", "shape_patch", "link_bodies", "mark_auxiliary",
+           "equivalent_linkage_note"]
 
 
 def _unit(deg: float) -> np.ndarray:
@@ -104,15 +106,44 @@ def link_bodies(sol, bar_width: float) -> dict:
     """Link -> shapely geometry of its body: a bar, or the buffered hull of its points.
 
     One-point links (slider blocks, wheels) have no body here; they are drawn
-    as blocks and profiles.
+    as blocks and profiles. A link of three or more points whose plate would
+    cover a point it does not carry (another link's pivot or pin: a slotted
+    lever's plate over the crank's pivot) is drawn as bars from its first
+    point to the others instead, as a bell-crank is.
     """
     out = {}
-    for link in sol.mechanism.moving_links:
+    m = sol.mechanism
+    for link in m.moving_links:
         if len(link.points) < 2:
             continue
         pts = [tuple(sol.place(link.name, p)) for p in link.points]
-        out[link.name] = MultiPoint(pts).convex_hull.buffer(bar_width / 2, quad_segs=12)
+        foreign = [tuple(sol.place(lk, p)) for p in m.point_order if link.name not in m.carriers.get(p, ())
+                   for lk in m.carriers.get(p, ())[:1]]
+        out[link.name] = body_shape(pts, foreign, bar_width)
     return out
+
+
+def equivalent(c) -> bool:
+    """Whether the polygons construct a contact through its equivalent linkage (a sliding contact
+    with centres of curvature and no prescribed slip)."""
+    return c.kind == "sliding" and c.slip is None and c.centres is not None
+
+
+def equivalent_linkage_note(m) -> str:
+    """The caption's note on the dashed equivalent linkage of a mechanism's sliding contacts ('' if none).
+
+    Short, to fit beside the scale in every style; the dashed coupler joins the two centres of
+    curvature (a dashed block sits at the centre facing a flat), whose names are on the figure."""
+    return "dashed: equivalent linkage" if any(equivalent(c) for c in m.contacts) else ""
+
+
+def body_shape(pts, foreign, bar_width: float):
+    """The buffered hull of ``pts`` (a bar or a plate), or bars from the first point to the others where
+    the hull would cover one of the ``foreign`` points."""
+    hull = MultiPoint(pts).convex_hull
+    if len(pts) >= 3 and any(hull.buffer(bar_width).contains(Point(*q)) for q in foreign):
+        return unary_union([LineString([pts[0], q]).buffer(bar_width / 2, quad_segs=12) for q in pts[1:]])
+    return hull.buffer(bar_width / 2, quad_segs=12)
 
 
 class _Drawing:
@@ -131,6 +162,9 @@ class _Drawing:
         self.extra_body: dict = {}       # link -> geometry to union (slotted bars, wheels)
         self.slots: list = []            # (link, slot geometry) drawn white over bodies
         self.slotted: set = set()        # links with a slot or a moving guide's slotted bar
+        self.hatches: list = []          # ground to draw once the bodies are known
+        self.geoms: dict = {}            # link -> its body as drawn
+        self.slot_cuts: dict = {}        # slot index -> (link, centre line, cut) of a moving link's slot
 
     # -- pieces ------------------------------------------------------------------------
     def patch(self, geom, role, zorder, facecolor, lw=None, gid=None, **kw):
@@ -142,29 +176,57 @@ class _Drawing:
         self.art.add(role, p)
         return p
 
-    def hatch(self, a, b, side, role="ground", zorder=1.0):
-        """A ground line a-b with short slanted strokes on ``side`` (a unit normal)."""
-        from matplotlib.collections import LineCollection
-        a, b, side = (np.asarray(v, float) for v in (a, b, side))
+    def hatch(self, a, b, side, role="ground", zorder=1.0, exempt=()):
+        """A ground line a-b with short slanted strokes on ``side`` (a unit normal).
+
+        Drawn once the links' bodies are known (:meth:`draw_hatches`): ground never crosses a
+        moving link, so the line and its strokes stop where a body (other than the ``exempt``
+        links', those pinned to this ground) lies over them.
+        """
+        self.hatches.append((np.asarray(a, float), np.asarray(b, float), np.asarray(side, float), role, zorder,
+                             frozenset(exempt)))
+
+    def hatch_strokes(self, a, b, side):
+        """The ground line and its strokes [(p, q), ...], and the hatched strip's polygon."""
         d = b - a
         length = float(np.hypot(*d))
         u = d / length
         step = 0.14 * self.pc
         tick = 0.2 * self.pc
         slant = (side + u * 0.75) / np.hypot(*(side + u * 0.75))
-        segs = [[a, b]]
+        segs = [(a, b)]
         n = max(int(length / step), 1)
         for i in range(n + 1):
             p = a + u * (i * length / n)
-            segs.append([p, p + slant * tick])
-        lc = LineCollection(segs, colors=self.st.ink, linewidths=[self.st.link_lw] + [self.st.thin_lw] * (n + 1),
-                            zorder=zorder)
-        self.ax.add_collection(lc)
-        self.art.add(role, lc)
-        # the hatched strip itself (the strokes lie on one side of the line), with a little margin
+            segs.append((p, p + slant * tick))
         strip = SPolygon([tuple(a), tuple(b), tuple(b + slant * tick), tuple(a + slant * tick)])
-        self.pl.add_obstacle(strip.buffer(tick * 0.25), hard=False)
-        return lc
+        return segs, strip
+
+    def forbidden(self, exempt=()):
+        """The moving links' bodies ground must keep clear of (the ``exempt`` links' excepted)."""
+        return unary_union([g for lk, g in self.geoms.items() if lk not in exempt] or [Point(0, 0).buffer(0)])
+
+    def draw_hatches(self):
+        from matplotlib.collections import LineCollection
+        margin = 0.6 * self.pp
+        for a, b, side, role, zorder, exempt in self.hatches:
+            segs, strip = self.hatch_strokes(a, b, side)
+            keep = self.forbidden(exempt).buffer(margin)
+            lines, widths = [], []
+            for i, (p, q) in enumerate(segs):
+                rest = LineString([tuple(p), tuple(q)]).difference(keep)
+                for piece in getattr(rest, "geoms", [rest]):
+                    if not piece.is_empty and piece.length > 1e-9 * self.pc:
+                        lines.append(np.asarray(piece.coords))
+                        widths.append(self.st.link_lw if i == 0 else self.st.thin_lw)
+            if not lines:
+                continue
+            lc = LineCollection(lines, colors=self.st.ink, linewidths=widths, zorder=zorder)
+            lc._velpoly_exempt = exempt
+            self.ax.add_collection(lc)
+            self.art.add(role, lc)
+            # the hatched strip itself (the strokes lie on one side of the line), with a little margin
+            self.pl.add_obstacle(strip.difference(keep).buffer(0.05 * self.pc), hard=False)
 
     def pin(self, p, gid=None, radius=None):
         r = (radius or self.st.pin_radius) * self.pc
@@ -174,20 +236,33 @@ class _Drawing:
 
     # -- frame ---------------------------------------------------------------------------
     def ground_pivot(self, point, links):
+        """A pivot's pedestal and hatched ground, on the side most free of links: of the eight
+        directions, the one whose ground crosses no other link's body (the least of them), then the
+        one most free of this pivot's links, downwards when that is nearly as free."""
         p = self.sol.position[point] if point in self.sol.position else self.sol.place(self.m.frame.name, point)
         p = np.asarray(p, float)
         away = _unit(_away(p, _neighbours(self.sol, point, links)))
-        # the ground goes the way most free of links, downwards when that is nearly as free
-        g = max((-90.0, 0.0, 180.0, 90.0), key=lambda a: float(np.dot(_unit(a), away)) + (0.45 if a == -90 else 0))
-        u = _unit(g)
-        n = _perp(u)
         pc = self.pc
-        apex, base = p, p + u * 0.5 * pc
-        tri = SPolygon([apex + n * 0.12 * pc, base + n * 0.3 * pc, base - n * 0.3 * pc, apex - n * 0.12 * pc])
+        others = self.forbidden(set(links))
+
+        def shape(g):
+            u = _unit(g)
+            n = _perp(u)
+            apex, base = p, p + u * 0.5 * pc
+            tri = SPolygon([apex + n * 0.12 * pc, base + n * 0.3 * pc, base - n * 0.3 * pc, apex - n * 0.12 * pc])
+            return u, n, base, tri, tri.union(self.hatch_strokes(base + n * 0.5 * pc, base - n * 0.5 * pc, u)[1])
+
+        def score(g):
+            crossed = others.intersection(shape(g)[4]).area / (pc * pc)
+            return (-round(crossed, 3), float(np.dot(_unit(g), away)) + (0.45 if g == -90 else 0)
+                    + (0.1 if g % 90 == 0 else 0))
+
+        g = max((-90.0, 0.0, 180.0, 90.0, -45.0, -135.0, 45.0, 135.0), key=score)
+        u, n, base, tri, _ = shape(g)
         # over the link bodies: a pivot inside a plate or a cam disc keeps its ground in sight
         self.patch(tri, "ground", 2.9, self.st.paper, lw=self.st.link_lw)
         self.pl.add_obstacle(tri)
-        self.hatch(base + n * 0.5 * pc, base - n * 0.5 * pc, u, zorder=2.9)
+        self.hatch(base + n * 0.5 * pc, base - n * 0.5 * pc, u, zorder=2.9, exempt=links)
         return g
 
     # -- sliders, slots, contacts --------------------------------------------------------
@@ -264,7 +339,7 @@ class _Drawing:
         self.pl.add_obstacle(block, hard=False)
         self.block_geom[s.block] = block
 
-    def frame_profile(self, place, outward, centre):
+    def frame_profile(self, place, outward, centre, exempt=()):
         """The frame's side of a contact: a hatched line along the tangent, or a hatched arc about its centre.
 
         ``outward`` points from the contact into the frame's material.
@@ -272,7 +347,7 @@ class _Drawing:
         pc = self.pc
         t = _perp(outward)
         if centre is None:
-            self.hatch(place - t * 1.6 * pc, place + t * 1.6 * pc, outward, role="contacts")
+            self.hatch(place - t * 1.6 * pc, place + t * 1.6 * pc, outward, role="contacts", exempt=exempt)
             return
         rad = float(np.hypot(*(place - centre)))
         mid = math.atan2(*(place - centre)[::-1])
@@ -281,7 +356,7 @@ class _Drawing:
             n = _perp((b - a) / max(float(np.hypot(*(b - a))), 1e-300))
             if np.dot(n, outward) < 0:
                 n = -n
-            self.hatch(a, b, n, role="contacts")
+            self.hatch(a, b, n, role="contacts", exempt=exempt)
 
     def centre_line(self, path):
         from matplotlib.lines import Line2D
@@ -291,24 +366,100 @@ class _Drawing:
         self.ax.add_line(ln)
         self.art.add("guides", ln)
 
-    def slot(self, i, s, r):
+    def slot_ends(self, s):
+        """The positions of a slot's ``ends`` (FORMAT.md ``[[slots]] ends``) now, or None without them."""
+        ends = getattr(s, "ends", None)
+        if not ends:
+            return None
+        return [np.asarray(self.sol.place(s.slot, e), float) for e in ends]
+
+    def slot_path(self, s, r):
+        """The centre line of a slot's cut: along its path, through the pin's travel.
+
+        Straight: between its ``ends`` where the file gives them; else a length about the pin,
+        cut short of the slot link's other points on its line (a slotted lever's slot stops
+        before the lever's pivot: it does not enclose it). Circular: an arc about K through the pin.
+        """
         sol, st, pc = self.sol, self.st, self.pc
         p = sol.place(s.link, s.pin)
-        d = _unit(float(r["direction"][0]))
         w = 2.6 * st.pin_radius * pc
-        if s.centre is None:
-            path = self._path_segment(p, d, 1.6 * st.block[0] * pc)
-        else:
+        half = 1.6 * st.block[0] * pc
+        if s.centre is not None:
             k = sol.place(s.slot, s.centre)
             rad = float(np.hypot(*(p - k)))
-            path = self._arc(k, rad, math.atan2(*(p - k)[::-1]), min(1.6 * st.block[0] * pc / max(rad, 1e-300), 2.6))
+            mid = math.atan2(*(p - k)[::-1])
+            ends = self.slot_ends(s)
+            if ends:
+                a = sorted(math.atan2(*(e - k)[::-1]) for e in ends)
+                a0, a1 = a if a[1] - a[0] <= math.pi else (a[1], a[0] + 2 * math.pi)
+                return self._arc(k, rad, (a0 + a1) / 2, (a1 - a0) / 2)
+            return self._arc(k, rad, mid, min(half / max(rad, 1e-300), 2.6))
+        d = _unit(float(r["direction"][0]))
+        ends = self.slot_ends(s)
+        if ends:
+            ts = sorted(float(np.dot(e - p, d)) for e in ends)
+            return LineString([tuple(p + d * ts[0]), tuple(p + d * ts[1])])
+        path = self._path_segment(p, d, half)
+        if self.m.link(s.slot).frame:
+            return path
+        return self._clipped_to_link(path, p, d, s.slot, s.pin, 2.0 * w, w)
+
+    def slot(self, i, s, r):
+        """A pin's slot cut in its link's body: the body reaches round the slot (attached to the link)."""
+        st, pc = self.st, self.pc
+        w = 2.6 * st.pin_radius * pc
+        path = self.slot_path(s, r)
+        cut = path.buffer(w / 2, cap_style="round")
         if self.m.link(s.slot).frame:
             self.patch(path.buffer(w / 2 + 0.12 * pc, cap_style="round"), "guides", 1.3, st.paper)
-            self.slots.append((None, path.buffer(w / 2, cap_style="round")))
+            self.slots.append((None, cut))
+            return
+        # the slotted part of the body, joined to the rest of the link: the hull of the link's own points
+        # (the pin's point excepted: it is the slot's) and of the slot's centre line, as one plate or bar
+        m = self.m
+        own = [tuple(self.sol.place(s.slot, q)) for q in m.link(s.slot).points if q != s.pin]
+        line = list(path.coords)
+        if own:   # the nearest of the link's points first: bars from it where a plate would cover others' pins
+            own.sort(key=lambda q: path.distance(Point(*q)))
+        foreign = [tuple(self.sol.place(lk, q)) for q in m.point_order
+                   if s.slot not in m.carriers.get(q, ()) and q != s.pin for lk in m.carriers.get(q, ())[:1]]
+        web = body_shape(own[:1] + [line[0], line[-1]] + own[1:], foreign, st.bar_width * pc)
+        self.extra_body.setdefault(s.slot, []).append(web.union(path.buffer(w / 2 + 0.12 * pc, cap_style="round")))
+        self.slotted.add(s.slot)
+        self.slots.append((s.slot, cut))
+        self.slot_cuts[i] = (s.slot, path, cut)
+
+    def equivalent_linkage(self, i, c, place, t):
+        """A sliding contact's equivalent linkage, dashed: the coupler joining the two centres of
+        curvature, or (one profile flat) a block at the other's centre sliding parallel to the flat.
+        The polygons are constructed through it (docs/polygons.md)."""
+        from matplotlib.lines import Line2D
+        st, pc = self.st, self.pc
+        ca, cb = (None if n is None else np.asarray(self.sol.place(lk, n), float)
+                  for lk, n in zip(c.links, c.centres))
+        dash = (0, (4, 2))
+        lines = []
+        if ca is not None and cb is not None:
+            lines.append([ca, cb])
+            for q in (ca, cb):   # the coupler's pins
+                ring = Point(*q).buffer(0.6 * st.pin_radius * pc, quad_segs=8)
+                p = shape_patch(ring, facecolor="none", edgecolor=st.ink, lw=st.thin_lw, zorder=4.6, linestyle=dash)
+                self.ax.add_patch(p)
+                self.art.add("equivalent", p)
         else:
-            self.extra_body.setdefault(s.slot, []).append(path.buffer(w / 2 + 0.12 * pc, cap_style="round"))
-            self.slotted.add(s.slot)
-            self.slots.append((s.slot, path.buffer(w / 2, cap_style="round")))
+            q = ca if ca is not None else cb
+            lines.append([q - t * 1.2 * pc, q + t * 1.2 * pc])
+            n = _perp(t)
+            L, H = 0.5 * pc, 0.3 * pc
+            block = [q - t * L / 2 - n * H / 2, q + t * L / 2 - n * H / 2, q + t * L / 2 + n * H / 2,
+                     q - t * L / 2 + n * H / 2, q - t * L / 2 - n * H / 2]
+            lines.append(block)
+        for xy in lines:
+            xy = np.asarray(xy, float)
+            ln = Line2D(xy[:, 0], xy[:, 1], lw=st.thin_lw * 1.3, color=st.ink, linestyle=dash, zorder=4.6,
+                        gid=f"equivalent-{i}")
+            self.ax.add_line(ln)
+            self.art.add("equivalent", ln)
 
     def contact(self, i, c, r):
         sol, st, pc = self.sol, self.st, self.pc
@@ -316,6 +467,8 @@ class _Drawing:
         u = _unit(float(r["normal"][0]))
         t = _perp(u)
         from matplotlib.lines import Line2D
+        if equivalent(c):
+            self.equivalent_linkage(i, c, place, t)
         if c.centres is None:
             for a, b, ls in ((place - t * 1.2 * pc, place + t * 1.2 * pc, "-"),
                              (place - u * 1.5 * pc, place + u * 1.5 * pc, (0, (8, 2, 1.5, 2)))):
@@ -326,7 +479,8 @@ class _Drawing:
             return
         for j, (lk, cn) in enumerate(zip(c.links, c.centres)):
             if self.m.link(lk).frame:   # the frame's profile: a hatched surface (flat) or arc
-                self.frame_profile(place, u if j == 1 else -u, None if cn is None else sol.place(lk, cn))
+                self.frame_profile(place, u if j == 1 else -u, None if cn is None else sol.place(lk, cn),
+                                   exempt=set(c.links))
                 continue
             if cn is None:  # a flat profile: a straight edge through the contact, along the tangent
                 if lk in self.bodies:      # a link with a shape of its own shows the face already
@@ -357,11 +511,6 @@ class _Drawing:
         sol, m, st = self.sol, self.m, self.st
         frame = m.frame.name
         self.block_geom = {}
-        # ground pivots
-        ground_dir = {}
-        for point, links in self.pins_at.items():
-            if frame in links:
-                ground_dir[point] = self.ground_pivot(point, sorted(links - {frame}))
         for i, (s, r) in enumerate(zip(m.sliders, sol.motion.sliders)):
             self.slider(i, s, r)
         for i, (s, r) in enumerate(zip(m.slots, sol.motion.slots)):
@@ -369,7 +518,6 @@ class _Drawing:
         for i, (c, r) in enumerate(zip(m.contacts, sol.motion.contacts)):
             self.contact(i, c, r)
         # bodies, in file order (later links over earlier ones)
-        from shapely.ops import unary_union
         order = [k.name for k in m.moving_links]
         # a link with a slot or a moving guide lies under the others (the crank that drives the block
         # in a slotted lever is seen over the lever), otherwise file order: later links over earlier ones
@@ -383,6 +531,14 @@ class _Drawing:
             if parts:
                 geoms[lk] = unary_union(parts)
         self.geoms = geoms
+        # ground pivots, clear of the bodies
+        ground_dir = {}
+        for point, links in self.pins_at.items():
+            if frame in links:
+                ground_dir[point] = self.ground_pivot(point, sorted(links - {frame}))
+        self.draw_hatches()
+        self.art.bodies = dict(geoms)                # link -> its drawn body (shapely), for checks
+        self.art.slot_cuts = dict(self.slot_cuts)    # slot index -> (link, centre line, cut)
         for z, lk in enumerate(order):
             if lk in geoms:
                 self.patch(geoms[lk], "links", 2 + 0.01 * z, link_fill(m, self.opts, st, lk), gid=f"link-{lk}")
@@ -605,8 +761,12 @@ def draw_mechanism(sol, ax=None, *, style="textbook", options=None, scale: float
     -------
     Artists
         Roles ``links``, ``ground``, ``guides``, ``sliders``, ``pins``,
-        ``points``, ``labels``, ``link_numbers``, ``driver``, ``scale_bar``;
-        ``.labels`` maps each point key to its label.
+        ``points``, ``labels``, ``link_numbers``, ``driver``, ``scale_bar``,
+        ``equivalent`` (a sliding contact's dashed equivalent linkage);
+        ``.labels`` maps each point key to its label, ``.bodies`` each moving
+        link to its drawn body (shapely), ``.slot_cuts`` each moving link's slot
+        (by index) to ``(link, centre line, cut)``. Every ground hatch (a
+        LineCollection) has ``_velpoly_exempt``: the links it may touch.
     """
     ax = get_ax(ax)
     st = get_style(style)

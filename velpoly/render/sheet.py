@@ -27,7 +27,7 @@ from pathlib import Path
 from ..errors import InputError
 from ..fileio import atomic_path
 from .canvas import fit_view, literal, nice_scale, view_scale
-from .displacement import draw_mechanism, mark_auxiliary, mechanism_bounds
+from .displacement import draw_mechanism, equivalent_linkage_note, mark_auxiliary, mechanism_bounds
 from .kennedy import draw_kennedy_circle, draw_poles, pole_label
 from .labels import placer
 from .options import drawing_options
@@ -348,6 +348,8 @@ def render_sheet(sol, sheet: str = "full", style="textbook", *, cons: Constructi
             continue
         pos = ax.get_position()
         text = _CAPTIONS[name] + (f"   ({captions[name]})" if name in captions else "")
+        if name == "mechanism" and equivalent_linkage_note(m):   # a second line: the dashed linkage
+            text += "\n" + equivalent_linkage_note(m)
         cap = fig.text(pos.x0 + pos.width / 2, pos.y1 + 0.004, text, ha="center", va="bottom",
                        fontsize=st.font_size, style="italic", gid=f"caption-{name}")
         _fit_width(fig, cap, pos.width + 0.008)   # within its column: clear of its neighbours and the page's edge
