@@ -12,3 +12,5 @@ SIXBAR = EXAMPLES / "problem_1_4_4_sixbar.toml"   # the demo's example and FORMA
 def example(stem: str) -> Path:
     """The built-in example file ``velpoly/examples/STEM.toml``."""
     return EXAMPLES / f"{stem}.toml"
+
+assert GALLERY_FILES, f"no example files in {EXAMPLES}: a test over them would pass having checked nothing"

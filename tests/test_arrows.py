@@ -21,10 +21,11 @@ from velpoly.polygons import acceleration_polygon, velocity_polygon
 import checks_arrows
 import mechanisms as M
 from checks_arrows import assert_arrows_true
+from paths import GALLERY_FILES, example
 
 SEEDS = range(6)
 ANGLES = (20.0, 110.0, 200.0, 290.0)
-GALLERY = sorted(glob.glob(os.path.join(os.path.dirname(__file__), "..", "gallery", "*.toml")))
+GALLERY = [str(p) for p in GALLERY_FILES]
 
 
 def _solve(d):
@@ -165,7 +166,7 @@ def test_drawn_arrows_are_the_constructions(case):
     elif case == "cam":
         sol = _solve(M.sliding_cam(1, 200.0, "curved"))
     else:
-        sol = _solve(os.path.join(os.path.dirname(__file__), "..", "gallery", case + ".toml"))
+        sol = _solve(str(example(case)))
     for poly in (velocity_polygon(sol), acceleration_polygon(sol)):
         fig, ax = plt.subplots(figsize=(6, 6))
         try:

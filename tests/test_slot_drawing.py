@@ -23,8 +23,9 @@ from velpoly.errors import InputError
 from velpoly.render.displacement import draw_mechanism
 
 import mechanisms as M
+from paths import GALLERY_FILES, example
 
-GALLERY = sorted(glob.glob(os.path.join(os.path.dirname(__file__), "..", "gallery", "*.toml")))
+GALLERY = [str(p) for p in GALLERY_FILES]
 CASES = [(seed, a, drv, circ) for seed, a in enumerate((20.0, 110.0, 200.0, 290.0, 65.0, 245.0))
          for drv, circ in (("pin", False), ("slot", False), ("pin", True), ("slot", True))]
 
@@ -133,8 +134,7 @@ def test_slot_between_its_ends(seed, angle):
 
 def test_slotted_lever_slot_stops_short_of_its_pivot():
     """Example 3.4: the lever's slot runs along C -> A; its cut stops before the pivot C."""
-    sol = velpoly.solve(velpoly.load(os.path.join(os.path.dirname(__file__), "..", "gallery",
-                                                  "ex3_4_slotted_lever.toml")))
+    sol = velpoly.solve(velpoly.load(str(example("ex3_4_slotted_lever"))))
     art, tol = _drawn(sol)
     _check_slot(sol, art, tol)
     (link, line, cut), = art.slot_cuts.values()
