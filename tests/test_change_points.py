@@ -257,3 +257,25 @@ def test_the_closure_rate_is_the_closure_derivative(which):
     assert fd.shape == (len(plan.steps), 9)
     assert np.abs(fd - np.array(w.closure_rate)).max() < 1e-8
     assert np.all(np.array(w.closure) > 0)
+
+
+@pytest.mark.parametrize("continuation", [False, True])
+def test_a_slider_crank_whose_rod_can_stand_square_to_the_path_stops_there(monkeypatch, continuation):
+    """Offset e + crank r = rod l: at theta = -90 deg the rod stands square to the path with the
+    crank pin at its farthest from it (the RRP dyad's closure touches zero), and the block could go
+    on either way: that is the end of the motion, in both directions round."""
+    from tests.mechanisms import slider_crank
+    if continuation:
+        monkeypatch.setattr(pose, "plan_for", lambda system: None)
+        monkeypatch.setattr(sweeps, "plan_for", lambda system: None)
+        monkeypatch.setattr(solution, "reachable_range", lambda kin: (0.0, 0.0))
+    r, e = 3.0, 2.0
+    m = velpoly.load(slider_crank(r=r, l=r + e, e=e, theta=20.0, alpha=0.0))
+    for ok in (60.0, 120.0, -89.0, -30.0, -170.0):
+        velpoly.solve(m, angle=ok)
+    for bad in (-90.0, -91.0, -120.0):
+        with pytest.raises(velpoly.PoseError, match="reachable"):
+            velpoly.solve(m, angle=bad)
+    w = velpoly.sweep(m, 20.0 - np.arange(0.0, 200.0, 0.5))
+    assert w.angles[-1] == -89.5 and w.stopped
+    assert len(velpoly.sweep(m, 20.0 + np.arange(0.0, 200.0, 0.5)).angles) == 400
