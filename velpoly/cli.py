@@ -70,6 +70,12 @@ def build_parser() -> argparse.ArgumentParser:
     g.add_argument("--source", default=None, help="folder of the example *.toml files (default: the "
                    "repository's gallery/)")
     g.add_argument("--style", choices=STYLES, default="textbook")
+
+    h = sub.add_parser("html", help="one self-contained interactive page: the sheet over the driver's cycle")
+    h.add_argument("file")
+    h.add_argument("-o", "--output", help="the page (default: FILE's name with .html)")
+    h.add_argument("--step", type=float, default=1.0, help="driver step between the poses, in degrees "
+                   "(default 1; a slider driver's stroke in as many poses)")
     return p
 
 
@@ -144,7 +150,27 @@ def cmd_gallery(args) -> int:
     return gallery_command(args)
 
 
-COMMANDS = {"solve": cmd_solve, "draw": cmd_draw, "sweep": cmd_sweep, "demo": cmd_demo, "gallery": cmd_gallery}
+def cmd_html(args) -> int:
+    out = Path(args.output) if args.output else Path(Path(args.file).stem + ".html")
+    if out.suffix.lower() not in (".html", ".htm"):
+        raise InputError(f"unknown page type {out.suffix or '(none)'!r}", where="-o", file=str(out),
+                         hint="end the output's name with .html")
+    try:
+        same = out.exists() and os.path.samefile(out, args.file)
+    except OSError:
+        same = False
+    if same:   # outputs never replace their input (FORMAT.md section 3)
+        raise InputError("the output is the input file", where="-o", file=args.file,
+                         hint="write the page to another file, e.g. -o sheet.html")
+    from . import load
+    from .html import write_page
+    m = load(Path(args.file), name=args.file)
+    print(write_page(m, out, step=args.step))
+    return 0
+
+
+COMMANDS = {"solve": cmd_solve, "draw": cmd_draw, "sweep": cmd_sweep, "demo": cmd_demo, "gallery": cmd_gallery,
+            "html": cmd_html}
 
 
 def main(argv=None) -> int:
