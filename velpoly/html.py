@@ -54,24 +54,36 @@ DIGITS = 8                    # significant digits of the embedded numbers
 
 # -- poses -------------------------------------------------------------------------------------------
 def _cycle(m, step: float):
-    """The sweep the page shows, in driving order, and the Kinematics: a crank's full turn, or both ways
-    from the drawn pose to the ends of its reachable range; a slider driver's stroke."""
-    from .cycle import _join, run_cycle
+    """The sweep the page shows, in driving order, the Kinematics, and whether the range is limited:
+    a crank's full turn in the sense of its omega, or (stopped by a toggle) both ways from the
+    drawn pose to the ends of its reachable range, in ascending angle; a slider driver's stroke."""
+    from .cycle import _check_step, _join, run_cycle
     from .kinematics import prepare
     from .solution import driver_reference_angle
     from .sweeps import sweep
     kin = prepare(m)
-    w = run_cycle(m, step, kin)
-    if m.driver.is_slider or not w.stopped:
-        return w, kin, False
+    if m.driver.is_slider:
+        return run_cycle(m, step, kin), kin, True
+    step = _check_step(step)
     ref = driver_reference_angle(m)
-    n = int(math.ceil(360.0 / step))
-    up = sweep(m, ref + step * np.arange(n), kin)
-    down = sweep(m, ref - step * np.arange(n), kin)
-    if len(up.angles) and len(down.angles):
-        import dataclasses
-        w = dataclasses.replace(_join(down, up), stopped="")
-    return w, kin, True
+    n = max(int(math.ceil(360.0 / step - 1e-9)), 1)
+    sense = -1.0 if m.driver.omega < 0 else 1.0
+    ahead = sweep(m, ref + sense * step * np.arange(n), kin)
+    if not ahead.stopped:
+        return ahead, kin, False
+    back = sweep(m, ref - sense * step * np.arange(n), kin)
+    down, up = (back, ahead) if sense > 0 else (ahead, back)
+    if not len(up.angles) or not len(down.angles):
+        return ahead, kin, True
+    import dataclasses
+    return dataclasses.replace(_join(down, up), stopped=""), kin, True
+
+
+def cycle_solutions(m, step: float = 1.0):
+    """(sweep, kinematics, limited, [Solution of each pose]): the poses the page shows."""
+    from .cycle import solution_at
+    w, kin, limited = _cycle(m, step)
+    return w, kin, limited, [solution_at(w, kin, i) for i in range(len(w.angles))]
 
 
 def _f(x) -> float | None:
@@ -496,20 +508,18 @@ def _driver_text(m) -> str:
     return text
 
 
-def sheet_data(m, step: float = 1.0) -> tuple[dict, str]:
-    """The page's data: (static part as a dict, the poses as JSON text of the templates' encoding)."""
+def sheet_data(m, step: float = 1.0, cycle=None) -> tuple[dict, str]:
+    """The page's data: (static part as a dict, the poses as JSON text of the templates' encoding).
+    ``cycle``: what :func:`cycle_solutions` gives, if already at hand."""
     from .cycle import solution_at
     from .reference import compare, file_pose_angle
     from .solution import driver_reference_angle, solve
-    w, kin, limited = _cycle(m, step)
+    w, kin, limited, sols = cycle if cycle is not None else cycle_solutions(m, step)
     if not len(w.angles):
         raise InputError("no pose of the driver's cycle can be assembled", where="driver", file=m.source)
     index = kin.system.index
     enc = _Encoder()
-    sols = []
-    for i in range(len(w.angles)):
-        sol = solution_at(w, kin, i)
-        sols.append(sol)
+    for sol in sols:
         enc.add(pose_values(sol, index))
     # the pose the file draws: the one nearest its driver angle (the reference pose for a slider)
     a = np.asarray(w.angles, float)

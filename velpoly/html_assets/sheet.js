@@ -9,7 +9,6 @@
   var N = S.angles.length;
   var cache = [];
   var state = { i: S.start, step: 0, playing: false, timer: null, pinned: null };
-  var SVGNS = "http://www.w3.org/2000/svg";
 
   // -- data ---------------------------------------------------------------------------------------
   function decode(rec) {
