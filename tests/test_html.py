@@ -243,10 +243,13 @@ def run_page(path: Path, fragment: str, shot: Path, size=(1280, 900)) -> str:
         r = subprocess.run([_browser(), "--headless", "--no-sandbox", "--disable-gpu", "--disable-quic",
                             "--no-first-run", "--disable-background-networking", "--disable-component-update",
                             "--disable-sync", "--hide-scrollbars", f"--user-data-dir={profile}",
+                            "--enable-logging=stderr", "--v=0",
                             "--virtual-time-budget=3000", f"--window-size={size[0]},{size[1]}",
                             f"--screenshot={shot}", "--dump-dom", path.resolve().as_uri() + fragment],
                            capture_output=True, text=True, timeout=120)
     assert r.returncode == 0, r.stderr[-2000:]
+    errors = [ln for ln in r.stderr.splitlines() if "CONSOLE" in ln]   # the page's script logs nothing
+    assert not errors, errors
     return r.stdout
 
 
@@ -346,6 +349,15 @@ def test_browser_draws_the_solution(case, browser_runs):
         assert float(a["cx"]) == pytest.approx(float(a["data-sx"]), abs=0.006)
         assert float(a["cy"]) == pytest.approx(float(a["data-sy"]), abs=0.006)
     _similar(pts)
+    for a in dom.marks:   # hover or tap: every point, image and pole names itself and its value
+        key, tip, cls = a["data-key"], a.get("data-tip", ""), a.get("class", "").split()
+        if "pt" in cls:
+            assert tip.startswith(f"{key}: (") and "V = " in tip, tip
+        elif "img" in cls:
+            assert f"{'V' if a['data-level'] == 'velocity' else 'A'}_{key} = " in tip, tip
+        else:
+            assert tip.startswith("P" + key.replace("-", "")) or tip.startswith("P{" + key + "}"), tip
+        assert re.search(r"[0-9]", tip.split("=", 1)[-1]), tip
     # the construction drawn up to the step: velocity steps, then acceleration steps, then poles
     vel, acc = velocity_polygon(sol), acceleration_polygon(sol) if sol.has_accelerations else None
     nv, na = len(vel.steps), len(acc.steps) if acc else 0

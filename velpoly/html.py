@@ -233,13 +233,14 @@ class _Encoder:
 
 
 # -- the static drawing: parts rigid with a link, in the reference pose ---------------------------
+NICE = (1.0, 1.2, 1.5, 2.0, 2.5, 3.0, 4.0, 5.0, 6.0, 8.0, 10.0)
 CM = 37.8     # SVG units a centimetre of a panel at its nominal size (96 per inch)
 
 
 def _nice_up(x: float) -> float:
-    """The round value (1, 2, 2.5, 5 x 10^n) at or above x."""
+    """The round value (1, 1.2, 1.5, 2, 2.5, 3, 4, 5, 6, 8 x 10^n) at or above x: a drawing scale."""
     e = 10.0 ** math.floor(math.log10(x))
-    return next(f for f in (1.0, 2.0, 2.5, 5.0, 10.0) if x / e <= f * (1 + 1e-12)) * e
+    return next(f for f in NICE if x / e <= f * (1 + 1e-12)) * e
 
 
 class _View:
@@ -256,7 +257,7 @@ class _View:
         self.k = float(min((w - 2 * margin) / span[0], (h - 2 * margin) / span[1]))
         if not math.isfinite(self.k) or self.k <= 0:
             self.k = 1.0
-        self.k = CM / _nice_up(CM / self.k)    # a round scale: 1, 2, 2.5 or 5 x 10^n units a centimetre
+        self.k = CM / _nice_up(CM / self.k)    # a round scale (NICE x 10^n units a centimetre)
         c = (lo + hi) / 2
         self.x0 = float(c[0] - (w / 2) / self.k)
         self.y1 = float(c[1] + (h / 2) / self.k)
@@ -535,7 +536,7 @@ def sheet_data(m, step: float = 1.0, cycle=None) -> tuple[dict, str]:
     space = _View(np.vstack([pos, pos.min(axis=0) - 14 / space.k, pos.max(axis=0) + 14 / space.k]),
                   floor=m.size * 1e-3)
     lo, hi = pos.min(axis=0), pos.max(axis=0)
-    grow = 0.45 * (hi - lo).max()
+    grow = 0.25 * (hi - lo).max()
     pole_view = _View(np.vstack([lo - grow, hi + grow]), floor=m.size * 1e-3)
     static = _static(m, sol0, w, space)
     static_poles = _static(m, sol0, w, pole_view)

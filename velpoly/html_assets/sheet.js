@@ -267,12 +267,14 @@
   }
 
   // -- polygons -------------------------------------------------------------------------------------
-  // a polygon's view at one pose: a round scale (1, 2, 2.5 or 5 x 10^n units a centimetre) that fits
+  // a polygon's view at one pose: a round scale (1, 1.2, 1.5 ... 8 x 10^n units a centimetre) that fits
   // every image, vector and line base of the whole construction (stepping does not rescale it)
   var CM = 37.8;   // SVG units a centimetre of the panel at its nominal size
   function niceUp(x) {
     var e = Math.pow(10, Math.floor(Math.log10(x))), m = x / e;
-    return (m <= 1 ? 1 : m <= 2 ? 2 : m <= 2.5 ? 2.5 : m <= 5 ? 5 : 10) * e;
+    var nice = [1, 1.2, 1.5, 2, 2.5, 3, 4, 5, 6, 8, 10];
+    for (var j = 0; j < nice.length; j++) if (m <= nice[j] * (1 + 1e-12)) return nice[j] * e;
+    return 10 * e;
   }
   function polyView(poly) {
     var W = S.views.panel[0], H = S.views.panel[1], M = S.views.margin;
@@ -326,7 +328,7 @@
         var isNow = j + 1 === now;
         out.push('<g data-tip="' + esc("line through " + ln[4] + ", " + ln[5]) + '">' +
           line(bx + dx * lo, by + dy * lo, bx + dx * hi, by + dy * hi, "cl" + (isNow ? " now" : "")) + "</g>");
-        if (isNow || n === null) {
+        if (isNow) {   // its reason along the current step's line (the others: hover)
           var mx = bx + dx * (lo + hi) / 2, my = by + dy * (lo + hi) / 2;
           var rot = Math.atan2(dy, dx) * 180 / Math.PI;
           if (rot > 90) rot -= 180; else if (rot < -90) rot += 180;
