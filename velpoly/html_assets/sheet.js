@@ -52,6 +52,7 @@
         return out;
       });
     s = s.replace(/\bomega\b/g, "\u03c9").replace(/\balpha\b/g, "\u03b1");
+    s = s.replace(/\bO_([av])\b/g, "<i>O</i><sub>$1</sub>");
     s = s.replace(/([0-9]) deg\b/g, "$1\u00b0").replace(/ x /g, " \u00d7 ").replace(/ - /g, " \u2212 ");
     return s;
   }
@@ -59,9 +60,8 @@
     if (x === null || x === undefined || !isFinite(x)) return "\u2013";
     if (x === 0) return "0";
     var a = Math.abs(x), s;
-    if (a >= 1e6 || a < 1e-4) s = x.toExponential((d || 5) - 1);
-    else s = x.toPrecision(d || 5);
-    if (s.indexOf("e") < 0 && s.indexOf(".") >= 0) s = s.replace(/0+$/, "").replace(/\.$/, "");
+    if (a >= 1e7 || a < 1e-4) s = x.toExponential((d || 5) - 1).replace(/\.?0+e/, "e");
+    else s = String(Number(x.toPrecision(d || 5)));   // plain digits, no trailing zeros
     return s.replace("-", "\u2212");
   }
   function polar(v) {
@@ -79,6 +79,7 @@
   }
   function sub(s) { return "<sub>" + esc(s) + "</sub>"; }
   function unitsOf(power) { return S.units ? S.units + ["", "/s", "/s\u00b2"][power] : ["", "1/s", "1/s\u00b2"][power]; }
+  function withUnit(x, power) { var u = unitsOf(power); return fmt(x, 3) + (u ? " " + u : ""); }
 
   // -- geometry -----------------------------------------------------------------------------------
   function X(v, x) { return v.k * (x - v.x0); }
@@ -130,6 +131,11 @@
     var tx = x + ux * gap, ty = y + uy * gap + 6;
     var anchor = ux > 0.35 ? "start" : ux < -0.35 ? "end" : "middle";
     if (uy > 0.5) ty += 6;
+    // kept inside the panel (its width guessed from its letters)
+    var w = 10 * html.replace(/<[^>]*>/g, "").replace(/&[a-z]+;/g, "x").length, W = S.views.panel[0], H = S.views.panel[1];
+    var left = anchor === "start" ? tx : anchor === "end" ? tx - w : tx - w / 2;
+    if (left < 3) tx += 3 - left; else if (left + w > W - 3) tx -= left + w - W + 3;
+    ty = Math.max(16, Math.min(H - 4, ty));
     return text(tx, ty, html, cls, ' text-anchor="' + anchor + '"');
   }
 
@@ -539,7 +545,7 @@
     return el;
   }
   function scaleText(v, power) {
-    return "(1 cm = " + fmt(CM / v.k, 3) + " " + unitsOf(power) + ")";
+    return "(1 cm = " + withUnit(CM / v.k, power) + ")";
   }
   function draw() {
     var P = pose(state.i), steps = stepList(P);
