@@ -216,12 +216,28 @@ def test_notebook_display():
         velpoly.html("not a mechanism")
 
 
-def test_pose_values_reports_a_failing_construction():
-    """A pose whose construction cannot be made draws what it can and says why, never raises."""
+def test_velpoly_html_without_importing_the_module():
+    code = f"import velpoly; m = velpoly.load(r'{SIXBAR}'); print(type(velpoly.html(m, step=60.0)).__name__)"
+    r = subprocess.run([sys.executable, "-c", code], capture_output=True, text=True, timeout=120,
+                       env={**os.environ, "PYTHONPATH": str(ROOT)})
+    assert r.returncode == 0, r.stderr
+    assert r.stdout.strip() == "HtmlSheet"
+
+
+def test_a_failing_construction_is_reported_not_raised(monkeypatch):
+    """A pose whose polygon cannot be constructed (a singular pose) keeps the rest of the sheet and
+    says why: the page shows the message in the polygon's panel."""
+    import velpoly.polygons as polygons
+    from velpoly.errors import SingularPoseError
     m = velpoly.load(SIXBAR_1_4_4)
     sol = velpoly.solve(m)
+
+    def fails(sol):
+        raise SingularPoseError("lines 2 and 3 meet at 1e-11 rad", where="velocity polygon")
+    monkeypatch.setattr(polygons, "velocity_polygon", fails)
     P = pose_values(sol, sol.kinematics.system.index)
-    assert P["vp"] and P["ap"] and P["poles"] and P["msg"] == []
+    assert P["vp"] is None and P["ap"] is not None and P["poles"] is not None
+    assert P["msg"] == ["lines 2 and 3 meet at 1e-11 rad"]
 
 
 # -- the browser ---------------------------------------------------------------------------------------
@@ -296,8 +312,8 @@ def browser_runs(tmp_path_factory, sixbar_page):
     for name, _ in BROWSER_CASES:
         if name not in pages:
             pages[name] = tmp / f"{name}.html"
-            # every 4 degrees: the six-bar's page (every degree) is the one of the size test
-            pages[name].write_text(page(velpoly.load(GALLERY / f"{name}.toml"), step=4.0), encoding="utf-8")
+            # every 10 degrees (the nearest pose is drawn): the six-bar's page (every degree) is the size test's
+            pages[name].write_text(page(velpoly.load(GALLERY / f"{name}.toml"), step=10.0), encoding="utf-8")
 
     def one(case):
         name, frag = case
