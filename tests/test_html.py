@@ -154,6 +154,37 @@ def test_generated_mechanisms(mech):
         assert np.all(np.diff(a) > 0)
 
 
+SLIDER_DRIVEN = {
+    "title": "slider-driven crank", "units": "mm",
+    "points": {"A": [0, 0], "B": {"from": "A", "length": 40, "angle": 60},
+               "C": {"circle": ["B", 100], "line": {"through": [0, 0], "angle": 0}, "near": [110, 0]}},
+    "links": {"0": {"points": ["A"], "frame": True}, "1": {"points": ["A", "B"]}, "2": {"points": ["B", "C"]},
+              "3": {"points": ["C"]}},
+    "sliders": [{"block": "3", "guide": "0", "point": "C", "angle": 0}],
+    "driver": {"slider": "C", "speed": 2.5},
+}
+
+
+def test_slider_driver_runs_over_its_stroke():
+    """A slider driver: the page's positions are displacements along the path over the stroke, in
+    ascending order, starting at the drawn position (0), which is velpoly.solve's pose."""
+    m = velpoly.load(SLIDER_DRIVEN)
+    cycle = cycle_solutions(m, 20.0)
+    static, poses = sheet_data(m, step=20.0, cycle=cycle)
+    data = json.loads(poses)
+    a = np.array(static["angles"])
+    assert np.all(np.diff(a) > 0) and a[0] < 0 < a[-1]
+    assert a[static["start"]] == 0.0 and static["driver"]["slider"] == "C"
+    check_pose(m, decode(data, static["start"]), 0.0, own=cycle[3][static["start"]])
+    for i in range(len(a)):   # the block's point moves along its path by the displacement
+        P = decode(data, i)
+        assert P["P"]["C"][0] - data_c0(data, static) == pytest.approx(a[i], abs=1e-6 * m.size)
+
+
+def data_c0(data, static):
+    return decode(data, static["start"])["P"]["C"][0]
+
+
 def test_template_order_is_a_browsers():
     """Index-like keys come first, ascending, as a browser walks an object; the rest keep their order."""
     nums, strs = [], []
