@@ -229,6 +229,10 @@ def test_cli_errors(tmp_path):
     r = run(tmp_path / "missing.toml", "-o", tmp_path / "x.html")
     assert r.returncode == 2 and "Traceback" not in r.stderr
     assert not (tmp_path / "x.html").exists()
+    r = run(SIXBAR, "-o", tmp_path / "x.html", "--step", "0.01")
+    assert r.returncode == 2 and "--step" in r.stderr and not (tmp_path / "x.html").exists()
+    r = run(SIXBAR, "-o", tmp_path / "x.html", "--step", "0")
+    assert r.returncode == 2 and "--step" in r.stderr and not (tmp_path / "x.html").exists()
     src = tmp_path / "in.html"
     src.write_text(SIXBAR_1_4_4)
     r = run(src, "-o", src)

@@ -150,6 +150,9 @@ def cmd_gallery(args) -> int:
     return gallery_command(args)
 
 
+HTML_MIN_STEP = 0.1   # degrees: 3600 poses a turn, a page of 15 to 20 MB
+
+
 def cmd_html(args) -> int:
     out = Path(args.output) if args.output else Path(Path(args.file).stem + ".html")
     if out.suffix.lower() not in (".html", ".htm"):
@@ -162,6 +165,10 @@ def cmd_html(args) -> int:
     if same:   # outputs never replace their input (FORMAT.md section 3)
         raise InputError("the output is the input file", where="-o", file=args.file,
                          hint="write the page to another file, e.g. -o sheet.html")
+    if 0 < args.step < HTML_MIN_STEP:   # other bad steps are refused by the cycle itself
+        raise InputError(f"the step {args.step:g} deg is too fine for a page: {360 / args.step:.3g} poses a turn",
+                         where="--step", hint=f"use a step of at least {HTML_MIN_STEP:g} deg (the default, 1, "
+                         "makes a page of 1 to 2 MB)")
     from . import load
     from .html import write_page
     m = load(Path(args.file), name=args.file)
