@@ -15,11 +15,8 @@ import math
 import os
 import random
 import re
-import shutil
 import subprocess
 import sys
-import tempfile
-from concurrent.futures import ThreadPoolExecutor
 from html.parser import HTMLParser
 from pathlib import Path
 
@@ -276,32 +273,18 @@ def test_a_failing_construction_is_reported_not_raised(monkeypatch):
 
 
 # -- the browser ---------------------------------------------------------------------------------------
-CHROMIUM = shutil.which("chromium") or shutil.which("chromium-browser") or shutil.which("google-chrome")
-
-
-def _browser():
-    if CHROMIUM:
-        return CHROMIUM
-    if os.environ.get("VELPOLY_REQUIRE_BROWSER") == "1":
-        pytest.fail("VELPOLY_REQUIRE_BROWSER=1 but no chromium: install Debian's chromium package")
-    pytest.skip("no chromium (set VELPOLY_REQUIRE_BROWSER=1 to make this a failure)")
-
-
-def run_page(path: Path, fragment: str, shot: Path, size=(1280, 900)) -> str:
-    """Open the page in headless Chromium at ``fragment``; return the DOM after its scripts ran and
-    write a screenshot."""
-    with tempfile.TemporaryDirectory() as profile:
-        r = subprocess.run([_browser(), "--headless", "--no-sandbox", "--disable-gpu", "--disable-quic",
-                            "--no-first-run", "--disable-background-networking", "--disable-component-update",
-                            "--disable-sync", "--hide-scrollbars", f"--user-data-dir={profile}",
-                            "--enable-logging=stderr", "--v=0",
-                            "--virtual-time-budget=3000", f"--window-size={size[0]},{size[1]}",
-                            f"--screenshot={shot}", "--dump-dom", path.resolve().as_uri() + fragment],
-                           capture_output=True, text=True, timeout=120)
-    assert r.returncode == 0, r.stderr[-2000:]
-    errors = [ln for ln in r.stderr.splitlines() if "CONSOLE" in ln]   # the page's script logs nothing
-    assert not errors, errors
-    return r.stdout
+@pytest.fixture(scope="module")
+def browser():
+    """One headless Chromium for the module (tests/browser.py)."""
+    from browser import Browser, find_chromium
+    exe = find_chromium()
+    if not exe:
+        if os.environ.get("VELPOLY_REQUIRE_BROWSER") == "1":
+            pytest.fail("VELPOLY_REQUIRE_BROWSER=1 but no chromium: install Debian's chromium package")
+        pytest.skip("no chromium (set VELPOLY_REQUIRE_BROWSER=1 to make this a failure)")
+    b = Browser(exe, size=(1280, 900))
+    yield b
+    b.close()
 
 
 class Dom(HTMLParser):
@@ -336,26 +319,27 @@ BROWSER_CASES = [
     ("cam_roller_follower", "#angle=100&step=12"),
     ("fig3_15a_rolling", "#angle=60"),
     ("stephenson_sixbar", "#angle=10&step=4"),
+    ("crank_shaper", "#angle=-150&step=20"),
 ]
 
 
 @pytest.fixture(scope="module")
-def browser_runs(tmp_path_factory, sixbar_page):
-    _browser()
+def browser_runs(tmp_path_factory, sixbar_page, browser):
     tmp = tmp_path_factory.mktemp("browser")
     pages = {"problem_1_4_4_sixbar": sixbar_page}
-    for name, _ in BROWSER_CASES:
-        if name not in pages:
-            pages[name] = tmp / f"{name}.html"
-            # every 10 degrees (the nearest pose is drawn): the six-bar's page (every degree) is the size test's
-            pages[name].write_text(page(velpoly.load(GALLERY / f"{name}.toml"), step=10.0), encoding="utf-8")
-
-    def one(case):
+    out = {}
+    for case in BROWSER_CASES:
         name, frag = case
-        shot = tmp / f"{name}-{len(frag)}-{abs(hash(frag))}.png"
-        return run_page(pages[name], frag, shot), shot, pages[name]
-    with ThreadPoolExecutor(max_workers=2) as ex:   # one Chromium a page, two at a time
-        return dict(zip(BROWSER_CASES, ex.map(one, BROWSER_CASES)))
+        if name not in pages:
+            # every 10 degrees (the nearest pose is drawn): the six-bar's page (every degree) is the size test's
+            pages[name] = tmp / f"{name}.html"
+            pages[name].write_text(page(velpoly.load(GALLERY / f"{name}.toml"), step=10.0), encoding="utf-8")
+        browser.open(pages[name].resolve().as_uri() + frag)
+        shot = tmp / f"{name}-{len(out)}.png"
+        shot.write_bytes(browser.screenshot())
+        out[case] = (browser.dom(), shot, pages[name])
+    assert not browser.errors(), browser.errors()      # the page's script threw or logged nothing
+    return out
 
 
 def _similar(marks, x="data-x", y="data-y", flip=True):
@@ -388,6 +372,7 @@ def test_browser_draws_the_solution(case, browser_runs):
     drawn = float(dom.body["data-rendered"])
     static, data = embedded(path.read_text(encoding="utf-8"))
     assert abs(wrap(drawn - want_angle)) <= static["step"] / 2 + 1e-9     # the pose nearest the fragment's angle
+    want_step = min(want_step, int(dom.body["data-steps"]))   # a step past the last is the last
     assert int(dom.body["data-step"]) == want_step
     sol = velpoly.solve(m, angle=drawn)
     size = m.size
@@ -439,6 +424,12 @@ def test_browser_draws_the_solution(case, browser_runs):
     if want_step:
         P = decode(data, int(dom.body["data-pose-index"]))
         steps = [s["eq"] for s in P["vp"]["st"]] + ([s["eq"] for s in P["ap"]["st"]] if P["ap"] else [])
+        if want_step > len(steps):   # a pole's step: the poles found so far, the step in words
+            order = sorted((p["o"], k) for k, p in P["poles"].items() if p["o"] > 0)
+            n, key = order[want_step - len(steps) - 1]
+            assert dom.caption["data-equation"] == P["poles"][key]["s"] and dom.caption["data-level"] == "poles"
+            shown = {a["data-key"] for a in dom.marks if "pole" in a.get("class", "").split()}
+            assert shown == {k for k, p in P["poles"].items() if p["o"] <= n and (p["p"] or p["d"] is not None)}
         if want_step <= len(steps):
             assert dom.caption["data-equation"] == steps[want_step - 1]
             assert _digitless(dom.caption["data-equation"]) == _digitless(

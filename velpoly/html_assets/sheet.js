@@ -645,8 +645,9 @@
       if (p[0] === "angle" && p[1] !== undefined && p[1] !== "" && isFinite(+p[1])) a = +p[1];
       if (p[0] === "step" && p[1] !== undefined && isFinite(+p[1])) st = Math.max(0, Math.floor(+p[1]));
     });
-    if (a !== null) state.i = nearest(a);
-    if (st !== null) state.step = st;
+    // the address says it all: no angle is the drawn pose, no step the whole construction
+    state.i = a !== null ? nearest(a) : S.start;
+    state.step = st !== null ? st : 0;
   }
   function writeHash() {
     if (hashLock) return;
