@@ -17,6 +17,7 @@ import random
 import re
 import subprocess
 import sys
+import time
 from html.parser import HTMLParser
 from pathlib import Path
 
@@ -454,3 +455,66 @@ def test_browser_draws_the_solution(case, browser_runs):
     assert stat.stddev[0] > 20
     dark = sum(img.histogram()[:128]) / (img.size[0] * img.size[1])
     assert 0.005 < dark < 0.5
+
+
+def test_browser_controls(browser, sixbar_page):
+    """Keys, the slider, play/pause, hover and tap, in the browser with real input events."""
+    static, data = embedded(sixbar_page.read_text(encoding="utf-8"))
+    b = browser
+    b.open(sixbar_page.resolve().as_uri() + "#angle=30")
+
+    def state():
+        return (float(b.js("document.body.dataset.rendered")), int(b.js("document.body.dataset.step")),
+                b.js("location.hash"))
+    assert state() == (30.0, 0, "#angle=30")
+    b.key("ArrowRight", 39)
+    assert state() == (31.0, 0, "#angle=31")
+    b.key("ArrowRight", 39, shift=True)
+    b.key("ArrowLeft", 37)
+    assert state() == (40.0, 0, "#angle=40")
+    for _ in range(3):
+        b.key("ArrowDown", 40)
+    assert state() == (40.0, 3, "#angle=40&step=3")
+    P = decode(data, int(b.js("document.body.dataset.poseIndex")))
+    assert b.js("document.getElementById('caption').dataset.equation") == P["vp"]["st"][2]["eq"]
+    assert b.js("document.querySelectorAll('#acceleration .img').length") == 0   # not yet constructed
+    b.key("ArrowUp", 38)
+    assert state()[1] == 2
+    b.key("End", 35)
+    assert state()[1] == int(b.js("document.body.dataset.steps")) == len(P["vp"]["st"]) + len(P["ap"]["st"]) + \
+        sum(1 for p in P["poles"].values() if p["o"] > 0)
+    b.key("Home", 36)
+    assert state()[1] == 0
+    # the slider: a click three quarters along it
+    r = b.js("(function(){var r=document.getElementById('angle').getBoundingClientRect();"
+             "return [r.left, r.top, r.width, r.height];})()")
+    b.mouse("click", r[0] + 0.75 * r[2], r[1] + r[3] / 2)
+    i = int(b.js("document.body.dataset.poseIndex"))
+    assert abs(i - 0.75 * 359) < 15
+    assert float(b.js("document.body.dataset.rendered")) == pytest.approx(wrap(static["angles"][i]))
+    # play, then pause
+    b.key(" ", 32)
+    b.wait(f"document.body.dataset.poseIndex != '{i}'", timeout=10)
+    b.key(" ", 32)
+    j = b.js("document.body.dataset.poseIndex")
+    time.sleep(0.3)
+    assert b.js("document.body.dataset.poseIndex") == j
+    # hover over point B: its name and value; a tap on image c keeps its value shown
+    b.open(sixbar_page.resolve().as_uri() + "#angle=30")
+    sol = velpoly.solve(velpoly.load(SIXBAR), angle=30.0)
+
+    def centre(sel):
+        return b.js(f"(function(){{var r=document.querySelector('{sel}').getBoundingClientRect();"
+                    "return [r.left + r.width / 2, r.top + r.height / 2];})()")
+    x, y = centre('#space .pt[data-key="B"]')
+    b.mouse("mouseMoved", x, y)
+    assert b.js("document.getElementById('tip').hidden") is False
+    tip = b.js("document.getElementById('tip').textContent")
+    assert tip.startswith("B: (") and f"{sol.position['B'][0]:.5g}"[:5] in tip.replace("\u2212", "-")
+    x, y = centre('#velocity .img[data-key="C"]')
+    b.mouse("click", x, y)
+    b.mouse("mouseMoved", 5, 5)          # moving away keeps a tapped value shown
+    tip = b.js("document.getElementById('tip').textContent")
+    speed = float(np.hypot(*sol.velocity["C"]))
+    assert "V_C = " in tip and f"{speed:.5g}"[:5] in tip
+    assert not b.errors(), b.errors()
