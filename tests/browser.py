@@ -100,7 +100,8 @@ class Browser:
         for m in self.events:
             if m.get("method") == "Runtime.exceptionThrown":
                 out.append(m["params"]["exceptionDetails"])
-            elif m.get("method") == "Runtime.consoleAPICalled" and m["params"]["type"] in ("error", "warning", "assert"):
+            elif m.get("method") == "Runtime.consoleAPICalled" and \
+                    m["params"]["type"] in ("error", "warning", "assert"):
                 out.append(m["params"])
         return out
 

@@ -170,7 +170,7 @@ def pose_values(sol, index: dict) -> dict:
             out[name] = _polygon(fn(sol)) if name != "poles" else fn(sol)
         except VelpolyError as e:
             out[name] = None
-            out["msg"].append(e.what if hasattr(e, "what") else str(e))
+            out["msg"].append(e.what)
     return out
 
 
@@ -433,7 +433,6 @@ def _static(m, sol0, w, view: _View) -> dict:
             ctr = ref[cn] if cn in ref else None
             if ctr is None:
                 continue
-            own = m.link(lk).points
             rad = float(np.hypot(*(local(lk, place_now[None, :])[0] - ctr)))
             if rad < 1.5 * m.size:
                 parts[lk].append(Point(*ctr).buffer(rad, 48))
