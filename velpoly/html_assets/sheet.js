@@ -218,7 +218,15 @@
   }
   function driverArrow(P, v) {
     var d = S.driver;
-    if (d.slider || !S.pivot) return "";
+    if (d.slider) {   // an arrow beside the block, along its velocity
+      var key = P.V[d.slider] ? d.slider : Object.keys(P.V).filter(function (k) { return k.split("@")[0] === d.slider; })[0];
+      var pc = P.P[key], vc = P.V[key];
+      if (!pc || !vc || !Math.hypot(vc[0], vc[1])) return "";
+      var L = Math.hypot(vc[0], vc[1]), ux = vc[0] / L, uy = -vc[1] / L, bx = X(v, pc[0]) + uy * 52, by = Y(v, pc[1]) - ux * 52;
+      return '<g data-tip="' + esc("driver: " + S.driver.text) + '">' + arrow(bx - ux * 22, by - uy * 22, bx + ux * 22, by + uy * 22, "absolute") +
+        labelAt(bx, by, uy, -ux, "V" + '<tspan baseline-shift="sub" font-size="72%">' + esc(d.slider) + "</tspan>", "lab", 18) + "</g>";
+    }
+    if (!S.pivot) return "";
     var p = position(P, S.pivot);
     if (!p) return "";
     var th = P.th[d.link] * Math.PI / 180, sense = d.omega >= 0 ? 1 : -1, r = 30;
@@ -720,6 +728,7 @@
     });
     window.addEventListener("hashchange", function () { readHash(); hashLock = true; draw(); hashLock = false; });
     legend();
+    document.getElementById("title").innerHTML = eqHtml(S.title);   // omega_2 -> ω2, 30 deg -> 30°
     document.getElementById("reference").innerHTML = reference();
     readHash();
     hashLock = true;
