@@ -386,6 +386,10 @@ def test_browser_draws_the_solution(case, browser_runs):
         assert float(a["cx"]) == pytest.approx(float(a["data-sx"]), abs=0.006)
         assert float(a["cy"]) == pytest.approx(float(a["data-sy"]), abs=0.006)
     _similar(pts)
+    v = static["views"]["space"]   # drawn to the page's scale of the space diagram
+    for a in pts:
+        assert float(a["data-sx"]) == pytest.approx(v["k"] * (float(a["data-x"]) - v["x0"]), abs=1e-6)
+        assert float(a["data-sy"]) == pytest.approx(v["k"] * (v["y1"] - float(a["data-y"])), abs=1e-6)
     for a in dom.marks:   # hover or tap: every point, image and pole names itself and its value
         key, tip, cls = a["data-key"], a.get("data-tip", ""), a.get("class", "").split()
         if "pt" in cls:
@@ -517,4 +521,7 @@ def test_browser_controls(browser, sixbar_page):
     tip = b.js("document.getElementById('tip').textContent")
     speed = float(np.hypot(*sol.velocity["C"]))
     assert "V_C = " in tip and f"{speed:.5g}"[:5] in tip
+    # the results table: graphical and analytic omega and speeds at this pose
+    table = b.js("document.getElementById('results-table').textContent").replace("\u2212", "-")
+    assert "30°" in table and f"{sol.omega['3']:.5g}" in table and f"{speed:.4g}" in table
     assert not b.errors(), b.errors()
