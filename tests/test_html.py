@@ -231,6 +231,15 @@ def test_cli_errors(tmp_path):
     assert r.returncode == 2 and "--step" in r.stderr and not (tmp_path / "x.html").exists()
     r = run(SIXBAR, "-o", tmp_path / "x.html", "--step", "0")
     assert r.returncode == 2 and "--step" in r.stderr and not (tmp_path / "x.html").exists()
+    normal = tmp_path / "normal.toml"   # a contact given by its normal: the drawn pose only, no cycle
+    normal.write_text('[points]\nO2 = [0, 0]\nQ = [0.05, 0]\nO4 = [0.02, 0.12]\nR = [0.04, 0.07]\n'
+                      'P = [0.04, 0.05]\n[links]\n1 = { points = ["O2", "O4"], frame = true }\n'
+                      '2 = { points = ["O2", "Q"] }\n4 = { points = ["O4", "R"] }\n[[contacts]]\n'
+                      'links = ["2", "4"]\npoint = "P"\nkind = "sliding"\nnormal = 80\n'
+                      '[driver]\nlink = "2"\nomega = 7\n')
+    r = run(normal, "-o", tmp_path / "x.html")
+    assert r.returncode == 2 and "contacts[0]" in r.stderr and "centres of curvature" in r.stderr
+    assert not (tmp_path / "x.html").exists()
     src = tmp_path / "in.html"
     src.write_text(SIXBAR_1_4_4)
     r = run(src, "-o", src)
