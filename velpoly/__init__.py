@@ -22,7 +22,7 @@ __all__ = ["load", "loads", "solve", "sweep", "Mechanism", "Solution", "Sweep", 
 
 # The rest is imported on first use (PEP 562), so that `velpoly --help` starts without numpy.
 _LAZY = {"load": "loader", "loads": "loader", "Mechanism": "model", "Solution": "solution", "solve": "solution",
-         "Sweep": "sweeps", "sweep": "sweeps"}
+         "Sweep": "sweeps", "sweep": "sweeps", "html": "html"}
 
 
 def __getattr__(name):

@@ -109,6 +109,13 @@ def build_parser() -> argparse.ArgumentParser:
                 "velpoly examples ex3_4_slotted_lever > lever.toml")
     x.add_argument("name", nargs="?", metavar="NAME", help="the example to print (its TOML text); without it, "
                    "list them all with their titles")
+
+    h = command("html", "one self-contained interactive page: the sheet over the driver's cycle, the "
+                "construction step by step", "velpoly html ex36.toml -o ex36.html")
+    h.add_argument("file", help="the mechanism file (TOML)")
+    h.add_argument("-o", "--output", metavar="OUT", help="the page (default: FILE's name with .html)")
+    h.add_argument("--step", type=float, default=1.0, metavar="DEG", help="driver step between the poses, in "
+                   "degrees (default 1; a slider driver's stroke in as many poses)")
     return p
 
 
@@ -202,8 +209,34 @@ def cmd_examples(args) -> int:
     return 0
 
 
+HTML_MIN_STEP = 0.1   # degrees: 3600 poses a turn, a page of 15 to 20 MB
+
+
+def cmd_html(args) -> int:
+    out = Path(args.output) if args.output else Path(Path(args.file).stem + ".html")
+    if out.suffix.lower() not in (".html", ".htm"):
+        raise InputError(f"unknown page type {out.suffix or '(none)'!r}", where="-o", file=str(out),
+                         hint="end the output's name with .html")
+    try:
+        same = out.exists() and os.path.samefile(out, args.file)
+    except OSError:
+        same = False
+    if same:   # outputs never replace their input (FORMAT.md section 3)
+        raise InputError("the output is the input file", where="-o", file=args.file,
+                         hint="write the page to another file, e.g. -o sheet.html")
+    if 0 < args.step < HTML_MIN_STEP:   # other bad steps are refused by the cycle itself
+        raise InputError(f"the step {args.step:g} deg is too fine for a page: {360 / args.step:.3g} poses a turn",
+                         where="--step", hint=f"use a step of at least {HTML_MIN_STEP:g} deg (the default, 1, "
+                         "makes a page of 1 to 2 MB)")
+    from . import load
+    from .html import write_page
+    m = load(Path(args.file), name=args.file)
+    print(write_page(m, out, step=args.step))
+    return 0
+
+
 COMMANDS = {"solve": cmd_solve, "draw": cmd_draw, "sweep": cmd_sweep, "demo": cmd_demo, "gallery": cmd_gallery,
-            "examples": cmd_examples}
+            "examples": cmd_examples, "html": cmd_html}
 
 
 OUTPUT_OPTIONS = (("output", "-o"), ("csv", "--csv"), ("gif", "--gif"))
