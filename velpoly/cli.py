@@ -61,6 +61,18 @@ def build_parser() -> argparse.ArgumentParser:
     w.add_argument("--gif", help="animated GIF of the mechanism with its velocity polygon")
     w.add_argument("--style", choices=STYLES, default="textbook")
 
+    a = sub.add_parser("animate", help="the motion over the cycle with its polygons: GIF, animated PNG, MP4, "
+                       "multi-page PDF (by the output's suffix)")
+    a.add_argument("file")
+    a.add_argument("-o", "--output", required=True, help="output file: .gif, .png (animated PNG), .mp4, .pdf "
+                   "(one page a frame, for LaTeX's animate package) or .html (velpoly html)")
+    a.add_argument("--sheet", choices=SHEETS, default="velocity", help="the panels beside the mechanism "
+                   "(default: velocity)")
+    a.add_argument("--step", type=float, default=2.0, help="driver step between frames in degrees (default 2)")
+    a.add_argument("--size", default="1920x1080", help="frame size WIDTHxHEIGHT in pixels (default 1920x1080)")
+    a.add_argument("--fps", type=float, default=15.0, help="frames a second (default 15)")
+    a.add_argument("--style", choices=STYLES, default="slides")
+
     e = sub.add_parser("demo", help="the main job on a built-in example, no file needed")
     e.add_argument("-o", "--output", default="out", help="output folder (default: out/)")
     e.add_argument("--style", choices=STYLES, default="textbook")
@@ -134,6 +146,58 @@ def cmd_sweep(args) -> int:
     return sweep_command(args)
 
 
+def cmd_animate(args) -> int:
+    out = Path(args.output)
+    suffix = out.suffix.lower()
+    if suffix == ".html":
+        return _animate_html(args, out)
+    from .render.animate import FORMATS, parse_size
+    if suffix not in FORMATS:
+        raise InputError(f"unknown animation type {out.suffix or '(none)'!r}", where="-o", file=str(out),
+                         hint="end the output's name with .gif, .png (animated PNG), .mp4, .pdf or .html")
+    if out.resolve() == Path(args.file).resolve():
+        raise InputError("the output would replace the input file", where="-o", file=str(out),
+                         hint="give the animation another name")
+    size = parse_size(args.size)
+    if suffix == ".mp4" and (size[0] % 2 or size[1] % 2):
+        raise InputError(f"an MP4 needs an even width and height, got {size[0]}x{size[1]}", where="--size",
+                         hint="e.g. --size 1920x1080")
+    from . import load
+    from .render.animate import Animator, plan_frames, write_animation, _mp4_writer
+    if suffix == ".mp4":
+        _mp4_writer()             # the missing extra is said before any work
+    m = load(Path(args.file), name=args.file)
+    plan = plan_frames(m, args.step)
+    anim = Animator(plan, args.sheet, args.style, size)
+    tty = bool(getattr(sys.stderr, "isatty", lambda: False)())
+
+    def progress(done: int, total: int) -> None:
+        if tty and total >= 30:
+            sys.stderr.write(f"\rvelpoly animate: frame {done}/{total}")
+            if done == total:
+                sys.stderr.write("\n")
+            sys.stderr.flush()
+    write_animation(anim, out, args.fps, progress)
+    print(out)
+    return 0
+
+
+def _animate_html(args, out: Path) -> int:
+    """``velpoly animate FILE -o PAGE.html``: the interactive page of ``velpoly html``, where it exists."""
+    try:
+        import importlib
+        importlib.import_module(".html", __package__)
+    except ImportError:
+        raise InputError("an HTML animation is the interactive page of `velpoly html`, which this velpoly "
+                         "does not have", where="-o", file=str(out),
+                         hint="write .gif, .png, .mp4 or .pdf, or use `velpoly html FILE -o PAGE.html` where "
+                         "it is installed") from None
+    if "html" not in COMMANDS:
+        raise InputError("an HTML animation is written by `velpoly html`", where="-o", file=str(out),
+                         hint=f"use: velpoly html {args.file} -o {out}")
+    return COMMANDS["html"](build_parser().parse_args(["html", args.file, "-o", str(out)]))
+
+
 def cmd_demo(args) -> int:
     from .gallery import demo_command
     return demo_command(args)
@@ -145,6 +209,7 @@ def cmd_gallery(args) -> int:
 
 
 COMMANDS = {"solve": cmd_solve, "draw": cmd_draw, "sweep": cmd_sweep, "demo": cmd_demo, "gallery": cmd_gallery}
+COMMANDS["animate"] = cmd_animate
 
 
 def main(argv=None) -> int:
