@@ -488,9 +488,12 @@ class Animator:
             need.append((max(asp), h))
         avail = right - left - gap * (len(columns) - 1)
         total = sum(a for a, _ in need)
+        shares = [a / total for a, _ in need]
+        if len(shares) == 2:      # the polygons matter as much as the mechanism: neither under a third
+            shares = [min(max(f, 0.36), 0.64) for f in shares]
         out, x = {}, left
-        for col, (a, h) in zip(columns, need):
-            w = avail * a / total
+        for col, (a, h), f in zip(columns, need, shares):
+            w = avail * f
             for i, n in enumerate(col):
                 out[n] = (x, bottom + (len(col) - 1 - i) * (h + 0.05), w, h)
             x += w + gap
