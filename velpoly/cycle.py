@@ -652,7 +652,7 @@ def write_gif(sw: Sweep, out, kin: Kinematics | None = None, style: str = "textb
     if sw.kinematics is None:
         sw = dataclasses.replace(sw, kinematics=kin or prepare(m))
     plan = FramePlan(m, (sw,), tuple((0, int(i)) for i in frames), np.asarray(sw.angles, float)[frames],
-                     np.ones(len(frames)), None, caption, 0.0)
+                     np.ones(len(frames)), None, caption, 0.0, bool(sw.stopped) or m.driver.is_slider)
     anim = Animator(plan, "velocity", style, GIF_SIZE, centrodes=(cen, sw) if cen is not None else None)
     bar = _Progress(len(frames), "velpoly sweep: GIF", min_total=2) if progress else None
     write_animation(anim, out, 1000.0 / GIF_FRAME_MS, (lambda done, total: bar.advance()) if bar else None)

@@ -18,10 +18,11 @@ stroke out and back likewise. Each frame says which way the driver turns and
 the caption says the range: "rocks between -40.2° and 61.3°".
 
 **Fixed for the whole animation.** The layout, each panel's scale (chosen so
-that the panel is filled at its largest frame, with one exception: frames
-within a toggle's surge, whose largest vector is more than ``SURGE`` times
-the median frame's, run off the panel rather than shrink every other frame's
-polygon to a dot) and the scale bars.
+that the panel is filled at its largest frame, with one exception: where the
+frames come close to a toggle (a rocking crank, a slider's stroke, a sweep
+stopped at a toggle), the frames within the toggle's surge, whose largest
+vector is more than ``SURGE`` times the median frame's, run off the panel
+rather than shrink every other frame's polygon to a dot) and the scale bars.
 
 **Fast.** The poses come from the vectorised sweep (:func:`velpoly.sweep`),
 the polygons of each pose from :mod:`velpoly.polygons` (under a millisecond
@@ -82,6 +83,7 @@ class FramePlan:
     rocks: tuple | None
     caption: str
     step: float
+    near_toggle: bool = False    # the frames come close to a toggle (a rocking crank, a stroke's ends, a stopped sweep)
 
     def __len__(self) -> int:
         return len(self.frames)
@@ -178,17 +180,17 @@ def plan_frames(m, step: float = 2.0) -> FramePlan:
                         where="driver", file=m.source, links=(),
                         hint="draw the mechanism in a pose away from the toggle")
     if drv.is_slider:
-        scale = (span[1] - span[0]) / max(int(math.ceil(360.0 / step - 1e-9)), 1)
-        grid = _grid(span[0], span[1], scale)
+        h = (span[1] - span[0]) / max(int(math.ceil(360.0 / step - 1e-9)), 1)
     else:
-        grid = _grid(span[0], span[1], step)
+        h = step
+    grid = _grid(span[0], span[1], h)
     forward = (drv.speed if drv.is_slider else drv.omega) >= 0
     out = grid if forward else grid[::-1]
     back = out[::-1][1:-1]
-    w_out = sweep(m, out, kin) if not drv.is_slider else _slider_sweep(m, out, kin)
+    start = 0.0 if drv.is_slider else driver_reference_angle(m)
+    w_out = _leg(m, kin, start, out, h)
     mr = _reversed(m)
-    kr = prepare(mr)
-    w_back = sweep(mr, back, kr) if not drv.is_slider else _slider_sweep(mr, back, kr)
+    w_back = _leg(mr, prepare(mr), start, back, h)
     n_out, n_back = len(w_out.angles), len(w_back.angles)
     if n_out < len(out) or n_back < len(back):    # a toggle inside the range found: should not happen
         raise PoseError("cannot animate: a toggle inside the reachable range", where="driver", file=m.source,
@@ -198,28 +200,22 @@ def plan_frames(m, step: float = 2.0) -> FramePlan:
     sense = np.concatenate([np.ones(n_out), -np.ones(n_back)])
     name, _ = driver_label(m)
     cap = f"{what}: out and back, the driver reversed on the way back"
-    return FramePlan(m, (w_out, w_back), frames, angles, sense, (lo, hi), cap, step)
+    return FramePlan(m, (w_out, w_back), frames, angles, sense, (lo, hi), cap, step, True)
 
 
-def _slider_sweep(m, positions, kin):
-    """A slider driver's positions in the order given, continued from the reference position: each half
-    (below and above the reference) followed outwards from it, then put in the order asked."""
-    from ..cycle import _join
+def _leg(m, kin, start: float, positions, h: float):
+    """The sweep of ``positions`` (in order), reached from the reference position ``start`` by walking
+    there in steps of at most ``h`` (a range wider than half a turn is not crossed the shorter way round,
+    through its toggle); the walk's own poses are left out."""
     from ..sweeps import sweep
-    pos = np.asarray(positions, float)
-    order = np.argsort(pos, kind="stable")
-    srt = pos[order]
-    down = srt[srt < 0][::-1]
-    up = srt[srt >= 0]
-    w_down = sweep(m, np.concatenate([[0.0], down]), kin)
-    w_up = sweep(m, up if len(up) and up[0] == 0 else np.concatenate([[0.0], up]), kin)
-    joined = _join(w_down, w_up)                          # ascending, the reference once
-    have = np.asarray(joined.angles, float)
-    idx = np.searchsorted(have, pos)
-    idx = np.clip(idx, 0, len(have) - 1)
-    if not np.allclose(have[idx], pos, atol=1e-12 * max(1.0, float(np.abs(pos).max(initial=1.0)))):
-        return _take(joined, np.arange(0))
-    return _take(joined, idx)
+    positions = np.asarray(positions, float)
+    if not len(positions):
+        return _take(sweep(m, [start], kin), np.arange(0))
+    n = max(int(math.ceil(abs(positions[0] - start) / h - 1e-9)), 1)
+    walk = np.linspace(start, positions[0], n + 1)[:-1]
+    sw = sweep(m, np.concatenate([walk, positions]), kin)
+    reached = len(sw.angles) - len(walk)
+    return _take(sw, np.arange(len(walk), len(walk) + max(reached, 0)))
 
 
 def _take(sw, idx):
@@ -464,7 +460,8 @@ class Animator:
                 box = _box(np.vstack([pts, np.array(near)]))
         out = {"mechanism": box}
         for kind, polys in self.polys.items():
-            out[kind] = _surge_box([_polygon_points(p) for p in polys])
+            pts = [_polygon_points(p) for p in polys]
+            out[kind] = _surge_box(pts) if self.plan.near_toggle else _box(np.vstack(pts))
         return out
 
     def _layout(self, layout: dict) -> dict:
@@ -1084,11 +1081,11 @@ class _Palette:
         self.flat = pal.astype(np.uint8).ravel().tolist()
         cells = np.arange(32768)
         rgb = np.stack([(cells >> 10) & 31, (cells >> 5) & 31, cells & 31], axis=1) * 8 + 4
-        lut = np.empty(32768, np.uint8)
-        cand = pal[:max(used, 1)]
-        for a in range(0, 32768, 4096):
-            d = ((rgb[a:a + 4096, None, :] - cand[None, :, :]) ** 2).sum(axis=2)
-            lut[a:a + 4096] = d.argmin(axis=1)
+        cand = pal[:max(used, 1)].astype(np.float32)
+        x = rgb.astype(np.float32)
+        # |x - p|^2 = |p|^2 - 2 x.p (+ |x|^2, the same for every p): one matrix product
+        d = (cand ** 2).sum(axis=1)[None, :] - 2.0 * (x @ cand.T)
+        lut = d.argmin(axis=1).astype(np.uint8)
         self.lut = lut
 
     def indices(self, rgba: np.ndarray) -> np.ndarray:
