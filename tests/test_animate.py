@@ -4,6 +4,7 @@ from __future__ import annotations
 
 import math
 import re
+from pathlib import Path
 
 import numpy as np
 import pytest
@@ -304,3 +305,29 @@ def test_an_acceleration_sheet_needs_centres_of_curvature(tmp_path):
         pytest.skip("this contact example does not load here")
     with pytest.raises(InputError, match="centres of curvature"):
         Animator(plan, "acceleration", "slides", SMALL)
+
+
+def test_the_gallery_gets_one_animation_a_family(tmp_path, monkeypatch):
+    import shutil
+    from PIL import Image
+    from velpoly.gallery import build_gallery
+    from velpoly.render import animate
+    from test_gallery import GALLERY, fake_draw
+    src = tmp_path / "src"
+    src.mkdir()
+    for name in ("ex3_6_fourbar", "ex3_5_slider_crank", "stephenson_sixbar"):
+        shutil.copy(GALLERY / f"{name}.toml", src)
+    monkeypatch.setattr(animate, "GALLERY_STEP", 45.0)      # 8 frames: the hook, not the look, is tested here
+    result = build_gallery(src, draw=fake_draw([]), animations=True)
+    gifs = sorted(p.name for p in (src / "figures").glob("animate-*.gif"))
+    assert gifs == ["animate-ex3_5_slider_crank.gif", "animate-ex3_6_fourbar.gif"]   # a family's example each
+    assert all(Path(src / "figures" / g) in result.written for g in gifs)
+    readme = (src / "README.md").read_text()
+    assert "## Animations" in readme and "](figures/animate-ex3_6_fourbar.gif)" in readme
+    with Image.open(src / "figures" / "animate-ex3_6_fourbar.gif") as im:
+        assert im.size == animate.GALLERY_SIZE and im.n_frames == 8
+    plain = tmp_path / "plain"
+    plain.mkdir()
+    shutil.copy(GALLERY / "ex3_6_fourbar.toml", plain)
+    build_gallery(plain, draw=fake_draw([]))                  # not asked for: none
+    assert not list((plain / "figures").glob("animate-*")) and "## Animations" not in (plain / "README.md").read_text()

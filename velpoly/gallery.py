@@ -468,7 +468,8 @@ def _error_line(e: BaseException, path: Path) -> str:
     return f"{path.name}: internal error: {type(e).__name__}: {e}"
 
 
-def build_gallery(source, out=None, style: str = "textbook", draw=None, log=None) -> GalleryResult:
+def build_gallery(source, out=None, style: str = "textbook", draw=None, log=None,
+                  animations: bool = False) -> GalleryResult:
     """Rebuild every example of ``source`` (its ``*.toml`` files, in natural name order) into ``out``.
 
     For each file: the full sheet as ``figures/NAME.png``; then ``README.md`` with a
@@ -504,7 +505,12 @@ def build_gallery(source, out=None, style: str = "textbook", draw=None, log=None
             failed.append((path, line))
             if log:
                 log(line)
-    readme = _readme(sections, failed, source, out)
+    extra = ""
+    if animations:   # one animation a mechanism family (velpoly.render.animate.gallery_animations)
+        from .render.animate import gallery_animations
+        files, extra = gallery_animations(source, out / "figures", log)
+        written += files
+    readme = _readme(sections, failed, source, out, extra)
     written.append(atomic_write_text(out / "README.md", readme))
     return GalleryResult(tuple(written), tuple(built), tuple(failed))
 
@@ -519,7 +525,7 @@ def _relative(path: Path, base: Path) -> str:
     return Path(os.path.relpath(Path(path).resolve(), Path(base).resolve())).as_posix()
 
 
-def _readme(sections, failed, source: Path, out: Path) -> str:
+def _readme(sections, failed, source: Path, out: Path, extra: str = "") -> str:
     used: set = set()
     src = "" if source.resolve() == out.resolve() else f" --source {_relative(source, Path.cwd())}"
     lines = [
@@ -545,6 +551,8 @@ def _readme(sections, failed, source: Path, out: Path) -> str:
         lines.append("")
     for _, text in sections:
         lines += [text]
+    if extra:
+        lines += [extra]
     if failed:
         lines += ["## Not built", "", "These files failed; the error each gave:", ""]
         lines += [f"- {_md(line)}" for _, line in failed]
@@ -585,7 +593,8 @@ def gallery_command(args) -> int:
 
     def log(line):
         print(f"error: {line}", file=sys.stderr)
-    result = build_gallery(source, out, style=style, log=log)
+    # the repository's gallery gets its animations (one a mechanism family); another --source does not
+    result = build_gallery(source, out, style=style, log=log, animations=getattr(args, "source", None) is None)
     for p in result.written:
         print(p)
     n = len(result.built) + len(result.failed)

@@ -332,9 +332,17 @@ _TABLE = (0.805, 0.04, 0.185, 0.80)
 _CAPTIONS = {"mechanism": "Space diagram", "velocity": "Velocity polygon", "acceleration": "Acceleration polygon"}
 
 
+TYPE_FLOOR = 0.55    # below 1080 rows, sizes shrink with the height down to this fraction, no further
+
+
+def _type_factor(fig_h_px: float) -> float:
+    return max(fig_h_px / 1080.0, TYPE_FLOOR)
+
+
 def _px(size_px: float, fig_h_px: float, dpi: float) -> float:
-    """Points for a type of ``size_px`` pixels at 1080 rows, at the figure's height and dpi."""
-    return size_px * (fig_h_px / 1080.0) * 72.0 / dpi
+    """Points for a size of ``size_px`` pixels at 1080 rows, at the figure's height (never below
+    TYPE_FLOOR of it, so that a small animation stays legible) and dpi."""
+    return size_px * _type_factor(fig_h_px) * 72.0 / dpi
 
 
 class Animator:
@@ -420,15 +428,17 @@ class Animator:
 
     # -- building ------------------------------------------------------------------------------
     def _build(self) -> None:
-        from .sheet import equation_tex
+        from .sheet import _fit_width, equation_tex
         fig, st = self.fig, self.st
         layout = dict(_LAYOUTS[self.sheet])
         if self.sheet == "full" and not self.kinds["acceleration"]:
             layout = dict(_LAYOUTS["velocity"])
-        fig.text(0.01, 0.975, equation_tex(self.m.title), ha="left", va="top", fontsize=self.pt(30),
-                 fontweight="bold" if st.name == "slides" else "normal")
-        fig.text(0.01, 0.925, self._caption(), ha="left", va="top", fontsize=self.pt(20), color="0.3",
-                 fontstyle="italic")
+        title = fig.text(0.01, 0.975, equation_tex(self.m.title), ha="left", va="top", fontsize=self.pt(30),
+                         fontweight="bold" if st.name == "slides" else "normal")
+        _fit_width(fig, title, 0.98, smallest=0.6)         # a long title shrinks to the frame's width
+        cap = fig.text(0.01, 0.925, self._caption(), ha="left", va="top", fontsize=self.pt(20), color="0.3",
+                       fontstyle="italic")
+        _fit_width(fig, cap, 0.98, smallest=0.7)
         self.axes = {}
         for name, rect in self._layout(layout).items():
             ax = fig.add_axes(rect, label=name)
@@ -777,13 +787,15 @@ class Animator:
             for k in keys:
                 rows.append((_name_tex("A", k, bars=True), np.hypot(*self.acc[k].T), unit_label(u, 2)))
         H = self.size[1]
-        room = h * H                    # pixels
+        f = _type_factor(H)
+        room = h * H / f                # pixels at 1080 rows
         line = min(34.0, room / max(len(rows) + 1.5, 1))
         shown = rows
         if line < 17.0:                 # type at least 14 px: the rows that fit, the rest left out
             line = 17.0
             shown = rows[:int(room / line) - 2]
         size = self.pt(max(14.5, min(22.0, line * 0.66)))
+        line *= f                       # pixels
         top = y0 + h
         fig.text(x0, top, "ccw positive" if vel or acc else "", fontsize=self.pt(15), color="0.35", va="top",
                  fontstyle="italic")
@@ -795,10 +807,10 @@ class Animator:
             finite = np.asarray(vals, float)[np.isfinite(vals)]
             big = float(np.abs(finite).max()) if len(finite) else 1.0
             dec = 1 if unit == "°" else max(0, min(6, 3 - int(math.floor(math.log10(big))) if big > 0 else 3))
-            t = fig.text(x0 + 0.58 * w, y, "", fontsize=size, va="baseline", ha="right")
+            t = fig.text(x0 + 0.64 * w, y, "", fontsize=size, va="baseline", ha="right")
             t._velpoly_chars = True
             self.table[name] = (self._move(t), np.asarray(vals, float), dec)
-            fig.text(x0 + 0.62 * w, y, unit, fontsize=size * 0.85, va="baseline", ha="left", color="0.3")
+            fig.text(x0 + 0.67 * w, y, unit, fontsize=size * 0.85, va="baseline", ha="left", color="0.3")
         if len(shown) < len(rows):
             fig.text(x0, top - (len(shown) + 1.4) * line / H, f"(+{len(rows) - len(shown)} rows in velpoly solve)",
                      fontsize=self.pt(14.5), color="0.35", va="baseline")
@@ -857,7 +869,7 @@ class Animator:
                     nvec = np.array([-(b - a)[1], (b - a)[0]]) / max(float(np.hypot(*(b - a))), 1e-300)
                     if np.dot(nvec, anchor - centre) < 0:
                         nvec = -nvec
-                    off = (self.bw / 2) / self.pp + 14.0 * self.size[1] / 1080 * 72 / self.dpi
+                    off = (self.bw / 2) / self.pp + self.pt(14.0)
                     t.xy = tuple(anchor)
                     t.set_position(tuple(nvec * off) if len(ps) == 2 else (0.0, 0.0))
                 else:
@@ -1346,9 +1358,54 @@ def _mp4_writer():
     return imageio_ffmpeg.write_frames
 
 
-def gallery_animation(m, out, size=(640, 360), step: float = 6.0, fps: float = 10.0) -> Path:
+# -- the gallery's animations ---------------------------------------------------------------------------
+GALLERY_FAMILIES = (   # (family, example file's stem): one animation a mechanism family
+    ("Four-bar", "ex3_6_fourbar"),
+    ("Slider-crank", "ex3_5_slider_crank"),
+    ("Inverted slider-crank", "ex3_3_inverted_slider"),
+    ("Quick return (slotted lever)", "crank_shaper"),
+    ("Six-bar", "problem_1_4_4_sixbar"),
+    ("Cam and roller follower", "cam_roller_follower"),
+    ("Rolling contact", "wheel_rolling"),
+)
+GALLERY_SIZE = (640, 360)
+GALLERY_STEP = 6.0
+
+
+def gallery_animation(m, out, size=None, step: float | None = None, fps: float = 12.0) -> Path:
     """A small animation for the gallery's README (GIF or animated PNG by ``out``'s suffix): the
-    velocity sheet at ``size``, one frame every ``step`` degrees."""
-    plan = plan_frames(m, step)
-    anim = Animator(plan, "velocity", "slides", size)
+    velocity sheet at ``size`` (GALLERY_SIZE), one frame every ``step`` degrees (GALLERY_STEP)."""
+    plan = plan_frames(m, GALLERY_STEP if step is None else step)
+    anim = Animator(plan, "velocity", "slides", GALLERY_SIZE if size is None else size)
     return write_animation(anim, out, fps)
+
+
+def gallery_animations(source, figures, log=None) -> tuple[list, str]:
+    """One animation for each mechanism family of GALLERY_FAMILIES found in ``source`` (a folder of
+    ``*.toml`` files), written as ``figures/animate-NAME.gif``; returns the files written and the
+    README's section (empty if none was made). A family whose example is missing is left out; one
+    that fails is reported to ``log`` and left out."""
+    from .. import load
+    source, figures = Path(source), Path(figures)
+    written, rows = [], []
+    for family, stem in GALLERY_FAMILIES:
+        path = source / f"{stem}.toml"
+        if not path.exists():
+            continue
+        try:
+            out = gallery_animation(load(path), figures / f"animate-{stem}.gif")
+        except Exception as e:     # one animation's failure must not stop the gallery
+            if log:
+                log(f"{path.name}: animation: {type(e).__name__}: {e}")
+            continue
+        written.append(out)
+        rows.append((family, stem, out))
+    if not rows:
+        return written, ""
+    lines = ["## Animations", "",
+             "One mechanism of each family over its cycle, beside its velocity polygon (`velpoly animate "
+             "FILE -o OUT.gif`, here at 640 x 360 and one frame every 6 degrees; the command's default is "
+             "1920 x 1080, 2 degrees):", ""]
+    for family, stem, out in rows:
+        lines += [f"### {family}", "", f"![{family}: {stem}](figures/{out.name})", ""]
+    return written, "\n".join(lines)
