@@ -680,8 +680,11 @@ class Animator:
         # the origin and its label (still)
         ax.add_patch(Circle((0, 0), self.pt(4) * pp, facecolor=st.ink, edgecolor="none", zorder=6))
         origin = polys[0].origin_label
-        ax.annotate(tex(origin), (0, 0), xytext=(-self.pt(14), -self.pt(14)), textcoords="offset points",
-                    ha="right", va="top", fontsize=self.pt(24), fontstyle="italic", zorder=7)
+        o = ax.annotate(tex(origin), (0, 0), xytext=(-self.pt(14), -self.pt(14)), textcoords="offset points",
+                        ha="right", va="top", fontsize=self.pt(24), fontstyle="italic", zorder=7)
+        bb = o.get_window_extent(self.fig.canvas.get_renderer())
+        self._origin_box = getattr(self, "_origin_box", {})
+        self._origin_box[kind] = (bb.x0, bb.y0, bb.x1, bb.y1)
         from .style import link_colour
         from matplotlib.patches import Polygon as MPolygon
         shades = {}
@@ -765,7 +768,9 @@ class Animator:
         if drv.is_slider:
             rows.append((_name_tex("s", drv.slider), self.plan.angles, m.units))
         else:
-            rows.append((_name_tex("theta", drv.link), self.plan.angles, "°"))
+            wrapped = (np.asarray(self.plan.angles, float) + 180.0) % 360.0 - 180.0
+            wrapped[wrapped == -180.0] = 180.0          # (-180, 180], as in the JSON
+            rows.append((_name_tex("theta", drv.link), wrapped, "°"))
         u = m.units
         vel = self.sheet in ("velocity", "full", "poles")
         acc = self.sheet == "acceleration" or (self.sheet == "full" and self.kinds["acceleration"])
@@ -849,15 +854,24 @@ class Animator:
         dots = np.array([first[p] for p in self.dot_names]).reshape(-1, 2)
         self.dots.set_data(dots[:, 0], dots[:, 1])
         self.points = first
+        ax = self.axes["mechanism"]
+        segs = []
+        for link in m.moving_links:
+            ps = [sol.place(link.name, q) for q in link.points]
+            segs += [(a, b) for i, a in enumerate(ps) for b in ps[i + 1:]]
+        for p in self.pivots:         # the ground beneath a frame pivot
+            if p in first:
+                segs.append((first[p], first[p] + np.array([0.0, -3.0 * self.bw])))
+        taken = []
         for p, t in self.point_labels.items():
             xy = first[p]
             links = m.carriers.get(p, ())
             others = _neighbours(sol, p, links)
-            if p in self.pivots:      # the ground beneath a frame pivot
+            if p in self.pivots:
                 others = others + [xy + np.array([0.0, -1.0]) * max(self.bw, 1e-300) * 3]
             ang = _away(xy, others, default=45.0)
             t.xy = tuple(xy)
-            t.set_position(self._offset(t, ang, 9.0))
+            t.set_position(self._clear_offset(ax, t, xy, ang, 9.0, segs, taken))
         if self.link_numbers:
             centre = np.mean(np.array(list(pos.values())), axis=0)
             for lk, t in self.link_numbers.items():
@@ -898,6 +912,43 @@ class Animator:
         for name, (t, vals, dec) in self.table.items():
             v = vals[k]
             t.set_text("–" if not math.isfinite(v) else f"{v:.{dec}f}".replace("-", "−"))
+
+    def _clear_offset(self, ax, text, anchor, prefer: float, gap_px: float, segs, taken: list) -> tuple:
+        """The offset (points) of ``text`` beside ``anchor``: of twelve directions (``prefer`` first, then
+        alternately either side), the one whose box keeps farthest from the segments drawn (links, or the
+        polygon's vectors) and the labels already placed (``taken``: boxes in pixels, appended to), up to a
+        clearance of 6 pixels, where nearer ``prefer`` wins."""
+        tr = ax.transData
+        a = tr.transform(np.asarray(anchor, float))
+        if segs:
+            ends = tr.transform(np.array([e for sg in segs for e in sg], float)).reshape(-1, 2, 2)
+            f = np.linspace(0.0, 1.0, 9)[None, :, None]
+            pts = (ends[:, :1] + (ends[:, 1:] - ends[:, :1]) * f).reshape(-1, 2)
+        else:
+            pts = np.zeros((0, 2))
+        self._offset(text, prefer, gap_px)
+        w, h = (v * self.dpi / 72.0 for v in text._velpoly_wh)
+        best = None
+        for i, d in enumerate([0, 30, -30, 60, -60, 90, -90, 120, -120, 150, -150, 180]):
+            ang = prefer + d
+            off = np.array(self._offset(text, ang, gap_px)) * self.dpi / 72.0
+            c = a + off
+            clear = 6.0
+            if len(pts):
+                dx = np.maximum(np.abs(pts[:, 0] - c[0]) - w / 2, 0.0)
+                dy = np.maximum(np.abs(pts[:, 1] - c[1]) - h / 2, 0.0)
+                clear = min(clear, float(np.hypot(dx, dy).min()))
+            for b in taken:
+                gx = max(b[0] - (c[0] + w / 2), (c[0] - w / 2) - b[2], 0.0)
+                gy = max(b[1] - (c[1] + h / 2), (c[1] - h / 2) - b[3], 0.0)
+                clear = min(clear, float(np.hypot(gx, gy)) - (6.0 if gx == gy == 0 else 0.0))
+            if best is None or clear > best[0] + 1e-9:
+                best = (clear, off, c)
+            if clear >= 6.0:
+                break
+        _, off, c = best
+        taken.append((c[0] - w / 2, c[1] - h / 2, c[0] + w / 2, c[1] + h / 2))
+        return (float(off[0] * 72.0 / self.dpi), float(off[1] * 72.0 / self.dpi))
 
     def _offset(self, text, ang: float, gap_px: float) -> tuple:
         """The offset (points) that puts ``text``'s box ``gap_px`` beside its anchor in direction ``ang``."""
@@ -949,12 +1000,14 @@ class Animator:
         self.images[kind] = images
         pts = np.array([np.zeros(2)] + list(images.values()))
         centre = pts.mean(axis=0)
+        segs = [(tail, head) for _, tail, head, key in vectors if key in used]
+        taken = [self._origin_box.get(kind)] if self._origin_box.get(kind) is not None else []
         for key, t in art["labels"].items():
             p = images[key]
             away = p - centre
             ang = math.degrees(math.atan2(away[1], away[0])) if np.hypot(*away) > tol else -135.0
             t.xy = tuple(p)
-            t.set_position(self._offset(t, ang, 7.0))
+            t.set_position(self._clear_offset(art["ax"], t, p, ang, 7.0, segs, taken))
 
     # -- output -------------------------------------------------------------------------------------
     def render(self, k: int) -> np.ndarray:
