@@ -548,11 +548,13 @@ def _readme(sections, failed, source: Path, out: Path, extra: str = "") -> str:
         lines += ["Examples:", ""]
         for title, _ in sections:
             lines.append(f"- [{_md(title)}](#{_anchor(title, used)})")
+        if extra:
+            lines.append("- [Animations: one mechanism of each family](#animations)")
         lines.append("")
+    if extra:        # the animations, between the index and the examples
+        lines += [extra]
     for _, text in sections:
         lines += [text]
-    if extra:
-        lines += [extra]
     if failed:
         lines += ["## Not built", "", "These files failed; the error each gave:", ""]
         lines += [f"- {_md(line)}" for _, line in failed]

@@ -1422,7 +1422,7 @@ GALLERY_FAMILIES = (   # (family, example file's stem): one animation a mechanis
     ("Rolling contact", "wheel_rolling"),
 )
 GALLERY_SIZE = (640, 360)
-GALLERY_STEP = 6.0
+GALLERY_STEP = 8.0
 
 
 def gallery_animation(m, out, size=None, step: float | None = None, fps: float = 12.0) -> Path:
@@ -1457,7 +1457,7 @@ def gallery_animations(source, figures, log=None) -> tuple[list, str]:
         return written, ""
     lines = ["## Animations", "",
              "One mechanism of each family over its cycle, beside its velocity polygon (`velpoly animate "
-             "FILE -o OUT.gif`, here at 640 x 360 and one frame every 6 degrees; the command's default is "
+             "FILE -o OUT.gif`, here at 640 x 360 and one frame every 8 degrees; the command's default is "
              "1920 x 1080, 2 degrees):", ""]
     for family, stem, out in rows:
         lines += [f"### {family}", "", f"![{family}: {stem}](figures/{out.name})", ""]
