@@ -291,20 +291,13 @@ def test_the_command_writes_a_gif(tmp_path, capsys):
         assert im.n_frames == 18 and im.size == (640, 360)
 
 
-def test_an_acceleration_sheet_needs_centres_of_curvature(tmp_path):
-    from velpoly.errors import InputError
-    d = {"points": {"O2": [0, 0], "O3": [4, 0], "P": [2, 0]},
-         "links": {"1": {"points": ["O2", "O3"], "frame": True}, "2": {"points": ["O2", "P"]},
-                   "3": {"points": ["O3", "P"]}},
-         "contacts": [{"links": ["2", "3"], "point": "P", "kind": "rolling", "normal": 90.0}],
-         "driver": {"link": "2", "omega": 1.0}}
-    try:
-        m = velpoly.load(d)
-        plan = plan_frames(m, 30.0)
-    except velpoly.VelpolyError:
-        pytest.skip("this contact example does not load here")
-    with pytest.raises(InputError, match="centres of curvature"):
-        Animator(plan, "acceleration", "slides", SMALL)
+def test_a_contact_given_by_its_normal_only_cannot_be_animated(tmp_path, capsys):
+    from mechanisms import CAM_FLAT
+    f = tmp_path / "cam.toml"
+    f.write_text(CAM_FLAT.replace('centres = ["K", "flat"]', "normal = 90"))
+    code, _, err = run(capsys, "animate", f, "-o", tmp_path / "a.gif")
+    assert code == 2 and "only the drawn pose can be analysed" in err and "Traceback" not in err
+    assert not (tmp_path / "a.gif").exists()
 
 
 def test_the_gallery_gets_one_animation_a_family(tmp_path, monkeypatch):

@@ -854,24 +854,7 @@ class Animator:
         dots = np.array([first[p] for p in self.dot_names]).reshape(-1, 2)
         self.dots.set_data(dots[:, 0], dots[:, 1])
         self.points = first
-        ax = self.axes["mechanism"]
-        segs = []
-        for link in m.moving_links:
-            ps = [sol.place(link.name, q) for q in link.points]
-            segs += [(a, b) for i, a in enumerate(ps) for b in ps[i + 1:]]
-        for p in self.pivots:         # the ground beneath a frame pivot
-            if p in first:
-                segs.append((first[p], first[p] + np.array([0.0, -3.0 * self.bw])))
-        taken = []
-        for p, t in self.point_labels.items():
-            xy = first[p]
-            links = m.carriers.get(p, ())
-            others = _neighbours(sol, p, links)
-            if p in self.pivots:
-                others = others + [xy + np.array([0.0, -1.0]) * max(self.bw, 1e-300) * 3]
-            ang = _away(xy, others, default=45.0)
-            t.xy = tuple(xy)
-            t.set_position(self._clear_offset(ax, t, xy, ang, 9.0, segs, taken))
+        taken = []         # boxes (pixels) of the link numbers, then of the labels: kept apart
         if self.link_numbers:
             centre = np.mean(np.array(list(pos.values())), axis=0)
             for lk, t in self.link_numbers.items():
@@ -889,6 +872,27 @@ class Animator:
                 else:
                     t.xy = tuple(ps[0])
                     t.set_position((0.0, 0.0))
+                taken.append(self._box_px(self.axes["mechanism"], t, pad=4.0))
+        ax = self.axes["mechanism"]
+        segs = []
+        for link in m.moving_links:
+            ps = [sol.place(link.name, q) for q in link.points]
+            segs += [(a, b) for i, a in enumerate(ps) for b in ps[i + 1:]]
+        for p in self.pivots:         # the ground beneath a frame pivot
+            if p in first:
+                segs.append((first[p], first[p] + np.array([0.0, -3.0 * self.bw])))
+        for patch in self.blocks.values():      # the blocks' outlines, and across them
+            xy = np.asarray(patch.get_xy(), float)[:4]
+            segs += [(xy[i], xy[(i + 1) % 4]) for i in range(4)] + [(xy[0], xy[2]), (xy[1], xy[3])]
+        for p, t in self.point_labels.items():
+            xy = first[p]
+            links = m.carriers.get(p, ())
+            others = _neighbours(sol, p, links)
+            if p in self.pivots:
+                others = others + [xy + np.array([0.0, -1.0]) * max(self.bw, 1e-300) * 3]
+            ang = _away(xy, others, default=45.0)
+            t.xy = tuple(xy)
+            t.set_position(self._clear_offset(ax, t, xy, ang, 9.0, segs, taken))
         if self._centrode is not None:
             cen, sw = self.centrodes
             from ..cycle import _break_at_infinity
@@ -949,6 +953,18 @@ class Animator:
         _, off, c = best
         taken.append((c[0] - w / 2, c[1] - h / 2, c[0] + w / 2, c[1] + h / 2))
         return (float(off[0] * 72.0 / self.dpi), float(off[1] * 72.0 / self.dpi))
+
+    def _box_px(self, ax, t, pad: float = 0.0) -> tuple:
+        """The text's box in display pixels (y up) where the frame puts it, grown by ``pad`` pixels."""
+        wh = getattr(t, "_velpoly_wh", None)
+        if wh is None:
+            bb = t.get_window_extent(self.fig.canvas.get_renderer())
+            wh = t._velpoly_wh = (bb.width * 72 / self.dpi, bb.height * 72 / self.dpi)
+        x, y = ax.transData.transform(np.asarray(t.xy, float))
+        dx, dy = t.get_position()
+        x, y = x + dx * self.dpi / 72.0, y + dy * self.dpi / 72.0
+        w, h = wh[0] * self.dpi / 72.0 / 2 + pad, wh[1] * self.dpi / 72.0 / 2 + pad
+        return (x - w, y - h, x + w, y + h)
 
     def _offset(self, text, ang: float, gap_px: float) -> tuple:
         """The offset (points) that puts ``text``'s box ``gap_px`` beside its anchor in direction ``ang``."""
