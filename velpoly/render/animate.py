@@ -884,6 +884,7 @@ class Animator:
         for patch in self.blocks.values():      # the blocks' outlines, and across them
             xy = np.asarray(patch.get_xy(), float)[:4]
             segs += [(xy[i], xy[(i + 1) % 4]) for i in range(4)] + [(xy[0], xy[2]), (xy[1], xy[3])]
+        pts = self._seg_points(ax, segs)
         for p, t in self.point_labels.items():
             xy = first[p]
             links = m.carriers.get(p, ())
@@ -892,7 +893,7 @@ class Animator:
                 others = others + [xy + np.array([0.0, -1.0]) * max(self.bw, 1e-300) * 3]
             ang = _away(xy, others, default=45.0)
             t.xy = tuple(xy)
-            t.set_position(self._clear_offset(ax, t, xy, ang, 9.0, segs, taken))
+            t.set_position(self._clear_offset(ax, t, xy, ang, 9.0, pts, taken))
         if self._centrode is not None:
             cen, sw = self.centrodes
             from ..cycle import _break_at_infinity
@@ -917,42 +918,47 @@ class Animator:
             v = vals[k]
             t.set_text("–" if not math.isfinite(v) else f"{v:.{dec}f}".replace("-", "−"))
 
-    def _clear_offset(self, ax, text, anchor, prefer: float, gap_px: float, segs, taken: list) -> tuple:
+    @staticmethod
+    def _seg_points(ax, segs) -> np.ndarray:
+        """Points along the segments (data coordinates), in display pixels: what labels keep clear of."""
+        if not segs:
+            return np.zeros((0, 2))
+        ends = ax.transData.transform(np.array([e for sg in segs for e in sg], float)).reshape(-1, 2, 2)
+        f = np.linspace(0.0, 1.0, 9)[None, :, None]
+        return (ends[:, :1] + (ends[:, 1:] - ends[:, :1]) * f).reshape(-1, 2)
+
+    def _clear_offset(self, ax, text, anchor, prefer: float, gap_px: float, pts, taken: list) -> tuple:
         """The offset (points) of ``text`` beside ``anchor``: of twelve directions (``prefer`` first, then
         alternately either side), the one whose box keeps farthest from the segments drawn (links, or the
         polygon's vectors) and the labels already placed (``taken``: boxes in pixels, appended to), up to a
         clearance of 6 pixels, where nearer ``prefer`` wins."""
-        tr = ax.transData
-        a = tr.transform(np.asarray(anchor, float))
-        if segs:
-            ends = tr.transform(np.array([e for sg in segs for e in sg], float)).reshape(-1, 2, 2)
-            f = np.linspace(0.0, 1.0, 9)[None, :, None]
-            pts = (ends[:, :1] + (ends[:, 1:] - ends[:, :1]) * f).reshape(-1, 2)
-        else:
-            pts = np.zeros((0, 2))
-        self._offset(text, prefer, gap_px)
-        w, h = (v * self.dpi / 72.0 for v in text._velpoly_wh)
-        best = None
-        for i, d in enumerate([0, 30, -30, 60, -60, 90, -90, 120, -120, 150, -150, 180]):
-            ang = prefer + d
-            off = np.array(self._offset(text, ang, gap_px)) * self.dpi / 72.0
-            c = a + off
-            clear = 6.0
-            if len(pts):
-                dx = np.maximum(np.abs(pts[:, 0] - c[0]) - w / 2, 0.0)
-                dy = np.maximum(np.abs(pts[:, 1] - c[1]) - h / 2, 0.0)
-                clear = min(clear, float(np.hypot(dx, dy).min()))
-            for b in taken:
-                gx = max(b[0] - (c[0] + w / 2), (c[0] - w / 2) - b[2], 0.0)
-                gy = max(b[1] - (c[1] + h / 2), (c[1] - h / 2) - b[3], 0.0)
-                clear = min(clear, float(np.hypot(gx, gy)) - (6.0 if gx == gy == 0 else 0.0))
-            if best is None or clear > best[0] + 1e-9:
-                best = (clear, off, c)
-            if clear >= 6.0:
-                break
-        _, off, c = best
-        taken.append((c[0] - w / 2, c[1] - h / 2, c[0] + w / 2, c[1] + h / 2))
-        return (float(off[0] * 72.0 / self.dpi), float(off[1] * 72.0 / self.dpi))
+        a = ax.transData.transform(np.asarray(anchor, float))
+        self._offset(text, prefer, gap_px)            # measures the text once
+        k = self.dpi / 72.0
+        w, h = text._velpoly_wh[0] * k, text._velpoly_wh[1] * k
+        ang = np.radians(prefer + _TURNS)
+        u = np.stack([np.cos(ang), np.sin(ang)], axis=1)
+        with np.errstate(divide="ignore"):
+            half = np.minimum(np.where(np.abs(u[:, 0]) > 1e-12, (w / 2) / np.abs(u[:, 0]), np.inf),
+                              np.where(np.abs(u[:, 1]) > 1e-12, (h / 2) / np.abs(u[:, 1]), np.inf))
+        off = u * (self.pt(gap_px) * k + half)[:, None]
+        c = a[None, :] + off
+        clear = np.full(len(c), 6.0)
+        if len(pts):
+            dx = np.maximum(np.abs(pts[None, :, 0] - c[:, None, 0]) - w / 2, 0.0)
+            dy = np.maximum(np.abs(pts[None, :, 1] - c[:, None, 1]) - h / 2, 0.0)
+            clear = np.minimum(clear, np.hypot(dx, dy).min(axis=1))
+        if taken:
+            t = np.asarray(taken, float)
+            gx = np.maximum(np.maximum(t[None, :, 0] - (c[:, None, 0] + w / 2), (c[:, None, 0] - w / 2) - t[None, :, 2]), 0)
+            gy = np.maximum(np.maximum(t[None, :, 1] - (c[:, None, 1] + h / 2), (c[:, None, 1] - h / 2) - t[None, :, 3]), 0)
+            d = np.hypot(gx, gy) - np.where((gx == 0) & (gy == 0), 6.0, 0.0)
+            clear = np.minimum(clear, d.min(axis=1))
+        good = np.flatnonzero(clear >= 6.0)
+        i = int(good[0]) if len(good) else int(np.argmax(clear))
+        cx, cy = c[i]
+        taken.append((cx - w / 2, cy - h / 2, cx + w / 2, cy + h / 2))
+        return (float(off[i, 0] / k), float(off[i, 1] / k))
 
     def _box_px(self, ax, t, pad: float = 0.0) -> tuple:
         """The text's box in display pixels (y up) where the frame puts it, grown by ``pad`` pixels."""
@@ -1016,14 +1022,14 @@ class Animator:
         self.images[kind] = images
         pts = np.array([np.zeros(2)] + list(images.values()))
         centre = pts.mean(axis=0)
-        segs = [(tail, head) for _, tail, head, key in vectors if key in used]
+        pts = self._seg_points(art["ax"], [(tail, head) for _, tail, head, key in vectors if key in used])
         taken = [self._origin_box.get(kind)] if self._origin_box.get(kind) is not None else []
         for key, t in art["labels"].items():
             p = images[key]
             away = p - centre
             ang = math.degrees(math.atan2(away[1], away[0])) if np.hypot(*away) > tol else -135.0
             t.xy = tuple(p)
-            t.set_position(self._clear_offset(art["ax"], t, p, ang, 7.0, segs, taken))
+            t.set_position(self._clear_offset(art["ax"], t, p, ang, 7.0, pts, taken))
 
     # -- output -------------------------------------------------------------------------------------
     def render(self, k: int) -> np.ndarray:
@@ -1125,6 +1131,9 @@ def _paste(rgb: np.ndarray, spr: np.ndarray, x: float, y: float) -> None:
     a = s[..., 3:4]
     dst = rgb[y0:y1, x0:x1, :3].astype(np.float32)
     rgb[y0:y1, x0:x1, :3] = (dst * (1.0 - a) + s[..., :3] * 255.0 * a + 0.5).astype(np.uint8)
+
+
+_TURNS = np.array([0, 30, -30, 60, -60, 90, -90, 120, -120, 150, -150, 180], float)   # label directions tried
 
 
 def _empty_path():
