@@ -460,7 +460,17 @@ class Animator:
     def _boxes(self) -> dict:
         """Each panel's box over the whole animation (data coordinates)."""
         m = self.m
-        pts = np.vstack([p for p in self.pos.values()])
+        pts = [p for p in self.pos.values()]
+        for ci, c in enumerate(m.contacts):      # the contacts' profiles (circles small enough to draw whole)
+            for lk, cn in zip(c.links, c.centres or ()):
+                key = cn if cn in self.pos else f"{cn}@{lk}"
+                if cn is None or key not in self.pos:
+                    continue
+                ctr = self.pos[key]
+                rad = np.hypot(*(np.asarray(self.contact_rows[ci]["place"], float) - ctr).T)
+                small = rad < 1.5 * m.size
+                pts += [ctr[small] - rad[small, None], ctr[small] + rad[small, None]]
+        pts = np.vstack(pts)
         box = _box(pts)
         if self.poles is not None:      # the poles near the mechanism: the view grown to hold them
             c = np.array([(box[0] + box[2]) / 2, (box[1] + box[3]) / 2])
@@ -611,9 +621,15 @@ class Animator:
             ax.add_patch(patch)
             self.blocks[(s.block, s.point)] = self._move(patch, ax)
         self.profiles = []
+        self.flats = []
         for ci, c in enumerate(m.contacts):
             for lk, cn in zip(c.links, c.centres or ()):
-                if cn is None or m.link(lk).frame:
+                if m.link(lk).frame:
+                    continue
+                if cn is None:     # a flat profile on a moving link: a face along the common tangent
+                    face = Line2D([], [], color=st.ink, lw=st.link_lw * 1.4, zorder=3.2, solid_capstyle="butt")
+                    ax.add_line(face)
+                    self.flats.append((ci, self._move(face, ax)))
                     continue
                 circ = Circle((0, 0), 1.0, facecolor="none", edgecolor=st.ink, lw=st.link_lw * 1.4, zorder=3.2)
                 ax.add_patch(circ)
@@ -841,6 +857,11 @@ class Animator:
             p = sol.place(block, point)
             L, H = st.block[0] * pc / 2, st.block[1] * pc / 2
             patch.set_xy(np.array([p - u * L - n * H, p + u * L - n * H, p + u * L + n * H, p - u * L + n * H]))
+        for ci, face in self.flats:
+            place = np.asarray(self.contact_rows[ci]["place"][k], float)
+            d = math.radians(float(self.contact_rows[ci]["normal"][k]) + 90.0)
+            t = np.array([math.cos(d), math.sin(d)]) * 2.4 * pc
+            face.set_data([place[0] - t[0], place[0] + t[0]], [place[1] - t[1], place[1] + t[1]])
         for ci, lk, cn, circ in self.profiles:
             place = np.asarray(self.contact_rows[ci]["place"][k], float)
             ctr = sol.place(lk, cn)
