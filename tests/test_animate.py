@@ -17,6 +17,12 @@ from test_cycle import run, write
 SMALL = (320, 180)
 
 
+@pytest.fixture(scope="module")
+def coupler_anim():
+    """A four-bar with a coupler point, 12 frames at 320 x 180 (shared: building it is the costly part)."""
+    return Animator(plan_frames(velpoly.load(fourbar(coupler=(4.0, 30.0))), 30.0), "velocity", "slides", SMALL)
+
+
 def drawn(anim, k):
     """What frame k draws, read back from the artists: pin centres, dots, and each polygon's arrow tips
     (the arrowhead's first vertex) by the arrow's key."""
@@ -182,11 +188,9 @@ def test_labels_sit_beside_their_points():
 
 
 @pytest.mark.parametrize("suffix", [".gif", ".png", ".pdf"])
-def test_each_format_is_written_and_readable(tmp_path, suffix):
+def test_each_format_is_written_and_readable(tmp_path, suffix, coupler_anim):
     from PIL import Image
-    m = velpoly.load(fourbar(coupler=(4.0, 30.0)))
-    plan = plan_frames(m, 30.0)
-    anim = Animator(plan, "velocity", "slides", SMALL)
+    anim = coupler_anim
     calls = []
     out = write_animation(anim, tmp_path / f"a{suffix}", 10, lambda d, n: calls.append((d, n)))
     assert calls == [(k + 1, 12) for k in range(12)]
@@ -227,11 +231,9 @@ def test_mp4_needs_the_video_extra(tmp_path, capsys, monkeypatch):
     assert not (tmp_path / "a.mp4").exists() and not list(tmp_path.glob(".*part"))
 
 
-def test_mp4_when_imageio_ffmpeg_is_there(tmp_path):
+def test_mp4_when_imageio_ffmpeg_is_there(tmp_path, coupler_anim):
     pytest.importorskip("imageio_ffmpeg")
-    m = velpoly.load(fourbar())
-    anim = Animator(plan_frames(m, 30.0), "velocity", "slides", SMALL)
-    out = write_animation(anim, tmp_path / "a.mp4", 10)
+    out = write_animation(coupler_anim, tmp_path / "a.mp4", 10)
     assert out.read_bytes()[4:8] == b"ftyp"
 
 
@@ -265,9 +267,8 @@ def test_the_output_never_replaces_the_input(tmp_path, capsys):
 
 
 @pytest.mark.parametrize("error", [RuntimeError, KeyboardInterrupt])
-def test_a_failure_leaves_no_file(tmp_path, monkeypatch, error):
-    m = velpoly.load(fourbar())
-    anim = Animator(plan_frames(m, 30.0), "velocity", "slides", SMALL)
+def test_a_failure_leaves_no_file(tmp_path, monkeypatch, error, coupler_anim):
+    anim = coupler_anim
     real = anim.render
 
     def fail(k):
