@@ -325,3 +325,22 @@ def test_the_gallery_gets_one_animation_a_family(tmp_path, monkeypatch):
     shutil.copy(GALLERY / "ex3_6_fourbar.toml", plain)
     build_gallery(plain, draw=fake_draw([]))                  # not asked for: none
     assert not list((plain / "figures").glob("animate-*")) and "## Animations" not in (plain / "README.md").read_text()
+
+
+def test_sweep_gif_is_drawn_by_the_animate_renderer(tmp_path):
+    from PIL import Image
+    from velpoly.cycle import GIF_SIZE, run_cycle, write_gif
+    m = velpoly.load(fourbar(coupler=(4.0, 30.0)))
+    sw = run_cycle(m, 30.0)
+    out = write_gif(sw, tmp_path / "c.gif", progress=False)
+    with Image.open(out) as im:
+        assert im.n_frames == 12 and im.size == GIF_SIZE
+        im.seek(0)
+        first = np.asarray(im.convert("RGB")).astype(int)
+    from velpoly.render.animate import FramePlan
+    plan = FramePlan(m, (sw,), tuple((0, i) for i in range(12)), sw.angles, np.ones(12), None, "", 0.0)
+    anim = Animator(plan, "velocity", "textbook", GIF_SIZE)
+    pins, _, _ = drawn(anim, 0)
+    assert np.allclose(pins["A"], sw.position["A"][0])
+    top = GIF_SIZE[1] // 8                       # below the title and the caption (the sweep's words differ)
+    assert np.abs(first[top:] - anim.render(0)[top:, :, :3].astype(int)).mean() < 3   # the same picture
