@@ -296,16 +296,18 @@ def test_a_long_title_and_the_stop_message_stay_on_the_figure(style):
 
 
 def test_the_gif_polygon_scale_ignores_the_surge_at_a_toggle():
-    from velpoly.cycle import SURGE, _moving_keys, _polygon_scale_points
+    from velpoly.cycle import _moving_keys
+    from velpoly.render.animate import SURGE, _surge_box
     sw = run_cycle(velpoly.load(fourbar(a=7, b=5, c=6, d=9, theta=60, omega=-10.0)), 0.1)  # 60 down to -85.9
-    frames = np.arange(len(sw.angles))
     keys = _moving_keys(sw)
     top = np.max([np.hypot(*sw.velocity[k].T) for k in keys], axis=0)
     assert top[-1] > 3 * SURGE * np.median(top)                 # the rocker's speed grows near the toggle
-    pts = _polygon_scale_points(sw, frames, keys)
-    assert np.hypot(*pts.T).max() <= SURGE * np.median(top)     # ... and does not set the scale
-    assert np.hypot(*pts.T).max() == pytest.approx(top[top <= SURGE * np.median(top)].max())
-    assert (pts == 0).all(axis=1).any()                          # O_v is always in view
+    per_frame = [np.vstack([np.zeros((1, 2))] + [sw.velocity[k][i:i + 1] for k in keys]) for i in range(len(top))]
+    x0, y0, x1, y1 = _surge_box(per_frame)
+    reach = max(abs(x0), abs(y0), abs(x1), abs(y1))
+    assert reach <= SURGE * np.median(top)                      # ... and does not set the scale
+    assert reach >= top[top <= SURGE * np.median(top)].max() / np.sqrt(2) - 1e-9
+    assert x0 <= 0 <= x1 and y0 <= 0 <= y1                      # O_v is always in view
 
 
 def test_plot_and_gif_are_written(tmp_path, capsys):

@@ -96,6 +96,21 @@ def build_parser() -> argparse.ArgumentParser:
     e.add_argument("-o", "--output", default="out", metavar="DIR", help="output folder (default: out/)")
     e.add_argument("--style", choices=STYLES, default="textbook", help=STYLES_HELP)
 
+    a = command("animate", "the motion over the cycle (or the reachable range, out and back) with its "
+                "polygons: GIF, animated PNG, MP4, multi-page PDF or the html page, by the output's suffix",
+                "velpoly animate ex36.toml -o ex36.gif --size 1280x720")
+    a.add_argument("file", help="the mechanism file (TOML)")
+    a.add_argument("-o", "--output", required=True, metavar="OUT", help="output file: .gif, .png (animated "
+                   "PNG), .mp4 (needs velpoly[video]), .pdf (one page a frame, for LaTeX's animate package) or "
+                   ".html (velpoly html)")
+    a.add_argument("--sheet", choices=SHEETS, default="velocity", help="the panels beside the mechanism "
+                   "(default: velocity)")
+    a.add_argument("--step", type=float, default=2.0, metavar="DEG", help="driver step between frames in "
+                   "degrees (default 2)")
+    a.add_argument("--size", default="1920x1080", metavar="WxH", help="frame size in pixels (default 1920x1080)")
+    a.add_argument("--fps", type=float, default=15.0, metavar="N", help="frames a second (default 15)")
+    a.add_argument("--style", choices=STYLES, default="slides", help="slides (colour, large type; the default) or textbook (black on white)")
+
     g = command("gallery", "build the gallery: every built-in example's sheet and its comparison with the book",
                 "velpoly gallery -o my-gallery")
     g.add_argument("-o", "--output", default=None, metavar="DIR", help="output folder (default: the --source "
@@ -187,6 +202,47 @@ def cmd_sweep(args) -> int:
     return sweep_command(args)
 
 
+def cmd_animate(args) -> int:
+    out = Path(args.output)
+    suffix = out.suffix.lower()
+    if suffix == ".html":
+        return _animate_html(args, out)
+    from .render.animate import FORMATS, parse_size
+    if suffix not in FORMATS:
+        raise InputError(f"unknown animation type {out.suffix or '(none)'!r}", where="-o", file=str(out),
+                         hint="end the output's name with .gif, .png (animated PNG), .mp4, .pdf or .html")
+    if out.resolve() == Path(args.file).resolve():
+        raise InputError("the output would replace the input file", where="-o", file=str(out),
+                         hint="give the animation another name")
+    size = parse_size(args.size)
+    if suffix == ".mp4" and (size[0] % 2 or size[1] % 2):
+        raise InputError(f"an MP4 needs an even width and height, got {size[0]}x{size[1]}", where="--size",
+                         hint="e.g. --size 1920x1080")
+    from . import load
+    from .render.animate import Animator, plan_frames, write_animation, _mp4_writer
+    if suffix == ".mp4":
+        _mp4_writer()             # the missing extra is said before any work
+    m = load(Path(args.file), name=args.file)
+    plan = plan_frames(m, args.step)
+    anim = Animator(plan, args.sheet, args.style, size)
+    tty = bool(getattr(sys.stderr, "isatty", lambda: False)())
+
+    def progress(done: int, total: int) -> None:
+        if tty and total >= 30:
+            sys.stderr.write(f"\rvelpoly animate: frame {done}/{total}")
+            if done == total:
+                sys.stderr.write("\n")
+            sys.stderr.flush()
+    write_animation(anim, out, args.fps, progress)
+    print(out)
+    return 0
+
+
+def _animate_html(args, out: Path) -> int:
+    """``velpoly animate FILE -o PAGE.html``: the interactive page of ``velpoly html``, at the animation's step."""
+    return cmd_html(argparse.Namespace(file=args.file, output=str(out), step=args.step))
+
+
 def cmd_demo(args) -> int:
     from .gallery import demo_command
     return demo_command(args)
@@ -236,7 +292,7 @@ def cmd_html(args) -> int:
 
 
 COMMANDS = {"solve": cmd_solve, "draw": cmd_draw, "sweep": cmd_sweep, "demo": cmd_demo, "gallery": cmd_gallery,
-            "examples": cmd_examples, "html": cmd_html}
+            "examples": cmd_examples, "html": cmd_html, "animate": cmd_animate}
 
 
 OUTPUT_OPTIONS = (("output", "-o"), ("csv", "--csv"), ("gif", "--gif"))

@@ -34,14 +34,13 @@ import io
 import math
 import re
 import sys
-import tempfile
 from dataclasses import dataclass
 from pathlib import Path
 
 import numpy as np
 
 from .errors import InputError, PoseError
-from .fileio import atomic_path, atomic_write_bytes, atomic_write_text, raise_if_interrupted
+from .fileio import atomic_path, atomic_write_text
 from .kinematics import Kinematics, prepare
 from .model import Mechanism
 from .report import Table, fmt, render_table
@@ -54,7 +53,7 @@ __all__ = ["cycle_angles", "run_cycle", "reachable_text", "Centrodes", "centrode
 FIGURE_SUFFIXES = (".svg", ".png", ".pdf")
 GIF_FRAMES = 45            # at most this many frames in the animation (8 deg apart on a turn)
 GIF_FRAME_MS = 120         # per frame: a 45-frame turn lasts under 6 s
-GIF_DPI = 72               # 9 x 4.5 in: 648 x 324 pixels
+GIF_SIZE = (960, 540)      # pixels
 STROKE_REACH = 2.0         # a slider driver is searched this many mechanism sizes either way
 STROKE_SAMPLES = 2000      # grid of that search (the stroke's ends are found to 1/1000 size)
 
@@ -630,75 +629,6 @@ def _draw_lines(ax, sw: Sweep, i: int, style: str, labels: bool = True) -> list:
     return artists
 
 
-def _image_label(key: str) -> str:
-    p, _, lk = key.partition("@")
-    return _literal(p.lower() + lk)
-
-
-def _draw_velocity_polygon(ax, sw: Sweep, i: int, keys, style: str) -> list:
-    """The velocity polygon at pose i: O_v, the absolute velocities as arrows, each link's image shaded."""
-    m = sw.mechanism
-    artists = []
-    img = {k: sw.velocity[k][i] for k in keys}
-    colour = (lambda j: "black") if style != "slides" else (lambda j: f"C{j % 10}")
-    for j, link in enumerate(m.moving_links):
-        ks = [_key_on(m, sw, p, link.name) for p in link.points]
-        xy = np.array([sw.velocity[k][i] for k in ks])
-        if len(xy) >= 3:
-            artists += ax.fill(xy[:, 0], xy[:, 1], facecolor=colour(j), alpha=0.2, edgecolor=colour(j))
-        elif len(xy) == 2:
-            artists += ax.plot(xy[:, 0], xy[:, 1], "-", color=colour(j), linewidth=1.0)
-    for k, v in img.items():
-        if np.hypot(*v) > 0:
-            artists.append(ax.annotate("", xy=v, xytext=(0, 0),
-                                       arrowprops={"arrowstyle": "-|>", "color": "black", "linewidth": 0.9,
-                                                   "shrinkA": 0, "shrinkB": 0}))
-        artists.append(ax.annotate(_image_label(k), v, xytext=(3, 3), textcoords="offset points",
-                                   fontsize="small", style="italic"))
-    artists += ax.plot(0, 0, "o", color="black", markersize=3)
-    artists.append(ax.annotate("O_v", (0, 0), xytext=(-14, -10), textcoords="offset points", fontsize="small"))
-    return artists
-
-
-class _RenderPainter:
-    """Frames drawn by the render module at one fixed view for the whole animation: the textbook
-    mechanism, and with ``polygon`` its full velocity polygon (construction lines and all, too busy
-    at a GIF's size: by default the GIF draws the polygon's vectors and images itself)."""
-
-    def __init__(self, style, mech_box, vel_box, polygon=False):
-        from . import render
-        from .render.canvas import fit_view
-        self.mechanism = render.draw_mechanism
-        self.polygon = None
-        if polygon:
-            from . import polygons  # noqa: F401  (the polygon drawing needs it)
-            self.polygon = render.draw_velocity_polygon
-        self.fit_view, self.style = fit_view, style
-        self.boxes = (mech_box, vel_box)
-        self.scales = [None, None]
-
-    @classmethod
-    def create(cls, style, mech_box, vel_box, polygon=False):
-        try:
-            return cls(style, mech_box, vel_box, polygon)
-        except (ImportError, AttributeError):
-            return None
-
-    def _fit(self, ax, k):
-        self.scales[k] = self.fit_view(ax, self.boxes[k], scale=self.scales[k], margin=0.1)
-
-    def mechanism_frame(self, ax, sol) -> None:
-        self._fit(ax, 0)
-        self.mechanism(sol, ax=ax, style=self.style)
-
-    def polygon_frame(self, ax, sol) -> bool:
-        if self.polygon is None:
-            return False
-        self._fit(ax, 1)
-        self.polygon(sol, ax=ax, style=self.style)
-        return True
-
-
 def solution_at(sw: Sweep, kin: Kinematics, i: int):
     """The :class:`velpoly.Solution` of pose i of the sweep (for the figure functions)."""
     from .motion import evaluate_motion
@@ -711,97 +641,29 @@ def solution_at(sw: Sweep, kin: Kinematics, i: int):
     return Solution(sw.mechanism, kin, q[0], qd[0], qdd[0], float(sw.condition[i]), mo, angle)
 
 
-SURGE = 4.0   # the GIF's polygon scale fits the frames whose top speed is within this factor of the median
-
-
-def _polygon_scale_points(sw: Sweep, frames, keys) -> np.ndarray:
-    """The velocity images the GIF's one polygon scale is chosen to show: those of every frame whose
-    largest speed is at most SURGE times the median frame's, so that the surge near a toggle (where
-    the speeds grow without bound) does not shrink every other frame's polygon to a dot; the frames
-    beyond run off the panel. O_v is always in."""
-    vel = np.stack([sw.velocity[k][frames] for k in keys]) if keys else np.zeros((0, len(frames), 2))
-    top = np.hypot(vel[..., 0], vel[..., 1]).max(axis=0) if keys else np.zeros(len(frames))
-    keep = top <= SURGE * np.median(top) + 1e-300
-    return np.vstack([vel[:, keep].reshape(-1, 2), np.zeros((1, 2))])
-
-
 def write_gif(sw: Sweep, out, kin: Kinematics | None = None, style: str = "textbook",
               cen: Centrodes | None = None, max_frames: int = GIF_FRAMES, progress: bool = True) -> Path:
-    """An animated GIF of the mechanism beside its live velocity polygon (Pillow writer).
-
-    At most ``max_frames`` poses, evenly spread over the sweep. With ``cen``, the
-    fixed centrode is drawn and the moving centrode rides with the link. The
-    mechanism (and its polygon) are drawn by the render module when it is
-    there, else as line diagrams.
-    """
-    import matplotlib
-    from matplotlib.animation import PillowWriter
-    from matplotlib.figure import Figure
-
+    """An animated GIF of the sweep's poses (at most ``max_frames``, evenly spread) drawn by
+    ``velpoly animate``'s renderer (:mod:`velpoly.render.animate`): the mechanism beside its velocity
+    polygon and the live table, at GIF_SIZE pixels. With ``cen``, the fixed centrode is drawn and the
+    moving centrode rides with the link."""
+    from .render.animate import Animator, FramePlan, write_animation
     out = Path(out)
     m = sw.mechanism
-    kin = kin or prepare(m)
     n = len(sw.angles)
     frames = np.unique(np.linspace(0, n - 1, min(n, max_frames)).round().astype(int))
-    keys = _moving_keys(sw)
-    u = m.units or "length"
-    mech_box = _motion_box(sw)
-    vel_box = _box(_polygon_scale_points(sw, frames, keys))
-    painter = _RenderPainter.create(style, mech_box, vel_box)
     xname, xunit = driver_label(m)
+    caption = f"{xname} from {sw.angles[frames[0]]:.4g} to {sw.angles[frames[-1]]:.4g} {xunit}" + \
+        (f" [{sw.stopped}]" if sw.stopped else "")
+    if sw.kinematics is None:
+        sw = dataclasses.replace(sw, kinematics=kin or prepare(m))
+    plan = FramePlan(m, (sw,), tuple((0, int(i)) for i in frames), np.asarray(sw.angles, float)[frames],
+                     np.ones(len(frames)), None, caption, 0.0, bool(sw.stopped) or m.driver.is_slider)
+    anim = Animator(plan, "velocity", style, GIF_SIZE, centrodes=(cen, sw) if cen is not None else None)
     bar = _Progress(len(frames), "velpoly sweep: GIF", min_total=2) if progress else None
-    with matplotlib.rc_context(_style_rc(style)), tempfile.TemporaryDirectory(prefix="velpoly-gif-") as tmpdir:
-        fig = Figure(figsize=(9.0, 4.5), dpi=GIF_DPI)
-        ax_m = fig.add_axes((0.01, 0.02, 0.57, 0.86))
-        ax_v = fig.add_axes((0.60, 0.02, 0.39, 0.86))
-        fig.suptitle(_literal(m.title), fontsize="medium")
-        tmp = Path(tmpdir) / "cycle.gif"
-        writer = PillowWriter(fps=1000.0 / GIF_FRAME_MS)
-        with writer.saving(fig, str(tmp), dpi=GIF_DPI):
-            for i in frames:
-                ax_m.clear()
-                ax_v.clear()
-                sol = solution_at(sw, kin, i) if painter is not None else None
-                mech_done = vel_done = False
-                if painter is not None:
-                    try:
-                        painter.mechanism_frame(ax_m, sol)
-                        mech_done = True
-                        vel_done = painter.polygon_frame(ax_v, sol)
-                    except Exception as e:  # a figure module failure: finish with line drawings
-                        raise_if_interrupted()   # (not Ctrl-C's aftermath: that stops the GIF)
-                        print(f"warning: {m.source}: the textbook drawing failed ({type(e).__name__}: {e}); "
-                              f"the GIF uses line drawings", file=sys.stderr)
-                        painter = None
-                        ax_m.clear()
-                        ax_v.clear()
-                        mech_done = vel_done = False
-                if not mech_done:
-                    _draw_lines(ax_m, sw, i, style)
-                if cen is not None and cen.defined.any():
-                    fixed = _break_at_infinity(cen.fixed, sw.omega[cen.link])
-                    ax_m.plot(fixed[:, 0], fixed[:, 1], color="0.4", linewidth=0.8)
-                    carried = _break_at_infinity(cen.carried(sw, kin, i), sw.omega[cen.link])
-                    ax_m.plot(carried[:, 0], carried[:, 1], "--", color="0.4", linewidth=0.8)
-                    if cen.defined[i]:
-                        ax_m.plot(*cen.fixed[i], "o", color="black", markersize=4)
-                if not mech_done:
-                    _view(ax_m, mech_box, margin=0.12)
-                    _scale_bar(ax_m, u)
-                ax_m.set_title(_literal(f"{xname}: {sw.angles[i]:.4g} {xunit}"), fontsize="small")
-                if not vel_done:
-                    _draw_velocity_polygon(ax_v, sw, i, keys, style)
-                    _view(ax_v, vel_box, margin=0.12)
-                    _scale_bar(ax_v, f"{u}/s")
-                ax_v.set_title("velocity polygon", fontsize="small")
-                for ax in (ax_m, ax_v):
-                    ax.set_axis_off()
-                writer.grab_frame()
-                if bar:
-                    bar.advance()
-        if bar:
-            bar.close()
-        atomic_write_bytes(out, tmp.read_bytes())
+    write_animation(anim, out, 1000.0 / GIF_FRAME_MS, (lambda done, total: bar.advance()) if bar else None)
+    if bar:
+        bar.close()
     return out
 
 

@@ -509,7 +509,7 @@ def _error_line(e: BaseException, path: Path) -> str:
 
 
 def build_gallery(source=None, out=None, style: str = "textbook", draw=None, log=None,
-                  copy: bool | None = None, names=None) -> GalleryResult:
+                  copy: bool | None = None, names=None, animations: bool = False) -> GalleryResult:
     """Rebuild every example of ``source`` (its ``*.toml`` files, in natural name order) into ``out``.
 
     ``source`` defaults to the built-in examples, ``out`` to ``source``. For each
@@ -562,7 +562,12 @@ def build_gallery(source=None, out=None, style: str = "textbook", draw=None, log
             failed.append((path, line))
             if log:
                 log(line)
-    readme = _readme(sections, failed, source, out)
+    extra = ""
+    if animations:   # one animation a mechanism family (velpoly.render.animate.gallery_animations)
+        from .render.animate import gallery_animations
+        files, extra = gallery_animations(source, out / "figures", log)
+        written += files
+    readme = _readme(sections, failed, source, out, extra)
     written.append(atomic_write_text(out / "README.md", readme))
     return GalleryResult(tuple(written), tuple(built), tuple(failed))
 
@@ -607,7 +612,7 @@ def _relative(path: Path, base: Path) -> str:
     return Path(os.path.relpath(Path(path).resolve(), Path(base).resolve())).as_posix()
 
 
-def _readme(sections, failed, source: Path, out: Path) -> str:
+def _readme(sections, failed, source: Path, out: Path, extra: str = "") -> str:
     used: set = set()
     args = ""
     if not (out.name == "gallery" and _gallery_source(out).resolve() == source.resolve()):   # not a checkout's own
@@ -637,7 +642,11 @@ def _readme(sections, failed, source: Path, out: Path) -> str:
         lines += ["Examples:", ""]
         for title, _ in sections:
             lines.append(f"- [{_md(title)}](#{_anchor(title, used)})")
+        if extra:
+            lines.append("- [Animations: one mechanism of each family](#animations)")
         lines.append("")
+    if extra:        # the animations, between the index and the examples
+        lines += [extra]
     for _, text in sections:
         lines += [text]
     if failed:
@@ -690,7 +699,9 @@ def gallery_command(args) -> int:
 
     def log(line):
         print(f"error: {line}", file=sys.stderr)
-    result = build_gallery(source, out, style=style, log=log, names=getattr(args, "names", None))
+    # the repository's gallery gets its animations (one a mechanism family); another --source does not
+    result = build_gallery(source, out, style=style, log=log, names=getattr(args, "names", None),
+                           animations=getattr(args, "source", None) is None)
     for p in result.written:
         print(p)
     n = len(result.built) + len(result.failed)
