@@ -297,6 +297,12 @@ def test_a_gallery_of_the_built_in_examples_elsewhere_stands_alone(tmp_path, cap
     for name in ("crank_slider", "ex3_5_slider_crank"):   # the files beside the README it links to
         assert (out / f"{name}.toml").read_bytes() == (EXAMPLES / f"{name}.toml").read_bytes()
         assert f"]({name}.toml)" in (out / "README.md").read_text()
+    # a file of the user's by an example's name is never replaced: that example fails, the others build
+    (out / "crank_slider.toml").write_text("# my own\n")
+    logged = []
+    result = build_gallery(out=out, draw=fake_draw([]), names=["crank_slider", "crank_shaper"], log=logged.append)
+    assert [p.name for p in result.built] == ["crank_shaper.toml"] and (out / "crank_slider.toml").read_text() == "# my own\n"
+    assert "crank_slider.toml: -o: " in logged[0] and "not replaced" in logged[0]
     with pytest.raises(velpoly.InputError, match="no example 'nope'"):
         build_gallery(out=out, draw=fake_draw([]), names=["nope"])
     # the checkout's own gallery links to the package's files and copies nothing
