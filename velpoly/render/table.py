@@ -182,6 +182,8 @@ def results_table(sol, sheet: str = "full", *, velocity=None, acceleration=None,
         names = [key, key.replace("@", "")]
         if pinned.get(key):
             names += [f"{pinned[key][0]}{lk}" for lk in pinned[key][1]]
+        elif "@" not in key:   # one key: every link that carries it moves it alike
+            names += [f"{key}{lk}" for lk in m.carriers.get(key, ())]
         return names
 
     def point_label(symbol, key):
