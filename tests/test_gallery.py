@@ -271,3 +271,41 @@ def test_fig3_15b_sweeps_the_cycle_of_case_a_with_the_wheel_slipping(tmp_path, c
     assert np.abs((turn + 180) % 360 - 180).max() < 1e-8
     dv = np.hypot(b["vx_P@3"] - a["vx_P@3"], b["vy_P@3"] - a["vy_P@3"])   # s along the tangent
     assert dv == pytest.approx(np.full(76, s), rel=1e-9)
+
+
+# -- the built-in examples (issue 18, item 6) ----------------------------------------------------
+def test_examples_lists_and_prints_the_built_in_files(capsys):
+    code, out, err = run(capsys, "examples")
+    assert code == 0 and err == ""
+    names = [line.split()[0] for line in out.splitlines()]
+    assert names == [p.stem for p in sorted(GALLERY_FILES, key=lambda p: [
+        (0, int(t), "") if t.isdigit() else (1, 0, t.lower()) for t in re.split(r"(\d+)", p.stem)])]
+    for path in GALLERY_FILES:   # each with its title
+        assert f"{path.stem}  " in out and velpoly.load(path).title in out
+    code, out, _ = run(capsys, "examples", "ex3_6_fourbar.toml")
+    assert code == 0 and out == (EXAMPLES / "ex3_6_fourbar.toml").read_text(encoding="utf-8")
+    code, out, err = run(capsys, "examples", "fourbar")
+    assert code == 2 and out == "" and "no built-in example 'fourbar'" in err
+    assert "did you mean ex3_6_fourbar or " in err
+
+
+def test_a_gallery_of_the_built_in_examples_elsewhere_stands_alone(tmp_path, capsys):
+    calls = []
+    out = tmp_path / "site"
+    result = build_gallery(out=out, draw=fake_draw(calls), names=["crank_slider", "ex3_5_slider_crank.toml"])
+    assert [p.name for p in result.built] == ["crank_slider.toml", "ex3_5_slider_crank.toml"]
+    for name in ("crank_slider", "ex3_5_slider_crank"):   # the files beside the README it links to
+        assert (out / f"{name}.toml").read_bytes() == (EXAMPLES / f"{name}.toml").read_bytes()
+        assert f"]({name}.toml)" in (out / "README.md").read_text()
+    # a file of the user's by an example's name is never replaced: that example fails, the others build
+    (out / "crank_slider.toml").write_text("# my own\n")
+    logged = []
+    result = build_gallery(out=out, draw=fake_draw([]), names=["crank_slider", "crank_shaper"], log=logged.append)
+    assert [p.name for p in result.built] == ["crank_shaper.toml"] and (out / "crank_slider.toml").read_text() == "# my own\n"
+    assert "crank_slider.toml: -o: " in logged[0] and "not replaced" in logged[0]
+    with pytest.raises(velpoly.InputError, match="no example 'nope'"):
+        build_gallery(out=out, draw=fake_draw([]), names=["nope"])
+    # the checkout's own gallery links to the package's files and copies nothing
+    assert find_gallery(REPO) == GALLERY and (REPO / "gallery" / "README.md").exists()
+    assert "](../velpoly/examples/ex3_6_fourbar.toml)" in (GALLERY / "README.md").read_text()
+    assert not list(GALLERY.glob("*.toml"))

@@ -324,6 +324,21 @@ def test_a_pinned_pair_is_shown_once_and_the_json_keeps_its_keys(seed):
     assert "$V_{A4}$" in names
 
 
+def test_a_printed_value_of_a_pinned_point_sits_on_its_row():
+    from velpoly.polygons import velocity_polygon
+    from velpoly.render.table import results_table
+    s0 = velpoly.solve(velpoly.load(lever(3)))
+    v = s0.velocity["A@2"]
+    for key in ("A3", "A2"):   # the book names the point on either link of the pair
+        m = velpoly.load(_with_reference(lever(3), velocity={key: [float(np.hypot(*v)), 0.0]},
+                                         acceleration={"A4": 1.0}))
+        s = velpoly.solve(m)
+        rows = {r[0]: r for r in results_table(s, "velocity", velocity=velocity_polygon(s)).rows}
+        row = rows["$V_{A}$ (on 2 and 3)"]
+        assert row[-2].startswith(f"{np.hypot(*v):.5g}"[:4]) and row[-1]   # reference and deviation
+        assert not any(k.startswith(f"$V_{{{key}}}") for k in rows)        # not again below
+
+
 def test_three_links_pinned_at_a_point_and_a_guide():
     from velpoly.report import on_links, pinned_keys
     assert on_links(("2", "3", "5")) == "2, 3 and 5" and on_links(("2", "3")) == "2 and 3"

@@ -545,8 +545,14 @@ def build_gallery(source=None, out=None, style: str = "textbook", draw=None, log
             m = load(path)
             sol = solve(m)
             if copy:
-                written.append(atomic_write_text(out / path.name, path.read_text(encoding="utf-8")))
-                path = out / path.name
+                text, target = path.read_text(encoding="utf-8"), out / path.name
+                if target.exists() and (not target.is_file() or target.read_text(encoding="utf-8",
+                                                                                errors="replace") != text):
+                    raise InputError(f"{target} exists and is not the built-in example: not replaced",
+                                     where="-o", hint="move it away, or build the gallery into another folder")
+                if not target.exists():
+                    written.append(atomic_write_text(target, text))
+                path = target
             target = out / "figures" / f"{path.stem}.png"
             figs = draw(sol, target, sheet="full", style=style, steps=False)
             written += list(figs)

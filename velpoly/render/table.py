@@ -188,6 +188,15 @@ def results_table(sol, sheet: str = "full", *, velocity=None, acceleration=None,
                          _num(ic["omega"][lk]) if ic else "", _printed(r), _dev(r)))
     pinned = pinned_keys(m)   # a point of links pinned together: one row "V_B (on 2 and 3)"
 
+    def spelt(key):
+        """The ways a reference names the point key: B, B@3 as B3, and a pinned pair by either link."""
+        names = [key, key.replace("@", "")]
+        if pinned.get(key):
+            names += [f"{pinned[key][0]}{lk}" for lk in pinned[key][1]]
+        elif "@" not in key:   # one key: every link that carries it moves it alike
+            names += [f"{key}{lk}" for lk in m.carriers.get(key, ())]
+        return names
+
     def point_label(symbol, key):
         if key not in pinned:
             return _q(symbol, key)
@@ -197,7 +206,7 @@ def results_table(sol, sheet: str = "full", *, velocity=None, acceleration=None,
             v = sol.velocity.get(key)
             if v is None or float(np.hypot(*v)) == 0 or (key in pinned and pinned[key] is None):
                 continue
-            r = ref_for(f"V_{key}", f"|V_{key}|")
+            r = ref_for(*(k for name in spelt(key) for k in (f"V_{name}", f"|V_{name}|")))
             rows.append((point_label("V", key), _vec(velocity.images[key]), drafted("velocity", "speed", key), _vec(v),
                          _vec(ic["velocity"][key]) if ic and key in ic["velocity"] else "", _printed(r), _dev(r)))
     if acceleration is not None:
@@ -213,7 +222,7 @@ def results_table(sol, sheet: str = "full", *, velocity=None, acceleration=None,
             if a is None or not np.all(np.isfinite(a)) or float(np.hypot(*a)) == 0 or \
                     (key in pinned and pinned[key] is None):
                 continue
-            r = ref_for(f"A_{key}")
+            r = ref_for(*(f"A_{name}" for name in spelt(key)))
             rows.append((point_label("A", key), _vec(acceleration.images[key]), drafted("acceleration", "magnitude", key),
                          _vec(a), "", _printed(r), _dev(r)))
     if poleset is not None and sheet == "poles":
