@@ -38,11 +38,33 @@ def drawn(anim, k):
     return pins, np.column_stack([x, y]), tips
 
 
+class _Pose:
+    """The last pose of a sweep, seen as a Solution's dicts (position, velocity, acceleration, omega)."""
+
+    def __init__(self, w):
+        for name in ("position", "velocity", "acceleration", "omega"):
+            setattr(self, name, {key: v[-1] for key, v in getattr(w, name).items()})
+
+
+def _solved(m, angles):
+    """velpoly.solve at the last of ``angles`` where the shorter way from the drawn pose reaches it, else
+    the sweep along the frames' own path (a range over half a turn is walked, never jumped)."""
+    try:
+        return velpoly.solve(m, angle=float(angles[-1]))
+    except velpoly.AssemblyError:   # walked from the drawn pose, as the animation walks there
+        from velpoly.solution import driver_reference_angle
+        ref, target = driver_reference_angle(m), float(angles[-1])
+        path = np.linspace(ref, target, int(abs(target - ref) // 2) + 2)[1:]
+        w = velpoly.sweep(m, path)
+        assert len(w.angles) == len(path), w.stopped
+        return _Pose(w)
+
+
 def check_frame(anim, k, tol=1e-9):
     """Frame k's drawing equals velpoly.solve at the frame's driver angle (the velocities reversed on the
     way back, accelerations alike): positions, absolute velocity and acceleration images, the table."""
     m, plan = anim.m, anim.plan
-    sol = velpoly.solve(m, angle=float(plan.angles[k]))
+    sol = _solved(m, plan.angles[:k + 1])
     size = m.size
     pins, dots, tips = drawn(anim, k)
     for p, c in pins.items():

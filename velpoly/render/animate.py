@@ -231,7 +231,7 @@ def _take(sw, idx):
     kw = {}
     for f in dataclasses.fields(sw):
         v = getattr(sw, f.name)
-        if f.name in ("mechanism", "stopped", "kinematics"):
+        if f.name in ("mechanism", "stopped", "leaves", "kinematics"):
             kw[f.name] = v
         elif f.name == "known_condition":
             kw[f.name] = None if v is None else np.asarray(v)[idx]
