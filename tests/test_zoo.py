@@ -38,7 +38,7 @@ except ImportError:
     assert_arrows_true = None
 
 SEED = 20261125
-COUNT = 6 * len(zoo.variants())   # 6 of each (kind, variant) pair: 324
+COUNT = 300                      # cycling through the (kind, variant) pairs: 5 or 6 of each
 TOL = 1e-9
 SPECIMENS = zoo.zoo(SEED, COUNT)
 BY_KIND = collections.defaultdict(list)
@@ -47,15 +47,20 @@ for _s in SPECIMENS:
 
 
 def check_solution(sol):
-    """Every check one solved pose must pass (the hook: add checks here)."""
+    """Every check one solved pose must pass (the hook: add checks here).
+
+    Graphical == analytic to 1e-9; at a pose the contract warns about (condition above 1e6, near
+    a toggle, where the construction's lines are nearly parallel and the analytic solve itself
+    keeps fewer digits) to 1e-14 x condition instead."""
+    tol = max(TOL, 1e-14 * sol.condition)
     v = velocity_polygon(sol)
-    assert v.max_error <= TOL, f"velocity polygon off by {v.max_error:.3g}"
+    assert v.max_error <= tol, f"velocity polygon off by {v.max_error:.3g}"
     if sol.has_accelerations:
         a = acceleration_polygon(sol)
-        assert a.max_error <= TOL, f"acceleration polygon off by {a.max_error:.3g}"
+        assert a.max_error <= tol, f"acceleration polygon off by {a.max_error:.3g}"
     check_poles(sol)
     d = sol.to_dict()
-    assert d["graphical"]["max_error"]["velocity"] <= TOL
+    assert d["graphical"]["max_error"]["velocity"] <= tol
     if assert_arrows_true is not None:
         assert_arrows_true(sol)
 

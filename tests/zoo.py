@@ -730,7 +730,7 @@ def variants():
     return [(k, v) for k, (_, vs) in KINDS.items() for v in vs]
 
 
-MAX_CONDITION = 1e4   # the drawn pose's condition number (velpoly.solve's) at most: well away from a toggle
+MAX_CONDITION = 3e4   # the drawn pose's condition number (velpoly.solve's) at most: well away from a toggle
 
 
 def specimen(rng, kind, variant=None, tries=200) -> Specimen:
