@@ -8,7 +8,8 @@ accepts, each solved at its drawn pose and at other driver angles, and checked:
 * the graphical construction equals the analytic solve to 1e-9 (relative to the largest value),
   both polygons; the JSON of ``velpoly solve --json`` builds;
 * every Kennedy triple is collinear and every found pole lies on both of its construction lines
-  (``check_poles`` of test_poles);
+  (``check_poles`` of test_poles); the instant-centre method gives the same omegas and velocities
+  (``check_ic``);
 * the analytic values equal finite differences of the pose (a sample, and every slider driver);
 * a few of them draw their full and poles sheets.
 
@@ -30,7 +31,7 @@ from velpoly.polygons import acceleration_polygon, hand_drafting, velocity_polyg
 from velpoly.solution import driver_reference_angle
 
 import zoo
-from test_poles import check_poles
+from test_poles import check_ic, check_poles
 
 try:   # the arrow-sense checks (tests/checks_arrows.py), where that module is in the tree
     from checks_arrows import assert_arrows_true
@@ -38,7 +39,7 @@ except ImportError:
     assert_arrows_true = None
 
 SEED = 20261125
-COUNT = 6 * len(zoo.variants())   # 6 of each (kind, variant) pair: 324
+COUNT = 300                      # cycling through the (kind, variant) pairs: 5 or 6 of each
 TOL = 1e-9
 SPECIMENS = zoo.zoo(SEED, COUNT)
 BY_KIND = collections.defaultdict(list)
@@ -47,15 +48,22 @@ for _s in SPECIMENS:
 
 
 def check_solution(sol):
-    """Every check one solved pose must pass (the hook: add checks here)."""
+    """Every check one solved pose must pass (the hook: add checks here).
+
+    Graphical == analytic to 1e-9; at a pose the contract warns about (condition above 1e6, near
+    a toggle, where the construction's lines are nearly parallel and the analytic solve itself
+    keeps fewer digits) to 1e-14 x condition instead."""
+    tol = max(TOL, 1e-14 * sol.condition)
     v = velocity_polygon(sol)
-    assert v.max_error <= TOL, f"velocity polygon off by {v.max_error:.3g}"
+    assert v.max_error <= tol, f"velocity polygon off by {v.max_error:.3g}"
     if sol.has_accelerations:
         a = acceleration_polygon(sol)
-        assert a.max_error <= TOL, f"acceleration polygon off by {a.max_error:.3g}"
-    check_poles(sol)
+        assert a.max_error <= tol, f"acceleration polygon off by {a.max_error:.3g}"
+    ps = check_poles(sol)
+    if sol.condition <= WARN:
+        check_ic(sol, ps)   # the instant-centre method's omegas and velocities, to 1e-9
     d = sol.to_dict()
-    assert d["graphical"]["max_error"]["velocity"] <= TOL
+    assert d["graphical"]["max_error"]["velocity"] <= tol
     if assert_arrows_true is not None:
         assert_arrows_true(sol)
 

@@ -128,7 +128,7 @@ class Draft:
         rng = self.rng
         self.driver = {"link": str(link), "omega": float(rng.choice([-1, 1]) * rng.uniform(0.5, 30)),
                        "alpha": float(rng.uniform(-50, 50)) if rng.random() < 0.7 else 0.0}
-        self.offsets = (None, float(rng.uniform(2, 8) * rng.choice([-1, 1])))
+        self.offsets = (None, float(rng.uniform(1.5, 5) * rng.choice([-1, 1])))
         if far:
             self.offsets += (float(rng.uniform(30, 330)),)
 
@@ -730,7 +730,7 @@ def variants():
     return [(k, v) for k, (_, vs) in KINDS.items() for v in vs]
 
 
-MAX_CONDITION = 1e4   # the drawn pose's condition number (velpoly.solve's) at most: well away from a toggle
+MAX_CONDITION = 3e4   # the drawn pose's condition number (velpoly.solve's) at most: well away from a toggle
 
 
 def specimen(rng, kind, variant=None, tries=200) -> Specimen:
