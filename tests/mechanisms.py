@@ -357,6 +357,30 @@ def sliding_cam(seed, angle=60.0, follower="curved"):
     return m
 
 
+def sliding_on_frame(seed, angle=60.0, surface="curved"):
+    """Crank 2 (O2A) and a rod 3 (A to its rounded end, centre C3) sliding on the frame: on a fixed
+    drum about K (``surface`` "curved") or on a fixed flat floor ("flat")."""
+    rng = _rng(seed)
+    r, l, r3 = rng.uniform(1.0, 2.0), rng.uniform(5.0, 7.0), rng.uniform(0.5, 1.5)
+    pts = {"O2": [0.0, 0.0], "A": _polar([0.0, 0.0], r, angle)}
+    links = {"1": {"points": ["O2"], "frame": True}, "2": {"points": ["O2", "A"]}, "3": {"points": ["A", "C3"]}}
+    if surface == "curved":
+        big = rng.uniform(3.0, 5.0)
+        pts["K"] = [l * 0.8, -(big + r3 + rng.uniform(0.5, 2.0))]
+        pts["C3"] = {"circles": [["A", l], ["K", big + r3]], "near": [l, 0.0]}
+        pts["P"] = {"from": "K", "length": big, "along": ["K", "C3"]}
+        links["1"]["points"].append("K")
+        centres = ["C3", "K"]
+    else:
+        h = -rng.uniform(2.5, 4.0)
+        pts["C3"] = {"circle": ["A", l], "line": {"through": [0.0, h + r3], "angle": 0}, "near": [l, h]}
+        pts["P"] = {"from": "C3", "length": r3, "angle": -90}
+        centres = ["C3", "flat"]
+    return {"title": f"rod sliding on a fixed {surface} surface {seed}", "points": pts, "links": links,
+            "contacts": [{"links": ["3", "1"], "point": "P", "kind": "sliding", "centres": centres}],
+            "driver": _driver(rng, "2")}
+
+
 ARROW_GENERATORS = {
     "block on a driven crank": block_on_driven_crank,
     "block on a driving guide": block_on_driving_guide,
@@ -367,4 +391,6 @@ ARROW_GENERATORS = {
     "sliding cam, curved follower": lambda s, a: sliding_cam(s, a, "curved"),
     "sliding cam, flat follower": lambda s, a: sliding_cam(s, a, "flat"),
     "sliding cam, translating follower": lambda s, a: sliding_cam(s, a, "translating"),
+    "rod sliding on a fixed drum": lambda s, a: sliding_on_frame(s, a, "curved"),
+    "rod sliding on a fixed floor": lambda s, a: sliding_on_frame(s, a, "flat"),
 }

@@ -2,7 +2,7 @@
 
 Generated mechanisms (tests/mechanisms.py ``ARROW_GENERATORS``: blocks on moving guides found from
 either side, pins in straight and circular slots driven by the pin or by the slot, sliding cams with
-curved, flat and translating followers), each at four poses, and every gallery file go through
+curved, flat and translating followers, a rod sliding on a fixed drum or floor), each at four poses, and every gallery file go through
 ``checks_arrows.assert_arrows_true``; the Coriolis arrows are also compared with the JSON's
 ``coriolis`` of their slider or slot, and the drawn arrows with the construction's.
 """
@@ -42,7 +42,8 @@ def test_generated_arrows_are_true(name):
             counts = assert_arrows_true(_solve(gen(seed, a)))
             for k, n in counts.items():
                 seen[k] = seen.get(k, 0) + n
-    assert seen.get("coriolis", 0) >= len(SEEDS) * len(ANGLES), seen
+    if "fixed" not in name:   # on the frame's surface there is no Coriolis term
+        assert seen.get("coriolis", 0) >= len(SEEDS) * len(ANGLES), seen
     assert seen.get("slip", 0) >= len(SEEDS) * len(ANGLES), seen
 
 

@@ -24,6 +24,7 @@ from velpoly.polygons import (ConstructionError, acceleration_polygon, construct
 from velpoly.solution import Solution
 
 import mechanisms as M
+from checks_arrows import assert_arrows_true
 
 TOL = 1e-9
 SETTINGS = settings(max_examples=25, deadline=None, suppress_health_check=[HealthCheck.filter_too_much])
@@ -45,7 +46,9 @@ def _perp(v):
 
 
 def check(s, tol=TOL):
-    """Both polygons equal the analytic solve; every image figure is similar to its link."""
+    """Both polygons equal the analytic solve; every image figure is similar to its link; every arrow
+    is what its label says (checks_arrows)."""
+    assert_arrows_true(s)
     for poly, analytic, rates, lin in ((velocity_polygon(s), s.velocity, s.omega, "velocity"),
                                        (acceleration_polygon(s), s.acceleration, s.alpha, "acceleration")):
         assert poly.kind == lin

@@ -1261,7 +1261,9 @@ def _equation(run: _Run, st: _PStep, kind: str) -> str:
         other = (r.b if t[0] == r.a else r.a, t[1])
         what = ("the driver's speed along its path" if r.source == "drive"
                 else f"{g.m.contacts[r.index].kind} contact")
-        return f"{X}_{g.name(t)} = {X}_{g.name(other)} + {X}_{t[1]}{t[0]}/{t[1]}{other[0]} ({what})"
+        sign = 1 if t[0] == r.a else -1
+        terms = run.term_labels((("rel", st.rel, sign, t[1]),)) or [f"{X}_{t[1]}{t[0]}/{t[1]}{other[0]}"]
+        return _sum([f"{X}_{g.name(t)} = {X}_{g.name(other)}"] + terms) + f" ({what})"
     if st.kind in ("driver", "image"):
         lk = st.link
         parts = [f"{X}_{g.name((op[1], op[3]))} = {X}_{g.name((op[1], op[2]))} + "
