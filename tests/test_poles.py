@@ -83,6 +83,11 @@ def check_poles(sol, ps=None):
         assert (p.position is None) != (p.direction is None)
         if p.direction is not None:
             assert 0.0 <= p.direction < 180.0
+        rel = np.linalg.norm(twists[names.index(i)] - twists[names.index(j)])
+        if rel <= ALIKE * max(sol.condition, 1) * scale_twist:
+            # links moving alike: any point is their pole; one known by inspection stays where it is
+            assert p.by_inspection, key
+            continue
         pos, direction = relative_pole(sol, i, j)
         assert pos is not None or direction is not None, key
         # the velocity solution itself fixes the pole only to eps x cond x |T| / |T_i - T_j|, and a pole
@@ -146,9 +151,10 @@ def check_order(ps):
             assert 0.0 <= p.sine <= 1.0
             if "-" in p.lines[0][0] and "-" in p.lines[1][0]:
                 assert p.how == "kennedy"
-        elif p.how == "alike":          # P_xy = P_iy, x moving like i (P_ix undefined)
+        elif p.how == "alike":          # P_xy = P_iy, x moving like i (P_ix undefined, or known by inspection)
             (same, source), = p.lines
-            assert ps.poles[same].undefined and ps.poles[source].order < p.order
+            assert ps.poles[same].undefined or ps.poles[same].by_inspection
+            assert ps.poles[source].order < p.order
             assert sine(me, local(ps, ps.poles[source].homogeneous)) <= 1e-15
 
 
@@ -306,15 +312,17 @@ def test_slider_crank_pole_at_infinity_and_kennedy():
     assert np.dot(p13.position - B, [math.cos(math.radians(20)), math.sin(math.radians(20))]) == pytest.approx(0, abs=1e-9)
 
 
-def test_slider_crank_at_dead_centre_has_an_undefined_pole():
-    # the block stops: it moves like the frame, P_14 is undefined, P_24 = P_12 and P_13 = P_34 = B
+def test_slider_crank_at_dead_centre_keeps_its_slider_pole():
+    # the block stops: it moves like the frame, so P_24 = P_12 and P_13 = P_34 = B; P_14 is still where
+    # inspection puts it (at infinity normal to the path), as at every other crank angle (issue 13 item 7)
     s = velpoly.solve(velpoly.load(slider_crank(r=3, l=10, e=0, theta=0, path=0)))
     ps = check_all(s)
-    assert ps.pole("1", "4").undefined and ps.pole("1", "4").how == "undefined"
+    assert ps.pole("1", "4").how == "slider" and ps.pole("1", "4").direction == pytest.approx(90.0, abs=1e-12)
     assert ps.pole("2", "4").position == pytest.approx(s.position["O2"], abs=1e-12)
     assert ps.pole("1", "3").position == pytest.approx(s.position["B"], abs=1e-12)
     assert hows(ps)["alike"] >= 1
-    assert s.to_dict()["poles"]["1-4"] == {"position": None, "direction": None, "how": "undefined", "order": 0}
+    assert s.to_dict()["poles"]["1-4"] == {"position": None, "direction": pytest.approx(90.0, abs=1e-12),
+                                           "how": "slider", "order": 0}
 
 
 def test_parallelogram_poles_at_infinity_and_a_translating_coupler():
@@ -395,10 +403,12 @@ def test_random_fourbars(a, b, c, d, theta, branch, omega):
     s = solve_or_reject(fourbar(a, b, c, d, theta, omega, branch=branch, coupler=(3.0, 40.0)))
     ps = check_all(s)
     c = hows(ps)
-    if ps.pole("3", "4").undefined and c["undefined"] == 1:
-        # omega_3 = omega_4 exactly when A is on the line of centres: then P_13 = P_14 = O4
+    if c["alike"] and not c["undefined"]:
+        # omega_3 = omega_4 exactly when A is on the line of centres: then P_13 = P_14 = O4, and P_34 is
+        # still the pin B (a pin's pole never depends on how the links move)
         assert math.sin(math.radians(theta)) == pytest.approx(0, abs=1e-12)
-        assert c == {"pin": 3, "undefined": 1, "alike": 2}
+        assert c == {"pin": 4, "alike": 2}
+        assert np.array_equal(ps.pole("3", "4").position, s.position["B"])
     elif not c["undefined"]:   # (a folded rhombus, B on O2, has two pairs moving alike)
         assert c == {"pin": 4, "kennedy": 2}
 

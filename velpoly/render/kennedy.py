@@ -25,9 +25,10 @@ from .labels import placer, segment
 from .options import drawing_options
 from .style import get_style
 
-__all__ = ["draw_poles", "draw_kennedy_circle", "pole_label", "shown_poles", "REACH"]
+__all__ = ["draw_poles", "draw_kennedy_circle", "pole_label", "shown_poles", "REACH", "KENNEDY_Z"]
 
 NUMBER_SPOTS = (0.3, 0.7, 0.5, 0.4, 0.6, 0.22, 0.78, 0.35, 0.65, 0.45, 0.55)  # along a chord, tried in turn
+KENNEDY_Z = 3.6   # Kennedy and constraint lines: above every body (links 2, ground 2.9, blocks 3.2), below points 4
 REACH = 2.5   # the view holds the finite poles within REACH mechanism sizes of the mechanism
 
 
@@ -149,8 +150,10 @@ def draw_poles(sol, ax=None, *, style="textbook", options=None, poleset=None, up
             d = np.asarray(ln.direction, float)
             d = d / max(float(np.hypot(*d)), 1e-300)
             ts = [0.0]
-            for k in ln.through:
-                q = ps.poles[k].position if k in ps.poles else None
+            # through the poles that define it (a Kennedy line) or the points that do (a constraint line:
+            # the contact point, the pin, a circular slot's centre), and on past the pole found
+            for q in [ps.poles[k].position if k in ps.poles else None for k in ln.through] + \
+                    list(getattr(ln, "marks", ())):
                 if q is not None:
                     ts.append(float(np.dot(np.asarray(q, float) - base, d)))
             if p.position is not None:
@@ -184,9 +187,11 @@ def draw_poles(sol, ax=None, *, style="textbook", options=None, poleset=None, up
     content = sbox(bx0 - 1.6 * pc, by0 - 1.6 * pc, bx1 + 1.6 * pc, by1 + 1.6 * pc).intersection(view)
     # the Kennedy lines
     for xy, heavy, gid in klines:
+        # over the links, blocks and ground (a Kennedy line runs straight through every body: the
+        # collinearity is the proof), under the pins, points and poles' marks
         line = Line2D(xy[:, 0], xy[:, 1], lw=st.thin_lw * (2.0 if heavy else 1.0),
                       color=st.ink if not st.coloured else "#7f7f7f", linestyle=(0, (7, 2, 1.5, 2)),
-                      zorder=1.4, gid=gid)
+                      zorder=KENNEDY_Z, gid=gid)
         ax.add_line(line)
         art.add("kennedy_lines", line)
 
