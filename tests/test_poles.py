@@ -22,6 +22,7 @@ from velpoly.poles import (ALIKE, FAR, instant_centre_velocities, kennedy_circle
 from velpoly.reference import evaluate, parse_key, relative_pole
 from velpoly.report import SECTIONS, render_table, solution_report
 from mechanisms import EXAMPLE_3_6, fourbar, inverted_slider_crank, set_path_angle, slider_crank
+from chains import ladder, stage_chain
 
 TOL = 1e-9
 SETTINGS = dict(max_examples=50, deadline=None, suppress_health_check=[HealthCheck.filter_too_much,
@@ -682,26 +683,6 @@ def test_block_on_a_circular_path_is_a_fourbar(a, b, c, d, theta, branch, omega)
     assert ps.pole("1", "4").position == pytest.approx(s.position["O4"], abs=1e-12)
 
 
-def ladder(n_links, seed):
-    """A random one-degree-of-freedom chain of n_links: a crank, then dyads pinned to random
-    earlier links and to each other (each dyad closes one more loop)."""
-    rng = np.random.default_rng(seed)
-    pts = {"O": [0.0, 0.0]}
-    links = {"0": {"points": ["O"], "frame": True}, "1": {"points": ["O"]}}
-    k = 2
-    while k + 1 < n_links:
-        u, v = str(k), str(k + 1)
-        ea, eb = ("1", "0") if k == 2 else (str(x) for x in rng.choice(k, 2, replace=False))
-        for name in (f"J{u}", f"J{v}", f"M{u}"):
-            pts[name] = rng.uniform(-3, 3, 2).tolist()
-        links[ea]["points"].append(f"J{u}")
-        links[eb]["points"].append(f"J{v}")
-        links[u] = {"points": [f"J{u}", f"M{u}"]}
-        links[v] = {"points": [f"J{v}", f"M{u}"]}
-        k += 2
-    return {"points": pts, "links": links, "driver": {"link": "1", "omega": 1.0}}
-
-
 @pytest.mark.parametrize("seed", range(4))
 def test_twenty_link_chains(seed):
     d = ladder(21, seed)
@@ -726,3 +707,189 @@ def test_gallery_mechanisms_if_present():
         checked += 1
     if not checked:
         pytest.skip("no gallery files yet")
+
+
+# -- the Kennedy lines as drawn (issue 13 item 4) -----------------------------------------------------
+def seeded_mechanisms(seed):
+    """Generated mechanisms, one of each kind a pole needs lines for: a four-bar, a slider-crank, an
+    inverted slider-crank, a Watt and a Stephenson six-bar, a pin in a straight and in a circular slot,
+    a cam with a sliding flat-faced follower (the common normal)."""
+    rng = np.random.default_rng(seed)
+    u = lambda lo, hi: float(rng.uniform(lo, hi))  # noqa: E731
+    xy = lambda: [u(-1, 1), u(-1, 1)]  # noqa: E731
+    yield "four-bar", fourbar(u(0.5, 3), u(6, 9), u(6, 9), u(6, 9), u(0, 360), u(-20, 20),
+                              branch=str(rng.choice(["left", "right"])))
+    yield "slider-crank", slider_crank(u(0.5, 4), u(6, 12), u(-2, 2), u(0, 360), u(1, 9), path=u(0, 180))
+    yield "inverted slider-crank", set_path_angle(inverted_slider_crank(u(0.5, 4), u(5, 8), u(0, 360), u(1, 9)))
+    for topology in (WATT, STEPHENSON):
+        pts = {p: xy() for p in sorted({p for ps in topology.values() for p in ps})}
+        order = sorted(topology)
+        names = {lk: str(i + 1) for i, lk in enumerate(order)}
+        yield "six-bar", random_chain(topology, order[0], pts, names, order, u(1, 9))
+    for circular in (False, True):
+        yield "pin in a slot", {
+            "points": {"O2": [0, 0], "O3": [2.5 + u(-1, 1), u(-1, 1)], "A": [u(-0.5, 0.5), u(-0.5, 0.5)],
+                       "S": [3, 2], "K": [2 + u(-1, 1), 1 + u(-1, 1)]},
+            "links": {"1": {"points": ["O2", "O3"], "frame": True}, "2": {"points": ["O2", "A"]},
+                      "3": {"points": ["O3", "S", "K"]}},
+            "slots": [{"pin": "A", "link": "2", "slot": "3", **({"centre": "K"} if circular else {"angle": u(0, 180)})}],
+            "driver": {"link": "2", "omega": u(1, 9)}}
+    theta, psi, ecc, radius = u(0, 360), u(30, 150), u(0.1, 0.8), u(0.5, 1.5)
+    k = ecc * np.array([math.cos(math.radians(theta)), math.sin(math.radians(theta))])
+    dv = np.array([math.cos(math.radians(psi)), math.sin(math.radians(psi))])
+    p = k + radius * dv
+    yield "sliding contact", {
+        "points": {"O": [0, 0], "K": k.tolist(), "P": p.tolist(), "F": (p + 0.3 * np.array([-dv[1], dv[0]])).tolist()},
+        "links": {"1": {"points": ["O"], "frame": True}, "2": {"points": ["O", "K"]}, "3": {"points": ["F"]}},
+        "sliders": [{"block": "3", "guide": "1", "point": "F", "angle": psi}],
+        "contacts": [{"links": ["2", "3"], "point": "P", "kind": "sliding", "centres": ["K", "flat"]}],
+        "driver": {"link": "2", "omega": u(1, 9)}}
+
+
+def check_drawn_lines(sol):
+    """Every pole found (not by inspection) shows the two lines that located it: each drawn line passes
+    through the pole (1e-9 of the mechanism's size) and runs past it, covers its two poles (or, a
+    constraint line, the points that define it: the contact point, the pin, a circular slot's centre)
+    wherever they are in view, and lies over every body (a wheel's rim or a plate's outline never cuts
+    it). Returns the number of lines checked."""
+    from matplotlib.backends.backend_agg import FigureCanvasAgg
+    from matplotlib.figure import Figure
+    from shapely.geometry import Point
+    from velpoly.render.canvas import per_cm, view_box
+    from velpoly.render.kennedy import draw_poles
+    fig = Figure(figsize=(8, 6))
+    FigureCanvasAgg(fig)
+    ax = fig.add_axes((0.02, 0.02, 0.96, 0.96))
+    ps = locate_poles(sol)
+    art = draw_poles(sol, ax, poleset=ps)
+    view, pc, size = view_box(ax), per_cm(ax), sol.mechanism.size
+    drawn = {ln.get_gid(): ln for ln in art.get("kennedy_lines", [])}
+    bodies = [a for role in ("links", "sliders", "ground", "guides") for a in art.get(role, [])]
+    top = max((b.get_zorder() for b in bodies), default=0.0)
+    checked = 0
+    for p in ps.poles.values():
+        if p.how not in ("kennedy", "normals"):
+            continue
+        assert len(p.construction) == 2, p.key
+        for ln in p.construction:
+            defining = [ps.poles[k].position for k in ln.through] + list(ln.marks)
+            wanted = [q for q in defining + [p.position] if q is not None and view.contains(Point(*q))]
+            line = drawn.get(f"kennedy-line-{p.key}-{ln.label}")
+            if line is None:
+                assert not wanted, (p.key, ln.label)   # nothing of it in view
+                continue
+            assert line.get_zorder() > top, (p.key, ln.label)
+            xy = line.get_xydata()
+            a, b = xy[0], xy[-1]
+            length = float(np.hypot(*(b - a)))
+            e = (b - a) / length
+            if p.position is None:
+                d = np.array([math.cos(math.radians(p.direction)), math.sin(math.radians(p.direction))])
+                assert abs(e[0] * d[1] - e[1] * d[0]) <= 1e-9, (p.key, ln.label)
+            else:
+                r = p.position - a
+                assert abs(e[0] * r[1] - e[1] * r[0]) <= 1e-9 * max(size, float(np.hypot(*r))), (p.key, ln.label)
+            for q in wanted:   # covered, the pole with room to spare (or the line runs out of the view)
+                t = float(np.dot(q - a, e))
+                assert -1e-9 * size <= t <= length + 1e-9 * size, (p.key, ln.label, q)
+            if p.position is not None and view.contains(Point(*p.position)):
+                t = float(np.dot(p.position - a, e))
+                for end, room in ((a, t), (b, length - t)):
+                    assert room >= 0.5 * pc or view.exterior.distance(Point(*end)) <= 1e-9 * size, (p.key, ln.label)
+            checked += 1
+    return checked
+
+
+@pytest.mark.parametrize("seed", range(2))
+def test_kennedy_lines_are_drawn_through_every_found_pole_and_over_the_bodies(seed):
+    kinds, lines = set(), 0
+    for kind, d in seeded_mechanisms(seed):
+        try:
+            s = velpoly.solve(velpoly.load(d))
+        except VelpolyError:
+            continue
+        lines += check_drawn_lines(s)
+        kinds.add(kind)
+    assert len(kinds) >= 6 and lines >= 20, (kinds, lines)
+
+
+@pytest.mark.parametrize("stem", ["ex3_4_slotted_lever", "fig3_15b_sliding", "wheel_rolling", "cam_roller_follower",
+                                  "ex3_7_instant_centres"])
+def test_gallery_kennedy_lines_as_drawn(stem):
+    import pathlib
+    f = pathlib.Path(__file__).resolve().parent.parent / "gallery" / f"{stem}.toml"
+    s = velpoly.solve(velpoly.load(f))
+    check_drawn_lines(s)
+    if stem == "ex3_4_slotted_lever":   # the slot's normal at its pin A is drawn, through A
+        p23 = locate_poles(s).pole("2", "3")
+        ln = next(x for x in p23.construction if x.label.startswith("normal to the slot"))
+        assert ln.marks and np.array_equal(ln.marks[0], s.position["A"] if "A" in s.position else s.position["A@2"])
+
+
+# -- a pole by inspection never depends on the other links or on omega (issue 13 item 7) -------------
+@pytest.mark.parametrize("stages,omega", [(9, 1e-6), (9, 1e6), (29, 1e6)])
+def test_every_pin_is_its_pole_exactly_in_long_chains_at_any_speed(stages, omega):
+    # far down a chain of four-bar stages the links move alike to the solution's precision (at 60 links
+    # the last rockers turn at 1e-13 of the crank's speed): their pins were once reported "undefined"
+    d = stage_chain(stages)
+    d["driver"]["omega"] = omega
+    s = velpoly.solve(velpoly.load(d))
+    ps = locate_poles(s, cached=False)
+    assert len(ps) == len(s.mechanism.links) * (len(s.mechanism.links) - 1) // 2
+    for pin in s.mechanism.pins:
+        p = ps.pole(*pin.links)
+        assert p.how == "pin" and p.order == 0 and np.array_equal(p.position, s.place(pin.links[0], pin.point))
+    out = s.to_dict()["poles"]
+    for pin in s.mechanism.pins:
+        assert out[ps.pole(*pin.links).key]["position"] == s.place(pin.links[0], pin.point).tolist()
+    if stages == 29:   # the tail moves alike: P_ik = P_jk is still copied across a pin (how 'alike')
+        assert any(p.how == "alike" for p in ps.poles.values())
+
+
+# -- the construction on arrays (big mechanisms) against the one on floats ------------------------------
+def both_forms(sol):
+    """The pole sets of both forms of the construction (velpoly.poles._SMALL forced either way)."""
+    import velpoly.poles as P
+    small = P._SMALL
+    try:
+        P._SMALL = 10 ** 9
+        floats = P._locate(sol)
+        P._SMALL = 0
+        arrays = P._locate(sol)
+    finally:
+        P._SMALL = small
+    return floats, arrays
+
+
+def test_construction_on_arrays_is_the_construction_on_floats():
+    """The same poles, found in the same order by the same lines, on generated mechanisms of every kind
+    (where a pole has more than 12 lines the arrays pick its pair in two sweeps: then the same pole to
+    1e-9, with the same order); the arrays' poles agree with the velocity solution to 1e-9."""
+    mechs = [d for seed in range(2) for _, d in seeded_mechanisms(seed)]
+    mechs += [ladder(21, seed) for seed in range(2)] + [stage_chain(4), ladder(31, 0)]
+    same_lines = identical = 0
+    for d in mechs:
+        try:
+            s = velpoly.solve(velpoly.load(d))
+        except VelpolyError:
+            continue
+        floats, arrays = both_forms(s)
+        check_poles(s, arrays)
+        check_order(arrays)
+        assert floats.order == arrays.order
+        assert abs(floats.max_error - arrays.max_error) <= 1e-12
+        for key, p in floats.poles.items():
+            q = arrays.poles[key]
+            assert (p.how, p.order) == (q.how, q.order), key
+            assert (p.position is None) == (q.position is None) and p.direction == q.direction, key
+            if p.position is not None:
+                assert np.hypot(*(p.position - q.position)) <= 1e-9 * s.mechanism.size, key
+            same_lines += (p.via, p.lines) == (q.via, q.lines)
+        if all((p.via, p.lines) == (arrays.poles[k].via, arrays.poles[k].lines) for k, p in floats.poles.items()):
+            identical += 1   # every pole by the same two lines: the very same numbers
+            for key, p in floats.poles.items():
+                q = arrays.poles[key]
+                assert p.position is None or np.array_equal(p.position, q.position), key
+                assert p.sine == pytest.approx(q.sine, abs=1e-15)
+    assert same_lines > 0.97 * sum(len(m["links"]) * (len(m["links"]) - 1) // 2 for m in mechs)
+    assert identical >= 16

@@ -349,6 +349,7 @@ def _norm3(v) -> float:
 
 
 _SMALL = 24      # up to this many links the construction runs on plain floats (_Kennedy), beyond on arrays
+_SAMPLE = 32     # a pole with more lines than this has its pair chosen among this many, evenly spread
 _EXACT = 12      # a pole with at most this many lines drawn has every pair of them tried; more, two sweeps
 
 
@@ -614,21 +615,31 @@ class _KennedyArrays(_Construction):
         h = np.array([tuple(map(float, it[2])) for it in items], float).reshape(-1, 3)
         self.H[A, B] = self.H[B, A] = h
         self.S[A, B] = self.S[B, A] = _KNOWN
-        for a, b, _, info in items:
-            self.info[(min(a, b), max(a, b))] = info
+        for a, b, _, info in items:   # a < b
+            self.info[a, b] = info
 
     def set(self, a, b, h, info) -> None:
         self.H[a, b] = self.H[b, a] = h
         self.S[a, b] = self.S[b, a] = _KNOWN
         self.info[(min(a, b), max(a, b))] = info
 
-    def lines(self, A, B, both=None):
+    def lines(self, A, B, both=None, cap=None):
         """The lines drawn for the unknown pairs (A[p], B[p]): arrays (pair, slot, line, quality),
         sorted by pair and slot (slot: the third link, n + c for the pair's c-th constraint line).
-        ``both``: the thirds whose poles with both links are known, (len(A), n), if at hand."""
+        ``both``: the thirds whose poles with both links are known, (len(A), n), if at hand. With
+        ``cap``, a pair with more thirds than that has only ``cap`` of them, evenly spread in file order."""
         if both is None:
             known = self.S == _KNOWN
             both = known[A] & known[B]
+        if cap is not None:
+            k = np.count_nonzero(both, axis=1)
+            if (k > cap).any():
+                many = np.flatnonzero(k > cap)
+                sub = both[many]
+                r = np.cumsum(sub, axis=1)
+                kk = k[many][:, None]
+                both = both.copy()
+                both[many] = sub & ((r * cap) // kk != ((r - 1) * cap) // kk)
         p, c = np.nonzero(both)
         ln = _cross_rows(self.H[c, A[p]], self.H[c, B[p]])
         sep = _norm_rows(ln)
@@ -667,7 +678,7 @@ class _KennedyArrays(_Construction):
         (the first of the largest quality), the line that meets it best, then the line that
         meets that one best, and the better of these two pairs.
         """
-        p, c, ln, q = self.lines(A, B, both)
+        p, c, ln, q = self.lines(A, B, both, _SAMPLE)
         nrm = np.hypot(ln[:, 0], ln[:, 1])
         cnt = np.bincount(p, minlength=len(A))
         start = np.r_[0, np.cumsum(cnt)[:-1]]
@@ -728,11 +739,11 @@ class _KennedyArrays(_Construction):
         ps, si, sj, li, lj, x, proj, sine, sc = self.best_pairs(A[ev], B[ev], both[ev])
         ok = (proj >= _DEGENERATE) & (sc >= _BLUNT)
         h = x[ok] / proj[ok][:, None]
-        for k, (p, i, j, s, sn, hh, u, v) in enumerate(zip(ev[ps[ok]].tolist(), si[ok].tolist(), sj[ok].tolist(),
-                                                           sc[ok].tolist(), sine[ok].tolist(), h.tolist(),
-                                                           li[ok].tolist(), lj[ok].tolist())):
-            out[p] = (int(A[p]), int(B[p]), s, dict(how=None, slots=(i, j), sine=min(1.0, sn),
-                                                    line_vectors=(u, v), h=tuple(hh)))
+        at = ev[ps[ok]]
+        for p, a, b, i, j, s, sn, hh, u, v in zip(at.tolist(), A[at].tolist(), B[at].tolist(), si[ok].tolist(),
+                                                 sj[ok].tolist(), sc[ok].tolist(), np.minimum(1.0, sine[ok]).tolist(),
+                                                 h.tolist(), li[ok].tolist(), lj[ok].tolist()):
+            out[p] = (a, b, s, dict(how=None, slots=(i, j), sine=sn, line_vectors=(u, v), h=hh))
         if self.alike.any():   # some links move alike: copy their poles
             kn = S == _KNOWN
             for x_, y_, first in ((A, B, True), (B, A, False)):
@@ -858,17 +869,19 @@ def _lines_drawn(K, used, where, centre, scale) -> list:
     for k, (a, b, slot, _) in enumerate(used):
         if slot < n:
             ka, kb = keys[a][slot], keys[b][slot]
-            label, via, through = (ka, kb), (names[a], names[b], names[slot]), (ka, kb)
-            text, marks = f"P_{ka} P_{kb}", ()
-            ends = (where.get((a, slot) if a < slot else (slot, a)), where.get((b, slot) if b < slot else (slot, b)))
+            label = through = (ka, kb)
+            via, text, marks = (names[a], names[b], names[slot]), f"P_{ka} P_{kb}", ()
+            point = where[a][slot]
+            if point is None:
+                point = where[b][slot]
         else:
             label, via = K.constraints[(a, b)][slot - n]
             text, through = via, ()
-            marks = ends = K.marks.get((a, b, slot - n), ())
+            marks = K.marks.get((a, b, slot - n), ())
+            point = next((pos for pos in marks if pos is not None), None)
         if not ok[k]:
             out.append((label, via, PoleLine(text, through, None, None, marks)))
             continue
-        point = next((pos for pos in ends if pos is not None), None)
         out.append((label, via, PoleLine(text, through, foot[k] if point is None else point, direction[k], marks)))
     return out
 
@@ -889,62 +902,66 @@ def _pole_line(label, through, l, ends, centre, scale, marks=()) -> PoleLine:
     return PoleLine(label, through, np.array((centre[0] + f * l0, centre[1] + f * l1)), direction, marks)
 
 
-def _euclid(hw, size: float):
-    """The position (None at infinity) and direction in [0, 180) (None when finite) of a world
-    homogeneous point (x, y, w): far when w = 0 or |(x, y)| > FAR size |w|."""
-    x, y, w = hw
-    if w == 0 or math.hypot(x, y) > FAR * size * abs(w):
-        d = math.degrees(math.atan2(y, x)) % 180.0
-        return None, (0.0 if d >= 180.0 else d) + 0.0
-    return np.array((x / w + 0.0, y / w + 0.0)), None   # + 0.0: never a signed zero
+def _direction(hw) -> float:
+    """The direction in [0, 180) of a world homogeneous point (x, y, w) at infinity (w = 0 or
+    |(x, y)| > FAR size |w|: a pole farther than FAR mechanism sizes is at infinity)."""
+    d = math.degrees(math.atan2(float(hw[1]), float(hw[0]))) % 180.0
+    return (0.0 if d >= 180.0 else d) + 0.0
 
 
 def _pole_set(sol, K, centre, scale, found) -> PoleSet:
     """The contract's PoleSet: world positions (x, y, w) = (scale x' + centre w', ..., w'), the lines."""
     names, n = K.names, K.n
-    T = K.T.tolist()
-    H = K.H if isinstance(K.H, list) else K.H.tolist()
-    S = K.S if isinstance(K.S, list) else K.S.tolist()
-    tw = max(map(_norm3, T), default=0.0)
-    c0, c1 = float(centre[0]), float(centre[1])
-    err = 0.0
-    world, where = {}, {}
-    for a in range(n):
-        for b in range(a + 1, n):
-            if S[a][b] != _KNOWN:
-                continue
-            h, ta, tb = H[a][b], T[a], T[b]
-            # the disagreement with the velocity solution: |P_ab x (T_a - T_b)|
-            e = _norm3(_cross3(h, (ta[0] - tb[0], ta[1] - tb[1], ta[2] - tb[2])))
-            if e > err:
-                err = e
-            hw = (scale * h[0] + c0 * h[2], scale * h[1] + c1 * h[2], h[2])
-            nw = max(_norm3(hw), 1e-300)
-            hw = (hw[0] / nw, hw[1] / nw, hw[2] / nw)
-            at = K.exact.get((a, b))   # a finite pole by inspection: exactly where it is
-            world[a, b] = (hw, at, None) if at is not None else (hw, *_euclid(hw, scale))
-            where[a, b] = world[a, b][1]
-    used = [(a, b, slot, v) for (a, b), info in K.info.items() if "slots" in info
-            for slot, v in zip(info["slots"], info["line_vectors"])]
-    it = iter(_lines_drawn(K, used, where, centre, scale))
-    drawn = {(a, b): (next(it), next(it)) for a, b, _, _ in used[::2]}   # two lines a pole
+    T = K.T
+    H = np.asarray(K.H, float).reshape(n, n, 3)
+    A, B = np.nonzero(np.triu(np.asarray(K.S) == _KNOWN, 1))
+    h = H[A, B]
+    tw = float(_norm_rows(T).max()) if n else 0.0
+    # the disagreement with the velocity solution: |P_ab x (T_a - T_b)|
+    err = float(_norm_rows(_cross_rows(h, T[A] - T[B])).max()) if len(A) else 0.0
+    hw = np.stack((scale * h[:, 0] + centre[0] * h[:, 2], scale * h[:, 1] + centre[1] * h[:, 2], h[:, 2]), axis=1)
+    hw /= np.maximum(_norm_rows(hw), 1e-300)[:, None]
+    x, y, w = hw[:, 0], hw[:, 1], hw[:, 2]
+    far = (w == 0) | (np.hypot(x, y) > FAR * scale * np.abs(w))
+    with np.errstate(divide="ignore", invalid="ignore"):
+        xy = np.stack((x / w + 0.0, y / w + 0.0), axis=1)    # + 0.0: never a signed zero
+    where = [[None] * n for _ in range(n)]   # each known pole's finite position, both ways round
+    world = {}
+    exact = K.exact
+    for a, b, hk, pos, inf in zip(A.tolist(), B.tolist(), hw, xy, far.tolist()):
+        at = exact.get((a, b))   # a finite pole by inspection: exactly where it is
+        if at is not None:
+            pos, direction = at, None
+        elif inf:
+            pos, direction = None, _direction(hk)
+        else:
+            direction = None
+        world[a, b] = hk, pos, direction
+        where[a][b] = where[b][a] = pos
+    pairs = [ab for ab, info in K.info.items() if "slots" in info]   # poles found by two lines
+    used = [(a, b, slot, v) for a, b in pairs
+            for slot, v in zip(K.info[a, b]["slots"], K.info[a, b]["line_vectors"])]
+    out = _lines_drawn(K, used, where, centre, scale)
+    drawn = dict(zip(pairs, zip(out[0::2], out[1::2])))
     poles = {}
+    keys, infos = K.keys, K.info
     for a in range(n):
+        na, ka = names[a], keys[a]
         for b in range(a + 1, n):
-            key = K.keys[a][b]
-            info = K.info[(a, b)]
-            if (a, b) not in world:
-                poles[key] = Pole((names[a], names[b]), key, None, None, "undefined", 0, note=info.get("note", ""))
+            key, info = ka[b], infos[a, b]
+            got = world.get((a, b))
+            if got is None:
+                poles[key] = Pole((na, names[b]), key, None, None, "undefined", 0, note=info.get("note", ""))
                 continue
-            hw, position, direction = world[a, b]
-            via, lines, construction = info.get("via", ()), info.get("lines", ()), ()
-            if (a, b) in drawn:
-                parts = drawn[a, b]
-                lines = tuple(p[0] for p in parts)
-                via = tuple(p[1] for p in parts)
-                construction = tuple(p[2] for p in parts)
-            poles[key] = Pole((names[a], names[b]), key, position, direction, info["how"], info["order"], via,
-                              lines, construction, info.get("sine", 1.0), np.array(hw), info.get("note", ""))
+            hw, position, direction = got
+            parts = drawn.get((a, b))
+            if parts is None:
+                via, lines, construction = info.get("via", ()), info.get("lines", ()), ()
+            else:
+                (l0, v0, c0), (l1, v1, c1) = parts
+                via, lines, construction = (v0, v1), (l0, l1), (c0, c1)
+            poles[key] = Pole((na, names[b]), key, position, direction, info["how"], info["order"], via,
+                              lines, construction, info.get("sine", 1.0), hw, info.get("note", ""))
     err /= tw or 1.0
     cl = {K.key(a, b): tuple(_pole_line(desc, (), np.array(K.cons[(a, b)][c]), K.marks.get((a, b, c), ()),
                                         centre, scale, K.marks.get((a, b, c), ()))
