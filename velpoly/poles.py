@@ -40,9 +40,17 @@ How the poles are found, the way a textbook draws them (seed 000, sections
 
 Two links moving alike at the instant (same omega and the same velocity
 field: a block that momentarily does not slide) have an undefined pole
-(``how='undefined'``, position and direction ``None``); then every other
+(``how='undefined'``, position and direction ``None``) unless it is known
+by inspection: a pin is always its pole (any point is then a pole of the
+two; inspection's never depends on other links or on omega). Every other
 link k sees them alike, ``P_jk = P_ik`` (``how='alike'``). A pole farther
 than 1e9 mechanism sizes is at infinity, with its ``direction`` in [0, 180).
+
+Up to 24 links the construction runs on plain floats, storing each line
+drawn (:class:`_Kennedy`); beyond, on arrays without a line store, each
+round's lines gathered at once (:class:`_KennedyArrays`: the same order,
+lines and numbers wherever a pole has at most 12 lines; with more, its pair
+is chosen in two sweeps among at most 32 of them).
 
 The **instant-centre method** (:func:`instant_centre_velocities`) then gives
 every omega from the driver's through the poles,
@@ -58,6 +66,7 @@ the readable tables of ``velpoly solve``.
 """
 from __future__ import annotations
 
+import gc
 import math
 import weakref
 from dataclasses import dataclass, field
@@ -799,6 +808,18 @@ def locate_poles(sol, *, cached: bool = True) -> PoleSet:
 
 
 def _locate(sol) -> PoleSet:
+    # tens of thousands of small objects for a big chain, none in a reference cycle: the cyclic garbage
+    # collector's passes over them would cost a third of the time at 200 links, so it waits until the end
+    enabled = gc.isenabled()
+    gc.disable()
+    try:
+        return _construct(sol)
+    finally:
+        if enabled:
+            gc.enable()
+
+
+def _construct(sol) -> PoleSet:
     m = sol.mechanism
     names = list(m.link_names)
     idx = {nm: i for i, nm in enumerate(names)}

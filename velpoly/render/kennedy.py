@@ -6,8 +6,11 @@ P_ij is marked and labelled; a pole at infinity (a relative translation) is
 an arrow at the border of the view pointing its way, labelled ``P_ij ∞``, and
 a finite pole outside the view is an arrow at the border on its Kennedy line,
 pointing along it towards the pole, labelled with its position. The Kennedy
-lines that located each pole (P_ik P_jk and P_il P_jl) are drawn thin through
-their poles. On the Kennedy circle the links are
+lines that located each pole (P_ik P_jk and P_il P_jl, or a constraint line: a
+sliding contact's common normal, a slot's normal at its pin) are drawn thin
+through their poles (a constraint line through its defining points) and on past
+the pole found, over every body: a wheel's rim or a plate's outline never cuts
+them. On the Kennedy circle the links are
 points on a circle (the first at the top, the others clockwise), poles known
 by inspection are solid chords, and poles found are dashed chords numbered
 in the order of their discovery.
