@@ -571,6 +571,28 @@ class _Kennedy(_Construction):
                         best = (count, a, b)
         return best[1], best[2]
 
+    def world(self, centre, scale):
+        """The known poles in frame coordinates: the largest disagreement with the velocity solution,
+        |P_ab x (T_a - T_b)|, and ``(a, b, (x, y, w) unit, position or None, at infinity)`` for each (a
+        pole farther than FAR sizes is at infinity; the position never a signed zero)."""
+        c0, c1 = float(centre[0]), float(centre[1])
+        T, S, H = self.T.tolist(), self.S, self.H
+        err, out = 0.0, []
+        for a in range(self.n):
+            for b in range(a + 1, self.n):
+                if S[a][b] != _KNOWN:
+                    continue
+                h, ta, tb = H[a][b], T[a], T[b]
+                e = _norm3(_cross3(h, (ta[0] - tb[0], ta[1] - tb[1], ta[2] - tb[2])))
+                if e > err:
+                    err = e
+                hw = (scale * h[0] + c0 * h[2], scale * h[1] + c1 * h[2], h[2])
+                nw = max(_norm3(hw), 1e-300)
+                x, y, w = hw = (hw[0] / nw, hw[1] / nw, hw[2] / nw)
+                far = w == 0 or math.hypot(x, y) > FAR * scale * abs(w)
+                out.append((a, b, np.array(hw), None if far else np.array((x / w + 0.0, y / w + 0.0)), far))
+        return err, out
+
     def _alike_pair(self, a, b):
         """P_ab = P_ib when link a moves like link i, or P_ai when b moves like i (the first such i)."""
         S, alike = self.S, self.alike
@@ -631,6 +653,21 @@ class _KennedyArrays(_Construction):
         self.H[a, b] = self.H[b, a] = h
         self.S[a, b] = self.S[b, a] = _KNOWN
         self.info[(min(a, b), max(a, b))] = info
+
+    def world(self, centre, scale):
+        """As :meth:`_Kennedy.world`, on arrays."""
+        n, T = self.n, self.T
+        A, B = np.nonzero(np.triu(self.S == _KNOWN, 1))
+        h = self.H[A, B]
+        err = float(_norm_rows(_cross_rows(h, T[A] - T[B])).max()) if len(A) else 0.0
+        hw = np.stack((scale * h[:, 0] + centre[0] * h[:, 2], scale * h[:, 1] + centre[1] * h[:, 2], h[:, 2]),
+                      axis=1)
+        hw /= np.maximum(_norm_rows(hw), 1e-300)[:, None]
+        x, y, w = hw[:, 0], hw[:, 1], hw[:, 2]
+        far = (w == 0) | (np.hypot(x, y) > FAR * scale * np.abs(w))
+        with np.errstate(divide="ignore", invalid="ignore"):
+            xy = np.stack((x / w + 0.0, y / w + 0.0), axis=1)    # + 0.0: never a signed zero
+        return err, list(zip(A.tolist(), B.tolist(), hw, xy, far.tolist()))
 
     def lines(self, A, B, both=None, cap=None):
         """The lines drawn for the unknown pairs (A[p], B[p]): arrays (pair, slot, line, quality),
@@ -876,34 +913,17 @@ def _construct(sol) -> PoleSet:
 def _lines_drawn(K, used, where, centre, scale) -> list:
     """The contract's (pair of labels, via entry, PoleLine) of each line ``(a, b, slot, vector)`` used
     for a pole P_ab: a Kennedy line (slot: the third link) through its two poles, or a constraint line."""
-    if not used:
-        return []
-    vec = np.array([u[3] for u in used], float).reshape(-1, 3)
-    nrm = np.hypot(vec[:, 0], vec[:, 1])
-    ok = nrm >= 1e-15
-    with np.errstate(divide="ignore", invalid="ignore"):
-        direction = np.stack((-vec[:, 1] / nrm, vec[:, 0] / nrm), axis=1)
-        f = -scale * vec[:, 2] / (nrm * nrm)
-    foot = np.stack((centre[0] + f * vec[:, 0], centre[1] + f * vec[:, 1]), axis=1)
     n, names, keys = K.n, K.names, K.keys
     out = []
-    for k, (a, b, slot, _) in enumerate(used):
+    for a, b, slot, vec in used:
         if slot < n:
             ka, kb = keys[a][slot], keys[b][slot]
-            label = through = (ka, kb)
-            via, text, marks = (names[a], names[b], names[slot]), f"P_{ka} P_{kb}", ()
-            point = where[a][slot]
-            if point is None:
-                point = where[b][slot]
+            out.append(((ka, kb), (names[a], names[b], names[slot]),
+                        _pole_line(f"P_{ka} P_{kb}", (ka, kb), vec, (where[a][slot], where[b][slot]), centre, scale)))
         else:
-            label, via = K.constraints[(a, b)][slot - n]
-            text, through = via, ()
+            label, desc = K.constraints[(a, b)][slot - n]
             marks = K.marks.get((a, b, slot - n), ())
-            point = next((pos for pos in marks if pos is not None), None)
-        if not ok[k]:
-            out.append((label, via, PoleLine(text, through, None, None, marks)))
-            continue
-        out.append((label, via, PoleLine(text, through, foot[k] if point is None else point, direction[k], marks)))
+            out.append((label, desc, _pole_line(desc, (), vec, marks, centre, scale, marks)))
     return out
 
 
@@ -933,23 +953,12 @@ def _direction(hw) -> float:
 def _pole_set(sol, K, centre, scale, found) -> PoleSet:
     """The contract's PoleSet: world positions (x, y, w) = (scale x' + centre w', ..., w'), the lines."""
     names, n = K.names, K.n
-    T = K.T
-    H = np.asarray(K.H, float).reshape(n, n, 3)
-    A, B = np.nonzero(np.triu(np.asarray(K.S) == _KNOWN, 1))
-    h = H[A, B]
-    tw = float(_norm_rows(T).max()) if n else 0.0
-    # the disagreement with the velocity solution: |P_ab x (T_a - T_b)|
-    err = float(_norm_rows(_cross_rows(h, T[A] - T[B])).max()) if len(A) else 0.0
-    hw = np.stack((scale * h[:, 0] + centre[0] * h[:, 2], scale * h[:, 1] + centre[1] * h[:, 2], h[:, 2]), axis=1)
-    hw /= np.maximum(_norm_rows(hw), 1e-300)[:, None]
-    x, y, w = hw[:, 0], hw[:, 1], hw[:, 2]
-    far = (w == 0) | (np.hypot(x, y) > FAR * scale * np.abs(w))
-    with np.errstate(divide="ignore", invalid="ignore"):
-        xy = np.stack((x / w + 0.0, y / w + 0.0), axis=1)    # + 0.0: never a signed zero
+    tw = float(_norm_rows(K.T).max()) if n else 0.0
+    err, known = K.world(centre, scale)
     where = [[None] * n for _ in range(n)]   # each known pole's finite position, both ways round
     world = {}
     exact = K.exact
-    for a, b, hk, pos, inf in zip(A.tolist(), B.tolist(), hw, xy, far.tolist()):
+    for a, b, hk, pos, inf in known:
         at = exact.get((a, b))   # a finite pole by inspection: exactly where it is
         if at is not None:
             pos, direction = at, None
