@@ -23,6 +23,7 @@ from velpoly.reference import evaluate, parse_key, relative_pole
 from velpoly.report import SECTIONS, render_table, solution_report
 from mechanisms import EXAMPLE_3_6, fourbar, inverted_slider_crank, set_path_angle, slider_crank
 from paths import GALLERY_FILES, SIXBAR
+from chains import ladder, stage_chain
 
 TOL = 1e-9
 SETTINGS = dict(max_examples=50, deadline=None, suppress_health_check=[HealthCheck.filter_too_much,
@@ -84,6 +85,11 @@ def check_poles(sol, ps=None):
         assert (p.position is None) != (p.direction is None)
         if p.direction is not None:
             assert 0.0 <= p.direction < 180.0
+        rel = np.linalg.norm(twists[names.index(i)] - twists[names.index(j)])
+        if rel <= ALIKE * max(sol.condition, 1) * scale_twist:
+            # links moving alike: any point is their pole; one known by inspection stays where it is
+            assert p.by_inspection, key
+            continue
         pos, direction = relative_pole(sol, i, j)
         assert pos is not None or direction is not None, key
         # the velocity solution itself fixes the pole only to eps x cond x |T| / |T_i - T_j|, and a pole
@@ -147,9 +153,10 @@ def check_order(ps):
             assert 0.0 <= p.sine <= 1.0
             if "-" in p.lines[0][0] and "-" in p.lines[1][0]:
                 assert p.how == "kennedy"
-        elif p.how == "alike":          # P_xy = P_iy, x moving like i (P_ix undefined)
+        elif p.how == "alike":          # P_xy = P_iy, x moving like i (P_ix undefined, or known by inspection)
             (same, source), = p.lines
-            assert ps.poles[same].undefined and ps.poles[source].order < p.order
+            assert ps.poles[same].undefined or ps.poles[same].by_inspection
+            assert ps.poles[source].order < p.order
             assert sine(me, local(ps, ps.poles[source].homogeneous)) <= 1e-15
 
 
@@ -307,15 +314,17 @@ def test_slider_crank_pole_at_infinity_and_kennedy():
     assert np.dot(p13.position - B, [math.cos(math.radians(20)), math.sin(math.radians(20))]) == pytest.approx(0, abs=1e-9)
 
 
-def test_slider_crank_at_dead_centre_has_an_undefined_pole():
-    # the block stops: it moves like the frame, P_14 is undefined, P_24 = P_12 and P_13 = P_34 = B
+def test_slider_crank_at_dead_centre_keeps_its_slider_pole():
+    # the block stops: it moves like the frame, so P_24 = P_12 and P_13 = P_34 = B; P_14 is still where
+    # inspection puts it (at infinity normal to the path), as at every other crank angle (issue 13 item 7)
     s = velpoly.solve(velpoly.load(slider_crank(r=3, l=10, e=0, theta=0, path=0)))
     ps = check_all(s)
-    assert ps.pole("1", "4").undefined and ps.pole("1", "4").how == "undefined"
+    assert ps.pole("1", "4").how == "slider" and ps.pole("1", "4").direction == pytest.approx(90.0, abs=1e-12)
     assert ps.pole("2", "4").position == pytest.approx(s.position["O2"], abs=1e-12)
     assert ps.pole("1", "3").position == pytest.approx(s.position["B"], abs=1e-12)
     assert hows(ps)["alike"] >= 1
-    assert s.to_dict()["poles"]["1-4"] == {"position": None, "direction": None, "how": "undefined", "order": 0}
+    assert s.to_dict()["poles"]["1-4"] == {"position": None, "direction": pytest.approx(90.0, abs=1e-12),
+                                           "how": "slider", "order": 0}
 
 
 def test_parallelogram_poles_at_infinity_and_a_translating_coupler():
@@ -396,10 +405,12 @@ def test_random_fourbars(a, b, c, d, theta, branch, omega):
     s = solve_or_reject(fourbar(a, b, c, d, theta, omega, branch=branch, coupler=(3.0, 40.0)))
     ps = check_all(s)
     c = hows(ps)
-    if ps.pole("3", "4").undefined and c["undefined"] == 1:
-        # omega_3 = omega_4 exactly when A is on the line of centres: then P_13 = P_14 = O4
+    if c["alike"] and not c["undefined"]:
+        # omega_3 = omega_4 exactly when A is on the line of centres: then P_13 = P_14 = O4, and P_34 is
+        # still the pin B (a pin's pole never depends on how the links move)
         assert math.sin(math.radians(theta)) == pytest.approx(0, abs=1e-12)
-        assert c == {"pin": 3, "undefined": 1, "alike": 2}
+        assert c == {"pin": 4, "alike": 2}
+        assert np.array_equal(ps.pole("3", "4").position, s.position["B"])
     elif not c["undefined"]:   # (a folded rhombus, B on O2, has two pairs moving alike)
         assert c == {"pin": 4, "kennedy": 2}
 
@@ -409,11 +420,8 @@ def test_random_fourbars(a, b, c, d, theta, branch, omega):
 def test_random_slider_cranks(r, l, e, theta, path, omega):
     s = solve_or_reject(slider_crank(r, l, e, theta, omega, path=path))
     ps = check_all(s)
-    p14 = ps.pole("1", "4")
-    if p14.undefined:   # a dead centre: the block stops
-        assert np.hypot(*s.velocity["B"]) <= 1e-9 * abs(omega) * r
-    else:
-        assert p14.how == "slider" and p14.direction == pytest.approx((path + 90) % 180, abs=1e-9)
+    p14 = ps.pole("1", "4")   # by inspection, also at a dead centre where the block stops
+    assert p14.how == "slider" and p14.direction == pytest.approx((path + 90) % 180, abs=1e-9)
 
 
 @settings(**SETTINGS)
@@ -617,8 +625,9 @@ def test_random_cam_with_flat_faced_translating_follower(ecc, radius, theta, psi
     ps = check_all(s)
     p23 = ps.pole("2", "3")
     assert "2-3" in ps.constraint_lines and len(ps.constraint_lines["2-3"]) == 1
-    if ps.pole("1", "3").undefined:    # the follower dwells (theta = psi): the cam turns about O under it
-        assert p23.how == "alike" and p23.position == pytest.approx([0, 0], abs=1e-12)
+    assert ps.pole("1", "3").how == "slider"
+    if p23.how == "alike":    # the follower dwells (theta = psi): the cam turns about O under it
+        assert np.hypot(*s.velocity["F"]) <= 1e-9 * abs(omega) and p23.position == pytest.approx([0, 0], abs=1e-12)
     else:
         assert p23.how == "kennedy" and ("normal", "P") in p23.lines and ("1-2", "1-3") in p23.lines
 
@@ -652,8 +661,9 @@ def test_random_pin_in_a_slot(o3, a, slot, circular, k, omega):
     s = solve_or_reject(d)
     ps = check_all(s)
     p23 = ps.pole("2", "3")
-    if ps.pole("1", "3").undefined:   # the pin runs along the slot and the lever stands still
-        assert p23.how == "alike" and p23.position == pytest.approx([0, 0], abs=1e-12)
+    assert ps.pole("1", "3").how == "pin"
+    if p23.how == "alike":   # the pin runs along the slot and the lever stands still
+        assert abs(s.omega["3"]) <= 1e-9 * abs(omega) and p23.position == pytest.approx([0, 0], abs=1e-12)
     else:
         assert p23.how == "kennedy" and ("slot normal", "A") in p23.lines
 
@@ -671,26 +681,6 @@ def test_block_on_a_circular_path_is_a_fourbar(a, b, c, d, theta, branch, omega)
     ps = check_all(s)
     assert ps.pole("1", "4").how == "circular path"
     assert ps.pole("1", "4").position == pytest.approx(s.position["O4"], abs=1e-12)
-
-
-def ladder(n_links, seed):
-    """A random one-degree-of-freedom chain of n_links: a crank, then dyads pinned to random
-    earlier links and to each other (each dyad closes one more loop)."""
-    rng = np.random.default_rng(seed)
-    pts = {"O": [0.0, 0.0]}
-    links = {"0": {"points": ["O"], "frame": True}, "1": {"points": ["O"]}}
-    k = 2
-    while k + 1 < n_links:
-        u, v = str(k), str(k + 1)
-        ea, eb = ("1", "0") if k == 2 else (str(x) for x in rng.choice(k, 2, replace=False))
-        for name in (f"J{u}", f"J{v}", f"M{u}"):
-            pts[name] = rng.uniform(-3, 3, 2).tolist()
-        links[ea]["points"].append(f"J{u}")
-        links[eb]["points"].append(f"J{v}")
-        links[u] = {"points": [f"J{u}", f"M{u}"]}
-        links[v] = {"points": [f"J{v}", f"M{u}"]}
-        k += 2
-    return {"points": pts, "links": links, "driver": {"link": "1", "omega": 1.0}}
 
 
 @pytest.mark.parametrize("seed", range(4))
@@ -717,3 +707,189 @@ def test_gallery_mechanisms_if_present():
         checked += 1
     if not checked:
         pytest.skip("no gallery files yet")
+
+
+# -- the Kennedy lines as drawn (issue 13 item 4) -----------------------------------------------------
+def seeded_mechanisms(seed):
+    """Generated mechanisms, one of each kind a pole needs lines for: a four-bar, a slider-crank, an
+    inverted slider-crank, a Watt and a Stephenson six-bar, a pin in a straight and in a circular slot,
+    a cam with a sliding flat-faced follower (the common normal)."""
+    rng = np.random.default_rng(seed)
+    u = lambda lo, hi: float(rng.uniform(lo, hi))  # noqa: E731
+    xy = lambda: [u(-1, 1), u(-1, 1)]  # noqa: E731
+    yield "four-bar", fourbar(u(0.5, 3), u(6, 9), u(6, 9), u(6, 9), u(0, 360), u(-20, 20),
+                              branch=str(rng.choice(["left", "right"])))
+    yield "slider-crank", slider_crank(u(0.5, 4), u(6, 12), u(-2, 2), u(0, 360), u(1, 9), path=u(0, 180))
+    yield "inverted slider-crank", set_path_angle(inverted_slider_crank(u(0.5, 4), u(5, 8), u(0, 360), u(1, 9)))
+    for topology in (WATT, STEPHENSON):
+        pts = {p: xy() for p in sorted({p for ps in topology.values() for p in ps})}
+        order = sorted(topology)
+        names = {lk: str(i + 1) for i, lk in enumerate(order)}
+        yield "six-bar", random_chain(topology, order[0], pts, names, order, u(1, 9))
+    for circular in (False, True):
+        yield "pin in a slot", {
+            "points": {"O2": [0, 0], "O3": [2.5 + u(-1, 1), u(-1, 1)], "A": [u(-0.5, 0.5), u(-0.5, 0.5)],
+                       "S": [3, 2], "K": [2 + u(-1, 1), 1 + u(-1, 1)]},
+            "links": {"1": {"points": ["O2", "O3"], "frame": True}, "2": {"points": ["O2", "A"]},
+                      "3": {"points": ["O3", "S", "K"]}},
+            "slots": [{"pin": "A", "link": "2", "slot": "3", **({"centre": "K"} if circular else {"angle": u(0, 180)})}],
+            "driver": {"link": "2", "omega": u(1, 9)}}
+    theta, psi, ecc, radius = u(0, 360), u(30, 150), u(0.1, 0.8), u(0.5, 1.5)
+    k = ecc * np.array([math.cos(math.radians(theta)), math.sin(math.radians(theta))])
+    dv = np.array([math.cos(math.radians(psi)), math.sin(math.radians(psi))])
+    p = k + radius * dv
+    yield "sliding contact", {
+        "points": {"O": [0, 0], "K": k.tolist(), "P": p.tolist(), "F": (p + 0.3 * np.array([-dv[1], dv[0]])).tolist()},
+        "links": {"1": {"points": ["O"], "frame": True}, "2": {"points": ["O", "K"]}, "3": {"points": ["F"]}},
+        "sliders": [{"block": "3", "guide": "1", "point": "F", "angle": psi}],
+        "contacts": [{"links": ["2", "3"], "point": "P", "kind": "sliding", "centres": ["K", "flat"]}],
+        "driver": {"link": "2", "omega": u(1, 9)}}
+
+
+def check_drawn_lines(sol):
+    """Every pole found (not by inspection) shows the two lines that located it: each drawn line passes
+    through the pole (1e-9 of the mechanism's size) and runs past it, covers its two poles (or, a
+    constraint line, the points that define it: the contact point, the pin, a circular slot's centre)
+    wherever they are in view, and lies over every body (a wheel's rim or a plate's outline never cuts
+    it). Returns the number of lines checked."""
+    from matplotlib.backends.backend_agg import FigureCanvasAgg
+    from matplotlib.figure import Figure
+    from shapely.geometry import Point
+    from velpoly.render.canvas import per_cm, view_box
+    from velpoly.render.kennedy import draw_poles
+    fig = Figure(figsize=(8, 6))
+    FigureCanvasAgg(fig)
+    ax = fig.add_axes((0.02, 0.02, 0.96, 0.96))
+    ps = locate_poles(sol)
+    art = draw_poles(sol, ax, poleset=ps)
+    view, pc, size = view_box(ax), per_cm(ax), sol.mechanism.size
+    drawn = {ln.get_gid(): ln for ln in art.get("kennedy_lines", [])}
+    bodies = [a for role in ("links", "sliders", "ground", "guides") for a in art.get(role, [])]
+    top = max((b.get_zorder() for b in bodies), default=0.0)
+    checked = 0
+    for p in ps.poles.values():
+        if p.how not in ("kennedy", "normals"):
+            continue
+        assert len(p.construction) == 2, p.key
+        for ln in p.construction:
+            defining = [ps.poles[k].position for k in ln.through] + list(ln.marks)
+            wanted = [q for q in defining + [p.position] if q is not None and view.contains(Point(*q))]
+            line = drawn.get(f"kennedy-line-{p.key}-{ln.label}")
+            if line is None:
+                assert not wanted, (p.key, ln.label)   # nothing of it in view
+                continue
+            assert line.get_zorder() > top, (p.key, ln.label)
+            xy = line.get_xydata()
+            a, b = xy[0], xy[-1]
+            length = float(np.hypot(*(b - a)))
+            e = (b - a) / length
+            if p.position is None:
+                d = np.array([math.cos(math.radians(p.direction)), math.sin(math.radians(p.direction))])
+                assert abs(e[0] * d[1] - e[1] * d[0]) <= 1e-9, (p.key, ln.label)
+            else:
+                r = p.position - a
+                assert abs(e[0] * r[1] - e[1] * r[0]) <= 1e-9 * max(size, float(np.hypot(*r))), (p.key, ln.label)
+            for q in wanted:   # covered, the pole with room to spare (or the line runs out of the view)
+                t = float(np.dot(q - a, e))
+                assert -1e-9 * size <= t <= length + 1e-9 * size, (p.key, ln.label, q)
+            if p.position is not None and view.contains(Point(*p.position)):
+                t = float(np.dot(p.position - a, e))
+                for end, room in ((a, t), (b, length - t)):
+                    assert room >= 0.5 * pc or view.exterior.distance(Point(*end)) <= 1e-9 * size, (p.key, ln.label)
+            checked += 1
+    return checked
+
+
+@pytest.mark.parametrize("seed", range(2))
+def test_kennedy_lines_are_drawn_through_every_found_pole_and_over_the_bodies(seed):
+    kinds, lines = set(), 0
+    for kind, d in seeded_mechanisms(seed):
+        try:
+            s = velpoly.solve(velpoly.load(d))
+        except VelpolyError:
+            continue
+        lines += check_drawn_lines(s)
+        kinds.add(kind)
+    assert len(kinds) >= 6 and lines >= 20, (kinds, lines)
+
+
+@pytest.mark.parametrize("stem", ["ex3_4_slotted_lever", "fig3_15b_sliding", "wheel_rolling", "cam_roller_follower",
+                                  "ex3_7_instant_centres"])
+def test_gallery_kennedy_lines_as_drawn(stem):
+    import pathlib
+    f = pathlib.Path(__file__).resolve().parent.parent / "gallery" / f"{stem}.toml"
+    s = velpoly.solve(velpoly.load(f))
+    check_drawn_lines(s)
+    if stem == "ex3_4_slotted_lever":   # the slot's normal at its pin A is drawn, through A
+        p23 = locate_poles(s).pole("2", "3")
+        ln = next(x for x in p23.construction if x.label.startswith("normal to the slot"))
+        assert ln.marks and np.array_equal(ln.marks[0], s.position["A"] if "A" in s.position else s.position["A@2"])
+
+
+# -- a pole by inspection never depends on the other links or on omega (issue 13 item 7) -------------
+@pytest.mark.parametrize("stages,omega", [(9, 1e-6), (9, 1e6), (29, 1e6)])
+def test_every_pin_is_its_pole_exactly_in_long_chains_at_any_speed(stages, omega):
+    # far down a chain of four-bar stages the links move alike to the solution's precision (at 60 links
+    # the last rockers turn at 1e-13 of the crank's speed): their pins were once reported "undefined"
+    d = stage_chain(stages)
+    d["driver"]["omega"] = omega
+    s = velpoly.solve(velpoly.load(d))
+    ps = locate_poles(s, cached=False)
+    assert len(ps) == len(s.mechanism.links) * (len(s.mechanism.links) - 1) // 2
+    for pin in s.mechanism.pins:
+        p = ps.pole(*pin.links)
+        assert p.how == "pin" and p.order == 0 and np.array_equal(p.position, s.place(pin.links[0], pin.point))
+    out = s.to_dict()["poles"]
+    for pin in s.mechanism.pins:
+        assert out[ps.pole(*pin.links).key]["position"] == s.place(pin.links[0], pin.point).tolist()
+    if stages == 29:   # the tail moves alike: P_ik = P_jk is still copied across a pin (how 'alike')
+        assert any(p.how == "alike" for p in ps.poles.values())
+
+
+# -- the construction on arrays (big mechanisms) against the one on floats ------------------------------
+def both_forms(sol):
+    """The pole sets of both forms of the construction (velpoly.poles._SMALL forced either way)."""
+    import velpoly.poles as P
+    small = P._SMALL
+    try:
+        P._SMALL = 10 ** 9
+        floats = P._locate(sol)
+        P._SMALL = 0
+        arrays = P._locate(sol)
+    finally:
+        P._SMALL = small
+    return floats, arrays
+
+
+def test_construction_on_arrays_is_the_construction_on_floats():
+    """The same poles, found in the same order by the same lines, on generated mechanisms of every kind
+    (where a pole has more than 12 lines the arrays pick its pair in two sweeps: then the same pole to
+    1e-9, with the same order); the arrays' poles agree with the velocity solution to 1e-9."""
+    mechs = [d for seed in range(2) for _, d in seeded_mechanisms(seed)]
+    mechs += [ladder(21, seed) for seed in range(2)] + [stage_chain(4), ladder(31, 0)]
+    same_lines = identical = 0
+    for d in mechs:
+        try:
+            s = velpoly.solve(velpoly.load(d))
+        except VelpolyError:
+            continue
+        floats, arrays = both_forms(s)
+        check_poles(s, arrays)
+        check_order(arrays)
+        assert floats.order == arrays.order
+        assert abs(floats.max_error - arrays.max_error) <= 1e-12
+        for key, p in floats.poles.items():
+            q = arrays.poles[key]
+            assert (p.how, p.order) == (q.how, q.order), key
+            assert (p.position is None) == (q.position is None) and p.direction == q.direction, key
+            if p.position is not None:
+                assert np.hypot(*(p.position - q.position)) <= 1e-9 * s.mechanism.size, key
+            same_lines += (p.via, p.lines) == (q.via, q.lines)
+        if all((p.via, p.lines) == (arrays.poles[k].via, arrays.poles[k].lines) for k, p in floats.poles.items()):
+            identical += 1   # every pole by the same two lines: the very same numbers
+            for key, p in floats.poles.items():
+                q = arrays.poles[key]
+                assert p.position is None or np.array_equal(p.position, q.position), key
+                assert p.sine == pytest.approx(q.sine, abs=1e-15)
+    assert same_lines > 0.97 * sum(len(m["links"]) * (len(m["links"]) - 1) // 2 for m in mechs)
+    assert identical >= 16

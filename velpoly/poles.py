@@ -40,9 +40,17 @@ How the poles are found, the way a textbook draws them (seed 000, sections
 
 Two links moving alike at the instant (same omega and the same velocity
 field: a block that momentarily does not slide) have an undefined pole
-(``how='undefined'``, position and direction ``None``); then every other
+(``how='undefined'``, position and direction ``None``) unless it is known
+by inspection: a pin is always its pole (any point is then a pole of the
+two; inspection's never depends on other links or on omega). Every other
 link k sees them alike, ``P_jk = P_ik`` (``how='alike'``). A pole farther
 than 1e9 mechanism sizes is at infinity, with its ``direction`` in [0, 180).
+
+Up to 24 links the construction runs on plain floats, storing each line
+drawn (:class:`_Kennedy`); beyond, on arrays without a line store, each
+round's lines gathered at once (:class:`_KennedyArrays`: the same order,
+lines and numbers wherever a pole has at most 12 lines; with more, its pair
+is chosen in two sweeps among at most 32 of them).
 
 The **instant-centre method** (:func:`instant_centre_velocities`) then gives
 every omega from the driver's through the poles,
@@ -58,6 +66,7 @@ the readable tables of ``velpoly solve``.
 """
 from __future__ import annotations
 
+import gc
 import math
 import weakref
 from dataclasses import dataclass, field
@@ -93,13 +102,16 @@ class PoleLine:
     constraint line (a sliding contact's common normal, a slot's normal) is
     known by inspection (``through`` is empty). ``point`` is a finite point
     of the line and ``direction`` its unit direction, in frame coordinates;
-    both are None for the line at infinity (through two poles at infinity).
+    both are None for the line at infinity (through two poles at infinity). ``marks`` are the
+    frame points that define a constraint line (the contact point; the pin, and a circular slot's
+    centre): a figure draws the line through them (a Kennedy line through its two poles).
     """
 
     label: str
     through: tuple[str, ...]
     point: np.ndarray | None
     direction: np.ndarray | None
+    marks: tuple = ()
 
 
 @dataclass(frozen=True)
@@ -276,43 +288,48 @@ def _local_direction(deg) -> np.ndarray:
 def _inspection(sol, centre, scale):
     """Poles known by inspection and the constraint lines, in normalised coordinates.
 
-    Returns ``(points, lines)``: points is a list of ``(i, j, h, how, note)``;
-    lines a list of ``(i, j, h_line, label_pair, description)``.
+    Returns ``(points, lines)``: points is a list of ``(i, j, h, how, note, at)`` (``at``: the
+    frame position of a finite pole, exactly, else None); lines a list of ``(i, j, h_line,
+    label_pair, description, marks)`` (``marks``: the frame points that define the line: the
+    contact point, the pin, a circular slot's centre).
     """
     m = sol.mechanism
     mo = sol.motion
     points, lines = [], []
     for pin in m.pins:
         i, j = pin.links
-        points.append((i, j, _local_point(sol.place(i, pin.point), centre, scale), "pin", f"pin {pin.point}"))
+        at = np.array(sol.place(i, pin.point), float)
+        points.append((i, j, _local_point(at, centre, scale), "pin", f"pin {pin.point}", at))
     for s, r in zip(m.sliders, mo.sliders):
         if s.centre is None:
             d = float(r["direction"][0])
             points.append((s.block, s.guide, _local_direction(d + 90.0), "slider",
-                           f"slider {s.point}: normal to its path"))
+                           f"slider {s.point}: normal to its path", None))
         else:
-            k = sol.place(s.guide, s.centre)
+            k = np.array(sol.place(s.guide, s.centre), float)
             points.append((s.block, s.guide, _local_point(k, centre, scale), "circular path",
-                           f"centre {s.centre} of the path of {s.point}"))
+                           f"centre {s.centre} of the path of {s.point}", k))
     for c, r in zip(m.contacts, mo.contacts):
         a, b = c.links
         place = np.asarray(r["place"][0], float)
         if c.kind == "rolling":
-            points.append((a, b, _local_point(place, centre, scale), "rolling", f"rolling contact {c.point}"))
+            points.append((a, b, _local_point(place, centre, scale), "rolling", f"rolling contact {c.point}",
+                           place.copy()))
         else:
             p = _local_point(place, centre, scale)
             h = join(p, _local_direction(float(r["normal"][0])))
-            lines.append((a, b, _unit(h), ("normal", c.point), f"common normal at {c.point}"))
+            lines.append((a, b, _unit(h), ("normal", c.point), f"common normal at {c.point}", (place.copy(),)))
     for s, r in zip(m.slots, mo.slots):
-        pin = sol.place(s.link, s.pin)
+        pin = np.array(sol.place(s.link, s.pin), float)
         p = _local_point(pin, centre, scale)
         if s.centre is None:
             q = _local_direction(float(r["direction"][0]) + 90.0)
-            desc = f"normal to the slot at {s.pin}"
+            desc, marks = f"normal to the slot at {s.pin}", (pin,)
         else:
-            q = _local_point(sol.place(s.slot, s.centre), centre, scale)
-            desc = f"line {s.pin}{s.centre} (normal to the circular slot)"
-        lines.append((s.link, s.slot, _unit(join(p, q)), ("slot normal", s.pin), desc))
+            k = np.array(sol.place(s.slot, s.centre), float)
+            q = _local_point(k, centre, scale)
+            desc, marks = f"line {s.pin}{s.centre} (normal to the circular slot)", (pin, k)
+        lines.append((s.link, s.slot, _unit(join(p, q)), ("slot normal", s.pin), desc, marks))
     return points, lines
 
 
@@ -340,41 +357,121 @@ def _norm3(v) -> float:
     return math.sqrt(v[0] * v[0] + v[1] * v[1] + v[2] * v[2])
 
 
-class _Kennedy:
-    """The construction's state, all in coordinates normalised by the mechanism's size.
+_SMALL = 24      # up to this many links the construction runs on plain floats (_Kennedy), beyond on arrays
+_SAMPLE = 32     # a pole with more lines than this has its pair chosen among this many, evenly spread
+_EXACT = 12      # a pole with at most this many lines drawn has every pair of them tried; more, two sweeps
+
+
+def _seg_first_max(vals, seg, nseg) -> np.ndarray:
+    """Per segment (``seg`` sorted, every segment non-empty), the index of its first largest value."""
+    starts = np.flatnonzero(np.r_[True, seg[1:] != seg[:-1]])
+    top = np.maximum.reduceat(vals, starts)
+    hit = np.flatnonzero(vals == top[seg])
+    first = np.full(nseg, -1)
+    s, at = np.unique(seg[hit], return_index=True)
+    first[s] = hit[at]
+    return first
+
+
+def _cross_rows(a, b):
+    """a x b row by row, (k, 3) arrays, component by component (the same floats as :func:`_cross3`)."""
+    a0, a1, a2 = a[:, 0], a[:, 1], a[:, 2]
+    b0, b1, b2 = b[:, 0], b[:, 1], b[:, 2]
+    return np.stack((a1 * b2 - a2 * b1, a2 * b0 - a0 * b2, a0 * b1 - a1 * b0), axis=1)
+
+
+def _norm_rows(x) -> np.ndarray:
+    return np.sqrt(x[:, 0] * x[:, 0] + x[:, 1] * x[:, 1] + x[:, 2] * x[:, 2])
+
+
+def _alike_limit(T, condition: float) -> float:
+    """Links whose relative twist is at most this move alike: ALIKE x condition x the largest twist
+    (zero to the velocity solution's precision); -1 when nothing moves (then all move alike)."""
+    tw = max(map(_norm3, T), default=0.0)
+    return ALIKE * max(condition, 1.0) * tw if tw > 0 else -1.0
+
+
+class _Construction:
+    """What both forms of the construction share (docs/poles.md): the links, their twists, which
+    move alike, the constraint lines and what the figures need of them.
+
+    ``alike[a, b]``: the links move alike (their relative twist is zero to the velocity
+    solution's precision); their pole is undefined unless known by inspection (a pin between
+    them still is their pole), and every other link k sees them alike: P_ak = P_bk.
+    """
+
+    def __init__(self, names, T, alike, pairs):
+        self.names, self.n = names, len(names)
+        self.keys = [[f"{x}-{y}" if a < b else f"{y}-{x}" for b, y in enumerate(names)] for a, x in enumerate(names)]
+        self.T = np.asarray(T, float).reshape(self.n, 3)
+        self.alike = alike               # alike[a][b]: the links move alike (a != b)
+        self.info = {}
+        self.constraints = {}            # (a, b) -> [(label pair, description)]
+        self.cons = {}                   # (a, b) -> [unit line triple]
+        self.marks = {}                  # (a, b, c) -> the points that define the pair's c-th constraint line
+        self.exact = {}                  # (a, b) -> the frame position of a finite pole by inspection
+        for a, b in pairs:
+            self.info[(a, b)] = dict(how="undefined", order=0, note="the links move alike")
+
+    def key(self, a, b) -> str:
+        return self.keys[a][b]
+
+    def set_many(self, items) -> None:
+        """Set the poles ``(a, b, h, info)`` of one round."""
+        for a, b, h, info in items:
+            self.set(a, b, h, info)
+
+    def add_constraint(self, a, b, h, label, desc, marks=()) -> None:
+        a, b = min(a, b), max(a, b)
+        self.constraints.setdefault((a, b), []).append((label, desc))
+        self.cons.setdefault((a, b), []).append(tuple(map(float, h)))
+        self.marks[(a, b, len(self.cons[(a, b)]) - 1)] = tuple(marks)
+
+    def _alike(self, i, x, y) -> dict:
+        """P_xy = P_iy: link x moves like link i."""
+        H = self.H
+        return dict(how="alike", h=tuple(map(float, H[i][y])),
+                    sine=self.info[(min(i, y), max(i, y))].get("sine", 1.0),
+                    via=((self.names[i], self.names[x], self.names[y]),),
+                    lines=((self.key(i, x), self.key(i, y)),),
+                    note=f"{self.names[x]} moves like {self.names[i]}: P_{self.key(x, y)} = P_{self.key(i, y)}")
+
+
+class _Kennedy(_Construction):
+    """The construction on plain floats (a few dozen links at most), in normalised coordinates.
 
     ``H[a][b]``: the pole P_ab as a unit homogeneous triple (floats); ``S[a][b]``:
     unknown, known or undefined. ``L[a][b][k]`` is the line that triangle
     (a, b, k) of the Kennedy circle gives for P_ab (through P_ak and P_bk),
     and ``L[a][b][n + c]`` the pair's c-th constraint line; ``Q`` is each
-    line's drafting quality (0: not drawn yet). ``T``: the links' twists (float triples).
+    line's drafting quality (0: not drawn yet). Memory O(n^3): for big
+    mechanisms :class:`_KennedyArrays` does the same without storing lines.
     """
 
-    def __init__(self, names, T, n_constraint, condition=1.0):
+    def __init__(self, names, T, condition=1.0, n_constraint=0):
+        T = [tuple(t) for t in np.asarray(T, float).tolist()]
         n = len(names)
+        limit = _alike_limit(T, condition)
+        alike = [[False] * n for _ in range(n)]
+        pairs = []
+        for a in range(n):
+            for b in range(a + 1, n):
+                ta, tb = T[a], T[b]
+                if limit < 0 or _norm3((ta[0] - tb[0], ta[1] - tb[1], ta[2] - tb[2])) <= limit:
+                    alike[a][b] = alike[b][a] = True
+                    pairs.append((a, b))
+        super().__init__(names, T, alike, pairs)
         m = n + n_constraint
-        self.names, self.n, self.T = names, n, T
-        self.keys = [[_key(names, a, b) for b in range(n)] for a in range(n)]
         self.H = [[(0.0, 0.0, 0.0)] * n for _ in range(n)]
         self.S = [[_UNKNOWN] * n for _ in range(n)]
         self.L = [[[None] * m for _ in range(n)] for _ in range(n)]
         self.Q = [[[0.0] * m for _ in range(n)] for _ in range(n)]
-        self.unknown = n * (n - 1) // 2  # pairs a < b still unknown
-        self.info = {}
-        self.constraints = {}            # (a, b) -> [(label pair, description)]
-        tw = max(map(_norm3, T), default=0.0)
-        limit = ALIKE * max(condition, 1.0) * tw
+        self.unknown = n * (n - 1) // 2 - len(pairs)  # pairs a < b still unknown
+        self.any_alike = bool(pairs)
         for a in range(n):
             self.S[a][a] = _UNDEFINED
-            for b in range(a + 1, n):
-                ta, tb = T[a], T[b]
-                if tw == 0 or _norm3((ta[0] - tb[0], ta[1] - tb[1], ta[2] - tb[2])) <= limit:
-                    self.S[a][b] = self.S[b][a] = _UNDEFINED
-                    self.unknown -= 1
-                    self.info[(a, b)] = dict(how="undefined", order=0, note="the links move alike")
-
-    def key(self, a, b) -> str:
-        return self.keys[a][b]
+        for a, b in pairs:
+            self.S[a][b] = self.S[b][a] = _UNDEFINED
 
     def set(self, a, b, h, info) -> None:
         if type(h) is not tuple:   # an array (a slider's pole at infinity, the velocity fallback)
@@ -385,12 +482,11 @@ class _Kennedy:
         self.S[a][b] = self.S[b][a] = _KNOWN
         self.info[(min(a, b), max(a, b))] = info
 
-    def add_constraint(self, a, b, h, label, desc) -> None:
+    def add_constraint(self, a, b, h, label, desc, marks=()) -> None:
+        super().add_constraint(a, b, h, label, desc, marks)
         a, b = min(a, b), max(a, b)
-        lst = self.constraints.setdefault((a, b), [])
-        slot = self.n + len(lst)
-        lst.append((label, desc))
-        self.L[a][b][slot] = self.L[b][a][slot] = tuple(map(float, h))
+        slot = self.n + len(self.cons[(a, b)]) - 1
+        self.L[a][b][slot] = self.L[b][a][slot] = self.cons[(a, b)][-1]
         self.Q[a][b][slot] = self.Q[b][a][slot] = 1.0
 
     def spread(self, new) -> None:
@@ -452,11 +548,11 @@ class _Kennedy:
                     out.append((a, b, score, dict(how=None, slots=(i, j), sine=min(1.0, sine),
                                                   line_vectors=(list(li), list(lj)),
                                                   h=(x[0] / proj, x[1] / proj, x[2] / proj))))
-        if sum(row.count(_UNDEFINED) for row in S) > n:   # some links move alike: copy their poles
+        if self.any_alike:   # some links move alike: copy their poles
             done = {(a, b) for a, b, _, _ in out}
             for a in range(n):
                 for b in range(a + 1, n):
-                    hit = self._alike(a, b) if S[a][b] == _UNKNOWN else None
+                    hit = self._alike_pair(a, b) if S[a][b] == _UNKNOWN else None
                     if hit is not None:
                         if (a, b) in done:
                             out = [o for o in out if (o[0], o[1]) != (a, b)]
@@ -475,19 +571,252 @@ class _Kennedy:
                         best = (count, a, b)
         return best[1], best[2]
 
-    def _alike(self, a, b):
-        """P_ab = P_ib when link a moves like link i (P_ai undefined), or P_ai when b moves like i."""
-        S = self.S
+    def world(self, centre, scale):
+        """The known poles in frame coordinates: the largest disagreement with the velocity solution,
+        |P_ab x (T_a - T_b)|, and ``(a, b, (x, y, w) unit, position or None, at infinity)`` for each (a
+        pole farther than FAR sizes is at infinity; the position never a signed zero)."""
+        c0, c1 = float(centre[0]), float(centre[1])
+        T, S, H = self.T.tolist(), self.S, self.H
+        err, out = 0.0, []
+        for a in range(self.n):
+            for b in range(a + 1, self.n):
+                if S[a][b] != _KNOWN:
+                    continue
+                h, ta, tb = H[a][b], T[a], T[b]
+                e = _norm3(_cross3(h, (ta[0] - tb[0], ta[1] - tb[1], ta[2] - tb[2])))
+                if e > err:
+                    err = e
+                hw = (scale * h[0] + c0 * h[2], scale * h[1] + c1 * h[2], h[2])
+                nw = max(_norm3(hw), 1e-300)
+                x, y, w = hw = (hw[0] / nw, hw[1] / nw, hw[2] / nw)
+                far = w == 0 or math.hypot(x, y) > FAR * scale * abs(w)
+                out.append((a, b, np.array(hw), None if far else np.array((x / w + 0.0, y / w + 0.0)), far))
+        return err, out
+
+    def _alike_pair(self, a, b):
+        """P_ab = P_ib when link a moves like link i, or P_ai when b moves like i (the first such i)."""
+        S, alike = self.S, self.alike
         for x, y in ((a, b), (b, a)):
             for i in range(self.n):
-                if i == x or S[x][i] != _UNDEFINED or S[i][y] != _KNOWN:
-                    continue
-                return dict(how="alike", h=self.H[i][y], sine=self.info[(min(i, y), max(i, y))].get("sine", 1.0),
-                            via=((self.names[i], self.names[x], self.names[y]),),
-                            lines=((self.key(i, x), self.key(i, y)),),
-                            note=f"{self.names[x]} moves like {self.names[i]}: "
-                                 f"P_{self.key(x, y)} = P_{self.key(i, y)}")
+                if alike[x][i] and S[i][y] == _KNOWN:
+                    return self._alike(i, x, y)
         return None
+
+
+class _KennedyArrays(_Construction):
+    """The same construction for big mechanisms, on arrays (all in normalised coordinates).
+
+    ``H[a, b]``: the pole P_ab as a unit homogeneous triple; ``S[a, b]``: unknown, known or
+    undefined. No line is stored: the line that triangle (a, b, c) of the Kennedy circle gives
+    for P_ab is P_ca x P_cb, drawn once both are known (not drawn when they nearly coincide), and
+    a pair's constraint lines are known from the start. Each round gathers every unknown pole's
+    lines at once (the pairs with two lines or more found by one product of the known-matrix
+    with itself), so a round costs O(n^2) plus its lines. With up to ``_EXACT`` lines a pole's
+    best pair is chosen exactly as :class:`_Kennedy` does; with more, in two sweeps
+    (:meth:`best_pairs`).
+    """
+
+    def __init__(self, names, T, condition=1.0):
+        T = np.asarray(T, float)
+        n = len(names)
+        d = T[:, None, :] - T[None, :, :]
+        rel = np.sqrt(d[..., 0] * d[..., 0] + d[..., 1] * d[..., 1] + d[..., 2] * d[..., 2])
+        limit = _alike_limit(T.tolist(), condition)
+        alike = (rel <= limit) | (limit < 0)
+        np.fill_diagonal(alike, False)
+        super().__init__(names, T, alike, [(int(a), int(b)) for a, b in zip(*np.nonzero(np.triu(alike, 1)))])
+        self.still = not T.any()   # nothing moves: no pole but those by inspection is defined
+        self.H = np.zeros((n, n, 3))
+        self.S = np.full((n, n), _UNKNOWN, np.int8)
+        self.S[self.alike] = _UNDEFINED
+        np.fill_diagonal(self.S, _UNDEFINED)
+
+    @property
+    def unknown(self) -> int:
+        return int(np.count_nonzero(np.triu(self.S == _UNKNOWN, 1)))
+
+    def spread(self, new) -> None:
+        """Nothing to do: lines are gathered when needed."""
+
+    def set_many(self, items) -> None:
+        if not items:
+            return
+        A = np.array([it[0] for it in items])
+        B = np.array([it[1] for it in items])
+        h = np.array([tuple(map(float, it[2])) for it in items], float).reshape(-1, 3)
+        self.H[A, B] = self.H[B, A] = h
+        self.S[A, B] = self.S[B, A] = _KNOWN
+        for a, b, _, info in items:   # a < b
+            self.info[a, b] = info
+
+    def set(self, a, b, h, info) -> None:
+        self.H[a, b] = self.H[b, a] = h
+        self.S[a, b] = self.S[b, a] = _KNOWN
+        self.info[(min(a, b), max(a, b))] = info
+
+    def world(self, centre, scale):
+        """As :meth:`_Kennedy.world`, on arrays."""
+        n, T = self.n, self.T
+        A, B = np.nonzero(np.triu(self.S == _KNOWN, 1))
+        h = self.H[A, B]
+        err = float(_norm_rows(_cross_rows(h, T[A] - T[B])).max()) if len(A) else 0.0
+        hw = np.stack((scale * h[:, 0] + centre[0] * h[:, 2], scale * h[:, 1] + centre[1] * h[:, 2], h[:, 2]),
+                      axis=1)
+        hw /= np.maximum(_norm_rows(hw), 1e-300)[:, None]
+        x, y, w = hw[:, 0], hw[:, 1], hw[:, 2]
+        far = (w == 0) | (np.hypot(x, y) > FAR * scale * np.abs(w))
+        with np.errstate(divide="ignore", invalid="ignore"):
+            xy = np.stack((x / w + 0.0, y / w + 0.0), axis=1)    # + 0.0: never a signed zero
+        return err, list(zip(A.tolist(), B.tolist(), hw, xy, far.tolist()))
+
+    def lines(self, A, B, both=None, cap=None):
+        """The lines drawn for the unknown pairs (A[p], B[p]): arrays (pair, slot, line, quality),
+        sorted by pair and slot (slot: the third link, n + c for the pair's c-th constraint line).
+        ``both``: the thirds whose poles with both links are known, (len(A), n), if at hand. With
+        ``cap``, a pair with more thirds than that has only ``cap`` of them, evenly spread in file order."""
+        if both is None:
+            known = self.S == _KNOWN
+            both = known[A] & known[B]
+        if cap is not None:
+            k = np.count_nonzero(both, axis=1)
+            if (k > cap).any():
+                many = np.flatnonzero(k > cap)
+                sub = both[many]
+                r = np.cumsum(sub, axis=1)
+                kk = k[many][:, None]
+                both = both.copy()
+                both[many] = sub & ((r * cap) // kk != ((r - 1) * cap) // kk)
+        p, c = np.nonzero(both)
+        ln = _cross_rows(self.H[c, A[p]], self.H[c, B[p]])
+        sep = _norm_rows(ln)
+        keep = sep >= _DEGENERATE
+        p, c, ln, sep = p[keep], c[keep], ln[keep], sep[keep]
+        ln = ln / sep[:, None]
+        q = np.minimum(1.0, sep / _CLOSE)
+        if self.cons:
+            where = {(int(a), int(b)): k for k, (a, b) in enumerate(zip(A, B)) if (int(a), int(b)) in self.cons}
+            extra = [(k, self.n + i, h) for ab, k in where.items() for i, h in enumerate(self.cons[ab])]
+            if extra:
+                p = np.r_[p, [e[0] for e in extra]]
+                c = np.r_[c, [e[1] for e in extra]]
+                ln = np.r_[ln, np.array([e[2] for e in extra], float).reshape(-1, 3)]
+                q = np.r_[q, np.ones(len(extra))]
+                o = np.lexsort((c, p))
+                p, c, ln, q = p[o], c[o], ln[o], q[o]
+        return p, c, ln, q
+
+    @staticmethod
+    def _score(li, lj, ni, nj, qi, qj):
+        """Two lines' meet x, |x|, the sine of their angle and the score max(sine, |x|) qi qj."""
+        x = _cross_rows(li, lj)
+        proj = _norm_rows(x)
+        den = ni * nj
+        with np.errstate(divide="ignore", invalid="ignore"):
+            sine = np.where(den > 0, np.abs(x[:, 2]) / np.where(den > 0, den, 1.0), 0.0)
+        return x, proj, sine, np.maximum(sine, proj) * qi * qj
+
+    def best_pairs(self, A, B, both=None):
+        """For each pair (A[p], B[p]) with two lines or more, the best pair of its lines.
+
+        Returns (pairs, slot_i, slot_j, line_i, line_j, meet, |meet|, sine, score), one row per
+        pair that has two lines. Up to ``_EXACT`` lines, every pair of lines is tried and the
+        best score taken (the first in slot order); with more, two sweeps: the best-drawn line
+        (the first of the largest quality), the line that meets it best, then the line that
+        meets that one best, and the better of these two pairs.
+        """
+        p, c, ln, q = self.lines(A, B, both, _SAMPLE)
+        nrm = np.hypot(ln[:, 0], ln[:, 1])
+        cnt = np.bincount(p, minlength=len(A))
+        start = np.r_[0, np.cumsum(cnt)[:-1]]
+        rows = []      # (pair indices, i, j): line indices into p, c, ln
+        for k in np.unique(cnt[(cnt >= 2) & (cnt <= _EXACT)]):
+            ps = np.flatnonzero(cnt == k)
+            tu, tv = np.triu_indices(int(k), 1)
+            I = (start[ps][:, None] + tu[None, :]).ravel()
+            J = (start[ps][:, None] + tv[None, :]).ravel()
+            _, _, _, sc = self._score(ln[I], ln[J], nrm[I], nrm[J], q[I], q[J])
+            at = np.argmax(sc.reshape(len(ps), -1), axis=1)
+            rows.append((ps, I.reshape(len(ps), -1)[np.arange(len(ps)), at],
+                         J.reshape(len(ps), -1)[np.arange(len(ps)), at]))
+        big = np.flatnonzero(cnt > _EXACT)
+        if len(big):
+            sel = np.isin(p, big)
+            idx = np.flatnonzero(sel)
+            seg = np.searchsorted(big, p[idx])
+            i0 = idx[_seg_first_max(q[idx], seg, len(big))]
+
+            def partner(of):
+                o = of[seg]
+                _, _, _, sc = self._score(ln[idx], ln[o], nrm[idx], nrm[o], q[idx], q[o])
+                sc = np.where(idx == o, -1.0, sc)
+                return idx[_seg_first_max(sc, seg, len(big))]
+
+            j0 = partner(i0)
+            i1 = partner(j0)
+            _, _, _, s0 = self._score(ln[i0], ln[j0], nrm[i0], nrm[j0], q[i0], q[j0])
+            _, _, _, s1 = self._score(ln[j0], ln[i1], nrm[j0], nrm[i1], q[j0], q[i1])
+            u, v = np.where(s1 > s0, j0, i0), np.where(s1 > s0, i1, j0)
+            rows.append((big, np.minimum(u, v), np.maximum(u, v)))
+        if not rows:
+            e = np.zeros(0, int)
+            return e, e, e, np.zeros((0, 3)), np.zeros((0, 3)), np.zeros((0, 3)), np.zeros(0), np.zeros(0), np.zeros(0)
+        ps = np.concatenate([r[0] for r in rows])
+        I = np.concatenate([r[1] for r in rows])
+        J = np.concatenate([r[2] for r in rows])
+        o = np.argsort(ps, kind="stable")
+        ps, I, J = ps[o], I[o], J[o]
+        x, proj, sine, sc = self._score(ln[I], ln[J], nrm[I], nrm[J], q[I], q[J])
+        return ps, c[I], c[J], ln[I], ln[J], x, proj, sine, sc
+
+    def candidates(self) -> list:
+        """The unknown poles two lines locate now, in key order: (a, b, score, info)."""
+        n, S = self.n, self.S
+        A, B = np.nonzero(np.triu(S == _UNKNOWN, 1))
+        if not len(A) or self.still:
+            return []
+        known = S == _KNOWN
+        both = known[A] & known[B]          # the thirds that close a triangle of known poles
+        count = np.count_nonzero(both, axis=1)
+        for (a, b), ls in self.cons.items():
+            if S[a, b] == _UNKNOWN:
+                count[np.flatnonzero((A == a) & (B == b))] += len(ls)
+        ev = np.flatnonzero(count >= 2)
+        out = {}
+        ps, si, sj, li, lj, x, proj, sine, sc = self.best_pairs(A[ev], B[ev], both[ev])
+        ok = (proj >= _DEGENERATE) & (sc >= _BLUNT)
+        h = x[ok] / proj[ok][:, None]
+        at = ev[ps[ok]]
+        for p, a, b, i, j, s, sn, hh, u, v in zip(at.tolist(), A[at].tolist(), B[at].tolist(), si[ok].tolist(),
+                                                 sj[ok].tolist(), sc[ok].tolist(), np.minimum(1.0, sine[ok]).tolist(),
+                                                 h.tolist(), li[ok].tolist(), lj[ok].tolist()):
+            out[p] = (a, b, s, dict(how=None, slots=(i, j), sine=sn, line_vectors=(u, v), h=hh))
+        if self.alike.any():   # some links move alike: copy their poles
+            kn = S == _KNOWN
+            for x_, y_, first in ((A, B, True), (B, A, False)):
+                hit = self.alike[x_] & kn[:, y_].T
+                has = np.flatnonzero(hit.any(axis=1))
+                at = np.argmax(hit[has], axis=1)
+                for p, i in zip(has.tolist(), at.tolist()):
+                    if not first and p in out and out[p][3]["how"] == "alike":
+                        continue
+                    x, y = int(x_[p]), int(y_[p])
+                    out[p] = (int(A[p]), int(B[p]), 1.0, self._alike(i, x, y))
+        return [out[p] for p in sorted(out)]
+
+    def most_lines(self) -> tuple[int, int]:
+        """The unknown pair with the most lines drawn (the first in key order)."""
+        A, B = np.nonzero(np.triu(self.S == _UNKNOWN, 1))
+        p = self.lines(A, B)[0]
+        k = int(np.argmax(np.bincount(p, minlength=len(A))))
+        return int(A[k]), int(B[k])
+
+    def _alike(self, i, x, y) -> dict:
+        """P_xy = P_iy: link x moves like link i."""
+        return dict(how="alike", h=tuple(map(float, self.H[i, y])),
+                    sine=self.info[(min(i, y), max(i, y))].get("sine", 1.0),
+                    via=((self.names[i], self.names[x], self.names[y]),),
+                    lines=((self.key(i, x), self.key(i, y)),),
+                    note=f"{self.names[x]} moves like {self.names[i]}: P_{self.key(x, y)} = P_{self.key(i, y)}")
 
 
 _CACHE: dict = {}   # id(solution) -> (weak reference, PoleSet): the JSON, tables and figures share one
@@ -516,26 +845,44 @@ def locate_poles(sol, *, cached: bool = True) -> PoleSet:
 
 
 def _locate(sol) -> PoleSet:
+    # tens of thousands of small objects for a big chain, none in a reference cycle: the cyclic garbage
+    # collector's passes over them would cost a third of the time at 200 links, so it waits until the end
+    enabled = gc.isenabled()
+    gc.disable()
+    try:
+        return _construct(sol)
+    finally:
+        if enabled:
+            gc.enable()
+
+
+def _construct(sol) -> PoleSet:
     m = sol.mechanism
     names = list(m.link_names)
     idx = {nm: i for i, nm in enumerate(names)}
     centre, scale = _normalisation(sol)
     T = link_twists(sol, centre, scale)
     points, cons = _inspection(sol, centre, scale)
-    per_pair = {}
-    for i, j, *_ in cons:
-        per_pair[frozenset((i, j))] = per_pair.get(frozenset((i, j)), 0) + 1
-    T = T.tolist()
-    K = _Kennedy(names, T, max(per_pair.values(), default=0), sol.condition)
+    if len(names) <= _SMALL:
+        per_pair = {}
+        for i, j, *_ in cons:
+            per_pair[frozenset((i, j))] = per_pair.get(frozenset((i, j)), 0) + 1
+        K = _Kennedy(names, T, sol.condition, max(per_pair.values(), default=0))
+    else:
+        K = _KennedyArrays(names, T, sol.condition)
 
+    # by inspection: a pin is its pole whatever the other links do and however fast they move, even
+    # when the two links move alike (then P_ik = P_jk stays decided from the velocities)
     new = []
-    for i, j, h, how, note in points:
+    for i, j, h, how, note, at in points:
         a, b = sorted((idx[i], idx[j]))
-        if K.S[a][b] == _UNKNOWN:
+        if K.S[a][b] != _KNOWN:
             K.set(a, b, h, dict(how=how, order=0, note=note))
             new.append((a, b))
-    for i, j, h, label, desc in cons:
-        K.add_constraint(idx[i], idx[j], h, label, desc)
+            if at is not None:
+                K.exact[a, b] = at
+    for i, j, h, label, desc, marks in cons:
+        K.add_constraint(idx[i], idx[j], h, label, desc, marks)
     K.spread(new)
 
     order = 0
@@ -555,89 +902,99 @@ def _locate(sol) -> PoleSet:
             info["order"] = order
             if info["how"] is None:
                 info["how"] = "kennedy" if min(info["slots"]) < K.n else "normals"
-            K.set(a, b, info.pop("h"), info)
-            new.append((a, b))
+            new.append((a, b, info.pop("h"), info))
+        K.set_many(new)
+        new = [(a, b) for a, b, _, _ in new]
         found.extend(new)
         K.spread(new)
     return _pole_set(sol, K, centre, scale, found)
 
 
-def _line(K, a, b, slot, vec, where, centre, scale):
-    """The contract's (pair of labels, via entry, PoleLine) of the line in ``slot`` used for P_ab."""
-    if slot < K.n:
-        ka, kb = K.keys[a][slot], K.keys[b][slot]
-        ends = (where[(a, slot) if a < slot else (slot, a)], where[(b, slot) if b < slot else (slot, b)])
-        return ((ka, kb), (K.names[a], K.names[b], K.names[slot]),
-                _pole_line(f"P_{ka} P_{kb}", (ka, kb), vec, ends, centre, scale))
-    label, desc = K.constraints[(a, b)][slot - K.n]
-    return label, desc, _pole_line(desc, (), vec, (), centre, scale)
+def _lines_drawn(K, used, where, centre, scale) -> list:
+    """The contract's (pair of labels, via entry, PoleLine) of each line ``(a, b, slot, vector)`` used
+    for a pole P_ab: a Kennedy line (slot: the third link) through its two poles, or a constraint line."""
+    n, names, keys = K.n, K.names, K.keys
+    out = []
+    for a, b, slot, vec in used:
+        if slot < n:
+            ka, kb = keys[a][slot], keys[b][slot]
+            out.append(((ka, kb), (names[a], names[b], names[slot]),
+                        _pole_line(f"P_{ka} P_{kb}", (ka, kb), vec, (where[a][slot], where[b][slot]), centre, scale)))
+        else:
+            label, desc = K.constraints[(a, b)][slot - n]
+            marks = K.marks.get((a, b, slot - n), ())
+            out.append((label, desc, _pole_line(desc, (), vec, marks, centre, scale, marks)))
+    return out
 
 
-def _pole_line(label, through, l, ends, centre, scale) -> PoleLine:
-    """A line's geometry for drawing: a finite point (a known pole where one is finite, else the
-    foot of the perpendicular from the centre) and a unit direction, in frame coordinates."""
+def _pole_line(label, through, l, ends, centre, scale, marks=()) -> PoleLine:
+    """A line's geometry for drawing: a finite point (a known pole or a defining point where one is
+    finite, else the foot of the perpendicular from the centre) and a unit direction, in frame
+    coordinates."""
     l0, l1, l2 = map(float, l)
     nrm = math.hypot(l0, l1)
     if nrm < 1e-15:
-        return PoleLine(label, through, None, None)
+        return PoleLine(label, through, None, None, marks)
     direction = np.array((-l1 / nrm, l0 / nrm))
     for pos in ends:
         if pos is not None:
-            return PoleLine(label, through, pos, direction)
+            return PoleLine(label, through, pos, direction, marks)
     f = -scale * l2 / (nrm * nrm)
-    return PoleLine(label, through, np.array((centre[0] + f * l0, centre[1] + f * l1)), direction)
+    return PoleLine(label, through, np.array((centre[0] + f * l0, centre[1] + f * l1)), direction, marks)
 
 
-def _euclid(hw, size: float):
-    """The position (None at infinity) and direction in [0, 180) (None when finite) of a world
-    homogeneous point (x, y, w): far when w = 0 or |(x, y)| > FAR size |w|."""
-    x, y, w = hw
-    if w == 0 or math.hypot(x, y) > FAR * size * abs(w):
-        d = math.degrees(math.atan2(y, x)) % 180.0
-        return None, (0.0 if d >= 180.0 else d) + 0.0
-    return np.array((x / w, y / w)), None
+def _direction(hw) -> float:
+    """The direction in [0, 180) of a world homogeneous point (x, y, w) at infinity (w = 0 or
+    |(x, y)| > FAR size |w|: a pole farther than FAR mechanism sizes is at infinity)."""
+    d = math.degrees(math.atan2(float(hw[1]), float(hw[0]))) % 180.0
+    return (0.0 if d >= 180.0 else d) + 0.0
 
 
 def _pole_set(sol, K, centre, scale, found) -> PoleSet:
     """The contract's PoleSet: world positions (x, y, w) = (scale x' + centre w', ..., w'), the lines."""
-    names, n, T = K.names, K.n, K.T
-    tw = max(map(_norm3, T), default=0.0)
-    c0, c1 = float(centre[0]), float(centre[1])
-    err = 0.0
-    world, where = {}, {}
-    for a in range(n):
-        for b in range(a + 1, n):
-            if K.S[a][b] != _KNOWN:
-                where[a, b] = None
-                continue
-            h, ta, tb = K.H[a][b], T[a], T[b]
-            # the disagreement with the velocity solution: |P_ab x (T_a - T_b)|
-            e = _norm3(_cross3(h, (ta[0] - tb[0], ta[1] - tb[1], ta[2] - tb[2])))
-            if e > err:
-                err = e
-            hw = (scale * h[0] + c0 * h[2], scale * h[1] + c1 * h[2], h[2])
-            nw = max(_norm3(hw), 1e-300)
-            hw = (hw[0] / nw, hw[1] / nw, hw[2] / nw)
-            world[a, b] = hw, *_euclid(hw, scale)
-            where[a, b] = world[a, b][1]
+    names, n = K.names, K.n
+    tw = float(_norm_rows(K.T).max()) if n else 0.0
+    err, known = K.world(centre, scale)
+    where = [[None] * n for _ in range(n)]   # each known pole's finite position, both ways round
+    world = {}
+    exact = K.exact
+    for a, b, hk, pos, inf in known:
+        at = exact.get((a, b))   # a finite pole by inspection: exactly where it is
+        if at is not None:
+            pos, direction = at, None
+        elif inf:
+            pos, direction = None, _direction(hk)
+        else:
+            direction = None
+        world[a, b] = hk, pos, direction
+        where[a][b] = where[b][a] = pos
+    pairs = [ab for ab, info in K.info.items() if "slots" in info]   # poles found by two lines
+    used = [(a, b, slot, v) for a, b in pairs
+            for slot, v in zip(K.info[a, b]["slots"], K.info[a, b]["line_vectors"])]
+    out = _lines_drawn(K, used, where, centre, scale)
+    drawn = dict(zip(pairs, zip(out[0::2], out[1::2])))
     poles = {}
-    for (a, b), position in where.items():
-        key = K.key(a, b)
-        info = K.info[(a, b)]
-        if (a, b) not in world:
-            poles[key] = Pole((names[a], names[b]), key, None, None, "undefined", 0, note=info.get("note", ""))
-            continue
-        hw, position, direction = world[a, b]
-        via, lines, construction = info.get("via", ()), info.get("lines", ()), ()
-        if "slots" in info:
-            parts = [_line(K, a, b, s, v, where, centre, scale) for s, v in zip(info["slots"], info["line_vectors"])]
-            lines = tuple(p[0] for p in parts)
-            via = tuple(p[1] for p in parts)
-            construction = tuple(p[2] for p in parts)
-        poles[key] = Pole((names[a], names[b]), key, position, direction, info["how"], info["order"], via,
-                          lines, construction, info.get("sine", 1.0), np.array(hw), info.get("note", ""))
+    keys, infos = K.keys, K.info
+    for a in range(n):
+        na, ka = names[a], keys[a]
+        for b in range(a + 1, n):
+            key, info = ka[b], infos[a, b]
+            got = world.get((a, b))
+            if got is None:
+                poles[key] = Pole((na, names[b]), key, None, None, "undefined", 0, note=info.get("note", ""))
+                continue
+            hw, position, direction = got
+            parts = drawn.get((a, b))
+            if parts is None:
+                via, lines, construction = info.get("via", ()), info.get("lines", ()), ()
+            else:
+                (l0, v0, c0), (l1, v1, c1) = parts
+                via, lines, construction = (v0, v1), (l0, l1), (c0, c1)
+            poles[key] = Pole((na, names[b]), key, position, direction, info["how"], info["order"], via,
+                              lines, construction, info.get("sine", 1.0), hw, info.get("note", ""))
     err /= tw or 1.0
-    cl = {K.key(a, b): tuple(_pole_line(desc, (), K.L[a][b][n + c], (), centre, scale)
+    cl = {K.key(a, b): tuple(_pole_line(desc, (), np.array(K.cons[(a, b)][c]), K.marks.get((a, b, c), ()),
+                                        centre, scale, K.marks.get((a, b, c), ()))
                              for c, (_, desc) in enumerate(items))
           for (a, b), items in K.constraints.items()}
     return PoleSet(tuple(names), poles, sol.mechanism.frame.name, tuple(K.key(a, b) for a, b in found), cl, err,

@@ -6,8 +6,11 @@ P_ij is marked and labelled; a pole at infinity (a relative translation) is
 an arrow at the border of the view pointing its way, labelled ``P_ij ∞``, and
 a finite pole outside the view is an arrow at the border on its Kennedy line,
 pointing along it towards the pole, labelled with its position. The Kennedy
-lines that located each pole (P_ik P_jk and P_il P_jl) are drawn thin through
-their poles. On the Kennedy circle the links are
+lines that located each pole (P_ik P_jk and P_il P_jl, or a constraint line: a
+sliding contact's common normal, a slot's normal at its pin) are drawn thin
+through their poles (a constraint line through its defining points) and on past
+the pole found, over every body: a wheel's rim or a plate's outline never cuts
+them. On the Kennedy circle the links are
 points on a circle (the first at the top, the others clockwise), poles known
 by inspection are solid chords, and poles found are dashed chords numbered
 in the order of their discovery.
@@ -26,9 +29,10 @@ from .labels import placer, segment
 from .options import drawing_options
 from .style import get_style
 
-__all__ = ["draw_poles", "draw_kennedy_circle", "pole_label", "shown_poles", "REACH"]
+__all__ = ["draw_poles", "draw_kennedy_circle", "pole_label", "shown_poles", "REACH", "KENNEDY_Z"]
 
 NUMBER_SPOTS = (0.3, 0.7, 0.5, 0.4, 0.6, 0.22, 0.78, 0.35, 0.65, 0.45, 0.55)  # along a chord, tried in turn
+KENNEDY_Z = 3.6   # Kennedy and constraint lines: above every body (links 2, ground 2.9, blocks 3.2), below points 4
 REACH = 2.5   # the view holds the finite poles within REACH mechanism sizes of the mechanism
 
 
@@ -150,8 +154,10 @@ def draw_poles(sol, ax=None, *, style="textbook", options=None, poleset=None, up
             d = np.asarray(ln.direction, float)
             d = d / max(float(np.hypot(*d)), 1e-300)
             ts = [0.0]
-            for k in ln.through:
-                q = ps.poles[k].position if k in ps.poles else None
+            # through the poles that define it (a Kennedy line) or the points that do (a constraint line:
+            # the contact point, the pin, a circular slot's centre), and on past the pole found
+            for q in [ps.poles[k].position if k in ps.poles else None for k in ln.through] + \
+                    list(getattr(ln, "marks", ())):
                 if q is not None:
                     ts.append(float(np.dot(np.asarray(q, float) - base, d)))
             if p.position is not None:
@@ -185,9 +191,11 @@ def draw_poles(sol, ax=None, *, style="textbook", options=None, poleset=None, up
     content = sbox(bx0 - 1.6 * pc, by0 - 1.6 * pc, bx1 + 1.6 * pc, by1 + 1.6 * pc).intersection(view)
     # the Kennedy lines
     for xy, heavy, gid in klines:
+        # over the links, blocks and ground (a Kennedy line runs straight through every body: the
+        # collinearity is the proof), under the pins, points and poles' marks
         line = Line2D(xy[:, 0], xy[:, 1], lw=st.thin_lw * (2.0 if heavy else 1.0),
                       color=st.ink if not st.coloured else "#7f7f7f", linestyle=(0, (7, 2, 1.5, 2)),
-                      zorder=1.4, gid=gid)
+                      zorder=KENNEDY_Z, gid=gid)
         ax.add_line(line)
         art.add("kennedy_lines", line)
 
