@@ -816,9 +816,8 @@ def test_kennedy_lines_are_drawn_through_every_found_pole_and_over_the_bodies(se
 @pytest.mark.parametrize("stem", ["ex3_4_slotted_lever", "fig3_15b_sliding", "wheel_rolling", "cam_roller_follower",
                                   "ex3_7_instant_centres"])
 def test_gallery_kennedy_lines_as_drawn(stem):
-    import pathlib
-    f = pathlib.Path(__file__).resolve().parent.parent / "gallery" / f"{stem}.toml"
-    s = velpoly.solve(velpoly.load(f))
+    from paths import example
+    s = velpoly.solve(velpoly.load(example(stem)))
     check_drawn_lines(s)
     if stem == "ex3_4_slotted_lever":   # the slot's normal at its pin A is drawn, through A
         p23 = locate_poles(s).pole("2", "3")
