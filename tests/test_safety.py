@@ -521,7 +521,7 @@ def _appears(name: str, shown: list[str]) -> bool:
     return any(name in s or squeeze in s.replace(" ", "") for s in shown)
 
 
-def test_names_titles_and_units_are_drawn_as_written(tmp_path):
+def test_names_titles_and_units_are_drawn_as_written():
     from velpoly.render.sheet import render_sheet
     from velpoly.render.style import get_style, rc_context
     m = velpoly.loads(_nasty_text())
@@ -532,11 +532,6 @@ def test_names_titles_and_units_are_drawn_as_written(tmp_path):
             for name in NASTY_POINTS + [NASTY_TITLE, NASTY_UNITS, "\\", "%#&~ 1"]:
                 assert _appears(name, shown), (sheet, name)
             assert sheet != "full" or _appears("$\\sqrt{$/s", shown)      # a unit of velocity
-    out = tmp_path / "n.svg"                                              # and written, every sheet
-    assert main(["draw", str(tmp_path / "n.toml"), "-o", str(out)]) == 2  # (no file yet: exit 2)
-    (tmp_path / "n.toml").write_text(_nasty_text())
-    for sheet in ("velocity", "acceleration"):
-        assert main(["draw", str(tmp_path / "n.toml"), "--sheet", sheet, "-o", str(out)]) == 0
 
 
 def test_names_are_drawn_as_written_in_the_cycle_plots():
