@@ -584,3 +584,26 @@ def test_ctrl_c_during_draw_is_exit_130_and_leaves_nothing(tmp_path):
     assert p.returncode == 130, err
     assert err.decode().splitlines() == ["error: interrupted"]
     assert sorted(x.name for x in tmp_path.iterdir()) == ["m.toml"]
+
+
+_USER_TEXT = st.text(alphabet=st.sampled_from([chr(c) for c in range(32, 127)] + list("éü∠ω°")), max_size=12)
+
+
+def _glyphs(s: str) -> str:
+    from matplotlib import cbook
+    from matplotlib.mathtext import MathTextParser
+    if not cbook.is_math_text(s):
+        return s.replace(r"\$", "$")
+    return "".join(chr(g[2]) for g in MathTextParser("path").parse(s, dpi=72).glyphs)
+
+
+@settings(max_examples=150, deadline=None)
+@given(_USER_TEXT)
+def test_fuzz_literal_and_math_literal_draw_any_text_as_written(s):
+    """Any text, alone, beside velpoly's own mathtext, or inside a subscript, shows exactly its
+    characters (mathtext sets no glyph for a space, so spaces are left out of the comparison)."""
+    from velpoly.render.canvas import literal, math_literal
+    bare = s.replace(" ", "")
+    assert _glyphs(literal(s)).replace(" ", "") == bare
+    assert _glyphs(literal(s) + r"$\omega_{2}$" + literal(s)).replace(" ", "") == bare + "ω2" + bare
+    assert _glyphs(r"$\omega_{" + math_literal(s) + "}$").replace(" ", "") == "ω" + bare
