@@ -2,6 +2,7 @@
 the fixed scales, rocking linkages out and back, errors and no files left behind."""
 from __future__ import annotations
 
+import json
 import math
 import re
 from pathlib import Path
@@ -367,3 +368,24 @@ def test_sweep_gif_is_drawn_by_the_animate_renderer(tmp_path):
     assert np.allclose(pins["A"], sw.position["A"][0])
     top = GIF_SIZE[1] // 8                       # below the title and the caption (the sweep's words differ)
     assert np.abs(first[top:] - anim.render(0)[top:, :, :3].astype(int)).mean() < 3   # the same picture
+
+
+def test_names_that_look_like_mathtext_are_animated_as_written(tmp_path, capsys):
+    """Point and link names such as ``$B$``, ``\\frac{a}`` or ``\\`` are drawn literally in every frame
+    (FORMAT.md: user strings are never parsed as mathtext), never an internal ParseSyntaxException."""
+    d = fourbar(theta=40.0)
+    rename = {"A": "$A$", "B": r"\frac{a}"}
+    text = json.dumps(d)
+    for old, new in rename.items():
+        text = text.replace(f'"{old}"', json.dumps(new))
+    d = json.loads(text)
+    d["links"]["\\"] = d["links"].pop("3")
+    d["title"] = r"$\sqrt{$ four-bar"
+    m = velpoly.load(d)
+    plan = plan_frames(m, 45.0)
+    anim = Animator(plan, "velocity", "slides", SMALL)
+    out = tmp_path / "names.gif"
+    write_animation(anim, out, 5.0)
+    from PIL import Image
+    with Image.open(out) as im:
+        assert im.n_frames == len(plan)

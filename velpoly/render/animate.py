@@ -50,6 +50,7 @@ from pathlib import Path
 import numpy as np
 
 from ..errors import InputError, PoseError
+from .canvas import literal
 
 __all__ = ["FramePlan", "plan_frames", "Animator", "write_animation", "FORMATS", "SHEETS", "SURGE",
            "DEFAULT_SIZE", "parse_size", "gallery_animation"]
@@ -307,13 +308,14 @@ def _coupler_keys(m, keys) -> list:
 def _name_tex(symbol: str, index: str, bars: bool = False) -> str:
     """``omega`` and ``3`` -> $\\omega_{3}$; ``V``, ``B`` with bars -> $|V_{B}|$ (``B@3`` -> B_{3})."""
     import re
+    from .canvas import math_literal   # a user's name is drawn as written, never read as mathtext
     sym = {"omega": r"\omega", "alpha": r"\alpha", "theta": r"\theta"}.get(symbol, symbol)
     idx = str(index)
     if "@" in idx:
         p, _, lk = idx.partition("@")
-        idx = p + "_{" + lk + "}" if re.fullmatch(r"[A-Za-z0-9]+", p + lk) else idx
+        idx = p + "_{" + lk + "}" if re.fullmatch(r"[A-Za-z0-9]+", p + lk) else math_literal(idx)
     elif not re.fullmatch(r"[A-Za-z0-9']+", idx):
-        idx = idx.replace("$", r"\$").replace("_", r"\_")
+        idx = math_literal(idx)
     else:
         idx = re.sub(r"([A-Za-z])([0-9]+)$", r"\1_{\2}", idx) if not idx.isdigit() else idx
     body = sym + "_{" + idx + "}"
@@ -531,7 +533,8 @@ class Animator:
         return fit_view(ax, box, scale=need, margin=margin)
 
     def _caption(self) -> str:
-        return self.plan.caption.replace("-", "−") if self.plan.rocks else self.plan.caption
+        caption = literal(self.plan.caption)   # it names the driver (a user's name, drawn as written)
+        return caption.replace("-", "−") if self.plan.rocks else caption
 
     # -- the space diagram -----------------------------------------------------------------------
     def _mechanism(self, ax) -> None:
@@ -665,7 +668,7 @@ class Animator:
                 kw = {}
                 if self.opts.link_numbers == "circled":
                     kw["bbox"] = dict(boxstyle="circle,pad=0.2", facecolor=st.paper, edgecolor=st.ink, lw=st.thin_lw * 2)
-                t = ax.annotate(link.name, (0, 0), xytext=(0, 0), textcoords="offset points", ha="center",
+                t = ax.annotate(literal(link.name), (0, 0), xytext=(0, 0), textcoords="offset points", ha="center",
                                 va="center", fontsize=self.pt(17), zorder=6.5, **kw)
                 self.link_numbers[link.name] = self._move(t, ax)
         self._scale_bar(ax, 0)
@@ -782,7 +785,7 @@ class Animator:
         rows = []       # (name, values over frames, unit)
         drv = m.driver
         if drv.is_slider:
-            rows.append((_name_tex("s", drv.slider), self.plan.angles, m.units))
+            rows.append((_name_tex("s", drv.slider), self.plan.angles, literal(m.units)))
         else:
             wrapped = (np.asarray(self.plan.angles, float) + 180.0) % 360.0 - 180.0
             wrapped[wrapped == -180.0] = 180.0          # (-180, 180], as in the JSON
