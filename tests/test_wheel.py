@@ -105,3 +105,14 @@ def test_gallery_and_demo_from_the_wheel(installed):
     for name in ("sixbar.svg", "sixbar.png", "sixbar-results.txt", "sixbar-results.md"):
         assert (work / "out" / name).stat().st_size > 0
     assert "omega_3" in (work / "out" / "sixbar-results.txt").read_text(encoding="utf-8")
+
+
+def test_html_page_from_the_wheel(installed):
+    """The page's template, script and style (velpoly/html_assets) ship in the wheel."""
+    work = installed[3]
+    r = _run(installed, "examples", "ex3_6_fourbar")
+    (work / "fourbar.toml").write_text(r.stdout, encoding="utf-8")
+    r = _run(installed, "html", "fourbar.toml", "-o", "fourbar.html", "--step", "30")
+    assert r.returncode == 0, r.stderr
+    page = (work / "fourbar.html").read_text(encoding="utf-8")
+    assert page.lstrip().lower().startswith("<!doctype html") and "<script" in page and "http://" not in page
