@@ -22,7 +22,7 @@ from ..report import Table, fmt
 from .canvas import Artists, get_ax, literal, renderer_of
 from .style import get_style
 
-__all__ = ["results_table", "draw_results_table"]
+__all__ = ["results_table", "draw_results_table", "given_table"]
 
 
 _SUPERSCRIPT = str.maketrans("-0123456789", "⁻⁰¹²³⁴⁵⁶⁷⁸⁹")
@@ -246,6 +246,55 @@ def results_table(sol, sheet: str = "full", *, velocity=None, acceleration=None,
     if any(r[-1].endswith(NOTED) for r in rows):
         title += f"; {NOTED} the book's value is explained in a note (velpoly solve FILE)"
     return Table(title, tuple(header), tuple(rows))
+
+
+def given_table(sol) -> Table:
+    """The data of the displacement sheet (a problem handout): what the problem gives, no answers.
+
+    Rows: the driver's angle, ω and α (a slider driver's speed and
+    acceleration), each frame point's position, and the lengths of each moving
+    link (its points pairwise; a plate of more than four points around its
+    outline; not a point that slides on it). All are the file's own data: nothing here is computed by an
+    analysis of the motion.
+    """
+    m = sol.mechanism
+
+    def unit_label(units, power):
+        return units + ("", "/s", "/s²")[power] if units else ("", "s⁻¹", "s⁻²")[power]
+    unit = (lambda x: f"{_fmt(x, 5)} {m.units}".rstrip())
+    drv = m.driver
+    rows = []
+    if drv.is_slider:
+        rows.append((_q("V", drv.slider), f"{_fmt(abs(drv.speed), 5)} {unit_label(m.units, 1)}".rstrip()))
+        rows.append((_q("A", drv.slider), f"{_fmt(drv.accel, 5)} {unit_label(m.units, 2)}".rstrip()))
+    else:
+        lk = drv.link
+        if sol.driver_angle is not None:
+            rows.append((_q(r"\theta", lk), f"{_fmt(sol.driver_angle, 5)}°"))
+        sense = "" if drv.omega == 0 else (" ccw" if drv.omega > 0 else " cw")
+        rows.append((_q(r"\omega", lk, "rad/s"), _fmt(abs(drv.omega), 5) + sense))
+        rows.append((_q(r"\alpha", lk, "rad/s²"), _fmt(drv.alpha, 5)))
+    pos = sol.position
+    # a point that slides on a link (a slider on its guide, a pin in its slot, a contact) has no fixed
+    # distance from that link's other points
+    sliding = {(s.point, s.guide) for s in m.sliders} | {(s.pin, s.slot) for s in m.slots} | \
+        {(c.point, lk) for c in m.contacts for lk in c.links}
+
+    def at(p, link):
+        return np.asarray(pos.get(f"{p}@{link}", pos.get(p, m.position(p))), float)
+    for p in m.frame.points:
+        x, y = at(p, m.frame.name)
+        rows.append((f"{p} (frame)", f"({_fmt(x, 5)}, {_fmt(y, 5)})" + (f" {m.units}" if m.units else "")))
+    for link in m.moving_links:
+        ps = [p for p in dict.fromkeys(link.points) if (p, link.name) not in sliding]
+        if len(ps) <= 4:
+            pairs = [(a, b) for i, a in enumerate(ps) for b in ps[i + 1:]]
+        else:
+            pairs = list(zip(ps, ps[1:] + ps[:1]))
+        for a, b in pairs:
+            d = float(np.hypot(*(at(b, link.name) - at(a, link.name))))
+            rows.append((f"{a}{b} (link {link.name})", unit(d)))
+    return Table("Given data", ("quantity", "value"), tuple(rows))
 
 
 def _where(pos, direction) -> str:

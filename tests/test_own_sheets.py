@@ -1,0 +1,209 @@
+"""Each example its own sheet (issue 17, item 1): ``[drawing] sheet`` is the sheet ``velpoly draw``
+draws without --sheet and the gallery shows; ``--sheet displacement`` is the space diagram alone
+with the problem's data and no answers (no polygon, no pole, no computed value in any text).
+Checked on generated mechanisms (tests/zoo.py) and on the built-in instant-centre examples."""
+from __future__ import annotations
+
+import copy
+import re
+
+import numpy as np
+import pytest
+
+import velpoly
+from velpoly.cli import main
+from velpoly.errors import InputError
+from velpoly.render import sheet
+from velpoly.render.options import SHEETS, drawing_options
+from velpoly.render.style import get_style, rc_context
+
+import zoo
+from paths import EXAMPLES
+
+SEED = 1717
+KINDS = ("four-bar", "slider-crank", "inverted slider-crank", "six-bar", "slot", "contact")
+
+
+@pytest.fixture(scope="module")
+def specimens():
+    rng = np.random.default_rng(SEED)
+    out = []
+    for kind in KINDS:
+        variant = zoo.KINDS[kind][1][0]
+        out.append(zoo.specimen(rng, kind, variant))
+    return out
+
+
+def _with_sheet(mech: dict, name) -> dict:
+    mech = copy.deepcopy(mech)
+    mech.setdefault("drawing", {})["sheet"] = name
+    return mech
+
+
+def test_the_sheet_option_is_checked_on_load(specimens):
+    mech = specimens[0].mech
+    for name in SHEETS:
+        assert drawing_options(velpoly.load(_with_sheet(mech, name))).sheet == name
+    assert drawing_options(velpoly.load(mech)).sheet == "full"   # the default
+    for bad in ("pole", "Poles", 3, ["poles"], ""):
+        with pytest.raises(InputError) as e:
+            velpoly.load(_with_sheet(mech, bad))
+        assert e.value.where == "drawing.sheet" and "valid sheets: " + ", ".join(SHEETS) in e.value.what
+
+
+def _ids(svg: str) -> set:
+    return set(re.findall(r'id="([^"]+)"', svg))
+
+
+def test_draw_draws_the_files_own_sheet(tmp_path, specimens):
+    """Without --sheet the file's [drawing] sheet; --sheet overrides it; a bad one is exit 2."""
+    import tomllib   # noqa: F401  (the files are written as TOML by the zoo's own writer below)
+    for sp, name, panels in zip(specimens[:3], ("poles", "displacement", "velocity"),
+                                ({"caption-poles", "caption-kennedy"}, {"caption-mechanism", "data-table"},
+                                 {"caption-mechanism", "caption-velocity"})):
+        src = tmp_path / f"{name}.toml"
+        src.write_text(_toml(_with_sheet(sp.mech, name)))
+        out = tmp_path / f"{name}.svg"
+        assert main(["draw", str(src), "-o", str(out)]) == 0
+        ids = _ids(out.read_text())
+        assert panels <= ids, (name, panels - ids)
+        others = {"caption-poles", "caption-kennedy", "caption-velocity", "caption-acceleration"} - panels
+        assert not ids & others, (name, ids & others)
+        assert main(["draw", str(src), "--sheet", "full", "-o", str(out)]) == 0   # the option wins
+        assert "caption-velocity" in _ids(out.read_text())
+    bad = tmp_path / "bad.toml"
+    bad.write_text(_toml(_with_sheet(specimens[0].mech, "handout")))
+    assert main(["draw", str(bad), "-o", str(tmp_path / "bad.svg")]) == 2
+    assert not (tmp_path / "bad.svg").exists()
+
+
+def _toml(d, prefix="") -> str:
+    """A small TOML writer for the zoo's dicts (tables, inline tables, arrays, strings, numbers)."""
+    def val(v):
+        if isinstance(v, bool):
+            return "true" if v else "false"
+        if isinstance(v, str):
+            return '"' + v.replace("\\", "\\\\").replace('"', '\\"') + '"'
+        if isinstance(v, (int, float)):
+            return repr(float(v)) if isinstance(v, float) else str(v)
+        if isinstance(v, dict):
+            return "{ " + ", ".join(f'"{k}" = {val(x)}' for k, x in v.items()) + " }"
+        return "[" + ", ".join(val(x) for x in v) + "]"
+    lines, tables = [], []
+    for k, v in d.items():
+        if isinstance(v, dict):
+            tables.append((k, v))
+        else:
+            lines.append(f'"{k}" = {val(v)}')
+    for k, v in tables:
+        lines.append(f"\n[{prefix}{k}]")
+        lines.append(_toml(v, prefix=f"{prefix}{k}.").strip())
+    return "\n".join(lines) + "\n"
+
+
+def test_the_gallery_shows_each_examples_own_sheet(tmp_path):
+    """The instant-centre examples are shown as their poles sheet, the others as the full sheet."""
+    from velpoly.gallery import build_gallery
+    drawn = {}
+
+    def draw(sol, target, sheet, style, steps):
+        drawn[target.stem] = sheet
+        target.parent.mkdir(parents=True, exist_ok=True)
+        target.write_bytes(b"")
+        return [target]
+    names = ["ex3_7_instant_centres", "ex3_8_instant_centres_cw", "ex3_6_fourbar"]
+    build_gallery(out=tmp_path, draw=draw, names=names, copy=False)
+    assert drawn == {"ex3_7_instant_centres": "poles", "ex3_8_instant_centres_cw": "poles",
+                     "ex3_6_fourbar": "full"}
+    for stem in names[:2]:
+        assert drawing_options(velpoly.load(EXAMPLES / f"{stem}.toml")).sheet == "poles"
+
+
+ANSWER_GIDS = ("auxiliary-", "chord-", "construction-", "image-", "kennedy-", "label-pole-", "label-velocity",
+               "label-acceleration", "origin-", "pole-", "results-table")
+_NUMBER = re.compile(r"[−-]?\d+(?:\.\d+)?(?:×10[⁻⁰¹²³⁴⁵⁶⁷⁸⁹]+)?")
+
+
+def _numbers(text: str, ulp: bool = False) -> list:
+    """The numbers printed in ``text``; with ``ulp``, each as (value, half its last printed digit's unit)."""
+    out = []
+    for s in _NUMBER.findall(text):
+        s = s.replace("−", "-")
+        mant, _, e = s.partition("×10")
+        e = int(e.translate(str.maketrans("⁻⁰¹²³⁴⁵⁶⁷⁸⁹", "-0123456789"))) if e else 0
+        decimals = len(mant.partition(".")[2])
+        x, half = float(mant) * 10 ** e, 0.5 * 10 ** (e - decimals)
+        out.append((x, half) if ulp else x)
+    return out
+
+
+def _answers(sol) -> list[float]:
+    """Every value the analysis computes (and the problem does not give): the driven links' ω and
+    α, every moving point's speed and acceleration, every relative pole's coordinates."""
+    m = sol.mechanism
+    drv = m.driver
+    vals = []
+    for lk in (k.name for k in m.moving_links):
+        if lk != drv.link:
+            vals += [sol.omega[lk], sol.alpha[lk]]
+    for key, v in sol.velocity.items():
+        vals.append(float(np.hypot(*v)))
+    for key, a in sol.acceleration.items():
+        if np.all(np.isfinite(a)):
+            vals.append(float(np.hypot(*a)))
+    from velpoly.poles import locate_poles
+    for p in locate_poles(sol).poles.values():
+        if p.order > 0 and p.position is not None:
+            vals += [float(p.position[0]), float(p.position[1])]
+    given = [abs(drv.omega), abs(drv.alpha), abs(drv.speed), abs(drv.accel)]
+    scale = max(abs(v) for v in vals + [1e-300])
+    return [abs(v) for v in vals if abs(v) > 1e-6 * scale and
+            not any(abs(abs(v) - g) <= 1e-6 * abs(v) for g in given)]
+
+
+def _given(sol) -> list[float]:
+    """What the problem gives: the driver's motion and angle, each link's point-to-point lengths, the
+    frame points' coordinates."""
+    m = sol.mechanism
+    drv = m.driver
+    out = [abs(drv.omega), abs(drv.alpha), abs(drv.speed), abs(drv.accel), abs(sol.driver_angle or 0)]
+    for link in m.links:
+        ps = [np.asarray(sol.position.get(f"{p}@{link.name}", sol.position.get(p)), float) for p in link.points]
+        out += [float(np.hypot(*(a - b))) for i, a in enumerate(ps) for b in ps[i + 1:]]
+    for p in m.frame.points:
+        out += [abs(float(c)) for c in sol.position.get(p, sol.position.get(f"{p}@{m.frame.name}"))]
+    return out
+
+
+def test_the_displacement_sheet_shows_the_data_and_no_answers(specimens):
+    with rc_context(get_style("textbook")):
+        for sp in specimens:
+            sol = sp.drawn
+            cons = sheet.constructions(sol, "displacement")
+            assert cons == sheet.Constructions()          # nothing constructed: nothing to give away
+            fig = sheet.render_sheet(sol, "displacement", "textbook")
+            axes = {ax.get_label(): ax for ax in fig.axes}
+            assert set(axes) == {"mechanism", "table"}, sp.kind
+            mech = axes["mechanism"]
+            drawn = {a.get_gid() for a in mech.get_children()}
+            assert {f"link-number-{k.name}" for k in sol.mechanism.moving_links} <= drawn, sp.kind   # the mechanism
+            assert any(g.startswith("pin-") for g in drawn if g) and mech.lines, sp.kind
+            gids = [a.get_gid() or "" for ax in fig.axes for a in ax.get_children()] + \
+                   [t.get_gid() or "" for t in fig.texts]
+            assert not [g for g in gids if g.startswith(ANSWER_GIDS)], sp.kind
+            assert "data-table" in gids
+            texts = [t.get_text() for t in fig.texts] + [t.get_text() for ax in fig.axes for t in ax.texts]
+            # numbers of three significant digits or more (a link's number "3" or a scale bar's "0" tells nothing)
+            shown = [(x, half) for t in texts for x, half in _numbers(t, ulp=True) if abs(x) >= 200 * half]
+            shown = [(x, half) for x, half in shown if not any(abs(abs(x) - g) <= half * (1 + 1e-9)
+                                                               for g in _given(sol))]   # the data, explained
+            for v in _answers(sol):   # an answer rounded to a printed number's digits would be that number
+                hit = [x for x, half in shown if abs(abs(x) - v) <= half * (1 + 1e-9)]
+                assert not hit, f"{sp.kind}: the answer {v:.6g} is printed ({hit})"
+            table = " ".join(t.get_text() for t in axes["table"].texts)
+            # the data: the driver's ω (or a slider's speed) and every frame point are given
+            drv = sol.mechanism.driver
+            given = abs(drv.speed) if drv.is_slider else abs(drv.omega)
+            assert any(abs(x - given) <= 1e-4 * given for x in _numbers(table)), sp.kind
+            for p in sol.mechanism.frame.points:
+                assert p in table
