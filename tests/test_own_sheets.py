@@ -207,3 +207,62 @@ def test_the_displacement_sheet_shows_the_data_and_no_answers(specimens):
             assert any(abs(x - given) <= 1e-4 * given for x in _numbers(table)), sp.kind
             for p in sol.mechanism.frame.points:
                 assert p in table
+
+
+# -- item 6: the table shows what the teacher typed ------------------------------------------------------
+
+def _with_reference(sp):
+    """The specimen with book values on its last rows (the last driven link's ω and α, the last plain
+    point's speed and acceleration), two of them explained by notes: they would be cut in file order."""
+    sol = sp.drawn
+    m = sol.mechanism
+    lk = [k.name for k in m.moving_links if k.name != m.driver.link][-1]
+    pts = [p for p in sol.velocity if "@" not in p and float(np.hypot(*sol.velocity[p])) > 0]
+    p = pts[-1]
+    mech = copy.deepcopy(sp.mech)
+    mech["reference"] = {"source": "Problem 9.99", "omega": {lk: round(sol.omega[lk] * 1.33, 6)},
+                         "alpha": {lk: round(sol.alpha[lk] * 0.9 + 1, 6)},
+                         "speed": {p: round(float(np.hypot(*sol.velocity[p])) * 3.1, 6)},
+                         "note": {f"omega_{lk}": f"misprint: the book's omega_{lk} carries a slip (for {sp.kind})",
+                                  f"V_{p}": "rounded intermediate: the $ & % of it {x}"}}
+    return velpoly.solve(velpoly.load(mech))
+
+
+def test_rows_with_book_values_come_first_and_notes_are_footnotes(specimens):
+    from velpoly.render.table import NOTED, draw_results_table, results_table
+    with rc_context(get_style("textbook")):
+        for sp in specimens:
+            sol = _with_reference(sp)
+            cons = sheet.constructions(sol, "full")
+            t = results_table(sol, "full", velocity=cons.velocity, acceleration=cons.acceleration, poleset=cons.poles)
+            ref = t.header.index("reference")
+            has = [bool(row[ref]) for row in t.rows]
+            assert sum(has) >= 3 and has == sorted(has, reverse=True), (sp.kind, has)   # book's rows first
+            assert len(t.notes) == 2 and NOTED in t.title
+            last = [(row[-1].split() or [""])[-1] for row in t.rows]
+            marks = [x for x in last if x in {n[0] for n in t.notes}]
+            assert sorted(marks) == sorted(n[0] for n in t.notes) and len(set(marks)) == 2   # one mark each
+            fig = sheet.render_sheet(sol, "full", "textbook", cons=cons)
+            tab = next(ax for ax in fig.axes if ax.get_label() == "table")
+            cells = [x.get_text() for x in tab.texts if x.get_gid() is None]
+            notes = {x.get_gid(): x for x in tab.texts if (x.get_gid() or "").startswith("footnote-")}
+            foot = " ".join(x.get_text() for x in tab.texts if x in notes.values() or
+                            (x.get_text().startswith("   ")))
+            # every marked row shown has its footnote on the sheet: the mark, then the note's own words
+            for mark, key, text in t.notes:
+                assert any(c.endswith(mark) for c in cells), (sp.kind, mark)
+                first = next(x for x in notes.values() if x.get_text().startswith(mark + " "))
+                assert text.split()[0] in first.get_text()
+                words = re.sub(r"\\(.)", r"\1", foot)
+                plain = [w for w in text.split() if re.fullmatch(r"[A-Za-z:().,&%]+", w)]   # typeset words aside
+                assert len(plain) >= 3 and all(w in words for w in plain), (sp.kind, text, words)
+            # the rows with book values are all shown, above the footnotes, inside the table's axes
+            art = draw_results_table(sol, tab.figure.add_axes(tab.get_position().bounds, label="probe"),
+                                     sheet="full", style="textbook", velocity=cons.velocity,
+                                     acceleration=cons.acceleration, poleset=cons.poles)
+            assert art.shown >= sum(has) and len(art.notes) == 2
+            r = fig.canvas.get_renderer()
+            lowest_cell = min(c.get_window_extent(r).y0 for c in art["cells"])
+            for n in art["footnotes"]:
+                box = n.get_window_extent(r)
+                assert box.y1 <= lowest_cell and box.y0 >= art.ax.get_window_extent(r).y0 - 1
