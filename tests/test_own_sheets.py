@@ -266,3 +266,79 @@ def test_rows_with_book_values_come_first_and_notes_are_footnotes(specimens):
             for n in art["footnotes"]:
                 box = n.get_window_extent(r)
                 assert box.y1 <= lowest_cell and box.y0 >= art.ax.get_window_extent(r).y0 - 1
+
+
+# -- item 9: sweep plots ----------------------------------------------------------------------------------
+
+def _legend_texts(ax) -> list[str]:
+    leg = ax.get_legend()
+    return [t.get_text() for t in leg.get_texts()] if leg else []
+
+
+@pytest.mark.parametrize("seed", [3, 11, 29])
+def test_sweep_plots_merge_coinciding_curves_omit_zero_ones_and_mark_the_drawn_pose(seed):
+    """A block on a rocking guide turns with it (ω3 = ω4, α3 = α4 over the whole cycle): one curve,
+    one legend entry "ω3 = ω4"; a block on the frame's guide never turns (ω4 = α4 = 0): not drawn, the
+    legend says so; a dashed vertical line marks the drawn pose, where the sweep equals velpoly.solve."""
+    import mechanisms
+    from velpoly.cycle import cycle_figure, run_cycle
+    from velpoly.reference import file_pose_angle
+    for mech, same, zero in ((mechanisms.block_on_driven_crank(seed, angle=15.0 + 47.0 * seed), ("3", "4"), ()),
+                             (mechanisms.slider_crank(r=2 + seed % 3, theta=10.0 + 31.0 * seed), (), ("4",))):
+        m = velpoly.load(mech)
+        sw = run_cycle(m, step=6.0)
+        fig = cycle_figure(sw)
+        w_ax, a_ax = fig.axes[0], fig.axes[1]
+        for ax, sym, values in ((w_ax, r"\omega", sw.omega), (a_ax, r"\alpha", sw.alpha)):
+            labels = _legend_texts(ax)
+            curves = [ln for ln in ax.get_lines() if (ln.get_gid() or "").startswith("curve-")]
+            # each drawn curve is the quantities its label names, every one of them, at every pose
+            for ln in curves:
+                names = re.findall(sym.replace("\\", r"\\") + r"_\{([^}]+)\}", ln.get_label())
+                assert names and ln.get_label() in labels
+                for lk in names:
+                    assert np.allclose(ln.get_ydata(), values[lk], rtol=0, atol=1e-9 * np.nanmax(np.abs(values[lk])))
+            drawn_names = [n for ln in curves for n in re.findall(r"_\{([^}]+)\}", ln.get_label())]
+            assert sorted(drawn_names) == sorted(k.name for k in m.moving_links if k.name not in zero
+                                                 and np.nanmax(np.abs(values[k.name])) > 0)   # each once
+            if same:
+                merged = f"${sym}_{{{same[0]}}}$ = ${sym}_{{{same[1]}}}$"
+                assert merged in labels, labels
+            else:   # nothing coincides: one entry a curve
+                assert all(" = $" not in lab for lab in labels if not lab.startswith("drawn pose"))
+            notes = [ln for ln in ax.get_lines() if ln.get_gid() == "zero-note"]
+            for lk in zero:
+                assert np.all(values[lk] == 0) or np.nanmax(np.abs(values[lk])) < 1e-12
+                assert notes and f"${sym}_{{{lk}}}$" in notes[0].get_label() and "not drawn" in notes[0].get_label()
+                assert notes[0].get_label() in labels and len(notes[0].get_xdata()) == 0
+        # the drawn pose: one dashed vertical line a panel, at the file's driver angle, where the sweep's
+        # values are velpoly.solve's at the file's pose
+        sol = velpoly.solve(m)
+        x0 = None
+        for ax in fig.axes[:4]:
+            marks = [ln for ln in ax.get_lines() if ln.get_gid() == "drawn-pose"]
+            assert len(marks) == 1
+            xs = set(np.asarray(marks[0].get_xdata(), float))
+            assert len(xs) == 1
+            x0 = xs.pop()
+        assert (x0 - file_pose_angle(m)) % 360 == pytest.approx(0, abs=1e-9) or \
+            (x0 - file_pose_angle(m)) % 360 == pytest.approx(360, abs=1e-9)
+        i = int(np.argmin(np.abs(sw.angles - x0)))
+        assert abs(sw.angles[i] - x0) < 1e-9
+        for k in m.moving_links:
+            assert sw.omega[k.name][i] == pytest.approx(sol.omega[k.name], abs=1e-9 * max(1, abs(sol.omega[k.name])))
+        assert any(t.startswith("drawn pose") for t in _legend_texts(fig.axes[0]))
+
+
+def test_merge_series_keeps_curves_that_only_touch():
+    """Curves equal at some poses (crossing) are two curves; equal everywhere, one; NaN where the other
+    is defined, two."""
+    from velpoly.cycle import merge_series
+    x = np.linspace(0, 6, 50)
+    a, b = np.sin(x), np.cos(x)
+    c = a.copy()
+    d = a.copy()
+    d[5] = np.nan
+    curves, zero = merge_series([("a", a), ("b", b), ("c", c), ("d", d), ("z", 0 * x)])
+    assert [lab for lab, _ in curves] == ["a = c", "b", "d"] and zero == ["z"]
+    assert merge_series([("z", 0 * x), ("y", 0 * x)]) == ([], ["z", "y"])   # a panel of zeros: a note only
