@@ -300,9 +300,10 @@ def given_table(sol) -> Table:
         lk = drv.link
         if sol.driver_angle is not None:
             rows.append((_q(r"\theta", lk), f"{_fmt(sol.driver_angle, 5)}°"))
-        sense = "" if drv.omega == 0 else (" ccw" if drv.omega > 0 else " cw")
-        rows.append((_q(r"\omega", lk, "rad/s"), _fmt(abs(drv.omega), 5) + sense))
-        rows.append((_q(r"\alpha", lk, "rad/s²"), _fmt(drv.alpha, 5)))
+        def sense(x):   # as the space diagram writes it: a magnitude and its sense
+            return _fmt(abs(x), 5) + ("" if x == 0 else (" ccw" if x > 0 else " cw"))
+        rows.append((_q(r"\omega", lk, "rad/s"), sense(drv.omega)))
+        rows.append((_q(r"\alpha", lk, "rad/s²"), sense(drv.alpha)))
     pos = sol.position
     # a point that slides on a link (a slider on its guide, a pin in its slot, a contact) has no fixed
     # distance from that link's other points
