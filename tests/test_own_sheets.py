@@ -22,16 +22,15 @@ from paths import EXAMPLES
 
 SEED = 1717
 KINDS = ("four-bar", "slider-crank", "inverted slider-crank", "six-bar", "slot", "contact")
+SLIDER_DRIVEN = (("slider-crank", "offset slider"), ("inverted slider-crank", "curved slider"))
 
 
 @pytest.fixture(scope="module")
 def specimens():
+    """One of each kind (its first variant), then two driven by a slider."""
     rng = np.random.default_rng(SEED)
-    out = []
-    for kind in KINDS:
-        variant = zoo.KINDS[kind][1][0]
-        out.append(zoo.specimen(rng, kind, variant))
-    return out
+    pairs = [(kind, zoo.KINDS[kind][1][0]) for kind in KINDS] + list(SLIDER_DRIVEN)
+    return [zoo.specimen(rng, kind, variant) for kind, variant in pairs]
 
 
 def _with_sheet(mech: dict, name) -> dict:
@@ -176,6 +175,7 @@ def _given(sol) -> list[float]:
 
 
 def test_the_displacement_sheet_shows_the_data_and_no_answers(specimens):
+    assert sum(sp.drawn.mechanism.driver.is_slider for sp in specimens) == len(SLIDER_DRIVEN)
     with rc_context(get_style("textbook")):
         for sp in specimens:
             sol = sp.drawn
