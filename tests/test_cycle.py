@@ -264,11 +264,11 @@ def test_cycle_figure_plots_every_quantity_with_units():
     assert acc_ax.get_ylabel() == "|A| (mm/s²)" and "deg" in omega_ax.get_xlabel()
     for ax in axes[:4]:
         assert ax.get_legend() is not None and ax.xaxis.get_gridlines()[0].get_visible()
-    lines = {ln.get_label(): ln for ln in omega_ax.lines}
+    lines = {ln.get_label(): ln for ln in omega_ax.lines if (ln.get_gid() or "").startswith("curve-")}
     assert set(lines) == {r"$\omega_{2}$", r"$\omega_{3}$", r"$\omega_{4}$"}
     assert lines[r"$\omega_{3}$"].get_ydata() == pytest.approx(sw.omega["3"])
     assert lines[r"$\omega_{3}$"].get_xdata() == pytest.approx(sw.angles)
-    speeds = {ln.get_label(): ln for ln in speed_ax.lines}
+    speeds = {ln.get_label(): ln for ln in speed_ax.lines if (ln.get_gid() or "").startswith("curve-")}
     assert set(speeds) == {"$|V_{B}|$", "$|V_{E}|$"}
     assert speeds["$|V_{E}|$"].get_ydata() == pytest.approx(np.hypot(*sw.velocity["E"].T))
     fixed = [ln for ln in axes[4].lines if ln.get_label() == "fixed centrode of link 3"][0]

@@ -22,7 +22,7 @@ from .errors import InputError, VelpolyError, one_line
 
 __all__ = ["main", "build_parser"]
 
-SHEETS = ("velocity", "acceleration", "poles", "full")
+SHEETS = ("velocity", "acceleration", "poles", "full", "displacement")
 STYLES = ("textbook", "slides")
 SHEET_HELP = {
     "velocity": "the mechanism to scale and its velocity polygon, with the results table",
@@ -74,7 +74,8 @@ def build_parser() -> argparse.ArgumentParser:
                             "\n\nstyles:\n" + "\n".join(f"  {k:<13} {STYLE_HELP.get(k, '')}" for k in STYLES))
     d.add_argument("file", help="the mechanism file (TOML)")
     d.add_argument("-o", "--output", metavar="OUT", help="output file: .svg, .png or .pdf (default: FILE's name with .svg)")
-    d.add_argument("--sheet", choices=SHEETS, default="full", help="what to draw (listed above; default: full)")
+    d.add_argument("--sheet", choices=SHEETS, help="what to draw (listed above; default: the file's "
+                   "[drawing] sheet, else full)")
     d.add_argument("--steps", action="store_true", help="one construction step a frame (multi-page PDF "
                    "or numbered SVG/PNG files), for slides")
     d.add_argument("--angle", type=float, metavar="DEG", help=ANGLE_HELP)
@@ -180,7 +181,9 @@ def cmd_draw(args) -> int:
     _, sol = _load_and_solve(args)
     _warn(sol)
     from .render import draw_to_file
-    written = draw_to_file(sol, out, sheet=args.sheet, style=args.style, steps=args.steps)
+    from .render.sheet import default_sheet
+    sheet = args.sheet or default_sheet(sol.mechanism)
+    written = draw_to_file(sol, out, sheet=sheet, style=args.style, steps=args.steps)
     for path in written:
         print(path)
     return 0

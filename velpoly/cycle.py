@@ -48,7 +48,7 @@ from .solution import driver_reference_angle
 from .sweeps import MEMORY_BUDGET, Sweep, check_memory, memory_estimate, sweep
 
 __all__ = ["cycle_angles", "run_cycle", "reachable_text", "Centrodes", "centrodes", "cycle_columns", "cycle_csv",
-           "summary_table", "cycle_figure", "plot_cycle", "write_gif", "sweep_command"]
+           "summary_table", "cycle_figure", "plot_cycle", "write_gif", "sweep_command", "merge_series", "drawn_pose"]
 
 FIGURE_SUFFIXES = (".svg", ".png", ".pdf")
 GIF_FRAMES = 45            # at most this many frames in the animation (8 deg apart on a turn)
@@ -401,6 +401,54 @@ def _quantity(symbol: str, index: str, bars: str = "") -> str:
     return f"${bars}{symbol}_{{{index}}}{bars}$"
 
 
+COINCIDE = 1e-9   # curves within this (relative to the panel's largest value) at every pose are one curve
+
+
+def merge_series(series, tol: float = COINCIDE):
+    """A panel's curves as drawn: ``(curves, zero)``. Curves equal at every pose (omega_3 = omega_4 for a
+    block on its guide) are one curve labelled "omega_3 = omega_4" (the first's values); curves zero at
+    every pose are left out, their labels in ``zero``. Equal means within ``tol`` of the panel's largest
+    value, undefined (NaN) at the same poses."""
+    finite = [np.abs(y[np.isfinite(y)]) for _, y in series]
+    big = max((float(v.max()) for v in finite if v.size), default=0.0)
+    eps = tol * max(big, 1e-300)
+    zero, groups = [], []
+    for label, y in series:
+        y = np.asarray(y, float)
+        ok = np.isfinite(y)
+        if ok.any() and np.all(np.abs(y[ok]) <= eps):
+            zero.append(label)
+            continue
+        for g in groups:
+            z = g[1]
+            same = np.array_equal(np.isfinite(z), ok) and np.all(np.abs(z[ok] - y[ok]) <= eps)
+            if same:
+                g[0].append(label)
+                break
+        else:
+            groups.append(([label], y))
+    return [(" = ".join(labels), y) for labels, y in groups], zero
+
+
+def drawn_pose(sw: Sweep) -> float | None:
+    """The driver position of the file's pose (the one the sheets draw) on the sweep's axis, or None
+    where the sweep does not reach it: a crank's angle (turned by whole turns into the swept range),
+    a slider driver's displacement 0."""
+    from .reference import file_pose_angle
+    x = np.asarray(sw.angles, float)
+    if not x.size:
+        return None
+    lo, hi = float(np.nanmin(x)), float(np.nanmax(x))
+    a = file_pose_angle(sw.mechanism)
+    if a is None:
+        a = 0.0
+    else:
+        a = lo + (a - lo) % 360.0
+        if a - lo > 360.0 - 1e-9:   # the start itself, rounded up a turn
+            a = lo
+    return a if lo - 1e-9 <= a <= hi + 1e-9 else None
+
+
 def cycle_figure(sw: Sweep, points=None, cen: Centrodes | None = None, style: str = "textbook",
                  kin: Kinematics | None = None):
     """The figure of the cycle (a matplotlib Figure, not attached to pyplot).
@@ -411,7 +459,10 @@ def cycle_figure(sw: Sweep, points=None, cen: Centrodes | None = None, style: st
     coordinates, the mechanism drawn at the first pose) and the moving
     centrode (the link's own coordinates). Each curve's label is its
     quantity, typeset (omega with subscript 3, |V_B| with subscript B; the CSV's columns
-    are named ``omega_3``, ``|V_B|``).
+    are named ``omega_3``, ``|V_B|``). Curves that coincide over the cycle are
+    one curve with one label, "omega_3 = omega_4"; curves zero throughout are
+    not drawn, the legend says so (:func:`merge_series`). A dashed vertical
+    line marks the drawn pose (:func:`drawn_pose`).
     """
     from matplotlib.figure import Figure
     import matplotlib
@@ -436,15 +487,23 @@ def cycle_figure(sw: Sweep, points=None, cen: Centrodes | None = None, style: st
             (axes[1, 1], "Accelerations", _literal(f"|A| ({u}/s²)"),
              [(_quantity("A", k, "|"), np.hypot(*sw.acceleration[k].T)) for k in keys]),
         ]
-        for ax, title, ylabel, series in panels:
-            for i, (label, y) in enumerate(series):
-                ax.plot(x, y, label=label, **_series_style(i, len(x), style))
+        drawn = drawn_pose(sw)
+        for n, (ax, title, ylabel, series) in enumerate(panels):
+            curves, zero = merge_series(series)
+            for i, (label, y) in enumerate(curves):
+                ax.plot(x, y, label=label, gid=f"curve-{i}", **_series_style(i, len(x), style))
+            if zero:   # said in the legend, not drawn: a flat line on the axis tells nothing
+                ax.plot([], [], linestyle="none", gid="zero-note",
+                        label=", ".join(zero) + (" are" if len(zero) > 1 else " is") + " zero throughout (not drawn)")
+            if drawn is not None:   # where the sheets are drawn (the file's pose)
+                ax.axvline(drawn, color="0.45", linestyle=(0, (4, 2)), linewidth=0.9, zorder=1.5, gid="drawn-pose",
+                           label=_literal(f"drawn pose, {xname} = {drawn:.4g} {xunit}") if n == 0 else None)
             ax.set_title(title)
             ax.set_xlabel(_literal(f"{xname} ({xunit})"))
             ax.set_ylabel(ylabel)
             ax.grid(True)
-            if series:
-                ax.legend(fontsize="small", ncols=2 if len(series) > 4 else 1)
+            if series or drawn is not None:
+                ax.legend(fontsize="small", ncols=2 if len(curves) > 4 else 1)
             if xunit == "deg" and len(x) > 1 and abs(x[-1] - x[0]) >= 90:
                 lo, hi = sorted((x[0], x[-1]))
                 ax.set_xticks(np.arange(math.ceil(lo / 45) * 45, hi + 1e-9, 45))

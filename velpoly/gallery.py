@@ -1,7 +1,7 @@
 """``velpoly demo`` and ``velpoly gallery``: textbook examples drawn and checked against the book.
 
-Both draw a full sheet per example (:func:`velpoly.render.draw_to_file`) and
-write a comparison table: each ``[reference]`` value as the book prints it,
+Both draw each example's own sheet (its ``[drawing] sheet``, else the full
+sheet; :func:`velpoly.render.draw_to_file`) and write a comparison table: each ``[reference]`` value as the book prints it,
 as the graphical constructions give it (velocity and acceleration polygons,
 the poles found on the Kennedy circle) and as the analytic solve gives it,
 with the deviations. The gallery's README also carries, for every example,
@@ -513,7 +513,7 @@ def build_gallery(source=None, out=None, style: str = "textbook", draw=None, log
     """Rebuild every example of ``source`` (its ``*.toml`` files, in natural name order) into ``out``.
 
     ``source`` defaults to the built-in examples, ``out`` to ``source``. For each
-    file: the full sheet as ``figures/NAME.png``; then ``README.md`` with a section
+    file: its own sheet (``[drawing] sheet``, else the full sheet) as ``figures/NAME.png``; then ``README.md`` with a section
     per example. A failing example is reported (``log`` gets its error line) and
     left out of the README's sections but listed at its end; the others are built.
     ``copy`` (default: when the built-in examples are drawn into a folder other than
@@ -554,7 +554,8 @@ def build_gallery(source=None, out=None, style: str = "textbook", draw=None, log
                     written.append(atomic_write_text(target, text))
                 path = target
             target = out / "figures" / f"{path.stem}.png"
-            figs = draw(sol, target, sheet="full", style=style, steps=False)
+            from .render.options import drawing_options
+            figs = draw(sol, target, sheet=drawing_options(m).sheet, style=style, steps=False)   # its own sheet
             written += list(figs)
             figure = _relative(Path(figs[0]) if figs else target, out)
             text = example_markdown(path, sol, figure)
@@ -631,8 +632,9 @@ def _readme(sections, failed, source: Path, out: Path, extra: str = "") -> str:
         "# Gallery",
         "",
         "Textbook mechanisms drawn by velpoly, each checked against the book's printed answers. Every",
-        "section shows the full sheet (the mechanism to scale, its velocity and acceleration polygons",
-        "and their results) and a table: **book** is the printed value, **graphical** what the",
+        "section shows the example's own sheet (the full sheet: the mechanism to scale, its velocity and",
+        "acceleration polygons and their results; the instant-centre examples: the poles and the Kennedy",
+        "circle) and a table: **book** is the printed value, **graphical** what the",
         "polygons and the Kennedy construction give, **analytic** the linear solve; *book vs analytic*",
         "is the relative deviation (and the direction's, in degrees), *graphical vs analytic* the",
         "difference relative to the largest value of its kind in the mechanism (largest omega, alpha,",

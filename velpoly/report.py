@@ -21,11 +21,13 @@ __all__ = ["Table", "render_table", "solution_tables", "solution_report", "fmt",
 
 @dataclass(frozen=True)
 class Table:
-    """A titled table: column headers and rows of strings."""
+    """A titled table: column headers and rows of strings; ``notes``: its footnotes, ``(mark, key, text)``
+    for each mark in its rows (a drawn results table prints them beneath it)."""
 
     title: str
     header: tuple[str, ...]
     rows: tuple[tuple[str, ...], ...]
+    notes: tuple[tuple[str, str, str], ...] = ()
 
 
 def fmt(x, digits: int = 6) -> str:

@@ -16,6 +16,8 @@ key                         meaning
 ``link_numbers``            ``"circled"`` (default), ``"plain"`` or ``"none"``
 ``reasons``                 mark construction lines with their reason (default true)
 ``table``                   draw the results table on each sheet (default true)
+``sheet``                   the sheet ``velpoly draw`` draws without ``--sheet``, and the
+                            gallery shows: one of SHEETS (default ``"full"``)
 ==========================  ===============================================================
 """
 from __future__ import annotations
@@ -27,10 +29,11 @@ from typing import Mapping
 
 from ..errors import InputError
 
-__all__ = ["DrawingOptions", "drawing_options", "KEYS"]
+__all__ = ["DrawingOptions", "drawing_options", "KEYS", "SHEETS"]
 
 KEYS = ("scale", "velocity_scale", "acceleration_scale", "label_points", "link_colours", "link_numbers",
-        "reasons", "table")
+        "reasons", "table", "sheet")
+SHEETS = ("velocity", "acceleration", "poles", "full", "displacement")   # the sheets of ``velpoly draw``
 LINK_NUMBERS = ("circled", "plain", "none")
 
 
@@ -46,6 +49,7 @@ class DrawingOptions:
     link_numbers: str = "circled"
     reasons: bool = True
     table: bool = True
+    sheet: str = "full"
 
 
 def _err(m, key: str, what: str, hint: str = "") -> InputError:
@@ -117,4 +121,10 @@ def drawing_options(m) -> DrawingOptions:
     for key in ("reasons", "table"):
         if key in d:
             out[key] = _boolean(m, key, d[key])
+    if "sheet" in d:
+        v = d["sheet"]
+        if v not in SHEETS:
+            raise _err(m, "sheet", f"unknown sheet {v!r}; valid sheets: " + ", ".join(SHEETS),
+                       hint='the sheet velpoly draw draws without --sheet, e.g. sheet = "poles"')
+        out["sheet"] = v
     return DrawingOptions(**out)

@@ -8,7 +8,12 @@ sheet              shows
 ``poles``          the mechanism with every instant centre and the Kennedy lines,
                    the Kennedy circle; table
 ``full``           displacement diagram, velocity and acceleration polygons; table
+``displacement``   the displacement diagram alone with the given data (lengths, frame
+                   pivots, the driver's angle, ω and α): a problem handout, no answers
 =================  =================================================================
+
+A file's ``[drawing] sheet`` names the sheet drawn when none is asked for
+(:func:`default_sheet`).
 
 With ``steps`` the construction is built up one step per frame (the
 polygons' steps, or the poles in order of discovery), each frame captioned
@@ -30,17 +35,15 @@ from .canvas import fit_view, literal, nice_scale, view_scale
 from .displacement import draw_mechanism, equivalent_linkage_note, mark_auxiliary, mechanism_bounds
 from .kennedy import draw_kennedy_circle, draw_poles, pole_label
 from .labels import placer
-from .options import drawing_options
+from .options import SHEETS, drawing_options
 from .polygon import draw_polygon, legend_room, polygon_bounds
 from .scalebar import scale_text
 from .style import get_style, rc_context
 from ..reference import at_file_pose
-from .table import draw_results_table
+from .table import draw_results_table, given_table
 
 __all__ = ["SHEETS", "Constructions", "constructions", "render_sheet", "frames", "draw_to_file", "mechanism_svg",
-           "equation_tex"]
-
-SHEETS = ("velocity", "acceleration", "poles", "full")
+           "equation_tex", "default_sheet"]
 FORMATS = (".svg", ".png", ".pdf")
 
 
@@ -58,11 +61,17 @@ def _check_sheet(sheet: str) -> None:
         raise InputError(f"unknown sheet {sheet!r}; valid sheets: " + ", ".join(SHEETS), where="--sheet")
 
 
+def default_sheet(m) -> str:
+    """The sheet a mechanism draws when none is asked for: its ``[drawing] sheet``, else ``full``."""
+    return drawing_options(m).sheet
+
+
 def constructions(sol, sheet: str) -> Constructions:
     """Build what ``sheet`` needs with :mod:`velpoly.polygons` and :mod:`velpoly.poles`.
 
     The acceleration sheet needs accelerations (InputError without centres of
-    curvature); the full sheet then shows velocities only.
+    curvature); the full sheet then shows velocities only. The displacement
+    sheet needs none (it shows no answers).
     """
     _check_sheet(sheet)
     vel = acc = poles = None
@@ -120,6 +129,8 @@ _LAYOUTS = {
     # Kennedy circle and the table beneath
     "poles-wide": {"poles": (0.01, 0.4, 0.98, 0.46), "kennedy": (0.02, 0.02, 0.28, 0.33),
                    "table": (0.33, 0.02, 0.65, 0.33)},
+    # the problem's handout: the space diagram large, the given data beside it
+    "displacement": {"mechanism": (0.02, 0.03, 0.63, 0.83), "table": (0.68, 0.03, 0.3, 0.83)},
     "full": {"mechanism": (0.01, 0.37, 0.33, 0.485), "velocity": (0.34, 0.37, 0.32, 0.485),
              "acceleration": (0.67, 0.37, 0.32, 0.485), "table": (0.05, 0.02, 0.9, 0.29)},
 }
@@ -279,7 +290,7 @@ def render_sheet(sol, sheet: str = "full", style="textbook", *, cons: Constructi
         layout = dict(_LAYOUTS[_poles_layout(sol, st, opts, cons)])
     if sheet == "full" and cons.acceleration is None:
         layout = dict(_LAYOUTS["velocity"])
-    if not opts.table:
+    if not opts.table and sheet != "displacement":   # the handout's table is the problem's data
         layout.pop("table")
         for k, (l, b, w, h) in layout.items():
             layout[k] = (l, b - 0.24 if b >= 0.3 else b, w, h + 0.24) if b >= 0.3 else (l, b, w, h)
@@ -357,7 +368,11 @@ def render_sheet(sol, sheet: str = "full", style="textbook", *, cons: Constructi
     for cap in caps:   # the captions of a sheet in one size, that of the one that had to shrink most
         cap.set_fontsize(min(c.get_fontsize() for c in caps))
     fig._velpoly_pins = {name: dict(placer(ax).placed) for name, ax in axes.items()}
-    if "table" in axes:
+    if "table" in axes and sheet == "displacement":
+        art = draw_results_table(sol, axes["table"], style=st, table=given_table(sol))
+        for t in art.get("title"):
+            t.set_gid("data-table")
+    elif "table" in axes:
         shows = {"velocity": ("velocity",), "acceleration": ("acceleration",), "poles": (),
                  "full": ("velocity", "acceleration")}[sheet]
         draw_results_table(sol, axes["table"], sheet=sheet, style=st,

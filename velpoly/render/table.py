@@ -9,7 +9,10 @@ instant-centre method's (velocities) and the book's (``[reference]``, via :func:
 the deviation of the book from the analytic value. Printed values that are
 no row of the sheet (``V_BA``, ``R_BA`` ...) follow at the end. The drawn
 table is booktabs-style (rules, no boxes) and keeps to the room it has:
-rows that do not fit are summarised in a last line.
+the rows with a book's value come first, and rows that do not fit are
+summarised in a last line. A printed value that the file's ``[reference]
+note`` explains is marked († ‡ § ...) and its note is a footnote beneath
+the table.
 """
 from __future__ import annotations
 
@@ -22,7 +25,7 @@ from ..report import Table, fmt
 from .canvas import Artists, get_ax, literal, renderer_of
 from .style import get_style
 
-__all__ = ["results_table", "draw_results_table"]
+__all__ = ["results_table", "draw_results_table", "given_table"]
 
 
 _SUPERSCRIPT = str.maketrans("-0123456789", "⁻⁰¹²³⁴⁵⁶⁷⁸⁹")
@@ -108,6 +111,12 @@ def _num(x, digits=5) -> str:
 
 
 NOTED = "†"   # marks a deviation that the file's [reference] note explains (a misprint, a rounded value)
+MARKS = ("†", "‡", "§", "¶", "‖")   # the footnotes' marks in turn; then doubled, tripled ...
+
+
+def note_mark(k: int) -> str:
+    """The ``k``-th footnote's mark (from 0): † ‡ § ¶ ‖ †† ‡‡ ..."""
+    return MARKS[k % len(MARKS)] * (k // len(MARKS) + 1)
 
 
 def _dev(row) -> str:
@@ -155,6 +164,7 @@ def results_table(sol, sheet: str = "full", *, velocity=None, acceleration=None,
         from ..poles import instant_centre_velocities
         ic = instant_centre_velocities(sol, poleset)
     rows = []
+    noted = []   # each row's reference comparison (None: a row without one), in step with rows
 
     def ref_for(*keys):
         for k in keys:
@@ -186,6 +196,7 @@ def results_table(sol, sheet: str = "full", *, velocity=None, acceleration=None,
             rows.append((_q(r"\omega", lk, "rad/s"), "" if g is None else _num(g), drafted("velocity", "omega", lk),
                          _num(sol.omega[lk]),
                          _num(ic["omega"][lk]) if ic else "", _printed(r), _dev(r)))
+            noted.append(r)
     pinned = pinned_keys(m)   # a point of links pinned together: one row "V_B (on 2 and 3)"
 
     def spelt(key):
@@ -209,6 +220,7 @@ def results_table(sol, sheet: str = "full", *, velocity=None, acceleration=None,
             r = ref_for(*(k for name in spelt(key) for k in (f"V_{name}", f"|V_{name}|")))
             rows.append((point_label("V", key), _vec(velocity.images[key]), drafted("velocity", "speed", key), _vec(v),
                          _vec(ic["velocity"][key]) if ic and key in ic["velocity"] else "", _printed(r), _dev(r)))
+            noted.append(r)
     if acceleration is not None:
         for lk in moving:
             g = acceleration.rates.get(lk)
@@ -217,6 +229,7 @@ def results_table(sol, sheet: str = "full", *, velocity=None, acceleration=None,
                 continue
             rows.append((_q(r"\alpha", lk, "rad/s²"), _num(g), drafted("acceleration", "alpha", lk),
                          _num(sol.alpha[lk]), "", _printed(r), _dev(r)))
+            noted.append(r)
         for key in acceleration.images:
             a = sol.acceleration.get(key)
             if a is None or not np.all(np.isfinite(a)) or float(np.hypot(*a)) == 0 or \
@@ -225,6 +238,7 @@ def results_table(sol, sheet: str = "full", *, velocity=None, acceleration=None,
             r = ref_for(*(f"A_{name}" for name in spelt(key)))
             rows.append((point_label("A", key), _vec(acceleration.images[key]), drafted("acceleration", "magnitude", key),
                          _vec(a), "", _printed(r), _dev(r)))
+            noted.append(r)
     if poleset is not None and sheet == "poles":
         from ..reference import relative_pole
         for p in sorted((p for p in poleset.poles.values() if p.order > 0), key=lambda p: p.order):
@@ -232,6 +246,7 @@ def results_table(sol, sheet: str = "full", *, velocity=None, acceleration=None,
             r = ref_for(f"P_{p.links[0]}{p.links[1]}", f"P{p.links[0]}{p.links[1]}")
             rows.append((_pole(p.links) + f"  ({p.order})", _where(p.position, p.direction), "",
                          _where(pos, direction), "", _printed(r), _dev(r)))
+            noted.append(r)
     related = {"velocity": ("V", "|V", "omega"), "acceleration": ("A", "alpha"), "poles": ("P", "V_P", "omega"),
                "full": ("V", "|V", "omega", "A", "alpha")}[sheet]
     for key, r in refs.items():   # the book's other values this sheet is about, against the analytic solve
@@ -242,19 +257,83 @@ def results_table(sol, sheet: str = "full", *, velocity=None, acceleration=None,
             f"{_fmt(comp[0], 5)} ∠ {comp[1]:.2f}°" if isinstance(comp, tuple) and not key.startswith("P")
             else (f"({_fmt(comp[0], 5)}, {_fmt(comp[1], 5)})" if isinstance(comp, tuple) else _num(comp)))
         rows.append((_key(key), "", "", shown, "", _printed(r), _dev(r)))
+        noted.append(r)
     columns = [(0, "quantity"), (1, "graphical"), (2, "hand-drawn, 95 %"), (3, "analytic"),
                (4, "instant centres"), (5, "reference"), (6, "deviation")]
     columns = [(i, name) for i, name in columns if i == 0 or any(r[i] for r in rows)]   # no empty column
     header = [name for _, name in columns]
     rows = [tuple(r[i] for i, _ in columns) for r in rows]
+    ref_col = header.index("reference") if "reference" in header else None
+    noted = [r if r is not None and getattr(r, "note", "") else None for r in noted]
     title = "Results: graphical construction against the analytic solve"
     if refs and m.reference.source:
         title += f"; reference values: {m.reference.source}"
     elif m.reference and not refs:
         title += f"; no reference values at this driver angle ({sol.driver_angle:.4g}°)"
-    if any(r[-1].endswith(NOTED) for r in rows):
-        title += f"; {NOTED} the book's value is explained in a note (velpoly solve FILE)"
-    return Table(title, tuple(header), tuple(rows))
+    # the rows the book gives first (in their order), so that a table cut to its room shows them; each
+    # row whose printed value a [reference] note explains gets its own mark, and the note is a footnote
+    order = sorted(range(len(rows)), key=lambda i: not rows[i][ref_col]) if ref_col is not None else range(len(rows))
+    rows = [rows[i] for i in order]
+    noted = [noted[i] for i in order]
+    notes = []
+    for i, r in enumerate(noted):
+        if r is not None:
+            mark = note_mark(len(notes))
+            rows[i] = rows[i][:-1] + (rows[i][-1][:-len(NOTED)] + mark,)
+            notes.append((mark, r.key, str(r.note)))
+    if notes:
+        title += f"; {NOTED} the book's value is explained in a footnote"
+    return Table(title, tuple(header), tuple(rows), tuple(notes))
+
+
+def given_table(sol) -> Table:
+    """The data of the displacement sheet (a problem handout): what the problem gives, no answers.
+
+    Rows: the driver's angle, ω and α (a slider driver's speed and
+    acceleration), each frame point's position, and the lengths of each moving
+    link (its points pairwise; a plate of more than four points around its
+    outline; not a point that slides on it). All are the file's own data: nothing here is computed by an
+    analysis of the motion.
+    """
+    m = sol.mechanism
+
+    def unit_label(units, power):
+        return units + ("", "/s", "/s²")[power] if units else ("", "s⁻¹", "s⁻²")[power]
+    unit = (lambda x: f"{_fmt(x, 5)} {m.units}".rstrip())
+    drv = m.driver
+    rows = []
+    if drv.is_slider:
+        rows.append((_q("V", drv.slider), f"{_fmt(abs(drv.speed), 5)} {unit_label(m.units, 1)}".rstrip()))
+        rows.append((_q("A", drv.slider), f"{_fmt(drv.accel, 5)} {unit_label(m.units, 2)}".rstrip()))
+    else:
+        lk = drv.link
+        if sol.driver_angle is not None:
+            rows.append((_q(r"\theta", lk), f"{_fmt(sol.driver_angle, 5)}°"))
+        def sense(x):   # as the space diagram writes it: a magnitude and its sense
+            return _fmt(abs(x), 5) + ("" if x == 0 else (" ccw" if x > 0 else " cw"))
+        rows.append((_q(r"\omega", lk, "rad/s"), sense(drv.omega)))
+        rows.append((_q(r"\alpha", lk, "rad/s²"), sense(drv.alpha)))
+    pos = sol.position
+    # a point that slides on a link (a slider on its guide, a pin in its slot, a contact) has no fixed
+    # distance from that link's other points
+    sliding = {(s.point, s.guide) for s in m.sliders} | {(s.pin, s.slot) for s in m.slots} | \
+        {(c.point, lk) for c in m.contacts for lk in c.links}
+
+    def at(p, link):
+        return np.asarray(pos.get(f"{p}@{link}", pos.get(p, m.position(p))), float)
+    for p in m.frame.points:
+        x, y = at(p, m.frame.name)
+        rows.append((f"{p} (frame)", f"({_fmt(x, 5)}, {_fmt(y, 5)})" + (f" {m.units}" if m.units else "")))
+    for link in m.moving_links:
+        ps = [p for p in dict.fromkeys(link.points) if (p, link.name) not in sliding]
+        if len(ps) <= 4:
+            pairs = [(a, b) for i, a in enumerate(ps) for b in ps[i + 1:]]
+        else:
+            pairs = list(zip(ps, ps[1:] + ps[:1]))
+        for a, b in pairs:
+            d = float(np.hypot(*(at(b, link.name) - at(a, link.name))))
+            rows.append((f"{a}{b} (link {link.name})", unit(d)))
+    return Table("Given data", ("quantity", "value"), tuple(rows))
 
 
 def _where(pos, direction) -> str:
@@ -278,7 +357,8 @@ def draw_results_table(sol, ax=None, *, sheet: str = "full", style="textbook", v
     Returns
     -------
     Artists
-        Roles ``cells`` (Texts, row by row), ``rules`` and ``title``;
+        Roles ``cells`` (Texts, row by row), ``rules``, ``title`` and ``footnotes``
+        (the ``[reference]`` notes of the marked rows shown, ``artists.notes``);
         ``artists.table`` is the Table drawn, ``artists.shown`` the number of
         its rows drawn, ``artists.size`` its type size (points, after any shrinking),
         ``artists.blocks`` each block's column names.
@@ -351,7 +431,12 @@ def draw_results_table(sol, ax=None, *, sheet: str = "full", style="textbook", v
         lines = len(wrapped)
     art.add("title", title)
     top = height_pt - 1.6 * size * 1.1 - (lines - 1) * 1.4 * size * 1.1
-    room = max(int((top - 1.9 * line_h) // line_h), 1)      # rows a block has room for
+    # the footnotes (the [reference] notes of the marked rows) beneath the table, across its room: their
+    # lines are kept free of rows
+    foot_size = 0.9 * size
+    foot = _footnote_lines(ax, t.notes, width_pt, foot_size)
+    foot_h = (0.5 * size + len(sum(foot.values(), [])) * 1.3 * foot_size) if foot else 0.0
+    room = max(int((top - foot_h - 1.9 * line_h) // line_h), 1)      # rows a block has room for
     rows = list(t.rows)
     bgap = 3.0 * size
     blocks = 1
@@ -411,6 +496,37 @@ def draw_results_table(sol, ax=None, *, sheet: str = "full", style="textbook", v
         bottom = min(bottom, y)
         rule(x0, y, st.link_lw, total)
         x0 += total + bgap
+    marks = {row[-1].split()[-1] for row in shown if row[-1]}
+    art.notes = [n for n in t.notes if n[0] in marks]   # the footnotes of the rows shown
+    y = bottom - 0.5 * size
+    for k, (mark, key, _) in enumerate(art.notes):
+        for i, line in enumerate(foot[mark]):
+            y -= 1.3 * foot_size
+            art.add("footnotes", ax.text(0, y / height_pt, line, fontsize=foot_size, va="baseline", ha="left",
+                                         gid=f"footnote-{k}" if i == 0 else None))
     art.shown = len(shown)
     art.size = size
     return art
+
+
+def _footnote_lines(ax, notes, width_pt: float, size: float) -> dict:
+    """Each footnote ``(mark, key, text)`` as the lines it takes at ``size`` within ``width_pt``:
+    ``{mark: [line, ...]}``, the first line starting with the mark and the quantity it explains."""
+    import textwrap
+    from .sheet import equation_tex
+    fig = ax.figure
+    r = renderer_of(fig)
+    out = {}
+    for mark, key, text in notes:
+        # typeset as the sheet's equations are (omega_5 -> omega with subscript 5, 400 x 2 -> 400 × 2), a minus
+        # sign for a negative number's hyphen
+        full = f"{mark} {_key(key)}: " + re.sub(r"(?<![\w.])-(?=[0-9.])", "−", equation_tex(text))
+        probe = ax.text(0, 0, full, fontsize=size)
+        w = probe.get_window_extent(r).width * 72 / fig.dpi
+        probe.remove()
+        if w <= width_pt:
+            out[mark] = [full]
+        else:
+            out[mark] = textwrap.wrap(full, max(20, int(len(full) * width_pt / w * 0.95)),
+                                      subsequent_indent="   ", break_long_words=False)
+    return out
