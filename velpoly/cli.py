@@ -104,7 +104,7 @@ def build_parser() -> argparse.ArgumentParser:
     a.add_argument("-o", "--output", required=True, metavar="OUT", help="output file: .gif, .png (animated "
                    "PNG), .mp4 (needs velpoly[video]), .pdf (one page a frame, for LaTeX's animate package) or "
                    ".html (velpoly html)")
-    a.add_argument("--sheet", choices=SHEETS, default="velocity", help="the panels beside the mechanism "
+    a.add_argument("--sheet", choices=[s for s in SHEETS if s != "displacement"], default="velocity", help="the panels beside the mechanism "
                    "(default: velocity)")
     a.add_argument("--step", type=float, default=2.0, metavar="DEG", help="driver step between frames in "
                    "degrees (default 2)")
