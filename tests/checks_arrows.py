@@ -72,12 +72,13 @@ class _Truth:
         raise AssertionError(f"no position for {key}")
 
     def name(self, key):
-        """The textbook name the labels use: B, P3 (a contact point of link 3), A4, S3."""
+        """The textbook name the labels use: B, P3 (a contact point of link 3), A4, S3 (the
+        auxiliary point of link 3: S3@3), S34 (link 4's point at S3, e.g. a block on link 3)."""
         if key in self.keys:
             p, lk = self.keys[key]
             return p if key == p else f"{p}{lk}"
         n, lk = key.rsplit("@", 1)
-        return n if n not in self.m.points else f"{n}{lk}"
+        return n if n not in self.m.points and n.rstrip("'") == f"S{lk}" else f"{n}{lk}"
 
     def velocity(self, key):
         if key in self.sol.velocity:

@@ -283,3 +283,41 @@ def test_zoo_sheets_draw(kind, tmp_path):
         assert out and all(p.stat().st_size > 10_000 for p in out)
         text = out[0].read_text()
         assert text.count("<path") > 20
+
+
+def test_auxiliary_point_reached_through_a_slip_is_true():
+    """A block on a floating guide (tests/zoo.py ``gen_floating_guide``): link 4's auxiliary point
+    S4 is reached from the block's point A through the slip, ``V_S4 = V_O2 + V_A2O2 - V_A3/A4 +
+    V_S4A4`` (a line that subtracts a joint's terms and adds others). On fresh seeds, every variant
+    (crank or slider driven, the guide listing A or not), at the drawn pose and (crank driven) others:
+    every arrow is what its label names and they run tip to tail (the subtracted slip and
+    Coriolis drawn forwards as V_A4/A3, 2 omega_4 x V_A4/A3); a step is called the instant
+    centre's only where S4's image is at O_v (a line offset by a known slip does not go through it);
+    graphical == analytic."""
+    rng = np.random.default_rng(SEED + 13)
+    variants = [v for v in zoo.SIXBARS if v.startswith("floating guide")]
+    reversed_seen = ic_seen = solved = 0
+    for k in range(20 * len(variants)):   # (about 1 s: the slider driven ones reach S4 through the slip)
+        sp = zoo.specimen(rng, "six-bar", variants[k % len(variants)])
+        m = sp.drawn.mechanism
+        ref = driver_reference_angle(m)
+        for off in sp.offsets:
+            try:
+                sol = sp.drawn if off is None else velpoly.solve(m, ref + off)
+            except (AssemblyError, SingularPoseError):
+                assert off is not None, sp.kind
+                continue
+            check_solution(sol)
+            assert_arrows_true(sol)   # (also where check_solution's import fell back)
+            solved += 1
+            for poly in (velocity_polygon(sol), acceleration_polygon(sol)):
+                for st in poly.steps:
+                    if st.kind == "instant-centre":
+                        ic_seen += 1
+                        for key in st.auxiliary:
+                            assert np.abs(poly.auxiliary[key].image).max() <= 1e-12, st.equation
+                    for v in st.vectors:
+                        if v.kind in ("slip", "coriolis") and tuple(v.of[1:3] if v.kind == "slip" else v.of[2:4]) == \
+                                ("A@4", "A@3"):
+                            reversed_seen += 1   # A4 relative to A3: a subtracted term drawn forwards
+    assert solved >= 70 and reversed_seen >= 15 and ic_seen >= 5, (solved, reversed_seen, ic_seen)

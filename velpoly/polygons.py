@@ -92,7 +92,9 @@ class Vector:
     ``kind``: 'absolute' | 'relative' | 'normal' | 'tangential' | 'coriolis' | 'slip'.
     ``head - tail`` is exactly the quantity ``label`` names (never its negative: where a
     construction starts from the other side of an equation, the arrow is drawn ending at
-    the known image, so that the arrows still run tip to tail). ``of`` says which quantity,
+    the known image, so that the arrows still run tip to tail; where its line also adds terms, a
+    subtracted term is drawn forwards as the negative quantity under its own name, V_A4/A3 for
+    -V_A3/A4: :meth:`_Run.chain`). ``of`` says which quantity,
     in point keys (``"B"``, ``"P@3"``) or auxiliary keys (``"A@4"``, ``"S3@3"``), for checks:
 
     * ``("point", K)``: V_K (A_K), drawn from the origin;
@@ -799,10 +801,13 @@ class _Run:
 
     # known terms -----------------------------------------------------------------------------------
     def terms(self, terms) -> list:
-        """The known vectors of a chain: [(kind, label, vector, of, sign)].
+        """The known vectors of a chain: [(kind, label, vector, of, sign, reverse)].
 
         ``vector`` is the quantity ``label`` names, in its true sense; the chain adds it
         ``sign`` times (-1 where the line starts from the other side of the joint's equation).
+        ``reverse`` is (label, of) of the negative quantity where it has a name of its own
+        (-A^n_WQ = A^n_QW, -V_B3/B4 = V_B4/B3, -2 omega_4 x V_B3/B4 = 2 omega_4 x V_B4/B3), else
+        None (a circular path's V_rel^2/rho towards its centre is not the reverse motion's).
         """
         out = []
         for t in terms:
@@ -812,16 +817,18 @@ class _Run:
                 _, lk, q, w = t
                 om = self.vel.rate[lk]
                 r = self.g.zpos[w] - self.g.zpos[q]
-                out.append(("normal", f"A^n_{self.g.name((lk, w))}{self.g.name((lk, q))}", -om ** 2 * r,
-                            ("normal", lk, self.g.qkey((lk, w)), self.g.qkey((lk, q))), 1))
+                nw, nq = self.g.name((lk, w)), self.g.name((lk, q))
+                kw, kq = self.g.qkey((lk, w)), self.g.qkey((lk, q))
+                out.append(("normal", f"A^n_{nw}{nq}", -om ** 2 * r, ("normal", lk, kw, kq), 1,
+                            (f"A^n_{nq}{nw}", ("normal", lk, kq, kw))))
             else:
                 _, i, sign, w = t
-                out += [(k, lab, v, of, sign) for k, lab, v, of in self.rel_terms(i, w)]
+                out += [(k, lab, v, of, sign, rev) for k, lab, v, of, rev in self.rel_terms(i, w)]
         return out
 
     def term_labels(self, terms) -> list:
         """The chain's terms as written in its equation: "-2 omega_4 x V_A3/A4" where subtracted."""
-        return [("-" if sg < 0 else "") + lab for _, lab, _, _, sg in self.terms(terms)]
+        return [("-" if t[4] < 0 else "") + t[1] for t in self.terms(terms)]
 
     def rel_keys(self, r: _Rel, w) -> tuple:
         """The keys of a joint's two places at w (a's, b's) and of its relative path's centre."""
@@ -830,7 +837,8 @@ class _Run:
         return g.qkey((r.a, w)), g.qkey((r.b, w)), k
 
     def rel_terms(self, i, w) -> list:
-        """Known relative motion of a joint, a relative to b, at the place of w: [(kind, label, vector, of)].
+        """Known relative motion of a joint, a relative to b, at the place of w:
+        [(kind, label, vector, of, reverse)] (``reverse``: see :meth:`terms`).
 
         Blocks, pins in slots and the equivalent linkage's centres of curvature:
         ``A_a = A_b + 2 omega_b x V_a/b (Coriolis) + V_a/b^2 / rho (towards the centre of a
@@ -840,38 +848,44 @@ class _Run:
         """
         g, r = self.g, self.g.rels[i]
         m = g.m
-        rel = f"{w}{r.a}/{w}{r.b}"
+        rel, rrel = f"{w}{r.a}/{w}{r.b}", f"{w}{r.b}/{w}{r.a}"
         ka, kb, kk = self.rel_keys(r, w)
         slip_of = ("slip", ka, kb, r.b, kk)
         if self.level == "velocity":
+            back = (f"V_{rrel}", ("slip", kb, ka, r.b, kk))   # V_b - V_a
             if r.source == "drive":
-                return [("slip", f"V_{rel}", m.driver.speed * _z(r.direction), slip_of)]
+                return [("slip", f"V_{rel}", m.driver.speed * _z(r.direction), slip_of, back)]
             if r.source == "contact" and m.contacts[r.index].slip:
-                return [("slip", f"V_{rel}", m.contacts[r.index].slip * _z(r.direction), slip_of)]
+                return [("slip", f"V_{rel}", m.contacts[r.index].slip * _z(r.direction), slip_of, back)]
             return []
         vel = self.vel
         vrel = vel.image((r.a, w)) - vel.image((r.b, w))
         out = []
         coriolis = 2.0 * vel.rate[r.b] * 1j * vrel
-        cor = ("coriolis", f"2 omega_{r.b} x V_{rel}", coriolis, ("coriolis", r.b, ka, kb))
+        cor = ("coriolis", f"2 omega_{r.b} x V_{rel}", coriolis, ("coriolis", r.b, ka, kb),
+               (f"2 omega_{r.b} x V_{rrel}", ("coriolis", r.b, kb, ka)))
+        # the slip reversed (A_b - A_a + 2 omega_b x V_a/b) is b's slip on a only on a straight path
+        back = (f"A_{rrel}", ("slip", kb, ka, r.b, None)) if kk is None else None
         if r.source != "contact":
             if r.source == "drive":
-                out.append(("slip", f"A_{rel}", m.driver.accel * _z(r.direction), slip_of))
+                out.append(("slip", f"A_{rel}", m.driver.accel * _z(r.direction), slip_of, back))
             if r.b != g.frame:   # a guide on the frame has no Coriolis term: 2 omega x V_rel
                 out.append(cor)
             if r.centre is not None:   # a circular relative path: V_rel^2 / rho towards its centre
                 k = g.zpos[r.centre] - g.zpos[w]
                 rho = abs(k)
                 speed2 = vrel.real ** 2 + vrel.imag ** 2
-                out.append(("normal", f"A^n_{rel}", speed2 / rho * (k / rho), ("path-normal", ka, kb, kk)))
+                out.append(("normal", f"A^n_{rel}", speed2 / rho * (k / rho), ("path-normal", ka, kb, kk), None))
         elif m.contacts[r.index].kind == "rolling":   # no slip: the contact points' relative acceleration
-            out.append(("relative", f"A_{rel}", self._contact_normal(r, w, vrel), ("difference", ka, kb)))
+            out.append(("relative", f"A_{rel}", self._contact_normal(r, w, vrel), ("difference", ka, kb),
+                        (f"A_{rrel}", ("difference", kb, ka))))
         else:   # a prescribed slip: Coriolis, and the rest of the relative acceleration on b
             rest = self._contact_normal(r, w, vrel)
             if r.b != g.frame:
                 out.append(cor)
                 rest = rest - coriolis
-            out.append(("relative", f"A_{rel}", rest, ("slip", ka, kb, r.b, None)))
+            out.append(("relative", f"A_{rel}", rest, ("slip", ka, kb, r.b, None),
+                        (f"A_{rrel}", ("slip", kb, ka, r.b, None))))
         return out
 
     def _contact_normal(self, r: _Rel, w, vrel):
@@ -904,26 +918,42 @@ class _Run:
         return k * u
 
     # operations ------------------------------------------------------------------------------------
-    def chain(self, base, terms) -> tuple:
+    def chain(self, base, terms, forward: bool = False) -> tuple:
         """The tip of base image + known terms, and the arrows drawn: (tip, [(kind, label, tail, head, of)]).
 
         Every arrow points in the true sense of what its label names and they run tip to tail:
         a subtracted term (the line starts from the known image on the other side of the
         equation, b3' to find b4' in ``A_B3 = A_B4 + 2 omega_4 x V_B3/B4 + A_B3/B4``) is drawn
         back from the image, ending at it, and comes first; added terms follow, forwards.
+        ``forward`` (a line that subtracts some terms and adds others, see :meth:`mixed`): a
+        subtracted term is drawn forwards as the negative quantity it equals, under that
+        quantity's own name (-V_A3/A4 is V_A4/A3, -A^n_SA is A^n_AS), so that the arrows run tip
+        to tail from the base image to the image found; only a term with no such name (a
+        circular path's V_rel^2/rho) is still drawn back from the base image.
         """
         tip = self.image(base)
         parts = []
         ts = self.terms(terms)
-        for kind, lab, v, of, sign in [t for t in ts if t[4] < 0]:
+        drawn_back = [t[4] < 0 and not (forward and t[5]) for t in ts]
+        back = [t for t, b in zip(ts, drawn_back) if b]
+        ahead = [t if t[4] > 0 else (t[0], t[5][0], -t[2], t[5][1], 1, None) for t, b in zip(ts, drawn_back) if not b]
+        for kind, lab, v, of, sign, _ in back:
             new = self._mark(tip - self._turn(v))
             parts.append((kind, lab, new, tip, of))
             tip = new
-        for kind, lab, v, of, sign in [t for t in ts if t[4] > 0]:
+        for kind, lab, v, of, sign, _ in ahead:
             new = self._mark(tip + self._turn(v))
             parts.append((kind, lab, tip, new, of))
             tip = new
         return tip, parts
+
+    def mixed(self, ln: _Line) -> bool:
+        """Whether the line's chain both subtracts and adds (its known terms and its unknown at this
+        level): then no order of true-sense arrows runs tip to tail, and :meth:`chain` draws the
+        subtracted ones as their negatives (an auxiliary point reached through a driven slip:
+        ``V_S4 = V_O2 + V_A2O2 - V_A3/A4 + V_S4A4``; a block's line offset by a slip it subtracts)."""
+        signs = {t[4] for t in self.terms(ln.terms)} | {self.unknown(ln)[1]}
+        return len(signs) > 1
 
     def _draw(self, parts):
         for k, lab, t0, t1, of in parts:
@@ -976,7 +1006,7 @@ class _Run:
     def _meet(self, target, l1, l2):
         tips, dirs = [], []
         for ln in (l1, l2):
-            tip, parts = self.chain(ln.base, ln.terms)
+            tip, parts = self.chain(ln.base, ln.terms, self.mixed(ln))
             tips.append(tip)
             dirs.append(self._turn(_z(ln.direction)))
             self._draw(parts)
@@ -1015,7 +1045,7 @@ class _Run:
         values, drawn from the origin, meets the line perpendicular to R_WQ at the true value.
         """
         lk, q, w = closure
-        tip, parts = self.chain(line.base, line.terms)
+        tip, parts = self.chain(line.base, line.terms, self.mixed(line))
         e = self._turn(_z(line.direction))
         known = [abs(v) for v in self.img.values()] + [abs(tip), self._const(self._level_scale())]
         tau1 = np.maximum(np.max(known, axis=0), 1e-300)
@@ -1109,9 +1139,15 @@ class _Run:
     def unknown_vector(self, ln: _Line, tip, x) -> Vector:
         """The arrow of the line's unknown, between the tip of its known chain and the image x found.
 
-        True sense: from the tip to x where the line adds it, from x to the tip where it subtracts it.
+        True sense: from the tip to x where the line adds it, from x to the tip where it subtracts it;
+        on a line that also adds terms (:meth:`mixed`) a subtracted slip is drawn from the tip to x
+        as the negative quantity it equals (-A_B3/B4 = A_B4/B3 on a straight path).
         """
         lab, sign, of, kind = self.unknown(ln)
+        if sign < 0 and of[0] == "slip" and self.mixed(ln) and (self.level == "velocity" or of[4] is None):
+            _, ka, kb, guide, kk = of
+            a, b = lab[2:].split("/")
+            lab, sign, of = f"{self.X}_{b}/{a}", 1, ("slip", kb, ka, guide, kk)
         t0, t1 = (tip, x) if sign > 0 else (x, tip)
         return Vector(_xy(t0), _xy(t1), kind, lab, of)
 
@@ -1210,8 +1246,9 @@ def _assemble(c: _Construction, sol, level: str, vel) -> tuple[Polygon, _Run]:
                 run._vec(0j, run.image(p), "absolute", f"{run.X}_{geo.name(p)}", ("point", geo.qkey(p)))
         kind = st.kind
         trial = bool(st.ops) and st.ops[0][0] == "trial"
-        if kind == "auxiliary" and not trial and level == "velocity" and all(geo.grounded(ln.base) for ln in st.lines):
-            kind = "instant-centre"
+        if kind == "auxiliary" and not trial and level == "velocity" and \
+                all(geo.grounded(ln.base) and not run.terms(ln.terms) for ln in st.lines):
+            kind = "instant-centre"   # both lines through O_v (not offset by a known slip): S's image is O_v
         sine = min(run.sine, st.sine) if trial else st.sine
         steps.append(Step(i, kind, _equation(run, st, kind), tuple(run.lines), c.found[i], tuple(run.vectors),
                           {lk: float(run.rate[lk]) for lk in st.omegas}, float(sine), c.aux[i], st.link))
