@@ -270,9 +270,11 @@ def results_table(sol, sheet: str = "full", *, velocity=None, acceleration=None,
         title += f"; reference values: {m.reference.source}"
     elif m.reference and not refs:
         title += f"; no reference values at this driver angle ({sol.driver_angle:.4g}°)"
-    # the rows the book gives first (in their order), so that a table cut to its room shows them; each
-    # row whose printed value a [reference] note explains gets its own mark, and the note is a footnote
-    order = sorted(range(len(rows)), key=lambda i: not rows[i][ref_col]) if ref_col is not None else range(len(rows))
+    # the rows the book gives first (those a [reference] note explains ahead of the rest, each group in
+    # its order), so that a table cut to its room shows them; each row whose printed value a note
+    # explains gets its own mark, and the note is a footnote
+    order = (sorted(range(len(rows)), key=lambda i: (not rows[i][ref_col], noted[i] is None))
+             if ref_col is not None else range(len(rows)))
     rows = [rows[i] for i in order]
     noted = [noted[i] for i in order]
     notes = []
@@ -422,28 +424,45 @@ def draw_results_table(sol, ax=None, *, sheet: str = "full", style="textbook", v
     line_h = 1.45 * size
     title = ax.text(0, 1, literal(t.title), fontsize=size * 1.1, va="top", ha="left", style="italic", gid="results-table")
     tw = title.get_window_extent(r).width * 72 / fig.dpi
-    lines = 1
     wrap_pt = min(width_pt, max(need, 0.6 * width_pt))   # the table's own width (not less than 0.6 of the room)
-    if tw > wrap_pt:   # a long title (a long source) wraps to the table's width
+    chars = len(t.title) * wrap_pt / tw * 0.97   # characters a line of the title holds
+
+    def wrap_title(text):
+        """The title wrapped to the table's width (a long source wraps); the number of its lines."""
         import textwrap
-        wrapped = textwrap.wrap(t.title, max(20, int(len(t.title) * wrap_pt / tw * 0.97)))
+        wrapped = textwrap.wrap(text, max(20, int(chars))) if tw > wrap_pt else [text]
         title.set_text(literal("\n".join(wrapped)))
-        lines = len(wrapped)
+        return len(wrapped)
+    lines = wrap_title(t.title)
     art.add("title", title)
     top = height_pt - 1.6 * size * 1.1 - (lines - 1) * 1.4 * size * 1.1
     # the footnotes (the [reference] notes of the marked rows) beneath the table, across its room: their
     # lines are kept free of rows
     foot_size = 0.9 * size
     foot = _footnote_lines(ax, t.notes, width_pt, foot_size)
-    foot_h = (0.5 * size + len(sum(foot.values(), [])) * 1.3 * foot_size) if foot else 0.0
-    room = max(int((top - foot_h - 1.9 * line_h) // line_h), 1)      # rows a block has room for
     rows = list(t.rows)
     bgap = 3.0 * size
-    blocks = 1
-    if len(rows) > room:   # side by side, as many blocks as the width takes (three at most)
-        blocks = max(1, min(3, int((width_pt + bgap) // (need + bgap)), -(-len(rows) // room)))
-    per = min(room, -(-len(rows) // blocks))          # rows shared evenly between the blocks
-    shown = rows if len(rows) <= per * blocks else rows[:per * blocks - 1]
+
+    def layout(room):
+        """(blocks, rows a block, rows shown) when a block has room for ``room`` rows."""
+        blocks = 1
+        if len(rows) > room:   # side by side, as many blocks as the width takes (three at most)
+            blocks = max(1, min(3, int((width_pt + bgap) // (need + bgap)), -(-len(rows) // room)))
+        per = min(room, -(-len(rows) // blocks))          # rows shared evenly between the blocks
+        return blocks, per, (rows if len(rows) <= per * blocks else rows[:per * blocks - 1])
+
+    def foot_height(shown):
+        """The height of the footnotes of the marked rows among ``shown``."""
+        marks = {(row[-1].split() or [""])[-1] for row in shown}
+        n = sum(len(lines) for mark, lines in foot.items() if mark in marks)
+        return 0.5 * size + n * 1.3 * foot_size if n else 0.0
+
+    # the most rows a block has room for beside the footnotes of the rows it then shows (the rows a
+    # note explains come first, so the footnotes kept are theirs)
+    room = max(int((top - 1.9 * line_h) // line_h), 1)
+    while room > 1 and (1.9 + room) * line_h + foot_height(layout(room)[2]) > top:
+        room -= 1
+    blocks, per, shown = layout(room)
     def rule(x0, y, lw, total):
         ln = Line2D([x0 / width_pt, (x0 + total) / width_pt], [y / height_pt] * 2, lw=lw, color=st.ink,
                     transform=ax.transAxes)
@@ -498,6 +517,8 @@ def draw_results_table(sol, ax=None, *, sheet: str = "full", style="textbook", v
         x0 += total + bgap
     marks = {row[-1].split()[-1] for row in shown if row[-1]}
     art.notes = [n for n in t.notes if n[0] in marks]   # the footnotes of the rows shown
+    if t.notes and not art.notes:   # the title promises no footnote that the rows shown do not have
+        wrap_title(t.title.replace(f"; {NOTED} the book's value is explained in a footnote", ""))
     y = bottom - 0.5 * size
     for k, (mark, key, _) in enumerate(art.notes):
         for i, line in enumerate(foot[mark]):
