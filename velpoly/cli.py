@@ -247,13 +247,36 @@ def _animate_html(args, out: Path) -> int:
 
 
 def cmd_demo(args) -> int:
-    from .gallery import demo_command
-    return demo_command(args)
+    from .gallery import build_demo
+    out = Path(args.output or "out")
+    m, written = build_demo(out, args.style or "textbook")
+    book = f"the book's values ({m.reference.source})" if m.reference.source else "the book's values"
+    print(f"{m.title}: the full sheet and the comparison with {book} are in {out}/")
+    for p in written:
+        print(f"  {p}")
+    return 0
 
 
 def cmd_gallery(args) -> int:
-    from .gallery import gallery_command
-    return gallery_command(args)
+    """One failing example is reported with its error line and does not stop the others; the exit
+    status is 1 if any failed."""
+    from .gallery import build_gallery, check_gallery_folder, gallery_folders
+    source, out, option = gallery_folders(args.output, args.source)
+    check_gallery_folder(out, option)
+
+    def log(line):
+        print(f"error: {line}", file=sys.stderr)
+    # the repository's gallery gets its animations (one a mechanism family); another --source does not
+    result = build_gallery(source, out, style=args.style or "textbook", log=log, names=args.names,
+                           animations=args.source is None)
+    for p in result.written:
+        print(p)
+    if result.failed:
+        n = len(result.built) + len(result.failed)
+        print(f"gallery: {len(result.failed)} of {n} examples failed (listed above and at the end of "
+              f"{out / 'README.md'})", file=sys.stderr)
+        return 1
+    return 0
 
 
 def cmd_examples(args) -> int:

@@ -15,7 +15,6 @@ from __future__ import annotations
 
 import math
 import re
-import sys
 from dataclasses import dataclass
 from pathlib import Path
 
@@ -27,7 +26,7 @@ from .reference import Quantity, compare, evaluate, parse_key
 from .report import Table, fmt, render_table
 
 __all__ = ["example_path", "example_files", "example_titles", "EXAMPLES", "comparison", "comparison_text", "Comparison", "top_comments", "example_markdown",
-           "build_gallery", "GalleryResult", "find_gallery", "demo_command", "gallery_command",
+           "build_gallery", "GalleryResult", "find_gallery", "build_demo", "gallery_folders",
            "FiguresUnavailable"]
 
 EXAMPLES = Path(__file__).resolve().parent / "examples"   # package data: every gallery file
@@ -664,12 +663,12 @@ def _readme(sections, failed, source: Path, out: Path, extra: str = "") -> str:
     return "\n".join(lines).rstrip("\n") + "\n"
 
 
-# -- the commands --------------------------------------------------------------------------------
-def demo_command(args) -> int:
-    """``velpoly demo [-o DIR] [--style]``: the built-in six-bar drawn, with its comparison table."""
+# -- what the commands build ---------------------------------------------------------------------
+def build_demo(out, style: str = "textbook"):
+    """``velpoly demo``: the built-in six-bar's full sheet (SVG, PNG) and its comparison tables (text,
+    Markdown) written into ``out``; returns the mechanism and the files written."""
     from . import load, solve
-    out = Path(getattr(args, "output", None) or "out")
-    style = getattr(args, "style", "textbook") or "textbook"
+    out = Path(out)
     draw = _draw_to_file()
     m = load(example_path(DEMO_EXAMPLE))
     sol = solve(m)
@@ -678,43 +677,20 @@ def demo_command(args) -> int:
         written += list(draw(sol, out / f"{DEMO_OUTPUT}{suffix}", sheet="full", style=style, steps=False))
     written.append(atomic_write_text(out / f"{DEMO_OUTPUT}-results.txt", comparison_text(sol, "text")))
     written.append(atomic_write_text(out / f"{DEMO_OUTPUT}-results.md", comparison_text(sol, "markdown")))
-    book = f"the book's values ({m.reference.source})" if m.reference.source else "the book's values"
-    print(f"{m.title}: the full sheet and the comparison with {book} are in {out}/")
-    for p in written:
-        print(f"  {p}")
-    return 0
+    return m, written
 
 
-def gallery_command(args) -> int:
-    """``velpoly gallery [-o DIR] [--source DIR]``: rebuild every figure and README.md.
+def gallery_folders(output=None, source=None) -> tuple[Path, Path, str]:
+    """``velpoly gallery``'s (source, out, option naming out).
 
     The default source is the built-in examples (a checkout's velpoly/examples/ for its
     gallery/); the default output is the ``--source`` folder when one is given, else the
     checkout's gallery/ where velpoly runs from one, else ./gallery.
-
-    One failing example is reported with its error line and does not stop the
-    others; the exit status is 1 if any failed.
     """
-    if getattr(args, "output", None):
-        out = Path(args.output)
-    elif getattr(args, "source", None):   # a folder of the user's own examples is built in place
-        out = Path(args.source)
+    if output:
+        out = Path(output)
+    elif source:   # a folder of the user's own examples is built in place
+        out = Path(source)
     else:   # a checkout's gallery/, else a folder gallery/ here (an installed velpoly has no gallery of its own)
         out = find_gallery() or Path("gallery")
-    source = Path(args.source) if getattr(args, "source", None) else _gallery_source(out)
-    style = getattr(args, "style", "textbook") or "textbook"
-    check_gallery_folder(out, "-o" if getattr(args, "output", None) else "--source")
-
-    def log(line):
-        print(f"error: {line}", file=sys.stderr)
-    # the repository's gallery gets its animations (one a mechanism family); another --source does not
-    result = build_gallery(source, out, style=style, log=log, names=getattr(args, "names", None),
-                           animations=getattr(args, "source", None) is None)
-    for p in result.written:
-        print(p)
-    n = len(result.built) + len(result.failed)
-    if result.failed:
-        print(f"gallery: {len(result.failed)} of {n} examples failed (listed above and at the end of "
-              f"{out / 'README.md'})", file=sys.stderr)
-        return 1
-    return 0
+    return (Path(source) if source else _gallery_source(out)), out, ("-o" if output else "--source")
