@@ -202,7 +202,13 @@ def cmd_sweep(args) -> int:
         print(f"velpoly sweep: --step {step:g} deg computes up to {math.ceil(360 / step - 1e-9)} poses",
               file=sys.stderr)
     from .cycle import sweep_command
-    return sweep_command(args)
+    done = sweep_command(args)
+    for line in done.warnings:
+        print(line, file=sys.stderr)
+    sys.stdout.write(done.summary)
+    for p in done.written:
+        print(p)
+    return 0
 
 
 def cmd_animate(args) -> int:

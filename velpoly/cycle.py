@@ -48,7 +48,7 @@ from .solution import driver_reference_angle
 from .sweeps import MEMORY_BUDGET, Sweep, check_memory, memory_estimate, sweep
 
 __all__ = ["cycle_angles", "run_cycle", "reachable_text", "Centrodes", "centrodes", "cycle_columns", "cycle_csv",
-           "summary_table", "cycle_figure", "plot_cycle", "write_gif", "sweep_command", "merge_series", "drawn_pose"]
+           "summary_table", "cycle_figure", "plot_cycle", "write_gif", "sweep_command", "SweepOutcome", "merge_series", "drawn_pose"]
 
 FIGURE_SUFFIXES = (".svg", ".png", ".pdf")
 GIF_FRAMES = 45            # at most this many frames in the animation (8 deg apart on a turn)
@@ -777,7 +777,18 @@ def reachable_text(m: Mechanism, kin: Kinematics) -> str:
     return f"reachable on this branch: {ref + lo:g} to {ref + hi:g} deg"
 
 
-def sweep_command(args) -> int:
+@dataclass(frozen=True)
+class SweepOutcome:
+    """What ``velpoly sweep`` did, for cli.py to report: ``warnings`` (lines for standard error, in
+    the order found), ``written`` (the files), ``summary`` (the cycle's table when no file was asked
+    for, else "")."""
+
+    warnings: tuple
+    written: tuple
+    summary: str
+
+
+def sweep_command(args) -> SweepOutcome:
     """``velpoly sweep FILE [--step DEG] [-o OUT] [--csv CSV] [--points P,Q] [--centrodes LINK]
     [--gif GIF] [--style]``: see docs/sweep.md."""
     from . import load
@@ -811,22 +822,23 @@ def sweep_command(args) -> int:
                         where="driver", file=m.source,
                         links=links, hint="links " + ", ".join(links) + " come into line: draw the mechanism "
                         "in a pose away from the toggle")
+    warnings = []
     if sw.stopped and sw.leaves is not None:
         reach = reachable_text(m, kin).replace("reachable on this branch:", "the pin is in its slot from")
-        print(f"warning: {m.source}: {sw.stopped}" + (f"; {reach}" if reach else "") +
-              "; the outputs hold the part before", file=sys.stderr)
+        warnings.append(f"warning: {m.source}: {sw.stopped}" + (f"; {reach}" if reach else "") +
+                        "; the outputs hold the part before")
     elif sw.stopped:
         links = _toggle_links(kin, sw.q[-1])
         reach = reachable_text(m, kin)
-        print(f"warning: {m.source}: {sw.stopped} (links {', '.join(links)} come into line); "
-              + (f"{reach}; " if reach else "") + "the outputs hold the reachable part", file=sys.stderr)
+        warnings.append(f"warning: {m.source}: {sw.stopped} (links {', '.join(links)} come into line); "
+                        + (f"{reach}; " if reach else "") + "the outputs hold the reachable part")
     points = _parse_points(sw, getattr(args, "points", None))
     cen = None
     if getattr(args, "centrodes", None):
         cen = centrodes(sw, str(args.centrodes), kin)
         if not cen.defined.any():
-            print(f"warning: {m.source}: link {cen.link} does not turn: its pole with the frame stays at "
-                  f"infinity, no centrode", file=sys.stderr)
+            warnings.append(f"warning: {m.source}: link {cen.link} does not turn: its pole with the frame "
+                            f"stays at infinity, no centrode")
     written = []
     if csv_out:
         written.append(atomic_write_text(csv_out, cycle_csv(sw, cen)))
@@ -834,10 +846,9 @@ def sweep_command(args) -> int:
         written.append(plot_cycle(sw, plot_out, points, cen, style, kin))
     if gif_out:
         written.append(write_gif(sw, gif_out, kin, style, cen))
+    summary = ""
     if not written:
-        print(summary_text(sw, points), end="")
+        summary = summary_text(sw, points)
         if cen is not None:
-            print("note: the centrodes are drawn with -o or --gif and listed with --csv", file=sys.stderr)
-    for p in written:
-        print(p)
-    return 0
+            warnings.append("note: the centrodes are drawn with -o or --gif and listed with --csv")
+    return SweepOutcome(tuple(warnings), tuple(written), summary)
