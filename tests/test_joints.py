@@ -1,6 +1,7 @@
 """Contacts, slots and curved paths: velocities and accelerations against finite differences,
 and against the closed forms of simple cases (tolerances 1e-9 relative for closed forms)."""
 import dataclasses
+import functools
 import math
 
 import numpy as np
@@ -330,12 +331,23 @@ def assert_rates_are_those_of_the_poses(w, rate, h):
         assert np.abs(fd - w.qd[i]).max() <= 1e-6 * np.abs(w.qd[i]).max(), w.angles[i]
 
 
+def five_turns(omega: float) -> np.ndarray:
+    """Five turns of the driver from 30 deg in the sense of ``omega``: s t / D = 6 rad at slip 60."""
+    return 5 * np.sign(omega) * np.arange(0, 361, 2.0) + 30.0
+
+
+@functools.cache
+def rolling_sweep(omega: float):
+    """CAM_ROLLER rolling (alpha = 0) over ``five_turns(omega)``: shared by the cases at one rate."""
+    rolling = velpoly.load(CAM_ROLLER.replace("alpha = -2\n", "").replace("omega = 10", f"omega = {omega}"))
+    return velpoly.sweep(rolling, five_turns(omega))
+
+
 @pytest.mark.parametrize("slip, omega", [(6.0, 10.0), (60.0, 10.0), (-60.0, 10.0), (60.0, -10.0)])
 def test_prescribed_slip_sweeps_with_the_driver_at_a_constant_rate(slip, omega):
     m = velpoly.load(slipping_cam(slip, omega))
-    rolling = velpoly.load(CAM_ROLLER.replace("alpha = -2\n", "").replace("omega = 10", f"omega = {omega}"))
-    turns = 5 * np.sign(omega) * np.arange(0, 361, 2.0) + 30.0      # five turns: s t / D = 6 rad at slip 60
-    w, wr = velpoly.sweep(m, turns), velpoly.sweep(rolling, turns)
+    turns = five_turns(omega)
+    w, wr = velpoly.sweep(m, turns), rolling_sweep(omega)
     assert len(w.angles) == len(turns) and not w.stopped
     assert np.abs(w.contacts[0]["slip_velocity"] - slip).max() <= 1e-9 * abs(slip)
     # the cam and the follower move as when rolling; the roller turns s / r faster, and by s t / r more

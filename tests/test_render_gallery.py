@@ -1,14 +1,14 @@
-"""Every example renders in every sheet and style, with the real constructions.
+"""Every example renders, with the real constructions, in every sheet kind and style.
 
-Every built-in example (velpoly/examples/*.toml, the gallery's files): each sheet
-(velocity, acceleration, poles, full) as SVG, with no two labels overlapping:
-one style per file (alternating textbook and slides through the sorted
-files), and both styles for the few files in ``BOTH_STYLES`` (a four-bar, a
-six-bar with a slider, a Coriolis and a rolling-contact example), so that
-each style meets every kind of panel while the suite stays fast. A file whose contacts are given by
-their normals only has no acceleration sheet (an InputError saying that
-centres of curvature are needed, FORMAT.md section 5); its full sheet shows
-velocities only.
+Every built-in example (velpoly/examples/*.toml, the gallery's files) draws its full sheet as SVG (every
+panel of that file), in one style (alternating textbook and slides through the sorted files) and in
+both for the few files in ``BOTH_STYLES`` (a four-bar, a six-bar with a slider, a Coriolis and a
+rolling-contact example), so that each style meets every kind of panel. Every second file also draws one of
+the other sheets (velocity, acceleration, poles, displacement, in turn through the files, first in
+textbook style, then in slides), so that every sheet kind is drawn in each style while the suite stays
+fast (``test_every_sheet_kind_and_style_is_covered``). On every page no two labels overlap.
+A file whose contacts are given by their normals only has no acceleration sheet (an InputError saying
+that centres of curvature are needed, FORMAT.md section 5); its full sheet shows velocities only.
 """
 from __future__ import annotations
 
@@ -34,9 +34,22 @@ STYLES = ("textbook", "slides")
 BOTH_STYLES = {"ex3_6_fourbar", "problem_1_4_4_sixbar", "ex3_4_slotted_lever", "ex3_10_rolling_contact"}
 
 
+OTHER_SHEETS = tuple(n for n in sheet.SHEETS if n != "full")
+
+
 def styles_for(index: int, path: Path) -> tuple[str, ...]:
     """Both styles for the files in BOTH_STYLES, else one, alternating through FILES."""
     return STYLES if path.stem in BOTH_STYLES else (STYLES[index % 2],)
+
+
+def pages_for(index: int, path: Path) -> list[tuple[str, str]]:
+    """The (sheet, style) pages a file draws: its full sheet in ``styles_for``, and every second file one
+    other sheet kind, in turn through OTHER_SHEETS, first all in textbook style, then all in slides."""
+    pages = [("full", style) for style in styles_for(index, path)]
+    if index % 2:
+        j = index // 2
+        pages.append((OTHER_SHEETS[j % len(OTHER_SHEETS)], STYLES[(j // len(OTHER_SHEETS)) % 2]))
+    return pages
 
 
 def _label_boxes(fig):
@@ -64,43 +77,56 @@ def test_both_styles_are_covered():
     assert all(sum(st in c for c in chosen) >= len(FILES) // 2 for st in STYLES)
 
 
+def test_every_sheet_kind_and_style_is_covered():
+    """Each sheet kind is drawn in each style (an acceleration sheet only by a file that has one); every
+    file draws its full sheet."""
+    drawn = {}
+    for i, p in enumerate(FILES):
+        pages = pages_for(i, p)
+        assert ("full", styles_for(i, p)[0]) in pages
+        has_acc = velpoly.solve(velpoly.load(p)).has_accelerations
+        for page in pages:
+            if page[0] != "acceleration" or has_acc:
+                drawn[page] = drawn.get(page, 0) + 1
+    assert drawn.keys() == {(n, st) for n in sheet.SHEETS for st in STYLES}, drawn
+
+
 @pytest.mark.parametrize("index,path", list(enumerate(FILES)), ids=[p.stem for p in FILES])
-def test_every_sheet_and_style_renders(index, path):
+def test_every_file_renders_its_pages(index, path):
     m = velpoly.load(path)      # a gallery file that stops loading fails here (never a skip)
     sol = velpoly.solve(m)
     full = sheet.constructions(sol, "full")     # built once; each sheet draws what it needs of them
-    for name in sheet.SHEETS:
+    if not sol.has_accelerations:
+        with pytest.raises(InputError, match="centres of curvature"):
+            sheet.constructions(sol, "acceleration")
+    for name, style in pages_for(index, path):
         if name == "acceleration" and not sol.has_accelerations:
-            with pytest.raises(InputError, match="centres of curvature"):
-                sheet.constructions(sol, name)
             continue
-        cons = full
-        for style in styles_for(index, path):
-            st = get_style(style)
-            with rc_context(st):
-                fig = sheet.render_sheet(sol, name, st, cons=cons)
-                buf = io.BytesIO()
-                fig.savefig(buf, format="svg", metadata={"Date": None})
-            svg = buf.getvalue()
-            assert svg.startswith(b"<?xml") and (b'id="results-table"' if name != "displacement"
-                                                  else b'id="data-table"') in svg
-            assert_page_texts_clear(fig)
-            assert not legend_trouble(fig), f"{name}/{style}: the legend runs {legend_trouble(fig)[:3]}"
-            assert not reasons_too_close(fig), f"{name}/{style}: reasons run into labels {reasons_too_close(fig)}"
-            assert not leaders_crossing_labels(fig), f"{name}/{style}: leaders cross {leaders_crossing_labels(fig)}"
-            sizes = {t.get_fontsize() for t in fig.texts if (t.get_gid() or "").startswith("caption-")}
-            assert len(sizes) == 1, f"{name}/{style}: captions in sizes {sizes}"
-            for ax in fig.axes:   # each caption's scale is its panel's (a legend's strip changes it)
-                cap = next((t.get_text() for t in fig.texts if t.get_gid() == f"caption-{ax.get_label()}"), "")
-                said = re.search(r"1 cm = ([0-9.e+-]+)", cap)
-                if said:
-                    assert per_cm(ax) == pytest.approx(float(said.group(1)), rel=1e-9), f"{name}/{style}: {cap}"
-                    bar = next(p for p in ax.patches if p.get_gid() == "scale-bar")
-                    assert 1.0 - 1e-9 <= bar.get_width() / per_cm(ax) <= 2.5 + 1e-9
-            for ax in fig.axes:   # numbers with a minus sign, not a hyphen ('P_04 (-3.185, 0.1862)')
-                bad = [t.get_text() for t in ax.texts if re.search(r"(?<![\w.])-[0-9]", t.get_text())]
-                assert not bad, f"{name}/{style}: hyphen for minus in {bad}"
-            boxes = _label_boxes(fig)
-            assert boxes, "no labels drawn"
-            for (ta, a), (tb, b) in itertools.combinations(boxes, 2):
-                assert not a.intersects(b), f"{name}/{style}: labels {ta!r} and {tb!r} overlap"
+        st = get_style(style)
+        with rc_context(st):
+            fig = sheet.render_sheet(sol, name, st, cons=full)
+            buf = io.BytesIO()
+            fig.savefig(buf, format="svg", metadata={"Date": None})
+        svg = buf.getvalue()
+        assert svg.startswith(b"<?xml") and (b'id="results-table"' if name != "displacement"
+                                              else b'id="data-table"') in svg
+        assert_page_texts_clear(fig)
+        assert not legend_trouble(fig), f"{name}/{style}: the legend runs {legend_trouble(fig)[:3]}"
+        assert not reasons_too_close(fig), f"{name}/{style}: reasons run into labels {reasons_too_close(fig)}"
+        assert not leaders_crossing_labels(fig), f"{name}/{style}: leaders cross {leaders_crossing_labels(fig)}"
+        sizes = {t.get_fontsize() for t in fig.texts if (t.get_gid() or "").startswith("caption-")}
+        assert len(sizes) == 1, f"{name}/{style}: captions in sizes {sizes}"
+        for ax in fig.axes:   # each caption's scale is its panel's (a legend's strip changes it)
+            cap = next((t.get_text() for t in fig.texts if t.get_gid() == f"caption-{ax.get_label()}"), "")
+            said = re.search(r"1 cm = ([0-9.e+-]+)", cap)
+            if said:
+                assert per_cm(ax) == pytest.approx(float(said.group(1)), rel=1e-9), f"{name}/{style}: {cap}"
+                bar = next(p for p in ax.patches if p.get_gid() == "scale-bar")
+                assert 1.0 - 1e-9 <= bar.get_width() / per_cm(ax) <= 2.5 + 1e-9
+        for ax in fig.axes:   # numbers with a minus sign, not a hyphen ('P_04 (-3.185, 0.1862)')
+            bad = [t.get_text() for t in ax.texts if re.search(r"(?<![\w.])-[0-9]", t.get_text())]
+            assert not bad, f"{name}/{style}: hyphen for minus in {bad}"
+        boxes = _label_boxes(fig)
+        assert boxes, "no labels drawn"
+        for (ta, a), (tb, b) in itertools.combinations(boxes, 2):
+            assert not a.intersects(b), f"{name}/{style}: labels {ta!r} and {tb!r} overlap"
