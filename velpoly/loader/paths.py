@@ -49,16 +49,17 @@ _SLOTS = _PathJoint(
 
 
 def read_sliders(ctx: Ctx, data: dict) -> list[Slider]:
-    return [Slider(*_path_joint(ctx, _SLIDERS, i, s)[:5]) for i, s in enumerate(array_of_tables(ctx, data, "sliders"))]
+    """Every ``[[sliders]]`` entry: a block's point on a path of its guide."""
+    return [Slider(*_path_joint(ctx, _SLIDERS, i, s)) for i, s in enumerate(array_of_tables(ctx, data, "sliders"))]
 
 
 def read_slots(ctx: Ctx, data: dict) -> list[Slot]:
+    """Every ``[[slots]]`` entry: a link's pin in a slot of another link, with the slot's ends if given."""
     out = []
     for i, s in enumerate(array_of_tables(ctx, data, "slots")):
-        block, guide, p, ang, cen = _path_joint(ctx, _SLOTS, i, s)
-        where = f"slots[{i}].ends"
-        ends = _slot_ends(ctx, where, s["ends"], p, guide, ang) if "ends" in s else None
-        out.append(Slot(p, block, guide, ang, cen, ends))
+        link, slot, pin, ang, cen = _path_joint(ctx, _SLOTS, i, s)
+        ends = _slot_ends(ctx, f"slots[{i}].ends", s["ends"], pin, slot, ang) if "ends" in s else None
+        out.append(Slot(pin, link, slot, ang, cen, ends))
     return out
 
 
