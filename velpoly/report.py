@@ -15,7 +15,7 @@ import numpy as np
 
 from .reference import at_file_pose, compare, file_pose_angle
 
-__all__ = ["Table", "render_table", "solution_tables", "solution_report", "fmt", "polar", "SECTIONS",
+__all__ = ["Table", "render_table", "solution_tables", "solution_report", "fmt", "polar", "poles_tables", "polygon_tables",
            "pinned_keys", "on_links", "solution_html"]
 
 
@@ -193,24 +193,103 @@ def _reference(sol) -> Table | None:
     return Table(title, ("quantity", "printed", "analytic", "deviation", "note"), tuple(rows))
 
 
-# Further sections (function(solution) -> Table | list[Table] | None), added by the poles and
-# polygons modules so that this module does not import them.
-SECTIONS: list = []
+# -- the constructions' tables (velpoly.poles, velpoly.polygons) -----------------------------------
+def _pole_where(p) -> str:
+    if p.undefined:
+        return "undefined (links move alike)"
+    if p.position is None:
+        return f"at infinity, {p.direction:.3f}°"
+    return f"({fmt(p.position[0])}, {fmt(p.position[1])})"
+
+
+def _pole_found(p, compact: bool) -> str:
+    from .poles import pole_label
+    if p.how not in ("kennedy", "normals"):
+        return p.note or p.how
+    lines = []
+    for ln in p.lines:
+        lines.append(f"{pole_label(ln[0], compact)}-{pole_label(ln[1], compact)}" if "-" in ln[0]
+                     else f"{ln[0]} at {ln[1]}")
+    return " x ".join(lines)
+
+
+def poles_tables(sol) -> list[Table]:
+    """The instant centres' tables: every pole, and the instant-centre omegas beside the analytic ones."""
+    from .poles import instant_centre_velocities, locate_poles, pole_label
+    ps = locate_poles(sol)
+    compact = all(len(lk) == 1 for lk in ps.links)
+    rows = tuple((pole_label(p.key, compact), _pole_where(p), "inspection" if p.by_inspection else p.how,
+                  str(p.order) if p.order else "-", _pole_found(p, compact)) for p in ps.poles.values())
+    units = sol.mechanism.units
+    t1 = Table(f"Instant centres ({len(ps.poles)} poles, order of discovery on the Kennedy circle)",
+               ("pole", f"position ({units})" if units else "position", "found by", "order", "how"), rows)
+    ic = instant_centre_velocities(sol, ps)
+    via = {lk: (frm, key) for lk, frm, key in ic["path"]}
+    rows2 = []
+    for lk in ps.links:
+        if lk == ps.frame:
+            continue
+        w, wa = ic["omega"][lk], sol.omega[lk]
+        frm, key = via[lk]
+        if key == "velocity":
+            how = "from the velocity solution"
+        elif frm is None:
+            how = "driver"
+        else:
+            how = f"from {frm} through {pole_label(key, compact)}"
+        rows2.append((lk, _pole_where(ps.pole(ps.frame, lk)), fmt(w), fmt(wa), fmt(abs(w - wa), 2), how))
+    t2 = Table("Instant-centre method: omega_j = omega_i (P_ij - P_1i) / (P_ij - P_1j)",
+               ("link", "frame pole", "omega (instant centres)", "omega (analytic)", "difference", "found"),
+               tuple(rows2))
+    return [t1, t2]
+
+
+def polygon_tables(sol) -> list[Table]:
+    """The velocity and acceleration polygons' rates and images beside the analytic values, with the
+    range a careful hand drawing gives (:func:`velpoly.polygons.hand_drafting`)."""
+    from .polygons import ConstructionError, acceleration_polygon, hand_drafting, velocity_polygon
+    try:
+        polys = [velocity_polygon(sol)]
+    except ConstructionError as e:
+        return [Table("Graphical construction", ("status",), ((f"not constructed: {e.what}",),))]
+    if sol.has_accelerations:
+        polys.append(acceleration_polygon(sol))
+    hd = hand_drafting(sol)
+    pinned = pinned_keys(sol.mechanism)
+    out = []
+    for poly in polys:
+        vel = poly.kind == "velocity"
+        analytic_rate = sol.omega if vel else sol.alpha
+        analytic_pt = sol.velocity if vel else sol.acceleration
+        h = hd[poly.kind]
+        rname, pname = ("omega", "V") if vel else ("alpha", "A")
+        rows = []
+        for lk in sol.mechanism.link_names:
+            if lk == sol.mechanism.frame.name:
+                continue
+            lo, hi = h["omega" if vel else "alpha"][lk]
+            rows.append((f"{rname}_{lk}", fmt(poly.rates[lk]), fmt(analytic_rate[lk]), f"{fmt(lo, 4)} .. {fmt(hi, 4)}"))
+        for key, img in poly.images.items():
+            if key in pinned and pinned[key] is None:
+                continue   # a point of links pinned together: one row, with the first key's
+            lo, hi = h["speed" if vel else "magnitude"][key]
+            name = f"{pname}_{pinned[key][0]} (on {on_links(pinned[key][1])})" if key in pinned else f"{pname}_{key}"
+            rows.append((f"{name} ({poly.labels[key]})", polar(img), polar(analytic_pt[key]),
+                         f"{fmt(lo, 4)} .. {fmt(hi, 4)}"))
+        rows.append(("max error (relative to the largest)", f"{poly.max_error:.2g}", "", ""))
+        title = (f"{poly.kind.capitalize()} polygon ({len(poly.steps)} steps): graphical and analytic, "
+                 f"hand-drafted 95% range at {fmt(h['scale'], 4)} mm per unit")
+        out.append(Table(title, ("quantity", "graphical", "analytic", "hand-drafted"), tuple(rows)))
+    return out
 
 
 def solution_tables(sol) -> list[Table]:
     """Every table of the solution, in reading order."""
-    from .solution import load_sections
-    load_sections()
     out = [_links(sol), _points(sol), *_joints(sol)]
     compass = _compass(sol)
     if compass is not None:
         out.append(compass)
-    for fn in SECTIONS:
-        t = fn(sol)
-        if t is None:
-            continue
-        out.extend(t if isinstance(t, list) else [t])
+    out += poles_tables(sol) + polygon_tables(sol)
     ref = _reference(sol)
     if ref is not None:
         out.append(ref)

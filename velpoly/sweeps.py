@@ -20,7 +20,7 @@ from .model import Mechanism
 from .motion import evaluate_motion, wrap_deg
 from . import pose
 from .pose import plan_for, reassemble, walked_reach
-from .solution import driver_reference_angle
+from .driver import driver_reference_angle
 
 __all__ = ["Sweep", "sweep", "memory_estimate", "check_memory", "MEMORY_BUDGET"]
 

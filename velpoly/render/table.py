@@ -22,7 +22,7 @@ import re
 import numpy as np
 
 from ..report import Table, fmt
-from .canvas import Artists, get_ax, literal, renderer_of
+from .canvas import Artists, equation_tex, get_ax, literal, renderer_of
 from .style import get_style
 
 __all__ = ["results_table", "draw_results_table", "given_table"]
@@ -371,7 +371,7 @@ def draw_results_table(sol, ax=None, *, sheet: str = "full", style="textbook", v
     st = get_style(style)
     if table is None and velocity is None and acceleration is None and poleset is None:
         # drawn on its own: the constructions of the sheet named
-        from .sheet import constructions
+        from .constructions import constructions
         cons = constructions(sol, sheet)
         shows = {"velocity": (1, 0), "acceleration": (0, 1), "poles": (0, 0), "full": (1, 1)}[sheet]
         velocity = cons.velocity if shows[0] else None
@@ -534,7 +534,6 @@ def _footnote_lines(ax, notes, width_pt: float, size: float) -> dict:
     """Each footnote ``(mark, key, text)`` as the lines it takes at ``size`` within ``width_pt``:
     ``{mark: [line, ...]}``, the first line starting with the mark and the quantity it explains."""
     import textwrap
-    from .sheet import equation_tex
     fig = ax.figure
     r = renderer_of(fig)
     out = {}
