@@ -15,7 +15,7 @@ from .model import Mechanism
 from .motion import wrap_deg_float
 from .pose import reassemble
 
-__all__ = ["driver_reference_angle", "reachable_range", "driver_label"]
+__all__ = ["driver_reference_angle", "reachable_range", "reachable_text", "driver_label"]
 
 
 def driver_reference_angle(m: Mechanism) -> float | None:
@@ -57,3 +57,14 @@ def driver_label(m: Mechanism) -> tuple[str, str]:
     if m.driver.is_slider:
         return f"slider {m.driver.slider} displacement", m.units
     return f"driver angle (link {m.driver.link})", "deg"
+
+
+def reachable_text(m: Mechanism, kin: Kinematics) -> str:
+    """``reachable on this branch: LO to HI deg`` for a crank driver (absolute driver angles, to
+    0.01 degree, each toggle approached from the reference pose); empty for a slider driver, whose
+    stroke is the cycle."""
+    if m.driver.is_slider:
+        return ""
+    lo, hi = reachable_range(kin)
+    ref = driver_reference_angle(m)
+    return f"reachable on this branch: {ref + lo:g} to {ref + hi:g} deg"

@@ -1,8 +1,11 @@
-"""Readable tables of a solution: links, points, joints, reference values.
+"""Readable tables: of a solution (links, points, joints, poles, polygons, reference values) and of a
+cycle (a :class:`velpoly.Sweep`: its CSV and summary table).
 
 Each table is a list of rows (:class:`Table`), rendered as aligned text,
 Markdown, LaTeX or CSV by :func:`render_table`. ``velpoly solve`` prints
 :func:`solution_report`; the figures' results tables use the same rows.
+``velpoly sweep`` writes :func:`cycle_csv` and prints :func:`summary_text`.
+This module draws nothing and prints nothing.
 """
 from __future__ import annotations
 
@@ -13,10 +16,12 @@ from dataclasses import dataclass
 
 import numpy as np
 
+from .driver import driver_label
 from .reference import at_file_pose, compare, file_pose_angle
 
 __all__ = ["Table", "render_table", "solution_tables", "solution_report", "fmt", "polar", "poles_tables", "polygon_tables",
-           "pinned_keys", "on_links", "solution_html"]
+           "pinned_keys", "on_links", "solution_html",
+           "cycle_columns", "cycle_csv", "moving_keys", "summary_table", "summary_text"]
 
 
 @dataclass(frozen=True)
@@ -364,3 +369,114 @@ def solution_report(sol, style: str = "text") -> str:
     for w in sol.warnings:
         out += f"\nwarning: {w}\n"
     return out
+
+
+# -- a whole cycle (velpoly sweep): the CSV and the summary table --------------------------------------
+def cycle_columns(sw, cen=None) -> list[tuple[str, np.ndarray]]:
+    """Every quantity over the cycle as named columns (docs/sweep.md lists them).
+
+    ``driver`` (degrees, or the slider's displacement), then for each link
+    ``theta_L``, ``omega_L``, ``alpha_L``; for each point key ``x_P``, ``y_P``,
+    ``vx_P``, ``vy_P``, ``ax_P``, ``ay_P``; for each slider, slot and contact its
+    slip velocity and acceleration; the centrodes if given.
+    """
+    m = sw.mechanism
+    cols = [("driver", sw.angles)]
+    for lk in m.link_names:
+        cols += [(f"theta_{lk}", sw.angle[lk]), (f"omega_{lk}", sw.omega[lk]), (f"alpha_{lk}", sw.alpha[lk])]
+    for key in sw.position:
+        p, v, a = sw.position[key], sw.velocity[key], sw.acceleration[key]
+        cols += [(f"x_{key}", p[:, 0]), (f"y_{key}", p[:, 1]), (f"vx_{key}", v[:, 0]), (f"vy_{key}", v[:, 1]),
+                 (f"ax_{key}", a[:, 0]), (f"ay_{key}", a[:, 1])]
+    for s, r in zip(m.sliders, sw.sliders):
+        tag = f"{s.point}_{s.block}/{s.guide}"
+        cols += [(f"slip_velocity_{tag}", r["slip_velocity"]), (f"slip_acceleration_{tag}", r["slip_acceleration"])]
+    for s, r in zip(m.slots, sw.slots):
+        tag = f"{s.pin}_{s.link}/{s.slot}"
+        cols += [(f"slip_velocity_{tag}", r["slip_velocity"]), (f"slip_acceleration_{tag}", r["slip_acceleration"])]
+    for c, r in zip(m.contacts, sw.contacts):
+        tag = f"{c.point}_{c.links[0]}/{c.links[1]}"
+        cols += [(f"slip_velocity_{tag}", r["slip_velocity"]), (f"slip_acceleration_{tag}", r["slip_acceleration"])]
+    if cen is not None:
+        lk = cen.link
+        cols += [(f"fixed_centrode_x_{lk}", cen.fixed[:, 0]), (f"fixed_centrode_y_{lk}", cen.fixed[:, 1]),
+                 (f"moving_centrode_x_{lk}", cen.moving[:, 0]), (f"moving_centrode_y_{lk}", cen.moving[:, 1])]
+    return cols
+
+
+def _cell(x: float) -> str:
+    x = float(x)
+    if not math.isfinite(x):
+        return ""
+    if x == 0:
+        return "0"
+    return f"{x:.12g}"
+
+
+def cycle_csv(sw, cen=None) -> str:
+    """The CSV text: a header row of column names, one row per pose; empty cells are undefined values."""
+    cols = cycle_columns(sw, cen)
+    buf = io.StringIO()
+    w = csv.writer(buf, lineterminator="\n")
+    w.writerow([name for name, _ in cols])
+    data = np.column_stack([np.asarray(c, float) for _, c in cols]) if len(sw.angles) else np.zeros((0, len(cols)))
+    for row in data:
+        w.writerow([_cell(x) for x in row])
+    return buf.getvalue()
+
+
+# -- the summary table -----------------------------------------------------------------------
+def moving_keys(sw) -> list[str]:
+    """Point keys that move during the cycle (fixed points have zero speed throughout)."""
+    out = []
+    for key, v in sw.velocity.items():
+        if np.nanmax(np.hypot(v[:, 0], v[:, 1]), initial=0.0) > 0 or np.ptp(sw.position[key], axis=0).max() > 0:
+            out.append(key)
+    return out
+
+
+def _extremes(name: str, unit: str, values: np.ndarray, at: np.ndarray):
+    good = np.isfinite(values)
+    if not good.any():
+        return (name, unit, "-", "-", "-", "-")
+    v = np.where(good, values, np.nan)
+    i, j = int(np.nanargmin(v)), int(np.nanargmax(v))
+    return (name, unit, fmt(v[i]), f"{at[i]:.6g}", fmt(v[j]), f"{at[j]:.6g}")
+
+
+def summary_table(sw, points=None) -> Table:
+    """Min and max of each link's omega and alpha, each point's speed and acceleration (``points``:
+    point keys, default every moving point) and each slider's slip velocity over the cycle, with
+    the driver positions where they occur."""
+    m = sw.mechanism
+    u = m.units or "length"
+    at = sw.angles
+    rows = []
+    for k in m.moving_links:
+        rows.append(_extremes(f"omega_{k.name}", "rad/s", sw.omega[k.name], at))
+    for k in m.moving_links:
+        rows.append(_extremes(f"alpha_{k.name}", "rad/s^2", sw.alpha[k.name], at))
+    keys = list(points) if points else moving_keys(sw)
+    for key in keys:
+        v = sw.velocity[key]
+        rows.append(_extremes(f"|V_{key}|", f"{u}/s", np.hypot(v[:, 0], v[:, 1]), at))
+    for key in keys:
+        a = sw.acceleration[key]
+        rows.append(_extremes(f"|A_{key}|", f"{u}/s^2", np.hypot(a[:, 0], a[:, 1]), at))
+    for s, r in zip(m.sliders, sw.sliders):
+        rows.append(_extremes(f"slip V_{s.point}{s.block}/{s.point}{s.guide}", f"{u}/s", r["slip_velocity"], at))
+    _, unit = driver_label(m)
+    return Table(f"Over the cycle ({len(at)} poses)",
+                 ("quantity", "unit", "min", f"at ({unit})", "max", f"at ({unit})"), tuple(rows))
+
+
+def summary_text(sw, points=None) -> str:
+    """What ``velpoly sweep`` prints without an output file: the title, the driver's span, the summary table."""
+    m = sw.mechanism
+    name, unit = driver_label(m)
+    if len(sw.angles) > 1:
+        span = f"{name} from {sw.angles[0]:.6g} to {sw.angles[-1]:.6g} {unit}"
+    else:
+        span = f"{name} {sw.angles[0]:.6g} {unit}"
+    head = f"{m.title}\n{span}\n\n"
+    return head + render_table(summary_table(sw, points), "text")
