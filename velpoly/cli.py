@@ -60,6 +60,14 @@ def build_parser() -> argparse.ArgumentParser:
         return sub.add_parser(name, help=help, description=description or help[:1].upper() + help[1:] + ".",
                               epilog="example:\n  " + example, formatter_class=argparse.RawDescriptionHelpFormatter)
 
+    for add in (_solve_parser, _draw_parser, _sweep_parser, _demo_parser, _animate_parser, _gallery_parser,
+                _examples_parser, _html_parser):   # in the order `velpoly --help` lists them
+        add(command)
+    return p
+
+
+def _solve_parser(command) -> None:
+    """``velpoly solve``'s arguments."""
     s = command("solve", "analytic positions, velocities, accelerations, poles, and the book's values beside them",
                 "velpoly solve fourbar.toml --angle 40")
     s.add_argument("file", help="the mechanism file (TOML, FORMAT.md section 1)")
@@ -68,6 +76,9 @@ def build_parser() -> argparse.ArgumentParser:
     s.add_argument("--format", choices=("text", "markdown", "latex", "csv"), default="text",
                    help="table style of the readable output (default: text)")
 
+
+def _draw_parser(command) -> None:
+    """``velpoly draw``'s arguments."""
     d = command("draw", "textbook figure(s): SVG, PNG or PDF by the output's suffix",
                 "velpoly draw fourbar.toml -o fourbar.pdf --sheet velocity --style slides",
                 description="Draw a textbook figure of the mechanism: SVG, PNG or PDF by the output's suffix.\n\n"
@@ -82,6 +93,9 @@ def build_parser() -> argparse.ArgumentParser:
     d.add_argument("--angle", type=float, metavar="DEG", help=ANGLE_HELP)
     d.add_argument("--style", choices=STYLES, default="textbook", help="the look (listed above; default: textbook)")
 
+
+def _sweep_parser(command) -> None:
+    """``velpoly sweep``'s arguments."""
     w = command("sweep", "a whole driver cycle: plots and a table",
                 "velpoly sweep fourbar.toml --step 5 -o cycle.svg --csv cycle.csv")
     w.add_argument("file", help="the mechanism file (TOML)")
@@ -93,11 +107,17 @@ def build_parser() -> argparse.ArgumentParser:
     w.add_argument("--gif", help="animated GIF of the mechanism with its velocity polygon")
     w.add_argument("--style", choices=STYLES, default="textbook", help=STYLES_HELP)
 
+
+def _demo_parser(command) -> None:
+    """``velpoly demo``'s arguments."""
     e = command("demo", "the main job on a built-in example, no file needed: the full sheet and the comparison "
                 "with the book", "velpoly demo -o out")
     e.add_argument("-o", "--output", default="out", metavar="DIR", help="output folder (default: out/)")
     e.add_argument("--style", choices=STYLES, default="textbook", help=STYLES_HELP)
 
+
+def _animate_parser(command) -> None:
+    """``velpoly animate``'s arguments."""
     a = command("animate", "the motion over the cycle (or the reachable range, out and back) with its "
                 "polygons: GIF, animated PNG, MP4, multi-page PDF or the html page, by the output's suffix",
                 "velpoly animate ex36.toml -o ex36.gif --size 1280x720")
@@ -113,6 +133,9 @@ def build_parser() -> argparse.ArgumentParser:
     a.add_argument("--fps", type=float, default=15.0, metavar="N", help="frames a second (default 15)")
     a.add_argument("--style", choices=STYLES, default="slides", help="slides (colour, large type; the default) or textbook (black on white)")
 
+
+def _gallery_parser(command) -> None:
+    """``velpoly gallery``'s arguments."""
     g = command("gallery", "build the gallery: every built-in example's sheet and its comparison with the book",
                 "velpoly gallery -o my-gallery")
     g.add_argument("-o", "--output", default=None, metavar="DIR", help="output folder (default: the --source "
@@ -122,18 +145,23 @@ def build_parser() -> argparse.ArgumentParser:
     g.add_argument("--style", choices=STYLES, default="textbook", help=STYLES_HELP)
     g.add_argument("names", nargs="*", metavar="NAME", help="build only these examples (default: all)")
 
+
+def _examples_parser(command) -> None:
+    """``velpoly examples``'s arguments."""
     x = command("examples", "list the built-in examples, or print one to start a file from",
                 "velpoly examples ex3_4_slotted_lever > lever.toml")
     x.add_argument("name", nargs="?", metavar="NAME", help="the example to print (its TOML text); without it, "
                    "list them all with their titles")
 
+
+def _html_parser(command) -> None:
+    """``velpoly html``'s arguments."""
     h = command("html", "one self-contained interactive page: the sheet over the driver's cycle, the "
                 "construction step by step", "velpoly html ex36.toml -o ex36.html")
     h.add_argument("file", help="the mechanism file (TOML)")
     h.add_argument("-o", "--output", metavar="OUT", help="the page (default: FILE's name with .html)")
     h.add_argument("--step", type=float, default=1.0, metavar="DEG", help="driver step between the poses, in "
                    "degrees (default 1; a slider driver's stroke in as many poses)")
-    return p
 
 
 def _sub_parser(parent):

@@ -132,50 +132,60 @@ def cycle_figure(sw: Sweep, points=None, cen: Centrodes | None = None, style: st
     line marks the drawn pose (:func:`drawn_pose`).
     """
     m = sw.mechanism
-    u = m.units or "length"
-    keys = list(points) if points else moving_keys(sw)
-    x = sw.angles
-    xname, xunit = driver_label(m)
     n_rows = 3 if cen is not None else 2
     size = (13.3, 7.5 if cen is None else 10.5) if style == "slides" else (10.0, 6.2 if cen is None else 9.0)
     with matplotlib.rc_context(_style_rc(style)):
         fig = Figure(figsize=size, layout="constrained")
         axes = fig.subplots(n_rows, 2, squeeze=False)
-        panels = [
-            (axes[0, 0], "Angular velocities", r"$\omega$ (rad/s)",
-             [(_quantity(r"\omega", k.name), sw.omega[k.name]) for k in m.moving_links]),
-            (axes[0, 1], "Angular accelerations", r"$\alpha$ (rad/s²)",
-             [(_quantity(r"\alpha", k.name), sw.alpha[k.name]) for k in m.moving_links]),
-            (axes[1, 0], "Speeds", literal(f"|V| ({u}/s)"),
-             [(_quantity("V", k, "|"), np.hypot(*sw.velocity[k].T)) for k in keys]),
-            (axes[1, 1], "Accelerations", literal(f"|A| ({u}/s²)"),
-             [(_quantity("A", k, "|"), np.hypot(*sw.acceleration[k].T)) for k in keys]),
-        ]
         drawn = drawn_pose(sw)
-        for n, (ax, title, ylabel, series) in enumerate(panels):
-            curves, zero = merge_series(series)
-            for i, (label, y) in enumerate(curves):
-                ax.plot(x, y, label=label, gid=f"curve-{i}", **_series_style(i, len(x), style))
-            if zero:   # said in the legend, not drawn: a flat line on the axis tells nothing
-                ax.plot([], [], linestyle="none", gid="zero-note",
-                        label=", ".join(zero) + (" are" if len(zero) > 1 else " is") + " zero throughout (not drawn)")
-            if drawn is not None:   # where the sheets are drawn (the file's pose)
-                ax.axvline(drawn, color="0.45", linestyle=(0, (4, 2)), linewidth=0.9, zorder=1.5, gid="drawn-pose",
-                           label=literal(f"drawn pose, {xname} = {drawn:.4g} {xunit}") if n == 0 else None)
-            ax.set_title(title)
-            ax.set_xlabel(literal(f"{xname} ({xunit})"))
-            ax.set_ylabel(ylabel)
-            ax.grid(True)
-            if series or drawn is not None:
-                ax.legend(fontsize="small", ncols=2 if len(curves) > 4 else 1)
-            if xunit == "deg" and len(x) > 1 and abs(x[-1] - x[0]) >= 90:
-                lo, hi = sorted((x[0], x[-1]))
-                ax.set_xticks(np.arange(math.ceil(lo / 45) * 45, hi + 1e-9, 45))
+        for n, (title, ylabel, series) in enumerate(_panels(sw, points)):
+            _plot_panel(axes[n // 2, n % 2], sw, title, ylabel, series, style, drawn, legend_drawn=n == 0)
         if cen is not None:
             _plot_centrodes(sw, cen, axes[2, 0], axes[2, 1], style, kin or prepare(m))
         title_pt = 1.2 * float(matplotlib.rcParams["font.size"])      # suptitle: "large"
         fig.suptitle(_wrapped_title(m.title, sw.stopped, size[0], title_pt))
     return fig
+
+
+def _panels(sw: Sweep, points=None) -> list:
+    """The four panels over the cycle, row by row: (title, y label, [(curve label, values)])."""
+    m = sw.mechanism
+    u = m.units or "length"
+    keys = list(points) if points else moving_keys(sw)
+    return [
+        ("Angular velocities", r"$\omega$ (rad/s)",
+         [(_quantity(r"\omega", k.name), sw.omega[k.name]) for k in m.moving_links]),
+        ("Angular accelerations", r"$\alpha$ (rad/s²)",
+         [(_quantity(r"\alpha", k.name), sw.alpha[k.name]) for k in m.moving_links]),
+        ("Speeds", literal(f"|V| ({u}/s)"), [(_quantity("V", k, "|"), np.hypot(*sw.velocity[k].T)) for k in keys]),
+        ("Accelerations", literal(f"|A| ({u}/s²)"),
+         [(_quantity("A", k, "|"), np.hypot(*sw.acceleration[k].T)) for k in keys]),
+    ]
+
+
+def _plot_panel(ax, sw: Sweep, title: str, ylabel: str, series, style: str, drawn, legend_drawn: bool) -> None:
+    """One panel: its curves against the driver's position (coinciding ones merged, zero ones named in
+    the legend), the drawn pose's dashed line (in the legend of the first panel only)."""
+    x = sw.angles
+    xname, xunit = driver_label(sw.mechanism)
+    curves, zero = merge_series(series)
+    for i, (label, y) in enumerate(curves):
+        ax.plot(x, y, label=label, gid=f"curve-{i}", **_series_style(i, len(x), style))
+    if zero:   # said in the legend, not drawn: a flat line on the axis tells nothing
+        ax.plot([], [], linestyle="none", gid="zero-note",
+                label=", ".join(zero) + (" are" if len(zero) > 1 else " is") + " zero throughout (not drawn)")
+    if drawn is not None:   # where the sheets are drawn (the file's pose)
+        ax.axvline(drawn, color="0.45", linestyle=(0, (4, 2)), linewidth=0.9, zorder=1.5, gid="drawn-pose",
+                   label=literal(f"drawn pose, {xname} = {drawn:.4g} {xunit}") if legend_drawn else None)
+    ax.set_title(title)
+    ax.set_xlabel(literal(f"{xname} ({xunit})"))
+    ax.set_ylabel(ylabel)
+    ax.grid(True)
+    if series or drawn is not None:
+        ax.legend(fontsize="small", ncols=2 if len(curves) > 4 else 1)
+    if xunit == "deg" and len(x) > 1 and abs(x[-1] - x[0]) >= 90:
+        lo, hi = sorted((x[0], x[-1]))
+        ax.set_xticks(np.arange(math.ceil(lo / 45) * 45, hi + 1e-9, 45))
 
 
 def _wrapped_title(title: str, stopped: str, width_in: float, font_pt: float) -> str:
