@@ -12,55 +12,17 @@ from __future__ import annotations
 import csv
 import io
 import math
-from dataclasses import dataclass
 
 import numpy as np
 
+from .compare import polygon_values
 from .driver import driver_label
+from .tables import Table, fmt, magnitude_direction, polar, render_table   # re-exported: the tables' primitives
 from .reference import at_file_pose, compare, file_pose_angle
 
-__all__ = ["Table", "render_table", "solution_tables", "solution_report", "fmt", "polar", "poles_tables", "polygon_tables",
+__all__ = ["Table", "render_table", "solution_tables", "solution_report", "fmt", "polar", "magnitude_direction", "poles_tables", "polygon_tables",
            "pinned_keys", "on_links", "solution_html",
            "cycle_columns", "cycle_csv", "moving_keys", "summary_table", "summary_text"]
-
-
-@dataclass(frozen=True)
-class Table:
-    """A titled table: column headers and rows of strings; ``notes``: its footnotes, ``(mark, key, text)``
-    for each mark in its rows (a drawn results table prints them beneath it)."""
-
-    title: str
-    header: tuple[str, ...]
-    rows: tuple[tuple[str, ...], ...]
-    notes: tuple[tuple[str, str, str], ...] = ()
-
-
-def fmt(x, digits: int = 6) -> str:
-    """A number to ``digits`` significant digits; '-' for None or NaN."""
-    if x is None:
-        return "-"
-    x = float(x)
-    if not math.isfinite(x):
-        return "-"
-    if x == 0:
-        return "0"
-    if abs(x) < 1e-12 * 10 ** digits and abs(x) < 1e-9:
-        return "0"
-    return f"{x:.{digits}g}"
-
-
-def polar(v) -> str:
-    """A vector as ``magnitude ∠ direction°`` (direction in [0, 360))."""
-    if v is None:
-        return "-"
-    v = np.asarray(v, float)
-    if not np.all(np.isfinite(v)):
-        return "-"
-    mag = float(np.hypot(*v))
-    if mag == 0:
-        return "0"
-    ang = math.degrees(math.atan2(v[1], v[0])) % 360.0
-    return f"{fmt(mag)} ∠ {ang:.3f}°"
 
 
 def _links(sol) -> Table:
@@ -264,22 +226,20 @@ def polygon_tables(sol) -> list[Table]:
     out = []
     for poly in polys:
         vel = poly.kind == "velocity"
-        analytic_rate = sol.omega if vel else sol.alpha
-        analytic_pt = sol.velocity if vel else sol.acceleration
         h = hd[poly.kind]
         rname, pname = ("omega", "V") if vel else ("alpha", "A")
+        rates, points = polygon_values(sol, poly)
         rows = []
-        for lk in sol.mechanism.link_names:
-            if lk == sol.mechanism.frame.name:
-                continue
-            lo, hi = h["omega" if vel else "alpha"][lk]
-            rows.append((f"{rname}_{lk}", fmt(poly.rates[lk]), fmt(analytic_rate[lk]), f"{fmt(lo, 4)} .. {fmt(hi, 4)}"))
-        for key, img in poly.images.items():
+        for v in rates:
+            lo, hi = h["omega" if vel else "alpha"][v.key]
+            rows.append((f"{rname}_{v.key}", fmt(v.graphical), fmt(v.analytic), f"{fmt(lo, 4)} .. {fmt(hi, 4)}"))
+        for v in points:
+            key = v.key
             if key in pinned and pinned[key] is None:
                 continue   # a point of links pinned together: one row, with the first key's
             lo, hi = h["speed" if vel else "magnitude"][key]
             name = f"{pname}_{pinned[key][0]} (on {on_links(pinned[key][1])})" if key in pinned else f"{pname}_{key}"
-            rows.append((f"{name} ({poly.labels[key]})", polar(img), polar(analytic_pt[key]),
+            rows.append((f"{name} ({poly.labels[key]})", polar(v.graphical), polar(v.analytic),
                          f"{fmt(lo, 4)} .. {fmt(hi, 4)}"))
         rows.append(("max error (relative to the largest)", f"{poly.max_error:.2g}", "", ""))
         title = (f"{poly.kind.capitalize()} polygon ({len(poly.steps)} steps): graphical and analytic, "
@@ -299,40 +259,6 @@ def solution_tables(sol) -> list[Table]:
     if ref is not None:
         out.append(ref)
     return out
-
-
-def render_table(t: Table, style: str = "text") -> str:
-    """A table as ``text`` (aligned columns), ``markdown``, ``latex`` or ``csv``."""
-    if style == "csv":
-        buf = io.StringIO()
-        w = csv.writer(buf, lineterminator="\n")
-        w.writerow(t.header)
-        w.writerows(t.rows)
-        return buf.getvalue()
-    if style == "markdown":
-        def esc(s):
-            return str(s).replace("|", "\\|")
-        lines = [f"**{t.title}**", "", "| " + " | ".join(map(esc, t.header)) + " |",
-                 "|" + "|".join("---" for _ in t.header) + "|"]
-        lines += ["| " + " | ".join(map(esc, r)) + " |" for r in t.rows]
-        return "\n".join(lines) + "\n"
-    if style == "latex":
-        def tex(s):
-            s = str(s)
-            for a, b in (("\\", r"\textbackslash{}"), ("&", r"\&"), ("%", r"\%"), ("_", r"\_"), ("#", r"\#"),
-                         ("∠", r"$\angle$"), ("°", r"$^\circ$"), ("^", r"\^{}")):
-                s = s.replace(a, b)
-            return s
-        cols = "l" * len(t.header)
-        lines = [r"\begin{tabular}{" + cols + "}", r"\hline", " & ".join(map(tex, t.header)) + r" \\", r"\hline"]
-        lines += [" & ".join(map(tex, r)) + r" \\" for r in t.rows]
-        lines += [r"\hline", r"\end{tabular}"]
-        return "\n".join(lines) + "\n"
-    widths = [max(len(str(x)) for x in col) for col in zip(t.header, *t.rows)]
-    lines = [t.title, "  ".join(h.ljust(w) for h, w in zip(t.header, widths)).rstrip(),
-             "  ".join("-" * w for w in widths)]
-    lines += ["  ".join(str(c).ljust(w) for c, w in zip(r, widths)).rstrip() for r in t.rows]
-    return "\n".join(lines) + "\n"
 
 
 def _head(sol) -> tuple[str, str]:

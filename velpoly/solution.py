@@ -73,22 +73,28 @@ class Solution:
     def has_accelerations(self) -> bool:
         return bool(np.all(np.isfinite(self.qdd)))
 
-    def body_velocity(self, link: str, w) -> np.ndarray:
-        """Velocity of the point of ``link`` now at world position w: V_O + omega x R."""
+    def _arm(self, link: str, w):
+        """``(k, R)``: the link's index in q and the arm R = w - O from its point O (the one at the world
+        origin in the reference pose) to world position w; None for the frame."""
         k = self.kinematics.system.index.get(link)
         if k is None:
+            return None
+        return k, np.asarray(w, float) - self.q[3 * k:3 * k + 2]
+
+    def body_velocity(self, link: str, w) -> np.ndarray:
+        """Velocity of the point of ``link`` now at world position w: V_O + omega x R."""
+        arm = self._arm(link, w)
+        if arm is None:
             return np.zeros(2)
-        o = self.q[3 * k:3 * k + 2]
-        r = np.asarray(w, float) - o
+        k, r = arm
         return self.qd[3 * k:3 * k + 2] + self.qd[3 * k + 2] * np.array([-r[1], r[0]])
 
     def body_acceleration(self, link: str, w) -> np.ndarray:
         """Acceleration of the point of ``link`` now at w: A_O + alpha x R - omega^2 R."""
-        k = self.kinematics.system.index.get(link)
-        if k is None:
+        arm = self._arm(link, w)
+        if arm is None:
             return np.zeros(2)
-        o = self.q[3 * k:3 * k + 2]
-        r = np.asarray(w, float) - o
+        k, r = arm
         om, al = self.qd[3 * k + 2], self.qdd[3 * k + 2]
         return self.qdd[3 * k:3 * k + 2] + al * np.array([-r[1], r[0]]) - om ** 2 * r
 

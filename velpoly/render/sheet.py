@@ -25,7 +25,6 @@ salt, no dates) and written atomically: a failed run leaves no file.
 from __future__ import annotations
 
 import io
-import re
 from dataclasses import dataclass
 from pathlib import Path
 
