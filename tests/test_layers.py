@@ -146,3 +146,43 @@ def test_only_the_command_line_prints_or_exits():
     ("def f():\n    '''>>> print(1)'''\n", 0), ("s = 'print(x)'", 0)])
 def test_the_output_rule_sees_prints_and_not_doctests(code, hits):
     assert len(output_calls(ast.parse(code))) == hits
+
+
+# The layers of docs/internals.md, from the bottom; a module under a package named here (velpoly.load.*)
+# is in its package's layer. A module named nowhere is not checked (add it to its layer).
+LAYERS = (
+    ("kernel", ("errors", "model", "loader", "load", "geometry", "rigid", "jet", "constraints", "dyads", "pose",
+                "kinematics", "motion", "driver", "solution", "sweeps", "centrodes", "arguments", "fileio")),
+    ("constructions", ("polygons", "poles", "reference")),
+    ("comparison and tables", ("tables", "compare", "report")),
+    ("figures", ("render", "html")),
+    ("commands", ("cli", "gallery", "__main__")),
+)
+# The imports upwards docs/internals.md lists, each inside the one function that needs it.
+UPWARDS = {
+    ("velpoly.solution", "velpoly.poles"), ("velpoly.solution", "velpoly.polygons"),   # to_dict's sections
+    ("velpoly.solution", "velpoly.report"),          # Solution._repr_html_, a notebook's view
+    ("velpoly.model", "velpoly.render"),             # Mechanism._repr_svg_, a notebook's view
+    ("velpoly.loader", "velpoly.reference"),         # the [reference] keys' check
+    ("velpoly.loader", "velpoly.render.options"),    # the [drawing] table's rules (no matplotlib)
+}
+
+
+def layer_of(module: str) -> int | None:
+    parts = module.split(".")
+    if len(parts) < 2:
+        return None   # the package itself (its __init__ imports errors only, the rest on first use)
+    for rank, (_, names) in enumerate(LAYERS):
+        if parts[1] in names:
+            return rank
+    return None
+
+
+def test_no_import_upwards_but_the_listed_ones():
+    edges, _ = import_graph()
+    upwards = {(m, t) for m, targets in edges.items() for t in targets
+               if layer_of(m) is not None and layer_of(t) is not None and layer_of(t) > layer_of(m)}
+    assert upwards - UPWARDS == set(), "imports upwards (docs/internals.md's layers): " + ", ".join(
+        f"{m} -> {t}" for m, t in sorted(upwards - UPWARDS))
+    assert sum(layer_of(m) is None for m in edges) <= 3, "modules in no layer: " + ", ".join(
+        m for m in edges if layer_of(m) is None)
