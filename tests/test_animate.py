@@ -353,10 +353,11 @@ def test_the_gallery_gets_one_animation_a_family(tmp_path, monkeypatch):
 
 def test_sweep_gif_is_drawn_by_the_animate_renderer(tmp_path):
     from PIL import Image
-    from velpoly.cycle import GIF_SIZE, run_cycle, write_gif
+    from velpoly.render.sweep import GIF_SIZE, write_gif
+    from velpoly.sweeps import run_cycle
     m = velpoly.load(fourbar(coupler=(4.0, 30.0)))
     sw = run_cycle(m, 30.0)
-    out = write_gif(sw, tmp_path / "c.gif", progress=False)
+    out = write_gif(sw, tmp_path / "c.gif")
     with Image.open(out) as im:
         assert im.n_frames == 12 and im.size == GIF_SIZE
         im.seek(0)

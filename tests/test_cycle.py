@@ -15,8 +15,11 @@ import pytest
 
 import velpoly
 from velpoly.cli import main
-from velpoly.cycle import (_Progress, centrodes, cycle_columns, cycle_csv, cycle_figure, run_cycle,
-                           summary_table)
+from velpoly.centrodes import centrodes
+from velpoly.cli import _Progress
+from velpoly.render.sweep import cycle_figure
+from velpoly.report import cycle_columns, cycle_csv, summary_table
+from velpoly.sweeps import run_cycle
 from velpoly.kinematics import prepare
 from velpoly.reference import relative_pole
 from mechanisms import fourbar, slider_crank
@@ -272,7 +275,7 @@ def test_cycle_figure_plots_every_quantity_with_units():
     assert set(speeds) == {"$|V_{B}|$", "$|V_{E}|$"}
     assert speeds["$|V_{E}|$"].get_ydata() == pytest.approx(np.hypot(*sw.velocity["E"].T))
     fixed = [ln for ln in axes[4].lines if ln.get_label() == "fixed centrode of link 3"][0]
-    from velpoly.cycle import _quantity
+    from velpoly.render.sweep import _quantity
     assert _quantity("V", "P@2", "|") == "$|V_{P@2}|$" and _quantity("V", "a{b}", "|") == "|V_a{b}|"
     xy = np.column_stack([fixed.get_xdata(), fixed.get_ydata()])
     good = centrodes(sw, "3", kin).fixed
@@ -296,7 +299,7 @@ def test_a_long_title_and_the_stop_message_stay_on_the_figure(style):
 
 
 def test_the_gif_polygon_scale_ignores_the_surge_at_a_toggle():
-    from velpoly.cycle import _moving_keys
+    from velpoly.report import moving_keys as _moving_keys
     from velpoly.render.animate import SURGE, _surge_box
     sw = run_cycle(velpoly.load(fourbar(a=7, b=5, c=6, d=9, theta=60, omega=-10.0)), 0.1)  # 60 down to -85.9
     keys = _moving_keys(sw)
@@ -388,7 +391,7 @@ def test_every_gallery_mechanism_sweeps_its_cycle(path):
         lo, hi = PARTIAL[path.stem]
         assert "toggle" in sw.stopped
         assert hi - 3 <= sw.angles[-1] <= hi                      # stops within a step or so of the toggle
-        from velpoly.cycle import reachable_text
+        from velpoly.driver import reachable_text
         text = reachable_text(m, prepare(m))
         got = [float(x) for x in text.split(": ")[1].split(" deg")[0].split(" to ")]
         assert lo <= got[0] <= lo + 4 and hi - 2 <= got[1] <= hi

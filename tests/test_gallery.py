@@ -9,7 +9,8 @@ import pytest
 import velpoly
 from velpoly.cli import main
 from velpoly.fileio import atomic_write_bytes
-from velpoly.gallery import build_gallery, comparison, comparison_text, example_path, find_gallery, top_comments
+from velpoly.compare import comparison
+from velpoly.gallery import build_gallery, comparison_text, example_path, find_gallery, top_comments
 
 REPO = Path(__file__).resolve().parent.parent
 from paths import EXAMPLES, GALLERY  # noqa: E402

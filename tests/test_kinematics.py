@@ -366,7 +366,7 @@ def test_import_is_light_and_the_api_names_stay_functions():
     out = subprocess.run([sys.executable, "-c", "import sys, velpoly.cli; print('numpy' in sys.modules)"],
                          capture_output=True, text=True, check=True)
     assert out.stdout.strip() == "False"
-    import velpoly.cycle, velpoly.sweeps, velpoly.solution, velpoly.loader  # noqa: F401,E401
+    import velpoly.centrodes, velpoly.sweeps, velpoly.solution, velpoly.loader  # noqa: F401,E401
     assert callable(velpoly.sweep) and callable(velpoly.solve) and callable(velpoly.load)
 
 

@@ -284,7 +284,8 @@ def test_sweep_plots_merge_coinciding_curves_omit_zero_ones_and_mark_the_drawn_p
     one legend entry "ω3 = ω4"; a block on the frame's guide never turns (ω4 = α4 = 0): not drawn, the
     legend says so; a dashed vertical line marks the drawn pose, where the sweep equals velpoly.solve."""
     import mechanisms
-    from velpoly.cycle import cycle_figure, run_cycle
+    from velpoly.render.sweep import cycle_figure
+    from velpoly.sweeps import run_cycle
     from velpoly.reference import file_pose_angle
     for mech, same, zero in ((mechanisms.block_on_driven_crank(seed, angle=15.0 + 47.0 * seed), ("3", "4"), ()),
                              (mechanisms.slider_crank(r=2 + seed % 3, theta=10.0 + 31.0 * seed), (), ("4",))):
@@ -336,7 +337,7 @@ def test_sweep_plots_merge_coinciding_curves_omit_zero_ones_and_mark_the_drawn_p
 def test_merge_series_keeps_curves_that_only_touch():
     """Curves equal at some poses (crossing) are two curves; equal everywhere, one; NaN where the other
     is defined, two."""
-    from velpoly.cycle import merge_series
+    from velpoly.render.sweep import merge_series
     x = np.linspace(0, 6, 50)
     a, b = np.sin(x), np.cos(x)
     c = a.copy()

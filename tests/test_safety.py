@@ -538,7 +538,9 @@ def test_names_titles_and_units_are_drawn_as_written():
 
 
 def test_names_are_drawn_as_written_in_the_cycle_plots():
-    from velpoly.cycle import centrodes, cycle_figure, run_cycle
+    from velpoly.centrodes import centrodes
+    from velpoly.render.sweep import cycle_figure
+    from velpoly.sweeps import run_cycle
     m = velpoly.loads(_nasty_text())
     sw = run_cycle(m, 15.0)
     shown = _shown(cycle_figure(sw, cen=centrodes(sw, "{")))

@@ -169,7 +169,7 @@ def test_components_add_up_and_match_the_joint_results(seed):
 
 @pytest.mark.parametrize("seed", SEEDS[:6])
 def test_printed_components_and_magnitudes_are_compared_like_the_rest(seed):
-    from velpoly.gallery import comparison
+    from velpoly.compare import comparison
     m0 = velpoly.load(lever(seed))
     s0 = velpoly.solve(m0)
 

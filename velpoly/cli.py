@@ -24,6 +24,7 @@ __all__ = ["main", "build_parser"]
 
 SHEETS = ("velocity", "acceleration", "poles", "full", "displacement")
 STYLES = ("textbook", "slides")
+FIGURE_SUFFIXES = (".svg", ".png", ".pdf")   # what -o of draw and sweep writes, by its suffix
 SHEET_HELP = {
     "velocity": "the mechanism to scale and its velocity polygon, with the results table",
     "acceleration": "the mechanism and its acceleration polygon (normal, tangential, Coriolis, slip components)",
@@ -59,6 +60,14 @@ def build_parser() -> argparse.ArgumentParser:
         return sub.add_parser(name, help=help, description=description or help[:1].upper() + help[1:] + ".",
                               epilog="example:\n  " + example, formatter_class=argparse.RawDescriptionHelpFormatter)
 
+    for add in (_solve_parser, _draw_parser, _sweep_parser, _demo_parser, _animate_parser, _gallery_parser,
+                _examples_parser, _html_parser):   # in the order `velpoly --help` lists them
+        add(command)
+    return p
+
+
+def _solve_parser(command) -> None:
+    """``velpoly solve``'s arguments."""
     s = command("solve", "analytic positions, velocities, accelerations, poles, and the book's values beside them",
                 "velpoly solve fourbar.toml --angle 40")
     s.add_argument("file", help="the mechanism file (TOML, FORMAT.md section 1)")
@@ -67,6 +76,9 @@ def build_parser() -> argparse.ArgumentParser:
     s.add_argument("--format", choices=("text", "markdown", "latex", "csv"), default="text",
                    help="table style of the readable output (default: text)")
 
+
+def _draw_parser(command) -> None:
+    """``velpoly draw``'s arguments."""
     d = command("draw", "textbook figure(s): SVG, PNG or PDF by the output's suffix",
                 "velpoly draw fourbar.toml -o fourbar.pdf --sheet velocity --style slides",
                 description="Draw a textbook figure of the mechanism: SVG, PNG or PDF by the output's suffix.\n\n"
@@ -81,6 +93,9 @@ def build_parser() -> argparse.ArgumentParser:
     d.add_argument("--angle", type=float, metavar="DEG", help=ANGLE_HELP)
     d.add_argument("--style", choices=STYLES, default="textbook", help="the look (listed above; default: textbook)")
 
+
+def _sweep_parser(command) -> None:
+    """``velpoly sweep``'s arguments."""
     w = command("sweep", "a whole driver cycle: plots and a table",
                 "velpoly sweep fourbar.toml --step 5 -o cycle.svg --csv cycle.csv")
     w.add_argument("file", help="the mechanism file (TOML)")
@@ -92,11 +107,17 @@ def build_parser() -> argparse.ArgumentParser:
     w.add_argument("--gif", help="animated GIF of the mechanism with its velocity polygon")
     w.add_argument("--style", choices=STYLES, default="textbook", help=STYLES_HELP)
 
+
+def _demo_parser(command) -> None:
+    """``velpoly demo``'s arguments."""
     e = command("demo", "the main job on a built-in example, no file needed: the full sheet and the comparison "
                 "with the book", "velpoly demo -o out")
     e.add_argument("-o", "--output", default="out", metavar="DIR", help="output folder (default: out/)")
     e.add_argument("--style", choices=STYLES, default="textbook", help=STYLES_HELP)
 
+
+def _animate_parser(command) -> None:
+    """``velpoly animate``'s arguments."""
     a = command("animate", "the motion over the cycle (or the reachable range, out and back) with its "
                 "polygons: GIF, animated PNG, MP4, multi-page PDF or the html page, by the output's suffix",
                 "velpoly animate ex36.toml -o ex36.gif --size 1280x720")
@@ -112,6 +133,9 @@ def build_parser() -> argparse.ArgumentParser:
     a.add_argument("--fps", type=float, default=15.0, metavar="N", help="frames a second (default 15)")
     a.add_argument("--style", choices=STYLES, default="slides", help="slides (colour, large type; the default) or textbook (black on white)")
 
+
+def _gallery_parser(command) -> None:
+    """``velpoly gallery``'s arguments."""
     g = command("gallery", "build the gallery: every built-in example's sheet and its comparison with the book",
                 "velpoly gallery -o my-gallery")
     g.add_argument("-o", "--output", default=None, metavar="DIR", help="output folder (default: the --source "
@@ -121,18 +145,23 @@ def build_parser() -> argparse.ArgumentParser:
     g.add_argument("--style", choices=STYLES, default="textbook", help=STYLES_HELP)
     g.add_argument("names", nargs="*", metavar="NAME", help="build only these examples (default: all)")
 
+
+def _examples_parser(command) -> None:
+    """``velpoly examples``'s arguments."""
     x = command("examples", "list the built-in examples, or print one to start a file from",
                 "velpoly examples ex3_4_slotted_lever > lever.toml")
     x.add_argument("name", nargs="?", metavar="NAME", help="the example to print (its TOML text); without it, "
                    "list them all with their titles")
 
+
+def _html_parser(command) -> None:
+    """``velpoly html``'s arguments."""
     h = command("html", "one self-contained interactive page: the sheet over the driver's cycle, the "
                 "construction step by step", "velpoly html ex36.toml -o ex36.html")
     h.add_argument("file", help="the mechanism file (TOML)")
     h.add_argument("-o", "--output", metavar="OUT", help="the page (default: FILE's name with .html)")
     h.add_argument("--step", type=float, default=1.0, metavar="DEG", help="driver step between the poses, in "
                    "degrees (default 1; a slider driver's stroke in as many poses)")
-    return p
 
 
 def _sub_parser(parent):
@@ -175,7 +204,7 @@ def cmd_draw(args) -> int:
     if not args.output:   # the default name can be the input's own (a file named mech.svg)
         from .fileio import check_not_input
         check_not_input(out, args.file, "-o", default=True)
-    if out.suffix.lower() not in (".svg", ".png", ".pdf"):
+    if out.suffix.lower() not in FIGURE_SUFFIXES:
         raise InputError(f"unknown figure type {out.suffix or '(none)'!r}", where="-o", file=str(out),
                          hint="end the output's name with .svg, .png or .pdf")
     _, sol = _load_and_solve(args)
@@ -194,6 +223,8 @@ LONG_SWEEP = 10_000   # poses: a sweep this long says how many it computes
 
 
 def cmd_sweep(args) -> int:
+    """``velpoly sweep FILE [--step DEG] [-o OUT] [--csv CSV] [--points P,Q] [--centrodes LINK] [--gif GIF]
+    [--style]``: see docs/sweep.md. Warnings go to standard error once everything is written."""
     step = getattr(args, "step", 1.0)
     if step is not None and 0 < step < MIN_STEP:   # other bad steps are refused by the cycle itself
         raise InputError(f"the step {step:g} deg is too fine: {360 / step:.3g} poses a turn",
@@ -201,14 +232,139 @@ def cmd_sweep(args) -> int:
     if step is not None and math.isfinite(step) and step > 0 and 360 / step >= LONG_SWEEP:
         print(f"velpoly sweep: --step {step:g} deg computes up to {math.ceil(360 / step - 1e-9)} poses",
               file=sys.stderr)
-    from .cycle import sweep_command
-    done = sweep_command(args)
-    for line in done.warnings:
+    plot_out = _suffixed(getattr(args, "output", None), FIGURE_SUFFIXES, "-o")
+    gif_out = _suffixed(getattr(args, "gif", None), (".gif",), "--gif")
+    csv_out = Path(args.csv) if getattr(args, "csv", None) else None
+    style = getattr(args, "style", "textbook") or "textbook"
+    sw, kin = _sweep_cycle(args.file, getattr(args, "step", 1.0), gif_out is not None)
+    from .sweeps import stop_note
+    m = sw.mechanism
+    note = stop_note(sw, kin)
+    warnings = [f"warning: {m.source}: {note}"] if note else []
+    points = _sweep_points(sw, getattr(args, "points", None))
+    cen = None
+    if getattr(args, "centrodes", None):
+        from .centrodes import centrodes
+        cen = centrodes(sw, str(args.centrodes), kin)
+        if not cen.defined.any():
+            warnings.append(f"warning: {m.source}: link {cen.link} does not turn: its pole with the frame "
+                            f"stays at infinity, no centrode")
+    written = []
+    if csv_out:
+        from .fileio import atomic_write_text
+        from .report import cycle_csv
+        written.append(atomic_write_text(csv_out, cycle_csv(sw, cen)))
+    if plot_out or gif_out:
+        from .render.sweep import plot_cycle, write_gif
+        if plot_out:
+            written.append(plot_cycle(sw, plot_out, points, cen, style, kin))
+        if gif_out:
+            written.append(_sweep_gif(write_gif, sw, gif_out, kin, style, cen))
+    summary = ""
+    if not written:
+        from .report import summary_text
+        summary = summary_text(sw, points)
+        if cen is not None:
+            warnings.append("note: the centrodes are drawn with -o or --gif and listed with --csv")
+    for line in warnings:
         print(line, file=sys.stderr)
-    sys.stdout.write(done.summary)
-    for p in done.written:
+    sys.stdout.write(summary)
+    for p in written:
         print(p)
     return 0
+
+
+def _suffixed(path: str | None, allowed, option: str) -> Path | None:
+    """``path`` as a Path if its suffix is one of ``allowed``; an InputError naming ``option`` if not."""
+    if not path:
+        return None
+    p = Path(path)
+    if p.suffix.lower() not in allowed:
+        raise InputError(f"unknown file type {p.suffix or '(none)'!r}", where=option, file=str(p),
+                         hint="end the name with " + " or ".join(allowed))
+    return p
+
+
+def _sweep_cycle(file: str, step, long: bool):
+    """The file's cycle (a Sweep) and its Kinematics; a progress bar on a terminal for a long one, an
+    error before any work for one too large for memory, a PoseError for fewer than two poses."""
+    from . import load
+    from .kinematics import prepare
+    from .sweeps import MEMORY_BUDGET, check_cycle, check_memory, check_step, cycle_poses, memory_estimate, run_cycle
+    step = check_step(step)
+    m = load(file)
+    kin = prepare(m)
+    poses = cycle_poses(step)   # a turn, or each half-stroke
+    check_memory(m, kin, poses, where="--step",
+                 hint=f"use a coarser --step: {360 * memory_estimate(m, kin, poses) / poses / MEMORY_BUDGET:.2g} "
+                      "deg or more for this mechanism")
+    long = 360.0 / step >= 2000 or long or m.driver.is_slider
+    bar = _Progress(1, "velpoly sweep: solving", min_total=1 if long else 10 ** 9)
+    bar.advance(0)
+    sw = run_cycle(m, step, kin)
+    bar.advance()
+    bar.close()
+    check_cycle(sw, kin)
+    return sw, kin
+
+
+def _sweep_points(sw, text: str | None) -> list[str] | None:
+    """``--points B,C`` as the cycle's point keys (a point name stands for each of its keys ``B@3``)."""
+    if not text:
+        return None
+    keys = list(sw.position)
+    out = []
+    for tok in (t.strip() for t in text.split(",")):
+        if not tok:
+            continue
+        found = [tok] if tok in sw.position else [k for k in keys if k.split("@")[0] == tok]
+        if not found:
+            raise InputError(f"unknown point {tok!r}", where="--points", file=sw.mechanism.source,
+                             hint="choose from: " + ", ".join(keys))
+        out += [k for k in found if k not in out]
+    if not out:
+        raise InputError("no point given", where="--points", file=sw.mechanism.source,
+                         hint="e.g. --points B,C")
+    return out
+
+
+def _sweep_gif(write_gif, sw, out: Path, kin, style: str, cen) -> Path:
+    """The sweep's GIF, with a progress bar (one step a frame) on a terminal."""
+    bars = []
+
+    def progress(done: int, total: int) -> None:
+        if not bars:
+            bars.append(_Progress(total, "velpoly sweep: GIF", min_total=2))
+        bars[0].advance()
+    written = write_gif(sw, out, kin, style, cen, progress=progress)
+    for bar in bars:
+        bar.close()
+    return written
+
+
+class _Progress:
+    """A one-line progress bar on stderr, shown only when stderr is a terminal."""
+
+    def __init__(self, total: int, label: str, stream=None, min_total: int = 1):
+        self.stream = stream or sys.stderr
+        self.total = max(int(total), 1)
+        self.label = label
+        self.on = bool(getattr(self.stream, "isatty", lambda: False)()) and total >= min_total
+        self.done = 0
+
+    def advance(self, k: int = 1) -> None:
+        if not self.on:
+            return
+        self.done = min(self.done + k, self.total)
+        width = 30
+        filled = int(width * self.done / self.total)
+        self.stream.write(f"\r{self.label} [{'#' * filled}{'.' * (width - filled)}] {self.done}/{self.total}")
+        self.stream.flush()
+
+    def close(self) -> None:
+        if self.on:
+            self.stream.write("\n")
+            self.stream.flush()
 
 
 def cmd_animate(args) -> int:

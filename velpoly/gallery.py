@@ -13,19 +13,16 @@ the render module.
 """
 from __future__ import annotations
 
-import math
 import re
 from dataclasses import dataclass
 from pathlib import Path
 
-import numpy as np
-
 from .errors import InputError, VelpolyError
 from .fileio import atomic_write_text, raise_if_interrupted
-from .reference import Quantity, compare, evaluate, parse_key
+from .compare import comparison
 from .report import Table, fmt, render_table
 
-__all__ = ["example_path", "example_files", "example_titles", "EXAMPLES", "comparison", "comparison_text", "Comparison", "top_comments", "example_markdown",
+__all__ = ["example_path", "example_files", "example_titles", "EXAMPLES", "comparison_text", "top_comments", "example_markdown",
            "build_gallery", "GalleryResult", "find_gallery", "build_demo", "gallery_folders",
            "FiguresUnavailable"]
 
@@ -86,250 +83,6 @@ def example_titles() -> list[tuple[str, str]]:
             title = path.stem
         out.append((path.stem, str(title)))
     return out
-
-
-# -- graphical values ----------------------------------------------------------------------------
-class _Graphical:
-    """The graphical constructions of one solution, read like a Solution by :func:`reference.evaluate`.
-
-    omega and alpha are the polygons' rates; a point's velocity (acceleration) is
-    its image in the velocity (acceleration) polygon; a body point of a link
-    that has no image of its own follows from the link's image
-    (``V = V_a + omega x R``, ``A = A_a + alpha x R - omega^2 R`` from an image a);
-    a pole's position is the one found on the Kennedy circle.
-    """
-
-    def __init__(self, sol):
-        from .poles import locate_poles
-        from .polygons import acceleration_polygon, velocity_polygon
-        self.sol = sol
-        self.mechanism = sol.mechanism
-        self.vel = velocity_polygon(sol)
-        self.acc = acceleration_polygon(sol) if sol.has_accelerations else None
-        self.poles = locate_poles(sol)
-        # what reference.evaluate reads
-        self.angle, self.position = sol.angle, sol.position
-        self.omega, self.velocity = self.vel.rates, self.vel.images
-        self.alpha = self.acc.rates if self.acc else {}
-        self.acceleration = self.acc.images if self.acc else {}
-
-    def _anchor(self, link: str, images: dict):
-        """An imaged point key carried by ``link``: (key, its position)."""
-        m = self.mechanism
-        for p in m.link(link).points:
-            for key in (p, f"{p}@{link}"):
-                if key in images and key in self.sol.position:
-                    return key, self.sol.position[key]
-        return None, None
-
-    def _body(self, link: str, w, acc: bool) -> np.ndarray:
-        """V (A) of the body point of ``link`` at w from the link's image: V_a + omega x R
-        (A_a + alpha x R - omega^2 R)."""
-        if link == self.mechanism.frame.name:
-            return np.zeros(2)
-        poly = self.acc if acc else self.vel
-        key, at = self._anchor(link, poly.images)
-        if key is None:
-            raise KeyError(link)
-        r = np.asarray(w, float) - at
-        om = self.vel.rates[link]
-        out = np.asarray(poly.images[key], float) + poly.rates[link] * np.array([-r[1], r[0]])
-        return out - om ** 2 * r if acc else out
-
-    def body_velocity(self, link: str, w) -> np.ndarray:
-        return self._body(link, w, False)
-
-    def body_acceleration(self, link: str, w) -> np.ndarray:
-        return self._body(link, w, True)
-
-    def pole(self, i: str, j: str):
-        names = self.mechanism.link_names
-        a, b = sorted((i, j), key=names.index)
-        return self.poles.poles[f"{a}-{b}"].position
-
-    def value(self, q: Quantity):
-        """The graphical value of a parsed reference key, or None where no construction gives it."""
-        if q.kind in ("theta", "R"):
-            return None               # positions: the displacement diagram is the analytic pose itself
-        if q.kind == "P":
-            return self.pole(*q.links)
-        if q.kind in ("A", "alpha", "AP") and self.acc is None:
-            return None
-        if q.kind in ("VP", "AP"):
-            at = self.pole(*q.links)
-            if at is None:
-                return None
-            return (self.body_velocity if q.kind == "VP" else self.body_acceleration)(q.links[0], at)
-        try:
-            return evaluate(self, q)
-        except (KeyError, InputError):
-            return None
-
-
-# -- the comparison table ------------------------------------------------------------------------
-@dataclass(frozen=True)
-class Comparison:
-    """The book's values beside the graphical and analytic ones: a :class:`Table` and its notes.
-
-    ``table.rows`` hold strings; ``notes`` are ``(number, quantity, sentence)``,
-    one per distinct ``[reference] note``; ``values`` keeps each row's numbers
-    ``(quantity, printed, graphical, analytic)`` for checks.
-    """
-
-    title: str
-    table: Table
-    notes: tuple = ()
-    values: tuple = ()
-
-
-def _magnitude_direction(v):
-    v = np.asarray(v, float)
-    return float(np.hypot(*v)), float(math.degrees(math.atan2(v[1], v[0]))) % 360.0
-
-
-def _show(value, kind: str) -> str:
-    if value is None:
-        return "-"
-    if kind == "P":
-        return f"({fmt(value[0])}, {fmt(value[1])})"
-    if isinstance(value, tuple):
-        return f"{fmt(value[0])} ∠ {value[1]:.3f}°"
-    return fmt(value)
-
-
-def _graphical_shown(row, q: Quantity, g):
-    """The graphical value in the row's printed form: (magnitude, direction), a magnitude, a number."""
-    if g is None:
-        return None
-    if q.kind == "P":
-        return (float(g[0]), float(g[1]))
-    if isinstance(g, np.ndarray):
-        if isinstance(row.computed, tuple):
-            return _magnitude_direction(g)
-        return float(np.hypot(*g))
-    return float(g)
-
-
-def _scales(sol) -> dict:
-    """The size of each kind of quantity in the mechanism, to which a graphical value's error is
-    relative (as FORMAT.md's graphical.max_error): the largest |omega|, speed, |alpha| (at least
-    omega_max^2) and acceleration (at least v_max^2 / size), and the mechanism's size for positions."""
-    def top(values):
-        v = [abs(float(x)) for x in values if x is not None and math.isfinite(float(x))]
-        return max(v, default=0.0)
-    size = sol.mechanism.size
-    omega = top(sol.omega.values()) or 1.0
-    speed = top(np.hypot(*v) for v in sol.velocity.values()) or size * omega
-    return {"omega": omega, "alpha": max(top(sol.alpha.values()), omega ** 2),
-            "V": speed, "A": max(top(np.hypot(*a) for a in sol.acceleration.values()), speed ** 2 / size),
-            "P": size}
-
-
-def _scale_of(q: Quantity, scales: dict) -> float:
-    kind = {"VP": "V", "AP": "A", "R": "P", "theta": "P"}.get(q.kind, q.kind)
-    return scales.get(kind, 1.0)
-
-
-def _cartesian(v, polar: bool) -> np.ndarray:
-    if polar:
-        return np.array([v[0] * math.cos(math.radians(v[1])), v[0] * math.sin(math.radians(v[1]))])
-    return np.asarray(v, float)
-
-
-def _difference(g, a, scale: float, polar: bool = True) -> str:
-    """|graphical - analytic| relative to ``scale``, the largest value of its kind in the mechanism.
-
-    Tuples are vectors: (magnitude, direction in degrees) if ``polar``, else (x, y).
-    """
-    if g is None or a is None:
-        return "-"
-    if isinstance(a, tuple):
-        d = float(np.hypot(*(_cartesian(g, polar) - _cartesian(a, polar))))
-    else:
-        d = abs(float(g) - float(a))
-    rel = d / scale
-    return "0" if rel == 0 else f"{rel:.1e}"
-
-
-def _book_deviation(r) -> str:
-    dev = [] if r.deviation is None else [f"{100 * r.deviation:.3g}%"]
-    if r.angle_error is not None:
-        dev.append(f"{r.angle_error:.3g}°")
-    return " ".join(dev) or "-"
-
-
-def _key_kind(m, key: str) -> Quantity:
-    label = key[1:-1] if key.startswith("|") else key       # "|V_F|" is a speed
-    q = parse_key(m, label)
-    if q is None:
-        q = Quantity("V", ((label[2:], None),)) if label.startswith("V_") else Quantity("A", ((label[2:], None),))
-    return q
-
-
-def comparison(sol) -> Comparison:
-    """Every ``[reference]`` value: book, graphical, analytic, and the deviations.
-
-    A file without printed values gets the main results instead (each moving
-    link's omega and alpha, each moving point's velocity and acceleration),
-    graphical beside analytic, the book's column empty.
-    """
-    m = sol.mechanism
-    g = _Graphical(sol)
-    scales = _scales(sol)
-    if not m.reference:
-        return _results(sol, g, scales)
-    rows, notes, values = [], [], []
-    note_no = {}
-    for r in compare(sol):
-        if r.key.startswith("omega_") or r.key.startswith("alpha_"):
-            q = Quantity(r.key.split("_", 1)[0], links=(r.key.split("_", 1)[1],))
-        else:
-            q = _key_kind(m, r.key)
-        gv = _graphical_shown(r, q, g.value(q))
-        kind = "P" if q.kind == "P" else ""
-        ref = ""
-        if r.note:
-            if r.note not in note_no:
-                note_no[r.note] = len(note_no) + 1
-                notes.append((note_no[r.note], r.key, r.note))
-            ref = f"[{note_no[r.note]}]"
-        rows.append((r.key, _show(r.printed, kind), _show(gv, kind), _show(r.computed, kind), _book_deviation(r),
-                     _difference(gv, r.computed, _scale_of(q, scales), polar=q.kind != "P"), ref))
-        values.append((r.key, r.printed, gv, r.computed))
-    title = "Book, graphical and analytic values" + (f" ({m.reference.source})" if m.reference.source else "")
-    table = Table(title, HEADER, tuple(rows))
-    return Comparison(title, table, tuple(notes), tuple(values))
-
-
-HEADER = ("quantity", "book", "graphical", "analytic", "book vs analytic", "graphical vs analytic", "note")
-
-
-def _results(sol, g: _Graphical, scales: dict) -> Comparison:
-    m = sol.mechanism
-    rows, values = [], []
-
-    def add(key, graphical, analytic):
-        scale = scales[key.split("_", 1)[0]]
-        rows.append((key, "-", _show(graphical, ""), _show(analytic, ""), "-",
-                     _difference(graphical, analytic, scale), ""))
-        values.append((key, None, graphical, analytic))
-
-    def vec(v):
-        return None if v is None or not np.all(np.isfinite(v)) else _magnitude_direction(v)
-    moving = [k.name for k in m.moving_links]
-    for lk in moving:
-        add(f"omega_{lk}", g.vel.rates.get(lk), sol.omega[lk])
-    if sol.has_accelerations:
-        for lk in moving:
-            add(f"alpha_{lk}", g.acc.rates.get(lk), sol.alpha[lk])
-    keys = [k for k, v in sol.velocity.items() if np.hypot(*v) > 0]
-    for key in keys:
-        add(f"V_{key}", vec(g.vel.images.get(key)), vec(sol.velocity[key]))
-    if sol.has_accelerations:
-        for key in keys:
-            add(f"A_{key}", vec(g.acc.images.get(key)), vec(sol.acceleration[key]))
-    title = "Graphical and analytic values (no printed values to compare)"
-    return Comparison(title, Table(title, HEADER, tuple(rows)), (), tuple(values))
 
 
 def comparison_text(sol, style: str = "text") -> str:
@@ -520,47 +273,18 @@ def build_gallery(source=None, out=None, style: str = "textbook", draw=None, log
     as ``out/NAME.toml``, so that the folder stands alone and its README links
     to files beside it. ``names`` (file stems) builds only those examples.
     """
-    from . import load, solve
     source = Path(source) if source is not None else EXAMPLES
     out = Path(out) if out is not None else source
     if copy is None:   # the built-in examples drawn anywhere but their own checkout's gallery
         copy = source.resolve() == EXAMPLES and out.resolve() not in (EXAMPLES, EXAMPLES.parent.parent / "gallery")
-    if not source.is_dir():
-        raise InputError("not a folder", where="--source", file=str(source))
-    files = sorted(source.glob("*.toml"), key=_natural)
-    if not files:
-        raise InputError("no *.toml files in the gallery folder", where="--source", file=str(source))
-    if names:
-        stems = {p.stem: p for p in files}
-        for n in names:
-            if _stem(n) not in stems:
-                raise InputError(f"no example {n!r} in {source}", where="gallery",
-                                 hint="`velpoly examples` lists the built-in ones: name them without .toml")
-        files = [p for p in files if p.stem in {_stem(n) for n in names}]
+    files = _gallery_files(source, names)
     draw = draw or _draw_to_file()
     written, built, failed, sections = [], [], [], []
     for path in files:
         try:
-            m = load(path)
-            sol = solve(m)
-            if copy:
-                text, target = path.read_text(encoding="utf-8"), out / path.name
-                if target.exists() and (not target.is_file() or target.read_text(encoding="utf-8",
-                                                                                errors="replace") != text):
-                    raise InputError(f"{target} exists and is not the built-in example: not replaced",
-                                     where="-o", hint="move it away, or build the gallery into another folder")
-                if not target.exists():
-                    written.append(atomic_write_text(target, text))
-                path = target
-            target = out / "figures" / f"{path.stem}.png"
-            from .render.options import drawing_options
-            figs = draw(sol, target, sheet=drawing_options(m).sheet, style=style, steps=False)   # its own sheet
-            written += list(figs)
-            figure = _relative(Path(figs[0]) if figs else target, out)
-            text = example_markdown(path, sol, figure)
-            # links in the README point to the example files from where the README is
-            text = text.replace(f"]({path.name})", f"]({_relative(path, out)})", 1)
-            sections.append((m.title, text))
+            files_written, section, path = _build_example(path, out, style, draw, copy)
+            written += files_written
+            sections.append(section)
             built.append(path)
         except Exception as e:  # one example's failure must not stop the others
             raise_if_interrupted()   # unless it is Ctrl-C's aftermath: then nothing more is built
@@ -576,6 +300,50 @@ def build_gallery(source=None, out=None, style: str = "textbook", draw=None, log
     readme = _readme(sections, failed, source, out, extra)
     written.append(atomic_write_text(out / "README.md", readme))
     return GalleryResult(tuple(written), tuple(built), tuple(failed))
+
+
+def _gallery_files(source: Path, names=None) -> list[Path]:
+    """The example files of ``source`` in natural name order (only ``names``, file stems, if given)."""
+    if not source.is_dir():
+        raise InputError("not a folder", where="--source", file=str(source))
+    files = sorted(source.glob("*.toml"), key=_natural)
+    if not files:
+        raise InputError("no *.toml files in the gallery folder", where="--source", file=str(source))
+    if names:
+        stems = {p.stem: p for p in files}
+        for n in names:
+            if _stem(n) not in stems:
+                raise InputError(f"no example {n!r} in {source}", where="gallery",
+                                 hint="`velpoly examples` lists the built-in ones: name them without .toml")
+        files = [p for p in files if p.stem in {_stem(n) for n in names}]
+    return files
+
+
+def _build_example(path: Path, out: Path, style: str, draw, copy: bool) -> tuple[list, tuple, Path]:
+    """One example into the gallery ``out``: (files written, its README section ``(title, text)``, the
+    path its README links to). ``copy`` also writes the file beside the README (never over another)."""
+    from . import load, solve
+    from .render.options import drawing_options
+    m = load(path)
+    sol = solve(m)
+    written = []
+    if copy:
+        text, target = path.read_text(encoding="utf-8"), out / path.name
+        if target.exists() and (not target.is_file() or target.read_text(encoding="utf-8",
+                                                                        errors="replace") != text):
+            raise InputError(f"{target} exists and is not the built-in example: not replaced",
+                             where="-o", hint="move it away, or build the gallery into another folder")
+        if not target.exists():
+            written.append(atomic_write_text(target, text))
+        path = target
+    target = out / "figures" / f"{path.stem}.png"
+    figs = draw(sol, target, sheet=drawing_options(m).sheet, style=style, steps=False)   # its own sheet
+    written += list(figs)
+    figure = _relative(Path(figs[0]) if figs else target, out)
+    text = example_markdown(path, sol, figure)
+    # links in the README point to the example files from where the README is
+    text = text.replace(f"]({path.name})", f"]({_relative(path, out)})", 1)
+    return written, (m.title, text), path
 
 
 README_MARK = "<!-- generated by velpoly gallery -->"   # the first line of every README the gallery writes

@@ -9,10 +9,10 @@ limited-rotation linkage reaches on its drawn branch; a slider driver's
 stroke); a stepper walks through the construction as ``velpoly draw --steps``
 does. Nothing is solved in the browser: every pose is precomputed here.
 
-**Poses.** The cycle is :func:`velpoly.cycle.run_cycle` (one pose a
+**Poses.** The cycle is :func:`velpoly.sweeps.run_cycle` (one pose a
 ``step`` degrees); a crank that stops at a toggle is followed both ways from
 the drawn pose to the ends of its reachable range. Each pose is turned into a
-:class:`velpoly.Solution` (:func:`velpoly.cycle.solution_at`) and its
+:class:`velpoly.Solution` (:func:`velpoly.sweeps.solution_at`) and its
 polygons (:mod:`velpoly.polygons`) and poles (:mod:`velpoly.poles`) are
 built from it exactly as the static sheet builds them, so the page shows the
 same construction objects: images, construction lines with their reasons,
@@ -57,14 +57,13 @@ def _cycle(m, step: float):
     """The sweep the page shows, in driving order, the Kinematics, and whether the range is limited:
     a crank's full turn in the sense of its omega, or (stopped by a toggle) both ways from the
     drawn pose to the ends of its reachable range, in ascending angle; a slider driver's stroke."""
-    from .cycle import _check_step, _join, run_cycle
+    from .driver import driver_reference_angle
     from .kinematics import prepare
-    from .solution import driver_reference_angle
-    from .sweeps import sweep
+    from .sweeps import check_step, join_sweeps, run_cycle, sweep
     kin = prepare(m)
     if m.driver.is_slider:
         return run_cycle(m, step, kin), kin, True
-    step = _check_step(step)
+    step = check_step(step)
     ref = driver_reference_angle(m)
     n = max(int(math.ceil(360.0 / step - 1e-9)), 1)
     sense = -1.0 if m.driver.omega < 0 else 1.0
@@ -76,12 +75,12 @@ def _cycle(m, step: float):
     if not len(up.angles) or not len(down.angles):
         return ahead, kin, True
     import dataclasses
-    return dataclasses.replace(_join(down, up), stopped=""), kin, True
+    return dataclasses.replace(join_sweeps(down, up), stopped=""), kin, True
 
 
 def cycle_solutions(m, step: float = 1.0):
     """(sweep, kinematics, limited, [Solution of each pose]): the poses the page shows."""
-    from .cycle import solution_at
+    from .sweeps import solution_at
     w, kin, limited = _cycle(m, step)
     return w, kin, limited, [solution_at(w, kin, i) for i in range(len(w.angles))]
 
@@ -511,7 +510,7 @@ def _driver_text(m) -> str:
 def sheet_data(m, step: float = 1.0, cycle=None) -> tuple[dict, str]:
     """The page's data: (static part as a dict, the poses as JSON text of the templates' encoding).
     ``cycle``: what :func:`cycle_solutions` gives, if already at hand."""
-    from .cycle import solution_at
+    from .sweeps import solution_at
     from .reference import compare, file_pose_angle
     from .solution import driver_reference_angle, solve
     w, kin, limited, sols = cycle if cycle is not None else cycle_solutions(m, step)

@@ -61,8 +61,9 @@ written homogeneously (twists t_k = lambda_k P_1k, t_j - t_i ~ P_ij) so
 that translating links (P_1k at infinity) are handled exactly, and any
 point's velocity from its link's frame pole, ``V_B = omega_k x (B - P_1k)``.
 
-This module registers the JSON section ``poles`` (FORMAT.md section 2) and
-the readable tables of ``velpoly solve``.
+:func:`poles_section` is the JSON section ``poles`` (FORMAT.md section 2) that
+:meth:`velpoly.Solution.to_dict` calls; the readable tables of ``velpoly solve``
+are :func:`velpoly.report.poles_tables`. This module imports neither.
 """
 from __future__ import annotations
 
@@ -75,11 +76,9 @@ import numpy as np
 
 from .geometry import from_polar, ideal, join
 from .motion import point_keys
-from .report import SECTIONS, Table, fmt
-from .solution import register_section
 
 __all__ = ["Pole", "PoleLine", "PoleSet", "KennedyCircle", "Chord", "locate_poles", "kennedy_circle",
-           "instant_centre_velocities", "link_twists", "pole_key", "pole_label", "poles_section", "poles_tables",
+           "instant_centre_velocities", "link_twists", "pole_key", "pole_label", "poles_section",
            "FAR", "ALIKE"]
 
 FAR = 1e9        # a pole farther than FAR mechanism sizes is at infinity (FORMAT.md section 5)
@@ -1168,7 +1167,7 @@ def _slider_driver(sol, m, idx, f, H, state, t, known, path, names, centre, scal
     path.append((names[g], names[b], key))
 
 
-# -- JSON and tables ---------------------------------------------------------------------------------
+# -- the JSON section --------------------------------------------------------------------------------
 def poles_section(sol) -> dict:
     """The JSON ``poles`` section (FORMAT.md section 2), with ``how`` and ``order`` added."""
     out = {}
@@ -1187,56 +1186,3 @@ def pole_label(key: str, compact: bool = True) -> str:
     """The textbook name of a pole: ``P_13`` for key "1-3" (``P_{10-12}`` where names are longer)."""
     i, j = key.split("-")
     return f"P_{i}{j}" if compact and len(i) == 1 and len(j) == 1 else f"P_{{{key}}}"
-
-
-def _where(p: Pole) -> str:
-    if p.undefined:
-        return "undefined (links move alike)"
-    if p.position is None:
-        return f"at infinity, {p.direction:.3f}°"
-    return f"({fmt(p.position[0])}, {fmt(p.position[1])})"
-
-
-def _found(p: Pole, compact: bool) -> str:
-    if p.how not in ("kennedy", "normals"):
-        return p.note or p.how
-    lines = []
-    for ln in p.lines:
-        lines.append(f"{pole_label(ln[0], compact)}-{pole_label(ln[1], compact)}" if "-" in ln[0]
-                     else f"{ln[0]} at {ln[1]}")
-    return " x ".join(lines)
-
-
-def poles_tables(sol) -> list[Table]:
-    """The readable tables: every pole, and the instant-centre omegas beside the analytic ones."""
-    ps = locate_poles(sol)
-    compact = all(len(lk) == 1 for lk in ps.links)
-    rows = tuple((pole_label(p.key, compact), _where(p), "inspection" if p.by_inspection else p.how,
-                  str(p.order) if p.order else "-", _found(p, compact)) for p in ps.poles.values())
-    units = sol.mechanism.units
-    t1 = Table(f"Instant centres ({len(ps.poles)} poles, order of discovery on the Kennedy circle)",
-               ("pole", f"position ({units})" if units else "position", "found by", "order", "how"), rows)
-    ic = instant_centre_velocities(sol, ps)
-    via = {lk: (frm, key) for lk, frm, key in ic["path"]}
-    rows2 = []
-    for lk in ps.links:
-        if lk == ps.frame:
-            continue
-        w, wa = ic["omega"][lk], sol.omega[lk]
-        frm, key = via[lk]
-        if key == "velocity":
-            how = "from the velocity solution"
-        elif frm is None:
-            how = "driver"
-        else:
-            how = f"from {frm} through {pole_label(key, compact)}"
-        rows2.append((lk, _where(ps.pole(ps.frame, lk)), fmt(w), fmt(wa), fmt(abs(w - wa), 2), how))
-    t2 = Table("Instant-centre method: omega_j = omega_i (P_ij - P_1i) / (P_ij - P_1j)",
-               ("link", "frame pole", "omega (instant centres)", "omega (analytic)", "difference", "found"),
-               tuple(rows2))
-    return [t1, t2]
-
-
-register_section("poles", poles_section)
-if poles_tables not in SECTIONS:
-    SECTIONS.append(poles_tables)

@@ -62,12 +62,10 @@ from . import geometry as G
 from .errors import InputError, SingularPoseError, VelpolyError
 from .kinematics import SINGULAR
 from .motion import point_keys
-from .report import SECTIONS, Table, fmt, on_links, pinned_keys, polar
-from .solution import register_section
 
 __all__ = [
     "ConstructionLine", "Vector", "Step", "AuxiliaryPoint", "Polygon", "ConstructionError",
-    "velocity_polygon", "acceleration_polygon", "construction_plan", "hand_drafting",
+    "velocity_polygon", "acceleration_polygon", "construction_plan", "hand_drafting", "graphical_section",
     "SINE_LIMIT",
 ]
 
@@ -1378,52 +1376,13 @@ def _interval(x) -> list:
     return [float(lo), float(hi)]
 
 
-# -- JSON section and readable tables ---------------------------------------------------------------
-def _json_section(sol):
+# -- the JSON section ------------------------------------------------------------------------------
+def graphical_section(sol) -> dict:
+    """The JSON ``graphical`` section (FORMAT.md section 2): each polygon's ``max_error``, or why the
+    construction is not drawn (``unsupported``)."""
     try:
         v = velocity_polygon(sol).max_error
     except ConstructionError as e:
         return {"max_error": {"velocity": None, "acceleration": None}, "unsupported": e.what}
     a = acceleration_polygon(sol).max_error if sol.has_accelerations else None
     return {"max_error": {"velocity": v, "acceleration": a}}
-
-
-def _tables(sol):
-    try:
-        polys = [velocity_polygon(sol)]
-    except ConstructionError as e:
-        return Table("Graphical construction", ("status",), ((f"not constructed: {e.what}",),))
-    if sol.has_accelerations:
-        polys.append(acceleration_polygon(sol))
-    hd = hand_drafting(sol)
-    pinned = pinned_keys(sol.mechanism)
-    out = []
-    for poly in polys:
-        vel = poly.kind == "velocity"
-        analytic_rate = sol.omega if vel else sol.alpha
-        analytic_pt = sol.velocity if vel else sol.acceleration
-        h = hd[poly.kind]
-        rname, pname = ("omega", "V") if vel else ("alpha", "A")
-        rows = []
-        for lk in sol.mechanism.link_names:
-            if lk == sol.mechanism.frame.name:
-                continue
-            lo, hi = h["omega" if vel else "alpha"][lk]
-            rows.append((f"{rname}_{lk}", fmt(poly.rates[lk]), fmt(analytic_rate[lk]), f"{fmt(lo, 4)} .. {fmt(hi, 4)}"))
-        for key, img in poly.images.items():
-            if key in pinned and pinned[key] is None:
-                continue   # a point of links pinned together: one row, with the first key's
-            lo, hi = h["speed" if vel else "magnitude"][key]
-            name = f"{pname}_{pinned[key][0]} (on {on_links(pinned[key][1])})" if key in pinned else f"{pname}_{key}"
-            rows.append((f"{name} ({poly.labels[key]})", polar(img), polar(analytic_pt[key]),
-                         f"{fmt(lo, 4)} .. {fmt(hi, 4)}"))
-        rows.append(("max error (relative to the largest)", f"{poly.max_error:.2g}", "", ""))
-        title = (f"{poly.kind.capitalize()} polygon ({len(poly.steps)} steps): graphical and analytic, "
-                 f"hand-drafted 95% range at {fmt(h['scale'], 4)} mm per unit")
-        out.append(Table(title, ("quantity", "graphical", "analytic", "hand-drafted"), tuple(rows)))
-    return out
-
-
-register_section("graphical", _json_section)
-if _tables not in SECTIONS:
-    SECTIONS.append(_tables)

@@ -29,6 +29,7 @@ from dataclasses import dataclass
 
 import numpy as np
 
+from .driver import driver_reference_angle
 from .errors import InputError
 
 __all__ = ["Quantity", "parse_key", "validate_reference", "compare", "Row", "relative_pole", "value_keys",
@@ -369,7 +370,6 @@ def _row(key, printed, value, note):
 def file_pose_angle(m) -> float | None:
     """The driver angle (deg) of the pose the file describes, to which its printed values belong:
     ``driver.angle`` if the file gives one, else the reference pose's; None for a slider driver."""
-    from .solution import driver_reference_angle
     if m.driver.is_slider:
         return None
     return m.driver.angle if m.driver.angle is not None else driver_reference_angle(m)

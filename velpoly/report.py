@@ -1,61 +1,28 @@
-"""Readable tables of a solution: links, points, joints, reference values.
+"""Readable tables: of a solution (links, points, joints, poles, polygons, reference values) and of a
+cycle (a :class:`velpoly.Sweep`: its CSV and summary table).
 
 Each table is a list of rows (:class:`Table`), rendered as aligned text,
 Markdown, LaTeX or CSV by :func:`render_table`. ``velpoly solve`` prints
 :func:`solution_report`; the figures' results tables use the same rows.
+``velpoly sweep`` writes :func:`cycle_csv` and prints :func:`summary_text`.
+This module draws nothing and prints nothing.
 """
 from __future__ import annotations
 
 import csv
 import io
 import math
-from dataclasses import dataclass
 
 import numpy as np
 
+from .compare import polygon_values
+from .driver import driver_label
+from .tables import Table, fmt, magnitude_direction, polar, render_table   # re-exported: the tables' primitives
 from .reference import at_file_pose, compare, file_pose_angle
 
-__all__ = ["Table", "render_table", "solution_tables", "solution_report", "fmt", "polar", "SECTIONS",
-           "pinned_keys", "on_links", "solution_html"]
-
-
-@dataclass(frozen=True)
-class Table:
-    """A titled table: column headers and rows of strings; ``notes``: its footnotes, ``(mark, key, text)``
-    for each mark in its rows (a drawn results table prints them beneath it)."""
-
-    title: str
-    header: tuple[str, ...]
-    rows: tuple[tuple[str, ...], ...]
-    notes: tuple[tuple[str, str, str], ...] = ()
-
-
-def fmt(x, digits: int = 6) -> str:
-    """A number to ``digits`` significant digits; '-' for None or NaN."""
-    if x is None:
-        return "-"
-    x = float(x)
-    if not math.isfinite(x):
-        return "-"
-    if x == 0:
-        return "0"
-    if abs(x) < 1e-12 * 10 ** digits and abs(x) < 1e-9:
-        return "0"
-    return f"{x:.{digits}g}"
-
-
-def polar(v) -> str:
-    """A vector as ``magnitude ∠ direction°`` (direction in [0, 360))."""
-    if v is None:
-        return "-"
-    v = np.asarray(v, float)
-    if not np.all(np.isfinite(v)):
-        return "-"
-    mag = float(np.hypot(*v))
-    if mag == 0:
-        return "0"
-    ang = math.degrees(math.atan2(v[1], v[0])) % 360.0
-    return f"{fmt(mag)} ∠ {ang:.3f}°"
+__all__ = ["Table", "render_table", "solution_tables", "solution_report", "fmt", "polar", "magnitude_direction", "poles_tables", "polygon_tables",
+           "pinned_keys", "on_links", "solution_html",
+           "cycle_columns", "cycle_csv", "moving_keys", "summary_table", "summary_text"]
 
 
 def _links(sol) -> Table:
@@ -193,62 +160,105 @@ def _reference(sol) -> Table | None:
     return Table(title, ("quantity", "printed", "analytic", "deviation", "note"), tuple(rows))
 
 
-# Further sections (function(solution) -> Table | list[Table] | None), added by the poles and
-# polygons modules so that this module does not import them.
-SECTIONS: list = []
+# -- the constructions' tables (velpoly.poles, velpoly.polygons) -----------------------------------
+def _pole_where(p) -> str:
+    if p.undefined:
+        return "undefined (links move alike)"
+    if p.position is None:
+        return f"at infinity, {p.direction:.3f}°"
+    return f"({fmt(p.position[0])}, {fmt(p.position[1])})"
+
+
+def _pole_found(p, compact: bool) -> str:
+    from .poles import pole_label
+    if p.how not in ("kennedy", "normals"):
+        return p.note or p.how
+    lines = []
+    for ln in p.lines:
+        lines.append(f"{pole_label(ln[0], compact)}-{pole_label(ln[1], compact)}" if "-" in ln[0]
+                     else f"{ln[0]} at {ln[1]}")
+    return " x ".join(lines)
+
+
+def poles_tables(sol) -> list[Table]:
+    """The instant centres' tables: every pole, and the instant-centre omegas beside the analytic ones."""
+    from .poles import instant_centre_velocities, locate_poles, pole_label
+    ps = locate_poles(sol)
+    compact = all(len(lk) == 1 for lk in ps.links)
+    rows = tuple((pole_label(p.key, compact), _pole_where(p), "inspection" if p.by_inspection else p.how,
+                  str(p.order) if p.order else "-", _pole_found(p, compact)) for p in ps.poles.values())
+    units = sol.mechanism.units
+    t1 = Table(f"Instant centres ({len(ps.poles)} poles, order of discovery on the Kennedy circle)",
+               ("pole", f"position ({units})" if units else "position", "found by", "order", "how"), rows)
+    ic = instant_centre_velocities(sol, ps)
+    via = {lk: (frm, key) for lk, frm, key in ic["path"]}
+    rows2 = []
+    for lk in ps.links:
+        if lk == ps.frame:
+            continue
+        w, wa = ic["omega"][lk], sol.omega[lk]
+        frm, key = via[lk]
+        if key == "velocity":
+            how = "from the velocity solution"
+        elif frm is None:
+            how = "driver"
+        else:
+            how = f"from {frm} through {pole_label(key, compact)}"
+        rows2.append((lk, _pole_where(ps.pole(ps.frame, lk)), fmt(w), fmt(wa), fmt(abs(w - wa), 2), how))
+    t2 = Table("Instant-centre method: omega_j = omega_i (P_ij - P_1i) / (P_ij - P_1j)",
+               ("link", "frame pole", "omega (instant centres)", "omega (analytic)", "difference", "found"),
+               tuple(rows2))
+    return [t1, t2]
+
+
+def polygon_tables(sol) -> list[Table]:
+    """The velocity and acceleration polygons' rates and images beside the analytic values, with the
+    range a careful hand drawing gives (:func:`velpoly.polygons.hand_drafting`)."""
+    from .polygons import ConstructionError, acceleration_polygon, hand_drafting, velocity_polygon
+    try:
+        polys = [velocity_polygon(sol)]
+    except ConstructionError as e:
+        return [Table("Graphical construction", ("status",), ((f"not constructed: {e.what}",),))]
+    if sol.has_accelerations:
+        polys.append(acceleration_polygon(sol))
+    hd = hand_drafting(sol)
+    pinned = pinned_keys(sol.mechanism)
+    out = []
+    for poly in polys:
+        vel = poly.kind == "velocity"
+        h = hd[poly.kind]
+        rname, pname = ("omega", "V") if vel else ("alpha", "A")
+        rates, points = polygon_values(sol, poly)
+        rows = []
+        for v in rates:
+            lo, hi = h["omega" if vel else "alpha"][v.key]
+            rows.append((f"{rname}_{v.key}", fmt(v.graphical), fmt(v.analytic), f"{fmt(lo, 4)} .. {fmt(hi, 4)}"))
+        for v in points:
+            key = v.key
+            if key in pinned and pinned[key] is None:
+                continue   # a point of links pinned together: one row, with the first key's
+            lo, hi = h["speed" if vel else "magnitude"][key]
+            name = f"{pname}_{pinned[key][0]} (on {on_links(pinned[key][1])})" if key in pinned else f"{pname}_{key}"
+            rows.append((f"{name} ({poly.labels[key]})", polar(v.graphical), polar(v.analytic),
+                         f"{fmt(lo, 4)} .. {fmt(hi, 4)}"))
+        rows.append(("max error (relative to the largest)", f"{poly.max_error:.2g}", "", ""))
+        title = (f"{poly.kind.capitalize()} polygon ({len(poly.steps)} steps): graphical and analytic, "
+                 f"hand-drafted 95% range at {fmt(h['scale'], 4)} mm per unit")
+        out.append(Table(title, ("quantity", "graphical", "analytic", "hand-drafted"), tuple(rows)))
+    return out
 
 
 def solution_tables(sol) -> list[Table]:
     """Every table of the solution, in reading order."""
-    from .solution import load_sections
-    load_sections()
     out = [_links(sol), _points(sol), *_joints(sol)]
     compass = _compass(sol)
     if compass is not None:
         out.append(compass)
-    for fn in SECTIONS:
-        t = fn(sol)
-        if t is None:
-            continue
-        out.extend(t if isinstance(t, list) else [t])
+    out += poles_tables(sol) + polygon_tables(sol)
     ref = _reference(sol)
     if ref is not None:
         out.append(ref)
     return out
-
-
-def render_table(t: Table, style: str = "text") -> str:
-    """A table as ``text`` (aligned columns), ``markdown``, ``latex`` or ``csv``."""
-    if style == "csv":
-        buf = io.StringIO()
-        w = csv.writer(buf, lineterminator="\n")
-        w.writerow(t.header)
-        w.writerows(t.rows)
-        return buf.getvalue()
-    if style == "markdown":
-        def esc(s):
-            return str(s).replace("|", "\\|")
-        lines = [f"**{t.title}**", "", "| " + " | ".join(map(esc, t.header)) + " |",
-                 "|" + "|".join("---" for _ in t.header) + "|"]
-        lines += ["| " + " | ".join(map(esc, r)) + " |" for r in t.rows]
-        return "\n".join(lines) + "\n"
-    if style == "latex":
-        def tex(s):
-            s = str(s)
-            for a, b in (("\\", r"\textbackslash{}"), ("&", r"\&"), ("%", r"\%"), ("_", r"\_"), ("#", r"\#"),
-                         ("∠", r"$\angle$"), ("°", r"$^\circ$"), ("^", r"\^{}")):
-                s = s.replace(a, b)
-            return s
-        cols = "l" * len(t.header)
-        lines = [r"\begin{tabular}{" + cols + "}", r"\hline", " & ".join(map(tex, t.header)) + r" \\", r"\hline"]
-        lines += [" & ".join(map(tex, r)) + r" \\" for r in t.rows]
-        lines += [r"\hline", r"\end{tabular}"]
-        return "\n".join(lines) + "\n"
-    widths = [max(len(str(x)) for x in col) for col in zip(t.header, *t.rows)]
-    lines = [t.title, "  ".join(h.ljust(w) for h, w in zip(t.header, widths)).rstrip(),
-             "  ".join("-" * w for w in widths)]
-    lines += ["  ".join(str(c).ljust(w) for c, w in zip(r, widths)).rstrip() for r in t.rows]
-    return "\n".join(lines) + "\n"
 
 
 def _head(sol) -> tuple[str, str]:
@@ -285,3 +295,114 @@ def solution_report(sol, style: str = "text") -> str:
     for w in sol.warnings:
         out += f"\nwarning: {w}\n"
     return out
+
+
+# -- a whole cycle (velpoly sweep): the CSV and the summary table --------------------------------------
+def cycle_columns(sw, cen=None) -> list[tuple[str, np.ndarray]]:
+    """Every quantity over the cycle as named columns (docs/sweep.md lists them).
+
+    ``driver`` (degrees, or the slider's displacement), then for each link
+    ``theta_L``, ``omega_L``, ``alpha_L``; for each point key ``x_P``, ``y_P``,
+    ``vx_P``, ``vy_P``, ``ax_P``, ``ay_P``; for each slider, slot and contact its
+    slip velocity and acceleration; the centrodes if given.
+    """
+    m = sw.mechanism
+    cols = [("driver", sw.angles)]
+    for lk in m.link_names:
+        cols += [(f"theta_{lk}", sw.angle[lk]), (f"omega_{lk}", sw.omega[lk]), (f"alpha_{lk}", sw.alpha[lk])]
+    for key in sw.position:
+        p, v, a = sw.position[key], sw.velocity[key], sw.acceleration[key]
+        cols += [(f"x_{key}", p[:, 0]), (f"y_{key}", p[:, 1]), (f"vx_{key}", v[:, 0]), (f"vy_{key}", v[:, 1]),
+                 (f"ax_{key}", a[:, 0]), (f"ay_{key}", a[:, 1])]
+    for s, r in zip(m.sliders, sw.sliders):
+        tag = f"{s.point}_{s.block}/{s.guide}"
+        cols += [(f"slip_velocity_{tag}", r["slip_velocity"]), (f"slip_acceleration_{tag}", r["slip_acceleration"])]
+    for s, r in zip(m.slots, sw.slots):
+        tag = f"{s.pin}_{s.link}/{s.slot}"
+        cols += [(f"slip_velocity_{tag}", r["slip_velocity"]), (f"slip_acceleration_{tag}", r["slip_acceleration"])]
+    for c, r in zip(m.contacts, sw.contacts):
+        tag = f"{c.point}_{c.links[0]}/{c.links[1]}"
+        cols += [(f"slip_velocity_{tag}", r["slip_velocity"]), (f"slip_acceleration_{tag}", r["slip_acceleration"])]
+    if cen is not None:
+        lk = cen.link
+        cols += [(f"fixed_centrode_x_{lk}", cen.fixed[:, 0]), (f"fixed_centrode_y_{lk}", cen.fixed[:, 1]),
+                 (f"moving_centrode_x_{lk}", cen.moving[:, 0]), (f"moving_centrode_y_{lk}", cen.moving[:, 1])]
+    return cols
+
+
+def _cell(x: float) -> str:
+    x = float(x)
+    if not math.isfinite(x):
+        return ""
+    if x == 0:
+        return "0"
+    return f"{x:.12g}"
+
+
+def cycle_csv(sw, cen=None) -> str:
+    """The CSV text: a header row of column names, one row per pose; empty cells are undefined values."""
+    cols = cycle_columns(sw, cen)
+    buf = io.StringIO()
+    w = csv.writer(buf, lineterminator="\n")
+    w.writerow([name for name, _ in cols])
+    data = np.column_stack([np.asarray(c, float) for _, c in cols]) if len(sw.angles) else np.zeros((0, len(cols)))
+    for row in data:
+        w.writerow([_cell(x) for x in row])
+    return buf.getvalue()
+
+
+# -- the summary table -----------------------------------------------------------------------
+def moving_keys(sw) -> list[str]:
+    """Point keys that move during the cycle (fixed points have zero speed throughout)."""
+    out = []
+    for key, v in sw.velocity.items():
+        if np.nanmax(np.hypot(v[:, 0], v[:, 1]), initial=0.0) > 0 or np.ptp(sw.position[key], axis=0).max() > 0:
+            out.append(key)
+    return out
+
+
+def _extremes(name: str, unit: str, values: np.ndarray, at: np.ndarray):
+    good = np.isfinite(values)
+    if not good.any():
+        return (name, unit, "-", "-", "-", "-")
+    v = np.where(good, values, np.nan)
+    i, j = int(np.nanargmin(v)), int(np.nanargmax(v))
+    return (name, unit, fmt(v[i]), f"{at[i]:.6g}", fmt(v[j]), f"{at[j]:.6g}")
+
+
+def summary_table(sw, points=None) -> Table:
+    """Min and max of each link's omega and alpha, each point's speed and acceleration (``points``:
+    point keys, default every moving point) and each slider's slip velocity over the cycle, with
+    the driver positions where they occur."""
+    m = sw.mechanism
+    u = m.units or "length"
+    at = sw.angles
+    rows = []
+    for k in m.moving_links:
+        rows.append(_extremes(f"omega_{k.name}", "rad/s", sw.omega[k.name], at))
+    for k in m.moving_links:
+        rows.append(_extremes(f"alpha_{k.name}", "rad/s^2", sw.alpha[k.name], at))
+    keys = list(points) if points else moving_keys(sw)
+    for key in keys:
+        v = sw.velocity[key]
+        rows.append(_extremes(f"|V_{key}|", f"{u}/s", np.hypot(v[:, 0], v[:, 1]), at))
+    for key in keys:
+        a = sw.acceleration[key]
+        rows.append(_extremes(f"|A_{key}|", f"{u}/s^2", np.hypot(a[:, 0], a[:, 1]), at))
+    for s, r in zip(m.sliders, sw.sliders):
+        rows.append(_extremes(f"slip V_{s.point}{s.block}/{s.point}{s.guide}", f"{u}/s", r["slip_velocity"], at))
+    _, unit = driver_label(m)
+    return Table(f"Over the cycle ({len(at)} poses)",
+                 ("quantity", "unit", "min", f"at ({unit})", "max", f"at ({unit})"), tuple(rows))
+
+
+def summary_text(sw, points=None) -> str:
+    """What ``velpoly sweep`` prints without an output file: the title, the driver's span, the summary table."""
+    m = sw.mechanism
+    name, unit = driver_label(m)
+    if len(sw.angles) > 1:
+        span = f"{name} from {sw.angles[0]:.6g} to {sw.angles[-1]:.6g} {unit}"
+    else:
+        span = f"{name} {sw.angles[0]:.6g} {unit}"
+    head = f"{m.title}\n{span}\n\n"
+    return head + render_table(summary_table(sw, points), "text")

@@ -18,43 +18,10 @@ from .kinematics import WARN, Kinematics, accelerations, prepare, velocities
 from .model import Mechanism
 from .motion import Motion, evaluate_motion, wrap_deg_float
 from .pose import reassemble
+from .driver import driver_reference_angle, reachable_range   # re-exported: solve places the driver by them
 from .arguments import check_angle, check_mechanism
 
 __all__ = ["Solution", "solve", "driver_reference_angle", "reachable_range"]
-
-
-def driver_reference_angle(m: Mechanism) -> float | None:
-    """The driver link's angle in the reference pose (degrees), None for a slider driver."""
-    if m.driver.is_slider:
-        return None
-    lk = m.link(m.driver.link)
-    if len(lk.points) < 2:  # a one-point crank: its angle is its rotation from the reference pose
-        return 0.0
-    (ax, ay), (bx, by) = m.points[lk.points[0]], m.points[lk.points[1]]
-    return wrap_deg_float(math.degrees(math.atan2(float(by) - float(ay), float(bx) - float(ax))))
-
-
-def reachable_range(kin: Kinematics, limit: float = 360.0, step: float = 1.0,
-                    resolution: float = 0.01) -> tuple[float, float]:
-    """Driver displacements (degrees) reachable from the reference pose on its branch, each end to
-    ``resolution`` degrees: followed in ``step``-degree steps to the last pose before a toggle, then
-    in ``resolution`` steps across the next ``step`` (one more continuation each way). An end where
-    a pin leaves its bounded slot is given to 1e-6 degree (where it reaches the slot's end)."""
-    out = []
-    for sign in (1.0, -1.0):
-        coarse = np.arange(step, limit + step / 2, step)
-        r = reassemble(kin.system, list(kin.rows), np.radians(coarse) * sign)
-        if r.leaves is not None:    # a pin leaves its slot: that end is known to 1e-8 deg
-            out.append(round(float(np.degrees(r.leaves[2])), 6))
-            continue
-        last = float(np.degrees(abs(r.deltas[-1]))) if len(r.deltas) else 0.0
-        if last < limit:
-            fine = np.arange(last + resolution, min(last + step, limit) + resolution / 2, resolution)
-            path = np.concatenate([coarse[coarse <= last + 1e-9], fine])
-            r = reassemble(kin.system, list(kin.rows), np.radians(path) * sign)
-            last = float(np.degrees(abs(r.deltas[-1]))) if len(r.deltas) else 0.0
-        out.append(sign * round(last / resolution) * resolution)
-    return out[1], out[0]
 
 
 @dataclass(frozen=True)
@@ -106,22 +73,28 @@ class Solution:
     def has_accelerations(self) -> bool:
         return bool(np.all(np.isfinite(self.qdd)))
 
-    def body_velocity(self, link: str, w) -> np.ndarray:
-        """Velocity of the point of ``link`` now at world position w: V_O + omega x R."""
+    def _arm(self, link: str, w):
+        """``(k, R)``: the link's index in q and the arm R = w - O from its point O (the one at the world
+        origin in the reference pose) to world position w; None for the frame."""
         k = self.kinematics.system.index.get(link)
         if k is None:
+            return None
+        return k, np.asarray(w, float) - self.q[3 * k:3 * k + 2]
+
+    def body_velocity(self, link: str, w) -> np.ndarray:
+        """Velocity of the point of ``link`` now at world position w: V_O + omega x R."""
+        arm = self._arm(link, w)
+        if arm is None:
             return np.zeros(2)
-        o = self.q[3 * k:3 * k + 2]
-        r = np.asarray(w, float) - o
+        k, r = arm
         return self.qd[3 * k:3 * k + 2] + self.qd[3 * k + 2] * np.array([-r[1], r[0]])
 
     def body_acceleration(self, link: str, w) -> np.ndarray:
         """Acceleration of the point of ``link`` now at w: A_O + alpha x R - omega^2 R."""
-        k = self.kinematics.system.index.get(link)
-        if k is None:
+        arm = self._arm(link, w)
+        if arm is None:
             return np.zeros(2)
-        o = self.q[3 * k:3 * k + 2]
-        r = np.asarray(w, float) - o
+        k, r = arm
         om, al = self.qd[3 * k + 2], self.qdd[3 * k + 2]
         return self.qdd[3 * k:3 * k + 2] + al * np.array([-r[1], r[0]]) - om ** 2 * r
 
@@ -172,29 +145,14 @@ class Solution:
                              "slip_velocity": float(r["slip_velocity"][0]),
                              "slip_acceleration": _f(r["slip_acceleration"][0]),
                              "coriolis": _v(r["coriolis"][0])} for s, r in zip(m.slots, mo.slots)]
-        load_sections()
-        for name, fn in _EXTRA_SECTIONS:
-            section = fn(self)
+        from .poles import poles_section          # the constructions, a layer above the solve: their
+        from .polygons import graphical_section   # JSON sections (FORMAT.md section 2), in this order
+        for name, section in (("poles", poles_section(self)), ("graphical", graphical_section(self))):
             if section is not None:
                 out[name] = section
         if self.warnings:
             out["warnings"] = list(self.warnings)
         return out
-
-
-# Sections the pole and polygon modules add to the JSON: (key, function(solution) -> dict | None)
-_EXTRA_SECTIONS: list = []
-
-
-def load_sections() -> None:
-    """Import the modules that add sections (instant centres, then polygons), once."""
-    from . import poles, polygons  # noqa: F401  (they register themselves on import)
-
-
-def register_section(name: str, fn) -> None:
-    """Add a section to :meth:`Solution.to_dict` (used by the poles and polygons modules)."""
-    if all(n != name for n, _ in _EXTRA_SECTIONS):
-        _EXTRA_SECTIONS.append((name, fn))
 
 
 def _f(x) -> float | None:

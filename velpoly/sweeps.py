@@ -7,22 +7,26 @@ handful of numpy passes, not a Python loop per pose.
 """
 from __future__ import annotations
 
+import dataclasses
+import math
 from dataclasses import dataclass, field
 from functools import cached_property
 
 import numpy as np
 
 from .arguments import MAX_ANGLE, check_angles, check_mechanism
-from .errors import ArgumentValueError
+from .errors import ArgumentValueError, InputError, PoseError
 from .dyads import coordinates, rates, walk
-from .kinematics import SINGULAR, Kinematics, accelerations, condition, prepare, velocities
+from .kinematics import SINGULAR, Kinematics, accelerations, condition, involved_links, prepare, velocities
 from .model import Mechanism
 from .motion import evaluate_motion, wrap_deg
 from . import pose
 from .pose import plan_for, reassemble, walked_reach
-from .solution import driver_reference_angle
+from .driver import driver_reference_angle, reachable_text
+from .solution import Solution
 
-__all__ = ["Sweep", "sweep", "memory_estimate", "check_memory", "MEMORY_BUDGET"]
+__all__ = ["Sweep", "sweep", "memory_estimate", "check_memory", "MEMORY_BUDGET", "check_step", "cycle_poses",
+           "cycle_angles", "run_cycle", "join_sweeps", "solution_at", "check_cycle", "stop_note"]
 
 
 @dataclass(frozen=True)
@@ -218,3 +222,150 @@ def sweep(m: Mechanism, angles, kin: Kinematics | None = None) -> Sweep:
     return Sweep(m, angles[:n], get("angle"), get("omega"), get("alpha"), get("position"),
                  get("velocity"), get("acceleration"), get("sliders") or [], get("contacts") or [],
                  get("slots") or [], q, qd, qdd, stopped, kin, known_cond, leaves)
+
+
+# -- one cycle of the driver (``velpoly sweep``, ``velpoly animate``, ``velpoly html``) ------------------
+# A crank turns from its reference angle through 360 degrees in the sense of its omega, ``step`` degrees
+# apart (the closing pose left out). A slider driver runs over the whole stroke it reaches from its
+# reference position on the drawn branch (at most STROKE_REACH mechanism sizes either way), in ascending
+# displacement, with steps of 1/(360/step) of the stroke (a unit-free step); each end of the stroke is a
+# toggle, so the two halves are followed from the reference position outwards and stop within one step
+# of each end: that is the cycle, not an early stop. A toggle on the way ends a crank's cycle early
+# (Sweep.stopped).
+STROKE_REACH = 2.0         # a slider driver is searched this many mechanism sizes either way
+STROKE_SAMPLES = 2000      # grid of that search (the stroke's ends are found to 1/1000 size)
+
+
+def check_step(step: float) -> float:
+    """``--step`` as a float in (0, 180] degrees, else an InputError."""
+    step = float(step)
+    if not math.isfinite(step) or step <= 0 or step > 180:
+        raise InputError(f"the step must be a number of degrees in (0, 180], got {step:g}", where="--step",
+                         hint="e.g. --step 1 (360 poses a turn) or --step 5")
+    return step
+
+
+def cycle_poses(step: float) -> int:
+    """The poses of one cycle ``step`` degrees apart: a turn, or each half of a slider's stroke."""
+    return max(int(math.ceil(360.0 / check_step(step) - 1e-9)), 1)
+
+
+def _slider_stroke(m: Mechanism, kin: Kinematics) -> tuple[float, float]:
+    """The driver slider's reachable displacements (lo, hi) from its reference position."""
+    grid = np.linspace(0.0, STROKE_REACH * m.size, STROKE_SAMPLES + 1)[1:]
+    ends = []
+    for sign in (-1.0, 1.0):
+        w = sweep(m, sign * grid, kin)
+        ends.append(float(w.angles[-1]) if len(w.angles) else 0.0)
+    return ends[0], ends[1]
+
+
+def _slider_positions(lo: float, hi: float, n: int) -> tuple[np.ndarray, np.ndarray]:
+    """Displacements from the reference (0) down towards ``lo`` and up towards ``hi``, (hi - lo) / n
+    apart: the multiples of the step inside the stroke (an end itself is a toggle, left out)."""
+    d = (hi - lo) / n if hi > lo else 1.0
+    down = -d * np.arange(int(math.floor(-lo / d + 1e-9)) + 1)
+    up = d * np.arange(int(math.floor(hi / d + 1e-9)) + 1)
+    return down, up
+
+
+def cycle_angles(m: Mechanism, step: float = 1.0, kin: Kinematics | None = None) -> np.ndarray:
+    """The driver positions of one cycle (module docstring): degrees, or displacements for a slider."""
+    step = check_step(step)
+    n = cycle_poses(step)
+    if m.driver.is_slider:
+        down, up = _slider_positions(*_slider_stroke(m, kin or prepare(m)), n)
+        return np.concatenate([down[::-1], up[1:]])
+    ref = driver_reference_angle(m)
+    sense = -1.0 if m.driver.omega < 0 else 1.0
+    return ref + sense * step * np.arange(n)
+
+
+def join_sweeps(down: Sweep, up: Sweep) -> Sweep:
+    """One sweep from two that start at the reference pose: ``down`` reversed, then ``up`` (its
+    first pose, the reference, once). Arrays, dicts of arrays and lists of such dicts are joined
+    pose by pose; the mechanism is kept and the stop messages are combined."""
+    def cat(a, b):
+        if isinstance(a, dict):
+            return {k: cat(a[k], b[k]) for k in a}
+        if isinstance(a, list):
+            return [cat(x, y) for x, y in zip(a, b)]
+        return np.concatenate([np.asarray(a)[::-1], np.asarray(b)[1:]])
+    joined = {}
+    for f in dataclasses.fields(Sweep):
+        a, b = getattr(down, f.name), getattr(up, f.name)
+        if f.name == "stopped":
+            joined[f.name] = "; ".join(x for x in (a, b) if x)
+        elif isinstance(a, (np.ndarray, dict, list)) and type(a) is type(b):
+            joined[f.name] = cat(a, b)
+        elif isinstance(a, np.ndarray) or isinstance(b, np.ndarray):
+            joined[f.name] = None          # known on one side only (a cache): recomputed on use
+        else:
+            joined[f.name] = b
+    return Sweep(**joined)
+
+
+def run_cycle(m: Mechanism, step: float = 1.0, kin: Kinematics | None = None) -> Sweep:
+    """One driver cycle on the drawn branch (see the module docstring).
+
+    A slider driver's stroke is followed from the reference position down to
+    its lower end and up to its upper end (two continuations, never turning
+    round at an end, where the branches meet), and returned in ascending order.
+    """
+    kin = kin or prepare(m)
+    step = check_step(step)
+    n = cycle_poses(step)
+    if not m.driver.is_slider:
+        return sweep(m, cycle_angles(m, step, kin), kin)
+    down, up = _slider_positions(*_slider_stroke(m, kin), n)
+    w_down, w_up = sweep(m, down, kin), sweep(m, up, kin)
+    if not len(w_up.angles):
+        return w_up
+    if not len(w_down.angles):
+        return w_down
+    # the stroke ends where it cannot go on: not a stop to warn about
+    return dataclasses.replace(join_sweeps(w_down, w_up), stopped="")
+
+
+def solution_at(sw: Sweep, kin: Kinematics, i: int):
+    """The :class:`velpoly.Solution` of pose i of the sweep (for the figure functions)."""
+    q, qd, qdd = sw.q[i:i + 1], sw.qd[i:i + 1], sw.qdd[i:i + 1]
+    mo = evaluate_motion(sw.mechanism, kin.system.index, q, qd, qdd)
+    angle = None if sw.mechanism.driver.is_slider else float(sw.angles[i])
+    if angle is not None:
+        angle = float((angle + 180.0) % 360.0 - 180.0) or 0.0
+    return Solution(sw.mechanism, kin, q[0], qd[0], qdd[0], float(sw.condition[i]), mo, angle)
+
+
+def check_cycle(sw: Sweep, kin: Kinematics) -> None:
+    """A PoseError naming the links unless the cycle reached two poses or more: the pin that leaves
+    its slot at once, or the links that come into line (a toggle at the reference pose)."""
+    m = sw.mechanism
+    if len(sw.angles) >= 2:
+        return
+    if sw.leaves is not None:
+        sl = next(s for s in m.slots if s.pin == sw.leaves[0] and s.slot == sw.leaves[1])
+        raise PoseError(f"cannot sweep: {len(sw.angles)} pose(s) reachable from the reference pose ({sw.stopped})",
+                        where="driver", file=m.source, links=(sl.link, sl.slot),
+                        hint="draw the pin inside its slot, away from the slot's ends")
+    links = involved_links(kin, sw.q[-1] if len(sw.q) else np.zeros(kin.system.nq))
+    reach = reachable_text(m, kin)
+    raise PoseError(f"cannot sweep: {len(sw.angles)} pose(s) reachable from the reference pose"
+                    + (f" ({sw.stopped})" if sw.stopped else "") + (f"; {reach}" if reach else ""),
+                    where="driver", file=m.source,
+                    links=links, hint="links " + ", ".join(links) + " come into line: draw the mechanism "
+                    "in a pose away from the toggle")
+
+
+def stop_note(sw: Sweep, kin: Kinematics) -> str:
+    """Why the cycle ended early and what it reached (the command's warning), "" if it did not."""
+    m = sw.mechanism
+    if sw.stopped and sw.leaves is not None:
+        reach = reachable_text(m, kin).replace("reachable on this branch:", "the pin is in its slot from")
+        return f"{sw.stopped}" + (f"; {reach}" if reach else "") + "; the outputs hold the part before"
+    if sw.stopped:
+        links = involved_links(kin, sw.q[-1])
+        reach = reachable_text(m, kin)
+        return (f"{sw.stopped} (links {', '.join(links)} come into line); "
+                + (f"{reach}; " if reach else "") + "the outputs hold the reachable part")
+    return ""

@@ -91,7 +91,7 @@ class FramePlan:
 
     def solution(self, k: int):
         """The :class:`velpoly.Solution` of frame k (the reversed driver on the way back)."""
-        from ..cycle import solution_at
+        from ..sweeps import solution_at
         leg, i = self.frames[k]
         sw = self.legs[leg]
         return solution_at(sw, sw.kinematics, i)
@@ -146,9 +146,10 @@ def _grid(lo: float, hi: float, step: float) -> np.ndarray:
 def plan_frames(m, step: float = 2.0) -> FramePlan:
     """The frames of ``m``'s animation (see the module's docstring); raises PoseError when fewer than two
     poses can be reached."""
-    from ..cycle import cycle_angles, driver_label, run_cycle
+    from ..driver import driver_label
+    from ..sweeps import cycle_angles, run_cycle
     from ..kinematics import prepare
-    from ..solution import driver_reference_angle, reachable_range
+    from ..driver import driver_reference_angle, reachable_range
     from ..sweeps import sweep
     step = _check_step(step)
     kin = prepare(m)
@@ -599,9 +600,9 @@ class Animator:
         # centrodes (the sweep's GIF): the fixed one still, the moving one carried
         self._centrode = None
         if self.centrodes is not None and self.centrodes[0].defined.any():
-            from ..cycle import _break_at_infinity
+            from ..centrodes import break_at_infinity
             cen, sw = self.centrodes
-            fixed = _break_at_infinity(cen.fixed, sw.omega[cen.link])
+            fixed = break_at_infinity(cen.fixed, sw.omega[cen.link])
             ax.add_line(Line2D(fixed[:, 0], fixed[:, 1], color="0.35", lw=self.pt(1.5), zorder=1.3))
             self._centrode = self._move(Line2D([], [], color="0.35", lw=self.pt(1.5), linestyle="--", zorder=1.3),
                                         ax)
@@ -779,7 +780,7 @@ class Animator:
 
     # -- the live table -------------------------------------------------------------------------------
     def _table(self) -> None:
-        from ..cycle import driver_label
+        from ..driver import driver_label
         fig, m, st = self.fig, self.m, self.st
         x0, y0, w, h = _TABLE
         rows = []       # (name, values over frames, unit)
@@ -920,9 +921,9 @@ class Animator:
             t.set_position(self._clear_offset(ax, t, xy, ang, 9.0, pts, taken))
         if self._centrode is not None:
             cen, sw = self.centrodes
-            from ..cycle import _break_at_infinity
+            from ..centrodes import break_at_infinity
             leg, i = self.plan.frames[k]
-            xy = _break_at_infinity(cen.carried(sw, sw.kinematics, i), sw.omega[cen.link])
+            xy = break_at_infinity(cen.carried(sw, sw.kinematics, i), sw.omega[cen.link])
             self._centrode.set_data(xy[:, 0], xy[:, 1])
         for kind in self.polys:
             self._update_polygon(kind, self.polys[kind][k])

@@ -16,7 +16,7 @@ import re
 import numpy as np
 
 __all__ = ["Artists", "nice_scale", "nice_length", "fit_view", "view_scale", "per_point", "per_cm",
-           "view_box", "border_point", "tex", "prose_tex", "arrow", "get_ax", "renderer_of"]
+           "view_box", "border_point", "tex", "prose_tex", "arrow", "get_ax", "renderer_of", "equation_tex"]
 
 CM = 1 / 2.54  # inches
 
@@ -274,3 +274,30 @@ def border_point(view, c, d, inset: float) -> np.ndarray:
             ts.append(((hi if dd > 0 else lo) - cc) / dd)
     t = max(min(ts), 0.0) if ts else 0.0
     return c + d * t
+
+
+# -- equations ---------------------------------------------------------------------------------------
+_QUANTITY = re.compile(r"(?<![A-Za-z\\])(omega|alpha|theta|[VARP])(\^[nt])?_([A-Za-z0-9]+(?:/[A-Za-z0-9]+)?)(\^[0-9])?")
+
+
+def _index(index: str) -> str:
+    """A subscript's point names with their own subscripts: ``AO2`` -> AO_{2}, ``B3/B4`` -> B_{3}/B_{4}."""
+    return index if index.isdigit() else re.sub(r"([A-Za-z])([0-9]+)", r"\1_{\2}", index)
+
+
+def equation_tex(eq: str) -> str:
+    """A step's vector equation in mathtext: ``V_CB`` -> $V_{CB}$, ``omega_3 x R`` -> $\\omega_{3}$ × R,
+    ``omega_2^2 R_AO2`` -> $\\omega_{2}^{2}$ $R_{AO_{2}}$, `` - `` -> `` − ``, ``deg`` -> °."""
+    def sub(mo):
+        name, sup, index, power = mo.groups()
+        name = {"omega": r"\omega", "alpha": r"\alpha", "theta": r"\theta"}.get(name, name)
+        out = "$" + name + ("^{" + sup[1:] + "}" if sup else "") + "_{" + _index(index) + "}"
+        if power and not sup:
+            return out + "^{" + power[1:] + "}$"
+        return out + "$" + (power or "")
+    s = literal(eq)   # a user's name or title in it is drawn as written
+    s = _QUANTITY.sub(sub, s)
+    s = re.sub(r"\bomega\b", r"$\\omega$", s)
+    s = re.sub(r"\balpha\b", r"$\\alpha$", s)
+    s = re.sub(r"([0-9]) deg\b", "\\1°", s)
+    return s.replace(" x ", " × ").replace(" - ", " − ")

@@ -25,13 +25,13 @@ salt, no dates) and written atomically: a failed run leaves no file.
 from __future__ import annotations
 
 import io
-import re
 from dataclasses import dataclass
 from pathlib import Path
 
 from ..errors import InputError
 from ..fileio import atomic_path
-from .canvas import fit_view, literal, nice_scale, view_scale
+from .canvas import equation_tex, fit_view, literal, nice_scale, view_scale
+from .constructions import Constructions, check_sheet as _check_sheet, constructions
 from .displacement import draw_mechanism, equivalent_linkage_note, mark_auxiliary, mechanism_bounds
 from .kennedy import draw_kennedy_circle, draw_poles, pole_label
 from .labels import placer
@@ -47,70 +47,9 @@ __all__ = ["SHEETS", "Constructions", "constructions", "render_sheet", "frames",
 FORMATS = (".svg", ".png", ".pdf")
 
 
-@dataclass(frozen=True)
-class Constructions:
-    """What a sheet draws from: the polygons and the poles (None where the sheet needs none)."""
-
-    velocity: object = None
-    acceleration: object = None
-    poles: object = None
-
-
-def _check_sheet(sheet: str) -> None:
-    if sheet not in SHEETS:
-        raise InputError(f"unknown sheet {sheet!r}; valid sheets: " + ", ".join(SHEETS), where="--sheet")
-
-
 def default_sheet(m) -> str:
     """The sheet a mechanism draws when none is asked for: its ``[drawing] sheet``, else ``full``."""
     return drawing_options(m).sheet
-
-
-def constructions(sol, sheet: str) -> Constructions:
-    """Build what ``sheet`` needs with :mod:`velpoly.polygons` and :mod:`velpoly.poles`.
-
-    The acceleration sheet needs accelerations (InputError without centres of
-    curvature); the full sheet then shows velocities only. The displacement
-    sheet needs none (it shows no answers).
-    """
-    _check_sheet(sheet)
-    vel = acc = poles = None
-    if sheet in ("velocity", "full"):
-        from ..polygons import velocity_polygon
-        vel = velocity_polygon(sol)
-    if sheet == "acceleration" or (sheet == "full" and sol.has_accelerations):
-        from ..polygons import acceleration_polygon
-        acc = acceleration_polygon(sol)
-    if sheet in ("poles", "velocity", "full"):
-        from ..poles import locate_poles
-        poles = locate_poles(sol)
-    return Constructions(vel, acc, poles)
-
-
-_QUANTITY = re.compile(r"(?<![A-Za-z\\])(omega|alpha|theta|[VARP])(\^[nt])?_([A-Za-z0-9]+(?:/[A-Za-z0-9]+)?)(\^[0-9])?")
-
-
-def _index(index: str) -> str:
-    """A subscript's point names with their own subscripts: ``AO2`` -> AO_{2}, ``B3/B4`` -> B_{3}/B_{4}."""
-    return index if index.isdigit() else re.sub(r"([A-Za-z])([0-9]+)", r"\1_{\2}", index)
-
-
-def equation_tex(eq: str) -> str:
-    """A step's vector equation in mathtext: ``V_CB`` -> $V_{CB}$, ``omega_3 x R`` -> $\\omega_{3}$ × R,
-    ``omega_2^2 R_AO2`` -> $\\omega_{2}^{2}$ $R_{AO_{2}}$, `` - `` -> `` − ``, ``deg`` -> °."""
-    def sub(mo):
-        name, sup, index, power = mo.groups()
-        name = {"omega": r"\omega", "alpha": r"\alpha", "theta": r"\theta"}.get(name, name)
-        out = "$" + name + ("^{" + sup[1:] + "}" if sup else "") + "_{" + _index(index) + "}"
-        if power and not sup:
-            return out + "^{" + power[1:] + "}$"
-        return out + "$" + (power or "")
-    s = literal(eq)   # a user's name or title in it is drawn as written
-    s = _QUANTITY.sub(sub, s)
-    s = re.sub(r"\bomega\b", r"$\\omega$", s)
-    s = re.sub(r"\balpha\b", r"$\\alpha$", s)
-    s = re.sub(r"([0-9]) deg\b", "\\1°", s)
-    return s.replace(" x ", " × ").replace(" - ", " − ")
 
 
 # -- layouts (fractions of the page: left, bottom, width, height) ----------------------------------

@@ -16,13 +16,12 @@ the table.
 """
 from __future__ import annotations
 
-import math
 import re
 
 import numpy as np
 
-from ..report import Table, fmt
-from .canvas import Artists, get_ax, literal, renderer_of
+from ..report import Table, fmt, magnitude_direction
+from .canvas import Artists, equation_tex, get_ax, literal, renderer_of
 from .style import get_style
 
 __all__ = ["results_table", "draw_results_table", "given_table"]
@@ -48,13 +47,10 @@ def _fmt(x, digits=5) -> str:
 
 
 def _vec(v, digits=5) -> str:
-    v = np.asarray(v, float)
-    if not np.all(np.isfinite(v)):
+    md = magnitude_direction(v)
+    if md is None:
         return "–"
-    mag = float(np.hypot(*v))
-    if mag == 0:
-        return "0"
-    return f"{_fmt(mag, digits)} ∠ {math.degrees(math.atan2(v[1], v[0])) % 360:.2f}°"
+    return "0" if md[0] == 0 else f"{_fmt(md[0], digits)} ∠ {md[1]:.2f}°"
 
 
 def _q(symbol: str, index: str, unit: str = "") -> str:
@@ -153,6 +149,7 @@ def results_table(sol, sheet: str = "full", *, velocity=None, acceleration=None,
     reference and its deviation from the analytic value (when the file has
     a ``[reference]``).
     """
+    from ..compare import Value, polygon_values
     from ..reference import at_file_pose, compare
     from ..report import on_links, pinned_keys
     m = sol.mechanism
@@ -186,15 +183,17 @@ def results_table(sol, sheet: str = "full", *, velocity=None, acceleration=None,
             return "exact"
         return f"{_num(lo, 4)} … {_num(hi, 4)}"
 
-    moving = [k.name for k in m.moving_links]
+    # each quantity graphical beside analytic (velpoly.compare), the poles sheet's omegas without a polygon
+    vel_rates, vel_points = (polygon_values(sol, velocity) if velocity is not None else
+                             ([Value(k.name, None, sol.omega[k.name]) for k in m.moving_links], []))
     if velocity is not None or (ic is not None and sheet == "poles"):
-        for lk in moving:
-            g = velocity.rates.get(lk) if velocity is not None else None
+        for v in vel_rates:
+            lk, g = v.key, v.graphical
             r = ref_for(f"omega_{lk}")
-            if abs(sol.omega[lk]) <= 1e-12 and (g is None or abs(g) <= 1e-12) and r is None:
+            if abs(v.analytic) <= 1e-12 and (g is None or abs(g) <= 1e-12) and r is None:
                 continue   # a translating link (a block on a fixed guide): nothing to show
             rows.append((_q(r"\omega", lk, "rad/s"), "" if g is None else _num(g), drafted("velocity", "omega", lk),
-                         _num(sol.omega[lk]),
+                         _num(v.analytic),
                          _num(ic["omega"][lk]) if ic else "", _printed(r), _dev(r)))
             noted.append(r)
     pinned = pinned_keys(m)   # a point of links pinned together: one row "V_B (on 2 and 3)"
@@ -212,31 +211,31 @@ def results_table(sol, sheet: str = "full", *, velocity=None, acceleration=None,
         if key not in pinned:
             return _q(symbol, key)
         return _q(symbol, pinned[key][0]) + f" (on {on_links(pinned[key][1])})"
-    if velocity is not None:
-        for key in velocity.images:
-            v = sol.velocity.get(key)
-            if v is None or float(np.hypot(*v)) == 0 or (key in pinned and pinned[key] is None):
-                continue
-            r = ref_for(*(k for name in spelt(key) for k in (f"V_{name}", f"|V_{name}|")))
-            rows.append((point_label("V", key), _vec(velocity.images[key]), drafted("velocity", "speed", key), _vec(v),
-                         _vec(ic["velocity"][key]) if ic and key in ic["velocity"] else "", _printed(r), _dev(r)))
-            noted.append(r)
+    for pv in vel_points:
+        key, v = pv.key, pv.analytic
+        if v is None or float(np.hypot(*v)) == 0 or (key in pinned and pinned[key] is None):
+            continue
+        r = ref_for(*(k for name in spelt(key) for k in (f"V_{name}", f"|V_{name}|")))
+        rows.append((point_label("V", key), _vec(pv.graphical), drafted("velocity", "speed", key), _vec(v),
+                     _vec(ic["velocity"][key]) if ic and key in ic["velocity"] else "", _printed(r), _dev(r)))
+        noted.append(r)
     if acceleration is not None:
-        for lk in moving:
-            g = acceleration.rates.get(lk)
+        acc_rates, acc_points = polygon_values(sol, acceleration)
+        for v in acc_rates:
+            lk, g = v.key, v.graphical
             r = ref_for(f"alpha_{lk}")
-            if abs(sol.alpha[lk]) <= 1e-12 and (g is None or abs(g) <= 1e-12) and r is None:
+            if abs(v.analytic) <= 1e-12 and (g is None or abs(g) <= 1e-12) and r is None:
                 continue
             rows.append((_q(r"\alpha", lk, "rad/s²"), _num(g), drafted("acceleration", "alpha", lk),
-                         _num(sol.alpha[lk]), "", _printed(r), _dev(r)))
+                         _num(v.analytic), "", _printed(r), _dev(r)))
             noted.append(r)
-        for key in acceleration.images:
-            a = sol.acceleration.get(key)
+        for pv in acc_points:
+            key, a = pv.key, pv.analytic
             if a is None or not np.all(np.isfinite(a)) or float(np.hypot(*a)) == 0 or \
                     (key in pinned and pinned[key] is None):
                 continue
             r = ref_for(*(f"A_{name}" for name in spelt(key)))
-            rows.append((point_label("A", key), _vec(acceleration.images[key]), drafted("acceleration", "magnitude", key),
+            rows.append((point_label("A", key), _vec(pv.graphical), drafted("acceleration", "magnitude", key),
                          _vec(a), "", _printed(r), _dev(r)))
             noted.append(r)
     if poleset is not None and sheet == "poles":
@@ -371,7 +370,7 @@ def draw_results_table(sol, ax=None, *, sheet: str = "full", style="textbook", v
     st = get_style(style)
     if table is None and velocity is None and acceleration is None and poleset is None:
         # drawn on its own: the constructions of the sheet named
-        from .sheet import constructions
+        from .constructions import constructions
         cons = constructions(sol, sheet)
         shows = {"velocity": (1, 0), "acceleration": (0, 1), "poles": (0, 0), "full": (1, 1)}[sheet]
         velocity = cons.velocity if shows[0] else None
@@ -534,7 +533,6 @@ def _footnote_lines(ax, notes, width_pt: float, size: float) -> dict:
     """Each footnote ``(mark, key, text)`` as the lines it takes at ``size`` within ``width_pt``:
     ``{mark: [line, ...]}``, the first line starting with the mark and the quantity it explains."""
     import textwrap
-    from .sheet import equation_tex
     fig = ax.figure
     r = renderer_of(fig)
     out = {}

@@ -1,0 +1,188 @@
+"""The layer rules of docs/internals.md, read from the source (ast, so imports inside functions count):
+
+* no import cycle among velpoly's modules, not even through an import inside a function;
+* matplotlib is imported only under velpoly/render/ (the kernel, the reports and html.py import none);
+* only the command line prints or exits: no ``print(``, ``exit(``, ``quit(``, ``sys.exit``, and no
+  ``sys.stdout`` / ``sys.stderr`` outside velpoly/cli.py and velpoly/__main__.py (the ``python -m
+  velpoly`` shim that calls cli.main; doctests are strings, not code, so they may print).
+"""
+from __future__ import annotations
+
+import ast
+from pathlib import Path
+
+import pytest
+
+PACKAGE = Path(__file__).resolve().parent.parent / "velpoly"
+COMMAND_LINE = {"velpoly.cli", "velpoly.__main__"}   # the only modules that print or exit
+
+
+def modules(package: Path) -> dict[str, Path]:
+    """Every module of the package under ``package``: dotted name -> file."""
+    out = {}
+    for path in sorted(package.rglob("*.py")):
+        parts = path.relative_to(package.parent).with_suffix("").parts
+        if parts[-1] == "__init__":
+            parts = parts[:-1]
+        out[".".join(parts)] = path
+    return out
+
+
+def imported(name: str, path: Path, node) -> list[str]:
+    """The modules an import statement names (``from . import x`` names the package and ``x``)."""
+    if isinstance(node, ast.Import):
+        return [a.name for a in node.names]
+    if node.level:   # relative: from the module's package, one level up for each dot after the first
+        package = name.split(".") if path.name == "__init__.py" else name.split(".")[:-1]
+        base = ".".join(package[:len(package) - node.level + 1])
+        target = base + ("." + node.module if node.module else "")
+    else:
+        target = node.module
+    return [target] + [f"{target}.{a.name}" for a in node.names]
+
+
+def import_graph(package: Path = PACKAGE) -> tuple[dict[str, set], dict[str, list]]:
+    """(module -> the package's modules it imports anywhere in its code, module -> [(line, module
+    named)] for every import, also of modules outside the package)."""
+    mods = modules(package)
+    edges, named = {}, {}
+    for name, path in mods.items():
+        edges[name], named[name] = set(), []
+        for node in ast.walk(ast.parse(path.read_text(encoding="utf-8"), str(path))):
+            if isinstance(node, (ast.Import, ast.ImportFrom)):
+                for target in imported(name, path, node):
+                    named[name].append((node.lineno, target))
+                    if target in mods and target != name:
+                        edges[name].add(target)
+    return edges, named
+
+
+def cycles(edges: dict[str, set]) -> list[list[str]]:
+    """The strongly connected components of more than one module (Tarjan), each as a sorted list."""
+    index, low, stack, on, out = {}, {}, [], set(), []
+
+    def visit(v):
+        index[v] = low[v] = len(index)
+        stack.append(v)
+        on.add(v)
+        for w in sorted(edges[v]):
+            if w not in index:
+                visit(w)
+                low[v] = min(low[v], low[w])
+            elif w in on:
+                low[v] = min(low[v], index[w])
+        if low[v] == index[v]:
+            comp = []
+            while True:
+                w = stack.pop()
+                on.discard(w)
+                comp.append(w)
+                if w == v:
+                    break
+            if len(comp) > 1:
+                out.append(sorted(comp))
+    for v in sorted(edges):
+        if v not in index:
+            visit(v)
+    return out
+
+
+def test_no_import_cycle_not_even_inside_functions():
+    edges, _ = import_graph()
+    # the walk sees imports inside functions: to_dict imports the constructions where it needs them
+    assert "velpoly.poles" in edges["velpoly.solution"] and "velpoly.polygons" in edges["velpoly.solution"]
+    found = cycles(edges)
+    assert not found, "import cycles: " + "; ".join(" <-> ".join(c) for c in found)
+
+
+def test_the_cycle_finder_finds_a_cycle_through_a_function_level_import(tmp_path):
+    pkg = tmp_path / "pkg"
+    pkg.mkdir()
+    (pkg / "__init__.py").write_text("")
+    (pkg / "a.py").write_text("from .b import f\n")
+    (pkg / "b.py").write_text("def f():\n    from . import c\n")
+    (pkg / "c.py").write_text("import pkg.a\n")
+    (pkg / "d.py").write_text("from .a import f\n")
+    edges, _ = import_graph(pkg)
+    assert cycles(edges) == [["pkg.a", "pkg.b", "pkg.c"]]
+
+
+def test_matplotlib_only_under_render():
+    _, named = import_graph()
+    outside = [f"{mod} line {line}" for mod, imports in named.items() for line, target in imports
+               if target.split(".")[0] == "matplotlib" and not mod.startswith("velpoly.render")]
+    assert not outside, "matplotlib imported outside velpoly/render/: " + ", ".join(outside)
+    assert any(t.startswith("matplotlib") for _, t in named["velpoly.render.sweep"])   # the rule sees them
+
+
+def output_calls(tree) -> list[tuple[int, str]]:
+    """Where code prints or exits: calls of print/exit/quit, and any use of sys.exit, sys.stdout or
+    sys.stderr (also as ``from sys import ...``)."""
+    out = []
+    for node in ast.walk(tree):
+        if isinstance(node, ast.Call) and isinstance(node.func, ast.Name) and node.func.id in ("print", "exit", "quit"):
+            out.append((node.lineno, node.func.id + "("))
+        elif isinstance(node, ast.Attribute) and isinstance(node.value, ast.Name) and node.value.id == "sys" \
+                and node.attr in ("exit", "stdout", "stderr"):
+            out.append((node.lineno, "sys." + node.attr))
+        elif isinstance(node, ast.ImportFrom) and node.module == "sys":
+            out += [(node.lineno, "from sys import " + a.name) for a in node.names
+                    if a.name in ("exit", "stdout", "stderr")]
+    return out
+
+
+def test_only_the_command_line_prints_or_exits():
+    found = []
+    for name, path in modules(PACKAGE).items():
+        if name in COMMAND_LINE:
+            continue
+        found += [f"{name} line {line}: {what}"
+                  for line, what in output_calls(ast.parse(path.read_text(encoding="utf-8")))]
+    assert not found, "output outside velpoly/cli.py: " + "; ".join(found)
+
+
+@pytest.mark.parametrize("code, hits", [
+    ("print('x')", 1), ("import sys\nsys.stderr.write('x')", 1), ("from sys import exit", 1),
+    ("def f():\n    '''>>> print(1)'''\n", 0), ("s = 'print(x)'", 0)])
+def test_the_output_rule_sees_prints_and_not_doctests(code, hits):
+    assert len(output_calls(ast.parse(code))) == hits
+
+
+# The layers of docs/internals.md, from the bottom; a module under a package named here (velpoly.load.*)
+# is in its package's layer. A module named nowhere is not checked (add it to its layer).
+LAYERS = (
+    ("kernel", ("errors", "model", "loader", "load", "geometry", "rigid", "jet", "constraints", "dyads", "pose",
+                "kinematics", "motion", "driver", "solution", "sweeps", "centrodes", "arguments", "fileio")),
+    ("constructions", ("polygons", "poles", "reference")),
+    ("comparison and tables", ("tables", "compare", "report")),
+    ("figures", ("render", "html")),
+    ("commands", ("cli", "gallery", "__main__")),
+)
+# The imports upwards docs/internals.md lists, each inside the one function that needs it.
+UPWARDS = {
+    ("velpoly.solution", "velpoly.poles"), ("velpoly.solution", "velpoly.polygons"),   # to_dict's sections
+    ("velpoly.solution", "velpoly.report"),          # Solution._repr_html_, a notebook's view
+    ("velpoly.model", "velpoly.render"),             # Mechanism._repr_svg_, a notebook's view
+    ("velpoly.loader", "velpoly.reference"),         # the [reference] keys' check
+    ("velpoly.loader", "velpoly.render.options"),    # the [drawing] table's rules (no matplotlib)
+}
+
+
+def layer_of(module: str) -> int | None:
+    parts = module.split(".")
+    if len(parts) < 2:
+        return None   # the package itself (its __init__ imports errors only, the rest on first use)
+    for rank, (_, names) in enumerate(LAYERS):
+        if parts[1] in names:
+            return rank
+    return None
+
+
+def test_no_import_upwards_but_the_listed_ones():
+    edges, _ = import_graph()
+    upwards = {(m, t) for m, targets in edges.items() for t in targets
+               if layer_of(m) is not None and layer_of(t) is not None and layer_of(t) > layer_of(m)}
+    assert upwards - UPWARDS == set(), "imports upwards (docs/internals.md's layers): " + ", ".join(
+        f"{m} -> {t}" for m, t in sorted(upwards - UPWARDS))
+    assert sum(layer_of(m) is None for m in edges) <= 3, "modules in no layer: " + ", ".join(
+        m for m in edges if layer_of(m) is None)

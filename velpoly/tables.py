@@ -1,0 +1,96 @@
+"""A table and the formats of its cells: :class:`Table`, :func:`fmt`, :func:`polar`, :func:`render_table`.
+
+The bottom of the reporting layer: :mod:`velpoly.compare` and :mod:`velpoly.report`
+build Tables, :func:`render_table` writes them as text, Markdown, LaTeX or CSV;
+the figures' tables (:mod:`velpoly.render.table`) format their cells with the same
+rules. Imports numpy only.
+"""
+from __future__ import annotations
+
+import csv
+import io
+import math
+from dataclasses import dataclass
+
+import numpy as np
+
+__all__ = ["Table", "fmt", "polar", "magnitude_direction", "render_table"]
+
+
+@dataclass(frozen=True)
+class Table:
+    """A titled table: column headers and rows of strings; ``notes``: its footnotes, ``(mark, key, text)``
+    for each mark in its rows (a drawn results table prints them beneath it)."""
+
+    title: str
+    header: tuple[str, ...]
+    rows: tuple[tuple[str, ...], ...]
+    notes: tuple[tuple[str, str, str], ...] = ()
+
+
+def fmt(x, digits: int = 6) -> str:
+    """A number to ``digits`` significant digits; '-' for None or NaN."""
+    if x is None:
+        return "-"
+    x = float(x)
+    if not math.isfinite(x):
+        return "-"
+    if x == 0:
+        return "0"
+    if abs(x) < 1e-12 * 10 ** digits and abs(x) < 1e-9:
+        return "0"
+    return f"{x:.{digits}g}"
+
+
+def magnitude_direction(v) -> tuple[float, float] | None:
+    """A vector as (magnitude, direction in degrees in [0, 360)); None if it is None or not finite."""
+    if v is None:
+        return None
+    v = np.asarray(v, float)
+    if not np.all(np.isfinite(v)):
+        return None
+    return float(np.hypot(*v)), math.degrees(math.atan2(v[1], v[0])) % 360.0
+
+
+def polar(v) -> str:
+    """A vector as ``magnitude ∠ direction°`` (direction in [0, 360)); '-' if undefined, '0' if zero."""
+    md = magnitude_direction(v)
+    if md is None:
+        return "-"
+    if md[0] == 0:
+        return "0"
+    return f"{fmt(md[0])} ∠ {md[1]:.3f}°"
+
+
+def render_table(t: Table, style: str = "text") -> str:
+    """A table as ``text`` (aligned columns), ``markdown``, ``latex`` or ``csv``."""
+    if style == "csv":
+        buf = io.StringIO()
+        w = csv.writer(buf, lineterminator="\n")
+        w.writerow(t.header)
+        w.writerows(t.rows)
+        return buf.getvalue()
+    if style == "markdown":
+        def esc(s):
+            return str(s).replace("|", "\\|")
+        lines = [f"**{t.title}**", "", "| " + " | ".join(map(esc, t.header)) + " |",
+                 "|" + "|".join("---" for _ in t.header) + "|"]
+        lines += ["| " + " | ".join(map(esc, r)) + " |" for r in t.rows]
+        return "\n".join(lines) + "\n"
+    if style == "latex":
+        def tex(s):
+            s = str(s)
+            for a, b in (("\\", r"\textbackslash{}"), ("&", r"\&"), ("%", r"\%"), ("_", r"\_"), ("#", r"\#"),
+                         ("∠", r"$\angle$"), ("°", r"$^\circ$"), ("^", r"\^{}")):
+                s = s.replace(a, b)
+            return s
+        cols = "l" * len(t.header)
+        lines = [r"\begin{tabular}{" + cols + "}", r"\hline", " & ".join(map(tex, t.header)) + r" \\", r"\hline"]
+        lines += [" & ".join(map(tex, r)) + r" \\" for r in t.rows]
+        lines += [r"\hline", r"\end{tabular}"]
+        return "\n".join(lines) + "\n"
+    widths = [max(len(str(x)) for x in col) for col in zip(t.header, *t.rows)]
+    lines = [t.title, "  ".join(h.ljust(w) for h, w in zip(t.header, widths)).rstrip(),
+             "  ".join("-" * w for w in widths)]
+    lines += ["  ".join(str(c).ljust(w) for c, w in zip(r, widths)).rstrip() for r in t.rows]
+    return "\n".join(lines) + "\n"
