@@ -163,8 +163,8 @@ UPWARDS = {
     ("velpoly.solution", "velpoly.poles"), ("velpoly.solution", "velpoly.polygons"),   # to_dict's sections
     ("velpoly.solution", "velpoly.report"),          # Solution._repr_html_, a notebook's view
     ("velpoly.model", "velpoly.render"),             # Mechanism._repr_svg_, a notebook's view
-    ("velpoly.loader", "velpoly.reference"),         # the [reference] keys' check
-    ("velpoly.loader", "velpoly.render.options"),    # the [drawing] table's rules (no matplotlib)
+    ("velpoly.loader.reference", "velpoly.reference"),      # the [reference] keys' check
+    ("velpoly.loader.drawing", "velpoly.render.options"),   # the [drawing] table's rules (no matplotlib)
 }
 
 
