@@ -21,6 +21,8 @@ import numpy as np
 
 from .constraints import Frame, contact_frame, contact_slip_equation
 from .model import Mechanism
+from .rigid import coriolis, direction, dot, perp, point_acceleration, point_velocity, rate_cross
+from .rigid import relative_acceleration, unit, xy
 
 __all__ = ["Motion", "LinkMotion", "point_keys", "evaluate_motion", "wrap_deg", "wrap_deg_float"]
 
@@ -36,10 +38,6 @@ def wrap_deg_float(a: float) -> float:
     """:func:`wrap_deg` of one float (the same operations, on floats)."""
     w = (a + 180.0) % 360.0 - 180.0
     return 180.0 if w == -180.0 else w
-
-
-def _perp(v):
-    return np.stack([-v[..., 1], v[..., 0]], axis=-1)
 
 
 def _zero(x) -> bool:
@@ -81,14 +79,14 @@ class LinkMotion:
     def velocity(self, r):
         """V of the link's point at the arm r from p0."""
         om = self.omega
-        return self.v0 if _zero(r) or _zero(om) else _plus(self.v0, (1j * om) * r)
+        return self.v0 if _zero(r) or _zero(om) else _plus(self.v0, rate_cross(om, r))
 
     def acceleration(self, r):
         """A of the link's point at the arm r from p0."""
         om, al = self.omega, self.alpha
         if _zero(r) or (_zero(om) and _zero(al)):
             return self.a0
-        return _plus(self.a0, (1j * al - om * om) * r)
+        return _plus(self.a0, relative_acceleration(al, om, r))
 
     def motion(self, r):
         """(V, A) of the link's point at the arm r from p0."""
@@ -108,18 +106,6 @@ class LinkMotion:
 def _plus(a, b):
     """a + b, skipping a scalar zero."""
     return a if _zero(b) else b if _zero(a) else a + b
-
-
-def _xy(z, n: int) -> np.ndarray:
-    """Complex values (an array over the N poses, or one value for all) as (N, 2) x, y:
-    a view of a whole contiguous complex array."""
-    if isinstance(z, np.ndarray) and z.shape == (n,) and z.dtype == complex and z.flags.c_contiguous:
-        return z.view(np.float64).reshape(n, 2)
-    if _zero(z):
-        return np.zeros((n, 2))
-    out = np.empty((n, 2))
-    out[:, 0], out[:, 1] = np.real(z), np.imag(z)
-    return out
 
 
 def _arg(z: np.ndarray) -> np.ndarray:
@@ -219,15 +205,13 @@ class _Bodies:
         return np.stack([c * d[0] - sn * d[1], sn * d[0] + c * d[1]], axis=-1)
 
     def vel(self, lk, w):
-        r = w - self.origin(lk)
-        return self.origin(lk, self.qd) + self.theta(lk, self.qd)[:, None] * _perp(r)
+        return point_velocity(self.origin(lk, self.qd), self.theta(lk, self.qd), w - self.origin(lk))
 
     def acc(self, lk, w):
         r = w - self.origin(lk)
         if self.qdd is None:
             return np.full_like(r, np.nan)
-        om = self.theta(lk, self.qd)[:, None]
-        return self.origin(lk, self.qdd) + self.theta(lk, self.qdd)[:, None] * _perp(r) - om ** 2 * r
+        return point_acceleration(self.origin(lk, self.qdd), self.theta(lk, self.qdd), self.theta(lk, self.qd), r)
 
 
 class _WalkBodies(_Bodies):
@@ -238,10 +222,10 @@ class _WalkBodies(_Bodies):
         self.links = walk.links
 
     def place(self, lk, s):
-        return _xy(self.links[lk].place(complex(s[0], s[1])), self.n)
+        return xy(self.links[lk].place(complex(s[0], s[1])), self.n)
 
     def turn(self, lk, d):
-        return _xy(self.links[lk].rot * complex(d[0], d[1]), self.n)
+        return xy(self.links[lk].rot * complex(d[0], d[1]), self.n)
 
     def _arm(self, lk, w):
         lm = self.links[lk]
@@ -249,22 +233,13 @@ class _WalkBodies(_Bodies):
 
     def vel(self, lk, w):
         lm, r = self._arm(lk, w)
-        return _xy(lm.velocity(r), self.n)
+        return xy(lm.velocity(r), self.n)
 
     def acc(self, lk, w):
         if self.qdd is None:
             return np.full_like(w, np.nan)
         lm, r = self._arm(lk, w)
-        return _xy(lm.acceleration(r), self.n)
-
-
-def _unit(deg):
-    t = np.radians(deg)
-    return np.array([np.cos(t), np.sin(t)])
-
-
-def _norm(v):
-    return v / np.linalg.norm(v, axis=-1, keepdims=True)
+        return xy(lm.acceleration(r), self.n)
 
 
 def evaluate_motion(m: Mechanism, index: dict, q, qd, qdd=None, walk=None) -> Motion:
@@ -294,7 +269,7 @@ def evaluate_motion(m: Mechanism, index: dict, q, qd, qdd=None, walk=None) -> Mo
             ca, cb = c.centres
             if ca is not None and cb is not None:
                 A, Bc = B.place(a, P[ca]), B.place(b, P[cb])
-                u = _norm(Bc - A)
+                u = unit(Bc - A)
                 place = A + la * u
             elif cb is None:
                 u = B.turn(b, u0)
@@ -303,7 +278,7 @@ def evaluate_motion(m: Mechanism, index: dict, q, qd, qdd=None, walk=None) -> Mo
                 u = B.turn(a, u0)
                 place = B.place(b, P[cb]) + lb * u
         contact_place[c.point] = place
-        contact_dirs[c.point] = (u, _perp(u))
+        contact_dirs[c.point] = (u, perp(u))
     coincident_place = {}
     for s in m.sliders:
         coincident_place[(s.point, s.guide)] = B.place(s.block, P[s.point])
@@ -362,7 +337,7 @@ def evaluate_motion(m: Mechanism, index: dict, q, qd, qdd=None, walk=None) -> Mo
         a, b = c.links
         w = contact_place[c.point]
         u, t = contact_dirs[c.point]
-        slip_v = np.einsum("ij,ij->i", B.vel(a, w) - B.vel(b, w), t)
+        slip_v = dot(B.vel(a, w) - B.vel(b, w), t)
         eq = contact_slip_equation(m, c)
         if eq is None or qdd is None:
             slip_a = np.full(len(q), np.nan)
@@ -392,7 +367,7 @@ def _walk_points(walk, body, P, n, position, velocity, acceleration):
         hit = walk.joints.get((lk, p))
         if hit is None:
             hit = walk.links[lk].point(complex(*P[p]))
-        position[key], velocity[key], acceleration[key] = (_xy(z, n) for z in hit)
+        position[key], velocity[key], acceleration[key] = (xy(z, n) for z in hit)
 
 
 def _body_points(B, index, body, P, position, velocity, acceleration):
@@ -420,13 +395,11 @@ def _body_points(B, index, body, P, position, velocity, acceleration):
     ry = sk * s[:, :1] + ck * s[:, 1:]
     om = qd[2][k]
     px, py = q[0][k] + rx, q[1][k] + ry
-    vx, vy = qd[0][k] - om * ry, qd[1][k] + om * rx
+    vx, vy = point_velocity((qd[0][k], qd[1][k]), om, (rx, ry))
     if qdd is None:
         ax = ay = np.full_like(px, np.nan)
     else:
-        al, w2 = qdd[2][k], om * om
-        ax = qdd[0][k] - al * ry - w2 * rx
-        ay = qdd[1][k] + al * rx - w2 * ry
+        ax, ay = point_acceleration((qdd[0][k], qdd[1][k]), qdd[2][k], om, (rx, ry))
     out = np.empty((3, len(body), n, 2))
     out[0, ..., 0], out[0, ..., 1] = px, py
     out[1, ..., 0], out[1, ..., 1] = vx, vy
@@ -446,21 +419,20 @@ def _path_dir(B, s, P, block=None, guide=None, point=None):
     guide = guide or s.guide
     point = point or s.point
     if s.centre is None:
-        return B.turn(guide, _unit(s.angle))
+        return B.turn(guide, direction(s.angle))
     r = B.place(block, P[point]) - B.place(guide, P[s.centre])
-    return _perp(_norm(r))
+    return perp(unit(r))
 
 
 def _relative(B, block, guide, w, d, q, qd, qdd):
     v_rel = B.vel(block, w) - B.vel(guide, w)
-    slip_v = np.einsum("ij,ij->i", v_rel, d)
-    om_g = B.theta(guide, qd)
-    cor = 2.0 * om_g[:, None] * _perp(v_rel)
+    slip_v = dot(v_rel, d)
+    cor = coriolis(B.theta(guide, qd), v_rel)
     if qdd is None:
         slip_a = np.full(len(q), np.nan)
     else:
         a_rel = B.acc(block, w) - B.acc(guide, w) - cor
-        slip_a = np.einsum("ij,ij->i", a_rel, d)
+        slip_a = dot(a_rel, d)
     return {"slip_velocity": slip_v, "slip_acceleration": slip_a, "coriolis": cor,
             "direction": np.degrees(np.arctan2(d[:, 1], d[:, 0]))}
 
@@ -495,14 +467,11 @@ class _Link1:
 
     def vel(self, wx, wy):
         """V = V_O + omega x r of the link's point now at w, r = w - x."""
-        rx, ry = wx - self.x, wy - self.y
-        return self.vx + self.om * -ry, self.vy + self.om * rx
+        return point_velocity((self.vx, self.vy), self.om, (wx - self.x, wy - self.y))
 
     def acc(self, wx, wy):
         """A = A_O + alpha x r - omega^2 r of the link's point now at w, r = w - x."""
-        rx, ry = wx - self.x, wy - self.y
-        w2 = self.om * self.om
-        return self.ax + self.al * -ry - w2 * rx, self.ay + self.al * rx - w2 * ry
+        return point_acceleration((self.ax, self.ay), self.al, self.om, (wx - self.x, wy - self.y))
 
 
 def _evaluate_one(m: Mechanism, index: dict, q, qd, qdd) -> Motion:
@@ -571,8 +540,7 @@ def _evaluate_one(m: Mechanism, index: dict, q, qd, qdd) -> Motion:
         wx, wy = L[block].place(*P[point])
         (bvx, bvy), (gvx, gvy) = L[block].vel(wx, wy), L[guide].vel(wx, wy)
         rvx, rvy = bvx - gvx, bvy - gvy
-        om2 = 2.0 * L[guide].om
-        cx, cy = om2 * -rvy, om2 * rvx
+        cx, cy = coriolis(L[guide].om, (rvx, rvy))
         if qdd is None:
             slip_a = math.nan
         else:
