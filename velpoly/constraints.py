@@ -42,6 +42,7 @@ import numpy as np
 from .errors import InputError
 from .jet import Jet
 from .model import Mechanism
+from .rigid import direction as _unit, dot as _dot
 
 __all__ = ["Equation", "System", "build_system", "Frame", "contact_frame", "contact_slip_equation",
            "slider_coordinate"]
@@ -216,17 +217,8 @@ def _pins_bulk(block: PinBlock, q, qd, phi, jac, h) -> int:
     return 2 * n_pins
 
 
-def _dot(a, b):
-    return a[0] * b[0] + a[1] * b[1]
-
-
 def _sub(a, b):
     return a[0] - b[0], a[1] - b[1]
-
-
-def _unit(deg: float) -> np.ndarray:
-    t = np.radians(deg)
-    return np.array([np.cos(t), np.sin(t)])
 
 
 @dataclass(frozen=True)

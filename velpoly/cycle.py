@@ -44,6 +44,7 @@ from .fileio import atomic_path, atomic_write_text
 from .kinematics import Kinematics, prepare
 from .model import Mechanism
 from .report import Table, fmt, render_table
+from .rigid import perp
 from .solution import driver_reference_angle
 from .sweeps import MEMORY_BUDGET, Sweep, check_memory, memory_estimate, sweep
 
@@ -199,9 +200,8 @@ def centrodes(sw: Sweep, link: str, kin: Kinematics | None = None) -> Centrodes:
     th = sw.q[:, 3 * k + 2]
     vo = sw.qd[:, 3 * k:3 * k + 2]
     om = sw.qd[:, 3 * k + 2]
-    perp = np.stack([-vo[:, 1], vo[:, 0]], axis=-1)
     with np.errstate(divide="ignore", invalid="ignore"):
-        r = perp / om[:, None]
+        r = perp(vo) / om[:, None]
     far = ~(np.hypot(r[:, 0], r[:, 1]) <= 1e9 * m.size)        # omega ~ 0 (or exactly 0, or NaN)
     r[far] = np.nan
     fixed = o + r

@@ -26,6 +26,7 @@ from dataclasses import dataclass
 import numpy as np
 
 from .model import Mechanism
+from .rigid import dot
 from .motion import LinkMotion, _arg, _zero
 
 __all__ = ["DyadPlan", "Walk", "closure", "dyad_plan", "draws_the_reference", "walk", "assemble", "coordinates", "rates"]
@@ -190,7 +191,7 @@ def _c(p) -> complex:
 
 def _dot(a, b):
     """a . b = Re(conj(a) b) (0 when b is a scalar zero)."""
-    return 0.0 if _zero(b) else (a.conjugate() * b).real
+    return 0.0 if _zero(b) else dot(a, b)
 
 
 def _re(ca, b):

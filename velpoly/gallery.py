@@ -24,6 +24,7 @@ from .errors import InputError, VelpolyError
 from .fileio import atomic_write_text, raise_if_interrupted
 from .reference import Quantity, compare, evaluate, parse_key
 from .report import Table, fmt, render_table
+from .rigid import point_acceleration, point_velocity
 
 __all__ = ["example_path", "example_files", "example_titles", "EXAMPLES", "comparison", "comparison_text", "Comparison", "top_comments", "example_markdown",
            "build_gallery", "GalleryResult", "find_gallery", "build_demo", "gallery_folders",
@@ -131,10 +132,10 @@ class _Graphical:
         key, at = self._anchor(link, poly.images)
         if key is None:
             raise KeyError(link)
-        r = np.asarray(w, float) - at
-        om = self.vel.rates[link]
-        out = np.asarray(poly.images[key], float) + poly.rates[link] * np.array([-r[1], r[0]])
-        return out - om ** 2 * r if acc else out
+        r, image = np.asarray(w, float) - at, np.asarray(poly.images[key], float)
+        if acc:
+            return point_acceleration(image, poly.rates[link], self.vel.rates[link], r)
+        return point_velocity(image, poly.rates[link], r)
 
     def body_velocity(self, link: str, w) -> np.ndarray:
         return self._body(link, w, False)

@@ -45,8 +45,9 @@ __all__ = ["perp", "dot", "unit", "direction", "xy", "rate_cross", "point_veloci
            "relative_acceleration", "normal_acceleration", "coriolis"]
 
 
-def _is_complex(v) -> bool:
-    return isinstance(v, complex) or (isinstance(v, np.ndarray) and v.dtype.kind == "c")
+def _real_array(v) -> bool:
+    """The array path: a real ndarray (..., 2)."""
+    return isinstance(v, np.ndarray) and v.dtype.kind != "c"
 
 
 def _rate(w):
@@ -60,15 +61,13 @@ def perp(v):
     >>> perp((1.0, 2.0)), perp(np.array([[1.0, 2.0]])), perp(1 + 2j)
     ((-2.0, 1.0), array([[-2.,  1.]]), (-2+1j))
     """
-    if isinstance(v, np.ndarray):
-        if v.dtype.kind == "c":
-            return 1j * v
+    if type(v) is tuple or type(v) is list:
+        return (-v[1], v[0])
+    if _real_array(v):
         if v.ndim == 1:
             return np.array((-v[1], v[0]), float)
         return np.stack([-v[..., 1], v[..., 0]], axis=-1)
-    if isinstance(v, complex):
-        return 1j * v
-    return (-v[1], v[0])
+    return 1j * v
 
 
 def dot(a, b):
@@ -78,11 +77,11 @@ def dot(a, b):
     >>> dot((1.0, 2.0), (3.0, 4.0)), dot(1 + 2j, 3 + 4j), dot(np.array([[1.0, 2.0]]), np.array([[3.0, 4.0]]))
     (11.0, 11.0, array([11.]))
     """
-    if _is_complex(a):
-        return (a.conjugate() * b).real
-    if isinstance(a, np.ndarray) and a.ndim > 1:
+    if type(a) is tuple or type(a) is list or (_real_array(a) and a.ndim == 1):
+        return a[0] * b[0] + a[1] * b[1]
+    if _real_array(a):
         return np.einsum("...i,...i->...", a, b)
-    return a[0] * b[0] + a[1] * b[1]
+    return (a.conjugate() * b).real
 
 
 def unit(v):
@@ -91,14 +90,14 @@ def unit(v):
     >>> unit((3.0, 4.0)), unit(np.array([[0.0, 2.0]]))
     ((0.6, 0.8), array([[0., 1.]]))
     """
-    if _is_complex(v):
-        return v / abs(v)
-    if isinstance(v, np.ndarray):
+    if type(v) is tuple or type(v) is list:
+        n = math.hypot(v[0], v[1])
+        return (v[0] / n, v[1] / n)
+    if _real_array(v):
         if v.ndim == 1:
             return v / math.hypot(*v)
         return v / np.linalg.norm(v, axis=-1, keepdims=True)
-    n = math.hypot(v[0], v[1])
-    return (v[0] / n, v[1] / n)
+    return v / abs(v)
 
 
 def direction(deg):
@@ -151,7 +150,7 @@ def rate_cross(w, r):
     """
     if type(r) is tuple:
         return (w * -r[1], w * r[0])
-    if isinstance(r, np.ndarray) and r.dtype.kind != "c":
+    if _real_array(r):
         return _rate(w) * perp(r)
     return (1j * w) * r
 
@@ -183,7 +182,7 @@ def point_acceleration(a_o, alpha, omega, r):
     if type(r) is tuple:
         w2 = omega * omega
         return (a_o[0] + alpha * -r[1] - w2 * r[0], a_o[1] + alpha * r[0] - w2 * r[1])
-    if isinstance(r, np.ndarray) and r.dtype.kind != "c":
+    if _real_array(r):
         w = _rate(omega)
         return a_o + _rate(alpha) * perp(r) - (w * w) * r
     return a_o + relative_acceleration(alpha, omega, r)
@@ -199,7 +198,7 @@ def relative_acceleration(alpha, omega, r):
     if type(r) is tuple:
         w2 = omega * omega
         return (alpha * -r[1] - w2 * r[0], alpha * r[0] - w2 * r[1])
-    if isinstance(r, np.ndarray) and r.dtype.kind != "c":
+    if _real_array(r):
         w = _rate(omega)
         return _rate(alpha) * perp(r) - (w * w) * r
     return (1j * alpha - omega * omega) * r
@@ -214,7 +213,7 @@ def normal_acceleration(omega, r):
     if type(r) is tuple:
         w2 = omega * omega
         return (-w2 * r[0], -w2 * r[1])
-    if isinstance(r, np.ndarray) and r.dtype.kind != "c":
+    if _real_array(r):
         omega = _rate(omega)
     return -(omega * omega) * r
 
@@ -229,6 +228,6 @@ def coriolis(omega, v_rel):
     if type(v_rel) is tuple:
         w2 = 2.0 * omega
         return (w2 * -v_rel[1], w2 * v_rel[0])
-    if isinstance(v_rel, np.ndarray) and v_rel.dtype.kind != "c":
+    if _real_array(v_rel):
         return (2.0 * _rate(omega)) * perp(v_rel)
     return (2.0 * omega * 1j) * v_rel

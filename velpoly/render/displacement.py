@@ -18,6 +18,7 @@ from shapely.geometry import LineString, MultiPoint, Point
 from shapely.geometry import Polygon as SPolygon
 from shapely.ops import unary_union
 
+from ..rigid import direction as _unit, perp as _perp
 from .canvas import (Artists, arrow, border_point, fit_view, get_ax, literal, math_literal, per_cm, per_point, tex,
                      view_box, view_scale)
 from .labels import placer
@@ -27,15 +28,6 @@ from .style import get_style, link_fill
 
 __all__ = ["draw_mechanism", "mechanism_bounds", "shape_patch", "link_bodies", "mark_auxiliary",
            "equivalent_linkage_note"]
-
-
-def _unit(deg: float) -> np.ndarray:
-    t = math.radians(deg)
-    return np.array([math.cos(t), math.sin(t)])
-
-
-def _perp(v) -> np.ndarray:
-    return np.array([-v[1], v[0]])
 
 
 def shape_patch(geom, **kw):
