@@ -26,8 +26,8 @@ from dataclasses import dataclass
 import numpy as np
 
 from .model import Mechanism
-from .rigid import dot
-from .motion import LinkMotion, _arg, _zero
+from .rigid import arg, dot, is_zero
+from .motion import LinkMotion
 
 __all__ = ["DyadPlan", "Walk", "closure", "dyad_plan", "draws_the_reference", "walk", "assemble", "coordinates", "rates"]
 
@@ -191,16 +191,16 @@ def _c(p) -> complex:
 
 def _dot(a, b):
     """a . b = Re(conj(a) b) (0 when b is a scalar zero)."""
-    return 0.0 if _zero(b) else dot(a, b)
+    return 0.0 if is_zero(b) else dot(a, b)
 
 
 def _re(ca, b):
     """Re(ca b): with ca = conj(a), a . b (0 when b is a scalar zero)."""
-    return 0.0 if _zero(b) else (ca * b).real
+    return 0.0 if is_zero(b) else (ca * b).real
 
 
 def _sub(a, b):
-    return a if _zero(b) else a - b
+    return a if is_zero(b) else a - b
 
 
 def _solver(det, r1, r2):
@@ -212,14 +212,14 @@ def _solver(det, r1, r2):
 
 def _lin(b1, K1, b2, K2):
     """b1 K1 + b2 K2, skipping scalar zeros."""
-    if _zero(b2):
-        return 0.0 if _zero(b1) else b1 * K1
-    return b2 * K2 if _zero(b1) else b1 * K1 + b2 * K2
+    if is_zero(b2):
+        return 0.0 if is_zero(b1) else b1 * K1
+    return b2 * K2 if is_zero(b1) else b1 * K1 + b2 * K2
 
 
 def _sq(z):
     """|z|^2."""
-    return 0.0 if _zero(z) else (z * z.conjugate()).real
+    return 0.0 if is_zero(z) else (z * z.conjugate()).real
 
 
 @dataclass(frozen=True)
@@ -354,8 +354,8 @@ def closure(st, links, joints, P, n, rates):
         dmu = None
         if rates:
             VG = G.velocity(c2 - G.p0)
-            ds = (np.conjugate(e) * _sub(V1, VG)).imag if not (_zero(V1) and _zero(VG)) else 0.0
-            if not _zero(G.omega):
+            ds = (np.conjugate(e) * _sub(V1, VG)).imag if not (is_zero(V1) and is_zero(VG)) else 0.0
+            if not is_zero(G.omega):
                 ds = ds + G.omega * _dot(e, u)
             dmu = -2.0 * sigma * ds / (r1 * r1)
     mu = np.broadcast_to(np.asarray(mu, float), (n,))
@@ -422,7 +422,7 @@ def _rrp(links, u_, v_, j1, G, s1, s2, dref, side, n, rates):
     K1, KG = _solver((cu * nn).imag, u, nn)
     V2 = _lin(_re(cu, V1), K1, _dot(nn, VG), KG)
     W1 = _sub(V2, V1)
-    cor = 0.0 if _zero(G.omega) else 2 * G.omega * _dot(e, _sub(V2, VG))
+    cor = 0.0 if is_zero(G.omega) else 2 * G.omega * _dot(e, _sub(V2, VG))
     A2 = _lin(_sub(_re(cu, A1), _sq(W1)), K1, _dot(nn, AG) + cor, KG)
     links[u_] = links[u_].moving(V2, A2, (cu * W1).imag * (1.0 / (r1 * r1)),
                                  (cu * _sub(A2, A1)).imag * (1.0 / (r1 * r1)))
@@ -457,7 +457,7 @@ def coordinates(w: Walk, index: dict, plan: DyadPlan, deltas, out=None) -> np.nd
         if name == drv and kind == "crank":
             q[:, 3 * k + 2] = deltas                  # the driver's own angle, exactly
         elif isinstance(lk.rot, np.ndarray):
-            th = _arg(lk.rot)
+            th = arg(lk.rot)
             # continuous with the reference pose (0), not wrapped into (-pi, pi]
             if n > 1 and np.abs(np.diff(th)).max() > np.pi:
                 th = np.unwrap(np.concatenate([[0.0], th]))[1:]

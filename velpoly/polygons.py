@@ -59,7 +59,7 @@ from dataclasses import dataclass, field
 import numpy as np
 
 from . import geometry as G
-from .errors import InputError, SingularPoseError, VelpolyError
+from .errors import ConstructionError, InputError, SingularPoseError
 from .kinematics import SINGULAR
 from .motion import point_keys
 from .report import SECTIONS, Table, fmt, on_links, pinned_keys, polar
@@ -167,12 +167,6 @@ class Polygon:
     max_error: float
     auxiliary: dict = field(default_factory=dict)   # key -> AuxiliaryPoint
     scale: float = 1.0                               # drawing scale: mm per unit that fits ~120 mm
-
-
-class ConstructionError(VelpolyError):
-    """The mechanism has no construction order this module knows (exit status 2)."""
-
-    exit_code = 2
 
 
 # -- the mechanism's geometry, as the construction sees it ------------------------------------------

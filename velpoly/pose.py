@@ -21,7 +21,7 @@ import numpy as np
 from .constraints import System
 from .dyads import assemble, dyad_plan, walk
 
-__all__ = ["circle_circle", "circle_line", "Reassembly", "reassemble", "select_rows", "check_closed_form",
+__all__ = ["circle_circle", "coarse_step", "circle_line", "Reassembly", "reassemble", "select_rows", "check_closed_form",
            "walked_reach", "slot_travel", "TOUCH"]
 
 
@@ -198,7 +198,7 @@ def _continue(system, rows, deltas, coarse):
     n = len(deltas)
     nq = system.nq
     if coarse is None:
-        coarse = _coarse(system)
+        coarse = coarse_step(system)
     # 1. knots: a sequential continuation, never stepping farther than `coarse`;
     #    every requested position is attached to the knot before it.
     knot_d, knot_q = [0.0], [np.zeros(nq)]
@@ -411,7 +411,7 @@ def _cut(system, rows, r, i, ends, inside, outside, sign):
                       leaves=(ends[col], s.ends[int(bound)], where))
 
 
-def _coarse(system: System) -> float:
+def coarse_step(system: System) -> float:
     """The longest continuation step: 6 degrees for a crank, 4% of the size for a slider."""
     return 0.04 * system.size if system.mechanism.driver.is_slider else np.radians(6.0)
 
@@ -438,7 +438,7 @@ def _closed_form(system: System, rows, deltas) -> Reassembly | None:
     q, reach = assemble(m, system.index, plan, deltas)
     if not check_closed_form(system, rows, q[:reach], deltas[:reach]):
         return None   # not the mechanism the plan assumed: use continuation
-    reach = min(reach, walked_reach(m, plan, deltas, _coarse(system)))
+    reach = min(reach, walked_reach(m, plan, deltas, coarse_step(system)))
     return Reassembly(deltas[:reach], q[:reach], "toggle" if reach < len(deltas) else "")
 
 

@@ -42,12 +42,27 @@ import math
 import numpy as np
 
 __all__ = ["perp", "dot", "unit", "direction", "xy", "rate_cross", "point_velocity", "point_acceleration",
-           "relative_acceleration", "normal_acceleration", "coriolis"]
+           "relative_acceleration", "normal_acceleration", "coriolis", "arg", "is_zero"]
 
 
 def _real_array(v) -> bool:
     """The array path: a real ndarray (..., 2)."""
     return isinstance(v, np.ndarray) and v.dtype.kind != "c"
+
+
+def is_zero(x) -> bool:
+    """Whether x is a scalar zero (not an array): a motion that vanishes at every pose (the frame's).
+
+    >>> is_zero(0.0), is_zero(0j), is_zero(np.zeros(2))
+    (True, True, False)
+    """
+    return not isinstance(x, np.ndarray) and x == 0
+
+
+def arg(z: np.ndarray) -> np.ndarray:
+    """arg z in (-pi, pi] (arctan2 of contiguous copies of the parts: twice as fast as of the
+    strided views)."""
+    return np.arctan2(z.imag.copy(), z.real.copy())
 
 
 def _rate(w):
