@@ -680,7 +680,7 @@ class _Drawing:
         sense = 1.0 if drv.omega >= 0 else -1.0
         # the arc in the widest gap between the driver's links and the ground, unless it would cross
         # another link (a slotted lever passing by the pivot), a block or a label: then the next gap
-        others = [g for lk, g in getattr(self, "geoms", {}).items() if lk != drv.link]
+        others = [g for lk, g in self.geoms.items() if lk != drv.link]
         others += [g for lk, g in self.block_geom.items() if lk != drv.link] + list(self.pl.boxes)
         lk = math_literal(drv.link)
         text = rf"$\omega_{{{lk}}}$ = {abs(drv.omega):.4g} rad/s {'ccw' if drv.omega >= 0 else 'cw'}"
