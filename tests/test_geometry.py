@@ -37,12 +37,3 @@ def test_intersect_lines_batch_broadcasts_and_flags_parallel_lines():
     assert np.isnan(x[1]).all() and np.isnan(s[1]) and np.isnan(t[1])
     assert np.allclose(sine, [1.0, 0.0, math.sqrt(0.5)])
     assert np.allclose(p + s[:, None] * d, q + t[:, None] * e, equal_nan=True)
-
-
-@settings(max_examples=40, deadline=None)
-@given(coord, coord, angle)
-def test_rotate_batch_agrees_with_rotate(x, y, deg):
-    v = np.array([x, y])
-    out = G.rotate_batch(np.stack([v, v]), np.array([math.radians(deg), 0.0]))
-    assert np.allclose(out[0], G.rotate(v, deg), atol=1e-12 * (1 + abs(x) + abs(y)))
-    assert np.array_equal(out[1], v)

@@ -848,14 +848,14 @@ def test_long_captions_fit_their_columns():
     """Slide type: 'Acceleration polygon (1 cm = 20000 mm/s²)' ran into its neighbour and off the page."""
     m = velpoly.load(SIXBAR)
     sol = velpoly.solve(m)
-    from velpoly.render.sheet import _fit_width
+    from velpoly.render.sheet import fit_width
     st = sheet.get_style("slides")
     with rc_context(st):
         fig = sheet.render_sheet(sol, "full", st, cons=_cons(sol))
         cap = next(t for t in fig.texts if t.get_gid() == "caption-acceleration")
         cap.set_text("Acceleration polygon   (1 cm = 20000 mm/s²)")
         cap.set_fontsize(st.font_size)
-        _fit_width(fig, cap, fig.axes[0].get_position().width)
+        fit_width(fig, cap, fig.axes[0].get_position().width)
         assert cap.get_fontsize() < st.font_size
         assert_page_texts_clear(fig)
 
@@ -870,7 +870,7 @@ def test_typesetting_of_numbers_equations_and_reasons():
     from velpoly.render.table import _dev, _fmt
     assert [_fmt(x) for x in (1e5, 136550.3, -3.1853, 2.5e-9, 12.5)] == \
         ["100000", "136550", "−3.1853", "2.5×10⁻⁹", "12.5"]
-    assert _dev(SimpleNamespace(deviation=0.0041, angle_error=0.21)) == "0.41 %, 0.21°"
+    assert _dev(SimpleNamespace(deviation=0.0041, angle_error=0.21, note="")) == "0.41 %, 0.21°"
     eq = sheet.equation_tex("driver of link 2: turned +180 deg: A_A = A_O2 + alpha_2 x R_AO2 - omega_2^2 R_AO2")
     assert "^" not in eq.replace("^{", "") and r"$\omega_{2}^{2}$" in eq and r"$A_{O_{2}}$" in eq
     assert " − " in eq and "+180°" in eq

@@ -15,6 +15,7 @@ import numpy as np
 
 from .errors import InputError
 from .kinematics import Kinematics, prepare
+from .rigid import perp
 from .sweeps import Sweep
 
 __all__ = ["Centrodes", "centrodes", "break_at_infinity"]
@@ -67,9 +68,8 @@ def centrodes(sw: Sweep, link: str, kin: Kinematics | None = None) -> Centrodes:
     th = sw.q[:, 3 * k + 2]
     vo = sw.qd[:, 3 * k:3 * k + 2]
     om = sw.qd[:, 3 * k + 2]
-    perp = np.stack([-vo[:, 1], vo[:, 0]], axis=-1)
     with np.errstate(divide="ignore", invalid="ignore"):
-        r = perp / om[:, None]
+        r = perp(vo) / om[:, None]
     far = ~(np.hypot(r[:, 0], r[:, 1]) <= 1e9 * m.size)        # omega ~ 0 (or exactly 0, or NaN)
     r[far] = np.nan
     fixed = o + r

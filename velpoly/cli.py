@@ -384,9 +384,9 @@ def cmd_animate(args) -> int:
         raise InputError(f"an MP4 needs an even width and height, got {size[0]}x{size[1]}", where="--size",
                          hint="e.g. --size 1920x1080")
     from . import load
-    from .render.animate import Animator, plan_frames, write_animation, _mp4_writer
+    from .render.animate import Animator, plan_frames, write_animation, mp4_writer
     if suffix == ".mp4":
-        _mp4_writer()             # the missing extra is said before any work
+        mp4_writer()             # the missing extra is said before any work
     m = load(Path(args.file), name=args.file)
     plan = plan_frames(m, args.step)
     anim = Animator(plan, args.sheet, args.style, size)

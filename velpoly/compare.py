@@ -19,6 +19,7 @@ import numpy as np
 
 from .errors import InputError
 from .reference import Quantity, compare, evaluate, parse_key
+from .rigid import point_acceleration, point_velocity
 from .tables import Table, fmt, magnitude_direction
 
 __all__ = ["Graphical", "Comparison", "comparison", "HEADER", "Value", "polygon_values"]
@@ -67,10 +68,10 @@ class Graphical:
         key, at = self._anchor(link, poly.images)
         if key is None:
             raise KeyError(link)
-        r = np.asarray(w, float) - at
-        om = self.vel.rates[link]
-        out = np.asarray(poly.images[key], float) + poly.rates[link] * np.array([-r[1], r[0]])
-        return out - om ** 2 * r if acc else out
+        r, image = np.asarray(w, float) - at, np.asarray(poly.images[key], float)
+        if acc:
+            return point_acceleration(image, poly.rates[link], self.vel.rates[link], r)
+        return point_velocity(image, poly.rates[link], r)
 
     def body_velocity(self, link: str, w) -> np.ndarray:
         return self._body(link, w, False)

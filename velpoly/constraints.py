@@ -42,6 +42,7 @@ import numpy as np
 from .errors import InputError
 from .jet import Jet
 from .model import Mechanism
+from .rigid import direction as _unit, dot as _dot
 
 __all__ = ["Equation", "System", "build_system", "Frame", "contact_frame", "contact_slip_equation",
            "slider_coordinate"]
@@ -216,17 +217,8 @@ def _pins_bulk(block: PinBlock, q, qd, phi, jac, h) -> int:
     return 2 * n_pins
 
 
-def _dot(a, b):
-    return a[0] * b[0] + a[1] * b[1]
-
-
 def _sub(a, b):
     return a[0] - b[0], a[1] - b[1]
-
-
-def _unit(deg: float) -> np.ndarray:
-    t = np.radians(deg)
-    return np.array([np.cos(t), np.sin(t)])
 
 
 @dataclass(frozen=True)
@@ -398,49 +390,61 @@ def _position_system(system: System) -> System:
     return dataclasses.replace(system, equations=tuple(in_positions(e) for e in system.equations))
 
 
-def build_system(m: Mechanism) -> System:
-    """Translate the mechanism's joints and driver into constraint equations."""
-    index = {k.name: i for i, k in enumerate(m.moving_links)}
-    P = {name: np.array(xy, float) for name, xy in m.points.items()}
-    eqs: list[Equation] = []
+def _coincide(lab: str, a: str, b: str, s) -> list[Equation]:
+    """Links a and b share their point with reference position s: r_a(s) - r_b(s) = 0 (x, y)."""
+    return [Equation(lab, (a, b), lambda f: f.point(a, s)[0] - f.point(b, s)[0]),
+            Equation(lab, (a, b), lambda f: f.point(a, s)[1] - f.point(b, s)[1])]
 
+
+def _on_line(lab: str, a: str, b: str, s, n) -> Equation:
+    """a's point s stays on b's straight path through s with normal n (reference pose):
+    (r_a(s) - r_b(s)) . R_b n = 0 (with n along the path instead: a's travel along it)."""
+    return Equation(lab, (a, b), lambda f: _dot(_sub(f.point(a, s), f.point(b, s)), f.direction(b, n)))
+
+
+def _on_circle(lab: str, a: str, b: str, s, k) -> Equation:
+    """a's point s stays on b's circle about k through s: |r_a(s) - r_b(k)| - |s - k| = 0."""
+    r0 = float(np.hypot(*(s - k)))
+
+    def fn(f):
+        d = _sub(f.point(a, s), f.point(b, k))
+        return _dot(d, d).sqrt() - r0
+    return Equation(lab, (a, b), fn)
+
+
+def _joint_equations(m: Mechanism, P: dict) -> list[Equation]:
+    """The pins', sliders' and slots' equations: a pin's two links coincide at it; a block on a
+    straight path keeps its guide's angle and its point on the path, on a circular path its
+    path's centre coincides with the guide's; a pin in a straight slot stays on the slot's line,
+    in a circular slot on its circle."""
+    eqs: list[Equation] = []
     for pin in m.pins:
         i, j = pin.links
-        s = P[pin.point]
-        lab = f"pin {pin.point} ({i}, {j})"
-        eqs.append(Equation(lab, (i, j), lambda f, i=i, j=j, s=s: f.point(i, s)[0] - f.point(j, s)[0]))
-        eqs.append(Equation(lab, (i, j), lambda f, i=i, j=j, s=s: f.point(i, s)[1] - f.point(j, s)[1]))
-
+        eqs += _coincide(f"pin {pin.point} ({i}, {j})", i, j, P[pin.point])
     for sl in m.sliders:
         b, g = sl.block, sl.guide
-        s = P[sl.point]
         lab = f"slider {sl.point} (block {b} on {g})"
         if sl.centre is None:
-            n = _unit(sl.angle + 90.0)
             eqs.append(Equation(lab, (b, g), lambda f, b=b, g=g: f.theta(b) - f.theta(g), dim=0))
-            eqs.append(Equation(lab, (b, g), lambda f, b=b, g=g, s=s, n=n:
-                                _dot(_sub(f.point(b, s), f.point(g, s)), f.direction(g, n))))
+            eqs.append(_on_line(lab, b, g, P[sl.point], _unit(sl.angle + 90.0)))
         else:
-            k = P[sl.centre]
-            eqs.append(Equation(lab, (b, g), lambda f, b=b, g=g, k=k: f.point(b, k)[0] - f.point(g, k)[0]))
-            eqs.append(Equation(lab, (b, g), lambda f, b=b, g=g, k=k: f.point(b, k)[1] - f.point(g, k)[1]))
-
+            eqs += _coincide(lab, b, g, P[sl.centre])
     for sl in m.slots:
-        l, sk = sl.link, sl.slot
-        s = P[sl.pin]
-        lab = f"slot {sl.pin} (pin of {l} in {sk})"
+        lab = f"slot {sl.pin} (pin of {sl.link} in {sl.slot})"
         if sl.centre is None:
-            n = _unit(sl.angle + 90.0)
-            eqs.append(Equation(lab, (l, sk), lambda f, l=l, sk=sk, s=s, n=n:
-                                _dot(_sub(f.point(l, s), f.point(sk, s)), f.direction(sk, n))))
+            eqs.append(_on_line(lab, sl.link, sl.slot, P[sl.pin], _unit(sl.angle + 90.0)))
         else:
-            k = P[sl.centre]
-            r0 = float(np.hypot(*(s - k)))
-            def fn(f, l=l, sk=sk, s=s, k=k, r0=r0):
-                d = _sub(f.point(l, s), f.point(sk, k))
-                return _dot(d, d).sqrt() - r0
-            eqs.append(Equation(lab, (l, sk), fn))
+            eqs.append(_on_circle(lab, sl.link, sl.slot, P[sl.pin], P[sl.centre]))
+    return eqs
 
+
+def build_system(m: Mechanism) -> System:
+    """Translate the mechanism's joints and driver into constraint equations Phi(q) = 0
+    (pins, sliders, slots, contacts in that order), the driver's coordinate and every pin's
+    equations as one :class:`PinBlock`."""
+    index = {k.name: i for i, k in enumerate(m.moving_links)}
+    P = {name: np.array(xy, float) for name, xy in m.points.items()}
+    eqs = _joint_equations(m, P)
     for c in m.contacts:
         eqs.extend(_contact_equations(m, c, P))
 
@@ -481,9 +485,7 @@ def _slider_coordinate(sl, P, label) -> Equation:
     b, g = sl.block, sl.guide
     s = P[sl.point]
     if sl.centre is None:
-        d = _unit(sl.angle)
-        return Equation(label, (b, g), lambda f: _dot(_sub(f.point(b, s), f.point(g, s)),
-                                                      f.direction(g, d)))
+        return _on_line(label, b, g, s, _unit(sl.angle))
     r = float(np.hypot(*(s - P[sl.centre])))
     return Equation(label, (b, g), lambda f: r * (f.theta(b) - f.theta(g)))
 

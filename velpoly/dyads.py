@@ -26,7 +26,8 @@ from dataclasses import dataclass
 import numpy as np
 
 from .model import Mechanism
-from .motion import LinkMotion, _arg, _zero
+from .rigid import arg, dot, is_zero
+from .motion import LinkMotion
 
 __all__ = ["DyadPlan", "Walk", "closure", "dyad_plan", "draws_the_reference", "walk", "assemble", "coordinates", "rates"]
 
@@ -49,83 +50,96 @@ def _pins_between(m: Mechanism):
 
 
 def dyad_plan(m: Mechanism) -> DyadPlan | None:
-    """The chain of dyads that assembles the mechanism from its driver, or None."""
-    if m.contacts or m.slots:
+    """The chain of dyads that assembles the mechanism from its driver, or None.
+
+    None when the mechanism has contacts or slots, a slider on a circular path, a driver that
+    is not a crank pinned to the frame or a block on a straight frame guide, links no dyad
+    reaches, a pin no dyad uses (a redundant loop), or a walk that does not draw the drawn pose.
+    """
+    if m.contacts or m.slots or any(s.centre is not None for s in m.sliders):
         return None
-    frame = m.frame.name
     pins = _pins_between(m)
+    start = _plan_driver(m, pins)
+    if start is None:
+        return None
+    driver, known = start
     P = {k: np.array(v, float) for k, v in m.points.items()}
-    drv = m.driver
+    steps = []
+    while len(known) < len(m.links):
+        st = _next_dyad(m, pins, P, known)
+        if st is None:
+            return None
+        steps.append(st)
+        known.update((st[1], st[2]))
+    if not _uses_every_pin(m, steps):
+        return None
+    plan = DyadPlan(driver, tuple(steps), _margin(m, steps, P))
+    return plan if draws_the_reference(m, plan) else None
+
+
+def _plan_driver(m: Mechanism, pins: dict):
+    """``(driver, known links)``: a crank pinned to the frame ("crank", link, pivot), or a block
+    on a straight frame guide ("slider", block, path angle); None for another driver."""
+    frame, drv = m.frame.name, m.driver
     if drv.is_slider:
         sl = next(s for s in m.sliders if s.point == drv.slider)
         if sl.guide != frame or sl.centre is not None:
             return None
-        driver = ("slider", sl.block, float(sl.angle))
-        known = {frame, sl.block}
-    else:
-        piv = pins.get(frozenset((drv.link, frame)))
-        if not piv:
-            return None
-        driver = ("crank", drv.link, piv[0])
-        known = {frame, drv.link}
+        return ("slider", sl.block, float(sl.angle)), {frame, sl.block}
+    piv = pins.get(frozenset((drv.link, frame)))
+    if not piv:
+        return None
+    return ("crank", drv.link, piv[0]), {frame, drv.link}
+
+
+def _pin_to_known(m: Mechanism, pins: dict, known: set, u: str, exclude: str):
+    """``(point, link)``: a pin of link u to a known link (in file order), other than ``exclude``."""
+    for k in sorted(known, key=lambda n: m.link_names.index(n)):
+        for pt in pins.get(frozenset((u, k)), []):
+            if pt != exclude:
+                return pt, k
+    return None
+
+
+def _next_dyad(m: Mechanism, pins: dict, P: dict, known: set):
+    """The first dyad (in file order) of two unknown links u, v pinned together at P2 and to
+    known links: ``("RRR", u, v, P1, k1, P2, P3, k3, side)`` (u pinned to k1 at P1, v to k3 at
+    P3) or ``("RRP", u, v, P1, k1, P2, guide, d, side)`` (v a block on a known guide along d);
+    ``side`` is the drawn pose's assembly. None when no dyad closes."""
     sliders = {s.block: s for s in m.sliders}
-    for s in m.sliders:
-        if s.centre is not None:
-            return None
-    moving = [k.name for k in m.links if not k.frame]
-    steps = []
-
-    def pin_to_known(u, exclude):
-        for k in sorted(known, key=lambda n: m.link_names.index(n)):
-            for pt in pins.get(frozenset((u, k)), []):
-                if pt != exclude:
-                    return pt, k
-        return None
-
-    progress = True
-    while progress and len(known) < len(m.links):
-        progress = False
-        unknown = [u for u in moving if u not in known]
-        for u in unknown:
-            for v in unknown:
-                if u == v:
+    unknown = [k.name for k in m.links if not k.frame and k.name not in known]
+    for u in unknown:
+        for v in unknown:
+            if u == v:
+                continue
+            for p2 in pins.get(frozenset((u, v)), []):
+                a = _pin_to_known(m, pins, known, u, p2)
+                if a is None:
                     continue
-                shared = pins.get(frozenset((u, v)), [])
-                for p2 in shared:
-                    a = pin_to_known(u, p2)
-                    if a is None:
-                        continue
-                    p1, k1 = a
-                    if v in sliders and sliders[v].guide in known and u not in sliders:
-                        s = sliders[v]
-                        d = np.array([np.cos(np.radians(s.angle)), np.sin(np.radians(s.angle))])
-                        # P2 is on the path, on this side of the foot of P1
-                        side = float(np.sign(np.dot(P[p2] - P[p1], d)) or 1.0)
-                        steps.append(("RRP", u, v, p1, k1, p2, s.guide, d, side))
-                        known.update((u, v))
-                        progress = True
-                        break
-                    b = pin_to_known(v, p2)
-                    if b is None or v in sliders or u in sliders:
-                        continue
-                    p3, k3 = b
-                    e = (P[p3] - P[p1]) / m.size       # in units of the size: no overflow
-                    f = (P[p2] - P[p1]) / m.size
-                    cross = e[0] * f[1] - e[1] * f[0]
-                    if np.hypot(*e) == 0:
-                        continue
-                    steps.append(("RRR", u, v, p1, k1, p2, p3, k3, float(np.sign(cross) or 1.0)))
-                    known.update((u, v))
-                    progress = True
-                    break
-                if progress:
-                    break
-            if progress:
-                break
-    if len(known) < len(m.links):
-        return None
-    # every joint must be one the plan used or one it satisfies by construction; check the
-    # joint count: a pin not used by any step (a redundant loop) makes the plan unsafe
+                p1, k1 = a
+                if v in sliders and sliders[v].guide in known and u not in sliders:
+                    s = sliders[v]
+                    d = np.array([np.cos(np.radians(s.angle)), np.sin(np.radians(s.angle))])
+                    # P2 is on the path, on this side of the foot of P1
+                    side = float(np.sign(np.dot(P[p2] - P[p1], d)) or 1.0)
+                    return ("RRP", u, v, p1, k1, p2, s.guide, d, side)
+                b = _pin_to_known(m, pins, known, v, p2)
+                if b is None or v in sliders or u in sliders:
+                    continue
+                p3, k3 = b
+                e = (P[p3] - P[p1]) / m.size       # in units of the size: no overflow
+                f = (P[p2] - P[p1]) / m.size
+                cross = e[0] * f[1] - e[1] * f[0]
+                if np.hypot(*e) == 0:
+                    continue
+                return ("RRR", u, v, p1, k1, p2, p3, k3, float(np.sign(cross) or 1.0))
+    return None
+
+
+def _uses_every_pin(m: Mechanism, steps) -> bool:
+    """Whether every pin is the crank's pivot or a joint some dyad closes (a pin no step uses,
+    a redundant loop, makes the plan unsafe)."""
+    drv, frame = m.driver, m.frame.name
     used = {("pin", frozenset((drv.link, frame))) if not drv.is_slider else None}
     for st in steps:
         if st[0] == "RRR":
@@ -134,11 +148,7 @@ def dyad_plan(m: Mechanism) -> DyadPlan | None:
         else:
             _, u, v, p1, k1, p2, g, _, _ = st
             used |= {("pin", frozenset((u, k1))), ("pin", frozenset((u, v)))}
-    for p in m.pins:
-        if ("pin", frozenset(p.links)) not in used:
-            return None
-    plan = DyadPlan(driver, tuple(steps), _margin(m, steps, P))
-    return plan if draws_the_reference(m, plan) else None
+    return all(("pin", frozenset(p.links)) in used for p in m.pins)
 
 
 def draws_the_reference(m: Mechanism, plan: DyadPlan) -> bool:
@@ -190,16 +200,16 @@ def _c(p) -> complex:
 
 def _dot(a, b):
     """a . b = Re(conj(a) b) (0 when b is a scalar zero)."""
-    return 0.0 if _zero(b) else (a.conjugate() * b).real
+    return 0.0 if is_zero(b) else dot(a, b)
 
 
 def _re(ca, b):
     """Re(ca b): with ca = conj(a), a . b (0 when b is a scalar zero)."""
-    return 0.0 if _zero(b) else (ca * b).real
+    return 0.0 if is_zero(b) else (ca * b).real
 
 
 def _sub(a, b):
-    return a if _zero(b) else a - b
+    return a if is_zero(b) else a - b
 
 
 def _solver(det, r1, r2):
@@ -211,14 +221,14 @@ def _solver(det, r1, r2):
 
 def _lin(b1, K1, b2, K2):
     """b1 K1 + b2 K2, skipping scalar zeros."""
-    if _zero(b2):
-        return 0.0 if _zero(b1) else b1 * K1
-    return b2 * K2 if _zero(b1) else b1 * K1 + b2 * K2
+    if is_zero(b2):
+        return 0.0 if is_zero(b1) else b1 * K1
+    return b2 * K2 if is_zero(b1) else b1 * K1 + b2 * K2
 
 
 def _sq(z):
     """|z|^2."""
-    return 0.0 if _zero(z) else (z * z.conjugate()).real
+    return 0.0 if is_zero(z) else (z * z.conjugate()).real
 
 
 @dataclass(frozen=True)
@@ -272,14 +282,20 @@ def walk(m: Mechanism, plan: DyadPlan, deltas, rate: float | None = None, accel:
     exp = math.frexp(m.size)[1]
     unit = math.ldexp(1.0, exp) if abs(exp) > 200 else 1.0
     P = {k: _c(v) / unit for k, v in m.points.items()}
-    links = {m.frame.name: LinkMotion(0j, 0j, 1.0, 0.0, 0.0, 0.0, 0.0)}
-    kind, link, extra = plan.driver
-    if kind == "crank":
-        c = P[extra]
-        links[link] = LinkMotion(c, c, np.exp(1j * deltas), 0.0, 0.0, float(rate or 0.0), float(accel))
-    else:
-        e = complex(np.exp(1j * np.radians(extra))) / unit
-        links[link] = LinkMotion(0j, deltas * e, 1.0, (rate or 0.0) * e, accel * e, 0.0, 0.0)
+    links = _driver_motion(m, plan, P, deltas, rate, accel, unit)
+    joints, bad, sine, mus, dmus = _walk_dyads(plan, links, P, n, rates)
+    reach = n if bad is None or not bad.any() else int(np.argmax(bad))
+    if unit != 1.0:   # back to the mechanism's lengths
+        links = {k: LinkMotion(lk.s0 * unit, lk.p0 * unit, lk.rot, _times(lk.v0, unit), _times(lk.a0, unit),
+                               lk.omega, lk.alpha) for k, lk in links.items()}
+        joints = {k: tuple(_times(x, unit) for x in j) for k, j in joints.items()}
+    return Walk(links, joints, np.ones(n) if sine is None else sine, reach, tuple(mus), tuple(dmus))
+
+
+def _walk_dyads(plan: DyadPlan, links: dict, P: dict, n: int, rates: bool):
+    """Every dyad of the plan in turn, on all n positions at once (adds its links to ``links``):
+    ``(joints, bad, sine, mus, dmus)``: the joints' (P, V, A), where some dyad does not close,
+    the smallest transmission sine (None without rates), each dyad's closure and its rate."""
     joints = {}
 
     def at(lk, p):
@@ -309,12 +325,22 @@ def walk(m: Mechanism, plan: DyadPlan, deltas, rate: float | None = None, accel:
         bad = miss if bad is None else bad | miss
         if rates:
             sine = here if sine is None else np.minimum(sine, here)
-    reach = n if bad is None or not bad.any() else int(np.argmax(bad))
-    if unit != 1.0:
-        links = {k: LinkMotion(lk.s0 * unit, lk.p0 * unit, lk.rot, _times(lk.v0, unit), _times(lk.a0, unit),
-                               lk.omega, lk.alpha) for k, lk in links.items()}
-        joints = {k: tuple(_times(x, unit) for x in j) for k, j in joints.items()}
-    return Walk(links, joints, np.ones(n) if sine is None else sine, reach, tuple(mus), tuple(dmus))
+    return joints, bad, sine, mus, dmus
+
+
+def _driver_motion(m: Mechanism, plan: DyadPlan, P: dict, deltas, rate, accel, unit: float) -> dict:
+    """The frame's and the driver's :class:`LinkMotion` (lengths in ``unit``): a crank turned by
+    deltas (radians) about its pivot at omega = rate, alpha = accel; a block moved by deltas
+    along its path at speed ``rate`` and acceleration ``accel``."""
+    links = {m.frame.name: LinkMotion(0j, 0j, 1.0, 0.0, 0.0, 0.0, 0.0)}
+    kind, link, extra = plan.driver
+    if kind == "crank":
+        c = P[extra]
+        links[link] = LinkMotion(c, c, np.exp(1j * deltas), 0.0, 0.0, float(rate or 0.0), float(accel))
+    else:
+        e = complex(np.exp(1j * np.radians(extra))) / unit
+        links[link] = LinkMotion(0j, deltas * e, 1.0, (rate or 0.0) * e, accel * e, 0.0, 0.0)
+    return links
 
 
 def closure(st, links, joints, P, n, rates):
@@ -353,8 +379,8 @@ def closure(st, links, joints, P, n, rates):
         dmu = None
         if rates:
             VG = G.velocity(c2 - G.p0)
-            ds = (np.conjugate(e) * _sub(V1, VG)).imag if not (_zero(V1) and _zero(VG)) else 0.0
-            if not _zero(G.omega):
+            ds = (np.conjugate(e) * _sub(V1, VG)).imag if not (is_zero(V1) and is_zero(VG)) else 0.0
+            if not is_zero(G.omega):
                 ds = ds + G.omega * _dot(e, u)
             dmu = -2.0 * sigma * ds / (r1 * r1)
     mu = np.broadcast_to(np.asarray(mu, float), (n,))
@@ -421,7 +447,7 @@ def _rrp(links, u_, v_, j1, G, s1, s2, dref, side, n, rates):
     K1, KG = _solver((cu * nn).imag, u, nn)
     V2 = _lin(_re(cu, V1), K1, _dot(nn, VG), KG)
     W1 = _sub(V2, V1)
-    cor = 0.0 if _zero(G.omega) else 2 * G.omega * _dot(e, _sub(V2, VG))
+    cor = 0.0 if is_zero(G.omega) else 2 * G.omega * _dot(e, _sub(V2, VG))
     A2 = _lin(_sub(_re(cu, A1), _sq(W1)), K1, _dot(nn, AG) + cor, KG)
     links[u_] = links[u_].moving(V2, A2, (cu * W1).imag * (1.0 / (r1 * r1)),
                                  (cu * _sub(A2, A1)).imag * (1.0 / (r1 * r1)))
@@ -456,7 +482,7 @@ def coordinates(w: Walk, index: dict, plan: DyadPlan, deltas, out=None) -> np.nd
         if name == drv and kind == "crank":
             q[:, 3 * k + 2] = deltas                  # the driver's own angle, exactly
         elif isinstance(lk.rot, np.ndarray):
-            th = _arg(lk.rot)
+            th = arg(lk.rot)
             # continuous with the reference pose (0), not wrapped into (-pi, pi]
             if n > 1 and np.abs(np.diff(th)).max() > np.pi:
                 th = np.unwrap(np.concatenate([[0.0], th]))[1:]

@@ -10,8 +10,8 @@ from __future__ import annotations
 
 import re
 
-__all__ = ["VelpolyError", "InputError", "ArgumentTypeError", "ArgumentValueError", "PoseError", "AssemblyError",
-           "SingularPoseError", "one_line", "control_character"]
+__all__ = ["VelpolyError", "InputError", "ArgumentTypeError", "ArgumentValueError", "ConstructionError", "PoseError",
+           "AssemblyError", "SingularPoseError", "one_line", "control_character"]
 
 
 class VelpolyError(Exception):
@@ -88,6 +88,13 @@ class ArgumentTypeError(InputError, TypeError):
 
 class ArgumentValueError(InputError, ValueError):
     """A Python API argument of the right type but a wrong value (``angle=nan``, 2-D angles)."""
+
+
+class ConstructionError(VelpolyError):
+    """The mechanism has no graphical construction order that velpoly.polygons knows
+    (exit status 2); the analytic solve still stands. Also importable from velpoly.polygons."""
+
+    exit_code = 2
 
 
 class PoseError(VelpolyError):

@@ -44,6 +44,7 @@ from pathlib import Path
 import numpy as np
 
 from .errors import InputError, VelpolyError
+from .rigid import direction as _unit
 
 __all__ = ["sheet_data", "page", "html", "HtmlSheet", "write_page", "pose_values"]
 
@@ -280,11 +281,6 @@ def _path(geom, k: float) -> str:
             pts = " ".join(f"{k * x:.2f},{-k * y:.2f}" for x, y in xy)
             out.append("M" + pts + ("Z" if hasattr(poly, "exterior") else ""))
     return "".join(out)
-
-
-def _unit(deg: float) -> np.ndarray:
-    t = math.radians(deg)
-    return np.array([math.cos(t), math.sin(t)])
 
 
 def _static(m, sol0, w, view: _View) -> dict:

@@ -21,6 +21,8 @@ import numpy as np
 
 from .constraints import Frame, contact_frame, contact_slip_equation
 from .model import Mechanism
+from .rigid import arg, coriolis, direction, dot, is_zero, perp, point_acceleration, point_velocity, rate_cross
+from .rigid import relative_acceleration, unit, xy
 
 __all__ = ["Motion", "LinkMotion", "point_keys", "evaluate_motion", "wrap_deg", "wrap_deg_float"]
 
@@ -36,15 +38,6 @@ def wrap_deg_float(a: float) -> float:
     """:func:`wrap_deg` of one float (the same operations, on floats)."""
     w = (a + 180.0) % 360.0 - 180.0
     return 180.0 if w == -180.0 else w
-
-
-def _perp(v):
-    return np.stack([-v[..., 1], v[..., 0]], axis=-1)
-
-
-def _zero(x) -> bool:
-    """Whether x is a scalar zero: a motion that vanishes at every pose (the frame's)."""
-    return not isinstance(x, np.ndarray) and x == 0
 
 
 @dataclass(frozen=True)
@@ -81,14 +74,14 @@ class LinkMotion:
     def velocity(self, r):
         """V of the link's point at the arm r from p0."""
         om = self.omega
-        return self.v0 if _zero(r) or _zero(om) else _plus(self.v0, (1j * om) * r)
+        return self.v0 if is_zero(r) or is_zero(om) else _plus(self.v0, rate_cross(om, r))
 
     def acceleration(self, r):
         """A of the link's point at the arm r from p0."""
         om, al = self.omega, self.alpha
-        if _zero(r) or (_zero(om) and _zero(al)):
+        if is_zero(r) or (is_zero(om) and is_zero(al)):
             return self.a0
-        return _plus(self.a0, (1j * al - om * om) * r)
+        return _plus(self.a0, relative_acceleration(al, om, r))
 
     def motion(self, r):
         """(V, A) of the link's point at the arm r from p0."""
@@ -107,25 +100,7 @@ class LinkMotion:
 
 def _plus(a, b):
     """a + b, skipping a scalar zero."""
-    return a if _zero(b) else b if _zero(a) else a + b
-
-
-def _xy(z, n: int) -> np.ndarray:
-    """Complex values (an array over the N poses, or one value for all) as (N, 2) x, y:
-    a view of a whole contiguous complex array."""
-    if isinstance(z, np.ndarray) and z.shape == (n,) and z.dtype == complex and z.flags.c_contiguous:
-        return z.view(np.float64).reshape(n, 2)
-    if _zero(z):
-        return np.zeros((n, 2))
-    out = np.empty((n, 2))
-    out[:, 0], out[:, 1] = np.real(z), np.imag(z)
-    return out
-
-
-def _arg(z: np.ndarray) -> np.ndarray:
-    """arg z in (-pi, pi] (arctan2 of contiguous copies of the parts: twice as fast as of the
-    strided views)."""
-    return np.arctan2(z.imag.copy(), z.real.copy())
+    return a if is_zero(b) else b if is_zero(a) else a + b
 
 
 def _turn_deg(rot, base: float, n: int) -> np.ndarray:
@@ -133,7 +108,7 @@ def _turn_deg(rot, base: float, n: int) -> np.ndarray:
     if not isinstance(rot, np.ndarray):
         a = (base + math.degrees(math.atan2(rot.imag, rot.real)) + 180.0) % 360.0 - 180.0
         return np.full(n, 180.0 if a == -180.0 else a)
-    a = _arg(rot * complex(math.cos(math.radians(base)), math.sin(math.radians(base))) if base else rot)
+    a = arg(rot * complex(math.cos(math.radians(base)), math.sin(math.radians(base))) if base else rot)
     a *= 180.0 / math.pi
     a[a == -180.0] = 180.0
     return a
@@ -219,15 +194,13 @@ class _Bodies:
         return np.stack([c * d[0] - sn * d[1], sn * d[0] + c * d[1]], axis=-1)
 
     def vel(self, lk, w):
-        r = w - self.origin(lk)
-        return self.origin(lk, self.qd) + self.theta(lk, self.qd)[:, None] * _perp(r)
+        return point_velocity(self.origin(lk, self.qd), self.theta(lk, self.qd), w - self.origin(lk))
 
     def acc(self, lk, w):
         r = w - self.origin(lk)
         if self.qdd is None:
             return np.full_like(r, np.nan)
-        om = self.theta(lk, self.qd)[:, None]
-        return self.origin(lk, self.qdd) + self.theta(lk, self.qdd)[:, None] * _perp(r) - om ** 2 * r
+        return point_acceleration(self.origin(lk, self.qdd), self.theta(lk, self.qdd), self.theta(lk, self.qd), r)
 
 
 class _WalkBodies(_Bodies):
@@ -238,10 +211,10 @@ class _WalkBodies(_Bodies):
         self.links = walk.links
 
     def place(self, lk, s):
-        return _xy(self.links[lk].place(complex(s[0], s[1])), self.n)
+        return xy(self.links[lk].place(complex(s[0], s[1])), self.n)
 
     def turn(self, lk, d):
-        return _xy(self.links[lk].rot * complex(d[0], d[1]), self.n)
+        return xy(self.links[lk].rot * complex(d[0], d[1]), self.n)
 
     def _arm(self, lk, w):
         lm = self.links[lk]
@@ -249,22 +222,13 @@ class _WalkBodies(_Bodies):
 
     def vel(self, lk, w):
         lm, r = self._arm(lk, w)
-        return _xy(lm.velocity(r), self.n)
+        return xy(lm.velocity(r), self.n)
 
     def acc(self, lk, w):
         if self.qdd is None:
             return np.full_like(w, np.nan)
         lm, r = self._arm(lk, w)
-        return _xy(lm.acceleration(r), self.n)
-
-
-def _unit(deg):
-    t = np.radians(deg)
-    return np.array([np.cos(t), np.sin(t)])
-
-
-def _norm(v):
-    return v / np.linalg.norm(v, axis=-1, keepdims=True)
+        return xy(lm.acceleration(r), self.n)
 
 
 def evaluate_motion(m: Mechanism, index: dict, q, qd, qdd=None, walk=None) -> Motion:
@@ -280,36 +244,53 @@ def evaluate_motion(m: Mechanism, index: dict, q, qd, qdd=None, walk=None) -> Mo
         return _evaluate_one(m, index, q, qd, qdd)
     B = _Bodies(m, index, q, qd, qdd) if walk is None else _WalkBodies(walk, m, index, q, qd, qdd)
     P = {k: np.array(v, float) for k, v in m.points.items()}
+    contact_place = {c.point: _contact_place(m, c, B, P) for c in m.contacts}
+    position, velocity, acceleration = _points(m, B, index, P, walk, contact_place)
+    angle, omega, alpha = _link_angles(m, B, P, walk)
+    sliders = [_relative(B, s.block, s.guide, B.place(s.block, P[s.point]), _path_dir(B, s, P), q, qd, qdd)
+               for s in m.sliders]
+    slots = [_relative(B, s.link, s.slot, B.place(s.link, P[s.pin]),
+                       _path_dir(B, s, P, block=s.link, guide=s.slot, point=s.pin), q, qd, qdd)
+             for s in m.slots]
+    contacts = [_contact_slip(m, c, B, index, *contact_place[c.point]) for c in m.contacts]
+    return Motion(angle, omega, alpha, position, velocity, acceleration, sliders, contacts, slots)
 
-    # current places of points carried as coincident points
-    contact_place = {}
-    contact_dirs = {}
-    for c in m.contacts:
-        a, b = c.links
-        u0, t0, la, lb = contact_frame(m, c, P)
-        if c.centres is None:
-            place = B.place(a, P[c.point])
-            u = np.broadcast_to(u0, place.shape)
+
+def _contact_place(m: Mechanism, c, B, P) -> tuple:
+    """Where contact c touches now, with the common normal u and tangent t = perp(u):
+    ``(place, u, t)``. With centres of curvature A, B (the equivalent linkage), u runs from
+    A to B and the place is A + l_a u (or B + l_b u); without them, the contact point rides on
+    the first link and the normal turns with nothing (it is given)."""
+    a, b = c.links
+    u0, t0, la, lb = contact_frame(m, c, P)
+    if c.centres is None:
+        place = B.place(a, P[c.point])
+        u = np.broadcast_to(u0, place.shape)
+    else:
+        ca, cb = c.centres
+        if ca is not None and cb is not None:
+            A, Bc = B.place(a, P[ca]), B.place(b, P[cb])
+            u = unit(Bc - A)
+            place = A + la * u
+        elif cb is None:
+            u = B.turn(b, u0)
+            place = B.place(a, P[ca]) + la * u
         else:
-            ca, cb = c.centres
-            if ca is not None and cb is not None:
-                A, Bc = B.place(a, P[ca]), B.place(b, P[cb])
-                u = _norm(Bc - A)
-                place = A + la * u
-            elif cb is None:
-                u = B.turn(b, u0)
-                place = B.place(a, P[ca]) + la * u
-            else:
-                u = B.turn(a, u0)
-                place = B.place(b, P[cb]) + lb * u
-        contact_place[c.point] = place
-        contact_dirs[c.point] = (u, _perp(u))
+            u = B.turn(a, u0)
+            place = B.place(b, P[cb]) + lb * u
+    return place, u, perp(u)
+
+
+def _points(m: Mechanism, B, index: dict, P: dict, walk, contact_place: dict) -> tuple[dict, dict, dict]:
+    """(position, velocity, acceleration) of every point key, in point_keys order: body points
+    all at once (from the walk, or one vectorised pass); coincident points (a contact's, a
+    slider's point on its guide, a slot's pin on the slot link) at their current place,
+    ``V = V_O + omega x r`` and ``A = A_O + alpha x r - omega^2 r`` of the carrying link."""
     coincident_place = {}
     for s in m.sliders:
         coincident_place[(s.point, s.guide)] = B.place(s.block, P[s.point])
     for s in m.slots:
         coincident_place[(s.pin, s.slot)] = B.place(s.link, P[s.pin])
-
     position, velocity, acceleration = {}, {}, {}
     keys = point_keys(m)
     body = [(key, p, lk) for key, p, lk in keys if p not in contact_place and (p, lk) not in coincident_place]
@@ -320,21 +301,25 @@ def evaluate_motion(m: Mechanism, index: dict, q, qd, qdd=None, walk=None) -> Mo
     for key, p, lk in keys:
         if key in position:
             continue
-        w = contact_place[p] if p in contact_place else coincident_place[(p, lk)]
+        w = contact_place[p][0] if p in contact_place else coincident_place[(p, lk)]
         position[key] = w
         velocity[key] = B.vel(lk, w)
         acceleration[key] = B.acc(lk, w)
-    position = {key: position[key] for key, _, _ in keys}
-    velocity = {key: velocity[key] for key, _, _ in keys}
-    acceleration = {key: acceleration[key] for key, _, _ in keys}
+    return ({key: position[key] for key, _, _ in keys}, {key: velocity[key] for key, _, _ in keys},
+            {key: acceleration[key] for key, _, _ in keys})
 
+
+def _link_angles(m: Mechanism, B, P: dict, walk) -> tuple[dict, dict, dict]:
+    """(angle, omega, alpha) of every link: the angle (degrees, wrapped) of its first two
+    points' line, a block's path direction, else its turn from the reference pose."""
+    q, qd, qdd = B.q, B.qd, B.qdd
     angle, omega, alpha = {}, {}, {}
     block_path = {s.block: s for s in m.sliders}
     for link in m.links:
+        omega[link.name] = B.theta(link.name, qd)
+        alpha[link.name] = B.theta(link.name, qdd) if qdd is not None else np.full(len(q), np.nan)
         if walk is not None:
             angle[link.name] = _turn_deg(walk.links[link.name].rot, _base_deg(link, block_path, P), B.n)
-            omega[link.name] = B.theta(link.name, qd)
-            alpha[link.name] = B.theta(link.name, qdd) if qdd is not None else np.full(len(q), np.nan)
             continue
         th = B.theta(link.name)
         if len(link.points) >= 2:
@@ -346,32 +331,24 @@ def evaluate_motion(m: Mechanism, index: dict, q, qd, qdd=None, walk=None) -> Mo
             angle[link.name] = wrap_deg(np.degrees(np.arctan2(*_path_dir(B, s, P)[..., ::-1].T)))
         else:
             angle[link.name] = wrap_deg(np.degrees(th))
-        omega[link.name] = B.theta(link.name, qd)
-        alpha[link.name] = B.theta(link.name, qdd) if qdd is not None else np.full(len(q), np.nan)
+    return angle, omega, alpha
 
-    sliders = []
-    for s in m.sliders:
-        d = _path_dir(B, s, P)
-        sliders.append(_relative(B, s.block, s.guide, B.place(s.block, P[s.point]), d, q, qd, qdd))
-    slots = []
-    for s in m.slots:
-        d = _path_dir(B, s, P, block=s.link, guide=s.slot, point=s.pin)
-        slots.append(_relative(B, s.link, s.slot, B.place(s.link, P[s.pin]), d, q, qd, qdd))
-    contacts = []
-    for c in m.contacts:
-        a, b = c.links
-        w = contact_place[c.point]
-        u, t = contact_dirs[c.point]
-        slip_v = np.einsum("ij,ij->i", B.vel(a, w) - B.vel(b, w), t)
-        eq = contact_slip_equation(m, c)
-        if eq is None or qdd is None:
-            slip_a = np.full(len(q), np.nan)
-        else:
-            jet = eq.fn(Frame(_FakeSystem(index), q, qd))
-            slip_a = np.einsum("ij,ij->i", jet.g, qdd) + jet.h
-        contacts.append({"slip_velocity": slip_v, "slip_acceleration": slip_a,
-                         "normal": np.degrees(np.arctan2(u[:, 1], u[:, 0])), "place": w})
-    return Motion(angle, omega, alpha, position, velocity, acceleration, sliders, contacts, slots)
+
+def _contact_slip(m: Mechanism, c, B, index: dict, w, u, t) -> dict:
+    """A contact's slip velocity ``(V_Pa - V_Pb) . t`` along the common tangent t at its place w,
+    its slip acceleration (from the contact's slip equation; NaN without one or without q''),
+    the normal's direction (degrees) and the place."""
+    a, b = c.links
+    q, qd, qdd = B.q, B.qd, B.qdd
+    slip_v = dot(B.vel(a, w) - B.vel(b, w), t)
+    eq = contact_slip_equation(m, c)
+    if eq is None or qdd is None:
+        slip_a = np.full(len(q), np.nan)
+    else:
+        jet = eq.fn(Frame(_FakeSystem(index), q, qd))
+        slip_a = np.einsum("ij,ij->i", jet.g, qdd) + jet.h
+    return {"slip_velocity": slip_v, "slip_acceleration": slip_a,
+            "normal": np.degrees(np.arctan2(u[:, 1], u[:, 0])), "place": w}
 
 
 def _base_deg(link, block_path, P) -> float:
@@ -392,7 +369,7 @@ def _walk_points(walk, body, P, n, position, velocity, acceleration):
         hit = walk.joints.get((lk, p))
         if hit is None:
             hit = walk.links[lk].point(complex(*P[p]))
-        position[key], velocity[key], acceleration[key] = (_xy(z, n) for z in hit)
+        position[key], velocity[key], acceleration[key] = (xy(z, n) for z in hit)
 
 
 def _body_points(B, index, body, P, position, velocity, acceleration):
@@ -420,13 +397,11 @@ def _body_points(B, index, body, P, position, velocity, acceleration):
     ry = sk * s[:, :1] + ck * s[:, 1:]
     om = qd[2][k]
     px, py = q[0][k] + rx, q[1][k] + ry
-    vx, vy = qd[0][k] - om * ry, qd[1][k] + om * rx
+    vx, vy = point_velocity((qd[0][k], qd[1][k]), om, (rx, ry))
     if qdd is None:
         ax = ay = np.full_like(px, np.nan)
     else:
-        al, w2 = qdd[2][k], om * om
-        ax = qdd[0][k] - al * ry - w2 * rx
-        ay = qdd[1][k] + al * rx - w2 * ry
+        ax, ay = point_acceleration((qdd[0][k], qdd[1][k]), qdd[2][k], om, (rx, ry))
     out = np.empty((3, len(body), n, 2))
     out[0, ..., 0], out[0, ..., 1] = px, py
     out[1, ..., 0], out[1, ..., 1] = vx, vy
@@ -446,21 +421,20 @@ def _path_dir(B, s, P, block=None, guide=None, point=None):
     guide = guide or s.guide
     point = point or s.point
     if s.centre is None:
-        return B.turn(guide, _unit(s.angle))
+        return B.turn(guide, direction(s.angle))
     r = B.place(block, P[point]) - B.place(guide, P[s.centre])
-    return _perp(_norm(r))
+    return perp(unit(r))
 
 
 def _relative(B, block, guide, w, d, q, qd, qdd):
     v_rel = B.vel(block, w) - B.vel(guide, w)
-    slip_v = np.einsum("ij,ij->i", v_rel, d)
-    om_g = B.theta(guide, qd)
-    cor = 2.0 * om_g[:, None] * _perp(v_rel)
+    slip_v = dot(v_rel, d)
+    cor = coriolis(B.theta(guide, qd), v_rel)
     if qdd is None:
         slip_a = np.full(len(q), np.nan)
     else:
         a_rel = B.acc(block, w) - B.acc(guide, w) - cor
-        slip_a = np.einsum("ij,ij->i", a_rel, d)
+        slip_a = dot(a_rel, d)
     return {"slip_velocity": slip_v, "slip_acceleration": slip_a, "coriolis": cor,
             "direction": np.degrees(np.arctan2(d[:, 1], d[:, 0]))}
 
@@ -495,14 +469,11 @@ class _Link1:
 
     def vel(self, wx, wy):
         """V = V_O + omega x r of the link's point now at w, r = w - x."""
-        rx, ry = wx - self.x, wy - self.y
-        return self.vx + self.om * -ry, self.vy + self.om * rx
+        return point_velocity((self.vx, self.vy), self.om, (wx - self.x, wy - self.y))
 
     def acc(self, wx, wy):
         """A = A_O + alpha x r - omega^2 r of the link's point now at w, r = w - x."""
-        rx, ry = wx - self.x, wy - self.y
-        w2 = self.om * self.om
-        return self.ax + self.al * -ry - w2 * rx, self.ay + self.al * rx - w2 * ry
+        return point_acceleration((self.ax, self.ay), self.al, self.om, (wx - self.x, wy - self.y))
 
 
 def _evaluate_one(m: Mechanism, index: dict, q, qd, qdd) -> Motion:
@@ -534,17 +505,29 @@ def _evaluate_one(m: Mechanism, index: dict, q, qd, qdd) -> Motion:
     velocity = {key: pva[i, 1] for i, (key, _, _) in enumerate(keys)}
     acceleration = {key: pva[i, 2] for i, (key, _, _) in enumerate(keys)}
 
-    def path_dir(s, block, guide, point):
-        """The path's unit direction now (ccw about K for a circle)."""
-        if s.centre is None:
-            t = math.radians(s.angle)
-            return L[guide].turn(math.cos(t), math.sin(t))
-        bx, by = L[block].place(*P[point])
-        kx, ky = L[guide].place(*P[s.centre])
-        rx, ry = bx - kx, by - ky
-        n = math.sqrt(rx * rx + ry * ry)
-        return -(ry / n), rx / n
+    angle, omega, alpha = _link_angles1(m, index, L, q0)
+    sliders = [_relative1(L, P, s, s.block, s.guide, s.point, qdd is not None) for s in m.sliders]
+    slots = [_relative1(L, P, s, s.link, s.slot, s.pin, qdd is not None) for s in m.slots]
+    return Motion(angle, omega, alpha, position, velocity, acceleration, sliders, [], slots)
 
+
+def _path_dir1(L: dict, P: dict, s, block: str, guide: str, point: str) -> tuple[float, float]:
+    """:func:`_path_dir` at one pose in plain floats: the path's unit direction now (ccw about
+    K for a circle)."""
+    if s.centre is None:
+        t = math.radians(s.angle)
+        return L[guide].turn(math.cos(t), math.sin(t))
+    bx, by = L[block].place(*P[point])
+    kx, ky = L[guide].place(*P[s.centre])
+    rx, ry = bx - kx, by - ky
+    n = math.sqrt(rx * rx + ry * ry)
+    return -(ry / n), rx / n
+
+
+def _link_angles1(m: Mechanism, index: dict, L: dict, q0: list) -> tuple[dict, dict, dict]:
+    """:func:`_link_angles` at one pose in plain floats: (angle, omega, alpha), each value a
+    (1,) view of one block."""
+    P = m.points
     rows = []   # per link: angle, omega, alpha
     block_path = {s.block: s for s in m.sliders}
     for link in m.links:
@@ -558,30 +541,30 @@ def _evaluate_one(m: Mechanism, index: dict, q, qd, qdd) -> Motion:
             a = wrap_deg_float(base + math.degrees(th))
         elif name in block_path:
             s = block_path[name]
-            dx, dy = path_dir(s, s.block, s.guide, s.point)
+            dx, dy = _path_dir1(L, P, s, s.block, s.guide, s.point)
             a = wrap_deg_float(math.degrees(math.atan2(dy, dx)))
         else:
             a = wrap_deg_float(math.degrees(th))
         rows.append((a, b.om, b.al))
     links = np.array(rows).T.reshape(3, len(rows), 1)
     angle, omega, alpha = ({lk.name: t[i] for i, lk in enumerate(m.links)} for t in links)
+    return angle, omega, alpha
 
-    def relative(s, block, guide, point):
-        dx, dy = path_dir(s, block, guide, point)
-        wx, wy = L[block].place(*P[point])
-        (bvx, bvy), (gvx, gvy) = L[block].vel(wx, wy), L[guide].vel(wx, wy)
-        rvx, rvy = bvx - gvx, bvy - gvy
-        om2 = 2.0 * L[guide].om
-        cx, cy = om2 * -rvy, om2 * rvx
-        if qdd is None:
-            slip_a = math.nan
-        else:
-            (bax, bay), (gax, gay) = L[block].acc(wx, wy), L[guide].acc(wx, wy)
-            slip_a = (bax - gax - cx) * dx + (bay - gay - cy) * dy
-        t = np.array((rvx * dx + rvy * dy, slip_a, cx, cy, math.degrees(math.atan2(dy, dx))))
-        return {"slip_velocity": t[0:1], "slip_acceleration": t[1:2], "coriolis": t[2:4].reshape(1, 2),
-                "direction": t[4:5]}
 
-    sliders = [relative(s, s.block, s.guide, s.point) for s in m.sliders]
-    slots = [relative(s, s.link, s.slot, s.pin) for s in m.slots]
-    return Motion(angle, omega, alpha, position, velocity, acceleration, sliders, [], slots)
+def _relative1(L: dict, P: dict, s, block: str, guide: str, point: str, rates2: bool) -> dict:
+    """:func:`_relative` at one pose in plain floats: V_rel = V_P(block) - V_P(guide), its slip
+    V_rel . d, the Coriolis term 2 omega_guide x V_rel, and the slip acceleration
+    (A_P(block) - A_P(guide) - Coriolis) . d (NaN without q'', ``rates2`` False)."""
+    dx, dy = _path_dir1(L, P, s, block, guide, point)
+    wx, wy = L[block].place(*P[point])
+    (bvx, bvy), (gvx, gvy) = L[block].vel(wx, wy), L[guide].vel(wx, wy)
+    rvx, rvy = bvx - gvx, bvy - gvy
+    cx, cy = coriolis(L[guide].om, (rvx, rvy))
+    if not rates2:
+        slip_a = math.nan
+    else:
+        (bax, bay), (gax, gay) = L[block].acc(wx, wy), L[guide].acc(wx, wy)
+        slip_a = (bax - gax - cx) * dx + (bay - gay - cy) * dy
+    t = np.array((rvx * dx + rvy * dy, slip_a, cx, cy, math.degrees(math.atan2(dy, dx))))
+    return {"slip_velocity": t[0:1], "slip_acceleration": t[1:2], "coriolis": t[2:4].reshape(1, 2),
+            "direction": t[4:5]}

@@ -76,6 +76,7 @@ import numpy as np
 
 from .geometry import from_polar, ideal, join
 from .motion import point_keys
+from .rigid import point_velocity
 
 __all__ = ["Pole", "PoleLine", "PoleSet", "KennedyCircle", "Chord", "locate_poles", "kennedy_circle",
            "instant_centre_velocities", "link_twists", "pole_key", "pole_label", "poles_section",
@@ -255,10 +256,9 @@ def link_twists(sol, centre=None, scale=None) -> np.ndarray:
         if k is None:
             out.append((0.0, 0.0, 0.0))
             continue
-        rx, ry = c0 - q[3 * k], c1 - q[3 * k + 1]
         w = qd[3 * k + 2]
-        vx, vy = (qd[3 * k] + w * -ry) / scale, (qd[3 * k + 1] + w * rx) / scale
-        out.append((-vy, vx, w))
+        vx, vy = point_velocity((qd[3 * k], qd[3 * k + 1]), w, (c0 - q[3 * k], c1 - q[3 * k + 1]))
+        out.append((-vy / scale, vx / scale, w))
     return np.array(out).reshape(len(out), 3)
 
 

@@ -59,9 +59,10 @@ from dataclasses import dataclass, field
 import numpy as np
 
 from . import geometry as G
-from .errors import InputError, SingularPoseError, VelpolyError
+from .errors import ConstructionError, InputError, SingularPoseError
 from .kinematics import SINGULAR
 from .motion import point_keys
+from .rigid import coriolis as coriolis_term, dot as _dot, normal_acceleration, perp, rate_cross, xy as _xy
 
 __all__ = [
     "ConstructionLine", "Vector", "Step", "AuxiliaryPoint", "Polygon", "ConstructionError",
@@ -166,12 +167,6 @@ class Polygon:
     scale: float = 1.0                               # drawing scale: mm per unit that fits ~120 mm
 
 
-class ConstructionError(VelpolyError):
-    """The mechanism has no construction order this module knows (exit status 2)."""
-
-    exit_code = 2
-
-
 # -- the mechanism's geometry, as the construction sees it ------------------------------------------
 @dataclass(frozen=True)
 class _Rel:
@@ -241,7 +236,7 @@ class _Geo:
         for i, (s, r) in enumerate(zip(m.slots, mo.slots)):
             self.rels.append(_Rel("slot", i, s.link, s.slot, s.pin, G.from_polar(1.0, float(r["direction"][0])), False, s.centre))
         for i, (c, r) in enumerate(zip(m.contacts, mo.contacts)):
-            t = G.perp(G.from_polar(1.0, float(r["normal"][0])))
+            t = perp(G.from_polar(1.0, float(r["normal"][0])))
             exact = c.kind == "rolling" or c.slip is not None
             self.rels.append(_Rel("contact", i, c.links[0], c.links[1], c.point, t, exact))
             # the equivalent linkage: each centre of curvature moves on the other link along the
@@ -652,7 +647,7 @@ class _Planner:
             for i in range(len(one)):
                 for j in range(i + 1, len(one)):
                     (x, lx), (y, ly) = one[i], one[j]
-                    s, _, _, sine = G.intersect_lines(g.pos[x], G.perp(lx.direction), g.pos[y], G.perp(ly.direction))
+                    s, _, _, sine = G.intersect_lines(g.pos[x], perp(lx.direction), g.pos[y], perp(ly.direction))
                     if s is None or sine < SINE_LIMIT:
                         continue
                     # prefer the instant centre (both lines through O_v: Kennedy) unless badly conditioned
@@ -731,15 +726,6 @@ def _z(v) -> complex:
     return complex(v[0], v[1])
 
 
-def _xy(z) -> np.ndarray:
-    """The complex number x + iy as the contract's 2-vector array (x, y)."""
-    return np.array((z.real, z.imag))
-
-
-def _dot(a, b):
-    """a . b of two 2-vectors written as complex numbers: Re(conj(a) b)."""
-    return (a.conjugate() * b).real
-
 
 class _Run:
     """One replay of the plan at a level ('velocity' or 'acceleration') over n samples.
@@ -817,7 +803,7 @@ class _Run:
                 r = self.g.zpos[w] - self.g.zpos[q]
                 nw, nq = self.g.name((lk, w)), self.g.name((lk, q))
                 kw, kq = self.g.qkey((lk, w)), self.g.qkey((lk, q))
-                out.append(("normal", f"A^n_{nw}{nq}", -om ** 2 * r, ("normal", lk, kw, kq), 1,
+                out.append(("normal", f"A^n_{nw}{nq}", normal_acceleration(om, r), ("normal", lk, kw, kq), 1,
                             (f"A^n_{nq}{nw}", ("normal", lk, kq, kw))))
             else:
                 _, i, sign, w = t
@@ -859,7 +845,7 @@ class _Run:
         vel = self.vel
         vrel = vel.image((r.a, w)) - vel.image((r.b, w))
         out = []
-        coriolis = 2.0 * vel.rate[r.b] * 1j * vrel
+        coriolis = coriolis_term(vel.rate[r.b], vrel)
         cor = ("coriolis", f"2 omega_{r.b} x V_{rel}", coriolis, ("coriolis", r.b, ka, kb),
                (f"2 omega_{r.b} x V_{rrel}", ("coriolis", r.b, kb, ka)))
         # the slip reversed (A_b - A_a + 2 omega_b x V_a/b) is b's slip on a only on a straight path
@@ -991,12 +977,12 @@ class _Run:
         name_w, name_q = self.g.name((lk, w)), self.g.name((lk, q))
         kw, kq = self.g.qkey((lk, w)), self.g.qkey((lk, q))
         if self.level == "velocity":
-            tip = self._mark(base + self._turn(rate * 1j * r))
+            tip = self._mark(base + self._turn(rate_cross(rate, r)))
             self._vec(base, tip, "relative", f"V_{name_w}{name_q}", ("difference", kw, kq))
             return tip
         om = self.vel.rate[lk]
-        mid = self._mark(base + self._turn(-om ** 2 * r))
-        tip = self._mark(mid + self._turn(rate * 1j * r))
+        mid = self._mark(base + self._turn(normal_acceleration(om, r)))
+        tip = self._mark(mid + self._turn(rate_cross(rate, r)))
         self._vec(base, mid, "normal", f"A^n_{name_w}{name_q}", ("normal", lk, kw, kq))
         self._vec(mid, tip, "tangential", f"A^t_{name_w}{name_q}", ("tangential", lk, kw, kq))
         return tip
@@ -1058,7 +1044,7 @@ class _Run:
             z.append(self.image((lk, w)) - self.image((lk, q)))
         r = self.g.zpos[w] - self.g.zpos[q]
         rn = abs(r)
-        c = 0.0 if self.level == "velocity" else -self.vel.rate[lk] ** 2 * rn
+        c = 0.0 if self.level == "velocity" else normal_acceleration(self.vel.rate[lk], rn)
         locus = z[1] - z[0]
         target = c * (r / rn) + self.zero
         x, s, sine = self._intersect(z[0], locus, target, self._turn(1j * r))

@@ -21,7 +21,7 @@ import numpy as np
 from .constraints import System
 from .dyads import assemble, dyad_plan, walk
 
-__all__ = ["circle_circle", "circle_line", "Reassembly", "reassemble", "select_rows", "check_closed_form",
+__all__ = ["circle_circle", "coarse_step", "circle_line", "Reassembly", "reassemble", "select_rows", "check_closed_form",
            "walked_reach", "slot_travel", "TOUCH"]
 
 
@@ -198,7 +198,7 @@ def _continue(system, rows, deltas, coarse):
     n = len(deltas)
     nq = system.nq
     if coarse is None:
-        coarse = _coarse(system)
+        coarse = coarse_step(system)
     # 1. knots: a sequential continuation, never stepping farther than `coarse`;
     #    every requested position is attached to the knot before it.
     knot_d, knot_q = [0.0], [np.zeros(nq)]
@@ -411,7 +411,7 @@ def _cut(system, rows, r, i, ends, inside, outside, sign):
                       leaves=(ends[col], s.ends[int(bound)], where))
 
 
-def _coarse(system: System) -> float:
+def coarse_step(system: System) -> float:
     """The longest continuation step: 6 degrees for a crank, 4% of the size for a slider."""
     return 0.04 * system.size if system.mechanism.driver.is_slider else np.radians(6.0)
 
@@ -438,7 +438,7 @@ def _closed_form(system: System, rows, deltas) -> Reassembly | None:
     q, reach = assemble(m, system.index, plan, deltas)
     if not check_closed_form(system, rows, q[:reach], deltas[:reach]):
         return None   # not the mechanism the plan assumed: use continuation
-    reach = min(reach, walked_reach(m, plan, deltas, _coarse(system)))
+    reach = min(reach, walked_reach(m, plan, deltas, coarse_step(system)))
     return Reassembly(deltas[:reach], q[:reach], "toggle" if reach < len(deltas) else "")
 
 
@@ -473,6 +473,27 @@ def walked_reach(m, plan, deltas, coarse: float, w=None, rate: float | None = No
     n = len(deltas)
     if n == 0:
         return 0
+    path, ends, mu, dmu = _closures_along(m, plan, deltas, coarse, w, rate)
+    if mu.size == 0:
+        return n
+    # NaN (a dyad before it open) counts as open; so does a position at the bottom of a dip to
+    # zero (mu and its slope both vanish there: a change point, not a toggle's simple root)
+    stop = len(path)
+    if not mu[:, 1:].min(initial=np.inf) > TOUCH:
+        closed = np.all(mu >= 0, axis=0) & ~np.any((mu <= TOUCH) & (np.abs(dmu) <= 1e-5), axis=0)
+        closed[0] = True                         # the drawn pose, checked on its own
+        stop = len(path) if closed.all() else int(np.argmin(closed))
+    if stop > 1:
+        stop = _dip_stop(m, plan, path, mu, dmu, stop)
+    return int(np.searchsorted(ends, stop))
+
+
+def _closures_along(m, plan, deltas: np.ndarray, coarse: float, w, rate):
+    """``(path, ends, mu, dmu)``: the driver positions walked from the drawn pose (0) through the
+    deltas in steps no longer than ``coarse``, where each delta stands on it, and every dyad's
+    closure and its slope (per driver unit) there, one row per dyad; taken from ``w`` where the
+    deltas are that close."""
+    n = len(deltas)
     steps = np.abs(np.diff(np.concatenate([[0.0], deltas])))
     if (w is not None and rate and math.isfinite(rate) and steps.max() <= coarse
             and len(w.closure_rate) and w.closure_rate[0] is not None):
@@ -491,34 +512,29 @@ def walked_reach(m, plan, deltas, coarse: float, w=None, rate: float | None = No
         path = np.concatenate([[0.0], knots[seg] + (knots[seg + 1] - knots[seg]) * (j / counts[seg])])
         pw = _quiet_walk(m, plan, path, 1.0)
         mu, dmu = np.array(pw.closure), np.array(pw.closure_rate)
-    if mu.size == 0:
-        return n
-    # NaN (a dyad before it open) counts as open; so does a position at the bottom of a dip to
-    # zero (mu and its slope both vanish there: a change point, not a toggle's simple root)
-    stop = len(path)
-    if not mu[:, 1:].min(initial=np.inf) > TOUCH:
-        closed = np.all(mu >= 0, axis=0) & ~np.any((mu <= TOUCH) & (np.abs(dmu) <= 1e-5), axis=0)
-        closed[0] = True                         # the drawn pose, checked on its own
-        stop = len(path) if closed.all() else int(np.argmin(closed))
-    if stop > 1:
-        way = np.sign(np.diff(path[:stop]))
-        g0, g1 = dmu[:, :stop - 1] * way, dmu[:, 1:stop] * way
-        # the slope along the way goes from falling (or flat) to rising (or flat), not flat to flat
-        js, ks = np.nonzero(np.sign(g1) - np.sign(g0) > 0)
-        if len(ks):
-            unit = m.size if m.driver.is_slider else 1.0
-            for i in np.argsort(ks, kind="stable"):
-                j, k = int(js[i]), int(ks[i])
-                if k + 1 >= stop:
-                    break
-                m0, m1, length = float(mu[j, k]), float(mu[j, k + 1]), abs(float(path[k + 1] - path[k]))
-                if _hermite_low(m0, m1, length * float(g0[j, k]), length * float(g1[j, k])) \
-                        >= max(_TRIGGER, 0.5 * min(m0, m1)):
-                    continue        # a shallow dip, far above zero
-                if _touches(m, plan, j, path[k], path[k + 1], g0[j, k], g1[j, k], unit):
-                    stop = k if k > 0 and mu[:, k].min() <= TOUCH else k + 1
-                    break
-    return int(np.searchsorted(ends, stop))
+    return path, ends, mu, dmu
+
+
+def _dip_stop(m, plan, path: np.ndarray, mu: np.ndarray, dmu: np.ndarray, stop: int) -> int:
+    """Where the way stops (an index of ``path``, at most ``stop``) because a dyad's closure dips
+    to TOUCH between two positions: where its slope along the way turns from falling to rising
+    and the cubic through the ends comes near zero, its lowest point is found (:func:`_touches`)."""
+    way = np.sign(np.diff(path[:stop]))
+    g0, g1 = dmu[:, :stop - 1] * way, dmu[:, 1:stop] * way
+    # the slope along the way goes from falling (or flat) to rising (or flat), not flat to flat
+    js, ks = np.nonzero(np.sign(g1) - np.sign(g0) > 0)
+    unit = m.size if m.driver.is_slider else 1.0
+    for i in np.argsort(ks, kind="stable"):
+        j, k = int(js[i]), int(ks[i])
+        if k + 1 >= stop:
+            break
+        m0, m1, length = float(mu[j, k]), float(mu[j, k + 1]), abs(float(path[k + 1] - path[k]))
+        if _hermite_low(m0, m1, length * float(g0[j, k]), length * float(g1[j, k])) \
+                >= max(_TRIGGER, 0.5 * min(m0, m1)):
+            continue        # a shallow dip, far above zero
+        if _touches(m, plan, j, path[k], path[k + 1], g0[j, k], g1[j, k], unit):
+            return k if k > 0 and mu[:, k].min() <= TOUCH else k + 1
+    return stop
 
 
 def _hermite_low(m0: float, m1: float, s0: float, s1: float) -> float:

@@ -31,6 +31,7 @@ import numpy as np
 
 from .driver import driver_reference_angle
 from .errors import InputError
+from .rigid import coriolis as coriolis_term, normal_acceleration, rate_cross
 
 __all__ = ["Quantity", "parse_key", "validate_reference", "compare", "Row", "relative_pole", "value_keys",
            "note_for", "COMPONENTS"]
@@ -270,10 +271,6 @@ def _ref_vec(sol, ref, acc: bool):
     return sol.body_acceleration(lk, w) if acc else sol.body_velocity(lk, w)
 
 
-def _perp(v) -> np.ndarray:
-    return np.array([-v[1], v[0]], float)
-
-
 def _part(sol, q: Quantity) -> np.ndarray:
     """A component of an acceleration difference (``q.part``).
 
@@ -285,9 +282,9 @@ def _part(sol, q: Quantity) -> np.ndarray:
     if q.part in "nt":
         lk = q.links[0]
         r = _place(sol, *q.refs[0]) - _place(sol, *q.refs[1])
-        return -sol.omega[lk] ** 2 * r if q.part == "n" else sol.alpha[lk] * _perp(r)
+        return normal_acceleration(sol.omega[lk], r) if q.part == "n" else rate_cross(sol.alpha[lk], r)
     v_rel = _ref_vec(sol, q.refs[0], False) - _ref_vec(sol, q.refs[1], False)
-    coriolis = 2.0 * sol.omega[q.links[1]] * _perp(v_rel)
+    coriolis = coriolis_term(sol.omega[q.links[1]], v_rel)
     if q.part == "c":
         return coriolis
     return _ref_vec(sol, q.refs[0], True) - _ref_vec(sol, q.refs[1], True) - coriolis

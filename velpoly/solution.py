@@ -19,6 +19,7 @@ from .model import Mechanism
 from .motion import Motion, evaluate_motion, wrap_deg_float
 from .pose import reassemble
 from .driver import driver_reference_angle, reachable_range   # re-exported: solve places the driver by them
+from .rigid import point_acceleration, point_velocity
 from .arguments import check_angle, check_mechanism
 
 __all__ = ["Solution", "solve", "driver_reference_angle", "reachable_range"]
@@ -87,7 +88,7 @@ class Solution:
         if arm is None:
             return np.zeros(2)
         k, r = arm
-        return self.qd[3 * k:3 * k + 2] + self.qd[3 * k + 2] * np.array([-r[1], r[0]])
+        return point_velocity(self.qd[3 * k:3 * k + 2], self.qd[3 * k + 2], r)
 
     def body_acceleration(self, link: str, w) -> np.ndarray:
         """Acceleration of the point of ``link`` now at w: A_O + alpha x R - omega^2 R."""
@@ -95,8 +96,7 @@ class Solution:
         if arm is None:
             return np.zeros(2)
         k, r = arm
-        om, al = self.qd[3 * k + 2], self.qdd[3 * k + 2]
-        return self.qdd[3 * k:3 * k + 2] + al * np.array([-r[1], r[0]]) - om ** 2 * r
+        return point_acceleration(self.qdd[3 * k:3 * k + 2], self.qdd[3 * k + 2], self.qd[3 * k + 2], r)
 
     def place(self, link: str, point: str) -> np.ndarray:
         """Where the point of ``link`` that was at ``point`` in the reference pose is now."""

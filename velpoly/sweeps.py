@@ -19,7 +19,7 @@ from .errors import ArgumentValueError, InputError, PoseError
 from .dyads import coordinates, rates, walk
 from .kinematics import SINGULAR, Kinematics, accelerations, condition, involved_links, prepare, velocities
 from .model import Mechanism
-from .motion import evaluate_motion, wrap_deg
+from .motion import Motion, evaluate_motion, wrap_deg
 from . import pose
 from .pose import plan_for, reassemble, walked_reach
 from .driver import driver_reference_angle, reachable_text
@@ -30,8 +30,9 @@ __all__ = ["Sweep", "sweep", "memory_estimate", "check_memory", "MEMORY_BUDGET",
 
 
 @dataclass(frozen=True)
-class Sweep:
-    """Results over many driver positions, one row per solved angle.
+class Sweep(Motion):
+    """Results over many driver positions, one row per solved angle: a :class:`Motion` of
+    the poses reached, with the driver's positions and the coordinates.
 
     ``angles`` (degrees; for a slider driver, displacements along its path
     from the reference position), ``omega[link]``, ``alpha[link]`` and
@@ -46,15 +47,6 @@ class Sweep:
 
     mechanism: Mechanism
     angles: np.ndarray
-    angle: dict
-    omega: dict
-    alpha: dict
-    position: dict
-    velocity: dict
-    acceleration: dict
-    sliders: list
-    contacts: list
-    slots: list
     q: np.ndarray
     qd: np.ndarray
     qdd: np.ndarray
@@ -130,6 +122,84 @@ def _walk_poses(m: Mechanism, angles: np.ndarray) -> int:
     return int(travel / (0.04 * m.size if m.driver.is_slider else 6.0))
 
 
+def _deltas(m: Mechanism, angles: np.ndarray, ref) -> tuple[np.ndarray, float]:
+    """The driver's travel from the reference pose to each angle, and the first angle's
+    ``first`` (degrees from the reference): for a crank the first angle is reached the shorter
+    way round and later ones continue from it (radians); a slider's displacements as given."""
+    if m.driver.is_slider:
+        return angles.copy(), 0.0
+    first = float(wrap_deg(angles[0] - ref)) if len(angles) else 0.0
+    return ((angles - (angles[0] - first)) * (np.pi / 180.0) if len(angles) else angles), first
+
+
+def _closed_form(m: Mechanism, kin: Kinematics, plan, deltas: np.ndarray):
+    """The sweep by the dyad walk: ``(walk, n, q, q', q'', stopped)``, or None when the plan is
+    not the mechanism's (the joint equations on the walk's poses disagree).
+
+    The walk goes until a dyad's closure goes negative (``pose.walked_reach``); only poses near
+    a dyad's toggle (transmission sine below 1e-3) need the condition number, and the first
+    singular one ends the sweep."""
+    w = _walk(m, plan, deltas)
+    rate = m.driver.speed if m.driver.is_slider else m.driver.omega
+    n = min(w.reach, walked_reach(m, plan, deltas, pose.coarse_step(kin.system), w, rate))
+    stopped = "toggle" if n < len(deltas) else ""
+    if n < len(deltas):
+        w = _walk(m, plan, deltas[:n])     # past a toggle the walk is NaN: walked to it only
+    # q, q', q'' in one block: the three levels of the same coordinates
+    block = np.empty((3, n, kin.system.nq))
+    q = coordinates(w, kin.system.index, plan, deltas[:n], out=block[0])
+    if not pose.check_closed_form(kin.system.positions, list(kin.rows), q, deltas[:n]):
+        return None                        # not the mechanism the plan assumed
+    near = np.flatnonzero(w.sine < 1e-3)
+    if len(near):
+        c = condition(kin, q[near])
+        bad = near[~(c <= SINGULAR)]
+        if len(bad):
+            n, stopped = int(bad[0]), "toggle"
+            w, block = _walk(m, plan, deltas[:n]), block[:, :n]
+            q = block[0]
+    qd, qdd = rates(w, kin.system.index, n, out=(block[1], block[2]))
+    return w, n, q, qd, qdd, stopped
+
+
+def _continued(m: Mechanism, kin: Kinematics, deltas: np.ndarray, angles: np.ndarray, first: float):
+    """The sweep by continuation (:func:`velpoly.pose.reassemble`) and batched linear solves:
+    ``(n, q, q', q'', condition, stopped, leaves)``; it ends at the first pose whose condition
+    number passes SINGULAR, or where a pin leaves its bounded slot (``leaves`` = (pin, slot
+    link, driver angle))."""
+    r = reassemble(kin.system, list(kin.rows), deltas)
+    n, q, stopped, leaves = len(r.deltas), r.q, r.stopped, None
+    if r.leaves is not None:
+        sl = m.slots[r.leaves[0]]
+        at = r.leaves[2] if m.driver.is_slider else \
+            float(angles[0] - (first if len(angles) else 0.0) + np.degrees(r.leaves[2]))
+        leaves = (sl.pin, sl.slot, at)
+    qd, cond = velocities(kin, q, check=False) if n else (np.zeros((0, kin.system.nq)), np.zeros(0))
+    if n and not np.all(cond <= SINGULAR):
+        k = int(np.argmin(cond <= SINGULAR))
+        n, q, qd, cond = k, q[:k], qd[:k], cond[:k]
+        stopped = "toggle"
+    if n and all(c.centres is not None for c in m.contacts):
+        qdd = accelerations(kin, q, qd)
+    else:
+        qdd = np.full_like(qd, np.nan)
+    return n, q, qd, qdd, cond, stopped, leaves
+
+
+def _stop_message(m: Mechanism, angles: np.ndarray, n: int, ref, stopped: str, leaves) -> tuple[str, tuple | None]:
+    """``(Sweep.stopped, Sweep.leaves)``: why the sweep ended after n of the angles, in words
+    (a pin leaving its slot, or a toggle), and the slot exit only when that is why."""
+    if stopped and leaves is not None and stopped == "slot":
+        return (f"pin {leaves[0]} leaves the slot of {leaves[1]} at " +
+                (f"{leaves[2]:g}" if m.driver.is_slider else f"{leaves[2]:.1f} deg") +
+                f": {len(angles) - n} of {len(angles)} positions not reached"), leaves
+    if stopped:
+        last = angles[n - 1] if n else (ref if ref is not None else 0.0)
+        return (f"stopped at a toggle after {last:g}" + ("" if m.driver.is_slider else " deg") +
+                f": {len(angles) - n} of {len(angles)} positions not reached on this branch"), None
+    return "", None
+
+
 def sweep(m: Mechanism, angles, kin: Kinematics | None = None) -> Sweep:
     """Solve the mechanism at each driver angle (degrees, absolute), in the order given.
 
@@ -145,83 +215,29 @@ def sweep(m: Mechanism, angles, kin: Kinematics | None = None) -> Sweep:
     kin = kin or prepare(m)
     check_memory(m, kin, len(angles), walked=_walk_poses(m, angles))
     ref = driver_reference_angle(m)
-    if m.driver.is_slider:
-        deltas = angles.copy()
-    else:
-        # the first angle is reached the shorter way round; later ones continue from it
-        first = float(wrap_deg(angles[0] - ref)) if len(angles) else 0.0
-        deltas = (angles - (angles[0] - first)) * (np.pi / 180.0) if len(angles) else angles
+    deltas, first = _deltas(m, angles, ref)
     plan = plan_for(kin.system)
-    leaves = None
     # the drawn pose must be regular, to tell its branch; far from a dyad's toggle it is
     screened = plan is not None and plan.margin > 1e-3
     if not screened:
         velocities(kin, np.zeros((1, kin.system.nq)), where="reference pose")
-    # the closed form, dyad by dyad, walked once; only poses near a dyad's toggle need the
-    # condition number. The plan's sides are the drawn pose's (dyad_plan checks that the walk
-    # reproduces it); the joint equations on a sample of the walk's poses check that the plan is
-    # the mechanism's, or the sweep falls back to continuation.
-    w = _walk(m, plan, deltas) if plan is not None and len(deltas) else None
-    known_cond = None
-    if w is not None:
-        rate = m.driver.speed if m.driver.is_slider else m.driver.omega
-        n = min(w.reach, walked_reach(m, plan, deltas, pose._coarse(kin.system), w, rate))
-        stopped = "toggle" if n < len(deltas) else ""
-        if n < len(deltas):
-            w = _walk(m, plan, deltas[:n])     # past a toggle the walk is NaN: walked to it only
-        # q, q', q'' in one block: the three levels of the same coordinates
-        block = np.empty((3, n, kin.system.nq))
-        q = coordinates(w, kin.system.index, plan, deltas[:n], out=block[0])
-        if not pose.check_closed_form(kin.system.positions, list(kin.rows), q, deltas[:n]):
-            w = None                           # not the mechanism the plan assumed
-    if w is not None:
-        near = np.flatnonzero(w.sine < 1e-3)
-        if len(near):
-            c = condition(kin, q[near])
-            bad = near[~(c <= SINGULAR)]
-            if len(bad):
-                n, stopped = int(bad[0]), "toggle"
-                w, block = _walk(m, plan, deltas[:n]), block[:, :n]
-                q = block[0]
-        qd, qdd = rates(w, kin.system.index, n, out=(block[1], block[2]))
+    # the closed form, dyad by dyad, walked once. The plan's sides are the drawn pose's (dyad_plan
+    # checks that the walk reproduces it); the joint equations on a sample of the walk's poses
+    # check that the plan is the mechanism's, or the sweep falls back to continuation.
+    found = _closed_form(m, kin, plan, deltas) if plan is not None and len(deltas) else None
+    known_cond, leaves = None, None
+    if found is not None:
+        w, n, q, qd, qdd, stopped = found
     else:
         if screened:    # the plan was not the mechanism's after all: check as before
             velocities(kin, np.zeros((1, kin.system.nq)), where="reference pose")
-        r = reassemble(kin.system, list(kin.rows), deltas)
-        n, q, stopped = len(r.deltas), r.q, r.stopped
-        if r.leaves is not None:
-            sl = m.slots[r.leaves[0]]
-            at = r.leaves[2] if m.driver.is_slider else \
-                float(angles[0] - (first if len(angles) else 0.0) + np.degrees(r.leaves[2]))
-            leaves = (sl.pin, sl.slot, at)
-        qd, cond = velocities(kin, q, check=False) if n else (np.zeros((0, kin.system.nq)), np.zeros(0))
-        if n and not np.all(cond <= SINGULAR):
-            k = int(np.argmin(cond <= SINGULAR))
-            n, q, qd, cond = k, q[:k], qd[:k], cond[:k]
-            stopped = "toggle"
-        known_cond = cond
-        if n and all(c.centres is not None for c in m.contacts):
-            qdd = accelerations(kin, q, qd)
-        else:
-            qdd = np.full_like(qd, np.nan)
-    mo = evaluate_motion(m, kin.system.index, q, qd, qdd, walk=w) if n else None
-    if stopped and leaves is not None and stopped == "slot":
-        stopped = (f"pin {leaves[0]} leaves the slot of {leaves[1]} at " +
-                   (f"{leaves[2]:g}" if m.driver.is_slider else f"{leaves[2]:.1f} deg") +
-                   f": {len(angles) - n} of {len(angles)} positions not reached")
-    elif stopped:
-        leaves = None
-        last = angles[n - 1] if n else (ref if ref is not None else 0.0)
-        stopped = (f"stopped at a toggle after {last:g}" + ("" if m.driver.is_slider else " deg") +
-                   f": {len(angles) - n} of {len(angles)} positions not reached on this branch")
-    else:
-        leaves = None
-
-    def get(attr):
-        return getattr(mo, attr) if mo is not None else {}
-    return Sweep(m, angles[:n], get("angle"), get("omega"), get("alpha"), get("position"),
-                 get("velocity"), get("acceleration"), get("sliders") or [], get("contacts") or [],
-                 get("slots") or [], q, qd, qdd, stopped, kin, known_cond, leaves)
+        w = None
+        n, q, qd, qdd, known_cond, stopped, leaves = _continued(m, kin, deltas, angles, first)
+    stopped, leaves = _stop_message(m, angles, n, ref, stopped, leaves)
+    mo = evaluate_motion(m, kin.system.index, q, qd, qdd, walk=w) if n else \
+        Motion({}, {}, {}, {}, {}, {}, [], [], [])
+    return Sweep(**vars(mo), mechanism=m, angles=angles[:n], q=q, qd=qd, qdd=qdd, stopped=stopped,
+                 kinematics=kin, known_condition=known_cond, leaves=leaves)
 
 
 # -- one cycle of the driver (``velpoly sweep``, ``velpoly animate``, ``velpoly html``) ------------------

@@ -52,7 +52,7 @@ import numpy as np
 from ..errors import InputError, PoseError
 from .canvas import literal
 
-__all__ = ["FramePlan", "plan_frames", "Animator", "write_animation", "FORMATS", "SHEETS", "SURGE",
+__all__ = ["FramePlan", "mp4_writer", "plan_frames", "Animator", "write_animation", "FORMATS", "SHEETS", "SURGE",
            "DEFAULT_SIZE", "parse_size", "gallery_animation"]
 
 SHEETS = ("velocity", "acceleration", "poles", "full")
@@ -431,17 +431,17 @@ class Animator:
 
     # -- building ------------------------------------------------------------------------------
     def _build(self) -> None:
-        from .sheet import _fit_width, equation_tex
+        from .sheet import fit_width, equation_tex
         fig, st = self.fig, self.st
         layout = dict(_LAYOUTS[self.sheet])
         if self.sheet == "full" and not self.kinds["acceleration"]:
             layout = dict(_LAYOUTS["velocity"])
         title = fig.text(0.01, 0.975, equation_tex(self.m.title), ha="left", va="top", fontsize=self.pt(30),
                          fontweight="bold" if st.name == "slides" else "normal")
-        _fit_width(fig, title, 0.98, smallest=0.6)         # a long title shrinks to the frame's width
+        fit_width(fig, title, 0.98, smallest=0.6)         # a long title shrinks to the frame's width
         cap = fig.text(0.01, 0.925, self._caption(), ha="left", va="top", fontsize=self.pt(20), color="0.3",
                        fontstyle="italic")
-        _fit_width(fig, cap, 0.98, smallest=0.7)
+        fit_width(fig, cap, 0.98, smallest=0.7)
         self.axes = {}
         for name, rect in self._layout(layout).items():
             ax = fig.add_axes(rect, label=name)
@@ -844,7 +844,7 @@ class Animator:
     def update(self, k: int) -> None:
         """Move every moving artist to frame k."""
         from .canvas import tex  # noqa: F401
-        from .displacement import _away, _neighbours, link_bodies, shape_patch
+        from .displacement import away_from, neighbours, link_bodies, shape_patch
         m, st = self.m, self.st
         sol = self.sols[k]
         pos = {key: v[k] for key, v in self.pos.items()}
@@ -913,10 +913,10 @@ class Animator:
         for p, t in self.point_labels.items():
             xy = first[p]
             links = m.carriers.get(p, ())
-            others = _neighbours(sol, p, links)
+            others = neighbours(sol, p, links)
             if p in self.pivots:
                 others = others + [xy + np.array([0.0, -1.0]) * max(self.bw, 1e-300) * 3]
-            ang = _away(xy, others, default=45.0)
+            ang = away_from(xy, others, default=45.0)
             t.xy = tuple(xy)
             t.set_position(self._clear_offset(ax, t, xy, ang, 9.0, pts, taken))
         if self._centrode is not None:
@@ -999,14 +999,14 @@ class Animator:
 
     def _offset(self, text, ang: float, gap_px: float) -> tuple:
         """The offset (points) that puts ``text``'s box ``gap_px`` beside its anchor in direction ``ang``."""
-        from .labels import _half_extent
+        from .labels import half_extent
         wh = getattr(text, "_velpoly_wh", None)
         if wh is None:
             bb = text.get_window_extent(self.fig.canvas.get_renderer())
             wh = (bb.width * 72 / self.dpi, bb.height * 72 / self.dpi)
             text._velpoly_wh = wh
         u = np.array([math.cos(math.radians(ang)), math.sin(math.radians(ang))])
-        r = self.pt(gap_px) + _half_extent(wh[0], wh[1], u)
+        r = self.pt(gap_px) + half_extent(wh[0], wh[1], u)
         return (float(u[0] * r), float(u[1] * r))
 
     def _update_polygon(self, kind: str, poly) -> None:
@@ -1422,7 +1422,7 @@ def write_animation(anim: Animator, out, fps: float = 15.0, progress=None) -> Pa
     n = anim.n
     comment = f"velpoly animate: {anim.m.title}: {anim.plan.caption}"
     if fmt == ".mp4":
-        writer = _mp4_writer()        # before anything is written: exit 2 naming the extra when missing
+        writer = mp4_writer()        # before anything is written: exit 2 naming the extra when missing
     with atomic_path(out) as tmp:
         if fmt in (".gif", ".png", ".pdf"):
             sample = [anim.render(0)]
@@ -1452,7 +1452,7 @@ def write_animation(anim: Animator, out, fps: float = 15.0, progress=None) -> Pa
     return out
 
 
-def _mp4_writer():
+def mp4_writer():
     try:
         import imageio_ffmpeg
     except ImportError:

@@ -15,7 +15,7 @@ import re
 
 import numpy as np
 
-__all__ = ["Artists", "nice_scale", "nice_length", "fit_view", "view_scale", "per_point", "per_cm",
+__all__ = ["Artists", "axes_cm", "nice_scale", "nice_length", "fit_view", "view_scale", "per_point", "per_cm",
            "view_box", "border_point", "tex", "prose_tex", "arrow", "get_ax", "renderer_of", "equation_tex"]
 
 CM = 1 / 2.54  # inches
@@ -93,7 +93,7 @@ def nice_length(x: float) -> float:
     return 10.0 ** e
 
 
-def _axes_cm(ax) -> tuple[float, float]:
+def axes_cm(ax) -> tuple[float, float]:
     fig = ax.figure
     pos = ax.get_position()
     w, h = fig.get_size_inches()
@@ -108,7 +108,7 @@ def fit_view(ax, bounds, scale: float | None = None, margin: float = 0.06) -> fl
     of the panel on every side, fit. Returns the scale; it is kept on the axes
     (:func:`view_scale`) so that later drawings on the same axes keep it.
     """
-    wcm, hcm = _axes_cm(ax)
+    wcm, hcm = axes_cm(ax)
     x0, y0, x1, y1 = (float(b) for b in bounds)
     if not all(map(math.isfinite, (x0, y0, x1, y1))):
         x0 = y0 = -1.0
@@ -136,7 +136,7 @@ def view_scale(ax) -> float | None:
 def per_point(ax) -> float:
     """Data units per typographic point (1/72 inch) on the axes, at its current limits."""
     x0, x1 = ax.get_xlim()
-    wcm, _ = _axes_cm(ax)
+    wcm, _ = axes_cm(ax)
     return abs(x1 - x0) / wcm * (2.54 / 72.0)
 
 

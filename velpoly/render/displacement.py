@@ -18,6 +18,7 @@ from shapely.geometry import LineString, MultiPoint, Point
 from shapely.geometry import Polygon as SPolygon
 from shapely.ops import unary_union
 
+from ..rigid import direction as _unit, perp as _perp
 from .canvas import (Artists, arrow, border_point, fit_view, get_ax, literal, math_literal, per_cm, per_point, tex,
                      view_box, view_scale)
 from .labels import placer
@@ -25,17 +26,8 @@ from .options import drawing_options
 from .scalebar import scale_bar, unit_label
 from .style import get_style, link_fill
 
-__all__ = ["draw_mechanism", "mechanism_bounds", "shape_patch", "link_bodies", "mark_auxiliary",
+__all__ = ["draw_mechanism", "away_from", "neighbours", "mechanism_bounds", "shape_patch", "link_bodies", "mark_auxiliary",
            "equivalent_linkage_note"]
-
-
-def _unit(deg: float) -> np.ndarray:
-    t = math.radians(deg)
-    return np.array([math.cos(t), math.sin(t)])
-
-
-def _perp(v) -> np.ndarray:
-    return np.array([-v[1], v[0]])
 
 
 def shape_patch(geom, **kw):
@@ -82,7 +74,7 @@ def mechanism_bounds(sol) -> tuple[float, float, float, float]:
     return (*p.min(axis=0), *p.max(axis=0))
 
 
-def _neighbours(sol, point: str, links) -> list[np.ndarray]:
+def neighbours(sol, point: str, links) -> list[np.ndarray]:
     """Current positions of the other points of ``links`` (seen from ``point``)."""
     out = []
     for lk in links:
@@ -92,7 +84,7 @@ def _neighbours(sol, point: str, links) -> list[np.ndarray]:
     return out
 
 
-def _away(p, others, default: float = -90.0) -> float:
+def away_from(p, others, default: float = -90.0) -> float:
     """The direction (deg) pointing away from the mean direction towards ``others``."""
     if not others:
         return default
@@ -241,7 +233,7 @@ class _Drawing:
         one most free of this pivot's links, downwards when that is nearly as free."""
         p = self.sol.position[point] if point in self.sol.position else self.sol.place(self.m.frame.name, point)
         p = np.asarray(p, float)
-        away = _unit(_away(p, _neighbours(self.sol, point, links)))
+        away = _unit(away_from(p, neighbours(self.sol, point, links)))
         pc = self.pc
         others = self.forbidden(set(links))
 
@@ -304,7 +296,7 @@ class _Drawing:
         d = _unit(float(r["direction"][0]))
         L, H = st.block[0] * pc, st.block[1] * pc
         n = _perp(d)
-        others = _neighbours(sol, s.point, [lk for lk in self.m.carriers.get(s.point, ()) if lk not in
+        others = neighbours(sol, s.point, [lk for lk in self.m.carriers.get(s.point, ()) if lk not in
                                             (s.block, s.guide)])
         side_v = sum((o - p) for o in others) if others else -n
         side = -1.0 if np.dot(side_v, n) > 0 else 1.0   # the guide's hatch away from the links
@@ -368,7 +360,7 @@ class _Drawing:
 
     def slot_ends(self, s):
         """The positions of a slot's ``ends`` (FORMAT.md ``[[slots]] ends``) now, or None without them."""
-        ends = getattr(s, "ends", None)
+        ends = s.ends
         if not ends:
             return None
         return [np.asarray(self.sol.place(s.slot, e), float) for e in ends]
@@ -591,7 +583,7 @@ class _Drawing:
                     spots.append((key, pos))
             for key, pos in spots:
                 links = m.carriers.get(name, ())
-                prefer = _away(pos, _neighbours(sol, name, links), default=45.0)
+                prefer = away_from(pos, neighbours(sol, name, links), default=45.0)
                 text = tex(name) if len(spots) == 1 else tex(key)
                 t = self.pl.place(pos, text, prefer=prefer, fontsize=st.font_size, zorder=7, fontstyle="italic",
                                   gid=f"label-point-{name}" if len(spots) == 1 else f"label-point-{key}")
@@ -619,7 +611,7 @@ class _Drawing:
                 prefer = math.degrees(math.atan2(n[1], n[0]))
             else:
                 anchor = np.array(g.centroid.coords[0])
-                prefer = _away(anchor, [np.array([cx, cy])], default=90.0)
+                prefer = away_from(anchor, [np.array([cx, cy])], default=90.0)
             kw = dict(fontsize=st.small_size * 1.1, zorder=7)
             if self.opts.link_numbers == "circled":
                 kw["bbox"] = dict(boxstyle="circle,pad=0.18", facecolor=st.paper, edgecolor=st.ink,
@@ -639,7 +631,7 @@ class _Drawing:
             if len(pts) == 2:
                 # a bar: its number beside it, near its middle, on the side clear of everything
                 probe = self.ax.text(*anchor, literal(lk), ha="center", va="center", **kw)
-                w, h = self.pl._size(probe, pad)
+                w, h = self.pl.text_size(probe, pad)
                 probe.remove()
                 u = (b - a) / max(np.hypot(*(b - a)), 1e-300)
                 off = st.bar_width * self.pc / 2 + 2.0 * self.pp + 0.5 * (abs(n[0]) * w + abs(n[1]) * h)
@@ -679,7 +671,7 @@ class _Drawing:
         if pivot is None:
             return
         p = np.asarray(sol.position.get(pivot, sol.place(drv.link, pivot)), float)
-        dirs = [math.degrees(math.atan2(*(q - p)[::-1])) for q in _neighbours(sol, pivot, self.pins_at[pivot] - {frame})]
+        dirs = [math.degrees(math.atan2(*(q - p)[::-1])) for q in neighbours(sol, pivot, self.pins_at[pivot] - {frame})]
         if pivot in ground_dir:   # the ground symbol takes a sector of its own
             dirs += [ground_dir[pivot] - 40.0, ground_dir[pivot], ground_dir[pivot] + 40.0]
         dirs = sorted(d % 360 for d in dirs) or [270.0]
@@ -688,7 +680,7 @@ class _Drawing:
         sense = 1.0 if drv.omega >= 0 else -1.0
         # the arc in the widest gap between the driver's links and the ground, unless it would cross
         # another link (a slotted lever passing by the pivot), a block or a label: then the next gap
-        others = [g for lk, g in getattr(self, "geoms", {}).items() if lk != drv.link]
+        others = [g for lk, g in self.geoms.items() if lk != drv.link]
         others += [g for lk, g in self.block_geom.items() if lk != drv.link] + list(self.pl.boxes)
         lk = math_literal(drv.link)
         text = rf"$\omega_{{{lk}}}$ = {abs(drv.omega):.4g} rad/s {'ccw' if drv.omega >= 0 else 'cw'}"
@@ -718,7 +710,7 @@ class _Drawing:
             self.pl.hard.pop()
             tb = self.pl.box_of(trial, pad=0.0)
             trial.remove()
-            score = (self.pl._soft_hits(tb), round(float(tb.distance(Point(*(p + rad * _unit(mid))))) / pp / 6.0),
+            score = (self.pl.soft_hits(tb), round(float(tb.distance(Point(*(p + rad * _unit(mid))))) / pp / 6.0),
                      rank)
             if best is None or score < best[0]:
                 best = (score, mid, cand)
@@ -794,7 +786,7 @@ def mark_auxiliary(sol, ax, polygon, *, style="textbook") -> Artists:
     pc = per_cm(ax)
     tol = 1e-9 * sol.mechanism.size
     existing = [np.asarray(p, float) for p in sol.position.values()]
-    for key, aux in (getattr(polygon, "auxiliary", None) or {}).items():
+    for key, aux in polygon.auxiliary.items():
         p = np.asarray(aux.position, float)
         if any(float(np.hypot(*(p - q))) <= tol for q in existing):
             continue

@@ -147,7 +147,7 @@ def draw_poles(sol, ax=None, *, style="textbook", options=None, poleset=None, up
         if p.order == 0:
             continue
         heavy = current is not None and p.order == current
-        for ln in getattr(p, "construction", ()) or ():
+        for ln in p.construction:
             if ln.point is None or ln.direction is None:
                 continue
             base = np.asarray(ln.point, float)
@@ -157,7 +157,7 @@ def draw_poles(sol, ax=None, *, style="textbook", options=None, poleset=None, up
             # through the poles that define it (a Kennedy line) or the points that do (a constraint line:
             # the contact point, the pin, a circular slot's centre), and on past the pole found
             for q in [ps.poles[k].position if k in ps.poles else None for k in ln.through] + \
-                    list(getattr(ln, "marks", ())):
+                    list(ln.marks):
                 if q is not None:
                     ts.append(float(np.dot(np.asarray(q, float) - base, d)))
             if p.position is not None:

@@ -22,7 +22,7 @@ from shapely.geometry import LineString, box
 
 from .canvas import per_point, renderer_of, view_box
 
-__all__ = ["LabelPlacer", "placer", "segment"]
+__all__ = ["LabelPlacer", "placer", "segment", "half_extent"]
 
 # ring radii, in points of gap between the anchor and the box
 RINGS = (2.5, 5.0, 9.0, 14.0, 21.0, 30.0, 42.0, 58.0)
@@ -66,7 +66,7 @@ class LabelPlacer:
         p = pad * per_point(self.ax)
         return box(min(x0, x1) - p, min(y0, y1) - p, max(x0, x1) + p, max(y0, y1) + p)
 
-    def _size(self, text, pad: float = 1.0) -> tuple[float, float]:
+    def text_size(self, text, pad: float = 1.0) -> tuple[float, float]:
         rot = text.get_rotation()
         text.set_rotation(0)
         b = self.box_of(text, pad)
@@ -81,7 +81,7 @@ class LabelPlacer:
             return True
         return not bool(np.any(shapely.intersects(np.array(others, dtype=object), geom)))
 
-    def _soft_hits(self, geom) -> int:
+    def soft_hits(self, geom) -> int:
         if not self.soft:
             return 0
         return int(np.count_nonzero(shapely.intersects(np.array(self.soft, dtype=object), geom)))
@@ -107,7 +107,7 @@ class LabelPlacer:
         t = ax.text(anchor[0], anchor[1], s, ha="center", va="center", **text_kw)
         if gid:
             t.set_gid(gid)
-        w, h = self._size(t, pad)
+        w, h = self.text_size(t, pad)
         pp = per_point(ax)
         view = view_box(ax)
         best = None
@@ -132,7 +132,7 @@ class LabelPlacer:
                     continue
                 u = np.array([math.cos(math.radians(ang)), math.sin(math.radians(ang))])
                 # put the box's near side at distance ring from the anchor along u
-                reach = ring * pp + _half_extent(w, h, u)
+                reach = ring * pp + half_extent(w, h, u)
                 c = anchor + u * reach
                 b = box(c[0] - w / 2, c[1] - h / 2, c[0] + w / 2, c[1] + h / 2)
                 if not view.contains(b) or not self.free(b):
@@ -140,7 +140,7 @@ class LabelPlacer:
                 if leader and ring >= 9.0 and self.boxes and bool(np.any(shapely.intersects(
                         np.array(self.boxes, dtype=object), LineString([tuple(anchor), tuple(_toward(b, anchor))])))):
                     continue   # its leader would cross another label
-                hits = self._soft_hits(b)
+                hits = self.soft_hits(b)
                 if best is None or hits < best[0]:
                     best = (hits, c, b, ring)
                 if hits == 0:
@@ -160,7 +160,7 @@ class LabelPlacer:
             for ring in (gap,) + tuple(r for r in RINGS if r > gap) + FAR_RINGS[3:] + (135.0,):
                 for ang in _directions(prefer, 16):
                     u = np.array([math.cos(math.radians(ang)), math.sin(math.radians(ang))])
-                    c = anchor + u * (ring * pp + _half_extent(w, h, u))
+                    c = anchor + u * (ring * pp + half_extent(w, h, u))
                     b = box(c[0] - w / 2, c[1] - h / 2, c[0] + w / 2, c[1] + h / 2)
                     if not view.contains(b) or (len(boxes) and bool(np.any(shapely.intersects(boxes, b)))):
                         continue
@@ -168,14 +168,14 @@ class LabelPlacer:
                         labels_, LineString([tuple(anchor), tuple(_toward(b, anchor))])))) \
                         if leader and ring >= 9.0 and len(labels_) else 0
                     score = (crossed, int(np.count_nonzero(shapely.intersects(hard, b))) if len(hard) else 0,
-                             self._soft_hits(b))
+                             self.soft_hits(b))
                     if best is None or score < best[0]:
                         best = (score, c, b, ring)
             if best is not None:
                 self.overlapping.append(t)
         if best is None:  # nothing clear of the labels in view: fall back to the first ring's preferred spot
             u = np.array([math.cos(math.radians(prefer or 45.0)), math.sin(math.radians(prefer or 45.0))])
-            c = anchor + u * (gap * pp + _half_extent(w, h, u))
+            c = anchor + u * (gap * pp + half_extent(w, h, u))
             b = box(c[0] - w / 2, c[1] - h / 2, c[0] + w / 2, c[1] + h / 2)
             best = (math.inf, c, b, gap)
             self.overlapping.append(t)
@@ -213,7 +213,7 @@ class LabelPlacer:
         t = ax.text(c0[0], c0[1], s, ha="center", va="center", **text_kw)
         if gid:
             t.set_gid(gid)
-        w, h = self._size(t, pad)
+        w, h = self.text_size(t, pad)
         view = view_box(ax)
         pin = self.pins.get(gid) if gid else None
         if pin is not None and pin[0] == "at":
@@ -254,7 +254,7 @@ class LabelPlacer:
         t = ax.text(p0[0], p0[1], s, ha="center", va="center", rotation=ang, rotation_mode="anchor", **text_kw)
         if gid:
             t.set_gid(gid)
-        w, h = self._size(t)
+        w, h = self.text_size(t)
         if w > 0.92 * length:
             t.remove()
             return None
@@ -301,7 +301,7 @@ def _directions(prefer: float | None, k: int) -> list[float]:
     return out
 
 
-def _half_extent(w: float, h: float, u) -> float:
+def half_extent(w: float, h: float, u) -> float:
     """Distance from a w x h box's centre to its edge along unit u."""
     ux, uy = abs(u[0]), abs(u[1])
     cands = []

@@ -372,8 +372,8 @@ def legend_room(ax, bounds, paper, margin: float, label: float = 0.0):
     the right of the panel for a legend of ``paper`` = [(width, height) cm, ...] (its variants), and a
     label's room (``label`` pt of type) between them: the strip that draws the polygon largest.
     Returns (bounds, scale)."""
-    from .canvas import _axes_cm, nice_scale
-    wcm, hcm = _axes_cm(ax)
+    from .canvas import axes_cm, nice_scale
+    wcm, hcm = axes_cm(ax)
     x0, y0, x1, y1 = bounds
     gap = 0.2 + 1.6 * label / 72 * 2.54
     best = None

@@ -52,9 +52,9 @@ def scale_bar(ax, style, units: str, power: int, *, target_cm: float = 2.5, gid:
     unit = unit_label(units, power)
     kw = dict(fontsize=style.small_size, va="bottom", zorder=6)
     t1 = ax.text(x0, y0, f"{length:g} {unit}".rstrip(), ha="center", **kw)
-    w1 = pl._size(t1, 0.0)[0]
+    w1 = pl.text_size(t1, 0.0)[0]
     t0 = ax.text(x0, y0, "0", ha="center", gid=f"{gid}-0", **kw)
-    w0 = pl._size(t0, 0.0)[0]
+    w0 = pl.text_size(t0, 0.0)[0]
     # the end label over the bar's end, or beside the bar where "0" and it would run into each other
     beside = length < (w0 + w1) / 2 + 3.0 * pp
     if beside:

@@ -42,7 +42,7 @@ from .style import get_style, rc_context
 from ..reference import at_file_pose
 from .table import draw_results_table, given_table
 
-__all__ = ["SHEETS", "Constructions", "constructions", "render_sheet", "frames", "draw_to_file", "mechanism_svg",
+__all__ = ["SHEETS", "fit_width", "Constructions", "constructions", "render_sheet", "frames", "draw_to_file", "mechanism_svg",
            "equation_tex", "default_sheet"]
 FORMATS = (".svg", ".png", ".pdf")
 
@@ -84,7 +84,7 @@ def _space_bounds(sol, cons: Constructions):
     x0, y0, x1, y1 = mechanism_bounds(sol)
     c = np.array([(x0 + x1) / 2, (y0 + y1) / 2])
     for poly in (cons.velocity, cons.acceleration):
-        for aux in (getattr(poly, "auxiliary", None) or {}).values():
+        for aux in (poly.auxiliary.values() if poly is not None else ()):
             p = np.asarray(aux.position, float)
             if float(np.hypot(*(p - c))) <= REACH * sol.mechanism.size:
                 x0, y0, x1, y1 = min(x0, p[0]), min(y0, p[1]), max(x1, p[0]), max(y1, p[1])
@@ -103,7 +103,7 @@ class Frame:
 
 def _pole_caption(p) -> str:
     lines = []
-    for ln in getattr(p, "lines", ()) or ():
+    for ln in p.lines:
         if len(ln) == 2 and "-" in str(ln[0]):
             lines.append(pole_label(tuple(ln[0].split("-"))) + pole_label(tuple(ln[1].split("-"))))
         else:
@@ -132,7 +132,7 @@ def frames(sheet: str, cons: Constructions, steps: bool) -> list[Frame]:
     return out or [Frame()]
 
 
-def _fit_width(fig, text, width: float, smallest: float = 0.7) -> None:
+def fit_width(fig, text, width: float, smallest: float = 0.7) -> None:
     """Shrink ``text``'s type until it is at most ``width`` (a fraction of the page) wide, down to
     ``smallest`` of its size (a long caption in large slide type would run into its neighbour)."""
     from .canvas import renderer_of
@@ -150,7 +150,7 @@ def _page(fig, st, m, sol):
     if not at_file_pose(sol):   # drawn with --angle: say where the driver is
         title += f"  (driver at {sol.driver_angle:.4g}°)"
     t = fig.text(0.5, 0.975, title, ha="center", va="top", fontsize=st.title_size, gid="sheet-title")
-    _fit_width(fig, t, 0.96)
+    fit_width(fig, t, 0.96)
     return t
 
 
@@ -163,7 +163,7 @@ def _step_caption(fig, st, title, caption: str) -> float:
     top = title.get_window_extent(r).y0 / hpx - 0.012
     t = fig.text(0.5, top, caption, ha="center", va="top", fontsize=st.font_size * 1.1, gid="step-caption",
                  bbox=dict(boxstyle="round,pad=0.3", facecolor=st.paper, edgecolor=st.ink, lw=st.thin_lw))
-    _fit_width(fig, t, 0.94)
+    fit_width(fig, t, 0.94)
     # the room is that of a line with sub- and superscripts at the full size, whatever this frame's
     # equation, so that every frame's panels are alike; the box's patch is laid out when drawn: the text's
     # box grown by the pad (0.3 of the type size)
@@ -302,7 +302,7 @@ def render_sheet(sol, sheet: str = "full", style="textbook", *, cons: Constructi
             text += "\n" + equivalent_linkage_note(m)
         cap = fig.text(pos.x0 + pos.width / 2, pos.y1 + 0.004, text, ha="center", va="bottom",
                        fontsize=st.font_size, style="italic", gid=f"caption-{name}")
-        _fit_width(fig, cap, pos.width + 0.008)   # within its column: clear of its neighbours and the page's edge
+        fit_width(fig, cap, pos.width + 0.008)   # within its column: clear of its neighbours and the page's edge
         caps.append(cap)
     for cap in caps:   # the captions of a sheet in one size, that of the one that had to shrink most
         cap.set_fontsize(min(c.get_fontsize() for c in caps))

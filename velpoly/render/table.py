@@ -125,7 +125,7 @@ def _dev(row) -> str:
     if row.angle_error is not None and row.angle_error > 5e-4:
         e = row.angle_error
         parts.append(f"{e:.0f}°" if e >= 10 else f"{e:.2g}°")
-    return (", ".join(parts) or "0") + (f" {NOTED}" if getattr(row, "note", "") else "")
+    return (", ".join(parts) or "0") + (f" {NOTED}" if row.note else "")
 
 
 def _printed(row) -> str:
@@ -263,7 +263,7 @@ def results_table(sol, sheet: str = "full", *, velocity=None, acceleration=None,
     header = [name for _, name in columns]
     rows = [tuple(r[i] for i, _ in columns) for r in rows]
     ref_col = header.index("reference") if "reference" in header else None
-    noted = [r if r is not None and getattr(r, "note", "") else None for r in noted]
+    noted = [r if r is not None and r.note else None for r in noted]
     title = "Results: graphical construction against the analytic solve"
     if refs and m.reference.source:
         title += f"; reference values: {m.reference.source}"
