@@ -79,7 +79,7 @@ from .report import SECTIONS, Table, fmt
 from .solution import register_section
 
 __all__ = ["Pole", "PoleLine", "PoleSet", "KennedyCircle", "Chord", "locate_poles", "kennedy_circle",
-           "instant_centre_velocities", "link_twists", "pole_key", "pole_label", "poles_section", "poles_tables",
+           "instant_centre_velocities", "pole_caption", "link_twists", "pole_key", "pole_label", "poles_section", "poles_tables",
            "FAR", "ALIKE"]
 
 FAR = 1e9        # a pole farther than FAR mechanism sizes is at infinity (FORMAT.md section 5)
@@ -1187,6 +1187,37 @@ def pole_label(key: str, compact: bool = True) -> str:
     """The textbook name of a pole: ``P_13`` for key "1-3" (``P_{10-12}`` where names are longer)."""
     i, j = key.split("-")
     return f"P_{i}{j}" if compact and len(i) == 1 and len(j) == 1 else f"P_{{{key}}}"
+
+
+def pole_caption(p: Pole, name=None) -> str:
+    """How a pole found (``order`` > 0) was found, in the textbook's words: the caption of its step
+    (``velpoly draw --steps`` and the html page's stepper alike). ``name(key)`` writes a pole's name
+    (``"1-3"`` -> ``P_13``, :func:`pole_label` by default; the sheets pass mathtext's).
+
+    Aronhold-Kennedy: "P_13 on the line P_12 P_23 and the line P_14 P_34 (Aronhold-Kennedy: the
+    poles of three links lie on one line)"; a constraint line reads "the common normal at P" or
+    "the slot's normal at A".
+    """
+    from .polygons import point_text
+    name = name or pole_label
+    me = name(p.key)
+    if p.how == "alike" and p.lines:
+        pair, same = p.lines[0]
+        i, x = pair.split("-")
+        return f"{me} = {name(same)}: links {i} and {x} move alike at this instant"
+    if p.how == "velocity":
+        return f"{me} from the velocity solution: no two Kennedy lines reach it"
+    words = []
+    for ln in p.lines:
+        if ln[0] == "normal":
+            words.append(f"the common normal at {point_text(ln[1])}")
+        elif ln[0] == "slot normal":
+            words.append(f"the slot's normal at {point_text(ln[1])}")
+        else:
+            words.append(f"the line {name(ln[0])} {name(ln[1])}")
+    why = (" (Aronhold-Kennedy: the poles of three links lie on one line)"
+           if any(ln[0] not in ("normal", "slot normal") for ln in p.lines) else "")
+    return f"{me} on " + " and ".join(words) + why if words else f"{me} ({p.how})"
 
 
 def _where(p: Pole) -> str:

@@ -95,6 +95,9 @@ def _index(index: str) -> str:
     return index if index.isdigit() else re.sub(r"([A-Za-z])([0-9]+)", r"\1_{\2}", index)
 
 
+_DIGITS = str.maketrans("₀₁₂₃₄₅₆₇₈₉", "0123456789")
+
+
 def equation_tex(eq: str) -> str:
     """A step's vector equation in mathtext: ``V_CB`` -> $V_{CB}$, ``omega_3 x R`` -> $\\omega_{3}$ × R,
     ``omega_2^2 R_AO2`` -> $\\omega_{2}^{2}$ $R_{AO_{2}}$, `` - `` -> `` − ``, ``deg`` -> °."""
@@ -107,6 +110,8 @@ def equation_tex(eq: str) -> str:
         return out + "$" + (power or "")
     s = literal(eq)   # a user's name or title in it is drawn as written
     s = _QUANTITY.sub(sub, s)
+    s = re.sub(r"\bO_([av])\b", r"$O_{\1}$", s)   # the polygons' origins O_v, O_a
+    s = re.sub("[₀-₉]+", lambda mo: "$_{" + mo.group().translate(_DIGITS) + "}$", s)   # a caption's O₂
     s = re.sub(r"\bomega\b", r"$\\omega$", s)
     s = re.sub(r"\balpha\b", r"$\\alpha$", s)
     s = re.sub(r"([0-9]) deg\b", "\\1°", s)
@@ -163,14 +168,11 @@ class Frame:
 
 
 def _pole_caption(p) -> str:
-    lines = []
-    for ln in getattr(p, "lines", ()) or ():
-        if len(ln) == 2 and "-" in str(ln[0]):
-            lines.append(pole_label(tuple(ln[0].split("-"))) + pole_label(tuple(ln[1].split("-"))))
-        else:
-            lines.append(literal(" ".join(map(str, ln))))
-    what = f"{pole_label(p.links)} ({literal(p.how)})"
-    return what + (": on " + " and ".join(lines) if lines else "")
+    """A pole's step in words (:func:`velpoly.poles.pole_caption`), its names in mathtext."""
+    from ..poles import pole_caption
+    parts = re.split(r"(\x00[^\x00]*\x00)", pole_caption(p, lambda key: f"\x00{key}\x00"))
+    return "".join(pole_label(tuple(t[1:-1].split("-", 1))) if t.startswith("\x00") else equation_tex(t)
+                   for t in parts)
 
 
 def frames(sheet: str, cons: Constructions, steps: bool) -> list[Frame]:
@@ -181,10 +183,10 @@ def frames(sheet: str, cons: Constructions, steps: bool) -> list[Frame]:
     vel, acc, ps = cons.velocity, cons.acceleration, cons.poles
     if sheet in ("velocity", "full") and vel is not None:
         for k, s in enumerate(vel.steps, 1):
-            out.append(Frame(velocity=k, acceleration=0, caption=f"Step {k}: " + equation_tex(s.equation)))
+            out.append(Frame(velocity=k, acceleration=0, caption=f"Step {k}: " + equation_tex(s.caption or s.equation)))
     if sheet in ("acceleration", "full") and acc is not None:
         for k, s in enumerate(acc.steps, 1):
-            out.append(Frame(acceleration=k, caption=f"Step {len(out) + 1}: " + equation_tex(s.equation)))
+            out.append(Frame(acceleration=k, caption=f"Step {len(out) + 1}: " + equation_tex(s.caption or s.equation)))
     if sheet == "poles" and ps is not None:
         found = sorted((p for p in ps.poles.values() if p.order > 0), key=lambda p: p.order)
         out.append(Frame(poles=0, caption="Poles known by inspection: pins, sliders, rolling contacts"))
