@@ -485,14 +485,14 @@ class DriverRate:
 
 
 @dataclass(frozen=True)
-class TurnsWithGuide:
-    """A block turns with its straight guide: omega_block = omega_guide (alpha likewise)."""
+class TurnsTogether:
+    """A block and its straight guide turn together: ``link``'s omega is ``other``'s (alpha likewise)."""
 
     link: str
-    guide: str
+    other: str
 
     def apply(self, run: "_Run") -> None:
-        run.rate[self.link] = run.rate[self.guide]
+        run.rate[self.link] = run.rate[self.other]
 
 
 @dataclass(frozen=True)
@@ -633,7 +633,7 @@ class _Planner:
             for a, b in self.g.rate_eq:
                 for x, y in ((a, b), (b, a)):
                     if x in self.rk and y not in self.rk:
-                        step.ops.append(TurnsWithGuide(y, x))
+                        step.ops.append(TurnsTogether(y, x))
                         self.rk.add(y)
                         step.omegas.append(y)
                         changed = True
@@ -1373,16 +1373,46 @@ class _Run:
         return f"the line through {through} {ln.unknown.direction_words(self)}"
 
     def rates_words(self, step) -> str:
-        """The rates a step fixes from two images, in words: "; omega_3 = V_BA / AB"."""
+        """The rates a step fixes, in words: "; omega_3 = V_BA / AB" from two images, "; omega_3 =
+        omega_4 (a block turns with its straight guide)"."""
         out = []
-        for op in step.ops:
-            if isinstance(op, RateFromImages):
+        rate = "omega" if self.level == "velocity" else "alpha"
+        ops = [o for op in step.ops for o in (op.ops if isinstance(op, TrialSolution) else (op,))]
+        for op in ops:
+            if isinstance(op, RateFromImages) and op.link in step.omegas:
                 name = f"{self.g.name((op.link, op.w))}{self.g.name((op.link, op.q))}"
-                if self.level == "velocity":
-                    out.append(f"omega_{op.link} = V_{name} / {_segment(op.q, op.w)}")
+                diff = f"V_{name}" if self.level == "velocity" else f"A^t_{name}"
+                out.append(f"{rate}_{op.link} = {diff} / {_segment(op.q, op.w)}")
+            elif isinstance(op, TurnsTogether):
+                if op.other == self.g.frame:
+                    out.append(f"{rate}_{op.link} = 0 (a block on a straight guide of the frame)")
                 else:
-                    out.append(f"alpha_{op.link} = A^t_{name} / {_segment(op.q, op.w)}")
+                    out.append(f"{rate}_{op.link} = {rate}_{op.other} (block and straight guide turn together)")
+        return "".join("; " + o for o in dict.fromkeys(out))
+
+    def pinned_words(self, step) -> str:
+        """Points pinned together share one image, named once by the step: "; V_A3 = V_A2 (a pin
+        of links 2 and 3)" for each other name a located image has."""
+        g, out = self.g, []
+        for place in step.found:
+            names = list(dict.fromkeys(g.name(q) for q in g.group(place) if q == place or g.point_key(q) is not None))
+            if len(names) > 1:
+                links = sorted({q[0] for q in g.group(place)}, key=g.links.index)
+                out.append(" = ".join(f"{self.X}_{n}" for n in names)
+                           + f" (a pin of links {', '.join(links[:-1])} and {links[-1]})")
         return "".join("; " + o for o in out)
+
+    def located_first(self, step) -> str:
+        """The coincident points a step locates first from their links' images, in words (none for
+        the driver's and the image steps, whose words are these)."""
+        if isinstance(step, _LinkImage):
+            return ""
+        ops = [op for op in step.ops if isinstance(op, VelocityImage)]
+        if not ops:
+            return ""
+        level = "velocity" if self.level == "velocity" else "acceleration"
+        return "; ".join(f"{self.image_words((op.link, op.w))} from the {level} image of link {op.link}, "
+                         + _LinkImage.point_equation(self, op) for op in ops) + "; then "
 
 
 # -- the plan's steps, by their textbook names ------------------------------------------------------
@@ -1434,6 +1464,11 @@ class PlanStep:
         raise NotImplementedError
 
     def caption(self, run: "_Run") -> str:
+        """The step in the textbook's words: the coincident points it locates first from their
+        links' images, what it constructs (:meth:`words`), the rates it fixes."""
+        return run.located_first(self) + self.words(run) + run.pinned_words(self) + run.rates_words(self)
+
+    def words(self, run: "_Run") -> str:
         raise NotImplementedError
 
 
@@ -1449,7 +1484,7 @@ class FrameAtOrigin(PlanStep):
             return f"the frame images at {run.origin}"
         return " = ".join(f"{run.X}_{n}" for n in names) + " = 0: the frame's points image at " + run.origin
 
-    def caption(self, run):
+    def words(self, run):
         if not self.found:
             return f"The frame is at rest: its image is {run.origin}"
         names = [run.g.name(p) for p in self.found]
@@ -1466,12 +1501,16 @@ class _LinkImage(PlanStep):
     def images(self):
         return [op for op in self.ops if isinstance(op, VelocityImage)]
 
+    @staticmethod
+    def point_equation(run, op) -> str:
+        """``V_W = V_Q + omega_k x R_WQ`` (``A_W = A_Q + alpha_k x R_WQ - omega_k^2 R_WQ``) of one
+        :class:`VelocityImage`."""
+        lk, X, r = op.link, run.X, f"R_{op.w}{op.q}"
+        rel = f"omega_{lk} x {r}" if X == "V" else f"alpha_{lk} x {r} - omega_{lk}^2 {r}"
+        return f"{X}_{run.g.name((lk, op.w))} = {X}_{run.g.name((lk, op.q))} + {rel}"
+
     def equation(self, run):
-        lk, X = self.link, run.X
-        rel = (lambda op: f"omega_{lk} x R_{op.w}{op.q}") if X == "V" else \
-            (lambda op: f"alpha_{lk} x R_{op.w}{op.q} - omega_{lk}^2 R_{op.w}{op.q}")
-        return "; ".join(f"{X}_{run.g.name((lk, op.w))} = {X}_{run.g.name((lk, op.q))} + {rel(op)}"
-                         for op in self.images())
+        return "; ".join(self.point_equation(run, op) for op in self.images())
 
 
 @dataclass(frozen=True)
@@ -1481,7 +1520,7 @@ class DriverStep(_LinkImage):
 
     kind: ClassVar[str] = "driver"
 
-    def caption(self, run):
+    def words(self, run):
         g, lk, X = run.g, self.link, run.X
         parts = []
         for op in self.images():
@@ -1503,7 +1542,7 @@ class VelocityImageStep(_LinkImage):
 
     kind: ClassVar[str] = "image"
 
-    def caption(self, run):
+    def words(self, run):
         g, lk = run.g, self.link
         level = "velocity" if run.level == "velocity" else "acceleration"
         points = list(g.m.link(lk).points)
@@ -1547,7 +1586,7 @@ class KnownMotionStep(PlanStep):
             return f"rolling {there}: the contact points' relative acceleration, along the common normal"
         return f"the prescribed slip {there}, along the common tangent"
 
-    def caption(self, run):
+    def words(self, run):
         r, t, other, _ = self._sides(run)
         if r.source == "contact" and run.level == "velocity" and run.g.m.contacts[r.index].kind == "rolling":
             eq = f"V_{run.g.name(t)} = V_{run.g.name(other)}"   # no relative velocity
@@ -1587,9 +1626,9 @@ class IntersectionStep(PlanStep):
                   for ln in self.lines]
         return f"{X}_{g.name(self.target)} = " + " = ".join(chains)
 
-    def caption(self, run):
+    def words(self, run):
         return (self.equation(run) + f": {run.image_words(self.target)} on "
-                + " and ".join(run.line_words(ln) for ln in self.lines) + run.rates_words(self))
+                + " and ".join(run.line_words(ln) for ln in self.lines))
 
 
 @dataclass(frozen=True)
@@ -1613,8 +1652,8 @@ class AuxiliaryPointStep(IntersectionStep):
             head += f"  ({run.g.name(t)} is the instant centre of link {t[0]}: its image is at {run.origin})"
         return head
 
-    def caption(self, run):
-        g, t = run.g, self.target
+    def words(self, run):
+        t = self.target
         eq = IntersectionStep.equation(self, run)
         what = (f"{run.point_words(t)}, the instant centre of link {t[0]}, has its image at {run.origin}"
                 if self.kind_at(run) == "instant-centre" else
@@ -1645,14 +1684,17 @@ class TrialSolutionStep(PlanStep):
         return (f"trial solution: {X}_{g.name(self.target)} = {chain} assumed along its line; the construction "
                 f"closes on link {lk}: ({X}_{w} - {X}_{q}) . R_{w}{q} = {rhs}, which fixes the assumed value")
 
-    def caption(self, run):
+    def words(self, run):
         g, X, tr = run.g, run.X, self.trial
         lk, q, w = tr.closure
         chain = _sum([f"{X}_{g.name(tr.line.base)}"] + run.term_labels(tr.line.terms) + [run.unknown_label(tr.line)])
+        if X == "V":
+            rigid = f"{run.image_words((lk, q), vertex=True)}{run.image_words((lk, w), vertex=True)}"
+        else:
+            rigid = f"A^t_{g.name((lk, w))}{g.name((lk, q))}"
         return (f"Trial solution (false position): {X}_{g.name(self.target)} = {chain}, "
                 f"{run.image_words(self.target)} assumed on {run.line_words(tr.line)}; the construction goes on "
-                f"until link {lk} closes, and its rigidity ({run.image_words((lk, q))}{run.image_words((lk, w))} "
-                f"⊥ {_segment(q, w)}{'' if X == 'V' else ' less the normal term'}) fixes the assumed value")
+                f"until link {lk} closes, and its rigidity ({rigid} ⊥ {_segment(q, w)}) fixes the assumed value")
 
 
 # -- building the polygons ------------------------------------------------------------------------
