@@ -45,6 +45,16 @@ Every intersection is solved with :func:`velpoly.geometry.intersect_lines`;
 two lines closer to parallel than ``1 / kinematics.SINGULAR`` (the sine of
 their angle) make a singular pose (:class:`~velpoly.errors.SingularPoseError`).
 
+**Names.** The plan's steps are small frozen dataclasses named as the book names
+them (:class:`FrameAtOrigin`, :class:`DriverStep`, :class:`SliderDriverStep`,
+:class:`KnownMotionStep`, :class:`IntersectionStep` -- case 2a --,
+:class:`VelocityImageStep`, :class:`AuxiliaryPointStep`, :class:`TrialSolutionStep`),
+each writing its equation and its caption in words; their operations
+(:class:`VelocityImage`, :class:`Intersection`, :class:`TrialSolution`, ...)
+apply themselves to a replay (:class:`_Run`), whose chains hold
+:class:`CentripetalTerm` and :class:`JointMotionTerm` (with the Coriolis term,
+:meth:`_Run.coriolis_term`).
+
 **Hand drafting.** :func:`hand_drafting` replays the same plan, vectorised
 over many random perturbations (directions within +-0.25 deg, points within
 +-0.25 mm at the scale that fits the polygon in ~120 mm), and reports the
@@ -69,7 +79,7 @@ from .solution import register_section
 
 __all__ = [
     "ConstructionLine", "Vector", "Step", "AuxiliaryPoint", "Polygon", "ConstructionError",
-    "velocity_polygon", "acceleration_polygon", "construction_plan", "hand_drafting",
+    "velocity_polygon", "acceleration_polygon", "construction_plan", "hand_drafting", "point_text",
     "SINE_LIMIT",
 ]
 
