@@ -442,10 +442,14 @@ def test_browser_draws_the_solution(case, browser_runs):
             order = sorted((p["o"], k) for k, p in P["poles"].items() if p["o"] > 0)
             n, key = order[want_step - len(steps) - 1]
             assert dom.caption["data-equation"] == P["poles"][key]["s"] and dom.caption["data-level"] == "poles"
+            assert dom.caption["data-caption"] == P["poles"][key]["s"]
             shown = {a["data-key"] for a in dom.marks if "pole" in a.get("class", "").split()}
             assert shown == {k for k, p in P["poles"].items() if p["o"] <= n and (p["p"] or p["d"] is not None)}
         if want_step <= len(steps):
             assert dom.caption["data-equation"] == steps[want_step - 1]
+            # the caption shown is the step's own, word for word the --steps frame's (Step.caption)
+            caps = [s["cap"] for s in P["vp"]["st"]] + ([s["cap"] for s in P["ap"]["st"]] if P["ap"] else [])
+            assert dom.caption["data-caption"] == caps[want_step - 1] and caps[want_step - 1]
             assert _digitless(dom.caption["data-equation"]) == _digitless(
                 ([s.equation for s in vel.steps] + ([s.equation for s in acc.steps] if acc else []))[want_step - 1]) \
                 or len(steps) == nv + na

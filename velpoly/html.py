@@ -101,7 +101,7 @@ def _polygon(p) -> dict:
     steps = []
     for s in p.steps:
         steps.append({
-            "k": s.kind, "eq": s.equation, "f": list(s.found), "lk": s.link, "aux": list(s.auxiliary),
+            "k": s.kind, "eq": s.equation, "cap": s.caption, "f": list(s.found), "lk": s.link, "aux": list(s.auxiliary),
             "ln": [[*_xy(ln.base), *_xy(ln.direction), ln.base_label, ln.reason] for ln in s.lines],
             "v": [[*_xy(v.tail), *_xy(v.head), v.kind, v.label] for v in s.vectors],
             "w": {lk: _f(w) for lk, w in s.omegas.items()},
@@ -115,19 +115,9 @@ def _polygon(p) -> dict:
 
 
 def _pole_step(p, compact: bool) -> str:
-    """A pole's step in words: how it was found and on which lines."""
-    from .poles import pole_label
-    parts = []
-    for ln in p.lines:
-        if len(ln) == 2 and "-" in str(ln[0]):
-            parts.append(f"the line {pole_label(ln[0], compact)} {pole_label(ln[1], compact)}")
-        else:
-            parts.append(" at ".join(map(str, ln)))
-    how = {"kennedy": "Aronhold-Kennedy: the three poles of three links lie on one line",
-           "normals": "on the common normals", "alike": "the links move alike",
-           "velocity": "from the velocity solution"}.get(p.how, p.how)
-    return f"{pole_label(p.key, compact)} = " + " meets ".join(parts) + f" ({how})" if parts else \
-        f"{pole_label(p.key, compact)}: {how}"
+    """A pole's step in words, as ``velpoly draw --steps`` captions it (:func:`velpoly.poles.pole_caption`)."""
+    from .poles import pole_caption, pole_label
+    return pole_caption(p, lambda key: pole_label(key, compact))
 
 
 def _poles(sol) -> dict:
@@ -286,28 +276,51 @@ def _path(geom, k: float) -> str:
 def _static(m, sol0, w, view: _View) -> dict:
     """The parts of the space diagram rigid with each link (outlines in the reference pose), ground
     pivots and guides on the frame, and the kinds of points."""
-    from shapely.geometry import LineString, MultiPoint, Point
-    from shapely.geometry import Polygon as SPolygon
-    from shapely.ops import unary_union
-    k = view.k
-    px = 1.0 / k                      # one SVG unit, in mechanism units
-    bar = 11 * px
-    frame = m.frame.name
-    ref = {p: np.asarray(v, float) for p, v in m.points.items()}
-    parts: dict = {lk.name: [] for lk in m.moving_links}
-    holes: dict = {lk.name: [] for lk in m.moving_links}
-    ground = []                      # static paths on the frame: (d, class)
-    index = sol0.kinematics.system.index
+    sp = _SpaceParts(m, sol0, w, view)
+    sp.link_bodies()
+    sp.sliders()
+    sp.slots()
+    sp.contacts()
+    sp.discs()
+    bodies = sp.bodies()
+    numbers = _link_numbers(m, sp.ref, sp.px)
+    pins_at = sp.pivots()
+    return {"bodies": bodies, "ground": sp.ground, "numbers": numbers, "kinds": _point_kinds(m, sol0, pins_at)}
 
-    def local(lk, pts):
+
+class _SpaceParts:
+    """The space diagram's parts as the page moves them: per moving link its shapely outlines
+    (``parts``) and holes (a slot, a guide's groove) in its reference-pose coordinates; on the frame
+    the static paths (``ground``: [SVG path data, class]). Sizes are in SVG units of the panel
+    (``px`` is one of them in mechanism units)."""
+
+    def __init__(self, m, sol0, w, view: _View):
+        self.m, self.sol0, self.w = m, sol0, w
+        self.k = view.k
+        self.px = 1.0 / view.k
+        self.bar = 11 * self.px
+        self.ref = {p: np.asarray(v, float) for p, v in m.points.items()}
+        self.parts: dict = {lk.name: [] for lk in m.moving_links}
+        self.holes: dict = {lk.name: [] for lk in m.moving_links}
+        self.ground: list = []
+        self.index = sol0.kinematics.system.index
+
+    def local(self, lk, pts):
         """Points of link lk over the sweep, in its reference-pose coordinates."""
-        i = index[lk]
-        x, y, th = w.q[:, 3 * i], w.q[:, 3 * i + 1], w.q[:, 3 * i + 2]
+        i = self.index[lk]
+        q = self.w.q
+        x, y, th = q[:, 3 * i], q[:, 3 * i + 1], q[:, 3 * i + 2]
         d = np.asarray(pts, float) - np.c_[x, y]
         c, s = np.cos(th), np.sin(th)
         return np.c_[c * d[:, 0] + s * d[:, 1], -s * d[:, 0] + c * d[:, 1]]
 
-    def hatch(a, b, side, cls="ground"):
+    def line(self, a, b) -> str:
+        k = self.k
+        return f"M{k * a[0]:.2f},{-k * a[1]:.2f}L{k * b[0]:.2f},{-k * b[1]:.2f}"
+
+    def hatch(self, a, b, side, cls="ground"):
+        """Hatched ground along a to b, the strokes slanting to ``side``."""
+        k, px = self.k, self.px
         a, b, side = (np.asarray(v, float) for v in (a, b, side))
         d = b - a
         L = float(np.hypot(*d))
@@ -317,132 +330,200 @@ def _static(m, sol0, w, view: _View) -> dict:
         slant = side + 0.75 * u
         slant = slant / np.hypot(*slant) * 8 * px
         n = max(int(L / (6 * px)), 1)
-        segs = [f"M{k * a[0]:.2f},{-k * a[1]:.2f}L{k * b[0]:.2f},{-k * b[1]:.2f}"]
+        segs = [self.line(a, b)]
         for j in range(n + 1):
             p = a + u * (j * L / n)
             segs.append(f"M{k * p[0]:.2f},{-k * p[1]:.2f}l{k * slant[0]:.2f},{-k * slant[1]:.2f}")
-        ground.append(["".join(segs), cls])
+        self.ground.append(["".join(segs), cls])
 
-    # bodies of links with two or more points
-    for lk in m.moving_links:
-        if len(lk.points) >= 2:
-            parts[lk.name].append(MultiPoint([tuple(ref[p]) for p in lk.points]).convex_hull.buffer(bar / 2, 12))
-    # sliders: the block rigid with its link; a fixed guide hatched over the whole travel, a moving one
-    # a slotted bar over the block's travel relative to it
-    for s, r in zip(m.sliders, sol0.motion.sliders):
-        d = _unit(float(r["direction"][0]))   # at the drawn pose: rotate back to the reference pose
+    def track(self, point, link):
+        """The sweep's positions of a point (its key on ``link`` where the carriers differ)."""
+        key = point if point in self.w.position else f"{point}@{link}"
+        return self.w.position.get(key, self.w.position.get(point))
+
+    def link_bodies(self):
+        """Links with two or more points: the hull of their points, as a bar or a plate."""
+        from shapely.geometry import MultiPoint
+        for lk in self.m.moving_links:
+            if len(lk.points) >= 2:
+                hull = MultiPoint([tuple(self.ref[p]) for p in lk.points]).convex_hull
+                self.parts[lk.name].append(hull.buffer(self.bar / 2, 12))
+
+    def sliders(self):
+        """Each block rigid with its link; a fixed guide hatched over the whole travel, a moving one
+        a slotted bar over the block's travel relative to it."""
+        from shapely.geometry import Polygon as SPolygon
+        px, sol0 = self.px, self.sol0
+        for s, r in zip(self.m.sliders, sol0.motion.sliders):
+            d = _unit(float(r["direction"][0]))   # at the drawn pose: rotate back to the reference pose
+            ib = self.index.get(s.block)
+            th_b = float(sol0.q[3 * ib + 2]) if ib is not None else 0.0
+            c, sn = math.cos(-th_b), math.sin(-th_b)
+            d_ref = np.array([c * d[0] - sn * d[1], c * d[1] + sn * d[0]])
+            n_ref = np.array([-d_ref[1], d_ref[0]])
+            p = self.ref[s.point]
+            L, H = 30 * px, 18 * px
+            block = SPolygon([p - d_ref * L / 2 - n_ref * H / 2, p + d_ref * L / 2 - n_ref * H / 2,
+                              p + d_ref * L / 2 + n_ref * H / 2, p - d_ref * L / 2 + n_ref * H / 2])
+            if s.block in self.parts:
+                self.parts[s.block].append(block)
+            if s.centre is not None:
+                continue
+            track = self.track(s.point, s.block)   # the block's point along the guide
+            if track is None:
+                continue
+            if self.m.link(s.guide).frame:
+                self._fixed_guide(s, d, track, L, H)
+            elif s.guide in self.parts:
+                self._moving_guide(s, d_ref, p, track, L, H)
+
+    def _fixed_guide(self, s, d, track, L, H):
+        """A guide on the frame: hatched on the side away from the block's other links, with its
+        centre line, over the block's whole travel."""
+        sol0 = self.sol0
         p_now = sol0.place(s.block, s.point)
-        ib = index.get(s.block)
-        th_b = float(sol0.q[3 * ib + 2]) if ib is not None else 0.0
-        c, sn = math.cos(-th_b), math.sin(-th_b)
-        d_ref = np.array([c * d[0] - sn * d[1], c * d[1] + sn * d[0]])
-        n_ref = np.array([-d_ref[1], d_ref[0]])
-        p = ref[s.point]
-        L, H = 30 * px, 18 * px
-        block = SPolygon([p - d_ref * L / 2 - n_ref * H / 2, p + d_ref * L / 2 - n_ref * H / 2,
-                          p + d_ref * L / 2 + n_ref * H / 2, p - d_ref * L / 2 + n_ref * H / 2])
-        if s.block in parts:
-            parts[s.block].append(block)
-        if s.centre is not None:
-            continue
-        # the travel of the block's point along the guide, in the guide's reference coordinates
-        key = s.point if s.point in w.position else f"{s.point}@{s.block}"
-        track = w.position.get(key, w.position.get(s.point))
-        if track is None:
-            continue
-        if m.link(s.guide).frame:
-            t = (track - p_now) @ d
-            lo, hi = float(t.min()) - L, float(t.max()) + L
-            a, b = p_now + d * lo, p_now + d * hi
-            nrm = np.array([-d[1], d[0]])
-            others = [sol0.place(x, q) for x in m.carriers.get(s.point, ()) if x not in (s.block, s.guide)
-                      for q in m.link(x).points if q != s.point]
-            side = -1.0 if others and np.dot(sum(o - p_now for o in others), nrm) > 0 else 1.0
-            off = nrm * side * H / 2
-            hatch(a + off, b + off, nrm * side, "guide")
-            ground.append([f"M{k * a[0]:.2f},{-k * a[1]:.2f}L{k * b[0]:.2f},{-k * b[1]:.2f}", "centre-line"])
-        elif s.guide in parts:
-            loc = local(s.guide, track)
-            t = (loc - p) @ d_ref
-            lo, hi = float(t.min()) - L / 2, float(t.max()) + L / 2
-            seg = LineString([tuple(p + d_ref * lo), tuple(p + d_ref * hi)])
-            parts[s.guide].append(seg.buffer(H / 2 + 3 * px, cap_style="flat"))
-            holes[s.guide].append(seg.buffer(H * 0.3, cap_style="round"))
-    for s in m.slots:
-        key = s.pin if s.pin in w.position else f"{s.pin}@{s.link}"
-        track = w.position.get(key, w.position.get(s.pin))
-        if track is None or s.slot not in parts and not m.link(s.slot).frame:
-            continue
-        if m.link(s.slot).frame:
-            pts = track
-        else:
-            pts = local(s.slot, track)
-        seg = LineString([tuple(x) for x in pts]).simplify(px)
-        if seg.length <= 0:
-            continue
-        if m.link(s.slot).frame:
-            ground.append([_path(seg.buffer(9 * px), k), "slot-frame"])
-            ground.append([_path(seg.buffer(5.5 * px), k), "slot"])
-        else:
-            parts[s.slot].append(seg.buffer(9 * px))
-            holes[s.slot].append(seg.buffer(5.5 * px))
-    # contacts: profiles' circles about their centres of curvature, flats along the tangent
-    for c, r in zip(m.contacts, sol0.motion.contacts):
-        place_now = np.asarray(r["place"][0], float)
-        for j, (lk, cn) in enumerate(zip(c.links, c.centres or (None, None))):
+        t = (track - p_now) @ d
+        lo, hi = float(t.min()) - L, float(t.max()) + L
+        a, b = p_now + d * lo, p_now + d * hi
+        nrm = np.array([-d[1], d[0]])
+        others = [sol0.place(x, q) for x in self.m.carriers.get(s.point, ()) if x not in (s.block, s.guide)
+                  for q in self.m.link(x).points if q != s.point]
+        side = -1.0 if others and np.dot(sum(o - p_now for o in others), nrm) > 0 else 1.0
+        off = nrm * side * H / 2
+        self.hatch(a + off, b + off, nrm * side, "guide")
+        self.ground.append([self.line(a, b), "centre-line"])
+
+    def _moving_guide(self, s, d_ref, p, track, L, H):
+        """A guide on a moving link: a slotted bar over the block's travel relative to it."""
+        from shapely.geometry import LineString
+        loc = self.local(s.guide, track)
+        t = (loc - p) @ d_ref
+        lo, hi = float(t.min()) - L / 2, float(t.max()) + L / 2
+        seg = LineString([tuple(p + d_ref * lo), tuple(p + d_ref * hi)])
+        self.parts[s.guide].append(seg.buffer(H / 2 + 3 * self.px, cap_style="flat"))
+        self.holes[s.guide].append(seg.buffer(H * 0.3, cap_style="round"))
+
+    def slots(self):
+        """Each slot along its pin's travel: cut in the frame, or a slotted part of its link."""
+        from shapely.geometry import LineString
+        m, px, k = self.m, self.px, self.k
+        for s in m.slots:
+            track = self.track(s.pin, s.link)
+            if track is None or s.slot not in self.parts and not m.link(s.slot).frame:
+                continue
+            pts = track if m.link(s.slot).frame else self.local(s.slot, track)
+            seg = LineString([tuple(x) for x in pts]).simplify(px)
+            if seg.length <= 0:
+                continue
+            if m.link(s.slot).frame:
+                self.ground.append([_path(seg.buffer(9 * px), k), "slot-frame"])
+                self.ground.append([_path(seg.buffer(5.5 * px), k), "slot"])
+            else:
+                self.parts[s.slot].append(seg.buffer(9 * px))
+                self.holes[s.slot].append(seg.buffer(5.5 * px))
+
+    def contacts(self):
+        """The contacts' profiles: circles about their centres of curvature, flats along the tangent."""
+        m = self.m
+        for c, r in zip(m.contacts, self.sol0.motion.contacts):
             if c.centres is None:
-                break
-            if m.link(lk).frame:
-                u = _unit(float(r["normal"][0])) * (1 if j == 1 else -1)
-                t = np.array([-u[1], u[0]])
-                track = w.position.get(f"{c.point}@{lk}", w.position.get(c.point))
-                if cn is None:
-                    tt = (track - place_now) @ t if track is not None else np.array([0.0])
-                    a, b = place_now + t * (float(tt.min()) - 20 * px), place_now + t * (float(tt.max()) + 20 * px)
-                    hatch(a, b, u, "ground")
-                else:
-                    ctr = ref[cn] if cn in ref else sol0.place(lk, cn)
-                    rad = float(np.hypot(*(place_now - ctr)))
-                    ground.append([_path(Point(*ctr).buffer(rad, 64).exterior, k), "profile"])
                 continue
-            if lk not in parts:
+            place_now = np.asarray(r["place"][0], float)
+            for j, (lk, cn) in enumerate(zip(c.links, c.centres)):
+                if m.link(lk).frame:
+                    self._frame_profile(c, r, j, lk, cn, place_now)
+                elif lk in self.parts:
+                    self._link_profile(r, j, lk, cn, place_now)
+
+    def _frame_profile(self, c, r, j, lk, cn, place_now):
+        """A profile on the frame: a hatched flat over the contact's travel, or its circle."""
+        from shapely.geometry import Point
+        px = self.px
+        u = _unit(float(r["normal"][0])) * (1 if j == 1 else -1)
+        t = np.array([-u[1], u[0]])
+        track = self.w.position.get(f"{c.point}@{lk}", self.w.position.get(c.point))
+        if cn is None:
+            tt = (track - place_now) @ t if track is not None else np.array([0.0])
+            a, b = place_now + t * (float(tt.min()) - 20 * px), place_now + t * (float(tt.max()) + 20 * px)
+            self.hatch(a, b, u, "ground")
+        else:
+            ctr = self.ref[cn] if cn in self.ref else self.sol0.place(lk, cn)
+            rad = float(np.hypot(*(place_now - ctr)))
+            self.ground.append([_path(Point(*ctr).buffer(rad, 64).exterior, self.k), "profile"])
+
+    def _link_profile(self, r, j, lk, cn, place_now):
+        """A profile on a moving link: a flat face (on a one-point link, a plate through the contact
+        along the tangent), or a disc about its centre of curvature."""
+        from shapely.geometry import LineString, Point
+        from shapely.geometry import Polygon as SPolygon
+        px, ref = self.px, self.ref
+        if cn is not None:
+            if cn in ref:
+                rad = float(np.hypot(*(self.local(lk, place_now[None, :])[0] - ref[cn])))
+                if rad < 1.5 * self.m.size:
+                    self.parts[lk].append(Point(*ref[cn]).buffer(rad, 48))
+            return
+        link = self.m.link(lk)
+        if len(link.points) >= 2:
+            return
+        th = float(self.sol0.q[3 * self.index[lk] + 2])
+        u = _unit(float(r["normal"][0]) - math.degrees(th)) * (-1 if j == 0 else 1)
+        t = np.array([-u[1], u[0]])
+        own = ref[link.points[0]]
+        pl = self.local(lk, place_now[None, :])[0]
+        foot = pl + t * float(np.dot(own - pl, t))
+        half = max(40 * px, abs(float(np.dot(pl - foot, t))) + 20 * px)
+        e0, e1 = foot - t * half, foot + t * half
+        geom = SPolygon([e0, e1, e1 + u * 7 * px, e0 + u * 7 * px])
+        if float(np.hypot(*(own - foot))) > 8 * px:
+            geom = geom.union(LineString([tuple(own), tuple(foot)]).buffer(self.bar / 2, cap_style="flat"))
+        self.parts[lk].append(geom)
+
+    def discs(self):
+        """One-point links with nothing else drawn (no block either): a disc."""
+        from shapely.geometry import Point
+        blocks = {s.block for s in self.m.sliders}
+        for lk in self.m.moving_links:
+            if not self.parts[lk.name] and lk.name not in blocks:
+                self.parts[lk.name].append(Point(*self.ref[lk.points[0]]).buffer(8 * self.px, 12))
+
+    def bodies(self) -> dict:
+        """Each link's parts as one outline and its holes, as SVG path data."""
+        from shapely.ops import unary_union
+        out = {}
+        for lk, geoms in self.parts.items():
+            if geoms:
+                holes = self.holes[lk]
+                out[lk] = {"d": _path(unary_union(geoms), self.k),
+                           "holes": _path(unary_union(holes), self.k) if holes else ""}
+        return out
+
+    def pivots(self) -> dict:
+        """Ground pivots: a triangle on hatched ground, the way most free of the pivot's links.
+        Returns each pinned point's links."""
+        m, sol0, px, k = self.m, self.sol0, self.px, self.k
+        pins_at: dict = {}
+        for pin in m.pins:
+            pins_at.setdefault(pin.point, set()).update(pin.links)
+        for point, links in pins_at.items():
+            if m.frame.name not in links:
                 continue
-            if cn is None:
-                if len(m.link(lk).points) >= 2:
-                    continue
-                # a flat face on a one-point link: a plate through the contact along the tangent
-                ib = index[lk]
-                th = float(sol0.q[3 * ib + 2])
-                u = _unit(float(r["normal"][0]) - math.degrees(th)) * (-1 if j == 0 else 1)
-                t = np.array([-u[1], u[0]])
-                own = ref[m.link(lk).points[0]]
-                pl = local(lk, place_now[None, :])[0]
-                foot = pl + t * float(np.dot(own - pl, t))
-                half = max(40 * px, abs(float(np.dot(pl - foot, t))) + 20 * px)
-                e0, e1 = foot - t * half, foot + t * half
-                geom = SPolygon([e0, e1, e1 + u * 7 * px, e0 + u * 7 * px])
-                if float(np.hypot(*(own - foot))) > 8 * px:
-                    geom = geom.union(LineString([tuple(own), tuple(foot)]).buffer(bar / 2, cap_style="flat"))
-                parts[lk].append(geom)
-                continue
-            ctr = ref[cn] if cn in ref else None
-            if ctr is None:
-                continue
-            rad = float(np.hypot(*(local(lk, place_now[None, :])[0] - ctr)))
-            if rad < 1.5 * m.size:
-                parts[lk].append(Point(*ctr).buffer(rad, 48))
-    # one-point links with nothing else: a disc
-    blocks = {s.block for s in m.sliders}
-    for lk in m.moving_links:
-        if not parts[lk.name] and lk.name not in blocks:
-            parts[lk.name].append(Point(*ref[lk.points[0]]).buffer(8 * px, 12))
-    bodies = {}
-    for lk, geoms in parts.items():
-        if not geoms:
-            continue
-        g = unary_union(geoms)
-        bodies[lk] = {"d": _path(g, k), "holes": _path(unary_union(holes[lk]), k) if holes[lk] else ""}
-    # link numbers: beside a bar's middle (away from the mechanism's centre), inside a plate
+            p = np.asarray(sol0.position.get(point, self.ref.get(point)), float)
+            others = [sol0.place(x, q) - p for x in links - {m.frame.name} for q in m.link(x).points if q != point]
+            away = -sum((o / max(float(np.hypot(*o)), 1e-300) for o in others), np.zeros(2))
+            g = max((-90.0, 0.0, 180.0, 90.0), key=lambda a: float(np.dot(_unit(a), away)) + (0.45 if a == -90 else 0))
+            u = _unit(g)
+            nrm = np.array([-u[1], u[0]])
+            base = p + u * 19 * px
+            tri = [p + nrm * 4.5 * px, base + nrm * 11 * px, base - nrm * 11 * px, p - nrm * 4.5 * px]
+            self.ground.append(["M" + " ".join(f"{k * x:.2f},{-k * y:.2f}" for x, y in tri) + "Z", "pivot"])
+            self.hatch(base + nrm * 19 * px, base - nrm * 19 * px, u)
+        return pins_at
+
+
+def _link_numbers(m, ref, px) -> dict:
+    """Where each link's number goes: beside a bar's middle (away from the mechanism's centre),
+    inside a plate."""
     centre = np.mean(np.array(list(ref.values())), axis=0)
     numbers = {}
     for lk in m.moving_links:
@@ -459,38 +540,19 @@ def _static(m, sol0, w, view: _View) -> dict:
         else:
             anchor = pts[0] + np.array([22, 22]) * px
         numbers[lk.name] = [float(anchor[0]), float(anchor[1])]
-    # ground pivots: a triangle on hatched ground, the way most free of the pivot's links
-    pins_at: dict = {}
-    for pin in m.pins:
-        pins_at.setdefault(pin.point, set()).update(pin.links)
-    pivots = []
-    for point, links in pins_at.items():
-        if frame not in links:
-            continue
-        p = np.asarray(sol0.position.get(point, ref.get(point)), float)
-        others = [sol0.place(x, q) - p for x in links - {frame} for q in m.link(x).points if q != point]
-        away = -sum((o / max(float(np.hypot(*o)), 1e-300) for o in others), np.zeros(2))
-        g = max((-90.0, 0.0, 180.0, 90.0), key=lambda a: float(np.dot(_unit(a), away)) + (0.45 if a == -90 else 0))
-        pivots.append({"point": point, "dir": g})
-        u = _unit(g)
-        nrm = np.array([-u[1], u[0]])
-        base = p + u * 19 * px
-        tri = [p + nrm * 4.5 * px, base + nrm * 11 * px, base - nrm * 11 * px, p - nrm * 4.5 * px]
-        ground.append(["M" + " ".join(f"{k * x:.2f},{-k * y:.2f}" for x, y in tri) + "Z", "pivot"])
-        hatch(base + nrm * 19 * px, base - nrm * 19 * px, u)
-    # the points: pins (open circles), centres (crosses), others (dots)
+    return numbers
+
+
+def _point_kinds(m, sol0, pins_at) -> dict:
+    """Each point key's mark: a pin (open circle), a centre of curvature (cross), else a dot."""
     centres = {cn for c in m.contacts for cn in (c.centres or ()) if cn} | \
         {s.centre for s in (*m.sliders, *m.slots) if s.centre}
+    pins = set(pins_at) | {s.pin for s in m.slots}
     kinds = {}
     for key in sol0.position:
         name = key.split("@")[0]
-        if name in pins_at or name in {s.pin for s in m.slots}:
-            kinds[key] = "pin"
-        elif name in centres:
-            kinds[key] = "centre"
-        else:
-            kinds[key] = "dot"
-    return {"bodies": bodies, "ground": ground, "numbers": numbers, "kinds": kinds}
+        kinds[key] = "pin" if name in pins else "centre" if name in centres else "dot"
+    return kinds
 
 
 def _driver_text(m) -> str:

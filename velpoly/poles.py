@@ -79,7 +79,7 @@ from .motion import point_keys
 from .rigid import point_velocity
 
 __all__ = ["Pole", "PoleLine", "PoleSet", "KennedyCircle", "Chord", "locate_poles", "kennedy_circle",
-           "instant_centre_velocities", "link_twists", "pole_key", "pole_label", "poles_section",
+           "instant_centre_velocities", "pole_caption", "link_twists", "pole_key", "pole_label", "poles_section",
            "FAR", "ALIKE"]
 
 FAR = 1e9        # a pole farther than FAR mechanism sizes is at infinity (FORMAT.md section 5)
@@ -383,10 +383,10 @@ def _norm_rows(x) -> np.ndarray:
     return np.sqrt(x[:, 0] * x[:, 0] + x[:, 1] * x[:, 1] + x[:, 2] * x[:, 2])
 
 
-def _alike_limit(T, condition: float) -> float:
+def _alike_limit(twists, condition: float) -> float:
     """Links whose relative twist is at most this move alike: ALIKE x condition x the largest twist
     (zero to the velocity solution's precision); -1 when nothing moves (then all move alike)."""
-    tw = max(map(_norm3, T), default=0.0)
+    tw = max(map(_norm3, twists), default=0.0)
     return ALIKE * max(condition, 1.0) * tw if tw > 0 else -1.0
 
 
@@ -399,10 +399,10 @@ class _Construction:
     them still is their pole), and every other link k sees them alike: P_ak = P_bk.
     """
 
-    def __init__(self, names, T, alike, pairs):
+    def __init__(self, names, twists, alike, pairs):
         self.names, self.n = names, len(names)
         self.keys = [[f"{x}-{y}" if a < b else f"{y}-{x}" for b, y in enumerate(names)] for a, x in enumerate(names)]
-        self.T = np.asarray(T, float).reshape(self.n, 3)
+        self.twists = np.asarray(twists, float).reshape(self.n, 3)
         self.alike = alike               # alike[a][b]: the links move alike (a != b)
         self.info = {}
         self.constraints = {}            # (a, b) -> [(label pair, description)]
@@ -428,8 +428,8 @@ class _Construction:
 
     def _alike(self, i, x, y) -> dict:
         """P_xy = P_iy: link x moves like link i."""
-        H = self.H
-        return dict(how="alike", h=tuple(map(float, H[i][y])),
+        pole = self.pole
+        return dict(how="alike", h=tuple(map(float, pole[i][y])),
                     sine=self.info[(min(i, y), max(i, y))].get("sine", 1.0),
                     via=((self.names[i], self.names[x], self.names[y]),),
                     lines=((self.key(i, x), self.key(i, y)),),
@@ -439,65 +439,65 @@ class _Construction:
 class _Kennedy(_Construction):
     """The construction on plain floats (a few dozen links at most), in normalised coordinates.
 
-    ``H[a][b]``: the pole P_ab as a unit homogeneous triple (floats); ``S[a][b]``:
-    unknown, known or undefined. ``L[a][b][k]`` is the line that triangle
+    ``pole[a][b]``: the pole P_ab as a unit homogeneous triple (floats); ``state[a][b]``:
+    unknown, known or undefined. ``line[a][b][k]`` is the line that triangle
     (a, b, k) of the Kennedy circle gives for P_ab (through P_ak and P_bk),
-    and ``L[a][b][n + c]`` the pair's c-th constraint line; ``Q`` is each
+    and ``line[a][b][n + c]`` the pair's c-th constraint line; ``quality`` is each
     line's drafting quality (0: not drawn yet). Memory O(n^3): for big
     mechanisms :class:`_KennedyArrays` does the same without storing lines.
     """
 
-    def __init__(self, names, T, condition=1.0, n_constraint=0):
-        T = [tuple(t) for t in np.asarray(T, float).tolist()]
+    def __init__(self, names, twists, condition=1.0, n_constraint=0):
+        twists = [tuple(t) for t in np.asarray(twists, float).tolist()]
         n = len(names)
-        limit = _alike_limit(T, condition)
+        limit = _alike_limit(twists, condition)
         alike = [[False] * n for _ in range(n)]
         pairs = []
         for a in range(n):
             for b in range(a + 1, n):
-                ta, tb = T[a], T[b]
+                ta, tb = twists[a], twists[b]
                 if limit < 0 or _norm3((ta[0] - tb[0], ta[1] - tb[1], ta[2] - tb[2])) <= limit:
                     alike[a][b] = alike[b][a] = True
                     pairs.append((a, b))
-        super().__init__(names, T, alike, pairs)
+        super().__init__(names, twists, alike, pairs)
         m = n + n_constraint
-        self.H = [[(0.0, 0.0, 0.0)] * n for _ in range(n)]
-        self.S = [[_UNKNOWN] * n for _ in range(n)]
-        self.L = [[[None] * m for _ in range(n)] for _ in range(n)]
-        self.Q = [[[0.0] * m for _ in range(n)] for _ in range(n)]
+        self.pole = [[(0.0, 0.0, 0.0)] * n for _ in range(n)]
+        self.state = [[_UNKNOWN] * n for _ in range(n)]
+        self.line = [[[None] * m for _ in range(n)] for _ in range(n)]
+        self.quality = [[[0.0] * m for _ in range(n)] for _ in range(n)]
         self.unknown = n * (n - 1) // 2 - len(pairs)  # pairs a < b still unknown
         self.any_alike = bool(pairs)
         for a in range(n):
-            self.S[a][a] = _UNDEFINED
+            self.state[a][a] = _UNDEFINED
         for a, b in pairs:
-            self.S[a][b] = self.S[b][a] = _UNDEFINED
+            self.state[a][b] = self.state[b][a] = _UNDEFINED
 
     def set(self, a, b, h, info) -> None:
         if type(h) is not tuple:   # an array (a slider's pole at infinity, the velocity fallback)
             h = tuple(map(float, h))
-        self.H[a][b] = self.H[b][a] = h
-        if self.S[a][b] == _UNKNOWN:
+        self.pole[a][b] = self.pole[b][a] = h
+        if self.state[a][b] == _UNKNOWN:
             self.unknown -= 1
-        self.S[a][b] = self.S[b][a] = _KNOWN
+        self.state[a][b] = self.state[b][a] = _KNOWN
         self.info[(min(a, b), max(a, b))] = info
 
     def add_constraint(self, a, b, h, label, desc, marks=()) -> None:
         super().add_constraint(a, b, h, label, desc, marks)
         a, b = min(a, b), max(a, b)
         slot = self.n + len(self.cons[(a, b)]) - 1
-        self.L[a][b][slot] = self.L[b][a][slot] = self.cons[(a, b)][-1]
-        self.Q[a][b][slot] = self.Q[b][a][slot] = 1.0
+        self.line[a][b][slot] = self.line[b][a][slot] = self.cons[(a, b)][-1]
+        self.quality[a][b][slot] = self.quality[b][a][slot] = 1.0
 
     def spread(self, new) -> None:
         """The Kennedy lines the new poles complete: with P_xy new and P_xc known, the line
         P_xy P_xc carries the unknown P_yc (triangle y, c, x of the Kennedy circle)."""
-        S, H = self.S, self.H
+        state, pole = self.state, self.pole
         drawn = []
         for x, y in [(a, b) for a, b in new] + [(b, a) for a, b in new]:
             for c in range(self.n):
-                if S[x][c] != _KNOWN or S[y][c] != _UNKNOWN:
+                if state[x][c] != _KNOWN or state[y][c] != _UNKNOWN:
                     continue
-                line = _cross3(H[x][y], H[x][c])
+                line = _cross3(pole[x][y], pole[x][c])
                 sep = _norm3(line)
                 q = min(1.0, sep / _CLOSE) if sep >= _DEGENERATE else 0.0
                 if sep > 0:
@@ -506,13 +506,13 @@ class _Kennedy(_Construction):
         # P_yc's line through P_xy and P_xc may come from both new poles (then with opposite signs):
         # L[y][c] keeps the one drawn from P_xc, L[c][y] the one from P_xy
         for x, y, c, line, q in drawn:
-            self.L[y][c][x], self.Q[y][c][x] = line, q
+            self.line[y][c][x], self.quality[y][c][x] = line, q
         for x, y, c, line, q in drawn:
-            self.L[c][y][x], self.Q[c][y][x] = line, q
+            self.line[c][y][x], self.quality[c][y][x] = line, q
 
     def drawn(self, a, b) -> list:
         """The lines drawn for the pair: [(slot, line, quality)], in slot order."""
-        return [(k, ln, q) for k, (ln, q) in enumerate(zip(self.L[a][b], self.Q[a][b])) if q > 0]
+        return [(k, ln, q) for k, (ln, q) in enumerate(zip(self.line[a][b], self.quality[a][b])) if q > 0]
 
     def candidates(self) -> list:
         """The unknown poles two lines locate now, in key order: (a, b, score, info).
@@ -520,11 +520,11 @@ class _Kennedy(_Construction):
         Of a pole's drawn lines, the pair with the best score, max(sine, |l x m|) times both
         lines' qualities, is taken (the first such pair in slot order).
         """
-        n, S = self.n, self.S
+        n, state = self.n, self.state
         out = []
         for a in range(n):
             for b in range(a + 1, n):
-                if S[a][b] != _UNKNOWN:
+                if state[a][b] != _UNKNOWN:
                     continue
                 lines = self.drawn(a, b)
                 best = None
@@ -551,7 +551,7 @@ class _Kennedy(_Construction):
             done = {(a, b) for a, b, _, _ in out}
             for a in range(n):
                 for b in range(a + 1, n):
-                    hit = self._alike_pair(a, b) if S[a][b] == _UNKNOWN else None
+                    hit = self._alike_pair(a, b) if state[a][b] == _UNKNOWN else None
                     if hit is not None:
                         if (a, b) in done:
                             out = [o for o in out if (o[0], o[1]) != (a, b)]
@@ -564,8 +564,8 @@ class _Kennedy(_Construction):
         best = None
         for a in range(self.n):
             for b in range(a + 1, self.n):
-                if self.S[a][b] == _UNKNOWN:
-                    count = sum(q > 0 for q in self.Q[a][b])
+                if self.state[a][b] == _UNKNOWN:
+                    count = sum(q > 0 for q in self.quality[a][b])
                     if best is None or count > best[0]:
                         best = (count, a, b)
         return best[1], best[2]
@@ -575,13 +575,13 @@ class _Kennedy(_Construction):
         |P_ab x (T_a - T_b)|, and ``(a, b, (x, y, w) unit, position or None, at infinity)`` for each (a
         pole farther than FAR sizes is at infinity; the position never a signed zero)."""
         c0, c1 = float(centre[0]), float(centre[1])
-        T, S, H = self.T.tolist(), self.S, self.H
+        twists, state, pole = self.twists.tolist(), self.state, self.pole
         err, out = 0.0, []
         for a in range(self.n):
             for b in range(a + 1, self.n):
-                if S[a][b] != _KNOWN:
+                if state[a][b] != _KNOWN:
                     continue
-                h, ta, tb = H[a][b], T[a], T[b]
+                h, ta, tb = pole[a][b], twists[a], twists[b]
                 e = _norm3(_cross3(h, (ta[0] - tb[0], ta[1] - tb[1], ta[2] - tb[2])))
                 if e > err:
                     err = e
@@ -594,10 +594,10 @@ class _Kennedy(_Construction):
 
     def _alike_pair(self, a, b):
         """P_ab = P_ib when link a moves like link i, or P_ai when b moves like i (the first such i)."""
-        S, alike = self.S, self.alike
+        state, alike = self.state, self.alike
         for x, y in ((a, b), (b, a)):
             for i in range(self.n):
-                if alike[x][i] and S[i][y] == _KNOWN:
+                if alike[x][i] and state[i][y] == _KNOWN:
                     return self._alike(i, x, y)
         return None
 
@@ -605,7 +605,7 @@ class _Kennedy(_Construction):
 class _KennedyArrays(_Construction):
     """The same construction for big mechanisms, on arrays (all in normalised coordinates).
 
-    ``H[a, b]``: the pole P_ab as a unit homogeneous triple; ``S[a, b]``: unknown, known or
+    ``pole[a, b]``: the pole P_ab as a unit homogeneous triple; ``state[a, b]``: unknown, known or
     undefined. No line is stored: the line that triangle (a, b, c) of the Kennedy circle gives
     for P_ab is P_ca x P_cb, drawn once both are known (not drawn when they nearly coincide), and
     a pair's constraint lines are known from the start. Each round gathers every unknown pole's
@@ -615,24 +615,24 @@ class _KennedyArrays(_Construction):
     (:meth:`best_pairs`).
     """
 
-    def __init__(self, names, T, condition=1.0):
-        T = np.asarray(T, float)
+    def __init__(self, names, twists, condition=1.0):
+        twists = np.asarray(twists, float)
         n = len(names)
-        d = T[:, None, :] - T[None, :, :]
+        d = twists[:, None, :] - twists[None, :, :]
         rel = np.sqrt(d[..., 0] * d[..., 0] + d[..., 1] * d[..., 1] + d[..., 2] * d[..., 2])
-        limit = _alike_limit(T.tolist(), condition)
+        limit = _alike_limit(twists.tolist(), condition)
         alike = (rel <= limit) | (limit < 0)
         np.fill_diagonal(alike, False)
-        super().__init__(names, T, alike, [(int(a), int(b)) for a, b in zip(*np.nonzero(np.triu(alike, 1)))])
-        self.still = not T.any()   # nothing moves: no pole but those by inspection is defined
-        self.H = np.zeros((n, n, 3))
-        self.S = np.full((n, n), _UNKNOWN, np.int8)
-        self.S[self.alike] = _UNDEFINED
-        np.fill_diagonal(self.S, _UNDEFINED)
+        super().__init__(names, twists, alike, [(int(a), int(b)) for a, b in zip(*np.nonzero(np.triu(alike, 1)))])
+        self.still = not twists.any()   # nothing moves: no pole but those by inspection is defined
+        self.pole = np.zeros((n, n, 3))
+        self.state = np.full((n, n), _UNKNOWN, np.int8)
+        self.state[self.alike] = _UNDEFINED
+        np.fill_diagonal(self.state, _UNDEFINED)
 
     @property
     def unknown(self) -> int:
-        return int(np.count_nonzero(np.triu(self.S == _UNKNOWN, 1)))
+        return int(np.count_nonzero(np.triu(self.state == _UNKNOWN, 1)))
 
     def spread(self, new) -> None:
         """Nothing to do: lines are gathered when needed."""
@@ -643,22 +643,22 @@ class _KennedyArrays(_Construction):
         A = np.array([it[0] for it in items])
         B = np.array([it[1] for it in items])
         h = np.array([tuple(map(float, it[2])) for it in items], float).reshape(-1, 3)
-        self.H[A, B] = self.H[B, A] = h
-        self.S[A, B] = self.S[B, A] = _KNOWN
+        self.pole[A, B] = self.pole[B, A] = h
+        self.state[A, B] = self.state[B, A] = _KNOWN
         for a, b, _, info in items:   # a < b
             self.info[a, b] = info
 
     def set(self, a, b, h, info) -> None:
-        self.H[a, b] = self.H[b, a] = h
-        self.S[a, b] = self.S[b, a] = _KNOWN
+        self.pole[a, b] = self.pole[b, a] = h
+        self.state[a, b] = self.state[b, a] = _KNOWN
         self.info[(min(a, b), max(a, b))] = info
 
     def world(self, centre, scale):
         """As :meth:`_Kennedy.world`, on arrays."""
-        n, T = self.n, self.T
-        A, B = np.nonzero(np.triu(self.S == _KNOWN, 1))
-        h = self.H[A, B]
-        err = float(_norm_rows(_cross_rows(h, T[A] - T[B])).max()) if len(A) else 0.0
+        n, twists = self.n, self.twists
+        A, B = np.nonzero(np.triu(self.state == _KNOWN, 1))
+        h = self.pole[A, B]
+        err = float(_norm_rows(_cross_rows(h, twists[A] - twists[B])).max()) if len(A) else 0.0
         hw = np.stack((scale * h[:, 0] + centre[0] * h[:, 2], scale * h[:, 1] + centre[1] * h[:, 2], h[:, 2]),
                       axis=1)
         hw /= np.maximum(_norm_rows(hw), 1e-300)[:, None]
@@ -674,7 +674,7 @@ class _KennedyArrays(_Construction):
         ``both``: the thirds whose poles with both links are known, (len(A), n), if at hand. With
         ``cap``, a pair with more thirds than that has only ``cap`` of them, evenly spread in file order."""
         if both is None:
-            known = self.S == _KNOWN
+            known = self.state == _KNOWN
             both = known[A] & known[B]
         if cap is not None:
             k = np.count_nonzero(both, axis=1)
@@ -686,7 +686,7 @@ class _KennedyArrays(_Construction):
                 both = both.copy()
                 both[many] = sub & ((r * cap) // kk != ((r - 1) * cap) // kk)
         p, c = np.nonzero(both)
-        ln = _cross_rows(self.H[c, A[p]], self.H[c, B[p]])
+        ln = _cross_rows(self.pole[c, A[p]], self.pole[c, B[p]])
         sep = _norm_rows(ln)
         keep = sep >= _DEGENERATE
         p, c, ln, sep = p[keep], c[keep], ln[keep], sep[keep]
@@ -769,15 +769,15 @@ class _KennedyArrays(_Construction):
 
     def candidates(self) -> list:
         """The unknown poles two lines locate now, in key order: (a, b, score, info)."""
-        n, S = self.n, self.S
-        A, B = np.nonzero(np.triu(S == _UNKNOWN, 1))
+        n, state = self.n, self.state
+        A, B = np.nonzero(np.triu(state == _UNKNOWN, 1))
         if not len(A) or self.still:
             return []
-        known = S == _KNOWN
+        known = state == _KNOWN
         both = known[A] & known[B]          # the thirds that close a triangle of known poles
         count = np.count_nonzero(both, axis=1)
         for (a, b), ls in self.cons.items():
-            if S[a, b] == _UNKNOWN:
+            if state[a, b] == _UNKNOWN:
                 count[np.flatnonzero((A == a) & (B == b))] += len(ls)
         ev = np.flatnonzero(count >= 2)
         out = {}
@@ -790,7 +790,7 @@ class _KennedyArrays(_Construction):
                                                  h.tolist(), li[ok].tolist(), lj[ok].tolist()):
             out[p] = (a, b, s, dict(how=None, slots=(i, j), sine=sn, line_vectors=(u, v), h=hh))
         if self.alike.any():   # some links move alike: copy their poles
-            kn = S == _KNOWN
+            kn = state == _KNOWN
             for x_, y_, first in ((A, B, True), (B, A, False)):
                 hit = self.alike[x_] & kn[:, y_].T
                 has = np.flatnonzero(hit.any(axis=1))
@@ -804,14 +804,14 @@ class _KennedyArrays(_Construction):
 
     def most_lines(self) -> tuple[int, int]:
         """The unknown pair with the most lines drawn (the first in key order)."""
-        A, B = np.nonzero(np.triu(self.S == _UNKNOWN, 1))
+        A, B = np.nonzero(np.triu(self.state == _UNKNOWN, 1))
         p = self.lines(A, B)[0]
         k = int(np.argmax(np.bincount(p, minlength=len(A))))
         return int(A[k]), int(B[k])
 
     def _alike(self, i, x, y) -> dict:
         """P_xy = P_iy: link x moves like link i."""
-        return dict(how="alike", h=tuple(map(float, self.H[i, y])),
+        return dict(how="alike", h=tuple(map(float, self.pole[i, y])),
                     sine=self.info[(min(i, y), max(i, y))].get("sine", 1.0),
                     via=((self.names[i], self.names[x], self.names[y]),),
                     lines=((self.key(i, x), self.key(i, y)),),
@@ -860,59 +860,59 @@ def _construct(sol) -> PoleSet:
     names = list(m.link_names)
     idx = {nm: i for i, nm in enumerate(names)}
     centre, scale = _normalisation(sol)
-    T = link_twists(sol, centre, scale)
+    twists = link_twists(sol, centre, scale)
     points, cons = _inspection(sol, centre, scale)
     if len(names) <= _SMALL:
         per_pair = {}
         for i, j, *_ in cons:
             per_pair[frozenset((i, j))] = per_pair.get(frozenset((i, j)), 0) + 1
-        K = _Kennedy(names, T, sol.condition, max(per_pair.values(), default=0))
+        kennedy = _Kennedy(names, twists, sol.condition, max(per_pair.values(), default=0))
     else:
-        K = _KennedyArrays(names, T, sol.condition)
+        kennedy = _KennedyArrays(names, twists, sol.condition)
 
     # by inspection: a pin is its pole whatever the other links do and however fast they move, even
     # when the two links move alike (then P_ik = P_jk stays decided from the velocities)
     new = []
     for i, j, h, how, note, at in points:
         a, b = sorted((idx[i], idx[j]))
-        if K.S[a][b] != _KNOWN:
-            K.set(a, b, h, dict(how=how, order=0, note=note))
+        if kennedy.state[a][b] != _KNOWN:
+            kennedy.set(a, b, h, dict(how=how, order=0, note=note))
             new.append((a, b))
             if at is not None:
-                K.exact[a, b] = at
+                kennedy.exact[a, b] = at
     for i, j, h, label, desc, marks in cons:
-        K.add_constraint(idx[i], idx[j], h, label, desc, marks)
-    K.spread(new)
+        kennedy.add_constraint(idx[i], idx[j], h, label, desc, marks)
+    kennedy.spread(new)
 
     order = 0
     found = []
-    while K.unknown:
-        cands = K.candidates()
+    while kennedy.unknown:
+        cands = kennedy.candidates()
         if cands and max(c[2] for c in cands) >= _POOR:
             cands = [c for c in cands if c[2] >= _POOR]   # poorly meeting lines wait for better ones
         if not cands:
             # Kennedy is stuck: the unknown pole on the most known lines, from the velocity solution
-            a, b = K.most_lines()
-            cands = [(a, b, 0.0, dict(how="velocity", h=_unit(np.subtract(T[a], T[b])),
+            a, b = kennedy.most_lines()
+            cands = [(a, b, 0.0, dict(how="velocity", h=_unit(np.subtract(twists[a], twists[b])),
                                       note="from the links' velocity fields: no two Kennedy lines reach it"))]
         new = []
         for a, b, _, info in cands:
             order += 1
             info["order"] = order
             if info["how"] is None:
-                info["how"] = "kennedy" if min(info["slots"]) < K.n else "normals"
+                info["how"] = "kennedy" if min(info["slots"]) < kennedy.n else "normals"
             new.append((a, b, info.pop("h"), info))
-        K.set_many(new)
+        kennedy.set_many(new)
         new = [(a, b) for a, b, _, _ in new]
         found.extend(new)
-        K.spread(new)
-    return _pole_set(sol, K, centre, scale, found)
+        kennedy.spread(new)
+    return _pole_set(sol, kennedy, centre, scale, found)
 
 
-def _lines_drawn(K, used, where, centre, scale) -> list:
+def _lines_drawn(kennedy, used, where, centre, scale) -> list:
     """The contract's (pair of labels, via entry, PoleLine) of each line ``(a, b, slot, vector)`` used
     for a pole P_ab: a Kennedy line (slot: the third link) through its two poles, or a constraint line."""
-    n, names, keys = K.n, K.names, K.keys
+    n, names, keys = kennedy.n, kennedy.names, kennedy.keys
     out = []
     for a, b, slot, vec in used:
         if slot < n:
@@ -920,8 +920,8 @@ def _lines_drawn(K, used, where, centre, scale) -> list:
             out.append(((ka, kb), (names[a], names[b], names[slot]),
                         _pole_line(f"P_{ka} P_{kb}", (ka, kb), vec, (where[a][slot], where[b][slot]), centre, scale)))
         else:
-            label, desc = K.constraints[(a, b)][slot - n]
-            marks = K.marks.get((a, b, slot - n), ())
+            label, desc = kennedy.constraints[(a, b)][slot - n]
+            marks = kennedy.marks.get((a, b, slot - n), ())
             out.append((label, desc, _pole_line(desc, (), vec, marks, centre, scale, marks)))
     return out
 
@@ -949,14 +949,14 @@ def _direction(hw) -> float:
     return (0.0 if d >= 180.0 else d) + 0.0
 
 
-def _pole_set(sol, K, centre, scale, found) -> PoleSet:
+def _pole_set(sol, kennedy, centre, scale, found) -> PoleSet:
     """The contract's PoleSet: world positions (x, y, w) = (scale x' + centre w', ..., w'), the lines."""
-    names, n = K.names, K.n
-    tw = float(_norm_rows(K.T).max()) if n else 0.0
-    err, known = K.world(centre, scale)
+    names, n = kennedy.names, kennedy.n
+    tw = float(_norm_rows(kennedy.twists).max()) if n else 0.0
+    err, known = kennedy.world(centre, scale)
     where = [[None] * n for _ in range(n)]   # each known pole's finite position, both ways round
     world = {}
-    exact = K.exact
+    exact = kennedy.exact
     for a, b, hk, pos, inf in known:
         at = exact.get((a, b))   # a finite pole by inspection: exactly where it is
         if at is not None:
@@ -967,13 +967,13 @@ def _pole_set(sol, K, centre, scale, found) -> PoleSet:
             direction = None
         world[a, b] = hk, pos, direction
         where[a][b] = where[b][a] = pos
-    pairs = [ab for ab, info in K.info.items() if "slots" in info]   # poles found by two lines
+    pairs = [ab for ab, info in kennedy.info.items() if "slots" in info]   # poles found by two lines
     used = [(a, b, slot, v) for a, b in pairs
-            for slot, v in zip(K.info[a, b]["slots"], K.info[a, b]["line_vectors"])]
-    out = _lines_drawn(K, used, where, centre, scale)
+            for slot, v in zip(kennedy.info[a, b]["slots"], kennedy.info[a, b]["line_vectors"])]
+    out = _lines_drawn(kennedy, used, where, centre, scale)
     drawn = dict(zip(pairs, zip(out[0::2], out[1::2])))
     poles = {}
-    keys, infos = K.keys, K.info
+    keys, infos = kennedy.keys, kennedy.info
     for a in range(n):
         na, ka = names[a], keys[a]
         for b in range(a + 1, n):
@@ -992,11 +992,11 @@ def _pole_set(sol, K, centre, scale, found) -> PoleSet:
             poles[key] = Pole((na, names[b]), key, position, direction, info["how"], info["order"], via,
                               lines, construction, info.get("sine", 1.0), hw, info.get("note", ""))
     err /= tw or 1.0
-    cl = {K.key(a, b): tuple(_pole_line(desc, (), np.array(K.cons[(a, b)][c]), K.marks.get((a, b, c), ()),
-                                        centre, scale, K.marks.get((a, b, c), ()))
+    cl = {kennedy.key(a, b): tuple(_pole_line(desc, (), np.array(kennedy.cons[(a, b)][c]), kennedy.marks.get((a, b, c), ()),
+                                        centre, scale, kennedy.marks.get((a, b, c), ()))
                              for c, (_, desc) in enumerate(items))
-          for (a, b), items in K.constraints.items()}
-    return PoleSet(tuple(names), poles, sol.mechanism.frame.name, tuple(K.key(a, b) for a, b in found), cl, err,
+          for (a, b), items in kennedy.constraints.items()}
+    return PoleSet(tuple(names), poles, sol.mechanism.frame.name, tuple(kennedy.key(a, b) for a, b in found), cl, err,
                    np.asarray(centre, float), scale)
 
 
@@ -1034,88 +1034,120 @@ def instant_centre_velocities(sol, poles: PoleSet | None = None) -> dict:
     difference from the analytic solve, relative to the largest omega and
     the largest speed).
     """
-    ps = locate_poles(sol) if poles is None else poles
-    m = sol.mechanism
-    names = list(ps.links)
-    n = len(names)
-    idx = {nm: i for i, nm in enumerate(names)}
-    centre, scale = ps.centre, ps.scale
-    H = np.zeros((n, n, 3))
-    state = np.zeros((n, n), np.int8)
-    sure = np.ones((n, n))      # how well each pole is fixed: 1, less for lines meeting at a small angle
-    for p in ps.poles.values():
-        a, b = idx[p.links[0]], idx[p.links[1]]
-        if p.undefined:
-            state[a, b] = state[b, a] = _UNDEFINED
-        else:
-            H[a, b] = H[b, a] = _to_local(p.homogeneous, centre, scale)
-            state[a, b] = state[b, a] = _KNOWN
-            sure[a, b] = sure[b, a] = min(1.0, p.sine / _POOR)
-    f = idx[m.frame.name]
-    t = np.zeros((n, 3))
-    known = np.zeros(n, bool)
-    known[f] = True
-    path = []
+    ic = _InstantCentres(sol, locate_poles(sol) if poles is None else poles)
+    ic.at_rest()
+    ic.from_driver()
+    ic.through_poles()
+    ic.from_velocity_solution()
+    return ic.result()
 
-    def fix(j, twist, frm, key):
-        t[j] = twist
-        known[j] = True
-        path.append((names[j], frm, key))
 
-    for j in range(n):   # links at rest move like the frame
-        if j != f and state[f, j] == _UNDEFINED:
-            fix(j, np.zeros(3), names[f], _key(names, f, j))
-    drv = m.driver
-    if not drv.is_slider:
-        d = idx[drv.link]
-        if not known[d]:
-            p = H[f, d]
-            fix(d, drv.omega * p / p[2], None, _key(names, f, d))
-    else:
-        _slider_driver(sol, m, idx, f, H, state, t, known, path, names, centre, scale)
+class _InstantCentres:
+    """The instant-centre method's state: every pole in normalised homogeneous coordinates
+    (``pole[i, j]``, ``state[i, j]`` known or undefined, ``sure[i, j]`` how well it is fixed: 1, less
+    for lines meeting at a small angle), each link's twist as found (``twist[k]`` = omega_k P_1k,
+    ``known[k]``) and the ``path`` by which each link was reached."""
 
-    while not known.all():
-        # one round: every link reachable now, each through its best pole from a link known before
-        ks = np.nonzero(known & (np.arange(n) != f))[0]
-        us = np.nonzero(~known)[0]
-        if len(ks) == 0:
-            break
-        st = state[np.ix_(ks, us)]
-        cond = _norm(_cross(H[f, us][None, :, :], H[np.ix_(ks, us)])) * sure[np.ix_(ks, us)] * sure[f, us][None, :]
-        cond = np.where(st == _UNDEFINED, 1.0, np.where((st == _KNOWN) & (state[f, us] == _KNOWN)[None, :],
-                                                        cond, 0.0))
-        best = cond.max(axis=0)
-        if best.max() < _DEGENERATE:
-            break
-        take = best >= min(_POOR, best.max())
-        new = []
-        for u in np.nonzero(take)[0]:
-            j, i = int(us[u]), int(ks[int(np.argmax(cond[:, u]))])
-            if state[i, j] == _UNDEFINED:
-                new.append((j, t[i].copy(), i))
+    def __init__(self, sol, ps: PoleSet):
+        self.sol, self.m = sol, sol.mechanism
+        self.names = names = list(ps.links)
+        self.n = n = len(names)
+        self.idx = {nm: i for i, nm in enumerate(names)}
+        self.centre, self.scale = ps.centre, ps.scale
+        self.pole = np.zeros((n, n, 3))
+        self.state = np.zeros((n, n), np.int8)
+        self.sure = np.ones((n, n))
+        for p in ps.poles.values():
+            a, b = self.idx[p.links[0]], self.idx[p.links[1]]
+            if p.undefined:
+                self.state[a, b] = self.state[b, a] = _UNDEFINED
             else:
-                q, pj = H[i, j], H[f, j]
-                cj = _cross(pj, q)
-                lam = float(_cross(t[i], q) @ cj) / float(cj @ cj)
-                new.append((j, lam * pj, i))
-        for j, twist, i in new:
-            fix(j, twist, names[i], _key(names, i, j))
-    T = None
-    for j in range(n):   # unreachable through the poles (degenerate): from the velocity solution
-        if not known[j]:
-            T = link_twists(sol, centre, scale) if T is None else T
-            fix(j, T[j], None, "velocity")
+                self.pole[a, b] = self.pole[b, a] = _to_local(p.homogeneous, self.centre, self.scale)
+                self.state[a, b] = self.state[b, a] = _KNOWN
+                self.sure[a, b] = self.sure[b, a] = min(1.0, p.sine / _POOR)
+        self.frame = self.idx[self.m.frame.name]
+        self.twist = np.zeros((n, 3))
+        self.known = np.zeros(n, bool)
+        self.known[self.frame] = True
+        self.path = []
 
-    omega = {names[j]: float(t[j][2]) for j in range(n)}
-    velocity = {}
-    for key, _, lk in point_keys(m):
-        velocity[key] = _twist_velocity(t[idx[lk]], sol.position[key], centre, scale)
-    w_ref = max((abs(v) for v in sol.omega.values()), default=0.0) or 1.0
-    v_ref = max((float(np.hypot(*v)) for v in sol.velocity.values()), default=0.0) or 1.0
-    e_om = max((abs(omega[k] - sol.omega[k]) for k in omega), default=0.0) / w_ref
-    e_v = max((float(np.hypot(*(velocity[k] - sol.velocity[k]))) for k in velocity), default=0.0) / v_ref
-    return {"omega": omega, "velocity": velocity, "path": tuple(path),
-            "max_error": {"omega": e_om, "velocity": e_v}}
+    def fix(self, j, twist, frm, key):
+        """Link j moves with ``twist``, reached from link ``frm`` through the pole ``key``."""
+        self.twist[j] = twist
+        self.known[j] = True
+        self.path.append((self.names[j], frm, key))
+
+    def at_rest(self):
+        """Links at rest move like the frame (their frame pole is undefined)."""
+        f = self.frame
+        for j in range(self.n):
+            if j != f and self.state[f, j] == _UNDEFINED:
+                self.fix(j, np.zeros(3), self.names[f], _key(self.names, f, j))
+
+    def from_driver(self):
+        """A crank turns with its omega about its frame pole; a slider driver: :func:`_slider_driver`."""
+        drv, f = self.m.driver, self.frame
+        if drv.is_slider:
+            _slider_driver(self.sol, self.m, self.idx, f, self.pole, self.state, self.twist, self.known,
+                           self.path, self.names, self.centre, self.scale)
+            return
+        d = self.idx[drv.link]
+        if not self.known[d]:
+            p = self.pole[f, d]
+            self.fix(d, drv.omega * p / p[2], None, _key(self.names, f, d))
+
+    def through_poles(self):
+        """Rounds: every link reachable now, each through its best pole from a link known before:
+        ``lambda_j (P_1j x P_ij) = t_i x P_ij`` (a link moving alike takes the other's twist)."""
+        f, pole, state, twist = self.frame, self.pole, self.state, self.twist
+        while not self.known.all():
+            ks = np.nonzero(self.known & (np.arange(self.n) != f))[0]
+            us = np.nonzero(~self.known)[0]
+            if len(ks) == 0:
+                break
+            st = state[np.ix_(ks, us)]
+            cond = _norm(_cross(pole[f, us][None, :, :], pole[np.ix_(ks, us)])) * self.sure[np.ix_(ks, us)] \
+                * self.sure[f, us][None, :]
+            cond = np.where(st == _UNDEFINED, 1.0, np.where((st == _KNOWN) & (state[f, us] == _KNOWN)[None, :],
+                                                            cond, 0.0))
+            best = cond.max(axis=0)
+            if best.max() < _DEGENERATE:
+                break
+            take = best >= min(_POOR, best.max())
+            new = []
+            for u in np.nonzero(take)[0]:
+                j, i = int(us[u]), int(ks[int(np.argmax(cond[:, u]))])
+                if state[i, j] == _UNDEFINED:
+                    new.append((j, twist[i].copy(), i))
+                else:
+                    q, pj = pole[i, j], pole[f, j]
+                    cj = _cross(pj, q)
+                    lam = float(_cross(twist[i], q) @ cj) / float(cj @ cj)
+                    new.append((j, lam * pj, i))
+            for j, t, i in new:
+                self.fix(j, t, self.names[i], _key(self.names, i, j))
+
+    def from_velocity_solution(self):
+        """Links the poles cannot reach (degenerate): their twists from the velocity solution."""
+        twists = None
+        for j in range(self.n):
+            if not self.known[j]:
+                twists = link_twists(self.sol, self.centre, self.scale) if twists is None else twists
+                self.fix(j, twists[j], None, "velocity")
+
+    def result(self) -> dict:
+        """omega, every point's velocity ``V_B = omega_k x (B - P_1k)``, the path, the largest errors."""
+        sol, names = self.sol, self.names
+        omega = {names[j]: float(self.twist[j][2]) for j in range(self.n)}
+        velocity = {}
+        for key, _, lk in point_keys(self.m):
+            velocity[key] = _twist_velocity(self.twist[self.idx[lk]], sol.position[key], self.centre, self.scale)
+        w_ref = max((abs(v) for v in sol.omega.values()), default=0.0) or 1.0
+        v_ref = max((float(np.hypot(*v)) for v in sol.velocity.values()), default=0.0) or 1.0
+        e_om = max((abs(omega[k] - sol.omega[k]) for k in omega), default=0.0) / w_ref
+        e_v = max((float(np.hypot(*(velocity[k] - sol.velocity[k]))) for k in velocity), default=0.0) / v_ref
+        return {"omega": omega, "velocity": velocity, "path": tuple(self.path),
+                "max_error": {"omega": e_om, "velocity": e_v}}
 
 
 def _key(names, a, b) -> str:
@@ -1129,7 +1161,7 @@ def _twist_velocity(t, x, centre, scale) -> np.ndarray:
     return scale * np.array([t[1] - t[2] * xl[1], -t[0] + t[2] * xl[0]])
 
 
-def _slider_driver(sol, m, idx, f, H, state, t, known, path, names, centre, scale):
+def _slider_driver(sol, m, idx, f, pole, state, t, known, path, names, centre, scale):
     """Seed the twists from a slider driver: the block's motion relative to its guide is known.
 
     Straight path: a translation s e, the relative twist (-s e_y, s e_x, 0)/scale;
@@ -1155,13 +1187,13 @@ def _slider_driver(sol, m, idx, f, H, state, t, known, path, names, centre, scal
         known[b] = True
         path.append((names[b], None, key))
         return
-    A = np.stack([H[f, b], -H[f, g]], axis=1)
+    A = np.stack([pole[f, b], -pole[f, g]], axis=1)
     sol_, _, rank, _ = np.linalg.lstsq(A, r, rcond=None)
     if rank < 2:  # the two frame poles coincide: the guide's twist from the velocity solution
-        T = link_twists(sol, centre, scale)
-        t[g], t[b] = T[g], T[g] + r
+        twists = link_twists(sol, centre, scale)
+        t[g], t[b] = twists[g], twists[g] + r
     else:
-        t[b], t[g] = sol_[0] * H[f, b], sol_[1] * H[f, g]
+        t[b], t[g] = sol_[0] * pole[f, b], sol_[1] * pole[f, g]
     known[b] = known[g] = True
     path.append((names[b], None, key))
     path.append((names[g], names[b], key))
@@ -1186,3 +1218,35 @@ def pole_label(key: str, compact: bool = True) -> str:
     """The textbook name of a pole: ``P_13`` for key "1-3" (``P_{10-12}`` where names are longer)."""
     i, j = key.split("-")
     return f"P_{i}{j}" if compact and len(i) == 1 and len(j) == 1 else f"P_{{{key}}}"
+
+
+def pole_caption(p: Pole, name=None) -> str:
+    """How a pole found (``order`` > 0) was found, in the textbook's words: the caption of its step
+    (``velpoly draw --steps`` and the html page's stepper alike). ``name(key)`` writes a pole's name
+    (``"1-3"`` -> ``P_13``, :func:`pole_label` by default; the sheets pass mathtext's).
+
+    Aronhold-Kennedy: "P_13 on the line P_12 P_23 and the line P_14 P_34 (Aronhold-Kennedy: the
+    poles of three links lie on one line)"; a constraint line reads "the common normal at P" or
+    "the slot's normal at A".
+    """
+    from .polygons import point_text
+    name = name or pole_label
+    me = name(p.key)
+    if p.how == "alike" and p.lines:
+        pair, same = p.lines[0]
+        i, x = pair.split("-")
+        return f"{me} = {name(same)}: links {i} and {x} move alike at this instant"
+    if p.how == "velocity":
+        return f"{me} from the velocity solution: no two Kennedy lines reach it"
+    words = []
+    for ln in p.lines:
+        if ln[0] == "normal":
+            words.append(f"the common normal at {point_text(ln[1])}")
+        elif ln[0] == "slot normal":
+            words.append(f"the slot's normal at {point_text(ln[1])}")
+        else:
+            words.append(f"the line {name(ln[0])} {name(ln[1])}")
+    why = (" (Aronhold-Kennedy: the poles of three links lie on one line)"
+           if any(ln[0] not in ("normal", "slot normal") for ln in p.lines) else "")
+    return f"{me} on " + " and ".join(words) + why if words else f"{me} ({p.how})"
+

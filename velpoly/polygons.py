@@ -45,6 +45,16 @@ Every intersection is solved with :func:`velpoly.geometry.intersect_lines`;
 two lines closer to parallel than ``1 / kinematics.SINGULAR`` (the sine of
 their angle) make a singular pose (:class:`~velpoly.errors.SingularPoseError`).
 
+**Names.** The plan's steps are small frozen dataclasses named as the book names
+them (:class:`FrameAtOrigin`, :class:`DriverStep`, :class:`SliderDriverStep`,
+:class:`KnownMotionStep`, :class:`IntersectionStep` -- case 2a --,
+:class:`VelocityImageStep`, :class:`AuxiliaryPointStep`, :class:`TrialSolutionStep`),
+each writing its equation and its caption in words; their operations
+(:class:`VelocityImage`, :class:`Intersection`, :class:`TrialSolution`, ...)
+apply themselves to a replay (:class:`_Run`), whose chains hold
+:class:`CentripetalTerm` and :class:`JointMotionTerm` (with the Coriolis term,
+:meth:`_Run.coriolis_term`).
+
 **Hand drafting.** :func:`hand_drafting` replays the same plan, vectorised
 over many random perturbations (directions within +-0.25 deg, points within
 +-0.25 mm at the scale that fits the polygon in ~120 mm), and reports the
@@ -52,9 +62,11 @@ over many random perturbations (directions within +-0.25 deg, points within
 """
 from __future__ import annotations
 
+import dataclasses
 import math
 import weakref
 from dataclasses import dataclass, field
+from typing import ClassVar, NamedTuple
 
 import numpy as np
 
@@ -66,7 +78,7 @@ from .rigid import coriolis as coriolis_term, dot as _dot, normal_acceleration, 
 
 __all__ = [
     "ConstructionLine", "Vector", "Step", "AuxiliaryPoint", "Polygon", "ConstructionError",
-    "velocity_polygon", "acceleration_polygon", "construction_plan", "hand_drafting", "graphical_section",
+    "velocity_polygon", "acceleration_polygon", "construction_plan", "hand_drafting", "graphical_section", "point_text",
     "SINE_LIMIT",
 ]
 
@@ -138,6 +150,7 @@ class Step:
     sine: float
     auxiliary: tuple = ()
     link: str | None = None
+    caption: str = ""
 
 
 @dataclass(frozen=True)
@@ -304,27 +317,262 @@ class _Geo:
 
 
 # -- the plan (structure only, the same at both levels) ----------------------------------------------
+# What a construction line is made of: its base image, the known vectors chained on it (terms), and
+# the one unknown component it leaves, along its direction.
+@dataclass(frozen=True)
+class KnownVector:
+    """A known vector of a chain, in its true sense: ``value`` is what ``label`` names.
+
+    The chain adds it ``sign`` times (-1 where the line starts from the other side of the joint's
+    equation). ``reverse`` is (label, of) of the negative quantity where it has a name of its own
+    (-A^n_WQ = A^n_QW, -V_B3/B4 = V_B4/B3, -2 omega_4 x V_B3/B4 = 2 omega_4 x V_B4/B3), else None
+    (a circular path's V_rel^2/rho towards its centre is not the reverse motion's).
+    """
+
+    kind: str
+    label: str
+    value: object      # complex (exact run) or an array of complex samples (hand drafting)
+    of: tuple
+    sign: int = 1
+    reverse: tuple | None = None
+
+    @property
+    def written(self) -> str:
+        """As the equation writes it: "-2 omega_4 x V_A3/A4" where subtracted."""
+        return ("-" if self.sign < 0 else "") + self.label
+
+
+@dataclass(frozen=True)
+class CentripetalTerm:
+    """The normal (centripetal) acceleration of W about Q on a rigid link:
+    ``A^n_WQ = -omega_link^2 R_WQ``, towards Q. Nothing at velocity level."""
+
+    link: str
+    q: str
+    w: str
+
+    def known(self, run: "_Run") -> list[KnownVector]:
+        if run.level == "velocity":
+            return []
+        g = run.g
+        om = run.vel.rate[self.link]
+        r = g.zpos[self.w] - g.zpos[self.q]
+        nw, nq = g.name((self.link, self.w)), g.name((self.link, self.q))
+        kw, kq = g.qkey((self.link, self.w)), g.qkey((self.link, self.q))
+        return [KnownVector("normal", f"A^n_{nw}{nq}", normal_acceleration(om, r), ("normal", self.link, kw, kq), 1,
+                            (f"A^n_{nq}{nw}", ("normal", self.link, kq, kw)))]
+
+
+@dataclass(frozen=True)
+class JointMotionTerm:
+    """The known part of a joint's relative motion at the place of W (link a's point relative to
+    link b's, :meth:`_Run.joint_motion`: a driven or prescribed slip; at acceleration level the
+    Coriolis term, the path's normal term, a contact's relative acceleration), added ``sign`` times."""
+
+    rel: int
+    sign: int
+    w: str
+
+    def known(self, run: "_Run") -> list[KnownVector]:
+        return [dataclasses.replace(k, sign=self.sign) for k in run.joint_motion(self.rel, self.w)]
+
+
+class UnknownPart(NamedTuple):
+    """A line's unknown component at a level: its label, the sign the line adds it with, what it
+    shows (a Vector's ``of``) and the arrow's kind."""
+
+    label: str
+    sign: int
+    of: tuple
+    kind: str
+
+
+@dataclass(frozen=True)
+class RotationAbout:
+    """The unknown of a rigid link's line: ``V_WQ = omega x R_WQ``, perpendicular to QW, of unknown
+    magnitude (at acceleration level its tangential component ``A^t_WQ = alpha x R_WQ``)."""
+
+    link: str
+    q: str
+    w: str
+
+    def describe(self, run: "_Run") -> UnknownPart:
+        g, lk = run.g, self.link
+        kw, kq = g.qkey((lk, self.w)), g.qkey((lk, self.q))
+        name = f"{g.name((lk, self.w))}{g.name((lk, self.q))}"
+        if run.level == "velocity":
+            return UnknownPart(f"V_{name}", 1, ("difference", kw, kq), "relative")
+        return UnknownPart(f"A^t_{name}", 1, ("tangential", lk, kw, kq), "tangential")
+
+    def direction_words(self, run: "_Run") -> str:
+        return f"⊥ {_segment(self.q, self.w)}"
+
+
+@dataclass(frozen=True)
+class SlipAlongPath:
+    """The unknown of a joint's line: the slip ``V_Wa/Wb`` (``A_Wa/Wb``) of link a's point W
+    relative to link b's, along the path (a slider, slot, sliding contact), added ``sign`` times."""
+
+    rel: int
+    sign: int
+    w: str
+
+    def describe(self, run: "_Run") -> UnknownPart:
+        r = run.g.rels[self.rel]
+        ka, kb, kk = run.rel_keys(r, self.w)
+        return UnknownPart(f"{run.X}_{self.w}{r.a}/{self.w}{r.b}", self.sign, ("slip", ka, kb, r.b, kk),
+                           "relative" if run.level == "velocity" else "slip")
+
+    def direction_words(self, run: "_Run") -> str:
+        return _path_reason(run.g, run.g.rels[self.rel], prose=True)
+
+
+@dataclass(frozen=True)
+class ThroughAuxiliaryPoint:
+    """The unknown of an auxiliary point S of a link reached from its point X: the unknown of X's
+    own ``line`` plus ``V_SX`` (``A^t_SX``), both along that line (S is on X's normal)."""
+
+    line: "_Line"
+    link: str
+    x: str
+    s: str
+
+    def describe(self, run: "_Run") -> UnknownPart:
+        g, lk = run.g, self.link
+        vel = run.level == "velocity"
+        inner = self.line.unknown.describe(run)
+        ks, kx = g.qkey((lk, self.s)), g.qkey((lk, self.x))
+        t_of = ("difference", ks, kx) if vel else ("tangential", lk, ks, kx)
+        label = _sum([("-" if inner.sign < 0 else "") + inner.label, f"{run.X}{'' if vel else '^t'}_{self.s}{self.x}"])
+        return UnknownPart(label, 1, ("sum", ((inner.sign, inner.of), (1, t_of))), "relative")
+
+    def direction_words(self, run: "_Run") -> str:
+        return self.line.unknown.direction_words(run)
+
+
 @dataclass(frozen=True)
 class _Line:
-    """A construction line on an unknown image: the chain base + terms, then along ``direction``.
+    """A construction line on an unknown image: the chain ``base`` + ``terms``, then along ``direction``.
 
-    ``terms``: ('normal', link, Q, W) is -omega_link^2 R_WQ (acceleration only);
-    ('rel', rel index, sign, W) the known part of a joint's relative motion.
-    ``unknown``: what the line's unknown component is: ('rigid', link, Q, W), ('path', rel, sign, W),
-    or ('aux', inner line, link, X, S) for an auxiliary point S reached from its point X.
+    ``terms``: :class:`CentripetalTerm` and :class:`JointMotionTerm` (the known vectors chained);
+    ``unknown``: :class:`RotationAbout`, :class:`SlipAlongPath` or :class:`ThroughAuxiliaryPoint`.
     """
 
     base: tuple
     terms: tuple
     direction: np.ndarray
-    unknown: tuple
+    unknown: object
     reason: str
     links: tuple
+
+    @property
+    def rigid_link(self) -> str | None:
+        """The link whose rigidity this line uses (directly or through an auxiliary point's line)."""
+        u = self.unknown
+        if isinstance(u, ThroughAuxiliaryPoint):
+            u = u.line.unknown
+        return u.link if isinstance(u, RotationAbout) else None
+
+
+# The operations of the plan: each applies itself to a replay (_Run) of the construction.
+@dataclass(frozen=True)
+class DriverRate:
+    """The driver's omega (alpha) is given."""
+
+    link: str
+
+    def apply(self, run: "_Run") -> None:
+        drv = run.g.m.driver
+        run.rate[self.link] = run._const(drv.omega if run.level == "velocity" else drv.alpha)
+
+
+@dataclass(frozen=True)
+class TurnsTogether:
+    """A block and its straight guide turn together: ``link``'s omega is ``other``'s (alpha likewise)."""
+
+    link: str
+    other: str
+
+    def apply(self, run: "_Run") -> None:
+        run.rate[self.link] = run.rate[self.other]
+
+
+@dataclass(frozen=True)
+class RateFromImages:
+    """omega = |qw| / |QW| with the sense of the turn: ``omega = Im((V_W - V_Q) / R_WQ)``
+    (``alpha`` likewise from the acceleration images)."""
+
+    link: str
+    q: str
+    w: str
+
+    def apply(self, run: "_Run") -> None:
+        r = run.g.zpos[self.w] - run.g.zpos[self.q]
+        d = run.image((self.link, self.w)) - run.image((self.link, self.q))
+        run.rate[self.link] = (d / r).imag
+
+
+@dataclass(frozen=True)
+class VelocityImage:
+    """A point W of a link from its velocity (acceleration) image: the link's image is similar to
+    the link, ``V_W = V_Q + omega x R_WQ`` (``A_W = A_Q + alpha x R_WQ - omega^2 R_WQ``)."""
+
+    link: str
+    q: str
+    w: str
+
+    def apply(self, run: "_Run") -> None:
+        run._set((self.link, self.w), run.rigid_point(self.link, self.q, self.w))
+
+
+@dataclass(frozen=True)
+class KnownRelativeMotion:
+    """A known relative vector (case 1): a rolling contact ``V_P3 = V_P4``, a prescribed slip or a
+    slider driver ``V_F5 = V_F0 + V_F5/F0``: ``dst`` is ``src`` plus the joint's known motion."""
+
+    dst: tuple
+    src: tuple
+    rel: int
+    sign: int
+
+    def apply(self, run: "_Run") -> None:
+        tip, parts = run.chain(self.src, (JointMotionTerm(self.rel, self.sign, self.dst[1]),))
+        run._set(self.dst, tip)
+        run._draw(parts)
+
+
+@dataclass(frozen=True)
+class Intersection:
+    """Case 2a: the unknown image lies on two lines through known images (two unknown magnitudes,
+    e.g. ``V_B = V_A + V_BA = V_O4 + V_BO4``): where ``first`` and ``second`` meet."""
+
+    target: tuple
+    first: _Line
+    second: _Line
+
+    def apply(self, run: "_Run") -> None:
+        run.meet(self.target, self.first, self.second)
+
+
+@dataclass(frozen=True)
+class TrialSolution:
+    """False position: ``seed`` assumed on its one ``line``, the ``ops`` that follow replayed for two
+    trial values, and the ``closure`` link (link, Q, W), rigid, fixes the assumed value."""
+
+    seed: tuple
+    line: _Line
+    ops: tuple
+    closure: tuple
+
+    def apply(self, run: "_Run") -> None:
+        run.trial(self.seed, self.line, self.ops, self.closure)
 
 
 @dataclass
 class _PStep:
-    kind: str
+    """A step while it is planned (``cls``: the :class:`PlanStep` it becomes, :meth:`frozen`)."""
+
+    cls: type
     ops: list = field(default_factory=list)
     found: list = field(default_factory=list)      # canonical places located
     omegas: list = field(default_factory=list)     # links whose rate is fixed here
@@ -333,6 +581,10 @@ class _PStep:
     target: tuple | None = None
     link: str | None = None
     rel: int | None = None
+
+    def frozen(self) -> "PlanStep":
+        return self.cls(tuple(self.ops), tuple(self.found), tuple(self.omegas), self.lines, self.sine,
+                        self.target, self.link, self.rel)
 
 
 class _Planner:
@@ -372,7 +624,7 @@ class _Planner:
         lk, n = place
         if self.is_known(place):
             return
-        step.ops.append(("image", lk, self.kp[lk][0], n))
+        step.ops.append(VelocityImage(lk, self.kp[lk][0], n))
         self.mark(place, step)
 
     def settle(self, step: _PStep):
@@ -383,7 +635,7 @@ class _Planner:
             for a, b in self.g.rate_eq:
                 for x, y in ((a, b), (b, a)):
                     if x in self.rk and y not in self.rk:
-                        step.ops.append(("rate_eq", y, x))
+                        step.ops.append(TurnsTogether(y, x))
                         self.rk.add(y)
                         step.omegas.append(y)
                         changed = True
@@ -396,7 +648,7 @@ class _Planner:
                     if self.trial and lk not in self.rigid_used:   # over-determined: closes the trial
                         self.closure = (lk, q, w)
                         return
-                    step.ops.append(("rate_from", lk, q, w))
+                    step.ops.append(RateFromImages(lk, q, w))
                     self.rk.add(lk)
                     step.omegas.append(lk)
                     changed = True
@@ -406,20 +658,21 @@ class _Planner:
         self.steps.append(step)
 
     # the plan ----------------------------------------------------------------------------------
-    def run(self) -> list[_PStep]:
+    def run(self) -> list[PlanStep]:
+        """The plan: every step, in order, frozen."""
         g = self.g
-        s0 = _PStep("known")
+        s0 = _PStep(FrameAtOrigin)
         for n in g.places(g.frame):
             self.mark((g.frame, n), s0)
         self.add(s0)
         drv = g.m.driver
         if not drv.is_slider:
-            s = _PStep("driver", ops=[("rate", drv.link)], omegas=[drv.link], link=drv.link)
+            s = _PStep(DriverStep, ops=[DriverRate(drv.link)], omegas=[drv.link], link=drv.link)
             self.rk.add(drv.link)
             self._image_ops(drv.link, s)
             self.add(s)
         self._loop()
-        return self.steps
+        return [st.frozen() for st in self.steps]
 
     def _loop(self):
         """Steps until every image is located (or, in a trial, until it closes or stalls)."""
@@ -470,8 +723,8 @@ class _Planner:
 
     def _try_seed(self, t, seed) -> _PStep | None:
         self.trial, self.closure = True, None
-        self.rigid_used = {seed.links[0]} if seed.unknown[0] == "rigid" else set()
-        head = _PStep("auxiliary", lines=(seed,), target=t)
+        self.rigid_used = {seed.rigid_link} if seed.rigid_link else set()
+        head = _PStep(TrialSolutionStep, lines=(seed,), target=t)
         self.mark(t, head)
         self.steps.append(head)
         n0 = len(self.steps)
@@ -484,8 +737,8 @@ class _Planner:
         self.closure = None
         sub = self.steps[n0:]
         del self.steps[n0:]
-        head.ops = [("trial", t, seed, [op for st in [head] + sub for op in st.ops], (lk, q, w)),
-                    ("rate_from", lk, q, w)]
+        head.ops = [TrialSolution(t, seed, tuple(op for st in [head] + sub for op in st.ops), (lk, q, w)),
+                    RateFromImages(lk, q, w)]
         head.found += [p for st in sub for p in st.found]
         head.omegas = [x for st in [head] + sub for x in st.omegas if x != lk] + [lk]
         head.sine = min([1.0] + [st.sine for st in sub])   # the closure's own sine is added when drawn
@@ -499,13 +752,13 @@ class _Planner:
         base = self.kp[lk][0]
         for n in self.g.places(lk):
             if not self.is_known((lk, n)):
-                step.ops.append(("image", lk, base, n))
+                step.ops.append(VelocityImage(lk, base, n))
                 self.mark((lk, n), step)
 
     def _image(self) -> bool:
         for lk in self.g.moving:
             if self.full(lk) and any(not self.is_known((lk, n)) for n in self.g.places(lk)):
-                s = _PStep("image", link=lk)
+                s = _PStep(VelocityImageStep, link=lk)
                 self._image_ops(lk, s)
                 self.add(s)
                 return True
@@ -523,9 +776,9 @@ class _Planner:
                         continue
                     if r.at is None and (self.full(dst[0]) or (n != r.prefer and self.g.grounded(src))):
                         continue   # only to give a link an image it lacks (no spare points)
-                    s = _PStep("driver" if r.source == "drive" else "known", target=self.g.canon(dst), rel=i)
+                    s = _PStep(SliderDriverStep if r.source == "drive" else KnownMotionStep, target=self.g.canon(dst), rel=i)
                     self.ensure(src, s)
-                    s.ops.append(("equal", dst, src, i, sign))
+                    s.ops.append(KnownRelativeMotion(dst, src, i, sign))
                     self.mark(dst, s)
                     self.add(s)
                     return True
@@ -549,8 +802,8 @@ class _Planner:
                     q = ks[0]
                     r = g.zpos[n] - g.zpos[q]
                     rn = abs(r)
-                    out.append(_Line((lk, q), (("normal", lk, q, n),), np.array((-r.imag / rn, r.real / rn)),
-                                     ("rigid", lk, q, n), f"perpendicular to {q}{n}", (lk,)))
+                    out.append(_Line((lk, q), (CentripetalTerm(lk, q, n),), np.array((-r.imag / rn, r.real / rn)),
+                                     RotationAbout(lk, q, n), f"perpendicular to {q}{n}", (lk,)))
             for i, r in enumerate(g.rels):
                 if r.exact or r.at not in (None, n) or lk not in (r.a, r.b):
                     continue
@@ -559,7 +812,7 @@ class _Planner:
                 partner, sign = (r.b, 1) if lk == r.a else (r.a, -1)
                 pp = (partner, n)
                 if self.is_known(pp) or self.full(partner):
-                    out.append(_Line(pp, (("rel", i, sign, n),), r.direction, ("path", i, sign, n),
+                    out.append(_Line(pp, (JointMotionTerm(i, sign, n),), r.direction, SlipAlongPath(i, sign, n),
                                      _path_reason(g, r), (r.a, r.b)))
         return out
 
@@ -581,7 +834,7 @@ class _Planner:
                 if g.canon(pp) == c or self.is_known(pp) or self.full(partner):
                     continue   # known: an equality step, not a line
                 for ln in self.lines_on(pp):
-                    out.append(_Line(ln.base, ln.terms + (("rel", i, sign, n),), ln.direction, ln.unknown,
+                    out.append(_Line(ln.base, ln.terms + (JointMotionTerm(i, sign, n),), ln.direction, ln.unknown,
                                      f"{ln.reason}, offset by the driver's slip of {n}{r.a} on {n}{r.b}",
                                      tuple(dict.fromkeys(ln.links + (r.a, r.b)))))
         return out
@@ -621,12 +874,12 @@ class _Planner:
             if sine < SINE_LIMIT:
                 self.singular = self.singular or (t, l1, l2, sine)
                 continue
-            s = _PStep("intersection", lines=(l1, l2), sine=sine, target=t)
+            s = _PStep(IntersectionStep, lines=(l1, l2), sine=sine, target=t)
             for ln in (l1, l2):
                 self.ensure(ln.base, s)
-                if ln.unknown[0] == "rigid":
-                    self.rigid_used.add(ln.links[0])
-            s.ops.append(("meet", t, l1, l2))
+                if ln.rigid_link:
+                    self.rigid_used.add(ln.rigid_link)
+            s.ops.append(Intersection(t, l1, l2))
             self.mark(t, s)
             self.add(s)
             return True
@@ -664,16 +917,16 @@ class _Planner:
         g.zpos[name] = _z(spos)
         g.extra[lk].append(name)
         g.names[(lk, name)] = name
-        aux = [_Line(ln.base, ln.terms + (("normal", lk, p, name),), ln.direction, ("aux", ln, lk, p, name),
+        aux = [_Line(ln.base, ln.terms + (CentripetalTerm(lk, p, name),), ln.direction, ThroughAuxiliaryPoint(ln, lk, p, name),
                      ln.reason + f" (auxiliary point {name} of link {lk} on the normal through {p})",
                      ln.links + (lk,)) for p, ln in ((x, lx), (y, ly))]
-        s = _PStep("auxiliary", lines=tuple(aux), sine=sine, target=(lk, name), link=lk)
+        s = _PStep(AuxiliaryPointStep, lines=tuple(aux), sine=sine, target=(lk, name), link=lk)
         self.rigid_used.add(lk)
         for ln in aux:
             self.ensure(ln.base, s)
-            if ln.unknown[1].unknown[0] == "rigid":
-                self.rigid_used.add(ln.unknown[1].links[0])
-        s.ops.append(("meet", (lk, name), aux[0], aux[1]))
+            if ln.rigid_link:
+                self.rigid_used.add(ln.rigid_link)
+        s.ops.append(Intersection((lk, name), aux[0], aux[1]))
         self.mark((lk, name), s)
         self.add(s)
         return True
@@ -706,18 +959,23 @@ def _best_pair(lines):
     return best
 
 
-def _path_reason(g: _Geo, r: _Rel) -> str:
+def _path_reason(g: _Geo, r: _Rel, prose: bool = False) -> str:
+    """The direction of a joint's path line: the construction line's reason ("parallel to the path of
+    F on 0"), or with ``prose`` as a caption writes it ("∥ the path of F on link 0")."""
     m = g.m
+    par, perp, name, link = ("∥", "⊥", point_text, "link ") if prose else ("parallel to", "perpendicular to", str, "")
     if r.source == "slider":
-        return f"parallel to the path of {m.sliders[r.index].point} on {r.b}"
+        return f"{par} the path of {name(m.sliders[r.index].point)} on {link}{r.b}"
     if r.source == "slot":
         s = m.slots[r.index]
-        return f"along the slot of {s.slot} at {s.pin}"
+        return f"along the slot of {link}{s.slot} at {name(s.pin)}"
     if r.source == "centre":
         if r.centre is None:
-            return f"parallel to the flat of {r.b} (the path of {r.at} on {r.b})"
-        return f"perpendicular to {r.centre}{r.at} (the path of {r.at} on {r.b}, a circle about {r.centre})"
-    return f"along the common tangent at {r.at}"
+            return f"{par} the flat of {link}{r.b}" + ("" if prose else f" (the path of {r.at} on {r.b})")
+        if prose:
+            return f"{perp} {_segment(r.centre, r.at)} (a circle about {name(r.centre)} on link {r.b})"
+        return f"{perp} {r.centre}{r.at} (the path of {r.at} on {r.b}, a circle about {r.centre})"
+    return f"along the common tangent at {name(r.at)}"
 
 
 # -- evaluating the plan: exact, or perturbed like a hand drawing ---------------------------------
@@ -784,35 +1042,13 @@ class _Run:
             self.vectors.append(Vector(_xy(tail), _xy(head), kind, label, of))
 
     # known terms -----------------------------------------------------------------------------------
-    def terms(self, terms) -> list:
-        """The known vectors of a chain: [(kind, label, vector, of, sign, reverse)].
-
-        ``vector`` is the quantity ``label`` names, in its true sense; the chain adds it
-        ``sign`` times (-1 where the line starts from the other side of the joint's equation).
-        ``reverse`` is (label, of) of the negative quantity where it has a name of its own
-        (-A^n_WQ = A^n_QW, -V_B3/B4 = V_B4/B3, -2 omega_4 x V_B3/B4 = 2 omega_4 x V_B4/B3), else
-        None (a circular path's V_rel^2/rho towards its centre is not the reverse motion's).
-        """
-        out = []
-        for t in terms:
-            if t[0] == "normal":
-                if self.level == "velocity":
-                    continue
-                _, lk, q, w = t
-                om = self.vel.rate[lk]
-                r = self.g.zpos[w] - self.g.zpos[q]
-                nw, nq = self.g.name((lk, w)), self.g.name((lk, q))
-                kw, kq = self.g.qkey((lk, w)), self.g.qkey((lk, q))
-                out.append(("normal", f"A^n_{nw}{nq}", normal_acceleration(om, r), ("normal", lk, kw, kq), 1,
-                            (f"A^n_{nq}{nw}", ("normal", lk, kq, kw))))
-            else:
-                _, i, sign, w = t
-                out += [(k, lab, v, of, sign, rev) for k, lab, v, of, rev in self.rel_terms(i, w)]
-        return out
+    def terms(self, terms) -> list[KnownVector]:
+        """The known vectors of a chain (:class:`CentripetalTerm`, :class:`JointMotionTerm`), in order."""
+        return [k for t in terms for k in t.known(self)]
 
     def term_labels(self, terms) -> list:
         """The chain's terms as written in its equation: "-2 omega_4 x V_A3/A4" where subtracted."""
-        return [("-" if t[4] < 0 else "") + t[1] for t in self.terms(terms)]
+        return [k.written for k in self.terms(terms)]
 
     def rel_keys(self, r: _Rel, w) -> tuple:
         """The keys of a joint's two places at w (a's, b's) and of its relative path's centre."""
@@ -820,9 +1056,9 @@ class _Run:
         k = g.qkey((r.b, r.centre)) if r.centre is not None else None
         return g.qkey((r.a, w)), g.qkey((r.b, w)), k
 
-    def rel_terms(self, i, w) -> list:
-        """Known relative motion of a joint, a relative to b, at the place of w:
-        [(kind, label, vector, of, reverse)] (``reverse``: see :meth:`terms`).
+    def joint_motion(self, i, w) -> list[KnownVector]:
+        """Known relative motion of a joint, a relative to b, at the place of w (``reverse``: see
+        :class:`KnownVector`).
 
         Blocks, pins in slots and the equivalent linkage's centres of curvature:
         ``A_a = A_b + 2 omega_b x V_a/b (Coriolis) + V_a/b^2 / rho (towards the centre of a
@@ -838,39 +1074,44 @@ class _Run:
         if self.level == "velocity":
             back = (f"V_{rrel}", ("slip", kb, ka, r.b, kk))   # V_b - V_a
             if r.source == "drive":
-                return [("slip", f"V_{rel}", m.driver.speed * _z(r.direction), slip_of, back)]
+                return [KnownVector("slip", f"V_{rel}", m.driver.speed * _z(r.direction), slip_of, 1, back)]
             if r.source == "contact" and m.contacts[r.index].slip:
-                return [("slip", f"V_{rel}", m.contacts[r.index].slip * _z(r.direction), slip_of, back)]
+                return [KnownVector("slip", f"V_{rel}", m.contacts[r.index].slip * _z(r.direction), slip_of, 1, back)]
             return []
-        vel = self.vel
-        vrel = vel.image((r.a, w)) - vel.image((r.b, w))
+        vrel = self.vel.image((r.a, w)) - self.vel.image((r.b, w))
         out = []
-        coriolis = coriolis_term(vel.rate[r.b], vrel)
-        cor = ("coriolis", f"2 omega_{r.b} x V_{rel}", coriolis, ("coriolis", r.b, ka, kb),
-               (f"2 omega_{r.b} x V_{rrel}", ("coriolis", r.b, kb, ka)))
+        cor = self.coriolis_term(r, w, vrel)
         # the slip reversed (A_b - A_a + 2 omega_b x V_a/b) is b's slip on a only on a straight path
         back = (f"A_{rrel}", ("slip", kb, ka, r.b, None)) if kk is None else None
         if r.source != "contact":
             if r.source == "drive":
-                out.append(("slip", f"A_{rel}", m.driver.accel * _z(r.direction), slip_of, back))
+                out.append(KnownVector("slip", f"A_{rel}", m.driver.accel * _z(r.direction), slip_of, 1, back))
             if r.b != g.frame:   # a guide on the frame has no Coriolis term: 2 omega x V_rel
                 out.append(cor)
             if r.centre is not None:   # a circular relative path: V_rel^2 / rho towards its centre
                 k = g.zpos[r.centre] - g.zpos[w]
                 rho = abs(k)
                 speed2 = vrel.real ** 2 + vrel.imag ** 2
-                out.append(("normal", f"A^n_{rel}", speed2 / rho * (k / rho), ("path-normal", ka, kb, kk), None))
+                out.append(KnownVector("normal", f"A^n_{rel}", speed2 / rho * (k / rho), ("path-normal", ka, kb, kk)))
         elif m.contacts[r.index].kind == "rolling":   # no slip: the contact points' relative acceleration
-            out.append(("relative", f"A_{rel}", self._contact_normal(r, w, vrel), ("difference", ka, kb),
-                        (f"A_{rrel}", ("difference", kb, ka))))
+            out.append(KnownVector("relative", f"A_{rel}", self._contact_normal(r, w, vrel), ("difference", ka, kb), 1,
+                                   (f"A_{rrel}", ("difference", kb, ka))))
         else:   # a prescribed slip: Coriolis, and the rest of the relative acceleration on b
             rest = self._contact_normal(r, w, vrel)
             if r.b != g.frame:
                 out.append(cor)
-                rest = rest - coriolis
-            out.append(("relative", f"A_{rel}", rest, ("slip", ka, kb, r.b, None),
-                        (f"A_{rrel}", ("slip", kb, ka, r.b, None))))
+                rest = rest - cor.value
+            out.append(KnownVector("relative", f"A_{rel}", rest, ("slip", ka, kb, r.b, None), 1,
+                                   (f"A_{rrel}", ("slip", kb, ka, r.b, None))))
         return out
+
+    def coriolis_term(self, r: _Rel, w, vrel) -> KnownVector:
+        """The Coriolis term of link a's point W moving relative to link b (the guide, slot or other
+        profile): ``2 omega_b x V_Wa/Wb``, with V_Wa/Wb = ``vrel`` from the velocity polygon."""
+        ka, kb, _ = self.rel_keys(r, w)
+        rel, rrel = f"{w}{r.a}/{w}{r.b}", f"{w}{r.b}/{w}{r.a}"
+        return KnownVector("coriolis", f"2 omega_{r.b} x V_{rel}", coriolis_term(self.vel.rate[r.b], vrel),
+                           ("coriolis", r.b, ka, kb), 1, (f"2 omega_{r.b} x V_{rrel}", ("coriolis", r.b, kb, ka)))
 
     def _contact_normal(self, r: _Rel, w, vrel):
         """(A_P(a) - A_P(b)) . u u from the equivalent linkage through the centres of curvature.
@@ -918,16 +1159,17 @@ class _Run:
         tip = self.image(base)
         parts = []
         ts = self.terms(terms)
-        drawn_back = [t[4] < 0 and not (forward and t[5]) for t in ts]
+        drawn_back = [t.sign < 0 and not (forward and t.reverse) for t in ts]
         back = [t for t, b in zip(ts, drawn_back) if b]
-        ahead = [t if t[4] > 0 else (t[0], t[5][0], -t[2], t[5][1], 1, None) for t, b in zip(ts, drawn_back) if not b]
-        for kind, lab, v, of, sign, _ in back:
-            new = self._mark(tip - self._turn(v))
-            parts.append((kind, lab, new, tip, of))
+        ahead = [t if t.sign > 0 else KnownVector(t.kind, t.reverse[0], -t.value, t.reverse[1])
+                 for t, b in zip(ts, drawn_back) if not b]
+        for t in back:
+            new = self._mark(tip - self._turn(t.value))
+            parts.append((t.kind, t.label, new, tip, t.of))
             tip = new
-        for kind, lab, v, of, sign, _ in ahead:
-            new = self._mark(tip + self._turn(v))
-            parts.append((kind, lab, tip, new, of))
+        for t in ahead:
+            new = self._mark(tip + self._turn(t.value))
+            parts.append((t.kind, t.label, tip, new, t.of))
             tip = new
         return tip, parts
 
@@ -936,40 +1178,14 @@ class _Run:
         level): then no order of true-sense arrows runs tip to tail, and :meth:`chain` draws the
         subtracted ones as their negatives (an auxiliary point reached through a driven slip:
         ``V_S4 = V_O2 + V_A2O2 - V_A3/A4 + V_S4A4``; a block's line offset by a slip it subtracts)."""
-        signs = {t[4] for t in self.terms(ln.terms)} | {self.unknown(ln)[1]}
+        signs = {t.sign for t in self.terms(ln.terms)} | {self.unknown(ln).sign}
         return len(signs) > 1
 
     def _draw(self, parts):
         for k, lab, t0, t1, of in parts:
             self._vec(t0, t1, k, lab, of)
 
-    def do(self, op):
-        g = self.g
-        kind = op[0]
-        if kind == "rate":
-            drv = g.m.driver
-            self.rate[op[1]] = self._const(drv.omega if self.level == "velocity" else drv.alpha)
-        elif kind == "rate_eq":
-            self.rate[op[1]] = self.rate[op[2]]
-        elif kind == "rate_from":   # omega = (R_WQ x (V_W - V_Q)) / |R_WQ|^2 = Im((V_W - V_Q) / R_WQ)
-            _, lk, q, w = op
-            r = g.zpos[w] - g.zpos[q]
-            d = self.image((lk, w)) - self.image((lk, q))
-            self.rate[lk] = (d / r).imag
-        elif kind == "image":
-            _, lk, q, w = op
-            self._set((lk, w), self._rigid(lk, q, w))
-        elif kind == "equal":
-            _, dst, src, i, sign = op
-            tip, parts = self.chain(src, (("rel", i, sign, dst[1]),))
-            self._set(dst, tip)
-            self._draw(parts)
-        elif kind == "meet":
-            self._meet(*op[1:])
-        elif kind == "trial":
-            self._trial(*op[1:])
-
-    def _rigid(self, lk, q, w):
+    def rigid_point(self, lk, q, w):
         """V_W = V_Q + omega x R_WQ  (A_W = A_Q + alpha x R_WQ - omega^2 R_WQ)."""
         r = self.g.zpos[w] - self.g.zpos[q]
         base = self.image((lk, q))
@@ -987,7 +1203,8 @@ class _Run:
         self._vec(mid, tip, "tangential", f"A^t_{name_w}{name_q}", ("tangential", lk, kw, kq))
         return tip
 
-    def _meet(self, target, l1, l2):
+    def meet(self, target, l1, l2):
+        """Case 2a: the image of ``target`` where the two lines meet (each drawn from the tip of its chain)."""
         tips, dirs = [], []
         for ln in (l1, l2):
             tip, parts = self.chain(ln.base, ln.terms, self.mixed(ln))
@@ -1021,7 +1238,7 @@ class _Run:
         x, s, _, sine = G.intersect_lines_batch(*xy)
         return x[:, 0] + 1j * x[:, 1], s, sine
 
-    def _trial(self, seed, line, sub, closure):
+    def trial(self, seed, line, sub, closure):
         """Two trial polygons with x = tip + tau e, then tau from the closing link.
 
         The closing link (W, Q) has its images located without its own rigidity; it needs
@@ -1040,7 +1257,7 @@ class _Run:
             self.img, self.rate = dict(start[0]), dict(start[1])
             self._set(seed, tip + tau * e)
             for o in sub:
-                self.do(o)
+                o.apply(self)
             z.append(self.image((lk, w)) - self.image((lk, q)))
         r = self.g.zpos[w] - self.g.zpos[q]
         rn = abs(r)
@@ -1069,7 +1286,7 @@ class _Run:
                                                line.reason + " (the trial image's line)"))
             self.vectors.append(self.unknown_vector(line, tip, found))
         for o in sub:
-            self.do(o)
+            o.apply(self)
 
     def _level_scale(self) -> float:
         """A speed (acceleration) of the mechanism's size from the driver and the known terms alone,
@@ -1086,34 +1303,14 @@ class _Run:
         acc = abs(drv.accel) if drv.is_slider else abs(drv.alpha) * g.size
         return max(acc, w * w * g.size, w * v)
 
-    def unknown(self, ln: _Line) -> tuple:
-        """The line's unknown component: (label, sign, of, kind), the line adding ``sign`` times it.
+    def unknown(self, ln: _Line) -> "UnknownPart":
+        """The line's unknown component, the line adding ``sign`` times it.
 
         V_BA, A^t_BA (the rigid link's), V_B3/B4 or A_B3/B4 (the slip of a relative to b,
         subtracted where the line starts from a's image), or for an auxiliary point S reached
         from X the sum of X's unknown and V_SX (A^t_SX), which lie along one line.
         """
-        u = ln.unknown
-        g = self.g
-        vel = self.level == "velocity"
-        if u[0] == "rigid":
-            _, lk, q, w = u
-            kw, kq = g.qkey((lk, w)), g.qkey((lk, q))
-            if vel:
-                return f"V_{g.name((lk, w))}{g.name((lk, q))}", 1, ("difference", kw, kq), "relative"
-            return f"A^t_{g.name((lk, w))}{g.name((lk, q))}", 1, ("tangential", lk, kw, kq), "tangential"
-        if u[0] == "path":
-            _, i, sign, w = u
-            r = g.rels[i]
-            ka, kb, kk = self.rel_keys(r, w)
-            return (f"{self.X}_{w}{r.a}/{w}{r.b}", sign, ("slip", ka, kb, r.b, kk),
-                    "relative" if vel else "slip")
-        _, inner, lk, p, s = u
-        lab, sign, of, _ = self.unknown(inner)
-        ks, kp = g.qkey((lk, s)), g.qkey((lk, p))
-        t_of = ("difference", ks, kp) if vel else ("tangential", lk, ks, kp)
-        label = _sum([("-" if sign < 0 else "") + lab, f"{self.X}{'' if vel else '^t'}_{s}{p}"])
-        return label, 1, ("sum", ((sign, of), (1, t_of))), "relative"
+        return ln.unknown.describe(self)
 
     def unknown_label(self, ln: _Line) -> str:
         """How the line's unknown component reads in its equation: V_BA, A^t_BA, -A_B3/B4, ..."""
@@ -1138,8 +1335,359 @@ class _Run:
     def run(self, steps):
         for st in steps:
             for op in st.ops:
-                self.do(op)
+                op.apply(self)
         return self
+
+    # the construction in words (the steps' captions) ------------------------------------------------
+    def _parts(self, place) -> tuple:
+        """(point, link or None): a place as :func:`point_text` names it (the link only where the
+        place's name carries it: a coincident point, B4)."""
+        lk, n = place
+        g = self.g
+        return (n, None) if place in g.names or g.key.get((n, lk)) == n else (n, lk)
+
+    def point_words(self, place) -> str:
+        """A place in words: B, B₄, S₃."""
+        return point_text(*self._parts(place))
+
+    def image_words(self, place, vertex: bool = False) -> str:
+        """A place's image in words: b, b₄ (b' in an acceleration polygon); O_v for a point at rest
+        (its own name, o₂, as a ``vertex`` of a link's image)."""
+        if self.g.grounded(place) and not vertex:
+            return self.origin
+        n, lk = self._parts(place)
+        return point_text(n.lower(), lk) + ("'" if self.level == "acceleration" else "")
+
+    def line_words(self, ln: _Line) -> str:
+        """A construction line in words: "the line through a ⊥ AB", "the line through b₄ + 2 omega_4 x
+        V_B3/B4 ∥ the path of B on link 4"."""
+        base = self.image_words(ln.base)
+        through = _sum([base] + self.term_labels(ln.terms)) if ln.terms else base
+        return f"the line through {through} {ln.unknown.direction_words(self)}"
+
+    def rates_words(self, step) -> str:
+        """The rates a step fixes, in words: "; omega_3 = V_BA / AB" from two images, "; omega_3 =
+        omega_4 (a block turns with its straight guide)"."""
+        out = []
+        rate = "omega" if self.level == "velocity" else "alpha"
+        ops = [o for op in step.ops for o in (op.ops if isinstance(op, TrialSolution) else (op,))]
+        for op in ops:
+            if isinstance(op, RateFromImages) and op.link in step.omegas:
+                name = f"{self.g.name((op.link, op.w))}{self.g.name((op.link, op.q))}"
+                diff = f"V_{name}" if self.level == "velocity" else f"A^t_{name}"
+                out.append(f"{rate}_{op.link} = {diff} / {_segment(op.q, op.w)}")
+            elif isinstance(op, TurnsTogether):
+                if op.other == self.g.frame:
+                    out.append(f"{rate}_{op.link} = 0 (a block on a straight guide of the frame)")
+                else:
+                    out.append(f"{rate}_{op.link} = {rate}_{op.other} (block and straight guide turn together)")
+        return "".join("; " + o for o in dict.fromkeys(out))
+
+    def pinned_words(self, step) -> str:
+        """Points pinned together share one image, named once by the step: "; V_A3 = V_A2 (a pin
+        of links 2 and 3)" for each other name a located image has."""
+        g, out = self.g, []
+        for place in step.found:
+            names = list(dict.fromkeys(g.name(q) for q in g.group(place) if q == place or g.point_key(q) is not None))
+            if len(names) > 1:
+                links = sorted({q[0] for q in g.group(place)}, key=g.links.index)
+                out.append(" = ".join(f"{self.X}_{n}" for n in names)
+                           + f" (a pin of links {', '.join(links[:-1])} and {links[-1]})")
+        return "".join("; " + o for o in out)
+
+    def located_first(self, step) -> str:
+        """The coincident points a step locates first from their links' images, in words (none for
+        the driver's and the image steps, whose words are these)."""
+        if isinstance(step, _LinkImage):
+            return ""
+        ops = [op for op in step.ops if isinstance(op, VelocityImage)]
+        if not ops:
+            return ""
+        level = "velocity" if self.level == "velocity" else "acceleration"
+        return "; ".join(f"{self.image_words((op.link, op.w))} from the {level} image of link {op.link}, "
+                         + _LinkImage.point_equation(self, op) for op in ops) + "; then "
+
+
+# -- the plan's steps, by their textbook names ------------------------------------------------------
+_SUBSCRIPT = str.maketrans("0123456789", "₀₁₂₃₄₅₆₇₈₉")
+
+
+def point_text(point: str, link: str | None = None) -> str:
+    """How a caption writes a point in words (every caption's point and image names come from here):
+    a name's trailing digits as a subscript (``O2`` -> O₂), a link's point at a point of other links
+    with the link (``B`` of link 4 -> B₄; of link ``cam`` -> B(cam)). ``point_text("P@cam")`` reads a
+    point key the same way."""
+    if link is None and "@" in point:
+        point, link = point.split("@", 1)
+    head = point.rstrip("0123456789")
+    text = head + point[len(head):].translate(_SUBSCRIPT) if head else point
+    if link is None:
+        return text
+    return text + (link.translate(_SUBSCRIPT) if link.isdigit() else f"({link})")
+
+
+def _segment(q: str, w: str) -> str:
+    """The segment QW in words: O₂A."""
+    return point_text(q) + point_text(w)
+
+
+@dataclass(frozen=True)
+class PlanStep:
+    """One step of the plan, from the mechanism alone (the same at both levels): its operations
+    (:class:`VelocityImage`, :class:`Intersection`, ...), the canonical places it locates, the links
+    whose rates it fixes. Each kind writes its own vector equation and caption at a level."""
+
+    ops: tuple
+    found: tuple
+    omegas: tuple
+    lines: tuple = ()
+    sine: float = 1.0
+    target: tuple | None = None
+    link: str | None = None
+    rel: int | None = None
+    kind: ClassVar[str] = ""     # the public Step.kind
+
+    def kind_at(self, run: "_Run") -> str:
+        return self.kind
+
+    def sine_at(self, run: "_Run") -> float:
+        return self.sine
+
+    def equation(self, run: "_Run") -> str:
+        raise NotImplementedError
+
+    def caption(self, run: "_Run") -> str:
+        """The step in the textbook's words: the coincident points it locates first from their
+        links' images, what it constructs (:meth:`words`), the rates it fixes."""
+        return run.located_first(self) + self.words(run) + run.pinned_words(self) + run.rates_words(self)
+
+    def words(self, run: "_Run") -> str:
+        raise NotImplementedError
+
+
+@dataclass(frozen=True)
+class FrameAtOrigin(PlanStep):
+    """The frame's points are at rest: their images are the origin O_v (O_a)."""
+
+    kind: ClassVar[str] = "known"
+
+    def equation(self, run):
+        names = [run.g.name(p) for p in self.found]
+        if not names:
+            return f"the frame images at {run.origin}"
+        return " = ".join(f"{run.X}_{n}" for n in names) + " = 0: the frame's points image at " + run.origin
+
+    def words(self, run):
+        if not self.found:
+            return f"The frame is at rest: its image is {run.origin}"
+        names = [run.g.name(p) for p in self.found]
+        words = ", ".join(run.point_words(p) for p in self.found)
+        what = (f"the frame's points {words} are at rest, their images at" if len(names) > 1 else
+                f"the frame's point {words} is at rest, its image at")
+        return " = ".join(f"{run.X}_{n}" for n in names) + f" = 0: {what} {run.origin}"
+
+
+class _LinkImage(PlanStep):
+    """A link's points from its image: ``V_W = V_Q + omega x R_WQ`` for each (shared by the
+    driver's and the velocity image's steps)."""
+
+    def images(self):
+        return [op for op in self.ops if isinstance(op, VelocityImage)]
+
+    @staticmethod
+    def point_equation(run, op) -> str:
+        """``V_W = V_Q + omega_k x R_WQ`` (``A_W = A_Q + alpha_k x R_WQ - omega_k^2 R_WQ``) of one
+        :class:`VelocityImage`."""
+        lk, X, r = op.link, run.X, f"R_{op.w}{op.q}"
+        rel = f"omega_{lk} x {r}" if X == "V" else f"alpha_{lk} x {r} - omega_{lk}^2 {r}"
+        return f"{X}_{run.g.name((lk, op.w))} = {X}_{run.g.name((lk, op.q))} + {rel}"
+
+    def equation(self, run):
+        return "; ".join(self.point_equation(run, op) for op in self.images())
+
+
+@dataclass(frozen=True)
+class DriverStep(_LinkImage):
+    """The crank's points: ``V_A = V_O2 + omega_2 x R_AO2``, perpendicular to O2A, |V_A| = omega_2 |O2A|
+    (``A_A = A_O2 + alpha_2 x R_AO2 - omega_2^2 R_AO2``)."""
+
+    kind: ClassVar[str] = "driver"
+
+    def words(self, run):
+        g, lk, X = run.g, self.link, run.X
+        parts = []
+        for op in self.images():
+            w, q = g.name((lk, op.w)), g.name((lk, op.q))
+            base = "" if g.grounded((lk, op.q)) else f"{X}_{q} + "
+            seg = _segment(op.q, op.w)
+            if X == "V":
+                parts.append(f"V_{w} = {base}omega_{lk} x R_{op.w}{op.q}, ⊥ {seg}")
+            else:
+                parts.append(f"A_{w} = {base}A^n_{w}{q} + A^t_{w}{q}: A^n_{w}{q} = omega_{lk}^2 {seg} "
+                             f"towards {point_text(op.q)}, A^t_{w}{q} = alpha_{lk} x R_{op.w}{op.q}, ⊥ {seg}")
+        return "; ".join(parts)
+
+
+@dataclass(frozen=True)
+class VelocityImageStep(_LinkImage):
+    """Once two images of a link are known (or one and its omega): the link's other points from its
+    velocity (acceleration) image, similar to the link."""
+
+    kind: ClassVar[str] = "image"
+
+    def words(self, run):
+        g, lk = run.g, self.link
+        level = "velocity" if run.level == "velocity" else "acceleration"
+        points = list(g.m.link(lk).points)
+        found = [op.w for op in self.images()]
+        shape = ""
+        if len(points) >= 3:
+            shape = (", " + "".join(run.image_words((lk, n), vertex=True) for n in points) + " similar to "
+                     + "".join(point_text(n) for n in points))
+        return (self.equation(run) + ": " + ", ".join(run.image_words((lk, n)) for n in found)
+                + f" from the {level} image of link {lk}{shape}")
+
+
+@dataclass(frozen=True)
+class KnownMotionStep(PlanStep):
+    """Case 1, a known vector: a rolling contact (``V_P3 = V_P4``) or a prescribed slip
+    (``V_P3 = V_P4 + V_P3/P4``, along the common tangent)."""
+
+    kind: ClassVar[str] = "known"
+
+    def _sides(self, run):
+        r, t = run.g.rels[self.rel], self.target
+        other = (r.b if t[0] == r.a else r.a, t[1])
+        sign = 1 if t[0] == r.a else -1
+        return r, t, other, sign
+
+    def _what(self, run, r) -> str:
+        return f"{run.g.m.contacts[r.index].kind} contact"
+
+    def equation(self, run):
+        r, t, other, sign = self._sides(run)
+        X, g = run.X, run.g
+        terms = run.term_labels((JointMotionTerm(self.rel, sign, t[1]),)) or [f"{X}_{t[1]}{t[0]}/{t[1]}{other[0]}"]
+        return _sum([f"{X}_{g.name(t)} = {X}_{g.name(other)}"] + terms) + f" ({self._what(run, r)})"
+
+    def _how(self, run, r, t, other) -> str:
+        c = run.g.m.contacts[r.index]
+        there = f"at the contact point {point_text(r.at)}"
+        if c.kind == "rolling" and run.level == "velocity":
+            return f"rolling without slip {there}: {run.image_words(t)} = {run.image_words(other)}"
+        if c.kind == "rolling":
+            return f"rolling {there}: the contact points' relative acceleration, along the common normal"
+        return f"the prescribed slip {there}, along the common tangent"
+
+    def words(self, run):
+        r, t, other, _ = self._sides(run)
+        if r.source == "contact" and run.level == "velocity" and run.g.m.contacts[r.index].kind == "rolling":
+            eq = f"V_{run.g.name(t)} = V_{run.g.name(other)}"   # no relative velocity
+        else:
+            eq = self.equation(run)
+            eq = eq[:eq.rindex(" (")]
+        return eq + ": " + self._how(run, r, t, other)
+
+
+@dataclass(frozen=True)
+class SliderDriverStep(KnownMotionStep):
+    """A slider driver, case 1: the block's image is the guide's image at the same place plus the
+    driven slip along the path, ``V_F5 = V_F0 + V_F5/F0`` (a known vector)."""
+
+    kind: ClassVar[str] = "driver"
+
+    def _what(self, run, r) -> str:
+        return "the driver's speed along its path"
+
+    def _how(self, run, r, t, other):
+        what = "speed" if run.level == "velocity" else "acceleration"
+        return (f"{run.image_words(t)} from {run.image_words(other)} by the driver's known {what} "
+                f"along the path of {point_text(t[1])}")
+
+
+@dataclass(frozen=True)
+class IntersectionStep(PlanStep):
+    """Case 2a: an unknown image where two lines through known images meet (a dyad):
+    ``V_B = V_A + V_BA = V_O4 + V_BO4``, the line through a perpendicular to AB and the line
+    through o4 perpendicular to O4B."""
+
+    kind: ClassVar[str] = "intersection"
+
+    def equation(self, run):
+        g, X = run.g, run.X
+        chains = [_sum([f"{X}_{g.name(ln.base)}"] + run.term_labels(ln.terms) + [run.unknown_label(ln)])
+                  for ln in self.lines]
+        return f"{X}_{g.name(self.target)} = " + " = ".join(chains)
+
+    def words(self, run):
+        return (self.equation(run) + f": {run.image_words(self.target)} on "
+                + " and ".join(run.line_words(ln) for ln in self.lines))
+
+
+@dataclass(frozen=True)
+class AuxiliaryPointStep(IntersectionStep):
+    """Where no dyad exists: the point S of a link with no known image where the lines of two of its
+    points' velocities meet has its image where those lines meet; S is the link's instant centre
+    when both lines pass through O_v (kind 'instant-centre')."""
+
+    kind: ClassVar[str] = "auxiliary"
+
+    def kind_at(self, run):
+        if run.level == "velocity" and all(run.g.grounded(ln.base) and not run.terms(ln.terms)
+                                           for ln in self.lines):
+            return "instant-centre"   # both lines through O_v (not offset by a known slip): S's image is O_v
+        return self.kind
+
+    def equation(self, run):
+        head = super().equation(run)
+        t = self.target
+        if self.kind_at(run) == "instant-centre":
+            head += f"  ({run.g.name(t)} is the instant centre of link {t[0]}: its image is at {run.origin})"
+        return head
+
+    def words(self, run):
+        t = self.target
+        eq = IntersectionStep.equation(self, run)
+        what = (f"{run.point_words(t)}, the instant centre of link {t[0]}, has its image at {run.origin}"
+                if self.kind_at(run) == "instant-centre" else
+                f"the auxiliary point {run.point_words(t)} of link {t[0]}: {run.image_words(t)}")
+        return eq + f": {what}, on " + " and ".join(run.line_words(ln) for ln in self.lines)
+
+
+@dataclass(frozen=True)
+class TrialSolutionStep(PlanStep):
+    """The trial solution (method of false position), where neither a dyad nor an auxiliary point
+    exists: one image assumed on its line, the construction carried on until a link closes, and that
+    link's rigidity fixes the assumed value (everything is linear in it: two trials suffice)."""
+
+    kind: ClassVar[str] = "auxiliary"
+
+    @property
+    def trial(self) -> TrialSolution:
+        return self.ops[0]
+
+    def sine_at(self, run):
+        return min(run.sine, self.sine)   # the closure's own conditioning, from the replay
+
+    def equation(self, run):
+        g, X, tr = run.g, run.X, self.trial
+        lk, q, w = tr.closure
+        rhs = "0" if X == "V" else f"-omega_{lk}^2 |R_{w}{q}|^2"
+        chain = _sum([f"{X}_{g.name(tr.line.base)}"] + run.term_labels(tr.line.terms) + [run.unknown_label(tr.line)])
+        return (f"trial solution: {X}_{g.name(self.target)} = {chain} assumed along its line; the construction "
+                f"closes on link {lk}: ({X}_{w} - {X}_{q}) . R_{w}{q} = {rhs}, which fixes the assumed value")
+
+    def words(self, run):
+        g, X, tr = run.g, run.X, self.trial
+        lk, q, w = tr.closure
+        chain = _sum([f"{X}_{g.name(tr.line.base)}"] + run.term_labels(tr.line.terms) + [run.unknown_label(tr.line)])
+        if X == "V":
+            rigid = f"{run.image_words((lk, q), vertex=True)}{run.image_words((lk, w), vertex=True)}"
+        else:
+            rigid = f"A^t_{g.name((lk, w))}{g.name((lk, q))}"
+        return (f"Trial solution (false position): {X}_{g.name(self.target)} = {chain}, "
+                f"{run.image_words(self.target)} assumed on {run.line_words(tr.line)}; the construction goes on "
+                f"until link {lk} closes, and its rigidity ({rigid} ⊥ {_segment(q, w)}) fixes the assumed value")
 
 
 # -- building the polygons ------------------------------------------------------------------------
@@ -1224,18 +1772,14 @@ def _assemble(c: _Construction, sol, level: str, vel) -> tuple[Polygon, _Run]:
     for i, st in enumerate(c.plan):
         run.lines, run.vectors = [], []
         for op in st.ops:
-            run.do(op)
+            op.apply(run)
         for p in st.found:   # absolute vectors of the images located
             if not geo.grounded(p):
                 run._vec(0j, run.image(p), "absolute", f"{run.X}_{geo.name(p)}", ("point", geo.qkey(p)))
-        kind = st.kind
-        trial = bool(st.ops) and st.ops[0][0] == "trial"
-        if kind == "auxiliary" and not trial and level == "velocity" and \
-                all(geo.grounded(ln.base) and not run.terms(ln.terms) for ln in st.lines):
-            kind = "instant-centre"   # both lines through O_v (not offset by a known slip): S's image is O_v
-        sine = min(run.sine, st.sine) if trial else st.sine
-        steps.append(Step(i, kind, _equation(run, st, kind), tuple(run.lines), c.found[i], tuple(run.vectors),
-                          {lk: float(run.rate[lk]) for lk in st.omegas}, float(sine), c.aux[i], st.link))
+        kind = st.kind_at(run)
+        steps.append(Step(i, kind, st.equation(run), tuple(run.lines), c.found[i], tuple(run.vectors),
+                          {lk: float(run.rate[lk]) for lk in st.omegas}, float(st.sine_at(run)), c.aux[i], st.link,
+                          st.caption(run)))
     images, labels, zimages = {}, {}, {}
     for key, p, lk in point_keys(m):
         zimages[key] = run.image((lk, p))
@@ -1268,55 +1812,6 @@ def _sum(parts) -> str:
     for p in parts[1:]:
         out += f" - {p[1:]}" if p.startswith("-") else f" + {p}"
     return out
-
-
-def _equation(run: _Run, st: _PStep, kind: str) -> str:
-    g, X = run.g, run.X
-    if st.kind == "known" and st.rel is None:
-        names = [g.name(p) for p in st.found]
-        return (" = ".join(f"{X}_{n}" for n in names) + " = 0: the frame's points image at " + run.origin
-                if names else f"the frame images at {run.origin}")
-    if st.kind in ("known", "driver") and st.rel is not None:
-        r = g.rels[st.rel]
-        t = st.target
-        other = (r.b if t[0] == r.a else r.a, t[1])
-        what = ("the driver's speed along its path" if r.source == "drive"
-                else f"{g.m.contacts[r.index].kind} contact")
-        sign = 1 if t[0] == r.a else -1
-        terms = run.term_labels((("rel", st.rel, sign, t[1]),)) or [f"{X}_{t[1]}{t[0]}/{t[1]}{other[0]}"]
-        return _sum([f"{X}_{g.name(t)} = {X}_{g.name(other)}"] + terms) + f" ({what})"
-    if st.kind in ("driver", "image"):
-        lk = st.link
-        parts = [f"{X}_{g.name((op[1], op[3]))} = {X}_{g.name((op[1], op[2]))} + "
-                 + (f"omega_{lk} x R_{op[3]}{op[2]}" if X == "V" else
-                    f"alpha_{lk} x R_{op[3]}{op[2]} - omega_{lk}^2 R_{op[3]}{op[2]}")
-                 for op in st.ops if op[0] == "image"]
-        om = float(run.rate[lk])
-        if X == "V":
-            turn, scale = (90.0 if om >= 0 else -90.0), abs(om)
-        else:
-            w = float(run.vel.rate[lk])
-            turn, scale = math.degrees(math.atan2(om, -w * w)), math.hypot(om, w * w)
-        what = "driver" if st.kind == "driver" else "image"
-        return (f"{what} of link {lk}: similar to the link, turned {turn:+.4g} deg, scale {scale:.6g}: "
-                + "; ".join(parts))
-    t = st.target
-    if st.ops and st.ops[0][0] == "trial":
-        _, _, seed, _, (lk, q, w) = st.ops[0]
-        terms = run.term_labels(seed.terms)
-        rhs = "0" if X == "V" else f"-omega_{lk}^2 |R_{w}{q}|^2"
-        return (f"trial solution: {X}_{g.name(t)} = " + _sum([f"{X}_{g.name(seed.base)}"] + terms
-                                                             + [run.unknown_label(seed)])
-                + f" assumed along its line; the construction closes on link {lk}: "
-                  f"({X}_{w} - {X}_{q}) . R_{w}{q} = {rhs}, which fixes the assumed value")
-    chains = []
-    for ln in st.lines:
-        terms = run.term_labels(ln.terms)
-        chains.append(_sum([f"{X}_{g.name(ln.base)}"] + terms + [run.unknown_label(ln)]))
-    head = f"{X}_{g.name(t)} = " + " = ".join(chains)
-    if kind == "instant-centre":
-        head += f"  ({g.name(t)} is the instant centre of link {t[0]}: its image is at {run.origin})"
-    return head
 
 
 # -- the hand-drafting estimate -------------------------------------------------------------------

@@ -53,6 +53,10 @@
       });
     s = s.replace(/\bomega\b/g, "\u03c9").replace(/\balpha\b/g, "\u03b1");
     s = s.replace(/\bO_([av])\b/g, "<i>O</i><sub>$1</sub>");
+    // a caption's point names: O₂ -> O<sub>2</sub>, as the figures' captions set them
+    s = s.replace(/[\u2080-\u2089]+/g, function (d) {
+      return "<sub>" + d.replace(/[\u2080-\u2089]/g, function (c) { return String(c.charCodeAt(0) - 0x2080); }) + "</sub>";
+    });
     s = s.replace(/([0-9]) deg\b/g, "$1\u00b0").replace(/ x /g, " \u00d7 ").replace(/ - /g, " \u2212 ");
     return s;
   }
@@ -586,17 +590,12 @@
     } else {
       var c = u.cur, s = c.s, where = { velocity: "Velocity polygon", acceleration: "Acceleration polygon", poles: "Instant centres" }[c.level];
       var html = "<b>Step " + state.step + "</b> (" + where + ", step " + c.n + "): ";
-      if (c.level === "poles") html += eqHtml(s.s);
-      else {
-        html += '<span class="now">' + eqHtml(s.eq) + "</span>";
-        if (s.ln.length) html += ". Lines: " + s.ln.map(function (l) { return "through " + termsHtml(l[4]) + " " + esc(l[5]); }).join("; ");
-        if (s.f.length) html += ". Found: " + s.f.map(function (f) {
-          var poly = c.level === "velocity" ? P.vp : P.ap;
-          return svgText(poly.lab[f] || f);
-        }).join(", ");
-      }
+      // the step's caption, word for word the caption of its frame in `velpoly draw --steps`
+      var words = c.level === "poles" ? s.s : s.cap;
+      html += c.level === "poles" ? eqHtml(words) : '<span class="now">' + eqHtml(words) + "</span>";
       cap.innerHTML = html;
       cap.dataset.equation = c.level === "poles" ? s.s : s.eq;
+      cap.dataset.caption = words;
       cap.dataset.level = c.level;
     }
     document.getElementById("foot").textContent = "Pose " + (state.i + 1) + " of " + N + (S.limited ? " (the range this linkage reaches on its drawn branch)" : "") +
@@ -608,14 +607,6 @@
     b.dataset.steps = steps.length;
     b.dataset.rendered = S.driver.slider ? String(S.angles[state.i]) : String(wrap(S.angles[state.i]));
     writeHash();
-  }
-  // a line's base as the polygon names it: b, O_v, "b' + A^n_CB"
-  function termsHtml(s) {
-    return String(s).split(" + ").map(function (t) { return /^[A-Za-z]+_?[0-9A-Za-z]*'*$/.test(t) ? svgText(t) : eqHtml(t); }).join(" + ");
-  }
-  function svgText(label) {
-    var m = splitLabel(label);
-    return m ? "<i>" + esc(m[0]) + "</i>" + (m[1] ? "<sub>" + esc(m[1]) + "</sub>" : "") + "\u2032".repeat(m[2]) : esc(label);
   }
 
   // -- control -----------------------------------------------------------------------------------

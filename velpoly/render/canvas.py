@@ -285,6 +285,9 @@ def _index(index: str) -> str:
     return index if index.isdigit() else re.sub(r"([A-Za-z])([0-9]+)", r"\1_{\2}", index)
 
 
+_DIGITS = str.maketrans("₀₁₂₃₄₅₆₇₈₉", "0123456789")
+
+
 def equation_tex(eq: str) -> str:
     """A step's vector equation in mathtext: ``V_CB`` -> $V_{CB}$, ``omega_3 x R`` -> $\\omega_{3}$ × R,
     ``omega_2^2 R_AO2`` -> $\\omega_{2}^{2}$ $R_{AO_{2}}$, `` - `` -> `` − ``, ``deg`` -> °."""
@@ -297,6 +300,8 @@ def equation_tex(eq: str) -> str:
         return out + "$" + (power or "")
     s = literal(eq)   # a user's name or title in it is drawn as written
     s = _QUANTITY.sub(sub, s)
+    s = re.sub(r"\bO_([av])\b", r"$O_{\1}$", s)   # the polygons' origins O_v, O_a
+    s = re.sub("[₀-₉]+", lambda mo: "$_{" + mo.group().translate(_DIGITS) + "}$", s)   # a caption's O₂
     s = re.sub(r"\bomega\b", r"$\\omega$", s)
     s = re.sub(r"\balpha\b", r"$\\alpha$", s)
     s = re.sub(r"([0-9]) deg\b", "\\1°", s)

@@ -25,12 +25,13 @@ salt, no dates) and written atomically: a failed run leaves no file.
 from __future__ import annotations
 
 import io
+import re
 from dataclasses import dataclass
 from pathlib import Path
 
 from ..errors import InputError
 from ..fileio import atomic_path
-from .canvas import equation_tex, fit_view, literal, nice_scale, view_scale
+from .canvas import equation_tex, fit_view, nice_scale, view_scale
 from .constructions import Constructions, check_sheet as _check_sheet, constructions
 from .displacement import draw_mechanism, equivalent_linkage_note, mark_auxiliary, mechanism_bounds
 from .kennedy import draw_kennedy_circle, draw_poles, pole_label
@@ -102,14 +103,11 @@ class Frame:
 
 
 def _pole_caption(p) -> str:
-    lines = []
-    for ln in p.lines:
-        if len(ln) == 2 and "-" in str(ln[0]):
-            lines.append(pole_label(tuple(ln[0].split("-"))) + pole_label(tuple(ln[1].split("-"))))
-        else:
-            lines.append(literal(" ".join(map(str, ln))))
-    what = f"{pole_label(p.links)} ({literal(p.how)})"
-    return what + (": on " + " and ".join(lines) if lines else "")
+    """A pole's step in words (:func:`velpoly.poles.pole_caption`), its names in mathtext."""
+    from ..poles import pole_caption
+    parts = re.split(r"(\x00[^\x00]*\x00)", pole_caption(p, lambda key: f"\x00{key}\x00"))
+    return "".join(pole_label(tuple(t[1:-1].split("-", 1))) if t.startswith("\x00") else equation_tex(t)
+                   for t in parts)
 
 
 def frames(sheet: str, cons: Constructions, steps: bool) -> list[Frame]:
@@ -120,10 +118,10 @@ def frames(sheet: str, cons: Constructions, steps: bool) -> list[Frame]:
     vel, acc, ps = cons.velocity, cons.acceleration, cons.poles
     if sheet in ("velocity", "full") and vel is not None:
         for k, s in enumerate(vel.steps, 1):
-            out.append(Frame(velocity=k, acceleration=0, caption=f"Step {k}: " + equation_tex(s.equation)))
+            out.append(Frame(velocity=k, acceleration=0, caption=f"Step {k}: " + equation_tex(s.caption or s.equation)))
     if sheet in ("acceleration", "full") and acc is not None:
         for k, s in enumerate(acc.steps, 1):
-            out.append(Frame(acceleration=k, caption=f"Step {len(out) + 1}: " + equation_tex(s.equation)))
+            out.append(Frame(acceleration=k, caption=f"Step {len(out) + 1}: " + equation_tex(s.caption or s.equation)))
     if sheet == "poles" and ps is not None:
         found = sorted((p for p in ps.poles.values() if p.order > 0), key=lambda p: p.order)
         out.append(Frame(poles=0, caption="Poles known by inspection: pins, sliders, rolling contacts"))
