@@ -22,6 +22,7 @@ import numpy as np
 
 from .errors import InputError, VelpolyError
 from .fileio import atomic_write_text, raise_if_interrupted
+from .names import direction
 from .reference import Quantity, compare, evaluate, parse_key
 from .report import Table, fmt, render_table
 
@@ -193,7 +194,7 @@ def _show(value, kind: str) -> str:
     if kind == "P":
         return f"({fmt(value[0])}, {fmt(value[1])})"
     if isinstance(value, tuple):
-        return f"{fmt(value[0])} ∠ {value[1]:.3f}°"
+        return f"{fmt(value[0])} ∠ {direction(value[1], 3)}°"
     return fmt(value)
 
 

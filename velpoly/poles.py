@@ -75,6 +75,7 @@ import numpy as np
 
 from .geometry import from_polar, ideal, join
 from .motion import point_keys
+from .names import direction
 from .report import SECTIONS, Table, fmt
 from .solution import register_section
 
@@ -1193,7 +1194,7 @@ def _where(p: Pole) -> str:
     if p.undefined:
         return "undefined (links move alike)"
     if p.position is None:
-        return f"at infinity, {p.direction:.3f}°"
+        return f"at infinity, {direction(p.direction, 3)}°"
     return f"({fmt(p.position[0])}, {fmt(p.position[1])})"
 
 

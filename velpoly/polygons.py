@@ -62,6 +62,8 @@ from . import geometry as G
 from .errors import InputError, SingularPoseError, VelpolyError
 from .kinematics import SINGULAR
 from .motion import point_keys
+from .names import key_text, lower_name, relative
+from .names import place as named
 from .report import SECTIONS, Table, fmt, on_links, pinned_keys, polar
 from .solution import register_section
 
@@ -296,7 +298,7 @@ class _Geo:
         if place in self.names:
             return self.names[place]
         lk, n = place
-        return n if self.key.get((n, lk)) == n else f"{n}{lk}"
+        return n if self.key.get((n, lk)) == n else named(n, lk)
 
     def aux_key(self, place) -> str:
         lk, n = place
@@ -664,7 +666,7 @@ class _Planner:
         if best is None:
             return False
         (_, sine), lk, x, lx, y, ly, spos = best
-        name = f"S{lk}"
+        name = named("S", lk)
         while name in g.pos:
             name += "'"
         g.pos[name] = np.asarray(spos, float)
@@ -789,7 +791,7 @@ class _Run:
 
     def label(self, place) -> str:
         """The image's label: b, b4, s3 (primed in an acceleration polygon)."""
-        return self.g.name(place).lower() + ("'" if self.level == "acceleration" else "")
+        return lower_name(self.g.name(place)) + ("'" if self.level == "acceleration" else "")
 
     def base_label(self, place) -> str:
         """The label of a line's base image: the origin for points that do not move."""
@@ -848,7 +850,7 @@ class _Run:
         """
         g, r = self.g, self.g.rels[i]
         m = g.m
-        rel, rrel = f"{w}{r.a}/{w}{r.b}", f"{w}{r.b}/{w}{r.a}"
+        rel, rrel = relative(named(w, r.a), named(w, r.b)), relative(named(w, r.b), named(w, r.a))
         ka, kb, kk = self.rel_keys(r, w)
         slip_of = ("slip", ka, kb, r.b, kk)
         if self.level == "velocity":
@@ -1122,7 +1124,7 @@ class _Run:
             _, i, sign, w = u
             r = g.rels[i]
             ka, kb, kk = self.rel_keys(r, w)
-            return (f"{self.X}_{w}{r.a}/{w}{r.b}", sign, ("slip", ka, kb, r.b, kk),
+            return (f"{self.X}_{relative(named(w, r.a), named(w, r.b))}", sign, ("slip", ka, kb, r.b, kk),
                     "relative" if vel else "slip")
         _, inner, lk, p, s = u
         lab, sign, of, _ = self.unknown(inner)
@@ -1299,7 +1301,7 @@ def _equation(run: _Run, st: _PStep, kind: str) -> str:
         what = ("the driver's speed along its path" if r.source == "drive"
                 else f"{g.m.contacts[r.index].kind} contact")
         sign = 1 if t[0] == r.a else -1
-        terms = run.term_labels((("rel", st.rel, sign, t[1]),)) or [f"{X}_{t[1]}{t[0]}/{t[1]}{other[0]}"]
+        terms = run.term_labels((("rel", st.rel, sign, t[1]),)) or [f"{X}_{relative(named(t[1], t[0]), named(t[1], other[0]))}"]
         return _sum([f"{X}_{g.name(t)} = {X}_{g.name(other)}"] + terms) + f" ({what})"
     if st.kind in ("driver", "image"):
         lk = st.link
@@ -1414,7 +1416,8 @@ def _tables(sol):
             if key in pinned and pinned[key] is None:
                 continue   # a point of links pinned together: one row, with the first key's
             lo, hi = h["speed" if vel else "magnitude"][key]
-            name = f"{pname}_{pinned[key][0]} (on {on_links(pinned[key][1])})" if key in pinned else f"{pname}_{key}"
+            name = f"{pname}_{pinned[key][0]} (on {on_links(pinned[key][1])})" if key in pinned else \
+                f"{pname}_{key_text(key)}"
             rows.append((f"{name} ({poly.labels[key]})", polar(img), polar(analytic_pt[key]),
                          f"{fmt(lo, 4)} .. {fmt(hi, 4)}"))
         rows.append(("max error (relative to the largest)", f"{poly.max_error:.2g}", "", ""))

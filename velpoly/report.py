@@ -13,6 +13,7 @@ from dataclasses import dataclass
 
 import numpy as np
 
+from .names import direction, key_text, vector_direction
 from .reference import at_file_pose, compare, file_pose_angle
 
 __all__ = ["Table", "render_table", "solution_tables", "solution_report", "fmt", "polar", "SECTIONS",
@@ -54,8 +55,7 @@ def polar(v) -> str:
     mag = float(np.hypot(*v))
     if mag == 0:
         return "0"
-    ang = math.degrees(math.atan2(v[1], v[0])) % 360.0
-    return f"{fmt(mag)} ∠ {ang:.3f}°"
+    return f"{fmt(mag)} ∠ {direction(vector_direction(v), 3)}°"
 
 
 def _links(sol) -> Table:
@@ -104,9 +104,9 @@ def _points(sol) -> Table:
     for key, p in sol.position.items():
         if key in pinned and pinned[key] is None:
             continue   # shown with the first key of its pinned group
-        label = f"{pinned[key][0]} (on {on_links(pinned[key][1])})" if key in pinned else key
+        label = f"{pinned[key][0]} (on {on_links(pinned[key][1])})" if key in pinned else key_text(key)
         rows.append((label, f"({fmt(p[0])}, {fmt(p[1])})", polar(sol.velocity[key]), polar(sol.acceleration[key])))
-    u = sol.mechanism.units
+    u = sol.mechanism.units or "units"
     return Table("Points", ("point", f"position ({u})", f"velocity ({u}/s)", f"acceleration ({u}/s^2)"),
                  tuple(rows))
 
@@ -138,7 +138,7 @@ def _show_value(v) -> str:
         return "at infinity"
     if isinstance(v, tuple):
         if len(v) == 2:
-            return f"{fmt(v[0])} ∠ {v[1]:.3f}°"
+            return f"{fmt(v[0])} ∠ {direction(v[1], 3)}°"
     return fmt(v)
 
 
@@ -255,8 +255,8 @@ def _head(sol) -> tuple[str, str]:
     """The report's title and its driver's line."""
     m = sol.mechanism
     if m.driver.is_slider:
-        return m.title, (f"driver: slider {m.driver.slider}, speed {fmt(m.driver.speed)} {m.units}/s, "
-                         f"accel {fmt(m.driver.accel)} {m.units}/s^2")
+        return m.title, (f"driver: slider {m.driver.slider}, speed {fmt(m.driver.speed)} {m.units or 'units'}/s, "
+                         f"accel {fmt(m.driver.accel)} {m.units or 'units'}/s^2")
     return m.title, (f"driver: link {m.driver.link} at {sol.driver_angle:.4f} deg, omega {fmt(m.driver.omega)} "
                      f"rad/s, alpha {fmt(m.driver.alpha)} rad/s^2")
 

@@ -15,6 +15,9 @@ import re
 
 import numpy as np
 
+from ..names import literal, math_literal  # noqa: F401  (user text drawn as written)
+from ..names import name_tex as _name_tex
+
 __all__ = ["Artists", "nice_scale", "nice_length", "fit_view", "view_scale", "per_point", "per_cm",
            "view_box", "border_point", "tex", "prose_tex", "arrow", "get_ax", "renderer_of"]
 
@@ -153,64 +156,14 @@ def view_box(ax):
     return box(x0, y0, x1, y1)
 
 
-def literal(s) -> str:
-    r"""A user's text (a name, a title, units) for a matplotlib Text, drawn as written: ``$`` escaped so
-    it starts no mathtext, a backslash set as mathtext's backslash (so none escapes a ``$`` after it).
-
-    >>> print(literal("$B$"), literal("a\\b"))
-    \$B\$ a$\backslash$b
-    """
-    return r"$\backslash$".join(part.replace("$", r"\$") for part in str(s).split("\\"))
-
-
-_MATH_ESCAPES = {"\\": r"{\backslash}", "{": r"\{", "}": r"\}", "$": r"\$"}
-
-
-def math_literal(s) -> str:
-    r"""A user's text for inside mathtext (a subscript ``$\omega_{...}$``), drawn as written: ASCII
-    letters and digits as they are, braces, ``$`` and backslash escaped, other ASCII signs and spaces
-    as ``\text{...}`` (mathtext would read ``_ ^ % # ~`` or drop spaces); other characters as they are.
-
-    >>> print(math_literal("3"), math_literal("a_b"), math_literal("{x}"))
-    3 a\text{_}b \{x\}
-    """
-    out = []
-    for ch in str(s):
-        if ch in _MATH_ESCAPES:
-            out.append(_MATH_ESCAPES[ch])
-        elif ch.isascii() and not ch.isalnum():
-            out.append(r"\text{" + ch + "}")
-        else:
-            out.append(ch)
-    return "".join(out)
-
-
-_SIMPLE = re.compile(r"^([A-Za-z]+)(?:_([0-9A-Za-z]+)|([0-9]+))?('*)$")
-
-
 def tex(label: str, math: bool = False) -> str:
-    """A textbook label as text for an italic Text: ``b4`` -> $b_{4}$, ``c'`` -> c′, ``O_v`` -> $O_{v}$.
-
-    Letters, then a subscript (digits, or anything after ``_``), then primes.
-    Only a subscript needs mathtext; primes become the prime sign (′), so
-    plain labels stay plain text (set ``fontstyle="italic"`` on the Text).
-    Any other label is drawn as it is written (:func:`literal`).
-    ``math=True`` gives mathtext always (for a label beside mathtext ones).
+    """A textbook label as text for an italic Text: ``b4`` -> $b_{4}$, ``c'`` -> c′, ``O_v`` -> $O_{v}$,
+    ``p₂`` -> $p_{2}$, ``p(cam)`` -> p with the subscript cam (:func:`velpoly.names.name_tex`).
 
     >>> tex("b4"), tex("c'"), tex("P_13"), tex("F@5"), tex("B")
     ('$b_{4}$', 'c′', '$P_{13}$', 'F@5', 'B')
     """
-    s = str(label)
-    m = _SIMPLE.match(s)
-    if not m:
-        return literal(s)
-    base, sub, digits, primes = m.groups()
-    sub = sub or digits
-    if not sub and not math:
-        return base + "′" * len(primes)
-    if not sub:
-        return "$" + base + primes + "$"
-    return "$" + base + "_{" + sub + "}" + primes + "$"
+    return _name_tex(label, math)
 
 
 _POINT_NAME = re.compile(r"(?<![a-z$])([A-Z])_?([0-9]+)")
