@@ -43,6 +43,7 @@ from .errors import InputError, PoseError
 from .fileio import atomic_path, atomic_write_text
 from .kinematics import Kinematics, prepare
 from .model import Mechanism
+from .names import key_text, place, quantity_math, relative, unit
 from .report import Table, fmt, render_table
 from .solution import driver_reference_angle
 from .sweeps import MEMORY_BUDGET, Sweep, check_memory, memory_estimate, sweep
@@ -302,7 +303,7 @@ def summary_table(sw: Sweep, points=None) -> Table:
     point keys, default every moving point) and each slider's slip velocity over the cycle, with
     the driver positions where they occur."""
     m = sw.mechanism
-    u = m.units or "length"
+    u = m.units or "units"
     at = sw.angles
     rows = []
     for k in m.moving_links:
@@ -312,12 +313,13 @@ def summary_table(sw: Sweep, points=None) -> Table:
     keys = list(points) if points else _moving_keys(sw)
     for key in keys:
         v = sw.velocity[key]
-        rows.append(_extremes(f"|V_{key}|", f"{u}/s", np.hypot(v[:, 0], v[:, 1]), at))
+        rows.append(_extremes(f"|V_{key_text(key)}|", f"{u}/s", np.hypot(v[:, 0], v[:, 1]), at))
     for key in keys:
         a = sw.acceleration[key]
-        rows.append(_extremes(f"|A_{key}|", f"{u}/s^2", np.hypot(a[:, 0], a[:, 1]), at))
+        rows.append(_extremes(f"|A_{key_text(key)}|", f"{u}/s^2", np.hypot(a[:, 0], a[:, 1]), at))
     for s, r in zip(m.sliders, sw.sliders):
-        rows.append(_extremes(f"slip V_{s.point}{s.block}/{s.point}{s.guide}", f"{u}/s", r["slip_velocity"], at))
+        slip = relative(place(s.point, s.block), place(s.point, s.guide))
+        rows.append(_extremes(f"slip V_{slip}", f"{u}/s", r["slip_velocity"], at))
     _, unit = driver_label(m)
     return Table(f"Over the cycle ({len(at)} poses)",
                  ("quantity", "unit", "min", f"at ({unit})", "max", f"at ({unit})"), tuple(rows))
@@ -383,9 +385,6 @@ def _series_style(i: int, n_points: int, style: str) -> dict:
             "marker": _MARKERS[(i // len(_LINESTYLES)) % len(_MARKERS)], "markevery": every, "markersize": 3.5}
 
 
-_PLAIN_INDEX = re.compile(r"[A-Za-z0-9@'.]+")
-
-
 def _literal(text: str) -> str:
     """A text with the user's names drawn as written (no mathtext from a name): see render.canvas.literal."""
     from .render.canvas import literal
@@ -393,12 +392,10 @@ def _literal(text: str) -> str:
 
 
 def _quantity(symbol: str, index: str, bars: str = "") -> str:
-    """A curve's label as a book prints it: ``omega_3`` as omega with subscript 3, ``|V_B|`` with
-    subscript B; an index mathtext cannot hold (``$``, braces ...) stays plain text."""
-    if not _PLAIN_INDEX.fullmatch(index):
-        plain = {r"\omega": "omega", r"\alpha": "alpha"}.get(symbol, symbol)
-        return _literal(f"{bars}{plain}_{index}{bars}")
-    return f"${bars}{symbol}_{{{index}}}{bars}$"
+    """A curve's label as a book prints it (:mod:`velpoly.names`): ``omega_3`` as omega with subscript 3,
+    ``|V_B|`` with subscript B, ``|V_P@2|`` as V with subscript P₂; a user's name drawn as written."""
+    sym = {r"\omega": "omega", r"\alpha": "alpha"}.get(symbol, symbol)
+    return quantity_math(sym, index if sym in ("omega", "alpha") else key_text(index), bars == "|")
 
 
 COINCIDE = 1e-9   # curves within this (relative to the panel's largest value) at every pose are one curve
@@ -468,7 +465,7 @@ def cycle_figure(sw: Sweep, points=None, cen: Centrodes | None = None, style: st
     import matplotlib
 
     m = sw.mechanism
-    u = m.units or "length"
+    u = m.units or "units"
     keys = list(points) if points else _moving_keys(sw)
     x = sw.angles
     xname, xunit = driver_label(m)
@@ -482,9 +479,9 @@ def cycle_figure(sw: Sweep, points=None, cen: Centrodes | None = None, style: st
              [(_quantity(r"\omega", k.name), sw.omega[k.name]) for k in m.moving_links]),
             (axes[0, 1], "Angular accelerations", r"$\alpha$ (rad/s²)",
              [(_quantity(r"\alpha", k.name), sw.alpha[k.name]) for k in m.moving_links]),
-            (axes[1, 0], "Speeds", _literal(f"|V| ({u}/s)"),
+            (axes[1, 0], "Speeds", _literal(f"|V| ({unit(m.units, 1)})"),
              [(_quantity("V", k, "|"), np.hypot(*sw.velocity[k].T)) for k in keys]),
-            (axes[1, 1], "Accelerations", _literal(f"|A| ({u}/s²)"),
+            (axes[1, 1], "Accelerations", _literal(f"|A| ({unit(m.units, 2)})"),
              [(_quantity("A", k, "|"), np.hypot(*sw.acceleration[k].T)) for k in keys]),
         ]
         drawn = drawn_pose(sw)
@@ -537,7 +534,7 @@ def plot_cycle(sw: Sweep, out, points=None, cen: Centrodes | None = None, style:
 
 def _plot_centrodes(sw: Sweep, cen: Centrodes, ax_fixed, ax_moving, style: str, kin: Kinematics) -> None:
     m = sw.mechanism
-    u = m.units or "length"
+    u = m.units or "units"
     lk = cen.link
     om = sw.omega[lk]
     line = {"color": "black" if style != "slides" else "C3"}
@@ -548,7 +545,7 @@ def _plot_centrodes(sw: Sweep, cen: Centrodes, ax_fixed, ax_moving, style: str, 
     ax_fixed.plot(fixed[:, 0], fixed[:, 1], label=_literal(f"fixed centrode of link {lk}"), **line)
     if cen.defined[0]:
         ax_fixed.plot(*cen.fixed[0], "o", color=line["color"], markersize=4,
-                      label=_literal(f"P_{_pole_name(m, lk)} at the first pose"))
+                      label=quantity_math("P", _pole_name(m, lk)) + " at the first pose")
         carried = _break_at_infinity(cen.carried(sw, kin, 0), om)
         ax_fixed.plot(carried[:, 0], carried[:, 1], linestyle="--", color=line["color"], linewidth=0.8,
                       label="moving centrode (carried by the link)")

@@ -42,8 +42,8 @@ from __future__ import annotations
 import math
 import re
 
-__all__ = ["split_key", "link_sub", "link_of", "place", "key_text", "lower_name", "relative", "quantity_text",
-           "math_literal", "literal", "name_math", "name_tex", "index_math", "quantity_math", "direction",
+__all__ = ["split_key", "link_sub", "link_of", "place", "key_text", "lower_name", "upper_name", "relative", "quantity_text",
+           "math_literal", "literal", "link_math", "name_math", "name_tex", "index_math", "quantity_math", "direction",
            "polar", "unit", "NAME"]
 
 _SUB_DIGITS = str.maketrans("0123456789", "₀₁₂₃₄₅₆₇₈₉")
@@ -93,6 +93,14 @@ def lower_name(name: str) -> str:
     return (mo.group(1) + mo.group(2)).lower() + (mo.group(3) or "") + mo.group(4)
 
 
+def upper_name(name: str) -> str:
+    """A point's text name from its image's (:func:`lower_name` undone): ``s(Cam)`` -> S(Cam), ``b₄`` -> B₄."""
+    mo = NAME.fullmatch(name)
+    if not mo:
+        return name.upper()
+    return (mo.group(1) + mo.group(2)).upper() + (mo.group(3) or "") + mo.group(4)
+
+
 def relative(a: str, b: str) -> str:
     """The index of a relative quantity of two places' text names: ``P₂/P₃`` (a relative to b)."""
     return f"{a}/{b}"
@@ -136,7 +144,7 @@ def math_literal(s) -> str:
     return "".join(out)
 
 
-def _link_math(link: str) -> str:
+def link_math(link: str) -> str:
     """A link's name inside a mathtext subscript: digits and one letter as they are (italic), a word
     upright (``\\mathrm{cam}``), as the user wrote it."""
     link = str(link)
@@ -156,7 +164,7 @@ def name_math(name: str) -> str | None:
     base, digits, link, primes = mo.groups()
     subs = [digits] if digits else []
     if link:
-        subs.append(_link_math(link_of(link)))
+        subs.append(link_math(link_of(link)))
     return base + ("_{" + ",".join(subs) + "}" if subs else "") + primes
 
 
@@ -196,7 +204,8 @@ _GREEK = {"omega": r"\omega", "alpha": r"\alpha", "theta": r"\theta"}
 def quantity_math(symbol: str, index: str, bars: bool = False, sup: str = "") -> str:
     """A quantity as mathtext: ``V``, ``P₂`` -> $V_{P_{2}}$; ``omega``, ``3`` -> $\\omega_{3}$;
     ``bars``: its magnitude $|V_{B}|$; ``sup``: a component's mark (``n``: $A^{n}_{BA}$)."""
-    body = _GREEK.get(symbol, symbol) + ("^{" + sup + "}" if sup else "") + "_{" + index_math(str(index)) + "}"
+    index = link_math(index) if symbol in _GREEK else index_math(str(index))   # a rate's index is a link
+    body = _GREEK.get(symbol, symbol) + ("^{" + sup + "}" if sup else "") + "_{" + index + "}"
     return "$|" + body + "|$" if bars else "$" + body + "$"
 
 

@@ -306,20 +306,10 @@ def _coupler_keys(m, keys) -> list:
 
 
 def _name_tex(symbol: str, index: str, bars: bool = False) -> str:
-    """``omega`` and ``3`` -> $\\omega_{3}$; ``V``, ``B`` with bars -> $|V_{B}|$ (``B@3`` -> B_{3})."""
-    import re
-    from .canvas import math_literal   # a user's name is drawn as written, never read as mathtext
-    sym = {"omega": r"\omega", "alpha": r"\alpha", "theta": r"\theta"}.get(symbol, symbol)
-    idx = str(index)
-    if "@" in idx:
-        p, _, lk = idx.partition("@")
-        idx = p + "_{" + lk + "}" if re.fullmatch(r"[A-Za-z0-9]+", p + lk) else math_literal(idx)
-    elif not re.fullmatch(r"[A-Za-z0-9']+", idx):
-        idx = math_literal(idx)
-    else:
-        idx = re.sub(r"([A-Za-z])([0-9]+)$", r"\1_{\2}", idx) if not idx.isdigit() else idx
-    body = sym + "_{" + idx + "}"
-    return "$|" + body + "|$" if bars else "$" + body + "$"
+    """``omega`` and ``3`` -> $\\omega_{3}$; ``V``, ``B`` with bars -> $|V_{B}|$; ``P@3`` -> P_{3}, ``P@cam``
+    -> P with the subscript cam (:mod:`velpoly.names`; a user's name drawn as written)."""
+    from ..names import key_text, quantity_math
+    return quantity_math(symbol, index if symbol in ("omega", "alpha", "theta") else key_text(index), bars)
 
 
 # -- the figure ----------------------------------------------------------------------------------------

@@ -18,6 +18,7 @@ from shapely.geometry import LineString, MultiPoint, Point
 from shapely.geometry import Polygon as SPolygon
 from shapely.ops import unary_union
 
+from ..names import key_text, upper_name
 from .canvas import (Artists, arrow, border_point, fit_view, get_ax, literal, math_literal, per_cm, per_point, tex,
                      view_box, view_scale)
 from .labels import placer
@@ -592,7 +593,7 @@ class _Drawing:
             for key, pos in spots:
                 links = m.carriers.get(name, ())
                 prefer = _away(pos, _neighbours(sol, name, links), default=45.0)
-                text = tex(name) if len(spots) == 1 else tex(key)
+                text = tex(name) if len(spots) == 1 else tex(key_text(key))   # P₂, velpoly.names
                 t = self.pl.place(pos, text, prefer=prefer, fontsize=st.font_size, zorder=7, fontstyle="italic",
                                   gid=f"label-point-{name}" if len(spots) == 1 else f"label-point-{key}")
                 self.art.add("labels", t)
@@ -798,7 +799,7 @@ def mark_auxiliary(sol, ax, polygon, *, style="textbook") -> Artists:
         p = np.asarray(aux.position, float)
         if any(float(np.hypot(*(p - q))) <= tol for q in existing):
             continue
-        name = aux.label.rstrip("'").upper() if aux.label else key.split("@")[0]
+        name = upper_name(aux.label.rstrip("'")) if aux.label else key.split("@")[0]
         view = view_box(ax)
         if not view.contains(Point(*p)):
             x0, y0, x1, y1 = mechanism_bounds(sol)

@@ -31,6 +31,7 @@ from pathlib import Path
 
 from ..errors import InputError
 from ..fileio import atomic_path
+from ..names import index_math, link_math
 from .canvas import fit_view, literal, nice_scale, view_scale
 from .displacement import draw_mechanism, equivalent_linkage_note, mark_auxiliary, mechanism_bounds
 from .kennedy import draw_kennedy_circle, draw_poles, pole_label
@@ -87,12 +88,14 @@ def constructions(sol, sheet: str) -> Constructions:
     return Constructions(vel, acc, poles)
 
 
-_QUANTITY = re.compile(r"(?<![A-Za-z\\])(omega|alpha|theta|[VARP])(\^[nt])?_([A-Za-z0-9]+(?:/[A-Za-z0-9]+)?)(\^[0-9])?")
+_NAMES = r"(?:[A-Za-z0-9]|[₀-₉]+|\([^()\s$\\]*\))+"   # point names as velpoly.names writes them: B, O2, P₂, P(cam)
+_QUANTITY = re.compile(r"(?<![A-Za-z\\])(omega|alpha|theta|[VARP])(\^[nt])?_(" + _NAMES + "(?:/" + _NAMES + r")?)(\^[0-9])?")
 
 
 def _index(index: str) -> str:
-    """A subscript's point names with their own subscripts: ``AO2`` -> AO_{2}, ``B3/B4`` -> B_{3}/B_{4}."""
-    return index if index.isdigit() else re.sub(r"([A-Za-z])([0-9]+)", r"\1_{\2}", index)
+    """A subscript's point names with their own subscripts (:func:`velpoly.names.index_math`): ``AO2`` ->
+    AO_{2}, ``B₃/B₄`` -> B_{3}/B_{4}, ``P(cam)`` -> P_{cam}."""
+    return index_math(index)
 
 
 def equation_tex(eq: str) -> str:
@@ -100,8 +103,9 @@ def equation_tex(eq: str) -> str:
     ``omega_2^2 R_AO2`` -> $\\omega_{2}^{2}$ $R_{AO_{2}}$, `` - `` -> `` − ``, ``deg`` -> °."""
     def sub(mo):
         name, sup, index, power = mo.groups()
-        name = {"omega": r"\omega", "alpha": r"\alpha", "theta": r"\theta"}.get(name, name)
-        out = "$" + name + ("^{" + sup[1:] + "}" if sup else "") + "_{" + _index(index) + "}"
+        greek = {"omega": r"\omega", "alpha": r"\alpha", "theta": r"\theta"}.get(name)
+        out = "$" + (greek or name) + ("^{" + sup[1:] + "}" if sup else "") + "_{" + (
+            link_math(index) if greek else _index(index)) + "}"
         if power and not sup:
             return out + "^{" + power[1:] + "}$"
         return out + "$" + (power or "")
@@ -109,6 +113,7 @@ def equation_tex(eq: str) -> str:
     s = _QUANTITY.sub(sub, s)
     s = re.sub(r"\bomega\b", r"$\\omega$", s)
     s = re.sub(r"\balpha\b", r"$\\alpha$", s)
+    s = re.sub(r"\bO_([av])\b", r"$O_{\1}$", s)   # the polygons' origins
     s = re.sub(r"([0-9]) deg\b", "\\1°", s)
     return s.replace(" x ", " × ").replace(" - ", " − ")
 
