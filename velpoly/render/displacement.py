@@ -18,7 +18,7 @@ from shapely.geometry import LineString, MultiPoint, Point
 from shapely.geometry import Polygon as SPolygon
 from shapely.ops import unary_union
 
-from ..names import key_text, upper_name
+from ..names import key_text, link_math, upper_name
 from .canvas import (Artists, arrow, border_point, fit_view, get_ax, literal, math_literal, per_cm, per_point, tex,
                      view_box, view_scale)
 from .labels import placer
@@ -691,7 +691,7 @@ class _Drawing:
         # another link (a slotted lever passing by the pivot), a block or a label: then the next gap
         others = [g for lk, g in getattr(self, "geoms", {}).items() if lk != drv.link]
         others += [g for lk, g in self.block_geom.items() if lk != drv.link] + list(self.pl.boxes)
-        lk = math_literal(drv.link)
+        lk = link_math(drv.link)   # velpoly.names: a word upright, as written
         text = rf"$\omega_{{{lk}}}$ = {abs(drv.omega):.4g} rad/s {'ccw' if drv.omega >= 0 else 'cw'}"
         if drv.alpha:
             text += "\n" + rf"$\alpha_{{{lk}}}$ = {abs(drv.alpha):.4g} rad/s² {'ccw' if drv.alpha >= 0 else 'cw'}"
