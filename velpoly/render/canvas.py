@@ -16,6 +16,7 @@ import re
 import numpy as np
 
 from ..names import literal, math_literal  # noqa: F401  (user text drawn as written)
+from ..names import name_math
 from ..names import name_tex as _name_tex
 
 __all__ = ["Artists", "nice_scale", "nice_length", "fit_view", "view_scale", "per_point", "per_cm",
@@ -167,17 +168,22 @@ def tex(label: str, math: bool = False) -> str:
 
 
 _POINT_NAME = re.compile(r"(?<![a-z$])([A-Z])_?([0-9]+)")
+_ON_LINK = re.compile(r"(?<![a-z$])([A-Z][0-9]*(?:[₀-₉]+|\([^()\s$\\]+\)))")   # S₃, S(cam): velpoly.names
 
 
 def prose_tex(s: str) -> str:
     """Words naming points, with the points' subscripts: ``perpendicular to O4B`` -> ``perpendicular to
-    $O_{4}$B`` (a link's number, ``on 1``, stays as it is).
+    $O_{4}$B``, a point of a link ``S₃``, ``S(cam)`` with the link as its subscript (a link's number,
+    ``on 1``, stays as it is).
 
-    >>> prose_tex("perpendicular to O4B"), prose_tex("parallel to the path of B on 1")
-    ('perpendicular to $O_{4}$B', 'parallel to the path of B on 1')
+    >>> prose_tex("perpendicular to O4B"), prose_tex("parallel to the path of B on 1"), prose_tex("BS₃")
+    ('perpendicular to $O_{4}$B', 'parallel to the path of B on 1', 'B$S_{3}$')
     """
     s = literal(s)
-    return _POINT_NAME.sub(lambda mo: "$" + mo.group(1) + "_{" + mo.group(2) + "}$", s)
+    parts = _ON_LINK.split(s)   # the names of points of links, then the rest as before
+    return "".join("$" + name_math(p) + "$" if i % 2 else
+                   _POINT_NAME.sub(lambda mo: "$" + mo.group(1) + "_{" + mo.group(2) + "}$", p)
+                   for i, p in enumerate(parts))
 
 
 def arrow(ax, tail, head, *, lw: float, head_length: float, colour, linestyle="-", zorder=3,
