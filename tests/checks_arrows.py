@@ -23,6 +23,7 @@ from __future__ import annotations
 import numpy as np
 
 from velpoly.motion import point_keys
+from velpoly.names import place, relative
 from velpoly.polygons import acceleration_polygon, velocity_polygon
 
 REL = 1e-9
@@ -72,13 +73,13 @@ class _Truth:
         raise AssertionError(f"no position for {key}")
 
     def name(self, key):
-        """The textbook name the labels use: B, P3 (a contact point of link 3), A4, S3 (the
-        auxiliary point of link 3: S3@3), S34 (link 4's point at S3, e.g. a block on link 3)."""
+        """The textbook name the labels use (velpoly.names): B, P₃ (a contact point of link 3), A₄, S₃ (the
+        auxiliary point of link 3: S₃@3), S₃₄ (link 4's point at S₃, e.g. a block on link 3); P(cam)."""
         if key in self.keys:
             p, lk = self.keys[key]
-            return p if key == p else f"{p}{lk}"
+            return p if key == p else place(p, lk)
         n, lk = key.rsplit("@", 1)
-        return n if n not in self.m.points and n.rstrip("'") == f"S{lk}" else f"{n}{lk}"
+        return n if n not in self.m.points and n.rstrip("'") == place("S", lk) else place(n, lk)
 
     def velocity(self, key):
         if key in self.sol.velocity:
@@ -158,7 +159,7 @@ def _labels_ok(truth, v):
         """The names a relative quantity of a's place to b's (both at point n) may be written with."""
         (n, la), (nb, lb) = truth.split(a), truth.split(b)
         links = {la} | set(truth.m.carriers.get(n, ()))
-        return {f"{n}{x}/{nb}{lb}" for x in links}
+        return {relative(place(n, x), place(nb, lb)) for x in links}
 
     if what == "coriolis":
         assert v.label in {f"2 omega_{v.of[1]} x V_{r}" for r in rel(v.of[2], v.of[3])}, v.label

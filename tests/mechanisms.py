@@ -394,3 +394,30 @@ ARROW_GENERATORS = {
     "rod sliding on a fixed drum": lambda s, a: sliding_on_frame(s, a, "curved"),
     "rod sliding on a fixed floor": lambda s, a: sliding_on_frame(s, a, "flat"),
 }
+
+
+WORDS = ("frame", "cam", "follower", "lever", "crank", "blk", "rocker", "arm", "S", "slider", "yoke", "bar")
+
+
+def rename_links(mech: dict, names=WORDS) -> dict:
+    """The mechanism ``mech`` (a dict for ``velpoly.load``) with its links renamed, in file order, to
+    ``names`` (words, as some lecturers name links: "cam", "follower"; one letter: "S"), everywhere a
+    link is named: links, sliders, slots, contacts, the driver, ``[drawing] link_colours``. A
+    ``[reference]`` (keyed by link numbers) is dropped."""
+    import copy
+    m = copy.deepcopy(mech)
+    new = dict(zip(m["links"], names))
+    m["links"] = {new[k]: v for k, v in m["links"].items()}
+    for s in m.get("sliders", ()):
+        s["block"], s["guide"] = new[str(s["block"])], new[str(s["guide"])]
+    for s in m.get("slots", ()):
+        s["link"], s["slot"] = new[str(s["link"])], new[str(s["slot"])]
+    for c in m.get("contacts", ()):
+        c["links"] = [new[str(lk)] for lk in c["links"]]
+    if "link" in m["driver"]:
+        m["driver"]["link"] = new[str(m["driver"]["link"])]
+    colours = m.get("drawing", {}).get("link_colours")
+    if colours:
+        m["drawing"]["link_colours"] = {new[str(k)]: v for k, v in colours.items()}
+    m.pop("reference", None)
+    return m

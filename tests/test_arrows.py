@@ -16,6 +16,7 @@ import numpy as np
 import pytest
 
 import velpoly
+from velpoly.names import place
 from velpoly.polygons import acceleration_polygon, velocity_polygon
 
 import checks_arrows
@@ -86,7 +87,7 @@ def test_coriolis_in_its_true_sense_from_either_side(name, start):
             pin = s.pin if sol.mechanism.slots else s.point
             block = s.link if sol.mechanism.slots else s.block
             guide = s.slot if sol.mechanism.slots else s.guide
-            assert cor.label.startswith(f"2 omega_{guide} x V_{pin}{block}/{pin}{guide}"), cor.label
+            assert cor.label.startswith(f"2 omega_{guide} x V_{place(pin, block)}/{place(pin, guide)}"), cor.label
             pin_img = poly.images[pin] if pin in poly.images else poly.images[f"{pin}@{block}"]
             gk = f"{pin}@{guide}"
             guide_img = poly.images[gk] if gk in poly.images else poly.auxiliary[gk].image

@@ -136,8 +136,8 @@ def test_coriolis_and_coincident_points_in_words():
     term appears in the line it offsets."""
     sol = velpoly.solve(velpoly.load(EXAMPLES / "ex3_3_inverted_slider.toml"))
     acc = [s.caption for s in acceleration_polygon(sol).steps]
-    step = next(c for c in acc if c.startswith("A_A4 ="))
-    assert "a₄' on the line through" in step and "- 2 omega_4 x V_A3/A4 ∥ the path of B on link 4" in step
+    step = next(c for c in acc if c.startswith("A_A₄ ="))   # a point of link 4 named as velpoly.names names it
+    assert "a₄' on the line through" in step and "- 2 omega_4 x V_A₃/A₄ ∥ the path of B on link 4" in step
     assert "alpha_3 = alpha_4 (block and straight guide turn together)" in step
 
 

@@ -276,7 +276,7 @@ def test_cycle_figure_plots_every_quantity_with_units():
     assert speeds["$|V_{E}|$"].get_ydata() == pytest.approx(np.hypot(*sw.velocity["E"].T))
     fixed = [ln for ln in axes[4].lines if ln.get_label() == "fixed centrode of link 3"][0]
     from velpoly.render.sweep import _quantity
-    assert _quantity("V", "P@2", "|") == "$|V_{P@2}|$" and _quantity("V", "a{b}", "|") == "|V_a{b}|"
+    assert _quantity("V", "P@2", "|") == "$|V_{P_{2}}|$" and _quantity("V", "a{b}", "|") == r"$|V_{a\{b\}}|$"
     xy = np.column_stack([fixed.get_xdata(), fixed.get_ydata()])
     good = centrodes(sw, "3", kin).fixed
     good = good[np.isfinite(good[:, 0])]

@@ -26,6 +26,7 @@ import pytest
 
 import velpoly
 from velpoly.html import _split, cycle_solutions, page, pose_values, sheet_data
+from velpoly.names import key_text
 from velpoly.polygons import acceleration_polygon, velocity_polygon
 
 from mechanisms import SIXBAR_1_4_4, fourbar, slider_crank
@@ -402,7 +403,7 @@ def test_browser_draws_the_solution(case, browser_runs):
     for a in dom.marks:   # hover or tap: every point, image and pole names itself and its value
         key, tip, cls = a["data-key"], a.get("data-tip", ""), a.get("class", "").split()
         if "pt" in cls:
-            assert tip.startswith(f"{key}: (") and "V = " in tip, tip
+            assert tip.startswith(f"{key_text(key)}: (") and "V = " in tip, tip   # P₂, as velpoly.names names it
         elif "img" in cls:
             assert f"{'V' if a['data-level'] == 'velocity' else 'A'}_{key} = " in tip, tip
         else:

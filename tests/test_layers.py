@@ -151,7 +151,7 @@ def test_the_output_rule_sees_prints_and_not_doctests(code, hits):
 # The layers of docs/internals.md, from the bottom; a module under a package named here (velpoly.load.*)
 # is in its package's layer. A module named nowhere is not checked (add it to its layer).
 LAYERS = (
-    ("kernel", ("errors", "model", "loader", "load", "geometry", "rigid", "jet", "constraints", "dyads", "pose",
+    ("kernel", ("errors", "names", "model", "loader", "load", "geometry", "rigid", "jet", "constraints", "dyads", "pose",
                 "kinematics", "motion", "driver", "solution", "sweeps", "centrodes", "arguments", "fileio")),
     ("constructions", ("polygons", "poles", "reference")),
     ("comparison and tables", ("tables", "compare", "report")),

@@ -234,7 +234,7 @@ def test_example_3_10_uses_the_equivalent_linkage_like_the_book():
                                                         "perpendicular to FC"]
         roll = poly.steps[poly.steps.index(c6) + 1]
         assert roll.kind == "known" and set(roll.found) == {"D@5", "D@6"} and set(roll.omegas) == {"5"}
-    assert velocity_polygon(s).auxiliary["C@6"].label == "c6"
+    assert velocity_polygon(s).auxiliary["C@6"].label == "c₆"
 
 
 def test_flat_on_the_first_link_with_slip():
@@ -264,7 +264,7 @@ def test_slots_straight_and_circular_and_a_curved_slider():
         check(velpoly.solve(velpoly.load(d)))
     # the slot link's point under the pin, which it does not list, is an auxiliary image "A@3"
     v = velocity_polygon(velpoly.solve(velpoly.load(straight)))
-    assert "A@3" in v.auxiliary and v.auxiliary["A@3"].label == "a3"
+    assert "A@3" in v.auxiliary and v.auxiliary["A@3"].label == "a₃"
     stp = next(stp for stp in v.steps if stp.kind == "intersection")
     assert stp.auxiliary == ("A@3",) and "parallel" not in stp.lines[0].reason
 

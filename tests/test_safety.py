@@ -544,7 +544,8 @@ def test_names_are_drawn_as_written_in_the_cycle_plots():
     m = velpoly.loads(_nasty_text())
     sw = run_cycle(m, 15.0)
     shown = _shown(cycle_figure(sw, cen=centrodes(sw, "{")))
-    for name in NASTY_POINTS + [NASTY_TITLE, "x ($\\sqrt{$)", "|V_x_{y}^z\\|", "omega_%#&~ 1", "link {"]:
+    # a curve's label is typeset (velpoly.names): V or omega with the user's name, as written, as its subscript
+    for name in NASTY_POINTS + [NASTY_TITLE, "x ($\\sqrt{$)", "|Vx_{y}^z\\|", "ω%#&~ 1", "link {"]:
         assert _appears(name, shown), name
 
 

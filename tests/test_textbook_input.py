@@ -311,17 +311,17 @@ def test_a_pinned_pair_is_shown_once_and_the_json_keeps_its_keys(seed):
     assert pinned_keys(m) == {"A@2": ("A", ("2", "3")), "A@3": None}
     rows = [line for line in solution_report(s).split("Points\n", 1)[1].split("\n\n", 1)[0].splitlines()[2:]]
     labels = [r.split("  ")[0] for r in rows]
-    assert "A (on 2 and 3)" in labels and "A@4" in labels and not {"A@2", "A@3"} & set(labels)
+    assert "A (on 2 and 3)" in labels and "A₄" in labels and not {"A@2", "A@3"} & set(labels)
     row = rows[labels.index("A (on 2 and 3)")]
     assert row.split("  ")[-1].strip().startswith(f"{np.hypot(*s.acceleration['A@2']):.6g}"[:5])
     report = solution_report(s)   # and the polygons' tables of the same report
     assert "V_A (on 2 and 3) (a" in report and "A_A (on 2 and 3) (a" in report
-    assert "V_A@2" not in report and "V_A@3" not in report and "V_A@4 (a4)" in report
+    assert "V_A@2" not in report and "V_A@3" not in report and "V_A₄ (a₄)" in report
     t = results_table(s, "full", velocity=velocity_polygon(s), acceleration=acceleration_polygon(s))
     names = [r[0] for r in t.rows]
     assert "$V_{A}$ (on 2 and 3)" in names and "$A_{A}$ (on 2 and 3)" in names
-    assert not any(n.startswith(("$V_{A3}$", "$A_{A3}$", "$V_{A2}$", "$A_{A2}$")) for n in names)
-    assert "$V_{A4}$" in names
+    assert not any(n.startswith(("$V_{A₃}$", "$A_{A₃}$", "$V_{A₂}$", "$A_{A₂}$")) for n in names)
+    assert "$V_{A₄}$" in names
 
 
 def test_a_printed_value_of_a_pinned_point_sits_on_its_row():

@@ -18,6 +18,7 @@ from dataclasses import dataclass
 import numpy as np
 
 from .errors import InputError
+from .names import direction
 from .reference import Quantity, compare, evaluate, parse_key
 from .rigid import point_acceleration, point_velocity
 from .tables import Table, fmt, magnitude_direction
@@ -125,7 +126,7 @@ def _show(value, kind: str) -> str:
     if kind == "P":
         return f"({fmt(value[0])}, {fmt(value[1])})"
     if isinstance(value, tuple):
-        return f"{fmt(value[0])} ∠ {value[1]:.3f}°"
+        return f"{fmt(value[0])} ∠ {direction(value[1], 3)}°"
     return fmt(value)
 
 

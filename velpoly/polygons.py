@@ -75,6 +75,8 @@ from .errors import ConstructionError, InputError, SingularPoseError
 from .kinematics import SINGULAR
 from .motion import point_keys
 from .rigid import coriolis as coriolis_term, dot as _dot, normal_acceleration, perp, rate_cross, xy as _xy
+from .names import lower_name, relative
+from .names import place as named
 
 __all__ = [
     "ConstructionLine", "Vector", "Step", "AuxiliaryPoint", "Polygon", "ConstructionError",
@@ -302,7 +304,7 @@ class _Geo:
         if place in self.names:
             return self.names[place]
         lk, n = place
-        return n if self.key.get((n, lk)) == n else f"{n}{lk}"
+        return n if self.key.get((n, lk)) == n else named(n, lk)
 
     def aux_key(self, place) -> str:
         lk, n = place
@@ -420,7 +422,7 @@ class SlipAlongPath:
     def describe(self, run: "_Run") -> UnknownPart:
         r = run.g.rels[self.rel]
         ka, kb, kk = run.rel_keys(r, self.w)
-        return UnknownPart(f"{run.X}_{self.w}{r.a}/{self.w}{r.b}", self.sign, ("slip", ka, kb, r.b, kk),
+        return UnknownPart(f"{run.X}_{relative(named(self.w, r.a), named(self.w, r.b))}", self.sign, ("slip", ka, kb, r.b, kk),
                            "relative" if run.level == "velocity" else "slip")
 
     def direction_words(self, run: "_Run") -> str:
@@ -910,7 +912,7 @@ class _Planner:
         if best is None:
             return False
         (_, sine), lk, x, lx, y, ly, spos = best
-        name = f"S{lk}"
+        name = named("S", lk)
         while name in g.pos:
             name += "'"
         g.pos[name] = np.asarray(spos, float)
@@ -1031,7 +1033,7 @@ class _Run:
 
     def label(self, place) -> str:
         """The image's label: b, b4, s3 (primed in an acceleration polygon)."""
-        return self.g.name(place).lower() + ("'" if self.level == "acceleration" else "")
+        return lower_name(self.g.name(place)) + ("'" if self.level == "acceleration" else "")
 
     def base_label(self, place) -> str:
         """The label of a line's base image: the origin for points that do not move."""
@@ -1068,7 +1070,7 @@ class _Run:
         """
         g, r = self.g, self.g.rels[i]
         m = g.m
-        rel, rrel = f"{w}{r.a}/{w}{r.b}", f"{w}{r.b}/{w}{r.a}"
+        rel, rrel = relative(named(w, r.a), named(w, r.b)), relative(named(w, r.b), named(w, r.a))
         ka, kb, kk = self.rel_keys(r, w)
         slip_of = ("slip", ka, kb, r.b, kk)
         if self.level == "velocity":
@@ -1109,7 +1111,7 @@ class _Run:
         """The Coriolis term of link a's point W moving relative to link b (the guide, slot or other
         profile): ``2 omega_b x V_Wa/Wb``, with V_Wa/Wb = ``vrel`` from the velocity polygon."""
         ka, kb, _ = self.rel_keys(r, w)
-        rel, rrel = f"{w}{r.a}/{w}{r.b}", f"{w}{r.b}/{w}{r.a}"
+        rel, rrel = relative(named(w, r.a), named(w, r.b)), relative(named(w, r.b), named(w, r.a))
         return KnownVector("coriolis", f"2 omega_{r.b} x V_{rel}", coriolis_term(self.vel.rate[r.b], vrel),
                            ("coriolis", r.b, ka, kb), 1, (f"2 omega_{r.b} x V_{rrel}", ("coriolis", r.b, kb, ka)))
 
@@ -1567,7 +1569,7 @@ class KnownMotionStep(PlanStep):
     def equation(self, run):
         r, t, other, sign = self._sides(run)
         X, g = run.X, run.g
-        terms = run.term_labels((JointMotionTerm(self.rel, sign, t[1]),)) or [f"{X}_{t[1]}{t[0]}/{t[1]}{other[0]}"]
+        terms = run.term_labels((JointMotionTerm(self.rel, sign, t[1]),)) or [f"{X}_{relative(named(t[1], t[0]), named(t[1], other[0]))}"]
         return _sum([f"{X}_{g.name(t)} = {X}_{g.name(other)}"] + terms) + f" ({self._what(run, r)})"
 
     def _how(self, run, r, t, other) -> str:

@@ -412,3 +412,29 @@ def compare(sol) -> list[Row]:
             continue
         rows.append(_row(key, _printed(v), value, note_for(ref, key)))
     return rows
+
+
+def display_key(m, key: str) -> str:
+    """A ``[reference]`` key as the tables show it (:mod:`velpoly.names`): each point of a named link with
+    the link as its subscript, ``V_Pcam`` -> ``V_P(cam)``, ``|V_P@2|`` -> ``|V_P₂|``, ``V_B3/B4`` ->
+    ``V_B₃/B₄`` (a point named B3 stays B3); a key that names no point (``omega_3``, ``P_13``) as written.
+    The key itself (what a note is keyed by) stays as the file writes it."""
+    from .names import place, relative
+    bars = key.startswith("|") and key.endswith("|")
+    body = key[1:-1] if bars else key
+    mo = re.fullmatch(r"([VAR](?:\^[ntcs])?)_(.+)", body)
+    if not mo or parse_key(m, body) is None or parse_key(m, body).kind not in "VAR":
+        return key
+    head, idx = mo.groups()
+    if "/" in idx:
+        a, _, b = idx.partition("/")
+        ra, rb = _point_refs(m, a, 1), _point_refs(m, b, 1)
+        refs = None if not (ra and rb) else [ra[0], rb[0]]
+        shown = None if refs is None else relative(place(*refs[0]), place(*refs[1]))
+    else:
+        refs = _point_refs(m, idx, 1) or _point_refs(m, idx, 2)
+        shown = None if refs is None else "".join(place(*r) for r in refs)
+    if shown is None:
+        return key
+    out = f"{head}_{shown}"
+    return f"|{out}|" if bars else out

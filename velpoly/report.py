@@ -17,6 +17,7 @@ import numpy as np
 
 from .compare import polygon_values
 from .driver import driver_label
+from .names import direction, key_text, place, relative
 from .tables import Table, fmt, magnitude_direction, polar, render_table   # re-exported: the tables' primitives
 from .reference import at_file_pose, compare, file_pose_angle
 
@@ -71,9 +72,9 @@ def _points(sol) -> Table:
     for key, p in sol.position.items():
         if key in pinned and pinned[key] is None:
             continue   # shown with the first key of its pinned group
-        label = f"{pinned[key][0]} (on {on_links(pinned[key][1])})" if key in pinned else key
+        label = f"{pinned[key][0]} (on {on_links(pinned[key][1])})" if key in pinned else key_text(key)
         rows.append((label, f"({fmt(p[0])}, {fmt(p[1])})", polar(sol.velocity[key]), polar(sol.acceleration[key])))
-    u = sol.mechanism.units
+    u = sol.mechanism.units or "units"
     return Table("Points", ("point", f"position ({u})", f"velocity ({u}/s)", f"acceleration ({u}/s^2)"),
                  tuple(rows))
 
@@ -105,7 +106,7 @@ def _show_value(v) -> str:
         return "at infinity"
     if isinstance(v, tuple):
         if len(v) == 2:
-            return f"{fmt(v[0])} ∠ {v[1]:.3f}°"
+            return f"{fmt(v[0])} ∠ {direction(v[1], 3)}°"
     return fmt(v)
 
 
@@ -165,7 +166,7 @@ def _pole_where(p) -> str:
     if p.undefined:
         return "undefined (links move alike)"
     if p.position is None:
-        return f"at infinity, {p.direction:.3f}°"
+        return f"at infinity, {direction(p.direction, 3)}°"
     return f"({fmt(p.position[0])}, {fmt(p.position[1])})"
 
 
@@ -238,7 +239,8 @@ def polygon_tables(sol) -> list[Table]:
             if key in pinned and pinned[key] is None:
                 continue   # a point of links pinned together: one row, with the first key's
             lo, hi = h["speed" if vel else "magnitude"][key]
-            name = f"{pname}_{pinned[key][0]} (on {on_links(pinned[key][1])})" if key in pinned else f"{pname}_{key}"
+            name = f"{pname}_{pinned[key][0]} (on {on_links(pinned[key][1])})" if key in pinned else \
+                f"{pname}_{key_text(key)}"
             rows.append((f"{name} ({poly.labels[key]})", polar(v.graphical), polar(v.analytic),
                          f"{fmt(lo, 4)} .. {fmt(hi, 4)}"))
         rows.append(("max error (relative to the largest)", f"{poly.max_error:.2g}", "", ""))
@@ -265,8 +267,8 @@ def _head(sol) -> tuple[str, str]:
     """The report's title and its driver's line."""
     m = sol.mechanism
     if m.driver.is_slider:
-        return m.title, (f"driver: slider {m.driver.slider}, speed {fmt(m.driver.speed)} {m.units}/s, "
-                         f"accel {fmt(m.driver.accel)} {m.units}/s^2")
+        return m.title, (f"driver: slider {m.driver.slider}, speed {fmt(m.driver.speed)} {m.units or 'units'}/s, "
+                         f"accel {fmt(m.driver.accel)} {m.units or 'units'}/s^2")
     return m.title, (f"driver: link {m.driver.link} at {sol.driver_angle:.4f} deg, omega {fmt(m.driver.omega)} "
                      f"rad/s, alpha {fmt(m.driver.alpha)} rad/s^2")
 
@@ -375,7 +377,7 @@ def summary_table(sw, points=None) -> Table:
     point keys, default every moving point) and each slider's slip velocity over the cycle, with
     the driver positions where they occur."""
     m = sw.mechanism
-    u = m.units or "length"
+    u = m.units or "units"
     at = sw.angles
     rows = []
     for k in m.moving_links:
@@ -385,12 +387,13 @@ def summary_table(sw, points=None) -> Table:
     keys = list(points) if points else moving_keys(sw)
     for key in keys:
         v = sw.velocity[key]
-        rows.append(_extremes(f"|V_{key}|", f"{u}/s", np.hypot(v[:, 0], v[:, 1]), at))
+        rows.append(_extremes(f"|V_{key_text(key)}|", f"{u}/s", np.hypot(v[:, 0], v[:, 1]), at))
     for key in keys:
         a = sw.acceleration[key]
-        rows.append(_extremes(f"|A_{key}|", f"{u}/s^2", np.hypot(a[:, 0], a[:, 1]), at))
+        rows.append(_extremes(f"|A_{key_text(key)}|", f"{u}/s^2", np.hypot(a[:, 0], a[:, 1]), at))
     for s, r in zip(m.sliders, sw.sliders):
-        rows.append(_extremes(f"slip V_{s.point}{s.block}/{s.point}{s.guide}", f"{u}/s", r["slip_velocity"], at))
+        slip = relative(place(s.point, s.block), place(s.point, s.guide))
+        rows.append(_extremes(f"slip V_{slip}", f"{u}/s", r["slip_velocity"], at))
     _, unit = driver_label(m)
     return Table(f"Over the cycle ({len(at)} poses)",
                  ("quantity", "unit", "min", f"at ({unit})", "max", f"at ({unit})"), tuple(rows))

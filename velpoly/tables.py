@@ -14,6 +14,8 @@ from dataclasses import dataclass
 
 import numpy as np
 
+from .names import direction
+
 __all__ = ["Table", "fmt", "polar", "magnitude_direction", "render_table"]
 
 
@@ -59,7 +61,7 @@ def polar(v) -> str:
         return "-"
     if md[0] == 0:
         return "0"
-    return f"{fmt(md[0])} ∠ {md[1]:.3f}°"
+    return f"{fmt(md[0])} ∠ {direction(md[1], 3)}°"
 
 
 def render_table(t: Table, style: str = "text") -> str:

@@ -29,9 +29,17 @@
     return String(s).replace(/&/g, "&amp;").replace(/</g, "&lt;").replace(/>/g, "&gt;").replace(/"/g, "&quot;");
   }
   var GREEK = { omega: "\u03c9", alpha: "\u03b1", theta: "\u03b8" };
-  // a label such as b4, c', O_v, P_13, P_{10-12} in SVG: the letters, a subscript, primes
+  // a label such as b4, c', O_v, P_13, P_{10-12}, p\u2082 (p of link 2), p(cam) (p of link cam) in SVG: the
+  // letters, a subscript, primes (velpoly.names writes a point of a link so)
+  var SUBDIGITS = "\u2080\u2081\u2082\u2083\u2084\u2085\u2086\u2087\u2088\u2089";
   function splitLabel(s) {   // [letters, subscript, primes], or null
-    var m = /^([A-Za-z]+)_\{?([0-9A-Za-z\-]+)\}?('*)$/.exec(s) || /^([A-Za-z]+?)([0-9]*)('*)$/.exec(s);
+    var m = /^([A-Za-z]+)([0-9]*)([\u2080-\u2089]+|\([^()]*\))('*)$/.exec(s);
+    if (m) {
+      var link = m[3].charAt(0) === "(" ? m[3].slice(1, -1) :
+        m[3].replace(/[\u2080-\u2089]/g, function (c) { return String(SUBDIGITS.indexOf(c)); });
+      return [m[1], (m[2] ? m[2] + "," : "") + link, m[4].length];
+    }
+    m = /^([A-Za-z]+)_\{?([0-9A-Za-z\-]+)\}?('*)$/.exec(s) || /^([A-Za-z]+?)([0-9]*)('*)$/.exec(s);
     return m ? [m[1], m[2], m[3].length] : null;
   }
   function svgLabel(s) {
@@ -43,11 +51,11 @@
   // a step's equation (velpoly.polygons Step.equation) as HTML: V_CB -> V<sub>CB</sub>, omega -> ω ...
   function eqHtml(eq) {
     var s = esc(eq);
-    s = s.replace(/(^|[^A-Za-z\\])(omega|alpha|theta|[VARP])(\^[nstc])?_\{?([A-Za-z0-9@]+(?:\/[A-Za-z0-9]+)?|[0-9]+-[0-9]+)\}?(\^[0-9])?/g,
+    s = s.replace(/(^|[^A-Za-z\\])(omega|alpha|theta|[VARP])(\^[nstc])?_\{?((?:[A-Za-z0-9@]|[\u2080-\u2089]|\([^()\s]*\))+(?:\/(?:[A-Za-z0-9]|[\u2080-\u2089]|\([^()\s]*\))+)?|[0-9]+-[0-9]+)\}?(\^[0-9])?/g,
       function (all, pre, name, sup, index, power) {
         var out = pre + "<i>" + (GREEK[name] || name) + "</i>";
         if (sup) out += "<sup>" + sup.slice(1) + "</sup>";
-        out += "<sub>" + index + "</sub>";
+        out += "<sub>" + subIndex(index) + "</sub>";
         if (power) out += "<sup>" + power.slice(1) + "</sup>";
         return out;
       });
@@ -59,6 +67,12 @@
     });
     s = s.replace(/([0-9]) deg\b/g, "$1\u00b0").replace(/ x /g, " \u00d7 ").replace(/ - /g, " \u2212 ");
     return s;
+  }
+  // a subscript's names with their links lowered again: P\u2082/P(cam) -> P<sub>2</sub>/P<sub>cam</sub>
+  function subIndex(index) {
+    return index.replace(/([\u2080-\u2089]+)|\(([^()\s]*)\)/g, function (all, digits, word) {
+      return "<sub>" + (digits ? digits.replace(/[\u2080-\u2089]/g, function (c) { return String(SUBDIGITS.indexOf(c)); }) : word) + "</sub>";
+    });
   }
   function fmt(x, d) {
     if (x === null || x === undefined || !isFinite(x)) return "\u2013";
@@ -72,8 +86,11 @@
     if (!v) return "\u2013";
     var mag = Math.hypot(v[0], v[1]);
     if (mag === 0) return "0";
-    var ang = Math.atan2(v[1], v[0]) * 180 / Math.PI;
-    return fmt(mag) + " \u2220 " + ang.toFixed(2).replace("-", "\u2212") + "\u00b0";
+    // a direction in [0, 360), rounded and then folded, as velpoly.names.direction prints it
+    var ang = Number((Math.atan2(v[1], v[0]) * 180 / Math.PI).toFixed(2));
+    ang = ((ang % 360) + 360) % 360;
+    if (Number(ang.toFixed(2)) >= 360) ang = 0;
+    return fmt(mag) + " \u2220 " + (ang + 0).toFixed(2) + "\u00b0";
   }
   function wrap(a) { var w = ((a + 180) % 360 + 360) % 360 - 180; return w === -180 ? 180 : w; }
   function angleText(i) {
@@ -82,7 +99,16 @@
     return "\u03b8" + sub(S.driver.link) + " = " + fmt(wrap(a), 6) + "\u00b0";
   }
   function sub(s) { return "<sub>" + esc(s) + "</sub>"; }
-  function unitsOf(power) { return S.units ? S.units + ["", "/s", "/s\u00b2"][power] : ["", "1/s", "1/s\u00b2"][power]; }
+  // a file without units has "units/s", never "1/s" (read as an angular velocity): velpoly.names.unit
+  function unitsOf(power) { return (S.units || "units") + ["", "/s", "/s\u00b2"][power]; }
+  // a point key as velpoly.names writes it: P@2 -> P\u2082, P@cam -> P(cam)
+  function keyText(key) {
+    var i = key.indexOf("@");
+    if (i < 0) return key;
+    var lk = key.slice(i + 1);
+    return key.slice(0, i) + (/^[0-9]+$/.test(lk) ? lk.replace(/[0-9]/g, function (c) { return SUBDIGITS.charAt(+c); }) : "(" + lk + ")");
+  }
+  function subKey(key) { return "<sub>" + subIndex(esc(keyText(key))) + "</sub>"; }
   function withUnit(x, power) { var u = unitsOf(power); return fmt(x, 3) + (u ? " " + u : ""); }
 
   // -- geometry -----------------------------------------------------------------------------------
@@ -251,7 +277,7 @@
       if (!p) continue;
       var name = key.split("@")[0], sx = X(v, p[0]), sy = Y(v, p[1]);
       var kind = st.kinds[key] || "dot";
-      var tip = key + ": (" + fmt(p[0]) + ", " + fmt(p[1]) + ") " + S.units;
+      var tip = keyText(key) + ": (" + fmt(p[0]) + ", " + fmt(p[1]) + ") " + S.units;
       if (P.V[key]) tip += "\nV = " + polar(P.V[key]) + " " + unitsOf(1);
       if (P.A && P.A[key]) tip += "\nA = " + polar(P.A[key]) + " " + unitsOf(2);
       var attrs = dataAttrs(key, p[0], p[1], sx, sy, ' data-tip="' + esc(tip) + '"');
@@ -263,7 +289,7 @@
       // one label a point, unless its keys have drifted apart (a contact's two points)
       var label = name, others = [];
       for (var k2 in P.P) if (k2 !== key && k2.split("@")[0] === name && P.P[k2] &&
-        Math.hypot(P.P[k2][0] - p[0], P.P[k2][1] - p[1]) > 1e-9 * S.size) label = key;
+        Math.hypot(P.P[k2][0] - p[0], P.P[k2][1] - p[1]) > 1e-9 * S.size) label = keyText(key);
       if (label === name) seen[name] = 1;
       var ux = 0, uy = 0;
       for (var nb in neighbours[name] || {}) {
@@ -530,9 +556,9 @@
       row("<i>\u03b1</i>" + sub(lk), "rad/s\u00b2", P.ap ? P.ap.r[lk] : null, P.al[lk], amax, false);
     }
     for (key in P.V) if (P.V[key] && Math.hypot(P.V[key][0], P.V[key][1]) > 0)
-      row("<i>V</i>" + sub(key), unitsOf(1), P.vp ? P.vp.img[key] : null, P.V[key], vmax, true);
+      row("<i>V</i>" + subKey(key), unitsOf(1), P.vp ? P.vp.img[key] : null, P.V[key], vmax, true);
     if (P.A) for (key in P.A) if (P.A[key] && Math.hypot(P.A[key][0], P.A[key][1]) > 0)
-      row("<i>A</i>" + sub(key), unitsOf(2), P.ap ? P.ap.img[key] : null, P.A[key], aamax, true);
+      row("<i>A</i>" + subKey(key), unitsOf(2), P.ap ? P.ap.img[key] : null, P.A[key], aamax, true);
     return '<table id="results-table"><caption>Results at ' + angleText(state.i) +
       ": graphical construction against the analytic solve</caption><thead><tr><th>quantity</th><th>graphical</th><th>analytic</th><th>deviation</th></tr></thead><tbody>" +
       rows.join("") + "</tbody></table>";

@@ -307,20 +307,10 @@ def _coupler_keys(m, keys) -> list:
 
 
 def _name_tex(symbol: str, index: str, bars: bool = False) -> str:
-    """``omega`` and ``3`` -> $\\omega_{3}$; ``V``, ``B`` with bars -> $|V_{B}|$ (``B@3`` -> B_{3})."""
-    import re
-    from .canvas import math_literal   # a user's name is drawn as written, never read as mathtext
-    sym = {"omega": r"\omega", "alpha": r"\alpha", "theta": r"\theta"}.get(symbol, symbol)
-    idx = str(index)
-    if "@" in idx:
-        p, _, lk = idx.partition("@")
-        idx = p + "_{" + lk + "}" if re.fullmatch(r"[A-Za-z0-9]+", p + lk) else math_literal(idx)
-    elif not re.fullmatch(r"[A-Za-z0-9']+", idx):
-        idx = math_literal(idx)
-    else:
-        idx = re.sub(r"([A-Za-z])([0-9]+)$", r"\1_{\2}", idx) if not idx.isdigit() else idx
-    body = sym + "_{" + idx + "}"
-    return "$|" + body + "|$" if bars else "$" + body + "$"
+    """``omega`` and ``3`` -> $\\omega_{3}$; ``V``, ``B`` with bars -> $|V_{B}|$; ``P@3`` -> P_{3}, ``P@cam``
+    -> P with the subscript cam (:mod:`velpoly.names`; a user's name drawn as written)."""
+    from ..names import key_text, quantity_math
+    return quantity_math(symbol, index if symbol in ("omega", "alpha", "theta") else key_text(index), bars)
 
 
 # -- the figure ----------------------------------------------------------------------------------------
@@ -539,15 +529,22 @@ class Animator:
 
     # -- the space diagram -----------------------------------------------------------------------
     def _mechanism(self, ax) -> None:
-        from matplotlib.lines import Line2D
-        from matplotlib.patches import Circle, PathPatch, Polygon as MPolygon
-        from .canvas import fit_view, per_cm, per_point
-        from .displacement import link_bodies
-        from .style import link_colour, link_fill
-        from .scalebar import scale_bar
-        m, st = self.m, self.st
+        """The space diagram's panel: the still ground, guides and paths, and the moving parts (moved by
+        :meth:`update`)."""
         self.mech_scale = self._fit(ax, self.boxes["mechanism"], margin=0.09)
-        pc, pp = per_cm(ax), per_point(ax)
+        self._ground(ax)
+        self._guides(ax)
+        self._paths(ax)
+        self._moving_parts(ax)
+        self._pins_and_labels(ax)
+        self._scale_bar(ax, 0)
+
+    def _ground(self, ax) -> None:
+        from matplotlib.lines import Line2D
+        from matplotlib.patches import Polygon as MPolygon
+        from .canvas import per_point
+        m, st = self.m, self.st
+        pp = per_point(ax)
         self.pp = pp
         # the ground: a hatched base under each frame pivot (still)
         frame = m.frame.name
@@ -568,6 +565,13 @@ class Animator:
             xs = np.linspace(xy[0] - 1.4 * s, xy[0] + 1.4 * s, 6)
             for x in xs:
                 ax.add_line(Line2D([x, x - 0.6 * s], [base, base - 0.7 * s], color=st.ink, lw=st.thin_lw, zorder=2))
+
+    def _guides(self, ax) -> None:
+        from matplotlib.lines import Line2D
+        from .canvas import per_cm
+        m, st = self.m, self.st
+        frame = m.frame.name
+        pc = per_cm(ax)
         # frame guides of sliders: a line along the block's travel (still)
         for s, r in zip(m.sliders, self.slider_rows):
             if s.guide != frame or s.centre is not None:
@@ -591,6 +595,10 @@ class Animator:
                 q = a + (b - a) * f + off
                 e = q - n * 0.2 * pc - u * 0.15 * pc
                 ax.add_line(Line2D([q[0], e[0]], [q[1], e[1]], color=st.ink, lw=st.thin_lw, zorder=1.5))
+
+    def _paths(self, ax) -> None:
+        from matplotlib.lines import Line2D
+        m, st = self.m, self.st
         # traced paths of the coupler points (still, faint)
         for key in _coupler_keys(m, self.pos):
             xy = self.pos[key]
@@ -607,6 +615,14 @@ class Animator:
             self._centrode = self._move(Line2D([], [], color="0.35", lw=self.pt(1.5), linestyle="--", zorder=1.3),
                                         ax)
             ax.add_line(self._centrode)
+
+    def _moving_parts(self, ax) -> None:
+        from matplotlib.patches import Circle, PathPatch, Polygon as MPolygon
+        from matplotlib.lines import Line2D
+        from .canvas import per_cm
+        from .style import link_colour, link_fill
+        m, st = self.m, self.st
+        pc = per_cm(ax)
         # the moving parts
         self.bw = st.bar_width * pc
         self.bodies = {}
@@ -638,6 +654,13 @@ class Animator:
                 circ = Circle((0, 0), 1.0, facecolor="none", edgecolor=st.ink, lw=st.link_lw * 1.4, zorder=3.2)
                 ax.add_patch(circ)
                 self.profiles.append((ci, lk, cn, self._move(circ, ax)))
+
+    def _pins_and_labels(self, ax) -> None:
+        from matplotlib.lines import Line2D
+        from matplotlib.patches import Circle
+        from .canvas import per_cm, tex
+        m, st = self.m, self.st
+        pc = per_cm(ax)
         pins = {pin.point for pin in m.pins} | {s.pin for s in m.slots}
         self.pin_names = [p for p in dict.fromkeys(k.split("@")[0] for k in self.pos) if p in pins]
         self.dot_names = [p for p in dict.fromkeys(k.split("@")[0] for k in self.pos) if p not in pins]
@@ -653,7 +676,6 @@ class Animator:
         # labels beside the points
         wanted = self.opts.label_points
         self.point_labels = {}
-        from .canvas import tex
         for p in self.pin_names + self.dot_names:
             if wanted is not None and p not in wanted:
                 continue
@@ -672,7 +694,6 @@ class Animator:
                 t = ax.annotate(literal(link.name), (0, 0), xytext=(0, 0), textcoords="offset points", ha="center",
                                 va="center", fontsize=self.pt(17), zorder=6.5, **kw)
                 self.link_numbers[link.name] = self._move(t, ax)
-        self._scale_bar(ax, 0)
 
     def _scale_bar(self, ax, power) -> None:
         from .labels import placer
@@ -843,11 +864,37 @@ class Animator:
     # -- a frame ------------------------------------------------------------------------------------
     def update(self, k: int) -> None:
         """Move every moving artist to frame k."""
-        from .canvas import tex  # noqa: F401
-        from .displacement import away_from, neighbours, link_bodies, shape_patch
-        m, st = self.m, self.st
         sol = self.sols[k]
         pos = {key: v[k] for key, v in self.pos.items()}
+        self._update_bodies(k, sol)
+        first = {}
+        for key, p in pos.items():
+            first.setdefault(key.split("@")[0], p)
+        for p, circ in self.pin_patches.items():
+            circ.center = tuple(first[p])
+        dots = np.array([first[p] for p in self.dot_names]).reshape(-1, 2)
+        self.dots.set_data(dots[:, 0], dots[:, 1])
+        self.points = first
+        taken = self._update_link_numbers(sol, pos)   # boxes (pixels) of the link numbers: labels keep clear
+        self._update_point_labels(sol, first, taken)
+        if self._centrode is not None:
+            cen, sw = self.centrodes
+            from ..centrodes import break_at_infinity
+            leg, i = self.plan.frames[k]
+            xy = break_at_infinity(cen.carried(sw, sw.kinematics, i), sw.omega[cen.link])
+            self._centrode.set_data(xy[:, 0], xy[:, 1])
+        for kind in self.polys:
+            self._update_polygon(kind, self.polys[kind][k])
+        if self.poles is not None:
+            self._update_poles(k)
+        for name, (t, vals, dec) in self.table.items():
+            v = vals[k]
+            t.set_text("–" if not math.isfinite(v) else f"{v:.{dec}f}".replace("-", "−"))
+
+    def _update_bodies(self, k: int, sol) -> None:
+        """The links' bodies, the slider blocks and the contact profiles at frame k."""
+        from .displacement import link_bodies, shape_patch
+        m, st = self.m, self.st
         bodies = link_bodies(sol, self.bw)
         for lk, patch in self.bodies.items():
             g = bodies.get(lk)
@@ -871,33 +918,35 @@ class Animator:
             ctr = sol.place(lk, cn)
             circ.center = tuple(ctr)
             circ.set_radius(float(np.hypot(*(place - ctr))))
-        first = {}
-        for key, p in pos.items():
-            first.setdefault(key.split("@")[0], p)
-        for p, circ in self.pin_patches.items():
-            circ.center = tuple(first[p])
-        dots = np.array([first[p] for p in self.dot_names]).reshape(-1, 2)
-        self.dots.set_data(dots[:, 0], dots[:, 1])
-        self.points = first
-        taken = []         # boxes (pixels) of the link numbers, then of the labels: kept apart
-        if self.link_numbers:
-            centre = np.mean(np.array(list(pos.values())), axis=0)
-            for lk, t in self.link_numbers.items():
-                link = m.link(lk)
-                ps = [sol.place(lk, q) for q in link.points]
-                if len(ps) >= 2:
-                    a, b = ps[0], ps[1]
-                    anchor = (a + b) / 2 if len(ps) == 2 else np.mean(ps, axis=0)
-                    nvec = np.array([-(b - a)[1], (b - a)[0]]) / max(float(np.hypot(*(b - a))), 1e-300)
-                    if np.dot(nvec, anchor - centre) < 0:
-                        nvec = -nvec
-                    off = (self.bw / 2) / self.pp + self.pt(14.0)
-                    t.xy = tuple(anchor)
-                    t.set_position(tuple(nvec * off) if len(ps) == 2 else (0.0, 0.0))
-                else:
-                    t.xy = tuple(ps[0])
-                    t.set_position((0.0, 0.0))
-                taken.append(self._box_px(self.axes["mechanism"], t, pad=4.0))
+
+    def _update_link_numbers(self, sol, pos) -> list:
+        """The link numbers beside their links, away from the mechanism's middle; their boxes (pixels)."""
+        taken = []
+        if not self.link_numbers:
+            return taken
+        centre = np.mean(np.array(list(pos.values())), axis=0)
+        for lk, t in self.link_numbers.items():
+            link = self.m.link(lk)
+            ps = [sol.place(lk, q) for q in link.points]
+            if len(ps) >= 2:
+                a, b = ps[0], ps[1]
+                anchor = (a + b) / 2 if len(ps) == 2 else np.mean(ps, axis=0)
+                nvec = np.array([-(b - a)[1], (b - a)[0]]) / max(float(np.hypot(*(b - a))), 1e-300)
+                if np.dot(nvec, anchor - centre) < 0:
+                    nvec = -nvec
+                off = (self.bw / 2) / self.pp + self.pt(14.0)
+                t.xy = tuple(anchor)
+                t.set_position(tuple(nvec * off) if len(ps) == 2 else (0.0, 0.0))
+            else:
+                t.xy = tuple(ps[0])
+                t.set_position((0.0, 0.0))
+            taken.append(self._box_px(self.axes["mechanism"], t, pad=4.0))
+        return taken
+
+    def _update_point_labels(self, sol, first, taken) -> None:
+        """Each point's label away from its links, clear of the links, ground, blocks and ``taken``."""
+        from .displacement import away_from, neighbours
+        m = self.m
         ax = self.axes["mechanism"]
         segs = []
         for link in m.moving_links:
@@ -912,36 +961,26 @@ class Animator:
         pts = self._seg_points(ax, segs)
         for p, t in self.point_labels.items():
             xy = first[p]
-            links = m.carriers.get(p, ())
-            others = neighbours(sol, p, links)
+            others = neighbours(sol, p, m.carriers.get(p, ()))
             if p in self.pivots:
                 others = others + [xy + np.array([0.0, -1.0]) * max(self.bw, 1e-300) * 3]
             ang = away_from(xy, others, default=45.0)
             t.xy = tuple(xy)
             t.set_position(self._clear_offset(ax, t, xy, ang, 9.0, pts, taken))
-        if self._centrode is not None:
-            cen, sw = self.centrodes
-            from ..centrodes import break_at_infinity
-            leg, i = self.plan.frames[k]
-            xy = break_at_infinity(cen.carried(sw, sw.kinematics, i), sw.omega[cen.link])
-            self._centrode.set_data(xy[:, 0], xy[:, 1])
-        for kind in self.polys:
-            self._update_polygon(kind, self.polys[kind][k])
-        if self.poles is not None:
-            ps = self.poles[k]
-            x0, x1 = self.axes["mechanism"].get_xlim()
-            y0, y1 = self.axes["mechanism"].get_ylim()
-            for key, (dot, t) in self.pole_art.items():
-                p = ps.poles[key].position
-                inside = p is not None and x0 <= p[0] <= x1 and y0 <= p[1] <= y1
-                dot.set_visible(inside)
-                t.set_visible(inside)
-                if inside:
-                    dot.set_data([p[0]], [p[1]])
-                    t.xy = tuple(p)
-        for name, (t, vals, dec) in self.table.items():
-            v = vals[k]
-            t.set_text("–" if not math.isfinite(v) else f"{v:.{dec}f}".replace("-", "−"))
+
+    def _update_poles(self, k: int) -> None:
+        """The poles at frame k, those inside the mechanism's view."""
+        ps = self.poles[k]
+        x0, x1 = self.axes["mechanism"].get_xlim()
+        y0, y1 = self.axes["mechanism"].get_ylim()
+        for key, (dot, t) in self.pole_art.items():
+            p = ps.poles[key].position
+            inside = p is not None and x0 <= p[0] <= x1 and y0 <= p[1] <= y1
+            dot.set_visible(inside)
+            t.set_visible(inside)
+            if inside:
+                dot.set_data([p[0]], [p[1]])
+                t.xy = tuple(p)
 
     @staticmethod
     def _seg_points(ax, segs) -> np.ndarray:

@@ -15,6 +15,10 @@ import re
 
 import numpy as np
 
+from ..names import literal, math_literal  # noqa: F401  (user text drawn as written)
+from ..names import index_math, link_math, name_math
+from ..names import name_tex as _name_tex
+
 __all__ = ["Artists", "axes_cm", "nice_scale", "nice_length", "fit_view", "view_scale", "per_point", "per_cm",
            "view_box", "border_point", "tex", "prose_tex", "arrow", "get_ax", "renderer_of", "equation_tex"]
 
@@ -153,78 +157,33 @@ def view_box(ax):
     return box(x0, y0, x1, y1)
 
 
-def literal(s) -> str:
-    r"""A user's text (a name, a title, units) for a matplotlib Text, drawn as written: ``$`` escaped so
-    it starts no mathtext, a backslash set as mathtext's backslash (so none escapes a ``$`` after it).
-
-    >>> print(literal("$B$"), literal("a\\b"))
-    \$B\$ a$\backslash$b
-    """
-    return r"$\backslash$".join(part.replace("$", r"\$") for part in str(s).split("\\"))
-
-
-_MATH_ESCAPES = {"\\": r"{\backslash}", "{": r"\{", "}": r"\}", "$": r"\$"}
-
-
-def math_literal(s) -> str:
-    r"""A user's text for inside mathtext (a subscript ``$\omega_{...}$``), drawn as written: ASCII
-    letters and digits as they are, braces, ``$`` and backslash escaped, other ASCII signs and spaces
-    as ``\text{...}`` (mathtext would read ``_ ^ % # ~`` or drop spaces); other characters as they are.
-
-    >>> print(math_literal("3"), math_literal("a_b"), math_literal("{x}"))
-    3 a\text{_}b \{x\}
-    """
-    out = []
-    for ch in str(s):
-        if ch in _MATH_ESCAPES:
-            out.append(_MATH_ESCAPES[ch])
-        elif ch.isascii() and not ch.isalnum():
-            out.append(r"\text{" + ch + "}")
-        else:
-            out.append(ch)
-    return "".join(out)
-
-
-_SIMPLE = re.compile(r"^([A-Za-z]+)(?:_([0-9A-Za-z]+)|([0-9]+))?('*)$")
-
-
 def tex(label: str, math: bool = False) -> str:
-    """A textbook label as text for an italic Text: ``b4`` -> $b_{4}$, ``c'`` -> c′, ``O_v`` -> $O_{v}$.
-
-    Letters, then a subscript (digits, or anything after ``_``), then primes.
-    Only a subscript needs mathtext; primes become the prime sign (′), so
-    plain labels stay plain text (set ``fontstyle="italic"`` on the Text).
-    Any other label is drawn as it is written (:func:`literal`).
-    ``math=True`` gives mathtext always (for a label beside mathtext ones).
+    """A textbook label as text for an italic Text: ``b4`` -> $b_{4}$, ``c'`` -> c′, ``O_v`` -> $O_{v}$,
+    ``p₂`` -> $p_{2}$, ``p(cam)`` -> p with the subscript cam (:func:`velpoly.names.name_tex`).
 
     >>> tex("b4"), tex("c'"), tex("P_13"), tex("F@5"), tex("B")
     ('$b_{4}$', 'c′', '$P_{13}$', 'F@5', 'B')
     """
-    s = str(label)
-    m = _SIMPLE.match(s)
-    if not m:
-        return literal(s)
-    base, sub, digits, primes = m.groups()
-    sub = sub or digits
-    if not sub and not math:
-        return base + "′" * len(primes)
-    if not sub:
-        return "$" + base + primes + "$"
-    return "$" + base + "_{" + sub + "}" + primes + "$"
+    return _name_tex(label, math)
 
 
 _POINT_NAME = re.compile(r"(?<![a-z$])([A-Z])_?([0-9]+)")
+_ON_LINK = re.compile(r"(?<![a-z$])([A-Z][0-9]*(?:[₀-₉]+|\([^()\s$\\]+\)))")   # S₃, S(cam): velpoly.names
 
 
 def prose_tex(s: str) -> str:
     """Words naming points, with the points' subscripts: ``perpendicular to O4B`` -> ``perpendicular to
-    $O_{4}$B`` (a link's number, ``on 1``, stays as it is).
+    $O_{4}$B``, a point of a link ``S₃``, ``S(cam)`` with the link as its subscript (a link's number,
+    ``on 1``, stays as it is).
 
-    >>> prose_tex("perpendicular to O4B"), prose_tex("parallel to the path of B on 1")
-    ('perpendicular to $O_{4}$B', 'parallel to the path of B on 1')
+    >>> prose_tex("perpendicular to O4B"), prose_tex("parallel to the path of B on 1"), prose_tex("BS₃")
+    ('perpendicular to $O_{4}$B', 'parallel to the path of B on 1', 'B$S_{3}$')
     """
     s = literal(s)
-    return _POINT_NAME.sub(lambda mo: "$" + mo.group(1) + "_{" + mo.group(2) + "}$", s)
+    parts = _ON_LINK.split(s)   # the names of points of links, then the rest as before
+    return "".join("$" + name_math(p) + "$" if i % 2 else
+                   _POINT_NAME.sub(lambda mo: "$" + mo.group(1) + "_{" + mo.group(2) + "}$", p)
+                   for i, p in enumerate(parts))
 
 
 def arrow(ax, tail, head, *, lw: float, head_length: float, colour, linestyle="-", zorder=3,
@@ -277,24 +236,20 @@ def border_point(view, c, d, inset: float) -> np.ndarray:
 
 
 # -- equations ---------------------------------------------------------------------------------------
-_QUANTITY = re.compile(r"(?<![A-Za-z\\])(omega|alpha|theta|[VARP])(\^[nt])?_([A-Za-z0-9]+(?:/[A-Za-z0-9]+)?)(\^[0-9])?")
-
-
-def _index(index: str) -> str:
-    """A subscript's point names with their own subscripts: ``AO2`` -> AO_{2}, ``B3/B4`` -> B_{3}/B_{4}."""
-    return index if index.isdigit() else re.sub(r"([A-Za-z])([0-9]+)", r"\1_{\2}", index)
-
-
+_NAMES = r"(?:[A-Za-z0-9]|[₀-₉]+|\([^()\s$\\]*\))+"   # point names as velpoly.names writes them: B, O2, P₂, P(cam)
+_QUANTITY = re.compile(r"(?<![A-Za-z\\])(omega|alpha|theta|[VARP])(\^[nt])?_(" + _NAMES + "(?:/" + _NAMES + r")?)(\^[0-9])?")
 _DIGITS = str.maketrans("₀₁₂₃₄₅₆₇₈₉", "0123456789")
 
 
 def equation_tex(eq: str) -> str:
     """A step's vector equation in mathtext: ``V_CB`` -> $V_{CB}$, ``omega_3 x R`` -> $\\omega_{3}$ × R,
-    ``omega_2^2 R_AO2`` -> $\\omega_{2}^{2}$ $R_{AO_{2}}$, `` - `` -> `` − ``, ``deg`` -> °."""
+    ``omega_2^2 R_AO2`` -> $\\omega_{2}^{2}$ $R_{AO_{2}}$, ``V_B₃/B₄`` -> $V_{B_{3}/B_{4}}$ (a subscript's
+    names by :func:`velpoly.names.index_math`), a caption's O₂ -> O$_{2}$, `` - `` -> `` − ``, ``deg`` -> °."""
     def sub(mo):
         name, sup, index, power = mo.groups()
-        name = {"omega": r"\omega", "alpha": r"\alpha", "theta": r"\theta"}.get(name, name)
-        out = "$" + name + ("^{" + sup[1:] + "}" if sup else "") + "_{" + _index(index) + "}"
+        greek = {"omega": r"\omega", "alpha": r"\alpha", "theta": r"\theta"}.get(name)
+        out = "$" + (greek or name) + ("^{" + sup[1:] + "}" if sup else "") + "_{" + (
+            link_math(index) if greek else index_math(index)) + "}"
         if power and not sup:
             return out + "^{" + power[1:] + "}$"
         return out + "$" + (power or "")

@@ -19,6 +19,7 @@ from shapely.geometry import Polygon as SPolygon
 from shapely.ops import unary_union
 
 from ..rigid import direction as _unit, perp as _perp
+from ..names import key_text, link_math, upper_name
 from .canvas import (Artists, arrow, border_point, fit_view, get_ax, literal, math_literal, per_cm, per_point, tex,
                      view_box, view_scale)
 from .labels import placer
@@ -584,7 +585,7 @@ class _Drawing:
             for key, pos in spots:
                 links = m.carriers.get(name, ())
                 prefer = away_from(pos, neighbours(sol, name, links), default=45.0)
-                text = tex(name) if len(spots) == 1 else tex(key)
+                text = tex(name) if len(spots) == 1 else tex(key_text(key))   # P₂, velpoly.names
                 t = self.pl.place(pos, text, prefer=prefer, fontsize=st.font_size, zorder=7, fontstyle="italic",
                                   gid=f"label-point-{name}" if len(spots) == 1 else f"label-point-{key}")
                 self.art.add("labels", t)
@@ -682,7 +683,7 @@ class _Drawing:
         # another link (a slotted lever passing by the pivot), a block or a label: then the next gap
         others = [g for lk, g in self.geoms.items() if lk != drv.link]
         others += [g for lk, g in self.block_geom.items() if lk != drv.link] + list(self.pl.boxes)
-        lk = math_literal(drv.link)
+        lk = link_math(drv.link)   # velpoly.names: a word upright, as written
         text = rf"$\omega_{{{lk}}}$ = {abs(drv.omega):.4g} rad/s {'ccw' if drv.omega >= 0 else 'cw'}"
         if drv.alpha:
             text += "\n" + rf"$\alpha_{{{lk}}}$ = {abs(drv.alpha):.4g} rad/s² {'ccw' if drv.alpha >= 0 else 'cw'}"
@@ -790,7 +791,7 @@ def mark_auxiliary(sol, ax, polygon, *, style="textbook") -> Artists:
         p = np.asarray(aux.position, float)
         if any(float(np.hypot(*(p - q))) <= tol for q in existing):
             continue
-        name = aux.label.rstrip("'").upper() if aux.label else key.split("@")[0]
+        name = upper_name(aux.label.rstrip("'")) if aux.label else key.split("@")[0]
         view = view_box(ax)
         if not view.contains(Point(*p)):
             x0, y0, x1, y1 = mechanism_bounds(sol)

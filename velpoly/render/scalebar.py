@@ -11,19 +11,15 @@ import numpy as np
 import shapely
 from shapely.geometry import box
 
+from ..names import unit
 from .canvas import literal, nice_length, per_cm, per_point, view_box
 from .labels import placer
 
 __all__ = ["scale_bar", "unit_label", "scale_text"]
 
-_POWERS = {0: "", 1: "/s", 2: "/s²"}
-
-
 def unit_label(units: str, power: int) -> str:
     """The unit of a length (power 0), a velocity (1) or an acceleration (2)."""
-    if not units:
-        return ("", "s⁻¹", "s⁻²")[power]
-    return literal(units) + _POWERS[power]
+    return literal(unit(units, power))   # velpoly.names: a file without units has "units/s", not "s⁻¹"
 
 
 def scale_text(value: float, units: str, power: int) -> str:

@@ -8,7 +8,6 @@ from __future__ import annotations
 
 import dataclasses
 import math
-import re
 import textwrap
 from pathlib import Path
 
@@ -21,6 +20,7 @@ from ..driver import driver_label
 from ..fileio import atomic_path
 from ..kinematics import Kinematics, prepare
 from ..model import Mechanism
+from ..names import key_text, quantity_math, unit
 from ..reference import file_pose_angle
 from ..report import moving_keys
 from ..sweeps import Sweep
@@ -57,16 +57,11 @@ def _series_style(i: int, n_points: int, style: str) -> dict:
             "marker": _MARKERS[(i // len(_LINESTYLES)) % len(_MARKERS)], "markevery": every, "markersize": 3.5}
 
 
-_PLAIN_INDEX = re.compile(r"[A-Za-z0-9@'.]+")
-
-
 def _quantity(symbol: str, index: str, bars: str = "") -> str:
-    """A curve's label as a book prints it: ``omega_3`` as omega with subscript 3, ``|V_B|`` with
-    subscript B; an index mathtext cannot hold (``$``, braces ...) stays plain text."""
-    if not _PLAIN_INDEX.fullmatch(index):
-        plain = {r"\omega": "omega", r"\alpha": "alpha"}.get(symbol, symbol)
-        return literal(f"{bars}{plain}_{index}{bars}")
-    return f"${bars}{symbol}_{{{index}}}{bars}$"
+    """A curve's label as a book prints it (:mod:`velpoly.names`): ``omega_3`` as omega with subscript 3,
+    ``|V_B|`` with subscript B, ``|V_P@2|`` as V with subscript P₂; a user's name drawn as written."""
+    sym = {r"\omega": "omega", r"\alpha": "alpha"}.get(symbol, symbol)
+    return quantity_math(sym, index if sym in ("omega", "alpha") else key_text(index), bars == "|")
 
 
 COINCIDE = 1e-9   # curves within this (relative to the panel's largest value) at every pose are one curve
@@ -150,15 +145,14 @@ def cycle_figure(sw: Sweep, points=None, cen: Centrodes | None = None, style: st
 def _panels(sw: Sweep, points=None) -> list:
     """The four panels over the cycle, row by row: (title, y label, [(curve label, values)])."""
     m = sw.mechanism
-    u = m.units or "length"
     keys = list(points) if points else moving_keys(sw)
     return [
         ("Angular velocities", r"$\omega$ (rad/s)",
          [(_quantity(r"\omega", k.name), sw.omega[k.name]) for k in m.moving_links]),
         ("Angular accelerations", r"$\alpha$ (rad/s²)",
          [(_quantity(r"\alpha", k.name), sw.alpha[k.name]) for k in m.moving_links]),
-        ("Speeds", literal(f"|V| ({u}/s)"), [(_quantity("V", k, "|"), np.hypot(*sw.velocity[k].T)) for k in keys]),
-        ("Accelerations", literal(f"|A| ({u}/s²)"),
+        ("Speeds", literal(f"|V| ({unit(m.units, 1)})"), [(_quantity("V", k, "|"), np.hypot(*sw.velocity[k].T)) for k in keys]),
+        ("Accelerations", literal(f"|A| ({unit(m.units, 2)})"),
          [(_quantity("A", k, "|"), np.hypot(*sw.acceleration[k].T)) for k in keys]),
     ]
 
@@ -209,7 +203,7 @@ def plot_cycle(sw: Sweep, out, points=None, cen: Centrodes | None = None, style:
 
 def _plot_centrodes(sw: Sweep, cen: Centrodes, ax_fixed, ax_moving, style: str, kin: Kinematics) -> None:
     m = sw.mechanism
-    u = m.units or "length"
+    u = m.units or "units"
     lk = cen.link
     om = sw.omega[lk]
     line = {"color": "black" if style != "slides" else "C3"}
@@ -220,7 +214,7 @@ def _plot_centrodes(sw: Sweep, cen: Centrodes, ax_fixed, ax_moving, style: str, 
     ax_fixed.plot(fixed[:, 0], fixed[:, 1], label=literal(f"fixed centrode of link {lk}"), **line)
     if cen.defined[0]:
         ax_fixed.plot(*cen.fixed[0], "o", color=line["color"], markersize=4,
-                      label=literal(f"P_{_pole_name(m, lk)} at the first pose"))
+                      label=quantity_math("P", _pole_name(m, lk)) + " at the first pose")
         carried = break_at_infinity(cen.carried(sw, kin, 0), om)
         ax_fixed.plot(carried[:, 0], carried[:, 1], linestyle="--", color=line["color"], linewidth=0.8,
                       label="moving centrode (carried by the link)")

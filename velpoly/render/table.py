@@ -20,7 +20,10 @@ import re
 
 import numpy as np
 
-from ..report import Table, fmt, magnitude_direction
+from ..names import NAME, key_text, link_of, polar, quantity_math, unit, vector_direction
+from ..names import direction as fmt_direction
+from ..compare import Value, polygon_values
+from ..report import Table, fmt
 from .canvas import Artists, equation_tex, get_ax, literal, renderer_of
 from .style import get_style
 
@@ -47,17 +50,20 @@ def _fmt(x, digits=5) -> str:
 
 
 def _vec(v, digits=5) -> str:
-    md = magnitude_direction(v)
-    if md is None:
+    v = np.asarray(v, float)
+    if not np.all(np.isfinite(v)):
         return "–"
-    return "0" if md[0] == 0 else f"{_fmt(md[0], digits)} ∠ {md[1]:.2f}°"
+    mag = float(np.hypot(*v))
+    if mag == 0:
+        return "0"
+    return polar(_fmt(mag, digits), vector_direction(v))
 
 
 def _q(symbol: str, index: str, unit: str = "") -> str:
-    """A quantity's name as mathtext: ``$\\omega_{3}$ (rad/s)``, ``$V_{B}$``; the cell is drawn piece by
-    piece (:func:`_parts`), each piece as written. An index with a brace, ``$`` or backslash in it
-    (a user's name) stays one plain piece: ``V_{x}``."""
-    index = index.replace("@", "")
+    """A quantity's name: ``$\\omega_{3}$ (rad/s)``, ``$V_{B}$``, ``$V_{P₂}$`` (``index``: names as plain
+    text, :mod:`velpoly.names`); the cell is drawn piece by piece (:func:`_parts`), each piece as written,
+    and a footnote typesets it (:func:`_math`). An index with a brace, ``$`` or backslash in it (a user's
+    name) stays one plain piece: ``V_{x}``."""
     unit = f" ({unit})" if unit else ""
     if any(c in index for c in "{}$\\"):
         return f"{_SYMBOLS.get(symbol, symbol)}_{index}{unit}"
@@ -74,8 +80,13 @@ _GREEK = {"omega": r"\omega", "alpha": r"\alpha", "theta": r"\theta"}
 _COMPONENT_MARK = {"n": "ⁿ", "t": "ᵗ", "c": "ᶜ", "s": "ˢ"}   # of the components A^n, A^t, A^c, A^s
 
 
-def _key(key: str) -> str:
-    """A reference key in mathtext: ``V_P3/P4`` -> $V_{P3/P4}$, ``omega_3`` -> $\\omega_{3}$, ``|V_B|``."""
+def _key(key: str, m=None) -> str:
+    """A reference key as a cell: ``V_B3/B4`` -> $V_{B₃/B₄}$ (with the mechanism ``m``: each point of a link
+    with the link as its subscript, :func:`velpoly.reference.display_key`), ``omega_3`` -> $\\omega_{3}$,
+    ``|V_B|``."""
+    if m is not None:
+        from ..reference import display_key
+        key = display_key(m, key)
     bars = key.startswith("|") and key.endswith("|")
     body = key.strip("|")
     sym, sep, idx = body.partition("_")
@@ -89,17 +100,51 @@ def _key(key: str) -> str:
 
 _RICH = re.compile(r"^(\|?)\$(\\?[A-Za-z]+[ⁿᵗᶜˢ]?)_\{([^}$]*)\}\$(\|?)(.*)$")
 _SYMBOLS = {r"\omega": "ω", r"\alpha": "α", r"\theta": "θ"}
+_SUB, _SUBSUB = (0.72, -0.28), (0.56, -0.48)   # a subscript's size and baseline shift (ems); a subscript's own
+
+
+def _index_parts(sym: str, sub: str) -> list[tuple[str, float, float, str]] | None:
+    """A subscript's pieces: each name's letters and digits as a subscript, its link (P₂, P(cam)) a
+    subscript of that (:mod:`velpoly.names`); a rate's link upright unless one letter; None where the
+    subscript is not made of names."""
+    if sym in _SYMBOLS or sub.isdigit():
+        return [(literal(sub), *_SUB, "italic" if len(sub) == 1 and sub.isalpha() else "normal")]
+    out, end = [], 0
+    for mo in NAME.finditer(sub):
+        if mo.start() != end and sub[end:mo.start()] != "/":
+            return None
+        if mo.start() != end:
+            out.append(("/", *_SUB, "normal"))
+        base, digits, link, primes = mo.groups()
+        out.append((literal(base + digits + "′" * len(primes)), *_SUB, "italic"))
+        if link:
+            lk = link_of(link)
+            out.append((literal(lk), *_SUBSUB, "italic" if len(lk) == 1 and lk.isalpha() else "normal"))
+        end = mo.end()
+    return out if end == len(sub) else None
 
 
 def _parts(cell: str) -> list[tuple[str, float, float, str]]:
-    """A cell as pieces (text, size factor, baseline shift in ems, font style): ``$V_{B}$`` -> V, B lowered."""
+    """A cell as pieces (text, size factor, baseline shift in ems, font style): ``$V_{B}$`` -> V, B lowered;
+    ``$V_{P₂}$`` -> V, P lowered, 2 lowered again."""
     m = _RICH.match(cell)
     if not m:
         return [(literal(cell), 1.0, 0.0, "normal")]
     bar, sym, sub, bar2, rest = m.groups()
-    return [(literal(bar + _SYMBOLS.get(sym, sym)), 1.0, 0.0, "italic"),
-            (literal(sub), 0.72, -0.28, "normal" if sub[:1].isdigit() else "italic"),
+    index = _index_parts(sym, sub) or [(literal(sub), *_SUB, "normal" if sub[:1].isdigit() else "italic")]
+    return [(literal(bar + _SYMBOLS.get(sym, sym)), 1.0, 0.0, "italic"), *index,
             (literal(bar2 + rest), 1.0, 0.0, "normal")]
+
+
+def _math(cell: str) -> str:
+    """A quantity's cell as mathtext (a footnote's): ``$V_{P₂}$`` -> $V_{P_{2}}$."""
+    m = _RICH.match(cell)
+    if not m:
+        return literal(cell)
+    bar, sym, sub, bar2, rest = m.groups()
+    mark = {v: k for k, v in _COMPONENT_MARK.items()}.get(sym[-1:], "")
+    body = quantity_math(sym[:-1] if mark else sym, sub, sup=mark)
+    return (body[:1] + bar + body[1:-1] + bar2 + body[-1:]) + literal(rest)
 
 
 def _num(x, digits=5) -> str:
@@ -135,8 +180,127 @@ def _printed(row) -> str:
     if isinstance(v, tuple):
         if row.key.startswith("P"):
             return f"({_fmt(v[0], 5)}, {_fmt(v[1], 5)})"
-        return f"{_fmt(v[0], 5)} ∠ {v[1]:.2f}°"
+        return polar(_fmt(v[0], 5), v[1])
     return _num(v)
+
+
+class _Rows:
+    """The rows of a results table as they are gathered: each row with its ``[reference]`` comparison (or
+    None), the reference rows not yet shown, and the hand-drafted ranges."""
+
+    def __init__(self, sol, sheet, velocity, acceleration, poleset):
+        from ..reference import at_file_pose, compare
+        from ..report import pinned_keys
+        self.sol, self.m, self.sheet = sol, sol.mechanism, sheet
+        # the book's values belong to the pose the file describes, not to another driver angle
+        self.refs = {r.key: r for r in compare(sol)} if self.m.reference and at_file_pose(sol) else {}
+        self.used = set()
+        self.ic = None
+        if poleset is not None and sheet in ("velocity", "poles", "full"):
+            from ..poles import instant_centre_velocities
+            self.ic = instant_centre_velocities(sol, poleset)
+        self.rows, self.noted = [], []   # noted: each row's reference comparison (None: none), in step
+        self.hd = None
+        if velocity is not None or acceleration is not None:
+            from ..polygons import hand_drafting
+            self.hd = hand_drafting(sol)
+        self.pinned = pinned_keys(self.m)   # a point of links pinned together: one row "V_B (on 2 and 3)"
+
+    def add(self, row, r) -> None:
+        self.rows.append(row + (_printed(r), _dev(r)))
+        self.noted.append(r)
+
+    def ref_for(self, *keys):
+        for k in keys:
+            if k in self.refs:
+                self.used.add(k)
+                return self.refs[k]
+        return None
+
+    def drafted(self, level, table, key) -> str:
+        if self.hd is None or self.hd.get(level) is None or key not in self.hd[level][table]:
+            return ""
+        lo, hi = self.hd[level][table][key]
+        if lo == hi:
+            return "exact"
+        return f"{_num(lo, 4)} … {_num(hi, 4)}"
+
+    def spelt(self, key) -> list[str]:
+        """The ways a reference names the point key: B, B@3 as B3, and a pinned pair by either link."""
+        names = [key, key.replace("@", "")]
+        if self.pinned.get(key):
+            names += [f"{self.pinned[key][0]}{lk}" for lk in self.pinned[key][1]]
+        elif "@" not in key:   # one key: every link that carries it moves it alike
+            names += [f"{key}{lk}" for lk in self.m.carriers.get(key, ())]
+        return names
+
+    def point_label(self, symbol, key) -> str:
+        """``V_P₂``, ``V_P(cam)`` (:mod:`velpoly.names`); a pinned group's one row ``V_B (on 2 and 3)``."""
+        from ..report import on_links
+        if key not in self.pinned:
+            return _q(symbol, key_text(key))
+        return _q(symbol, key_text(self.pinned[key][0])) + f" (on {on_links(self.pinned[key][1])})"
+
+    def shown(self, key) -> bool:
+        """A key with a row of its own (not a pinned group's second key)."""
+        return key not in self.pinned or self.pinned[key] is not None
+
+
+def _rate_rows(t: _Rows, level: str, poly) -> None:
+    """ω (α) of each moving link that turns, or that the book prints."""
+    sol = t.sol
+    rate, sym, unit_, name = ((sol.omega, r"\omega", "rad/s", "omega") if level == "velocity"
+                              else (sol.alpha, r"\alpha", "rad/s²", "alpha"))
+    # each rate graphical beside analytic (velpoly.compare); the poles sheet's omegas without a polygon
+    values = (polygon_values(sol, poly)[0] if poly is not None else
+              [Value(k.name, None, rate[k.name]) for k in t.m.moving_links])
+    for v in values:
+        lk, g = v.key, v.graphical
+        r = t.ref_for(f"{name}_{lk}")
+        if abs(v.analytic) <= 1e-12 and (g is None or abs(g) <= 1e-12) and r is None:
+            continue   # a translating link (a block on a fixed guide): nothing to show
+        ic = (_num(t.ic["omega"][lk]) if t.ic else "") if level == "velocity" else ""
+        t.add((_q(sym, lk, unit_), "" if g is None else _num(g), t.drafted(level, name, lk), _num(v.analytic), ic), r)
+
+
+def _point_rows(t: _Rows, level: str, poly) -> None:
+    """V (A) of each point the polygon images, read off it, beside the analytic value."""
+    vel = level == "velocity"
+    for pv in polygon_values(t.sol, poly)[1]:
+        key, v = pv.key, pv.analytic
+        if v is None or not np.all(np.isfinite(v)) or float(np.hypot(*v)) == 0 or not t.shown(key):
+            continue
+        if vel:
+            r = t.ref_for(*(k for name in t.spelt(key) for k in (f"V_{name}", f"|V_{name}|")))
+            ic = _vec(t.ic["velocity"][key]) if t.ic and key in t.ic["velocity"] else ""
+        else:
+            r = t.ref_for(*(f"A_{name}" for name in t.spelt(key)))
+            ic = ""
+        t.add((t.point_label("V" if vel else "A", key), _vec(pv.graphical),
+               t.drafted(level, "speed" if vel else "magnitude", key), _vec(v), ic), r)
+
+
+def _pole_rows(t: _Rows, poleset) -> None:
+    """The poles found (not by inspection), in order of discovery."""
+    from ..reference import relative_pole
+    for p in sorted((p for p in poleset.poles.values() if p.order > 0), key=lambda p: p.order):
+        pos, direction = relative_pole(t.sol, *p.links)
+        r = t.ref_for(f"P_{p.links[0]}{p.links[1]}", f"P{p.links[0]}{p.links[1]}")
+        t.add((_pole(p.links) + f"  ({p.order})", _where(p.position, p.direction), "", _where(pos, direction), ""), r)
+
+
+def _other_rows(t: _Rows) -> None:
+    """The book's other values this sheet is about, against the analytic solve."""
+    related = {"velocity": ("V", "|V", "omega"), "acceleration": ("A", "alpha"), "poles": ("P", "V_P", "omega"),
+               "full": ("V", "|V", "omega", "A", "alpha")}[t.sheet]
+    for key, r in t.refs.items():
+        if key in t.used or not key.startswith(related):
+            continue
+        comp = r.computed
+        shown = "at infinity" if comp is None else (
+            polar(_fmt(comp[0], 5), comp[1]) if isinstance(comp, tuple) and not key.startswith("P")
+            else (f"({_fmt(comp[0], 5)}, {_fmt(comp[1], 5)})" if isinstance(comp, tuple) else _num(comp)))
+        t.add((_key(key, t.m), "", "", shown, ""), r)
 
 
 def results_table(sol, sheet: str = "full", *, velocity=None, acceleration=None, poleset=None) -> Table:
@@ -147,131 +311,39 @@ def results_table(sol, sheet: str = "full", *, velocity=None, acceleration=None,
     column, and rows of the poles found on a poles sheet). Columns:
     quantity, graphical, analytic, instant centres (when poles are given),
     reference and its deviation from the analytic value (when the file has
-    a ``[reference]``).
+    a ``[reference]``). Names as :mod:`velpoly.names` writes them.
     """
-    from ..compare import Value, polygon_values
-    from ..reference import at_file_pose, compare
-    from ..report import on_links, pinned_keys
-    m = sol.mechanism
-    # the book's values belong to the pose the file describes, not to another driver angle
-    refs = {r.key: r for r in compare(sol)} if m.reference and at_file_pose(sol) else {}
-    used = set()
-    ic = None
-    if poleset is not None and sheet in ("velocity", "poles", "full"):
-        from ..poles import instant_centre_velocities
-        ic = instant_centre_velocities(sol, poleset)
-    rows = []
-    noted = []   # each row's reference comparison (None: a row without one), in step with rows
-
-    def ref_for(*keys):
-        for k in keys:
-            if k in refs:
-                used.add(k)
-                return refs[k]
-        return None
-
-    hd = None
-    if velocity is not None or acceleration is not None:
-        from ..polygons import hand_drafting
-        hd = hand_drafting(sol)
-
-    def drafted(level, table, key):
-        if hd is None or hd.get(level) is None or key not in hd[level][table]:
-            return ""
-        lo, hi = hd[level][table][key]
-        if lo == hi:
-            return "exact"
-        return f"{_num(lo, 4)} … {_num(hi, 4)}"
-
-    # each quantity graphical beside analytic (velpoly.compare), the poles sheet's omegas without a polygon
-    vel_rates, vel_points = (polygon_values(sol, velocity) if velocity is not None else
-                             ([Value(k.name, None, sol.omega[k.name]) for k in m.moving_links], []))
-    if velocity is not None or (ic is not None and sheet == "poles"):
-        for v in vel_rates:
-            lk, g = v.key, v.graphical
-            r = ref_for(f"omega_{lk}")
-            if abs(v.analytic) <= 1e-12 and (g is None or abs(g) <= 1e-12) and r is None:
-                continue   # a translating link (a block on a fixed guide): nothing to show
-            rows.append((_q(r"\omega", lk, "rad/s"), "" if g is None else _num(g), drafted("velocity", "omega", lk),
-                         _num(v.analytic),
-                         _num(ic["omega"][lk]) if ic else "", _printed(r), _dev(r)))
-            noted.append(r)
-    pinned = pinned_keys(m)   # a point of links pinned together: one row "V_B (on 2 and 3)"
-
-    def spelt(key):
-        """The ways a reference names the point key: B, B@3 as B3, and a pinned pair by either link."""
-        names = [key, key.replace("@", "")]
-        if pinned.get(key):
-            names += [f"{pinned[key][0]}{lk}" for lk in pinned[key][1]]
-        elif "@" not in key:   # one key: every link that carries it moves it alike
-            names += [f"{key}{lk}" for lk in m.carriers.get(key, ())]
-        return names
-
-    def point_label(symbol, key):
-        if key not in pinned:
-            return _q(symbol, key)
-        return _q(symbol, pinned[key][0]) + f" (on {on_links(pinned[key][1])})"
-    for pv in vel_points:
-        key, v = pv.key, pv.analytic
-        if v is None or float(np.hypot(*v)) == 0 or (key in pinned and pinned[key] is None):
-            continue
-        r = ref_for(*(k for name in spelt(key) for k in (f"V_{name}", f"|V_{name}|")))
-        rows.append((point_label("V", key), _vec(pv.graphical), drafted("velocity", "speed", key), _vec(v),
-                     _vec(ic["velocity"][key]) if ic and key in ic["velocity"] else "", _printed(r), _dev(r)))
-        noted.append(r)
+    t = _Rows(sol, sheet, velocity, acceleration, poleset)
+    if velocity is not None or (t.ic is not None and sheet == "poles"):
+        _rate_rows(t, "velocity", velocity)
+    if velocity is not None:
+        _point_rows(t, "velocity", velocity)
     if acceleration is not None:
-        acc_rates, acc_points = polygon_values(sol, acceleration)
-        for v in acc_rates:
-            lk, g = v.key, v.graphical
-            r = ref_for(f"alpha_{lk}")
-            if abs(v.analytic) <= 1e-12 and (g is None or abs(g) <= 1e-12) and r is None:
-                continue
-            rows.append((_q(r"\alpha", lk, "rad/s²"), _num(g), drafted("acceleration", "alpha", lk),
-                         _num(v.analytic), "", _printed(r), _dev(r)))
-            noted.append(r)
-        for pv in acc_points:
-            key, a = pv.key, pv.analytic
-            if a is None or not np.all(np.isfinite(a)) or float(np.hypot(*a)) == 0 or \
-                    (key in pinned and pinned[key] is None):
-                continue
-            r = ref_for(*(f"A_{name}" for name in spelt(key)))
-            rows.append((point_label("A", key), _vec(pv.graphical), drafted("acceleration", "magnitude", key),
-                         _vec(a), "", _printed(r), _dev(r)))
-            noted.append(r)
+        _rate_rows(t, "acceleration", acceleration)
+        _point_rows(t, "acceleration", acceleration)
     if poleset is not None and sheet == "poles":
-        from ..reference import relative_pole
-        for p in sorted((p for p in poleset.poles.values() if p.order > 0), key=lambda p: p.order):
-            pos, direction = relative_pole(sol, *p.links)
-            r = ref_for(f"P_{p.links[0]}{p.links[1]}", f"P{p.links[0]}{p.links[1]}")
-            rows.append((_pole(p.links) + f"  ({p.order})", _where(p.position, p.direction), "",
-                         _where(pos, direction), "", _printed(r), _dev(r)))
-            noted.append(r)
-    related = {"velocity": ("V", "|V", "omega"), "acceleration": ("A", "alpha"), "poles": ("P", "V_P", "omega"),
-               "full": ("V", "|V", "omega", "A", "alpha")}[sheet]
-    for key, r in refs.items():   # the book's other values this sheet is about, against the analytic solve
-        if key in used or not key.startswith(related):
-            continue
-        comp = r.computed
-        shown = "at infinity" if comp is None else (
-            f"{_fmt(comp[0], 5)} ∠ {comp[1]:.2f}°" if isinstance(comp, tuple) and not key.startswith("P")
-            else (f"({_fmt(comp[0], 5)}, {_fmt(comp[1], 5)})" if isinstance(comp, tuple) else _num(comp)))
-        rows.append((_key(key), "", "", shown, "", _printed(r), _dev(r)))
-        noted.append(r)
+        _pole_rows(t, poleset)
+    _other_rows(t)
+    return _finish(t)
+
+
+def _finish(t: _Rows) -> Table:
+    """The table: no empty column; the rows the book gives first (those a ``[reference]`` note explains
+    ahead of the rest, each group in its order), so that a table cut to its room shows them; each row
+    whose printed value a note explains gets its own mark, and the note is a footnote."""
+    m, rows = t.m, t.rows
     columns = [(0, "quantity"), (1, "graphical"), (2, "hand-drawn, 95 %"), (3, "analytic"),
                (4, "instant centres"), (5, "reference"), (6, "deviation")]
     columns = [(i, name) for i, name in columns if i == 0 or any(r[i] for r in rows)]   # no empty column
     header = [name for _, name in columns]
     rows = [tuple(r[i] for i, _ in columns) for r in rows]
     ref_col = header.index("reference") if "reference" in header else None
-    noted = [r if r is not None and r.note else None for r in noted]
+    noted = [r if r is not None and r.note else None for r in t.noted]
     title = "Results: graphical construction against the analytic solve"
-    if refs and m.reference.source:
+    if t.refs and m.reference.source:
         title += f"; reference values: {m.reference.source}"
-    elif m.reference and not refs:
-        title += f"; no reference values at this driver angle ({sol.driver_angle:.4g}°)"
-    # the rows the book gives first (those a [reference] note explains ahead of the rest, each group in
-    # its order), so that a table cut to its room shows them; each row whose printed value a note
-    # explains gets its own mark, and the note is a footnote
+    elif m.reference and not t.refs:
+        title += f"; no reference values at this driver angle ({t.sol.driver_angle:.4g}°)"
     order = (sorted(range(len(rows)), key=lambda i: (not rows[i][ref_col], noted[i] is None))
              if ref_col is not None else range(len(rows)))
     rows = [rows[i] for i in order]
@@ -287,6 +359,30 @@ def results_table(sol, sheet: str = "full", *, velocity=None, acceleration=None,
     return Table(title, tuple(header), tuple(rows), tuple(notes))
 
 
+def _link_lengths(sol) -> list[tuple[str, str]]:
+    """Each moving link's lengths between its points (a plate of more than four points around its
+    outline; not to a point that slides on the link)."""
+    m, pos = sol.mechanism, sol.position
+    # a point that slides on a link (a slider on its guide, a pin in its slot, a contact) has no fixed
+    # distance from that link's other points
+    sliding = {(s.point, s.guide) for s in m.sliders} | {(s.pin, s.slot) for s in m.slots} | \
+        {(c.point, lk) for c in m.contacts for lk in c.links}
+
+    def at(p, link):
+        return np.asarray(pos.get(f"{p}@{link}", pos.get(p, m.position(p))), float)
+    rows = []
+    for link in m.moving_links:
+        ps = [p for p in dict.fromkeys(link.points) if (p, link.name) not in sliding]
+        if len(ps) <= 4:
+            pairs = [(a, b) for i, a in enumerate(ps) for b in ps[i + 1:]]
+        else:
+            pairs = list(zip(ps, ps[1:] + ps[:1]))
+        for a, b in pairs:
+            d = float(np.hypot(*(at(b, link.name) - at(a, link.name))))
+            rows.append((f"{a}{b} (link {link.name})", f"{_fmt(d, 5)} {m.units}".rstrip()))
+    return rows
+
+
 def given_table(sol) -> Table:
     """The data of the displacement sheet (a problem handout): what the problem gives, no answers.
 
@@ -297,171 +393,170 @@ def given_table(sol) -> Table:
     analysis of the motion.
     """
     m = sol.mechanism
-
-    def unit_label(units, power):
-        return units + ("", "/s", "/s²")[power] if units else ("", "s⁻¹", "s⁻²")[power]
-    unit = (lambda x: f"{_fmt(x, 5)} {m.units}".rstrip())
     drv = m.driver
     rows = []
     if drv.is_slider:
-        rows.append((_q("V", drv.slider), f"{_fmt(abs(drv.speed), 5)} {unit_label(m.units, 1)}".rstrip()))
-        rows.append((_q("A", drv.slider), f"{_fmt(drv.accel, 5)} {unit_label(m.units, 2)}".rstrip()))
+        rows.append((_q("V", drv.slider), f"{_fmt(abs(drv.speed), 5)} {unit(m.units, 1)}"))
+        rows.append((_q("A", drv.slider), f"{_fmt(drv.accel, 5)} {unit(m.units, 2)}"))
     else:
         lk = drv.link
         if sol.driver_angle is not None:
             rows.append((_q(r"\theta", lk), f"{_fmt(sol.driver_angle, 5)}°"))
+
         def sense(x):   # as the space diagram writes it: a magnitude and its sense
             return _fmt(abs(x), 5) + ("" if x == 0 else (" ccw" if x > 0 else " cw"))
         rows.append((_q(r"\omega", lk, "rad/s"), sense(drv.omega)))
         rows.append((_q(r"\alpha", lk, "rad/s²"), sense(drv.alpha)))
-    pos = sol.position
-    # a point that slides on a link (a slider on its guide, a pin in its slot, a contact) has no fixed
-    # distance from that link's other points
-    sliding = {(s.point, s.guide) for s in m.sliders} | {(s.pin, s.slot) for s in m.slots} | \
-        {(c.point, lk) for c in m.contacts for lk in c.links}
-
-    def at(p, link):
-        return np.asarray(pos.get(f"{p}@{link}", pos.get(p, m.position(p))), float)
     for p in m.frame.points:
-        x, y = at(p, m.frame.name)
+        x, y = np.asarray(sol.position.get(f"{p}@{m.frame.name}", sol.position.get(p, m.position(p))), float)
         rows.append((f"{p} (frame)", f"({_fmt(x, 5)}, {_fmt(y, 5)})" + (f" {m.units}" if m.units else "")))
-    for link in m.moving_links:
-        ps = [p for p in dict.fromkeys(link.points) if (p, link.name) not in sliding]
-        if len(ps) <= 4:
-            pairs = [(a, b) for i, a in enumerate(ps) for b in ps[i + 1:]]
-        else:
-            pairs = list(zip(ps, ps[1:] + ps[:1]))
-        for a, b in pairs:
-            d = float(np.hypot(*(at(b, link.name) - at(a, link.name))))
-            rows.append((f"{a}{b} (link {link.name})", unit(d)))
+    rows += _link_lengths(sol)
     return Table("Given data", ("quantity", "value"), tuple(rows))
 
 
 def _where(pos, direction) -> str:
     if pos is None:
-        return "undefined" if direction is None else f"∞ at {direction:.2f}°"
+        return "undefined" if direction is None else f"∞ at {fmt_direction(direction)}°"
     return f"({_fmt(pos[0], 5)}, {_fmt(pos[1], 5)})"
 
 
 _WIDTHS: dict = {}   # measured widths of the table's texts (points), by font, size and text: they never change
 
 
-def draw_results_table(sol, ax=None, *, sheet: str = "full", style="textbook", velocity=None,
-                       acceleration=None, poleset=None, table: Table | None = None) -> Artists:
-    """Draw the sheet's results table in ``ax`` (booktabs style); return the Artists.
+def _box(ax) -> tuple[float, float]:
+    """The table's axes, bare, with (0, 1) limits: its (width, height) in points."""
+    ax.set_axis_off()
+    ax.set_xlim(0, 1)
+    ax.set_ylim(0, 1)
+    pos = ax.get_position()
+    w_in, h_in = ax.figure.get_size_inches()
+    return pos.width * w_in * 72, pos.height * h_in * 72
 
-    The table is :func:`results_table` unless ``table`` is given; without
-    constructions given, those of ``sheet`` are built. It fills the
-    axes' width at most; type shrinks (down to 5 pt) to fit the widest row,
-    and rows that do not fit the height are summarised in a last line.
 
-    Returns
-    -------
-    Artists
-        Roles ``cells`` (Texts, row by row), ``rules``, ``title`` and ``footnotes``
-        (the ``[reference]`` notes of the marked rows shown, ``artists.notes``);
-        ``artists.table`` is the Table drawn, ``artists.shown`` the number of
-        its rows drawn, ``artists.size`` its type size (points, after any shrinking),
-        ``artists.blocks`` each block's column names.
-    """
-    import matplotlib
-    from matplotlib.lines import Line2D
-    ax = get_ax(ax)
-    st = get_style(style)
-    if table is None and velocity is None and acceleration is None and poleset is None:
-        # drawn on its own: the constructions of the sheet named
+def _sheet_table(sol, sheet, velocity, acceleration, poleset, table) -> Table:
+    """The table to draw: ``table``, else :func:`results_table` of the constructions given, else (none
+    given) of those the sheet named builds."""
+    if table is not None:
+        return table
+    if velocity is None and acceleration is None and poleset is None:
         from .constructions import constructions
         cons = constructions(sol, sheet)
         shows = {"velocity": (1, 0), "acceleration": (0, 1), "poles": (0, 0), "full": (1, 1)}[sheet]
         velocity = cons.velocity if shows[0] else None
         acceleration = cons.acceleration if shows[1] else None
         poleset = cons.poles
-    t = table if table is not None else results_table(sol, sheet, velocity=velocity, acceleration=acceleration,
-                                                     poleset=poleset)
-    ax.set_axis_off()
-    ax.set_xlim(0, 1)
-    ax.set_ylim(0, 1)
-    art = Artists(ax)
-    art.table = t
-    fig = ax.figure
-    r = renderer_of(fig)
-    pos = ax.get_position()
-    w_in, h_in = fig.get_size_inches()
-    width_pt, height_pt = pos.width * w_in * 72, pos.height * h_in * 72
-    size = st.small_size
-    gap = 1.6 * size   # between columns, points
+    return results_table(sol, sheet, velocity=velocity, acceleration=acceleration, poleset=poleset)
 
-    widths_at: dict = {}
 
-    def part_width(text, scale, style):
+class _Widths:
+    """The widths (points) of a table's cells, each piece measured once at the style's small size (widths
+    scale with the type size), cached across tables (:data:`_WIDTHS`)."""
+
+    def __init__(self, ax, st, t: Table):
+        self.ax, self.st, self.t = ax, st, t
+        self.fig = ax.figure
+        self.r = renderer_of(self.fig)
+        self.at: dict = {}   # cell -> its pieces' widths
+
+    def part(self, text, scale, style) -> float:
+        import matplotlib
         rc = matplotlib.rcParams   # the fonts in force (the style's, inside rc_context)
         key = (tuple(rc["font.family"]), tuple(rc.get(f"font.{rc['font.family'][0]}", ())),
-               rc["mathtext.fontset"], st.small_size, fig.dpi, text, scale, style)
+               rc["mathtext.fontset"], self.st.small_size, self.fig.dpi, text, scale, style)
         w = _WIDTHS.get(key)
         if w is None:
-            tx = ax.text(0, 0, text, fontsize=st.small_size * scale, fontstyle=style)
-            w = _WIDTHS[key] = tx.get_window_extent(r).width * 72 / fig.dpi
+            tx = self.ax.text(0, 0, text, fontsize=self.st.small_size * scale, fontstyle=style)
+            w = _WIDTHS[key] = tx.get_window_extent(self.r).width * 72 / self.fig.dpi
             tx.remove()
         return w
 
-    def measure(size):
-        """Column widths (points) at ``size``: each distinct text measured once, widths scale with size."""
-        if not widths_at:
+    def columns(self, size, rows=None, cols=None) -> list[float]:
+        """Column widths (points) at ``size`` of ``rows`` (all) in the columns ``cols`` (all)."""
+        t = self.t
+        if not self.at:
             for row in (t.header, *t.rows):
                 for cell in row:
-                    if cell not in widths_at:
-                        widths_at[cell] = [part_width(*p[:2], p[3]) for p in _parts(cell)]
-        f = size / st.small_size
-        return [max(sum(widths_at[row[i]]) for row in (t.header, *t.rows)) * f for i in range(len(t.header))]
+                    if cell not in self.at:
+                        self.at[cell] = [self.part(*p[:2], p[3]) for p in _parts(cell)]
+        rows = t.rows if rows is None else rows
+        cols = range(len(t.header)) if cols is None else cols
+        f = size / self.st.small_size
+        return [max(sum(self.at[row[i]]) for row in (t.header, *rows)) * f for i in cols]
 
-    widths = measure(size)
-    need = sum(widths) + gap * (len(widths) - 1)
-    if need > width_pt:
-        size = max(5.0, size * width_pt / need)
-        widths = measure(size)
+
+    def fit(self, width_pt: float) -> tuple:
+        """(type size, column widths, the table's width, the gap between columns) that fit ``width_pt``:
+        the style's small size, shrunk (down to 5 pt) where the widest row needs it."""
+        size = self.st.small_size
+        gap = 1.6 * size   # between columns, points
+        widths = self.columns(size)
         need = sum(widths) + gap * (len(widths) - 1)
-    line_h = 1.45 * size
-    title = ax.text(0, 1, literal(t.title), fontsize=size * 1.1, va="top", ha="left", style="italic", gid="results-table")
-    tw = title.get_window_extent(r).width * 72 / fig.dpi
-    wrap_pt = min(width_pt, max(need, 0.6 * width_pt))   # the table's own width (not less than 0.6 of the room)
-    chars = len(t.title) * wrap_pt / tw * 0.97   # characters a line of the title holds
+        if need > width_pt:
+            size = max(5.0, size * width_pt / need)
+            widths = self.columns(size)
+            need = sum(widths) + gap * (len(widths) - 1)
+        return size, widths, need, gap
 
-    def wrap_title(text):
-        """The title wrapped to the table's width (a long source wraps); the number of its lines."""
-        import textwrap
-        wrapped = textwrap.wrap(text, max(20, int(chars))) if tw > wrap_pt else [text]
-        title.set_text(literal("\n".join(wrapped)))
-        return len(wrapped)
-    lines = wrap_title(t.title)
-    art.add("title", title)
-    top = height_pt - 1.6 * size * 1.1 - (lines - 1) * 1.4 * size * 1.1
-    # the footnotes (the [reference] notes of the marked rows) beneath the table, across its room: their
-    # lines are kept free of rows
-    foot_size = 0.9 * size
-    foot = _footnote_lines(ax, t.notes, width_pt, foot_size)
-    rows = list(t.rows)
-    bgap = 3.0 * size
 
-    def layout(room):
-        """(blocks, rows a block, rows shown) when a block has room for ``room`` rows."""
-        blocks = 1
-        if len(rows) > room:   # side by side, as many blocks as the width takes (three at most)
-            blocks = max(1, min(3, int((width_pt + bgap) // (need + bgap)), -(-len(rows) // room)))
-        per = min(room, -(-len(rows) // blocks))          # rows shared evenly between the blocks
-        return blocks, per, (rows if len(rows) <= per * blocks else rows[:per * blocks - 1])
+def _layout(rows, room, width_pt, need, bgap):
+    """(blocks, rows a block, rows shown) when a block has room for ``room`` rows: side by side, as many
+    blocks as the width takes (three at most), the rows shared evenly between them."""
+    blocks = 1
+    if len(rows) > room:
+        blocks = max(1, min(3, int((width_pt + bgap) // (need + bgap)), -(-len(rows) // room)))
+    per = min(room, -(-len(rows) // blocks))
+    return blocks, per, (rows if len(rows) <= per * blocks else rows[:per * blocks - 1])
 
+
+def _room(rows, top, line_h, foot, size, foot_size, width_pt, need, bgap):
+    """The most rows a block has room for beside the footnotes of the rows it then shows (the rows a note
+    explains come first, so the footnotes kept are theirs), and the layout it gives."""
     def foot_height(shown):
-        """The height of the footnotes of the marked rows among ``shown``."""
         marks = {(row[-1].split() or [""])[-1] for row in shown}
         n = sum(len(lines) for mark, lines in foot.items() if mark in marks)
         return 0.5 * size + n * 1.3 * foot_size if n else 0.0
-
-    # the most rows a block has room for beside the footnotes of the rows it then shows (the rows a
-    # note explains come first, so the footnotes kept are theirs)
     room = max(int((top - 1.9 * line_h) // line_h), 1)
-    while room > 1 and (1.9 + room) * line_h + foot_height(layout(room)[2]) > top:
+    while room > 1 and (1.9 + room) * line_h + foot_height(_layout(rows, room, width_pt, need, bgap)[2]) > top:
         room -= 1
-    blocks, per, shown = layout(room)
+    return _layout(rows, room, width_pt, need, bgap)
+
+
+def _cell(art, ax, widths: _Widths, box, x, y, text, size, style=None) -> None:
+    """A cell's text at (x, y) points; a quantity's subscripts set as smaller, lowered texts (no mathtext:
+    fast). ``box``: the axes' (width, height) in points."""
+    parts = _parts(text)
+    ws = widths.at.get(text) or [0.0] * len(parts)
+    for (piece, scale, dy, st_), w in zip(parts, ws):
+        if piece:
+            art.add("cells", ax.text(x / box[0], (y + 0.3 * size + dy * size) / box[1], piece,
+                                     fontsize=size * scale, fontstyle=style or st_, va="baseline",
+                                     ha="left", transform=ax.transAxes))
+        x += w * size / widths.st.small_size
+
+
+def _footnotes(art, ax, t: Table, shown, foot, bottom, size, foot_size, box) -> None:
+    """The footnotes of the rows shown beneath the table (``art.notes``)."""
+    marks = {row[-1].split()[-1] for row in shown if row[-1]}
+    art.notes = [n for n in t.notes if n[0] in marks]   # the footnotes of the rows shown
+    y = bottom - 0.5 * size
+    for k, (mark, key, _) in enumerate(art.notes):
+        for i, line in enumerate(foot[mark]):
+            y -= 1.3 * foot_size
+            art.add("footnotes", ax.text(0, y / box[1], line, fontsize=foot_size, va="baseline", ha="left",
+                                         gid=f"footnote-{k}" if i == 0 else None))
+
+
+def _draw_blocks(art, st, widths_of: _Widths, layout, size, top, spacing, box) -> float:
+    """The table's blocks side by side, each between rules: ``layout`` = (rows, rows shown, blocks, rows a
+    block), ``spacing`` = (the one block's column widths, the gap between columns, between blocks),
+    ``box`` = the axes' (width, height) in points; return the lowest rule's height (points)."""
+    from matplotlib.lines import Line2D
+    ax, t = art.ax, widths_of.t
+    rows, shown, blocks, per = layout
+    widths, gap, bgap = spacing
+    width_pt, height_pt = box
+    line_h = 1.45 * size
+
     def rule(x0, y, lw, total):
         ln = Line2D([x0 / width_pt, (x0 + total) / width_pt], [y / height_pt] * 2, lw=lw, color=st.ink,
                     transform=ax.transAxes)
@@ -469,20 +564,11 @@ def draw_results_table(sol, ax=None, *, sheet: str = "full", style="textbook", v
         art.add("rules", ln)
 
     def cell(x, y, text, **kw):
-        """A cell's text; a quantity's subscript set as a smaller, lowered text (no mathtext: fast)."""
-        parts = _parts(text)
-        ws = widths_at.get(text) or [0.0] * len(parts)
-        for (piece, scale, dy, style), w in zip(parts, ws):
-            if piece:
-                art.add("cells", ax.text(x / width_pt, (y + 0.3 * size + dy * size) / height_pt, piece,
-                                         fontsize=size * scale, fontstyle=kw.get("style", style), va="baseline",
-                                         ha="left", transform=ax.transAxes))
-            x += w * size / st.small_size
+        _cell(art, ax, widths_of, box, x, y, text, size, kw.get("style"))
 
     bottom = top
     x0 = 0.0
     art.blocks = []
-    f = size / st.small_size
     for b in range(blocks):
         chunk = shown[b * per:(b + 1) * per]
         if not chunk and b:
@@ -491,8 +577,7 @@ def draw_results_table(sol, ax=None, *, sheet: str = "full", style="textbook", v
         # poles' positions prints no empty "instant centres" or "reference" beside them; one block, the table
         cols = [i for i in range(len(t.header)) if i == 0 or any(row[i] for row in chunk)] if blocks > 1 \
             else list(range(len(t.header)))
-        wb = [max(sum(widths_at[row[i]]) for row in (t.header, *chunk)) * f for i in cols] if blocks > 1 \
-            else widths
+        wb = widths_of.columns(size, chunk, cols) if blocks > 1 else widths
         xs = np.cumsum([0.0] + [w + gap for w in wb[:-1]])
         total = min(sum(wb) + gap * (len(wb) - 1), width_pt)
         art.blocks.append(tuple(t.header[i] for i in cols))
@@ -514,24 +599,74 @@ def draw_results_table(sol, ax=None, *, sheet: str = "full", style="textbook", v
         bottom = min(bottom, y)
         rule(x0, y, st.link_lw, total)
         x0 += total + bgap
-    marks = {row[-1].split()[-1] for row in shown if row[-1]}
-    art.notes = [n for n in t.notes if n[0] in marks]   # the footnotes of the rows shown
+    return bottom
+
+
+def draw_results_table(sol, ax=None, *, sheet: str = "full", style="textbook", velocity=None,
+                       acceleration=None, poleset=None, table: Table | None = None) -> Artists:
+    """Draw the sheet's results table in ``ax`` (booktabs style); return the Artists.
+
+    The table is :func:`results_table` unless ``table`` is given; without
+    constructions given, those of ``sheet`` are built. It fills the
+    axes' width at most; type shrinks (down to 5 pt) to fit the widest row,
+    and rows that do not fit the height are summarised in a last line.
+
+    Returns
+    -------
+    Artists
+        Roles ``cells`` (Texts, row by row), ``rules``, ``title`` and ``footnotes``
+        (the ``[reference]`` notes of the marked rows shown, ``artists.notes``);
+        ``artists.table`` is the Table drawn, ``artists.shown`` the number of
+        its rows drawn, ``artists.size`` its type size (points, after any shrinking),
+        ``artists.blocks`` each block's column names.
+    """
+    ax = get_ax(ax)
+    st = get_style(style)
+    t = _sheet_table(sol, sheet, velocity, acceleration, poleset, table)
+    art = Artists(ax)
+    art.table = t
+    fig = ax.figure
+    r = renderer_of(fig)
+    width_pt, height_pt = _box(ax)
+    widths_of = _Widths(ax, st, t)
+    size, widths, need, gap = widths_of.fit(width_pt)
+    line_h = 1.45 * size
+    title = ax.text(0, 1, literal(t.title), fontsize=size * 1.1, va="top", ha="left", style="italic", gid="results-table")
+    tw = title.get_window_extent(r).width * 72 / fig.dpi
+    wrap_pt = min(width_pt, max(need, 0.6 * width_pt))   # the table's own width (not less than 0.6 of the room)
+    chars = len(t.title) * wrap_pt / tw * 0.97   # characters a line of the title holds
+
+    def wrap_title(text):
+        """The title wrapped to the table's width (a long source wraps); the number of its lines."""
+        import textwrap
+        wrapped = textwrap.wrap(text, max(20, int(chars))) if tw > wrap_pt else [text]
+        title.set_text(literal("\n".join(wrapped)))
+        return len(wrapped)
+    lines = wrap_title(t.title)
+    art.add("title", title)
+    top = height_pt - 1.6 * size * 1.1 - (lines - 1) * 1.4 * size * 1.1
+    # the footnotes (the [reference] notes of the marked rows) beneath the table, across its room: their
+    # lines are kept free of rows
+    foot_size = 0.9 * size
+    foot = _footnote_lines(ax, t.notes, width_pt, foot_size, sol.mechanism)
+    rows = list(t.rows)
+    bgap = 3.0 * size
+    blocks, per, shown = _room(rows, top, line_h, foot, size, foot_size, width_pt, need, bgap)
+
+    bottom = _draw_blocks(art, st, widths_of, (rows, shown, blocks, per), size, top, (widths, gap, bgap),
+                          (width_pt, height_pt))
+    _footnotes(art, ax, t, shown, foot, bottom, size, foot_size, (width_pt, height_pt))
     if t.notes and not art.notes:   # the title promises no footnote that the rows shown do not have
         wrap_title(t.title.replace(f"; {NOTED} the book's value is explained in a footnote", ""))
-    y = bottom - 0.5 * size
-    for k, (mark, key, _) in enumerate(art.notes):
-        for i, line in enumerate(foot[mark]):
-            y -= 1.3 * foot_size
-            art.add("footnotes", ax.text(0, y / height_pt, line, fontsize=foot_size, va="baseline", ha="left",
-                                         gid=f"footnote-{k}" if i == 0 else None))
     art.shown = len(shown)
     art.size = size
     return art
 
 
-def _footnote_lines(ax, notes, width_pt: float, size: float) -> dict:
+def _footnote_lines(ax, notes, width_pt: float, size: float, m=None) -> dict:
     """Each footnote ``(mark, key, text)`` as the lines it takes at ``size`` within ``width_pt``:
-    ``{mark: [line, ...]}``, the first line starting with the mark and the quantity it explains."""
+    ``{mark: [line, ...]}``, the first line starting with the mark and the quantity it explains (named
+    as the table names it, with the mechanism ``m``)."""
     import textwrap
     fig = ax.figure
     r = renderer_of(fig)
@@ -539,7 +674,7 @@ def _footnote_lines(ax, notes, width_pt: float, size: float) -> dict:
     for mark, key, text in notes:
         # typeset as the sheet's equations are (omega_5 -> omega with subscript 5, 400 x 2 -> 400 × 2), a minus
         # sign for a negative number's hyphen
-        full = f"{mark} {_key(key)}: " + re.sub(r"(?<![\w.])-(?=[0-9.])", "−", equation_tex(text))
+        full = f"{mark} {_math(_key(key, m))}: " + re.sub(r"(?<![\w.])-(?=[0-9.])", "−", equation_tex(text))
         probe = ax.text(0, 0, full, fontsize=size)
         w = probe.get_window_extent(r).width * 72 / fig.dpi
         probe.remove()
