@@ -309,3 +309,28 @@ def test_a_gallery_of_the_built_in_examples_elsewhere_stands_alone(tmp_path, cap
     assert find_gallery(REPO) == GALLERY and (REPO / "gallery" / "README.md").exists()
     assert "](../velpoly/examples/ex3_6_fourbar.toml)" in (GALLERY / "README.md").read_text()
     assert not list(GALLERY.glob("*.toml"))
+
+
+def test_the_gallery_drawn_in_worker_processes_is_the_one_drawn_in_one(tmp_path):
+    """The pool of workers (one a core) draws into memory and this process writes every file, in the
+    order and with the bytes of a build one example after another (its README and figures)."""
+    src = tmp_path / "src"
+    src.mkdir()
+    for name in ("crank_slider.toml", "ex3_6_fourbar.toml", "nope.toml"):   # the third fails to load
+        (src / name).write_text((EXAMPLES / name).read_text() if name != "nope.toml" else "[links\n")
+    built = {}
+    for jobs in (1, 2):
+        out = tmp_path / f"jobs{jobs}" / "site"
+        logged = []
+        result = build_gallery(src, out, jobs=jobs, log=logged.append)
+        files = {p.relative_to(out).as_posix(): p.read_bytes().replace(f"jobs{jobs}".encode(), b"jobsN")
+                 for p in out.rglob("*") if p.is_file()}   # the README names its folder
+        built[jobs] = ([Path(p).relative_to(out).as_posix() for p in result.written], files, logged,
+                       [p.name for p in result.built], [(p.name, line) for p, line in result.failed])
+    assert built[1] == built[2]
+    written, files, logged, ok, failed = built[2]
+    assert written == ["figures/crank_slider.png", "figures/ex3_6_fourbar.png", "README.md"]
+    assert ok == ["crank_slider.toml", "ex3_6_fourbar.toml"] and [f for f, _ in failed] == ["nope.toml"]
+    assert logged == [line for _, line in failed] and logged[0].startswith("nope.toml: ")
+    assert all(files[f].startswith(b"\x89PNG") for f in written[:2])
+    assert not [p for p in tmp_path.rglob("*.part")]
