@@ -58,6 +58,7 @@ def main(argv=None) -> int:
     p.add_argument("--file", default=str(ROOT / "velpoly" / "examples" / "problem_1_4_4_sixbar.toml"))
     p.add_argument("--before", default=BEFORE, help="the commit to compare with (default %(default)s)")
     args = p.parse_args(argv)
+    args.file = str(Path(args.file).resolve())
     import velpoly
     from velpoly.poles import locate_poles
     from velpoly.polygons import acceleration_polygon, velocity_polygon
@@ -88,7 +89,8 @@ def main(argv=None) -> int:
                 best[name] = min(best[name], per_call(fn, CALLS))
             for which, where in (("before", old), ("now", ROOT)) if old is not None else ():
                 proc = subprocess.run([sys.executable, "-c", TIMER, args.file, str(CALLS), "5"],
-                                      capture_output=True, text=True, env=dict(os.environ, PYTHONPATH=str(where)))
+                                      capture_output=True, text=True, env=dict(os.environ, PYTHONPATH=str(where)),
+                                      cwd=tmp)   # not the checkout: python -c puts the folder first on the path
                 if proc.returncode:
                     raise SystemExit(f"the velpoly of {where} failed: {proc.stderr.strip()[-300:]}")
                 got = json.loads(proc.stdout)
