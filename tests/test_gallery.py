@@ -334,3 +334,42 @@ def test_the_gallery_drawn_in_worker_processes_is_the_one_drawn_in_one(tmp_path)
     assert logged == [line for _, line in failed] and logged[0].startswith("nope.toml: ")
     assert all(files[f].startswith(b"\x89PNG") for f in written[:2])
     assert not [p for p in tmp_path.rglob("*.part")]
+
+
+@pytest.mark.parametrize("sig, code, word", [("SIGINT", 130, "interrupted"), ("SIGTERM", 143, "terminated")])
+def test_a_signal_while_the_workers_draw_leaves_nothing_behind(tmp_path, sig, code, word):
+    """Ctrl-C or SIGTERM to the command while its workers draw: it stops at once (the workers
+    abandon their drawings), exit 130/143 with one line, no traceback, no temporary folder, no
+    README, nothing drawn after the signal."""
+    import os
+    import signal
+    import subprocess
+    import sys
+    import time
+    src = tmp_path / "src"
+    src.mkdir()
+    for name in ("crank_slider.toml", "ex3_6_fourbar.toml", "problem_1_4_4_sixbar.toml"):
+        shutil.copy(EXAMPLES / name, src / name)
+    tmp, out = tmp_path / "tmp", tmp_path / "out"
+    tmp.mkdir()
+    env = dict(os.environ, PYTHONPATH=str(Path(__file__).resolve().parents[1]), TMPDIR=str(tmp))
+    p = subprocess.Popen([sys.executable, "-m", "velpoly", "gallery", "--source", str(src), "-o", str(out)],
+                         stdout=subprocess.PIPE, stderr=subprocess.PIPE, env=env)
+    try:
+        deadline = time.monotonic() + 90
+        while not list(tmp.iterdir()) and p.poll() is None and time.monotonic() < deadline:
+            time.sleep(0.02)     # a worker's temporary folder: it draws
+        assert list(tmp.iterdir()), "no worker began to draw"
+        p.send_signal(getattr(signal, sig))
+        sent = time.monotonic()
+        _, err = p.communicate(timeout=60)
+        took = time.monotonic() - sent
+    finally:
+        if p.poll() is None:
+            p.kill()
+    err = err.decode()
+    assert p.returncode == code and err.strip().splitlines()[-1] == f"error: {word}", err
+    assert "Traceback" not in err and "Exception ignored" not in err
+    assert list(tmp.iterdir()) == []
+    assert not (out / "README.md").exists() and not list(out.rglob("*.part"))
+    assert took < 20, took      # not the rest of the build: the drawings under way are abandoned
