@@ -22,12 +22,10 @@ import os
 import resource
 import subprocess
 import sys
-import tarfile
-import io
 import tempfile
 from pathlib import Path
 
-from _common import ROOT, finish, parser, row, run_timed
+from _common import ROOT, export, finish, parser, row, run_timed
 
 BASELINE = "0de6fa9"
 
@@ -36,18 +34,6 @@ def frames_of(gif: Path) -> int:
     from PIL import Image
     with Image.open(gif) as im:
         return im.n_frames
-
-
-def export(commit: str, dest: Path) -> Path | None:
-    """The ``velpoly`` package of ``commit`` under ``dest``; None where git cannot give it."""
-    try:
-        data = subprocess.run(["git", "archive", "--format=tar", commit, "velpoly"], cwd=ROOT,
-                              capture_output=True, timeout=60, check=True).stdout
-    except (OSError, subprocess.SubprocessError):
-        return None
-    with tarfile.open(fileobj=io.BytesIO(data)) as tar:
-        tar.extractall(dest, filter="data")
-    return dest
 
 
 def main(argv=None) -> int:

@@ -2,7 +2,8 @@
 
     python benchmarks/run_all.py [--repeats 5] [--update-doc]
 
-Runs ``bench_sweep.py``, ``bench_instant.py``, ``bench_draw.py``, ``bench_animate.py``,
+Runs ``bench_sweep.py``, ``bench_instant.py``, ``bench_json.py``, ``bench_sheet.py``, ``bench_draw.py``,
+``bench_gallery.py``, ``bench_animate.py``,
 ``bench_poles.py`` (where present) and any other ``benchmarks/bench_*.py``,
 each in its own process, one after the other, showing their reports; then
 prints the summary with the machine and this command. ``--update-doc``
@@ -21,7 +22,8 @@ from pathlib import Path
 
 from _common import HERE, ROOT, code_note, command_line, machine_note, row, table
 
-ORDER = ["bench_sweep.py", "bench_instant.py", "bench_draw.py", "bench_poles.py", "bench_animate.py"]
+ORDER = ["bench_sweep.py", "bench_instant.py", "bench_json.py", "bench_sheet.py", "bench_draw.py", "bench_gallery.py",
+         "bench_poles.py", "bench_animate.py"]
 DOC = ROOT / "docs" / "performance.md"
 START, END = "<!-- results:start -->", "<!-- results:end -->"
 

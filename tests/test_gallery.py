@@ -310,3 +310,66 @@ def test_a_gallery_of_the_built_in_examples_elsewhere_stands_alone(tmp_path, cap
     assert find_gallery(REPO) == GALLERY and (REPO / "gallery" / "README.md").exists()
     assert "](../velpoly/examples/ex3_6_fourbar.toml)" in (GALLERY / "README.md").read_text()
     assert not list(GALLERY.glob("*.toml"))
+
+
+def test_the_gallery_drawn_in_worker_processes_is_the_one_drawn_in_one(tmp_path):
+    """The pool of workers (one a core) draws into memory and this process writes every file, in the
+    order and with the bytes of a build one example after another (its README and figures)."""
+    src = tmp_path / "src"
+    src.mkdir()
+    for name in ("crank_slider.toml", "ex3_6_fourbar.toml", "nope.toml"):   # the third fails to load
+        (src / name).write_text((EXAMPLES / name).read_text() if name != "nope.toml" else "[links\n")
+    built = {}
+    for jobs in (1, 2):
+        out = tmp_path / f"jobs{jobs}" / "site"
+        logged = []
+        result = build_gallery(src, out, jobs=jobs, log=logged.append)
+        files = {p.relative_to(out).as_posix(): p.read_bytes().replace(f"jobs{jobs}".encode(), b"jobsN")
+                 for p in out.rglob("*") if p.is_file()}   # the README names its folder
+        built[jobs] = ([Path(p).relative_to(out).as_posix() for p in result.written], files, logged,
+                       [p.name for p in result.built], [(p.name, line) for p, line in result.failed])
+    assert built[1] == built[2]
+    written, files, logged, ok, failed = built[2]
+    assert written == ["figures/crank_slider.png", "figures/ex3_6_fourbar.png", "README.md"]
+    assert ok == ["crank_slider.toml", "ex3_6_fourbar.toml"] and [f for f, _ in failed] == ["nope.toml"]
+    assert logged == [line for _, line in failed] and logged[0].startswith("nope.toml: ")
+    assert all(files[f].startswith(b"\x89PNG") for f in written[:2])
+    assert not [p for p in tmp_path.rglob("*.part")]
+
+
+@pytest.mark.parametrize("sig, code, word", [("SIGINT", 130, "interrupted"), ("SIGTERM", 143, "terminated")])
+def test_a_signal_while_the_workers_draw_leaves_nothing_behind(tmp_path, sig, code, word):
+    """Ctrl-C or SIGTERM to the command while its workers draw: it stops at once (the workers
+    abandon their drawings), exit 130/143 with one line, no traceback, no temporary folder, no
+    README, nothing drawn after the signal."""
+    import os
+    import signal
+    import subprocess
+    import sys
+    import time
+    src = tmp_path / "src"
+    src.mkdir()
+    for name in ("crank_slider.toml", "ex3_6_fourbar.toml", "problem_1_4_4_sixbar.toml"):
+        shutil.copy(EXAMPLES / name, src / name)
+    tmp, out = tmp_path / "tmp", tmp_path / "out"
+    tmp.mkdir()
+    env = dict(os.environ, PYTHONPATH=str(Path(__file__).resolve().parents[1]), TMPDIR=str(tmp))
+    p = subprocess.Popen([sys.executable, "-m", "velpoly", "gallery", "--source", str(src), "-o", str(out)],
+                         stdout=subprocess.PIPE, stderr=subprocess.PIPE, env=env)
+    try:
+        deadline = time.monotonic() + 90
+        while not list(tmp.iterdir()) and p.poll() is None and time.monotonic() < deadline:
+            time.sleep(0.02)     # a worker's temporary folder: it draws
+        assert list(tmp.iterdir()), "no worker began to draw"
+        p.send_signal(getattr(signal, sig))
+        sent = time.monotonic()
+        lines = p.communicate(timeout=60)[1].decode().strip().splitlines()
+        took = time.monotonic() - sent
+    except BaseException:
+        p.kill()
+        raise
+    assert (p.returncode, lines[-1]) == (code, f"error: {word}"), lines
+    assert not [ln for ln in lines if ln.startswith(("Traceback", "Exception ignored"))], lines
+    assert list(tmp.iterdir()) == []
+    assert not (out / "README.md").exists() and not list(out.rglob("*.part"))
+    assert took < 20, took      # not the rest of the build: the drawings under way are abandoned

@@ -95,3 +95,33 @@ def test_wrap_deg_float_equals_wrap_deg():
         w = wrap_deg_float(float(a))
         assert type(w) is float
         assert w == float(wrap_deg(a)) and -180.0 < w <= 180.0
+
+
+def _generated():
+    import mechanisms as M
+    for name, gen in sorted(M.ARROW_GENERATORS.items()):
+        for seed in (1, 2):
+            yield name, velpoly.load(gen(seed, 35.0 + 50 * seed))
+
+
+@pytest.mark.parametrize("source", ["gallery", "generated"])
+def test_the_json_s_max_error_without_the_polygons_is_theirs_to_the_bit(source):
+    """to_dict replays the plan without recording the steps: the same max_error as the polygons give,
+    whether it runs before they are built or after."""
+    from velpoly.polygons import acceleration_polygon, max_error, velocity_polygon
+    cases = [(p.stem, velpoly.load(p)) for p in FILES] if source == "gallery" else list(_generated())
+    assert len(cases) >= 19
+    for name, m in cases:
+        for angle in (None, 77.0) if source == "gallery" else (None,):
+            try:
+                first, second = velpoly.solve(m, angle=angle), velpoly.solve(m, angle=angle)
+            except velpoly.VelpolyError:
+                continue    # a pose the mechanism cannot reach
+            d = first.to_dict()["graphical"]["max_error"]              # lean replay, polygons not built
+            levels = ("velocity", "acceleration") if first.has_accelerations else ("velocity",)
+            polys = {"velocity": velocity_polygon, "acceleration": acceleration_polygon}
+            for level in levels:
+                built = polys[level](second).max_error
+                assert d[level] == built and max_error(second, level) == built, (name, angle, level)
+                assert built < 1e-9, (name, level)
+            assert first.to_dict() == second.to_dict(), name                # built first, then the JSON

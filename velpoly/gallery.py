@@ -18,7 +18,7 @@ from dataclasses import dataclass
 from pathlib import Path
 
 from .errors import InputError, VelpolyError
-from .fileio import atomic_write_text, raise_if_interrupted
+from .fileio import atomic_write_bytes, atomic_write_text, raise_if_interrupted
 from .compare import comparison
 from .report import Table, fmt, render_table
 
@@ -261,7 +261,8 @@ def _error_line(e: BaseException, path: Path) -> str:
 
 
 def build_gallery(source=None, out=None, style: str = "textbook", draw=None, log=None,
-                  copy: bool | None = None, names=None, animations: bool = False) -> GalleryResult:
+                  copy: bool | None = None, names=None, animations: bool = False,
+                  jobs: int | None = None) -> GalleryResult:
     """Rebuild every example of ``source`` (its ``*.toml`` files, in natural name order) into ``out``.
 
     ``source`` defaults to the built-in examples, ``out`` to ``source``. For each
@@ -272,31 +273,58 @@ def build_gallery(source=None, out=None, style: str = "textbook", draw=None, log
     their checkout's gallery/, e.g. from an installed wheel) also writes each file
     as ``out/NAME.toml``, so that the folder stands alone and its README links
     to files beside it. ``names`` (file stems) builds only those examples.
+
+    The examples (and the animations) are drawn in ``jobs`` worker processes (default: one a core
+    this process may use), each into memory; this process writes every file, in the order a build
+    one example after another writes them, so the output is the same. A ``draw`` given runs in this
+    process, one example after another.
     """
     source = Path(source) if source is not None else EXAMPLES
     out = Path(out) if out is not None else source
     if copy is None:   # the built-in examples drawn anywhere but their own checkout's gallery
         copy = source.resolve() == EXAMPLES and out.resolve() not in (EXAMPLES, EXAMPLES.parent.parent / "gallery")
     files = _gallery_files(source, names)
+    pool = None if draw is not None else _pool(len(files), jobs)   # a given draw runs here, in order
     draw = draw or _draw_to_file()
     written, built, failed, sections = [], [], [], []
-    for path in files:
-        try:
-            files_written, section, path = _build_example(path, out, style, draw, copy)
-            written += files_written
-            sections.append(section)
-            built.append(path)
-        except Exception as e:  # one example's failure must not stop the others
-            raise_if_interrupted()   # unless it is Ctrl-C's aftermath: then nothing more is built
-            line = _error_line(e, path)
-            failed.append((path, line))
-            if log:
-                log(line)
-    extra = ""
-    if animations:   # one animation a mechanism family (velpoly.render.animate.gallery_animations)
-        from .render.animate import gallery_animations
-        files, extra = gallery_animations(source, out / "figures", log)
-        written += files
+    try:
+        if pool is not None:   # every example in a worker, drawn into memory; written here, in order
+            results = [pool.submit(_example_in_worker, path, out, style, copy) for path in files]
+        for i, path in enumerate(files):
+            try:
+                if pool is None:
+                    title, text, figs, final = _example(path, out, style, copy, draw)
+                else:
+                    done, line = results[i].result()
+                    if line is not None:
+                        failed.append((path, line))
+                        if log:
+                            log(line)
+                        continue
+                    title, text, figs, final = done
+                    figs = [atomic_write_bytes(f, data) for f, data in figs]
+                written += figs
+                sections.append((title, text))
+                built.append(final)
+            except Exception as e:  # one example's failure must not stop the others
+                raise_if_interrupted()   # unless it is Ctrl-C's aftermath: then nothing more is built
+                line = _error_line(e, path)
+                failed.append((path, line))
+                if log:
+                    log(line)
+        extra = ""
+        if animations:   # one animation a mechanism family (velpoly.render.animate.gallery_animations)
+            from .render.animate import gallery_animations
+            run = None if pool is None else (lambda todo: _animations_in(pool, todo))
+            files, extra = gallery_animations(source, out / "figures", log, run=run)
+            written += files
+    except BaseException:
+        if pool is not None:   # Ctrl-C or an error: the workers stop at once, what they drew is dropped
+            _stop_workers(pool)
+        raise
+    finally:
+        if pool is not None:
+            pool.shutdown(wait=True, cancel_futures=True)
     readme = _readme(sections, failed, source, out, extra)
     written.append(atomic_write_text(out / "README.md", readme))
     return GalleryResult(tuple(written), tuple(built), tuple(failed))
@@ -319,14 +347,15 @@ def _gallery_files(source: Path, names=None) -> list[Path]:
     return files
 
 
-def _build_example(path: Path, out: Path, style: str, draw, copy: bool) -> tuple[list, tuple, Path]:
-    """One example into the gallery ``out``: (files written, its README section ``(title, text)``, the
-    path its README links to). ``copy`` also writes the file beside the README (never over another)."""
+def _example(path: Path, out: Path, style: str, copy: bool, draw, keep: bool = False) -> tuple:
+    """One example of the gallery: ``(title, README section, files written, its file)``. With ``keep``
+    (in a worker) nothing is written: the files are ``(path, bytes)`` pairs for the caller to write."""
     from . import load, solve
     from .render.options import drawing_options
+    src = path
     m = load(path)
     sol = solve(m)
-    written = []
+    files = []
     if copy:
         text, target = path.read_text(encoding="utf-8"), out / path.name
         if target.exists() and (not target.is_file() or target.read_text(encoding="utf-8",
@@ -334,16 +363,124 @@ def _build_example(path: Path, out: Path, style: str, draw, copy: bool) -> tuple
             raise InputError(f"{target} exists and is not the built-in example: not replaced",
                              where="-o", hint="move it away, or build the gallery into another folder")
         if not target.exists():
-            written.append(atomic_write_text(target, text))
+            files.append((target, text.encode("utf-8")) if keep else atomic_write_text(target, text))
         path = target
     target = out / "figures" / f"{path.stem}.png"
-    figs = draw(sol, target, sheet=drawing_options(m).sheet, style=style, steps=False)   # its own sheet
-    written += list(figs)
-    figure = _relative(Path(figs[0]) if figs else target, out)
-    text = example_markdown(path, sol, figure)
+    kw = dict(sheet=drawing_options(m).sheet, style=style, steps=False)   # its own sheet
+    figs = _in_memory(draw, sol, target, **kw) if keep else list(draw(sol, target, **kw))
+    files += figs
+    first = (figs[0][0] if keep else Path(figs[0])) if figs else target
+    text = example_markdown(src, sol, _relative(first, out))   # src: the same text as its copy
     # links in the README point to the example files from where the README is
     text = text.replace(f"]({path.name})", f"]({_relative(path, out)})", 1)
-    return written, (m.title, text), path
+    return m.title, text, files, path
+
+
+def _in_memory(draw, what, target: Path, **kw) -> list:
+    """``draw(what, OUT, **kw)`` into a private temporary folder: ``[(path, bytes)]`` of the files it
+    wrote (one path or a list), each named as beside ``target``."""
+    import tempfile
+    with tempfile.TemporaryDirectory(prefix="velpoly-gallery-") as tmp:
+        written = draw(what, Path(tmp) / target.name, **kw)
+        written = written if isinstance(written, (list, tuple)) else [written]
+        return [(target.with_name(Path(f).name), Path(f).read_bytes()) for f in written]
+
+
+def _example_in_worker(path: Path, out: Path, style: str, copy: bool) -> tuple:
+    """A worker's part of :func:`_example`: ``(result, None)``, or ``(None, error line)``."""
+    with _busy():
+        try:
+            return _example(path, out, style, copy, _draw_to_file(), keep=True), None
+        except Exception as e:   # a VelpolyError need not survive pickling: its line does
+            return None, _error_line(e, path)
+
+
+def _animation_in_worker(path: Path, out: Path):
+    """One gallery animation drawn in a worker: ``(path, bytes)``, or the exception it raised."""
+    from . import load
+    from .render.animate import gallery_animation
+    with _busy():
+        try:
+            return _in_memory(gallery_animation, load(path), out)[0]
+        except Exception as e:
+            return e if _picklable(e) else RuntimeError(f"{type(e).__name__}: {e}")
+
+
+def _picklable(e: BaseException) -> bool:
+    import pickle
+    try:
+        pickle.loads(pickle.dumps(e))
+    except Exception:
+        return False
+    return True
+
+
+def _animations_in(pool, todo: list) -> list:
+    """gallery_animations' ``run``: each ``(file, out)`` animated in the pool, written here, in order."""
+    futures = [pool.submit(_animation_in_worker, path, out) for path, out in todo]
+    done = []
+    for f in futures:
+        got = f.result()
+        done.append(got if isinstance(got, BaseException) else atomic_write_bytes(*got))
+    return done
+
+
+def _pool(tasks: int, jobs: int | None):
+    """A process pool of ``jobs`` workers (default: the cores this process may use), or None where
+    one process does as well (one core, one task)."""
+    import os
+    if jobs is None:
+        jobs = len(os.sched_getaffinity(0)) if hasattr(os, "sched_getaffinity") else (os.cpu_count() or 1)
+    jobs = min(jobs, tasks)
+    if jobs < 2:
+        return None
+    import multiprocessing
+    from concurrent.futures import ProcessPoolExecutor
+    methods = multiprocessing.get_all_start_methods()
+    ctx = multiprocessing.get_context("fork" if "fork" in methods else None)   # fork: the modules come along
+    return ProcessPoolExecutor(jobs, mp_context=ctx, initializer=_worker_start)
+
+
+_WORKER = {"busy": False, "stopped": False}   # in a worker: drawing now; told to stop (SIGTERM)
+
+
+def _worker_start() -> None:
+    """A worker leaves Ctrl-C to the command, which stops the build (:func:`_stop_workers`)."""
+    import signal
+    signal.signal(signal.SIGINT, signal.SIG_IGN)
+    signal.signal(signal.SIGTERM, _worker_stop)
+
+
+def _worker_stop(signum, frame):
+    """SIGTERM in a worker: a drawing is abandoned (its temporary folder removed on the way out),
+    an idle worker leaves at once."""
+    _WORKER["stopped"] = True
+    if _WORKER["busy"]:
+        raise KeyboardInterrupt
+    import os
+    os._exit(0)
+
+
+class _busy:
+    """A worker's task: SIGTERM abandons it (KeyboardInterrupt), never writes to the output."""
+
+    def __enter__(self):
+        if _WORKER["stopped"]:   # a task queued before the command was interrupted: not begun
+            raise KeyboardInterrupt
+        _WORKER["busy"] = True
+
+    def __exit__(self, *exc):
+        _WORKER["busy"] = False
+
+
+def _stop_workers(pool) -> None:
+    """The command is interrupted: each worker stops what it draws (SIGTERM) and the tasks queued are
+    dropped; nothing they drew is written."""
+    for proc in list((getattr(pool, "_processes", None) or {}).values()):
+        try:
+            proc.terminate()
+        except (OSError, ValueError):
+            pass
 
 
 README_MARK = "<!-- generated by velpoly gallery -->"   # the first line of every README the gallery writes

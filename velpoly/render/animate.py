@@ -1522,23 +1522,33 @@ def gallery_animation(m, out, size=None, step: float | None = None, fps: float =
     return write_animation(anim, out, fps)
 
 
-def gallery_animations(source, figures, log=None) -> tuple[list, str]:
+def _animations_here(todo: list) -> list:
+    """Each ``(file, out)`` of gallery_animations animated in this process: its path, or the exception."""
+    from .. import load
+    made = []
+    for path, out in todo:
+        try:
+            made.append(gallery_animation(load(path), out))
+        except Exception as e:
+            made.append(e)
+    return made
+
+
+def gallery_animations(source, figures, log=None, run=None) -> tuple[list, str]:
     """One animation for each mechanism family of GALLERY_FAMILIES found in ``source`` (a folder of
     ``*.toml`` files), written as ``figures/animate-NAME.gif``; returns the files written and the
     README's section (empty if none was made). A family whose example is missing is left out; one
-    that fails is reported to ``log`` and left out."""
-    from .. import load
+    that fails is reported to ``log`` and left out. ``run`` (the gallery's worker processes) makes
+    ``[(file, out), ...]``: each one's written path or the exception it raised, in order."""
     source, figures = Path(source), Path(figures)
+    todo = [(family, stem, source / f"{stem}.toml") for family, stem in GALLERY_FAMILIES
+            if (source / f"{stem}.toml").exists()]
+    made = (run or _animations_here)([(path, figures / f"animate-{stem}.gif") for _, stem, path in todo])
     written, rows = [], []
-    for family, stem in GALLERY_FAMILIES:
-        path = source / f"{stem}.toml"
-        if not path.exists():
-            continue
-        try:
-            out = gallery_animation(load(path), figures / f"animate-{stem}.gif")
-        except Exception as e:     # one animation's failure must not stop the gallery
+    for (family, stem, path), out in zip(todo, made):
+        if isinstance(out, BaseException):     # one animation's failure must not stop the gallery
             if log:
-                log(f"{path.name}: animation: {type(e).__name__}: {e}")
+                log(f"{path.name}: animation: {type(out).__name__}: {out}")
             continue
         written.append(out)
         rows.append((family, stem, out))

@@ -320,7 +320,10 @@ def render_sheet(sol, sheet: str = "full", style="textbook", *, cons: Constructi
 
 
 def _save(fig, target, fmt: str, st) -> None:
-    meta = {"svg": {"Date": None}, "pdf": {"CreationDate": None, "ModDate": None}, "png": {}}[fmt]
+    if fmt == "png":   # the pixels savefig draws, encoded in a third of its time (velpoly.render.pngfile)
+        from .pngfile import save_png
+        return save_png(fig, target, st.dpi)
+    meta = {"svg": {"Date": None}, "pdf": {"CreationDate": None, "ModDate": None}}[fmt]
     fig.savefig(target, format=fmt, metadata=meta, dpi=st.dpi if fmt == "png" else 72)
 
 
