@@ -345,10 +345,7 @@ class _Drawing:
         d = _unit(float(r["direction"][0]))
         L, H = st.block[0] * pc, st.block[1] * pc
         n = _perp(d)
-        others = _neighbours(sol, s.point, [lk for lk in self.m.carriers.get(s.point, ()) if lk not in
-                                            (s.block, s.guide)])
-        side_v = sum((o - p) for o in others) if others else -n
-        side = -1.0 if np.dot(side_v, n) > 0 else 1.0   # the guide's hatch away from the links
+        side = -self.guide_side(s, p, n)   # the guide's hatch away from the links
         if s.centre is None:
             path = self._path_segment(p, d, 2.1 * L)
             if not self.m.link(s.guide).frame:
@@ -587,6 +584,7 @@ class _Drawing:
                 ground_dir[point] = self.ground_pivot(point, sorted(links - {frame}))
         self.draw_hatches()
         self.art.bodies = dict(geoms)                # link -> its drawn body (shapely), for checks
+        self.art.plates = dict(self.plates)          # link -> its plate (the hull of its points)
         self.art.slot_cuts = dict(self.slot_cuts)    # slot index -> (link, centre line, cut)
         for z, lk in enumerate(order):
             if lk in geoms:
@@ -744,27 +742,40 @@ class _Drawing:
 
     def slider_driver(self):
         """A slider driver's speed beside its block as an arrow in its sense, and its acceleration (when not
-        zero) as a double-headed arrow in its sense beyond it, each with its value."""
+        zero) as a double-headed arrow in its sense next to it along the path, on the side of the path away
+        from its hatched guide, each with its value."""
         sol, m, st, pc = self.sol, self.m, self.st, self.pc
         drv = m.driver
         s = next(s for s in m.sliders if s.point == drv.slider)
         path = _unit(float(sol.motion.sliders[m.sliders.index(s)]["direction"][0]))
         p = sol.place(s.block, s.point)
-        n = _perp(path)
+        n = _perp(path) * self.guide_side(s, p, _perp(path))
         name = math_literal(drv.slider)
-        arrows = [(drv.speed, 0.35, "driver-arrow", "driver-label", f"$V_{{{name}}}$", 1)]
-        if drv.accel:
-            arrows.append((drv.accel, 0.9, "driver-accel-arrow", "driver-label-accel", f"$A_{{{name}}}$", 2))
-        for value, off, gid, label_gid, symbol, power in arrows:
+        arrows = [(drv.speed, 0.0, "driver-arrow", "driver-label", f"$V_{{{name}}}$", 1)]
+        if drv.accel:   # next to the speed's, along the path on the side clear of the links
+            base = p + n * (st.block[1] * 0.5 + 0.35) * pc
+            ahead = [sum(1 for g in self.geoms.values() if g.intersects(LineString(
+                [tuple(base + k * path * 0.9 * pc), tuple(base + k * path * 2.1 * pc)]))) for k in (1, -1)]
+            arrows.append((drv.accel, 1.5 if ahead[0] <= ahead[1] else -1.5, "driver-accel-arrow",
+                           "driver-label-accel", f"$A_{{{name}}}$", 2))
+        spots = []
+        for value, along, gid, label_gid, symbol, power in arrows:
             d = path * (1 if value >= 0 else -1)
-            a = p + n * (st.block[1] * 0.5 + off) * pc - d * 0.6 * pc
+            a = p + n * (st.block[1] * 0.5 + 0.35) * pc + path * along * pc - d * 0.6 * pc
             b = a + d * 1.2 * pc
-            parts = self.straight_arrow(a, b, gid, double=power == 2)
-            self.art.add("driver", *parts)
-            text = f"{symbol} = {abs(value):.4g} {unit_label(m.units, power)}"
-            t = self.pl.place((a + b) / 2, text, prefer=math.degrees(math.atan2(n[1], n[0])),
-                              fontsize=st.small_size * 1.15, zorder=7, gid=label_gid)
+            self.art.add("driver", *self.straight_arrow(a, b, gid, double=power == 2))
+            spots.append(((a + b) / 2, f"{symbol} = {abs(value):.4g} {unit_label(m.units, power)}", label_gid))
+        for at, text, label_gid in spots:   # the values once both arrows are drawn: clear of both
+            t = self.pl.place(at, text, prefer=math.degrees(math.atan2(n[1], n[0])), fontsize=st.small_size * 1.15,
+                              zorder=7, gid=label_gid)
             self.art.add("driver", t)
+
+    def guide_side(self, s, p, n) -> float:
+        """+1 or -1: the side of a slider's path (along ``n``) away from its hatched guide (towards its links)."""
+        others = _neighbours(self.sol, s.point, [lk for lk in self.m.carriers.get(s.point, ()) if lk not in
+                                                 (s.block, s.guide)])
+        side_v = sum((o - p) for o in others) if others else -n
+        return 1.0 if np.dot(side_v, n) > 0 else -1.0
 
     def straight_arrow(self, a, b, gid, double=False) -> list:
         """An arrow a -> b (a second head behind the first when ``double``: an acceleration); its artists."""
@@ -772,6 +783,7 @@ class _Drawing:
         sh, hd, poly = arrow(self.ax, a, b, lw=st.arrow_lw, head_length=st.head_length, colour=st.ink,
                              zorder=6, gid=gid)
         self.pl.add_obstacle(poly)
+        self.pl.add_obstacle(LineString([tuple(a), tuple(b)]).buffer(1.0 * self.pp))
         out = [sh, hd]
         if double:
             u = (b - a) / float(np.hypot(*(b - a)))
