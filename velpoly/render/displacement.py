@@ -1,11 +1,13 @@
 """The displacement (space) diagram: the mechanism to scale, as a textbook draws it.
 
-Links are bars (two points) or plates (the buffered convex hull of three or
-more points), frame pivots stand on hatched ground, pins are open circles,
+Links are bars (two points) or plates (one light-filled polygon with its
+corners at the points of a link of three or more), frame pivots stand on hatched ground, pins are open circles,
 slider blocks are rectangles aligned with their path on a hatched guide (a
 slotted bar when the guide moves), contacts show their profiles' circles
 about the centres of curvature. Every point is labelled once, every link
-numbered, and the driver's omega is a curved arrow with its value. Positions
+numbered; the driver's omega is a curved arrow with its value, its alpha
+another (two heads), a slider driver's speed and acceleration straight
+arrows, and the driver is drawn over the links it turns. Positions
 are the solution's (``sol.position``, ``sol.place``), so a solution at
 another driver angle draws the re-assembled pose.
 """
@@ -923,7 +925,8 @@ def draw_mechanism(sol, ax=None, *, style="textbook", options=None, scale: float
         ``points``, ``labels``, ``link_numbers``, ``driver``, ``scale_bar``,
         ``equivalent`` (a sliding contact's dashed equivalent linkage);
         ``.labels`` maps each point key to its label, ``.bodies`` each moving
-        link to its drawn body (shapely), ``.slot_cuts`` each moving link's slot
+        link to its drawn body (shapely), ``.plates`` each link drawn as a plate to
+        its polygon, ``.slot_cuts`` each moving link's slot
         (by index) to ``(link, centre line, cut)``. Every ground hatch (a
         LineCollection) has ``_velpoly_exempt``: the links it may touch.
     """
