@@ -27,6 +27,7 @@ from velpoly.render import sheet
 from velpoly.render.canvas import per_cm
 from velpoly.render.style import get_style, rc_context
 from paths import GALLERY_FILES
+from test_detail import expected as expected_detail
 
 ROOT = Path(__file__).resolve().parent.parent
 FILES = GALLERY_FILES
@@ -126,6 +127,11 @@ def test_every_file_renders_its_pages(index, path):
         for ax in fig.axes:   # numbers with a minus sign, not a hyphen ('P_04 (-3.185, 0.1862)')
             bad = [t.get_text() for t in ax.texts if re.search(r"(?<![\w.])-[0-9]", t.get_text())]
             assert not bad, f"{name}/{style}: hyphen for minus in {bad}"
+        for ax in fig.axes:   # a polygon crushed by a long vector has its detail, and only that (test_detail)
+            if ax.get_label() in ("velocity", "acceleration"):
+                poly = full.velocity if ax.get_label() == "velocity" else full.acceleration
+                has = any(p.get_gid() == "detail-frame" for p in ax.patches)
+                assert has == expected_detail(poly, per_cm(ax)), f"{name}/{style}: {ax.get_label()} detail"
         boxes = _label_boxes(fig)
         assert boxes, "no labels drawn"
         for (ta, a), (tb, b) in itertools.combinations(boxes, 2):

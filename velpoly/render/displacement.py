@@ -1,11 +1,13 @@
 """The displacement (space) diagram: the mechanism to scale, as a textbook draws it.
 
-Links are bars (two points) or plates (the buffered convex hull of three or
-more points), frame pivots stand on hatched ground, pins are open circles,
+Links are bars (two points) or plates (one light-filled polygon with its
+corners at the points of a link of three or more), frame pivots stand on hatched ground, pins are open circles,
 slider blocks are rectangles aligned with their path on a hatched guide (a
 slotted bar when the guide moves), contacts show their profiles' circles
 about the centres of curvature. Every point is labelled once, every link
-numbered, and the driver's omega is a curved arrow with its value. Positions
+numbered; the driver's omega is a curved arrow with its value, its alpha
+another (two heads), a slider driver's speed and acceleration straight
+arrows, and the driver is drawn over the links it turns. Positions
 are the solution's (``sol.position``, ``sol.place``), so a solution at
 another driver angle draws the re-assembled pose.
 """
@@ -28,7 +30,10 @@ from .scalebar import scale_bar, unit_label
 from .style import get_style, link_fill
 
 __all__ = ["draw_mechanism", "away_from", "neighbours", "mechanism_bounds", "shape_patch", "link_bodies", "mark_auxiliary",
-           "equivalent_linkage_note"]
+           "equivalent_linkage_note", "plate_outline", "PLATE_FILL", "NUMBER_RADIUS"]
+
+PLATE_FILL = "0.9"      # a plate's fill where links are white (textbook): light, so that it reads as one body
+NUMBER_RADIUS = 0.8     # slides: a link number's circle at most this many bar widths in radius
 
 
 def shape_patch(geom, **kw):
@@ -139,6 +144,29 @@ def body_shape(pts, foreign, bar_width: float):
     return hull.buffer(bar_width / 2, quad_segs=12)
 
 
+def plate_outline(sol, link, bar_width: float):
+    """The plate of a link of three or more points drawn as one: the hull of its points (a polygon with its
+    corners at the points), or None where the link is drawn otherwise (bars of a bell-crank whose plate
+    would cover another link's pin; a hull thinner than a bar, drawn as a bar)."""
+    m = sol.mechanism
+    lk = m.link(link)
+    if lk.frame or len(lk.points) < 3:
+        return None
+    pts = [tuple(map(float, sol.place(link, p))) for p in lk.points]
+    hull = MultiPoint(pts).convex_hull
+    if hull.geom_type != "Polygon":
+        return None
+    x, y = hull.minimum_rotated_rectangle.exterior.xy
+    sides = np.hypot(np.diff(x), np.diff(y))
+    if float(sides.min()) < bar_width:
+        return None
+    foreign = [tuple(sol.place(k, p)) for p in m.point_order if link not in m.carriers.get(p, ())
+               for k in m.carriers.get(p, ())[:1]]
+    if any(hull.buffer(bar_width).contains(Point(*q)) for q in foreign):
+        return None
+    return hull
+
+
 class _Drawing:
     """The state of one displacement diagram being drawn."""
 
@@ -167,6 +195,21 @@ class _Drawing:
             p.set_gid(gid)
         self.ax.add_patch(p)
         self.art.add(role, p)
+        return p
+
+    def body(self, lk, geom, zorder):
+        """A link's body: a plate as one polygon with its corners at the link's points, in a light fill (a
+        plate reads as one link, not as bars), else its shape (bars, slotted bars, discs)."""
+        fill = link_fill(self.m, self.opts, self.st, lk)
+        if lk not in self.plates:
+            return self.patch(geom, "links", zorder, fill, gid=f"link-{lk}")
+        from matplotlib.patches import Polygon as MPolygon
+        if fill == self.st.paper:
+            fill = PLATE_FILL
+        p = MPolygon(np.asarray(geom.exterior.coords)[:-1], closed=True, facecolor=fill, edgecolor=self.st.ink,
+                     lw=self.st.link_lw, zorder=zorder, gid=f"link-{lk}")
+        self.ax.add_patch(p)
+        self.art.add("links", p)
         return p
 
     def hatch(self, a, b, side, role="ground", zorder=1.0, exempt=()):
@@ -297,10 +340,7 @@ class _Drawing:
         d = _unit(float(r["direction"][0]))
         L, H = st.block[0] * pc, st.block[1] * pc
         n = _perp(d)
-        others = neighbours(sol, s.point, [lk for lk in self.m.carriers.get(s.point, ()) if lk not in
-                                            (s.block, s.guide)])
-        side_v = sum((o - p) for o in others) if others else -n
-        side = -1.0 if np.dot(side_v, n) > 0 else 1.0   # the guide's hatch away from the links
+        side = -self.guide_side(s, p, n)   # the guide's hatch away from the links
         if s.centre is None:
             path = self._path_segment(p, d, 2.1 * L)
             if not self.m.link(s.guide).frame:
@@ -515,8 +555,16 @@ class _Drawing:
         # a link with a slot or a moving guide lies under the others (the crank that drives the block
         # in a slotted lever is seen over the lever), otherwise file order: later links over earlier ones
         order = [lk for lk in order if lk in self.slotted] + [lk for lk in order if lk not in self.slotted]
-        geoms = {}
+        drv = None if m.driver.is_slider else m.driver.link
+        if drv in order and drv not in self.slotted:   # the driver over the links it drives (the crank seen
+            order = [lk for lk in order if lk != drv] + [drv]   # over the lever or the block it turns)
+        geoms, self.plates = {}, {}
         for lk in order:
+            plate = None if self.extra_body.get(lk) else plate_outline(sol, lk, st.bar_width * self.pc)
+            if plate is not None:     # a ternary (or larger) link: one plate with its corners at its points
+                self.plates[lk] = plate
+                geoms[lk] = plate
+                continue
             parts = ([self.bodies[lk]] if lk in self.bodies else []) + self.extra_body.get(lk, [])
             if not parts and lk not in self.blocks:
                 p = sol.place(lk, m.link(lk).points[0])
@@ -531,10 +579,12 @@ class _Drawing:
                 ground_dir[point] = self.ground_pivot(point, sorted(links - {frame}))
         self.draw_hatches()
         self.art.bodies = dict(geoms)                # link -> its drawn body (shapely), for checks
+        self.art.plates = dict(self.plates)          # link -> its plate (the hull of its points)
         self.art.slot_cuts = dict(self.slot_cuts)    # slot index -> (link, centre line, cut)
         for z, lk in enumerate(order):
             if lk in geoms:
-                self.patch(geoms[lk], "links", 2 + 0.01 * z, link_fill(m, self.opts, st, lk), gid=f"link-{lk}")
+                zorder = 3.3 if lk == drv and lk not in self.slotted else 2 + 0.01 * z
+                self.body(lk, geoms[lk], zorder)
                 # its outline, not its area: a label may sit inside a plate or a wheel, clear of its edges
                 self.pl.add_obstacle(geoms[lk].boundary.buffer(0.6 * self.pp), hard=False)
         for lk, g in self.slots:
@@ -593,6 +643,34 @@ class _Drawing:
                     if len(spots) == 1 or k == key:
                         self.art.labels[k] = t
 
+    def number_style(self, lk) -> dict:
+        """The Text keywords of a link's number: circled (by default); on slides, the circle no larger in
+        radius than NUMBER_RADIUS bar widths (the type set smaller to fit), so that it is no bigger than
+        the link it names."""
+        st = self.st
+        kw = dict(fontsize=st.small_size * 1.1, zorder=7)
+        if self.opts.link_numbers != "circled":
+            return kw
+        kw["bbox"] = dict(boxstyle="circle,pad=0.18", facecolor=st.paper, edgecolor=st.ink, lw=st.thin_lw * 1.4)
+        if st.name != "slides":
+            return kw
+        limit = NUMBER_RADIUS * st.bar_width * self.pc
+        for _ in range(6):
+            r = self.number_radius(lk, kw)
+            if r <= limit * (1 + 1e-6):
+                break
+            kw["fontsize"] *= 0.97 * limit / r
+        return kw
+
+    def number_radius(self, lk, kw) -> float:
+        """The radius (data units) of a link number's circle drawn with ``kw``."""
+        t = self.ax.text(0, 0, literal(lk), ha="center", va="center", **kw)
+        r = self.pl.renderer
+        t.update_bbox_position_size(r)
+        bb = t.get_bbox_patch().get_window_extent(r)
+        t.remove()
+        return max(bb.width, bb.height) / 2 / self.ax.figure.dpi * 72 * self.pp
+
     def link_numbers(self, geoms):
         if self.opts.link_numbers == "none":
             return
@@ -613,10 +691,7 @@ class _Drawing:
             else:
                 anchor = np.array(g.centroid.coords[0])
                 prefer = away_from(anchor, [np.array([cx, cy])], default=90.0)
-            kw = dict(fontsize=st.small_size * 1.1, zorder=7)
-            if self.opts.link_numbers == "circled":
-                kw["bbox"] = dict(boxstyle="circle,pad=0.18", facecolor=st.paper, edgecolor=st.ink,
-                                  lw=st.thin_lw * 1.4)
+            kw = self.number_style(lk)
             if len(pts) >= 3:
                 # a plate: its number inside, at the centroid, if there is room
                 t = self.ax.text(*anchor, literal(lk), ha="center", va="center", gid=f"link-number-{lk}", **kw)
@@ -647,90 +722,176 @@ class _Drawing:
             self.art.add("link_numbers", t)
 
     def driver(self, ground_dir):
-        sol, m, st = self.sol, self.m, self.st
-        drv = m.driver
-        pc, pp = self.pc, self.pp
-        if drv.is_slider:
-            s = next(s for s in m.sliders if s.point == drv.slider)
-            r = sol.motion.sliders[m.sliders.index(s)]
-            d = _unit(float(r["direction"][0])) * (1 if drv.speed >= 0 else -1)
-            p = sol.place(s.block, s.point)
-            n = _perp(d)
-            a = p + n * (st.block[1] * 0.5 + 0.35) * pc - d * 0.6 * pc
-            b = a + d * 1.2 * pc
-            sh, hd, poly = arrow(self.ax, a, b, lw=st.arrow_lw, head_length=st.head_length, colour=st.ink,
-                                 zorder=6, gid="driver-arrow")
-            self.art.add("driver", sh, hd)
-            self.pl.add_obstacle(poly)
-            text = f"$V_{{{math_literal(drv.slider)}}}$ = {abs(drv.speed):.4g} {unit_label(m.units, 1)}"
-            t = self.pl.place((a + b) / 2, text, prefer=math.degrees(math.atan2(n[1], n[0])),
-                              fontsize=st.small_size * 1.15, zorder=7, gid="driver-label")
-            self.art.add("driver", t)
+        """The driver's motion: omega (and alpha, when not zero) as curved arrows about its pivot in their
+        senses, each with its value; a slider driver's speed and acceleration as straight arrows."""
+        m = self.m
+        if m.driver.is_slider:
+            self.slider_driver()
             return
         frame = m.frame.name
-        pivot = next((pin.point for pin in m.pins if set(pin.links) == {drv.link, frame}), None)
+        pivot = next((pin.point for pin in m.pins if set(pin.links) == {m.driver.link, frame}), None)
         if pivot is None:
             return
-        p = np.asarray(sol.position.get(pivot, sol.place(drv.link, pivot)), float)
-        dirs = [math.degrees(math.atan2(*(q - p)[::-1])) for q in neighbours(sol, pivot, self.pins_at[pivot] - {frame})]
+        p = np.asarray(self.sol.position.get(pivot, self.sol.place(m.driver.link, pivot)), float)
+        self.turning_driver(pivot, p, ground_dir)
+
+    def slider_driver(self):
+        """A slider driver's speed beside its block as an arrow in its sense, and its acceleration (when not
+        zero) as a double-headed arrow in its sense next to it along the path, on the side of the path away
+        from its hatched guide, each with its value."""
+        sol, m, st, pc = self.sol, self.m, self.st, self.pc
+        drv = m.driver
+        s = next(s for s in m.sliders if s.point == drv.slider)
+        path = _unit(float(sol.motion.sliders[m.sliders.index(s)]["direction"][0]))
+        p = sol.place(s.block, s.point)
+        n = _perp(path) * self.guide_side(s, p, _perp(path))
+        name = math_literal(drv.slider)
+        arrows = [(drv.speed, 0.0, "driver-arrow", "driver-label", f"$V_{{{name}}}$", 1)]
+        if drv.accel:   # next to the speed's, along the path on the side clear of the links
+            base = p + n * (st.block[1] * 0.5 + 0.35) * pc
+            ahead = [sum(1 for g in self.geoms.values() if g.intersects(LineString(
+                [tuple(base + k * path * 0.9 * pc), tuple(base + k * path * 2.1 * pc)]))) for k in (1, -1)]
+            arrows.append((drv.accel, 1.5 if ahead[0] <= ahead[1] else -1.5, "driver-accel-arrow",
+                           "driver-label-accel", f"$A_{{{name}}}$", 2))
+        spots = []
+        for value, along, gid, label_gid, symbol, power in arrows:
+            d = path * (1 if value >= 0 else -1)
+            a = p + n * (st.block[1] * 0.5 + 0.35) * pc + path * along * pc - d * 0.6 * pc
+            b = a + d * 1.2 * pc
+            self.art.add("driver", *self.straight_arrow(a, b, gid, double=power == 2))
+            spots.append(((a + b) / 2, f"{symbol} = {abs(value):.4g} {unit_label(m.units, power)}", label_gid))
+        for at, text, label_gid in spots:   # the values once both arrows are drawn: clear of both
+            t = self.pl.place(at, text, prefer=math.degrees(math.atan2(n[1], n[0])), fontsize=st.small_size * 1.15,
+                              zorder=7, gid=label_gid)
+            self.art.add("driver", t)
+
+    def guide_side(self, s, p, n) -> float:
+        """+1 or -1: the side of a slider's path (along ``n``) away from its hatched guide (towards its links)."""
+        others = neighbours(self.sol, s.point, [lk for lk in self.m.carriers.get(s.point, ()) if lk not in
+                                                 (s.block, s.guide)])
+        side_v = sum((o - p) for o in others) if others else -n
+        return 1.0 if np.dot(side_v, n) > 0 else -1.0
+
+    def straight_arrow(self, a, b, gid, double=False) -> list:
+        """An arrow a -> b (a second head behind the first when ``double``: an acceleration); its artists."""
+        st = self.st
+        sh, hd, poly = arrow(self.ax, a, b, lw=st.arrow_lw, head_length=st.head_length, colour=st.ink,
+                             zorder=6, gid=gid)
+        self.pl.add_obstacle(poly)
+        self.pl.add_obstacle(LineString([tuple(a), tuple(b)]).buffer(1.0 * self.pp))
+        out = [sh, hd]
+        if double:
+            u = (b - a) / float(np.hypot(*(b - a)))
+            _, hd2, poly2 = arrow(self.ax, a, b - u * 0.8 * st.head_length * self.pp, lw=st.arrow_lw,
+                                  head_length=st.head_length, colour=st.ink, zorder=6, gid=gid + "-second")
+            self.pl.add_obstacle(poly2)
+            out.append(hd2)
+        return out
+
+    def _driver_gaps(self, pivot, p, ground_dir) -> list:
+        """(width, start) of the angular gaps (deg) about the pivot between the driver's links and its ground."""
+        frame = self.m.frame.name
+        dirs = [math.degrees(math.atan2(*(q - p)[::-1]))
+                for q in neighbours(self.sol, pivot, self.pins_at[pivot] - {frame})]
         if pivot in ground_dir:   # the ground symbol takes a sector of its own
             dirs += [ground_dir[pivot] - 40.0, ground_dir[pivot], ground_dir[pivot] + 40.0]
         dirs = sorted(d % 360 for d in dirs) or [270.0]
-        gaps = [((dirs[(i + 1) % len(dirs)] - d) % 360 or 360, d) for i, d in enumerate(dirs)]
-        rad = 0.8 * pc
-        sense = 1.0 if drv.omega >= 0 else -1.0
-        # the arc in the widest gap between the driver's links and the ground, unless it would cross
-        # another link (a slotted lever passing by the pivot), a block or a label: then the next gap
+        return [((dirs[(i + 1) % len(dirs)] - d) % 360 or 360, d) for i, d in enumerate(dirs)]
+
+    def _arc_points(self, p, rad, mid, span, sense) -> np.ndarray:
+        a0, a1 = mid - sense * span / 2, mid + sense * span / 2
+        t = np.radians(np.linspace(a0, a1, 60))
+        return np.c_[p[0] + rad * np.cos(t), p[1] + rad * np.sin(t)]
+
+    def _driver_gap(self, p, gaps, rad, sense, text, label_kw):
+        """(mid direction, arc points, the gap (width, start)) of a driver's curved arrow: in the widest gap, unless it would cross another
+        link (a slotted lever passing by the pivot), a block or a label: then the next gap; of those, the one
+        whose value sits close to the arc over no link."""
+        drv = self.m.driver
         others = [g for lk, g in self.geoms.items() if lk != drv.link]
         others += [g for lk, g in self.block_geom.items() if lk != drv.link] + list(self.pl.boxes)
-        lk = link_math(drv.link)   # velpoly.names: a word upright, as written
-        text = rf"$\omega_{{{lk}}}$ = {abs(drv.omega):.4g} rad/s {'ccw' if drv.omega >= 0 else 'cw'}"
-        if drv.alpha:
-            text += "\n" + rf"$\alpha_{{{lk}}}$ = {abs(drv.alpha):.4g} rad/s² {'ccw' if drv.alpha >= 0 else 'cw'}"
-        label_kw = dict(fontsize=st.small_size * 1.15, zorder=7)
         cands = []
         for rank, (gap, start) in enumerate(sorted(gaps, reverse=True)):
             if gap < 50.0 and rank > 0:
                 break
             mid = start + gap / 2
-            span = min(130.0, 0.75 * gap)
-            a0, a1 = mid - sense * span / 2, mid + sense * span / 2
-            t = np.radians(np.linspace(a0, a1, 60))
-            cand = np.c_[p[0] + rad * np.cos(t), p[1] + rad * np.sin(t)]
+            cand = self._arc_points(p, rad, mid, min(130.0, 0.75 * gap), sense)
             arc = LineString(cand)
-            cands.append((sum(1 for g in others if g.intersects(arc)), rank, mid, cand))
+            cands.append((sum(1 for g in others if g.intersects(arc)), rank, mid, cand, (gap, start)))
         fewest = min(c[0] for c in cands)
         best = None
-        for hits, rank, mid, cand in cands:
+        for hits, rank, mid, cand, gap in cands:
             if hits > fewest:
                 continue
             # where its value would go: a gap whose label sits close to the arc, over no link, wins
-            arc_zone = LineString(cand).buffer(1.0 * pp)
-            self.pl.hard.append(arc_zone)
+            self.pl.hard.append(LineString(cand).buffer(1.0 * self.pp))
             trial = self.pl.place(p + rad * _unit(mid), text, prefer=mid, leader=False, obstacle=False, **label_kw)
             self.pl.hard.pop()
             tb = self.pl.box_of(trial, pad=0.0)
             trial.remove()
-            score = (self.pl.soft_hits(tb), round(float(tb.distance(Point(*(p + rad * _unit(mid))))) / pp / 6.0),
+            score = (self.pl.soft_hits(tb), round(float(tb.distance(Point(*(p + rad * _unit(mid))))) / self.pp / 6.0),
                      rank)
             if best is None or score < best[0]:
-                best = (score, mid, cand)
-        _, mid, xy = best
+                best = (score, mid, cand, gap)
+        return best[1], best[2], best[3]
+
+    def curved_arrow(self, xy, gid, double=False) -> list:
+        """An arrow along the points ``xy`` (its head at the last; a second head behind it when ``double``)."""
         from matplotlib.lines import Line2D
-        hl = st.head_length * pp
-        # the shaft stops where the head begins
-        keep = np.hypot(*(xy - xy[-1]).T) > hl * 0.9
-        ln = Line2D(xy[keep, 0], xy[keep, 1], lw=st.arrow_lw, color=st.ink, zorder=6, gid="driver-arc")
+        st = self.st
+        hl = st.head_length * self.pp
+        d = np.hypot(*(xy - xy[-1]).T)
+        # the shaft stops where the head begins (the second head's, when there are two)
+        keep = d > hl * (1.75 if double else 0.9)
+        ln = Line2D(xy[keep, 0], xy[keep, 1], lw=st.arrow_lw, color=st.ink, zorder=6, gid=gid + "-arc")
         self.ax.add_line(ln)
-        tail = xy[keep][-1]
-        sh, hd, poly = arrow(self.ax, tail, xy[-1], lw=st.arrow_lw, head_length=st.head_length, colour=st.ink,
-                             zorder=6, gid="driver-arrow")
-        self.art.add("driver", ln, sh, hd)
+        self.pl.add_obstacle(LineString(xy).buffer(1.0 * self.pp))
+        if not double:
+            sh, hd, poly = arrow(self.ax, xy[keep][-1], xy[-1], lw=st.arrow_lw, head_length=st.head_length,
+                                 colour=st.ink, zorder=6, gid=gid + "-arrow")
+            self.pl.add_obstacle(poly)
+            return [ln, sh, hd]
+        j = int(np.flatnonzero(d > 0.85 * hl)[-1])
+        return [ln] + [self._head(xy, i, gid + name) for i, name in ((j, "-second"), (len(xy) - 1, "-arrow"))]
+
+    def _head(self, xy, i, gid):
+        """A full arrowhead with its tip at xy[i], along the curve there."""
+        st = self.st
+        t = xy[i] - xy[i - 1]
+        t = t / float(np.hypot(*t))
+        sh, hd, poly = arrow(self.ax, xy[i] - t * 3 * st.head_length * self.pp, xy[i], lw=st.arrow_lw,
+                             head_length=st.head_length, colour=st.ink, zorder=6, gid=gid)
+        sh.remove()
         self.pl.add_obstacle(poly)
-        self.pl.add_obstacle(LineString(xy).buffer(1.0 * pp))
-        anchor = p + rad * _unit(mid)
-        tt = self.pl.place(anchor, text, prefer=mid, gid="driver-label", **label_kw)
-        self.art.add("driver", tt)
+        return hd
+
+    def turning_driver(self, pivot, p, ground_dir):
+        """omega's arc in the widest free gap about the pivot, alpha's (double-headed) in the next free gap (or
+        beyond omega's in the same), each in its sense, each labelled with its value beside it."""
+        drv, st, pc = self.m.driver, self.st, self.pc
+        lk = link_math(drv.link)   # velpoly.names: a word upright, as written
+        w_text = rf"$\omega_{{{lk}}}$ = {abs(drv.omega):.4g} rad/s {'ccw' if drv.omega >= 0 else 'cw'}"
+        label_kw = dict(fontsize=st.small_size * 1.15, zorder=7)
+        rad = 0.8 * pc
+        gaps = self._driver_gaps(pivot, p, ground_dir)
+        mid, xy, used = self._driver_gap(p, gaps, rad, 1.0 if drv.omega >= 0 else -1.0, w_text, label_kw)
+        self.art.add("driver", *self.curved_arrow(xy, "driver"))
+        self.art.add("driver", self.pl.place(p + rad * _unit(mid), w_text, prefer=mid, gid="driver-label",
+                                             **label_kw))
+        if not drv.alpha:
+            return
+        sense = 1.0 if drv.alpha > 0 else -1.0
+        a_text = rf"$\alpha_{{{lk}}}$ = {abs(drv.alpha):.4g} rad/s² {'ccw' if drv.alpha > 0 else 'cw'}"
+        rest = [g for g in gaps if g != used]
+        if rest and max(rest)[0] >= 50.0:
+            mid, a_xy, _ = self._driver_gap(p, rest, rad, sense, a_text, label_kw)
+            r_a = rad
+        else:   # one gap only: beyond omega's arc
+            r_a = rad + 0.45 * pc
+            a_xy = self._arc_points(p, r_a, mid, min(110.0, 0.7 * used[0]), sense)
+        self.art.add("driver", *self.curved_arrow(a_xy, "driver-alpha", double=True))
+        self.art.add("driver", self.pl.place(p + r_a * _unit(mid), a_text, prefer=mid, gid="driver-label-alpha",
+                                             **label_kw))
 
 
 def draw_mechanism(sol, ax=None, *, style="textbook", options=None, scale: float | None = None) -> Artists:
@@ -757,7 +918,8 @@ def draw_mechanism(sol, ax=None, *, style="textbook", options=None, scale: float
         ``points``, ``labels``, ``link_numbers``, ``driver``, ``scale_bar``,
         ``equivalent`` (a sliding contact's dashed equivalent linkage);
         ``.labels`` maps each point key to its label, ``.bodies`` each moving
-        link to its drawn body (shapely), ``.slot_cuts`` each moving link's slot
+        link to its drawn body (shapely), ``.plates`` each link drawn as a plate to
+        its polygon, ``.slot_cuts`` each moving link's slot
         (by index) to ``(link, centre line, cut)``. Every ground hatch (a
         LineCollection) has ``_velpoly_exempt``: the links it may touch.
     """

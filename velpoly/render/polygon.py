@@ -93,6 +93,184 @@ def _label_text(polygon, names: dict, keys, with_origin: bool) -> str:
     return ", ".join(tex(lab, math=math) for lab in labels)
 
 
+class _PolygonDrawing:
+    """One polygon being drawn on one axes (the panel, or its detail): what is known and where."""
+
+    def __init__(self, polygon, ax, st, opts, mechanism, upto):
+        self.polygon, self.ax, self.st, self.opts, self.m = polygon, ax, st, opts, mechanism
+        self.velocity = polygon.kind == "velocity"
+        self.art = Artists(ax)
+        self.art.arrows = []
+        self.pl = placer(ax)
+        self.pc, self.pp = per_cm(ax), per_point(ax)
+        self.keys = known_keys(polygon, upto)
+        self.known = set(self.keys)
+        self.upto = upto
+        self.steps = polygon.steps if upto is None else polygon.steps[:upto]
+        # auxiliary points (a guide's point under a block, an auxiliary point of a link) located so far
+        self.aux = aux = getattr(polygon, "auxiliary", None) or {}
+        aux_keys = [a for st_ in self.steps for a in getattr(st_, "auxiliary", ()) if a in aux]
+        self.points = {k: np.asarray(polygon.images[k], float) for k in self.keys}
+        self.points.update({a: np.asarray(aux[a].image, float) for a in aux_keys})
+        self.names = dict(polygon.labels)
+        self.names.update({a: aux[a].label for a in aux_keys})
+        self.tol = _REL_TOL * _size(polygon)
+        self.drawn: set = set()
+
+    def shade_images(self):
+        """Each link's image, the hull of its points' images, shaded in the link's colour."""
+        from matplotlib.patches import Polygon as MPolygon
+        polygon, st, m = self.polygon, self.st, self.m
+        for z, (lk, img_keys) in enumerate(polygon.link_images.items()):
+            if len(img_keys) < 3 or not all(k in self.known for k in img_keys):
+                continue
+            # the image is similar to the link, whose body is the hull of its points (a plate): the hull
+            # of the images, not the images in file order (A, B, E, F with E on AB would shade a, e, f)
+            hull = shapely.MultiPoint([tuple(map(float, polygon.images[k])) for k in img_keys]).convex_hull
+            if hull.geom_type != "Polygon" or hull.area <= (1e-9 * _size(polygon)) ** 2:
+                continue
+            pts = [tuple(map(float, xy)) for xy in hull.exterior.coords[:-1]]
+            colour = link_colour(m, self.opts, st, lk) if m is not None else st.palette[z % len(st.palette)]
+            patch = MPolygon(pts, closed=True, facecolor=colour, alpha=st.image_alpha, edgecolor="none",
+                             zorder=1, gid=f"image-{lk}")
+            self.ax.add_patch(patch)
+            self.art.add("images", patch)
+
+    def construction_lines(self):
+        """The dashed lines of each step, extended past their intersection (the current step's heavier)."""
+        view = view_box(self.ax)
+        for si, step in enumerate(self.steps):
+            located = list(step.found) + [a for a in getattr(step, "auxiliary", ()) if a in self.aux]
+            hit = self.points[located[0]] if located else None
+            current = self.upto is not None and si == len(self.steps) - 1
+            for li, ln in enumerate(step.lines):
+                self._construction_line(step, li, ln, hit, current, view)
+
+    def _construction_line(self, step, li, ln, hit, current, view):
+        from matplotlib.lines import Line2D
+        st = self.st
+        base = np.asarray(ln.base, float)
+        d = np.asarray(ln.direction, float)
+        d = d / max(float(np.hypot(*d)), 1e-300)
+        t_hit = float(np.dot(hit - base, d)) if hit is not None else 0.0
+        ext = 0.9 * self.pc
+        a = base + d * (min(0.0, t_hit) - ext)
+        b = base + d * (max(0.0, t_hit) + ext)
+        seg = segment(a, b).intersection(view)
+        if seg.is_empty or seg.geom_type != "LineString":
+            return
+        (x0, y0), (x1, y1) = seg.coords[0], seg.coords[-1]
+        trial = li >= 2     # a trial solution's own lines, beyond the two intersected
+        heavy = 1.6 if current and not trial else 1.0   # the current step's lines; dashes as long as the others'
+        line = Line2D([x0, x1], [y0, y1], lw=st.thin_lw * heavy, color=st.ink,
+                      linestyle=(0, (1, 2)) if trial else (0, (6 / heavy, 3 / heavy)), zorder=1.5,
+                      gid=f"construction-{step.index}-{li}-{ln.base_label}")
+        line._velpoly_line = ln
+        self.ax.add_line(line)
+        self.art.add("construction", line)
+        self.pl.add_obstacle(segment((x0, y0), (x1, y1)), hard=False)
+
+    def vector(self, kind, tail, head, label=""):
+        """Draw the vector unless it is null or already drawn; whether it was drawn."""
+        st, tol = self.st, self.tol
+        tail, head = np.asarray(tail, float), np.asarray(head, float)
+        if float(np.hypot(*(head - tail))) <= tol:
+            return False
+        key = tuple(np.round(np.r_[tail, head] / tol).astype(np.int64))
+        if key in self.drawn:   # one arrow a vector: an absolute one that is also relative (from O_v) stays absolute
+            return False
+        self.drawn.add(key)
+        ls, colour, f = st.kind_styles.get(kind, st.kind_styles["relative"])
+        colour = st.ink if colour is None else colour
+        gid = f"{kind}-{label}" if label else None
+        sh, hd, poly = arrow(self.ax, tail, head, lw=st.arrow_lw * f, head_length=st.head_length, colour=colour,
+                             linestyle=ls, zorder=3 if kind == "absolute" else 3.5, gid=gid)
+        self.art.add("shafts", sh)
+        self.art.add("arrows", hd)
+        self.art.arrows.append((kind, tail, head, hd))
+        self.pl.add_obstacle(poly)
+        self.pl.add_obstacle(segment(tail, head).buffer(0.6 * self.pp), hard=False)
+        return True
+
+    def vectors(self) -> set:
+        """Absolute vectors from the origin to each known image, then the steps' others; the kinds drawn."""
+        for k in self.keys:
+            self.vector("absolute", np.zeros(2), self.polygon.images[k], label=k)
+        kinds = {"absolute"}
+        for step in self.steps:
+            for v in step.vectors:
+                # the legend lists the kinds drawn: a component that is also an absolute vector (the slip of a
+                # block on the frame, the normal acceleration of a crank) is drawn, and listed, as absolute
+                if self.vector(v.kind, v.tail, v.head, label=v.label):
+                    kinds.add(v.kind)
+        return kinds
+
+    def origin(self):
+        from .displacement import shape_patch
+        st = self.st
+        o = Point(0, 0).buffer(0.05 * self.pc, quad_segs=8)
+        op = shape_patch(o, facecolor=st.ink, edgecolor=st.ink, lw=0, zorder=4, gid=f"origin-{self.polygon.kind}")
+        self.ax.add_patch(op)
+        self.art.add("origin", op)
+        self.pl.add_obstacle(o)
+
+    def legend(self, kinds):
+        """The legend of the kinds drawn (a step frame: the finished construction's), before the labels."""
+        pinned = self.pl.pins.get("legend")
+        if pinned is not None:    # a step frame: the finished construction's legend, so that it does not change
+            kinds = set(pinned[4])
+        if not self.velocity and len(kinds) > 1:
+            self.art.add("legend", *_legend(self.ax, self.st, [k for k in self.st.kind_styles if k in kinds]))
+
+    def labels(self, within=None, gid_prefix="label"):
+        """One label per group of coinciding images (the origin's group labelled with the origin); only the
+        groups whose image lies in ``within`` (a shapely geometry), if given."""
+        at_origin, groups = image_groups(self.polygon, self.points)
+        cx, cy = np.mean(np.array([np.zeros(2)] + list(self.points.values())), axis=0)
+        for gi, g in enumerate([at_origin] + groups):
+            p = np.zeros(2) if gi == 0 else self.points[g[0]]
+            if within is not None and not within.contains(Point(*p)):
+                continue
+            prefer, near = self._label_side(p, np.array([cx, cy]), groups)
+            t = self.pl.place(p, _label_text(self.polygon, self.names, g, gi == 0), prefer=prefer,
+                              fontsize=self.st.font_size, zorder=7, fontstyle="italic", within=70.0 if near else None,
+                              gid=f"{gid_prefix}-{self.polygon.kind}-" + ("origin+" if gi == 0 else "") + "+".join(g))
+            self.art.add("labels", t)
+            for k in g:
+                self.art.labels[k] = t
+
+    def _label_side(self, p, centre, groups):
+        """The preferred direction of an image's label (away from the polygon's centre, or from an image
+        close to it), and whether an image is that close."""
+        tol, pc = self.tol, self.pc
+        away = p - centre
+        prefer = math.degrees(math.atan2(away[1], away[0])) if np.hypot(*away) > tol else -135.0
+        # an image close to another (a short relative velocity): its label on the side away from the
+        # other, so that the two labels do not read as one ("e f" over two images a millimetre apart)
+        near = [q for q in [np.zeros(2)] + [self.points[h[0]] for h in groups]
+                if tol < float(np.hypot(*(q - p))) < 1.0 * pc]
+        if near:
+            q = min(near, key=lambda q: float(np.hypot(*(q - p))))
+            d = (p - q) / float(np.hypot(*(p - q)))
+            a = np.array([math.cos(math.radians(prefer)), math.sin(math.radians(prefer))])
+            v = d + 0.35 * a if np.dot(d, a) > -0.9 else d
+            prefer = math.degrees(math.atan2(v[1], v[0]))
+        return prefer, bool(near)
+
+    def reasons(self):
+        """The construction lines' reasons, where there is room (after the labels, which matter more)."""
+        if self.opts is not None and not self.opts.reasons:
+            return
+        for line in self.art.get("construction", []):
+            ln = line._velpoly_line
+            xs, ys = line.get_data()
+            t = self.pl.place_along((xs[0], ys[0]), (xs[1], ys[1]), prose_tex(ln.reason), pad=8.0,
+                                    fontsize=self.st.small_size * 0.9, style="italic", zorder=6,
+                                    gid=line.get_gid() + "-reason")
+            if t is not None:
+                self.art.add("reasons", t)
+
+
 def draw_polygon(polygon, ax=None, *, mechanism=None, style="textbook", options=None, scale: float | None = None,
                  upto: int | None = None) -> Artists:
     """Draw a velocity or acceleration :class:`~velpoly.polygons.Polygon`; return its Artists.
@@ -114,233 +292,94 @@ def draw_polygon(polygon, ax=None, *, mechanism=None, style="textbook", options=
     Artists
         Roles ``images`` (shaded link images), ``construction``, ``reasons``,
         ``arrows`` (arrowheads; each has the gid ``"<kind>-<tail>-<head>"``),
-        ``shafts``, ``origin``, ``labels``, ``legend``, ``scale_bar``;
+        ``shafts``, ``origin``, ``labels``, ``legend``, ``scale_bar``, ``detail`` (the detail's frame, its
+        mark on the polygon and its leader);
         ``.labels`` maps every image's key (and every auxiliary point's) to its label, ``.arrows`` lists
-        ``(kind, tail, head, patch)`` for every vector drawn.
+        ``(kind, tail, head, patch)`` for every vector drawn; ``.detail`` is the enlarged detail of a
+        crushed polygon (:class:`velpoly.render.detail.Detail`) or None.
     """
     ax = get_ax(ax)
     st = get_style(style)
     m = mechanism
     opts = options if options is not None else (drawing_options(m) if m is not None else None)
-    velocity = polygon.kind == "velocity"
     if view_scale(ax) is None:
-        user = None if opts is None else (opts.velocity_scale if velocity else opts.acceleration_scale)
+        user = None if opts is None else (opts.velocity_scale if polygon.kind == "velocity" else
+                                          opts.acceleration_scale)
         fit_view(ax, polygon_bounds(polygon), scale=scale if scale is not None else user, margin=0.08)
         ax.set_axis_off()
-    art = Artists(ax)
-    art.arrows = []
-    pl = placer(ax)
-    pc, pp = per_cm(ax), per_point(ax)
-    keys = known_keys(polygon, upto)
-    known = set(keys)
-    steps = polygon.steps if upto is None else polygon.steps[:upto]
-    origin = np.zeros(2)
-    # auxiliary points (a guide's point under a block, an auxiliary point of a link) located so far
-    aux = getattr(polygon, "auxiliary", None) or {}
-    aux_keys = [a for st_ in steps for a in getattr(st_, "auxiliary", ()) if a in aux]
-    points = {k: np.asarray(polygon.images[k], float) for k in keys}
-    points.update({a: np.asarray(aux[a].image, float) for a in aux_keys})
-    names = dict(polygon.labels)
-    names.update({a: aux[a].label for a in aux_keys})
-
-    # shaded link images
-    for z, (lk, img_keys) in enumerate(polygon.link_images.items()):
-        if len(img_keys) >= 3 and all(k in known for k in img_keys):
-            # the image is similar to the link, whose body is the hull of its points (a plate): the hull
-            # of the images, not the images in file order (A, B, E, F with E on AB would shade a, e, f)
-            hull = shapely.MultiPoint([tuple(map(float, polygon.images[k])) for k in img_keys]).convex_hull
-            if hull.geom_type != "Polygon" or hull.area <= (1e-9 * _size(polygon)) ** 2:
-                continue
-            pts = [tuple(map(float, xy)) for xy in hull.exterior.coords[:-1]]
-            colour = link_colour(m, opts, st, lk) if m is not None else st.palette[z % len(st.palette)]
-            from matplotlib.patches import Polygon as MPolygon
-            patch = MPolygon(pts, closed=True, facecolor=colour, alpha=st.image_alpha, edgecolor="none",
-                             zorder=1, gid=f"image-{lk}")
-            ax.add_patch(patch)
-            art.add("images", patch)
-
-    # construction lines
-    show_reasons = opts is None or opts.reasons
-    from matplotlib.lines import Line2D
-    view = view_box(ax)
-    for si, step in enumerate(steps):
-        located = list(step.found) + [a for a in getattr(step, "auxiliary", ()) if a in aux]
-        hit = points[located[0]] if located else None
-        current = upto is not None and si == len(steps) - 1
-        for li, ln in enumerate(step.lines):
-            base = np.asarray(ln.base, float)
-            d = np.asarray(ln.direction, float)
-            d = d / max(float(np.hypot(*d)), 1e-300)
-            t_hit = float(np.dot(hit - base, d)) if hit is not None else 0.0
-            ext = 0.9 * pc
-            a = base + d * (min(0.0, t_hit) - ext)
-            b = base + d * (max(0.0, t_hit) + ext)
-            seg = segment(a, b).intersection(view)
-            if seg.is_empty or seg.geom_type != "LineString":
-                continue
-            (x0, y0), (x1, y1) = seg.coords[0], seg.coords[-1]
-            trial = li >= 2     # a trial solution's own lines, beyond the two intersected
-            heavy = 1.6 if current and not trial else 1.0   # the current step's lines; dashes as long as the others'
-            line = Line2D([x0, x1], [y0, y1], lw=st.thin_lw * heavy, color=st.ink,
-                          linestyle=(0, (1, 2)) if trial else (0, (6 / heavy, 3 / heavy)), zorder=1.5,
-                          gid=f"construction-{step.index}-{li}-{ln.base_label}")
-            line._velpoly_line = ln
-            ax.add_line(line)
-            art.add("construction", line)
-            pl.add_obstacle(segment((x0, y0), (x1, y1)), hard=False)
-
-    # vectors: absolute from the origin to each known image, then the steps' other vectors
-    drawn = set()
-    tol = _REL_TOL * _size(polygon)
-
-    def vec(kind, tail, head, label=""):
-        """Draw the vector unless it is null or already drawn; whether it was drawn."""
-        tail, head = np.asarray(tail, float), np.asarray(head, float)
-        if float(np.hypot(*(head - tail))) <= tol:
-            return False
-        key = tuple(np.round(np.r_[tail, head] / tol).astype(np.int64))
-        if key in drawn:   # one arrow a vector: an absolute one that is also relative (from O_v) stays absolute
-            return False
-        drawn.add(key)
-        ls, colour, f = st.kind_styles.get(kind, st.kind_styles["relative"])
-        colour = st.ink if colour is None else colour
-        gid = f"{kind}-{label}" if label else None
-        sh, hd, poly = arrow(ax, tail, head, lw=st.arrow_lw * f, head_length=st.head_length, colour=colour,
-                             linestyle=ls, zorder=3 if kind == "absolute" else 3.5, gid=gid)
-        art.add("shafts", sh)
-        art.add("arrows", hd)
-        art.arrows.append((kind, tail, head, hd))
-        pl.add_obstacle(poly)
-        pl.add_obstacle(segment(tail, head).buffer(0.6 * pp), hard=False)
-        return True
-
-    for k in keys:
-        vec("absolute", origin, polygon.images[k], label=k)
-    kinds = {"absolute"}
-    for step in steps:
-        for v in step.vectors:
-            # the legend lists the kinds drawn: a component that is also an absolute vector (the slip of a
-            # block on the frame, the normal acceleration of a crank) is drawn, and listed, as absolute
-            if vec(v.kind, v.tail, v.head, label=v.label):
-                kinds.add(v.kind)
-
-    # the origin
-    r = 0.05 * pc
-    o = Point(0, 0).buffer(r, quad_segs=8)
-    from .displacement import shape_patch
-    op = shape_patch(o, facecolor=st.ink, edgecolor=st.ink, lw=0, zorder=4, gid=f"origin-{polygon.kind}")
-    ax.add_patch(op)
-    art.add("origin", op)
-    pl.add_obstacle(o)
-
-    # the legend before the labels, which then keep clear of it
-    pinned = pl.pins.get("legend")
-    if pinned is not None:    # a step frame: the finished construction's legend, so that it does not change
-        kinds = set(pinned[4])
-    if not velocity and len(kinds) > 1:
-        art.add("legend", *_legend(ax, st, [k for k in st.kind_styles if k in kinds]))
-
-    # labels: one per group of coinciding images; the origin's group is labelled with the origin
-    at_origin, groups = image_groups(polygon, points)
-    cx, cy = np.mean(np.array([np.zeros(2)] + list(points.values())), axis=0)
-    for gi, g in enumerate([at_origin] + groups):
-        p = np.zeros(2) if gi == 0 else points[g[0]]
-        away = p - np.array([cx, cy])
-        prefer = math.degrees(math.atan2(away[1], away[0])) if np.hypot(*away) > tol else -135.0
-        # an image close to another (a short relative velocity): its label on the side away from the
-        # other, so that the two labels do not read as one ("e f" over two images a millimetre apart)
-        near = [q for q in [np.zeros(2)] + [points[h[0]] for h in groups]
-                if tol < float(np.hypot(*(q - p))) < 1.0 * pc]
-        if near:
-            q = min(near, key=lambda q: float(np.hypot(*(q - p))))
-            d = (p - q) / float(np.hypot(*(p - q)))
-            a = np.array([math.cos(math.radians(prefer)), math.sin(math.radians(prefer))])
-            v = d + 0.35 * a if np.dot(d, a) > -0.9 else d
-            prefer = math.degrees(math.atan2(v[1], v[0]))
-        within = 70.0 if near else None
-        t = pl.place(p, _label_text(polygon, names, g, gi == 0), prefer=prefer, fontsize=st.font_size, zorder=7,
-                     fontstyle="italic", within=within,
-                     gid=f"label-{polygon.kind}-" + ("origin+" if gi == 0 else "") + "+".join(g))
-        art.add("labels", t)
-        for k in g:
-            art.labels[k] = t
-
-    # the reasons, where there is room (after the labels, which matter more)
-    if show_reasons:
-        for line in art.get("construction", []):
-            ln = line._velpoly_line
-            xs, ys = line.get_data()
-            t = pl.place_along((xs[0], ys[0]), (xs[1], ys[1]), prose_tex(ln.reason), pad=8.0,
-                               fontsize=st.small_size * 0.9, style="italic", zorder=6, gid=line.get_gid() + "-reason")
-            if t is not None:
-                art.add("reasons", t)
-
-    units = m.units if m is not None else ""
-    art.add("scale_bar", *scale_bar(ax, st, units, 1 if velocity else 2))
+    d = _PolygonDrawing(polygon, ax, st, opts, m, upto)
+    d.shade_images()
+    d.construction_lines()
+    kinds = d.vectors()
+    d.origin()
+    from .detail import draw_detail
+    detail = draw_detail(d)     # before the legend and the labels, which keep clear of it
+    d.legend(kinds)
+    d.labels(within=None if detail is None else detail.outside)
+    d.reasons()
+    art = d.art
+    art.detail = detail
+    if detail is not None:
+        art.add("detail", *detail.marks)
+        art.labels.update(detail.art.labels)
+    art.add("scale_bar", *scale_bar(ax, st, m.units if m is not None else "", 1 if d.velocity else 2))
     return art
 
 
-def _legend(ax, st, kinds) -> list:
-    """The line styles of the vector kinds, in a free corner of the panel."""
-    from matplotlib.lines import Line2D
-    handles = []
-    for k in kinds:
-        ls, colour, f = st.kind_styles[k]
-        handles.append(Line2D([], [], lw=st.arrow_lw * f, linestyle=ls, color=st.ink if colour is None else colour))
-    pl = placer(ax)
-    locs = ("upper right", "upper left", "lower right", "lower left", "center right", "center left",
-            "upper center", "lower center")
-    # the full legend, smaller, in two columns, both: the first free corner or side; else the first free
-    # place of a grid over the panel, nearest its border first (a polygon filling every corner leaves room
-    # elsewhere); else the place crossing the fewest marks, then lines
-    variants = ((st.small_size, 1), (st.small_size * 0.85, 1), (st.small_size, 2), (st.small_size * 0.85, 2))
+_LOCS = ("upper right", "upper left", "lower right", "lower left", "center right", "center left", "upper center",
+         "lower center")
+
+
+def spots(bounds, w: float, h: float, pad: float) -> tuple[list, list]:
+    """Where a box ``w`` x ``h`` may go within ``bounds`` (its lower left corners), ``pad`` from the border:
+    the corners and sides (upper right first), and a 9 x 9 grid over the panel, nearest the border first."""
+    vx0, vy0, vx1, vy1 = bounds
+    named = []
+    for loc in _LOCS:
+        v, u = loc.split()
+        named.append(({"left": vx0 + pad, "right": vx1 - pad - w, "center": (vx0 + vx1 - w) / 2}[u],
+                      {"lower": vy0 + pad, "upper": vy1 - pad - h, "center": (vy0 + vy1 - h) / 2}[v]))
+    lo_x, hi_x, lo_y, hi_y = vx0 + pad, vx1 - pad - w, vy0 + pad, vy1 - pad - h
+    grid = [(lo_x + (hi_x - lo_x) * i / 8, lo_y + (hi_y - lo_y) * j / 8) for i in range(9) for j in range(9)]
+    grid.sort(key=lambda c: (round(min(c[0] - lo_x, hi_x - c[0], c[1] - lo_y, hi_y - c[1]) / max(pad, 1e-300)),
+                             -c[1], c[0]))
+    return named, grid
+
+
+def hit_counter(pl):
+    """A function counting what a box meets of the placer's labels and marks (10 each) and lines (1 each)."""
     geoms = np.array(pl.boxes + pl.hard + pl.soft, dtype=object)
     weights = np.array([10] * (len(pl.boxes) + len(pl.hard)) + [1] * len(pl.soft))
+
+    def hits_of(b):
+        return int(np.dot(shapely.intersects(geoms, b), weights)) if len(geoms) else 0
+    return hits_of
+
+
+def _legend_sizes(ax, pl, make, st) -> list:
+    """(size, columns, width, height in data units) of the legend's variants: the full legend, smaller, in two
+    columns, both."""
     inv = ax.transData.inverted()
-
-    def make(size, ncol, at=(1.0, 1.0), loc="upper right", transform=None):
-        return ax.legend(handles, [KIND_LABELS[k] for k in kinds], loc=loc, fontsize=size, ncol=ncol,
-                         handlelength=3.2 if ncol == 1 else 2.4, borderaxespad=0.0, columnspacing=1.0,
-                         bbox_to_anchor=at, bbox_transform=transform)
-
-    vx0, vy0, vx1, vy1 = view_box(ax).bounds
-    pp = per_point(ax)
     sizes = []
-    for size, ncol in variants:   # measured once a variant
+    for size, ncol in ((st.small_size, 1), (st.small_size * 0.85, 1), (st.small_size, 2), (st.small_size * 0.85, 2)):
         leg = make(size, ncol)
         bb = leg.get_window_extent(pl.renderer)
         (x0, y0), (x1, y1) = inv.transform([[bb.x0, bb.y0], [bb.x1, bb.y1]])
         sizes.append((size, ncol, abs(x1 - x0), abs(y1 - y0)))
-    pc_ = per_cm(ax)
-    paper = [(w / pc_, h / pc_) for _, _, w, h in sizes]   # the variants' sizes in cm of paper
+    return sizes
 
-    def spots(w, h, pad):
-        named = []
-        for loc in locs:
-            v, u = loc.split()
-            named.append(({"left": vx0 + pad, "right": vx1 - pad - w, "center": (vx0 + vx1 - w) / 2}[u],
-                          {"lower": vy0 + pad, "upper": vy1 - pad - h, "center": (vy0 + vy1 - h) / 2}[v]))
-        lo_x, hi_x, lo_y, hi_y = vx0 + pad, vx1 - pad - w, vy0 + pad, vy1 - pad - h
-        grid = [(lo_x + (hi_x - lo_x) * i / 8, lo_y + (hi_y - lo_y) * j / 8) for i in range(9) for j in range(9)]
-        grid.sort(key=lambda c: (round(min(c[0] - lo_x, hi_x - c[0], c[1] - lo_y, hi_y - c[1]) / max(pad, 1e-300)),
-                                 -c[1], c[0]))
-        return named, grid
 
-    def hits_of(b):
-        return int(np.dot(shapely.intersects(geoms, b), weights)) if len(geoms) else 0
-
-    inside = view_box(ax).buffer(1e-9 * (vx1 - vx0))
+def _legend_spot(ax, sizes, hits_of):
+    """(hits, (size, columns), box) of the legend: the first free corner or side of any variant, else the
+    first free place of a grid over the panel, nearest its border first (a polygon filling every corner
+    leaves room elsewhere), else the place crossing the fewest marks, then lines."""
+    view = view_box(ax)
+    inside = view.buffer(1e-9 * (view.bounds[2] - view.bounds[0]))
+    pp = per_point(ax)
     best = None
-    pin = pl.pins.get("legend")
-    if pin is not None:       # a step frame: where the finished construction has it
-        size, ncol, (lx, ly) = pin[1], pin[2], pin[3]
-        w, h = next((w, h) for s_, n_, w, h in sizes if (s_, n_) == (size, ncol))
-        b = box(lx, ly, lx + w, ly + h)
-        best = (hits_of(b), (size, ncol), b)
-    for stage in (() if best is not None else (0, 1)):   # corners and sides of every variant, then the grids
+    for stage in (0, 1):
         for size, ncol, w, h in sizes:
-            pad = 0.3 * size * pp
-            for lx, ly in spots(w, h, pad)[stage]:
+            for lx, ly in spots(view.bounds, w, h, 0.3 * size * pp)[stage]:
                 b = box(lx, ly, lx + w, ly + h)
                 if not inside.contains(b):   # a legend wider than the panel
                     continue
@@ -348,19 +387,43 @@ def _legend(ax, st, kinds) -> list:
                 if best is None or hits < best[0]:
                     best = (hits, (size, ncol), b)
                 if hits == 0:
-                    break
-            if best is not None and best[0] == 0:
-                break
-        if best is not None and best[0] == 0:
-            break
+                    return best
     if best is None:   # wider than the panel in every variant: the smallest, at the upper right
         size, ncol, w, h = min(sizes, key=lambda v: v[2])
+        vx0, vy0, vx1, vy1 = view.bounds
         b = box(vx1 - w, vy1 - h, vx1, vy1)
         best = (hits_of(b) + 1, (size, ncol), b)
+    return best
+
+
+def _legend(ax, st, kinds) -> list:
+    """The line styles of the vector kinds, in a free place of the panel (see :func:`_legend_spot`)."""
+    from matplotlib.lines import Line2D
+    handles = []
+    for k in kinds:
+        ls, colour, f = st.kind_styles[k]
+        handles.append(Line2D([], [], lw=st.arrow_lw * f, linestyle=ls, color=st.ink if colour is None else colour))
+    pl = placer(ax)
+
+    def make(size, ncol, at=(1.0, 1.0), loc="upper right", transform=None):
+        return ax.legend(handles, [KIND_LABELS[k] for k in kinds], loc=loc, fontsize=size, ncol=ncol,
+                         handlelength=3.2 if ncol == 1 else 2.4, borderaxespad=0.0, columnspacing=1.0,
+                         bbox_to_anchor=at, bbox_transform=transform)
+
+    sizes = _legend_sizes(ax, pl, make, st)   # measured once a variant
+    hits_of = hit_counter(pl)
+    pin = pl.pins.get("legend")
+    if pin is not None:       # a step frame: where the finished construction has it
+        size, ncol, (lx, ly) = pin[1], pin[2], pin[3]
+        w, h = next((w, h) for s_, n_, w, h in sizes if (s_, n_) == (size, ncol))
+        b = box(lx, ly, lx + w, ly + h)
+        best = (hits_of(b), (size, ncol), b)
+    else:
+        best = _legend_spot(ax, sizes, hits_of)
     hits, (size, ncol), b = best
     leg = make(size, ncol, at=(b.bounds[0], b.bounds[1]), loc="lower left", transform=ax.transData)
     leg._velpoly_hits = hits
-    leg._velpoly_paper = paper
+    leg._velpoly_paper = [(w / per_cm(ax), h / per_cm(ax)) for _, _, w, h in sizes]   # the variants' sizes in cm
     pl.placed["legend"] = ("legend", size, ncol, (float(b.bounds[0]), float(b.bounds[1])), tuple(kinds))
     pl.boxes.append(b)
     pl.texts.append(leg)

@@ -1,0 +1,186 @@
+"""A polygon crushed by one long vector gets an enlarged detail (issue 17, item 3; render/detail.py).
+
+The rule, re-implemented here from its statement (docs/figures.md): on paper at the panel's scale, the
+polygon's points (origin, images, auxiliary images) closer than 1.3 cm (or a sixth of the polygon's larger
+side, if more) are joined; the origin's group gets
+a detail when it holds at least 4 distinct points, its box's larger side is at most 3 cm and the whole
+polygon's is at least 3 times larger. Checked on generated mechanisms where one link carries a point far
+from the rest (its image far longer than the others), on the gallery's sheets, and the detail itself at
+the data level: its images at their true positions times its stated scale, its caption that scale.
+"""
+from __future__ import annotations
+
+import re
+
+import numpy as np
+import pytest
+from matplotlib.backends.backend_agg import FigureCanvasAgg
+from matplotlib.figure import Figure
+
+import velpoly
+from velpoly.errors import VelpolyError
+import zoo
+from paths import EXAMPLES
+from velpoly.polygons import acceleration_polygon, velocity_polygon
+from velpoly.render import sheet
+from velpoly.render.canvas import fit_view, per_cm, view_scale
+from velpoly.render.polygon import draw_polygon, polygon_bounds
+from velpoly.render.scalebar import scale_text
+from velpoly.render.style import get_style, rc_context
+
+REL = 1e-9
+
+
+def expected(poly, unit_per_cm) -> bool:
+    """The rule, brute force: the origin's group by repeated joining of points closer than 1.3 cm."""
+    pts = [np.zeros(2)] + [np.asarray(v, float) for v in poly.images.values()] + \
+        [np.asarray(a.image, float) for a in poly.auxiliary.values()]
+    size = max(float(np.hypot(*p)) for p in pts) or 1.0
+    distinct = []
+    for p in pts:
+        if not any(np.hypot(*(p - q)) <= 1e-9 * size for q in distinct):
+            distinct.append(p)
+    xy = np.array(distinct) / unit_per_cm        # cm of paper
+    d = np.hypot(*(xy[:, None, :] - xy[None, :, :]).transpose(2, 0, 1))
+    p_cm = float((xy.max(0) - xy.min(0)).max())
+    join = max(1.3, p_cm / 6)
+    group = d[0] < join
+    for _ in range(len(xy)):
+        group = group | (d[group] < join).any(axis=0)
+    g = xy[group]
+    g_cm = float((g.max(0) - g.min(0)).max())
+    return len(g) >= 4 and g_cm <= 3.0 and p_cm >= 3.0 * g_cm
+
+
+def _panel(style="textbook"):
+    st = get_style(style)
+    fig = Figure(figsize=st.figsize, dpi=72)
+    FigureCanvasAgg(fig)
+    return fig.add_axes(sheet._LAYOUTS["full"]["velocity"])
+
+
+def _draw(sol, poly, style="textbook"):
+    ax = _panel(style)
+    fit_view(ax, polygon_bounds(poly), margin=0.08)
+    ax.set_axis_off()
+    pc = per_cm(ax)
+    with rc_context(get_style(style)):
+        art = draw_polygon(poly, ax, mechanism=sol.mechanism, style=style)
+    return ax, pc, art
+
+
+def check_detail(sol, poly, ax, pc, art):
+    """The detail of a drawn polygon: where the rule says, at its stated scale, its images true."""
+    det = art.detail
+    assert (det is not None) == expected(poly, pc), (poly.kind, pc)
+    if det is None:
+        assert "detail" not in art
+        return
+    assert view_scale(ax) == pytest.approx(pc, rel=REL)              # the panel kept its scale
+    s = det.scale
+    assert s <= pc / 2 * (1 + REL)                                    # enlarged at least twice
+    units = sol.mechanism.units
+    power = 1 if poly.kind == "velocity" else 2
+    assert det.caption.get_text() == "detail, " + scale_text(s, units, power)
+    number = float(re.search(r"= ([0-9.e+-]+)", det.caption.get_text()).group(1))
+    assert number == pytest.approx(s, rel=1e-12)
+    assert per_cm(det.ax) == pytest.approx(s, rel=REL) and view_scale(det.ax) == s
+    # every image of the marked region at its true position times the detail's scale, on paper
+    fig = ax.figure
+    to_cm = 2.54 / fig.dpi
+    o = det.ax.transData.transform([0.0, 0.0])
+    inside = [k for k in poly.images if det.region.contains(_pt(poly.images[k]))]
+    assert len(inside) >= 3
+    for k in inside:
+        p = np.asarray(poly.images[k], float)
+        got = (det.ax.transData.transform(p) - o) * to_cm
+        assert np.allclose(got, p / s, rtol=0, atol=REL * max(np.hypot(*p) / s, 1e-300) + 1e-9)
+        assert art.labels[k] in det.art["labels"]                    # labelled in the detail
+    # its arrows are the panel's vectors (the same constructions, in the detail's data units)
+    panel = {(k, tuple(np.round(t, 9)), tuple(np.round(h, 9))) for k, t, h, _ in art.arrows}
+    for kind, tail, head, patch in det.art.arrows:
+        assert (kind, tuple(np.round(tail, 9)), tuple(np.round(head, 9))) in panel
+        assert np.hypot(*(patch.get_xy()[0] - head)) <= REL * max(np.hypot(*head), 1.0)
+    # the region holds the crowd; the frame lies in the panel, clear of the region
+    for k in det.crowd.keys:
+        q = poly.images[k] if k in poly.images else poly.auxiliary[k].image
+        assert det.region.contains(_pt(q))
+    from velpoly.render.canvas import view_box
+    assert view_box(ax).buffer(1e-9 * pc).contains(det.frame)
+    assert not det.frame.intersects(det.region)
+
+
+def _pt(p):
+    from shapely.geometry import Point
+    return Point(float(p[0]), float(p[1]))
+
+
+def _far_point(mech: dict, rng) -> dict:
+    """The specimen with a point Z on one moving link, far out along it: that link's far image is long."""
+    links = [k for k, v in mech["links"].items() if not v.get("frame") and len(v["points"]) >= 2]
+    lk = links[int(rng.integers(len(links)))]
+    a, b = mech["links"][lk]["points"][:2]
+    m = velpoly.load(mech)
+    xy = np.array([m.position(p) for p in m.point_order if not m.link(m.carriers[p][0]).frame] or [[0, 0]])
+    size = float(np.ptp(xy, axis=0).max()) or 1.0
+    far = float(rng.choice([1.0, 3.0, 8.0, 15.0, 30.0]))
+    out = {**mech, "points": dict(mech["points"]), "links": {k: dict(v) for k, v in mech["links"].items()}}
+    out["points"]["Z"] = {"from": a, "length": far * size, "along": [a, b], "turn": float(rng.uniform(-40, 40))}
+    out["links"][lk]["points"] = list(mech["links"][lk]["points"]) + ["Z"]
+    return out
+
+
+def test_detail_where_the_rule_says_on_generated_mechanisms():
+    """Seeded zoo mechanisms, one link given a point far from the rest (1 to 30 sizes out): the rule's
+    function picks the crowds the brute-force rule picks, on every polygon; drawn (a sample of each side),
+    the detail appears exactly where the rule says, its images true at its stated scale."""
+    from velpoly.render.detail import crowd
+    rng = np.random.default_rng(17)
+    drawn = {True: 0, False: 0}
+    for sp in zoo.zoo(seed=1703, count=18):
+        try:
+            sol = velpoly.solve(velpoly.load(_far_point(sp.mech, rng)))
+        except VelpolyError:
+            continue
+        for poly in [velocity_polygon(sol)] + ([acceleration_polygon(sol)] if sol.has_accelerations else []):
+            ax = _panel()
+            pc = fit_view(ax, polygon_bounds(poly), margin=0.08)
+            want = expected(poly, pc)
+            assert (crowd(poly, pc) is not None) == want
+            if drawn[want] < (6 if want else 3):
+                ax, pc, art = _draw(sol, poly)
+                check_detail(sol, poly, ax, pc, art)
+                drawn[want] += 1
+    assert drawn == {True: 6, False: 3}, drawn
+
+
+@pytest.mark.parametrize("name, kind", [("ex3_4_slotted_lever", "velocity"),
+                                        ("ex3_10_rolling_contact", "acceleration"),
+                                        ("cam_roller_follower", "acceleration")])
+@pytest.mark.parametrize("style", ["textbook", "slides"])
+def test_crushed_gallery_polygons_get_their_detail(name, kind, style):
+    """Example 3.4's velocity polygon (a₂ five times the rest) and Example 3.10's acceleration polygon (d₅′)
+    are drawn with a detail, in both styles."""
+    sol = velpoly.solve(velpoly.load(EXAMPLES / f"{name}.toml"))
+    poly = velocity_polygon(sol) if kind == "velocity" else acceleration_polygon(sol)
+    ax, pc, art = _draw(sol, poly, style)
+    assert art.detail is not None
+    check_detail(sol, poly, ax, pc, art)
+
+
+def test_step_frames_keep_the_finished_detail():
+    """--steps: every frame has the finished construction's detail, in the same place at the same scale."""
+    sol = velpoly.solve(velpoly.load(EXAMPLES / "ex3_4_slotted_lever.toml"))
+    cons = sheet.constructions(sol, "velocity")
+    st = get_style("textbook")
+    fr = sheet.frames("velocity", cons, True)
+
+    def detail(fig):
+        ax = next(a for a in fig.axes if a.get_label() == "velocity")
+        frame = next(p for p in ax.patches if p.get_gid() == "detail-frame")
+        cap = next(t for t in ax.texts if t.get_gid() == "detail-caption")
+        return tuple(np.round(frame.get_bbox().bounds, 9)), cap.get_text(), ax.get_xlim(), ax.get_ylim()
+    with rc_context(st):
+        last = sheet.render_sheet(sol, "velocity", st, cons=cons, frame=fr[-1])
+        first = sheet.render_sheet(sol, "velocity", st, cons=cons, frame=fr[0], pins=last._velpoly_pins)
+    assert detail(first) == detail(last)
