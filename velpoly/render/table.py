@@ -363,7 +363,9 @@ def draw_results_table(sol, ax=None, *, sheet: str = "full", style="textbook", v
         (the ``[reference]`` notes of the marked rows shown, ``artists.notes``);
         ``artists.table`` is the Table drawn, ``artists.shown`` the number of
         its rows drawn, ``artists.size`` its type size (points, after any shrinking),
-        ``artists.blocks`` each block's column names.
+        ``artists.blocks`` each block's column names, ``artists.used`` the share of the axes'
+        height (from its top) the table takes, ``artists.whole`` the share it would take to show
+        every row (in as many blocks as the width takes).
     """
     import matplotlib
     from matplotlib.lines import Line2D
@@ -463,6 +465,10 @@ def draw_results_table(sol, ax=None, *, sheet: str = "full", style="textbook", v
     while room > 1 and (1.9 + room) * line_h + foot_height(layout(room)[2]) > top:
         room -= 1
     blocks, per, shown = layout(room)
+    # the height that would show every row in as many blocks as the width takes (the sheet's layout asks)
+    most = max(1, min(3, int((width_pt + bgap) // (need + bgap))))
+    art.whole = (height_pt - top + (1.9 + -(-len(rows) // most)) * line_h + foot_height(rows) + 0.9 * size) / height_pt
+
     def rule(x0, y, lw, total):
         ln = Line2D([x0 / width_pt, (x0 + total) / width_pt], [y / height_pt] * 2, lw=lw, color=st.ink,
                     transform=ax.transAxes)
@@ -527,6 +533,7 @@ def draw_results_table(sol, ax=None, *, sheet: str = "full", style="textbook", v
                                          gid=f"footnote-{k}" if i == 0 else None))
     art.shown = len(shown)
     art.size = size
+    art.used = min(1.0, (height_pt - y + 0.4 * size) / height_pt)   # the share of the axes' height drawn in
     return art
 
 
