@@ -35,7 +35,7 @@ from .canvas import fit_view, literal, nice_scale, view_scale
 from .displacement import draw_mechanism, equivalent_linkage_note, mark_auxiliary, mechanism_bounds
 from .kennedy import draw_kennedy_circle, draw_poles, pole_label
 from .labels import placer
-from .layout import MARGIN, share_row
+from .layout import MARGIN, arrange, share_row
 from .options import SHEETS, drawing_options
 from .polygon import draw_polygon, legend_room, polygon_bounds
 from .scalebar import scale_text
@@ -268,7 +268,8 @@ class _Plan:
 class _Planner:
     """Lays out one sheet's panels and table on its page (see :mod:`velpoly.render.layout`)."""
 
-    def __init__(self, fig, sol, st, opts, cons, sheet, top: float, table: bool):
+    def __init__(self, fig, sol, st, opts, cons, sheet, top: float, table: bool, lines: int = 1):
+        self.lines = lines        # of the panels' captions
         self.fig, self.sol, self.st, self.opts, self.cons, self.sheet = fig, sol, st, opts, cons, sheet
         self.W, self.H = _page_cm(st)
         self.top = top            # cm from the page's bottom: where the panels' captions end
@@ -291,7 +292,7 @@ class _Planner:
         r = renderer_of(self.fig)
         out = []
         for name in names:
-            t = self.fig.text(0, 0, _CAPTIONS[name] + ("   (1 cm = 8000 mm/s²)" if name != "kennedy" else ""),
+            t = self.fig.text(0, 0, _CAPTIONS[name] + ("   (1 cm = 20000 mm/s²)" if name != "kennedy" else ""),
                               fontsize=self.st.font_size, style="italic")
             out.append(t.get_window_extent(r).width / self.fig.dpi * 2.54 + 0.2)
             t.remove()
@@ -321,20 +322,25 @@ class _Planner:
         return rects, dict(zip(names, row.scales))
 
     def over_table(self, names) -> _Plan:
-        """The panels side by side at the top, the table beneath them across the page."""
-        total = self.top - EDGE
-        users = [_user_scale(self.opts, n) for n in names]
-        spans, least = self.spans(names), self.least(names)
-        if not self.want_table:
-            rects, scales = self.row(names, EDGE, self.width, total, EDGE, least)
-            return _Plan(rects, scales)
-        first = share_row(spans, self.width, total - TABLE_GAP - TABLE_LEAST * self.H, GAP, users, least=least)
-        room = total - TABLE_GAP - first.height
-        tax, used, _ = self.draw_table(EDGE, self.width, room)
-        band = share_row(spans, self.width, total - TABLE_GAP - used, GAP, users, least=least).height
-        slack = max(total - TABLE_GAP - used - band, 0.0)
-        rects, scales = self.row(names, EDGE, self.width, band, self.top - band, least)
-        _move(tax, self, self.top - band - TABLE_GAP - slack / 2)
+        """The table across the page's bottom in as few lines as its blocks take (at most
+        :data:`TABLE_MOST` of the page), the panels above it in one row or two (:func:`arrange`)."""
+        spans = dict(zip(names, self.spans(names)))
+        least = dict(zip(names, self.least(names)))
+        users = {n: _user_scale(self.opts, n) for n in names}
+        floor, tax = EDGE, None
+        if self.want_table:
+            tax, used, _ = self.draw_table(EDGE, self.width, TABLE_MOST * self.H)
+            _move(tax, self, EDGE + used)
+            floor = EDGE + used + TABLE_GAP
+        bands = arrange(spans, names, self.width, self.top, floor, GAP, _caption_cm(self.st, self.lines), users,
+                        least, {"mechanism": LABEL_ROOM * self.st.font_size / 10})
+        rects, scales = {}, {}
+        for band in bands:
+            x = EDGE
+            for name, w, s in zip(band.names, band.row.widths, band.row.scales):
+                rects[name] = self.rect(x, band.bottom, w, band.height)
+                scales[name] = s
+                x += w + GAP
         return _Plan(rects, scales, tax)
 
     def poles(self) -> _Plan:
@@ -352,7 +358,7 @@ class _Planner:
         wide = share_row([(pw, ph)], self.width, total - TABLE_GAP - TABLE_LEAST * self.H, 0.0, [user])
         if beside.scales[0] > wide.scales[0]:
             return self._poles_across(wide)
-        return self._poles_beside(column, beside) or self.over_table(["poles", "kennedy"])
+        return self._poles_beside(column, beside) or self._poles_across(wide)
 
     def _poles_beside(self, column: float, row) -> _Plan | None:
         total = self.top - EDGE
@@ -382,6 +388,8 @@ EDGE = 0.3          # cm of paper kept free along the page's sides and bottom
 GAP = 0.35          # cm between panels side by side
 TABLE_GAP = 0.5     # cm between the panels and the table beneath them
 TABLE_LEAST = 0.22  # of the page's height: the table's room at least, before the panels take theirs
+TABLE_MOST = 0.4   # of the page's height: the table's room at most
+LABEL_ROOM = 2.0    # cm beside a mechanism for its labels (at 10 pt type)
 KENNEDY_MOST = 8.0  # cm: the Kennedy circle's panel at most
 
 
@@ -420,10 +428,16 @@ def _plan(fig, sol, st, opts, cons, sheet: str, top: float, table: bool) -> _Pla
         tax = fig.add_axes(rects.pop("table"), label="table")
         _draw_table(sol, tax, sheet, st, cons)
         return _Plan(rects, {"mechanism": opts.scale}, tax)
-    planner = _Planner(fig, sol, st, opts, cons, sheet, top, table and opts.table)
+    two = bool(equivalent_linkage_note(sol.mechanism)) and sheet != "poles"
+    planner = _Planner(fig, sol, st, opts, cons, sheet, top, table and opts.table, 2 if two else 1)
     if sheet == "poles":
         return planner.poles()
     return planner.over_table(_panel_names(sheet, cons))
+
+
+def _caption_cm(st, lines: int) -> float:
+    """The height (cm) a panel's caption of ``lines`` lines takes over it."""
+    return lines * 1.3 * st.font_size / 72 * 2.54 + 0.15
 
 
 def _top(fig, st, title, caption: str, two_lines: bool) -> float:
@@ -435,8 +449,7 @@ def _top(fig, st, title, caption: str, two_lines: bool) -> float:
         limit = _step_caption(fig, st, title, caption)
     else:
         limit = title.get_window_extent(renderer_of(fig)).y0 / (fig.get_figheight() * fig.dpi) - 0.01
-    lines = 2 if two_lines else 1
-    return limit * H - (lines * 1.3 * st.font_size / 72 * 2.54 + 0.15)
+    return limit * H - _caption_cm(st, 2 if two_lines else 1)
 
 
 def _draw_mechanism_panel(sol, ax, st, opts, cons, sheet, scale):
@@ -446,7 +459,7 @@ def _draw_mechanism_panel(sol, ax, st, opts, cons, sheet, scale):
     for poly in (cons.velocity, cons.acceleration):
         if poly is not None and (sheet != "full" or poly is cons.velocity):
             mark_auxiliary(sol, ax, poly, style=st)
-    return scale_text(scale, sol.mechanism.units, 0)
+    return scale_text(view_scale(ax), sol.mechanism.units, 0)
 
 
 def _draw_polygon_panel(sol, ax, st, opts, poly, upto, scale, power: int, pinned):
@@ -515,8 +528,14 @@ def _draw_captions(fig, st, m, axes, captions) -> None:
                        fontsize=st.font_size, style="italic", gid=f"caption-{name}")
         _fit_width(fig, cap, pos.width + 0.008)   # within its column: clear of its neighbours and the page's edge
         caps.append(cap)
-    for cap in caps:
-        cap.set_fontsize(min(c.get_fontsize() for c in caps))
+    size = min((c.get_fontsize() for c in caps), default=st.font_size)
+    from .canvas import renderer_of
+    r, wpx = renderer_of(fig), fig.get_figwidth() * fig.dpi
+    for cap in caps:   # the sheet's captions in one size; one wider than its panel kept on the page
+        cap.set_fontsize(size)
+        bb = cap.get_window_extent(r)
+        shift = max(0.004 * wpx - bb.x0, 0.0) + min(0.996 * wpx - bb.x1, 0.0)
+        cap.set_x(cap.get_position()[0] + shift / wpx)
 
 
 def render_sheet(sol, sheet: str = "full", style="textbook", *, cons: Constructions | None = None,

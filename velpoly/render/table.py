@@ -438,6 +438,9 @@ def draw_results_table(sol, ax=None, *, sheet: str = "full", style="textbook", v
     lines = wrap_title(t.title)
     art.add("title", title)
     top = height_pt - 1.6 * size * 1.1 - (lines - 1) * 1.4 * size * 1.1
+    # the first rule under the title's last line as drawn (its descenders), never through it
+    drawn = (title.get_window_extent(r).y0 - ax.get_window_extent(r).y0) * 72 / fig.dpi
+    top = min(top, drawn - 0.35 * size)
     # the footnotes (the [reference] notes of the marked rows) beneath the table, across its room: their
     # lines are kept free of rows
     foot_size = 0.9 * size
