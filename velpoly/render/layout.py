@@ -120,8 +120,8 @@ def _first(ratios, fixed, room: float, inner_h: float) -> list[float]:
 
 
 def _size(spans, row: Row) -> float:
-    """How large a row draws: the sum of the logarithms of its drawings' sizes on paper (cm)."""
-    return sum(math.log(math.sqrt(max(w * h, 1e-300)) / s) for (w, h), s in zip(_spans(spans), row.scales))
+    """How much of the page a row's drawings take: the sum of their boxes' areas on paper (cm²)."""
+    return sum(w * h / s ** 2 for (w, h), s in zip(_spans(spans), row.scales))
 
 
 @dataclass(frozen=True)
@@ -144,8 +144,8 @@ def _splits(names):
 def arrange(spans: dict, names, width: float, top: float, bottom: float, gap: float, caption: float,
             scales: dict, least: dict, extra: dict | None = None) -> list[Band]:
     """The panels ``names`` in one row or two between ``bottom`` and ``top`` (cm), whichever draws them
-    largest (:func:`_size`; one row unless two draw them a tenth larger or more): a wide mechanism across the
-    page above its polygons. ``caption``: the height (cm) of a second row's captions. Each row is as tall
+    largest (:func:`_size`: the area they cover; one row unless two cover a tenth more): a wide mechanism
+    across the page above its polygons. ``caption``: the height (cm) of a second row's captions. Each row is as tall
     as its drawings need; the height left over is shared out between the rows."""
     best, extra = None, extra or {}
     for rows in _splits(list(names)):
@@ -157,7 +157,7 @@ def arrange(spans: dict, names, width: float, top: float, bottom: float, gap: fl
                               least=[least.get(n, 0.0) for n in r], extra=[extra.get(n, 0.0) for n in r])
                     for r, h in zip(rows, heights)]
             score = sum(_size([spans[n] for n in r], m) for r, m in zip(rows, made))
-            score -= 0.0 if len(rows) == 1 else math.log(1.1) * len(names)
+            score /= 1.0 if len(rows) == 1 else 1.1
             if best is None or score > best[0] + 1e-9:
                 best = (score, rows, made)
     _, rows, made = best
