@@ -52,11 +52,14 @@ def expected(poly, unit_per_cm) -> bool:
     return len(g) >= 4 and g_cm <= 3.0 and p_cm >= 3.0 * g_cm
 
 
+PANEL = (0.34, 0.37, 0.32, 0.485)   # a polygon's panel of a full sheet (fractions of the page): a third of its width
+
+
 def _panel(style="textbook"):
     st = get_style(style)
     fig = Figure(figsize=st.figsize, dpi=72)
     FigureCanvasAgg(fig)
-    return fig.add_axes(sheet._LAYOUTS["full"]["velocity"])
+    return fig.add_axes(PANEL)
 
 
 def _draw(sol, poly, style="textbook"):

@@ -122,6 +122,8 @@ def draw_poles(sol, ax=None, *, style="textbook", options=None, poleset=None, up
         The mechanism's roles and ``poles`` (markers), ``far`` (arrows to
         poles at infinity or out of view), ``kennedy_lines``; ``.labels``
         maps each pole's key ("1-3") to its label (with the points' labels).
+        Every pole's label is nearer its own ring than any other ring where a
+        free place allows, and no leader crosses another.
     """
     ax = get_ax(ax)
     st = get_style(style)
@@ -133,16 +135,32 @@ def draw_poles(sol, ax=None, *, style="textbook", options=None, poleset=None, up
     art = Artists(ax)
     art.labels = {}
     pl = placer(ax)
-    pc, pp = per_cm(ax), per_point(ax)
     shown = shown_poles(ps, upto)
     current = max((p.order for p in shown), default=0) if upto is not None else None
-    from matplotlib.lines import Line2D
+    # the Kennedy lines, known before the mechanism's labels are placed so that these keep clear of them
+    klines, pole_lines = _kennedy_lines(ps, shown, current, view_box(ax), per_cm(ax))
+    for xy, _, _ in klines:
+        pl.add_obstacle(segment(xy[0], xy[-1]), hard=False)
+    if mechanism:
+        # the poles' marks first, so that the mechanism's labels keep clear of them
+        for p in shown:
+            if p.position is not None and view_box(ax).contains(Point(*p.position)):
+                pl.add_obstacle(Point(*p.position).buffer(0.085 * per_cm(ax)))
+        mech = draw_mechanism(sol, ax, style=st, options=opts)
+        art.update_from(mech)
+        art.labels = {}
+        art.point_labels = mech.labels
+    _draw_kennedy_lines(ax, klines, st, art)
+    _draw_pole_marks(sol, ax, shown, st, art)
+    _label_poles(sol, ax, ps, shown, pole_lines, st, art)
+    return art
 
-    # the Kennedy lines (drawn under everything else), known before the mechanism's labels are placed so
-    # that these keep clear of them
-    klines = []
-    pole_lines = {}   # each finite pole's Kennedy lines as drawn (clipped to the view)
-    vb = view_box(ax)
+
+def _kennedy_lines(ps, shown, current, vb, pc):
+    """The Kennedy lines of the poles found: ``([(xy, heavy, gid)], {pole key: [xy, ...]})``, each clipped to
+    the view ``vb``: through the poles that define it (a constraint line: through its points: the contact
+    point, the pin, a circular slot's centre), and on past the pole found (a pole at infinity: across)."""
+    klines, pole_lines = [], {}
     for p in shown:
         if p.order == 0:
             continue
@@ -154,8 +172,6 @@ def draw_poles(sol, ax=None, *, style="textbook", options=None, poleset=None, up
             d = np.asarray(ln.direction, float)
             d = d / max(float(np.hypot(*d)), 1e-300)
             ts = [0.0]
-            # through the poles that define it (a Kennedy line) or the points that do (a constraint line:
-            # the contact point, the pin, a circular slot's centre), and on past the pole found
             for q in [ps.poles[k].position if k in ps.poles else None for k in ln.through] + \
                     list(ln.marks):
                 if q is not None:
@@ -163,68 +179,94 @@ def draw_poles(sol, ax=None, *, style="textbook", options=None, poleset=None, up
             if p.position is not None:
                 ts.append(float(np.dot(p.position - base, d)))
             far = 4 * max(vb.bounds[2] - vb.bounds[0], vb.bounds[3] - vb.bounds[1])
-            lo, hi = min(ts) - 0.8 * pc, max(ts) + 0.8 * pc
-            if p.position is None:   # a pole at infinity: the line runs out of the view both ways
-                lo, hi = -far, far
+            lo, hi = (min(ts) - 0.8 * pc, max(ts) + 0.8 * pc) if p.position is not None else (-far, far)
             seg = LineString([tuple(base + d * lo), tuple(base + d * hi)]).intersection(vb)
             if seg.is_empty or seg.geom_type != "LineString":
                 continue
             klines.append((np.asarray(seg.coords), heavy, f"kennedy-line-{p.key}-{ln.label}"))
             if p.position is not None:
                 pole_lines.setdefault(p.key, []).append(np.asarray(seg.coords))
+    return klines, pole_lines
 
-    for xy, _, _ in klines:
-        pl.add_obstacle(segment(xy[0], xy[-1]), hard=False)
-    if mechanism:
-        # the poles' marks first, so that the mechanism's labels keep clear of them
-        for p in shown_poles(ps, upto):
-            if p.position is not None and view_box(ax).contains(Point(*p.position)):
-                pl.add_obstacle(Point(*p.position).buffer(0.085 * pc))
-        mech = draw_mechanism(sol, ax, style=st, options=opts)
-        art.update_from(mech)
-        art.labels = {}
-        art.point_labels = mech.labels
-    view = view_box(ax)
-    # arrows to poles at infinity stand at the border of what is drawn, not of the whole panel
-    from shapely.geometry import box as sbox
-    bx0, by0, bx1, by1 = poles_bounds(sol, ps)
-    content = sbox(bx0 - 1.6 * pc, by0 - 1.6 * pc, bx1 + 1.6 * pc, by1 + 1.6 * pc).intersection(view)
-    # the Kennedy lines
+
+def _draw_kennedy_lines(ax, klines, st, art) -> None:
+    """Over the links, blocks and ground (a Kennedy line runs straight through every body: the collinearity
+    is the proof), under the pins, points and poles' marks; the current step's heavier."""
+    from matplotlib.lines import Line2D
     for xy, heavy, gid in klines:
-        # over the links, blocks and ground (a Kennedy line runs straight through every body: the
-        # collinearity is the proof), under the pins, points and poles' marks
         line = Line2D(xy[:, 0], xy[:, 1], lw=st.thin_lw * (2.0 if heavy else 1.0),
                       color=st.ink if not st.coloured else "#7f7f7f", linestyle=(0, (7, 2, 1.5, 2)),
                       zorder=KENNEDY_Z, gid=gid)
         ax.add_line(line)
         art.add("kennedy_lines", line)
 
-    # the poles
-    c = _centre(sol)
+
+def _pole_colour(st) -> str:
+    return st.ink if not st.coloured else "#c0392b"
+
+
+def _in_view(ax, p) -> bool:
+    return p.position is not None and view_box(ax).contains(Point(*p.position))
+
+
+def _draw_pole_marks(sol, ax, shown, st, art) -> None:
+    """A ring with a cross on each pole in view that is no pin (a pole at a pin is the pin); every ring is an
+    obstacle before any pole's label is placed."""
+    from matplotlib.lines import Line2D
     pins = {pin.point for pin in sol.mechanism.pins}
     pin_places = [np.asarray(sol.position[k], float) for k in sol.position if k.split("@")[0] in pins]
     tol = 1e-9 * sol.mechanism.size
+    r = 0.085 * per_cm(ax)
+    art.rings = {}
+    for p in shown:
+        if not _in_view(ax, p):
+            continue
+        q = np.asarray(p.position, float)
+        ring = Point(*q).buffer(r, quad_segs=10)
+        art.rings[p.key] = ring
+        if any(float(np.hypot(*(q - w))) <= tol for w in pin_places):
+            continue
+        colour = _pole_colour(st)
+        mk = shape_patch(ring, facecolor=st.paper, edgecolor=colour, lw=st.link_lw, zorder=5.5, gid=f"pole-{p.key}")
+        ax.add_patch(mk)
+        cross = Line2D([q[0] - r, q[0] + r, np.nan, q[0], q[0]], [q[1], q[1], np.nan, q[1] - r, q[1] + r],
+                       lw=st.thin_lw, color=colour, zorder=5.6)
+        ax.add_line(cross)
+        art.add("poles", mk, cross)
+        placer(ax).add_obstacle(ring)
+
+
+def _nearer_own(own, rings):
+    """A test of a label's box: nearer its own ring than any other ring (a pole's label by its pole)."""
+    others = [g for g in rings if not g.equals(own)]
+
+    def accept(b) -> bool:
+        d = b.distance(own)
+        return all(d < b.distance(g) for g in others)
+    return accept
+
+
+def _label_poles(sol, ax, ps, shown, pole_lines, st, art) -> None:
+    """Each pole's label: by its ring (nearer it than any other ring), or by the arrow at the border that
+    points to a pole at infinity or out of view."""
+    pl = placer(ax)
+    pc, pp = per_cm(ax), per_point(ax)
+    view = view_box(ax)
+    c = _centre(sol)
+    # arrows to poles at infinity stand at the border of what is drawn, not of the whole panel
+    from shapely.geometry import box as sbox
+    bx0, by0, bx1, by1 = poles_bounds(sol, ps)
+    content = sbox(bx0 - 1.6 * pc, by0 - 1.6 * pc, bx1 + 1.6 * pc, by1 + 1.6 * pc).intersection(view)
+    rings = list(art.rings.values())
+    colour = _pole_colour(st)
+    kw = dict(fontsize=st.font_size * 0.9, color=colour, zorder=7)
     for p in shown:
         if p.position is None and p.direction is None:
             continue   # undefined: the links move alike (listed in the table)
-        colour = st.ink if not st.coloured else "#c0392b"
         label = pole_label(p.links)
-        if p.position is not None and view.contains(Point(*p.position)):   # in view: where it is
-            q = np.asarray(p.position, float)
-            on_pin = any(float(np.hypot(*(q - w))) <= tol for w in pin_places)
-            if not on_pin:
-                r = 0.085 * pc
-                ring = Point(*q).buffer(r, quad_segs=10)
-                mk = shape_patch(ring, facecolor=st.paper, edgecolor=colour, lw=st.link_lw, zorder=5.5,
-                                 gid=f"pole-{p.key}")
-                ax.add_patch(mk)
-                cross = Line2D([q[0] - r, q[0] + r, np.nan, q[0], q[0]], [q[1], q[1], np.nan, q[1] - r, q[1] + r],
-                               lw=st.thin_lw, color=colour, zorder=5.6)
-                ax.add_line(cross)
-                art.add("poles", mk, cross)
-                pl.add_obstacle(ring)
-            t = pl.place(q, label, prefer=-45.0, fontsize=st.font_size * 0.9, color=colour, zorder=7,
-                         gid=f"label-pole-{p.key}")
+        if _in_view(ax, p):   # in view: where it is
+            t = pl.place(np.asarray(p.position, float), label, prefer=-45.0, gid=f"label-pole-{p.key}",
+                         accept=_nearer_own(art.rings[p.key], rings), **kw)
         else:
             if p.position is None:
                 d = np.array([math.cos(math.radians(p.direction)), math.sin(math.radians(p.direction))])
@@ -239,11 +281,9 @@ def draw_poles(sol, ax=None, *, style="textbook", options=None, poleset=None, up
             art.add("far", sh, hd)
             pl.add_obstacle(poly)
             pl.add_obstacle(segment(tail, tip).buffer(pp), hard=True)
-            t = pl.place(tail, text, prefer=math.degrees(math.atan2(-d[1], -d[0])), fontsize=st.font_size * 0.9,
-                         color=colour, zorder=7, gid=f"label-pole-{p.key}")
+            t = pl.place(tail, text, prefer=math.degrees(math.atan2(-d[1], -d[0])), gid=f"label-pole-{p.key}", **kw)
         art.add("labels", t)
         art.labels[p.key] = t
-    return art
 
 
 def draw_kennedy_circle(sol, ax=None, *, style="textbook", options=None, poleset=None,
@@ -253,16 +293,20 @@ def draw_kennedy_circle(sol, ax=None, *, style="textbook", options=None, poleset
     The links are points on a circle; each of the n(n-1)/2 poles is a chord:
     solid if known by inspection, dashed and numbered by order of discovery
     if found (with ``upto``, only the first ``upto`` found are drawn, the
-    last one heavier), dotted if undefined.
+    last one heavier), dotted if undefined. The first frame of a step
+    sequence (``upto`` = 0) shows the poles sought as thin grey dashed chords,
+    unnumbered.
 
     Returns
     -------
     Artists
         Roles ``circle``, ``points`` (one per link, gid ``kennedy-point-<link>``),
-        ``chords`` (one per pole drawn, gid ``chord-<key>``), ``numbers``,
-        ``labels``; ``.labels`` maps each link to its label.
+        ``chords`` (one per pole drawn, gid ``chord-<key>``; a pole sought
+        ``chord-sought-<key>``), ``numbers``, ``labels``; ``.labels`` maps each
+        link to its label.
     """
     from ..poles import kennedy_circle
+    from matplotlib.patches import Circle
     ax = get_ax(ax)
     st = get_style(style)
     ps = _poleset(sol, poleset)
@@ -272,49 +316,66 @@ def draw_kennedy_circle(sol, ax=None, *, style="textbook", options=None, poleset
         ax.set_axis_off()
     art = Artists(ax)
     pl = placer(ax)
-    pc = per_cm(ax)
-    from matplotlib.lines import Line2D
-    from matplotlib.patches import Circle
     circ = Circle((0, 0), 1.0, fill=False, lw=st.thin_lw, edgecolor=st.ink, zorder=1, gid="kennedy-circle")
     ax.add_patch(circ)
     art.add("circle", circ)
-    found = [ch for ch in kc.chords if not ch.solid and ch.order > 0]
-    last = max((ch.order for ch in found if upto is None or ch.order <= upto), default=0)
-    numbered = []
-    for ch in kc.chords:
-        pole = ps.poles[ch.key]
-        undefined = pole.position is None and pole.direction is None
-        if not ch.solid and upto is not None and ch.order > upto:
-            continue
-        a, b = kc.points[ch.links[0]], kc.points[ch.links[1]]
-        if ch.solid:
-            ls, lw = "-", st.link_lw
-        elif undefined and ch.order == 0:
-            ls, lw = (0, (1, 2)), st.thin_lw * 1.5
-        else:
-            heavy = 1.8 if upto is not None and ch.order == last else 1.0
-            # the dashes as long as the other chords' (matplotlib scales them with the width): a heavy
-            # chord keeps reaching its points instead of ending in a long gap
-            ls, lw = (0, (5 / heavy, 3 / heavy)), st.link_lw * heavy
-        colour = st.ink if not (st.coloured and not ch.solid) else "#c0392b"
-        line = Line2D([a[0], b[0]], [a[1], b[1]], lw=lw, linestyle=ls, color=colour, zorder=2,
-                      gid=f"chord-{ch.key}")
-        ax.add_line(line)
-        art.add("chords", line)
-        if not ch.solid and ch.order > 0:
-            numbered.append((ch, a, b, colour))
+    numbered = _draw_chords(ax, kc, ps, st, upto, art)
     for lk, q in kc.points.items():
-        dot = Circle(tuple(q), 0.05 * pc, facecolor=st.ink, edgecolor=st.ink, zorder=4, gid=f"kennedy-point-{lk}")
+        dot = Circle(tuple(q), 0.05 * per_cm(ax), facecolor=st.ink, edgecolor=st.ink, zorder=4,
+                     gid=f"kennedy-point-{lk}")
         ax.add_patch(dot)
         art.add("points", dot)
-        pl.add_obstacle(Point(*q).buffer(0.05 * pc))
+        pl.add_obstacle(Point(*q).buffer(0.05 * per_cm(ax)))
     for lk, q in kc.points.items():
         t = pl.place(q, lk, prefer=math.degrees(math.atan2(q[1], q[0])), fontsize=st.font_size, zorder=7,
                      gid=f"kennedy-label-{lk}")
         art.add("labels", t)
         art.labels[lk] = t
-    # numbers of the found chords, each on its own chord where it meets no other chord (so never at a
-    # crossing: on a four-bar the two diagonals cross at the centre), no other number and no link label
+    _number_chords(pl, kc, numbered, st, art)
+    return art
+
+
+def _chord_style(ch, pole, upto, last: int, st):
+    """(line style, width, colour) of a chord: solid known by inspection, dotted undefined, dashed found (the
+    last found of a step frame heavier), thin grey dashes sought (a step frame's first)."""
+    undefined = pole.position is None and pole.direction is None
+    if ch.solid:
+        return "-", st.link_lw, st.ink
+    if undefined and ch.order == 0:
+        return (0, (1, 2)), st.thin_lw * 1.5, st.ink
+    if upto is not None and ch.order > upto:
+        return (0, (3, 3)), st.thin_lw, "#9a9a9a"
+    heavy = 1.8 if upto is not None and ch.order == last else 1.0
+    # the dashes as long as the other chords' (matplotlib scales them with the width): a heavy chord keeps
+    # reaching its points instead of ending in a long gap
+    return (0, (5 / heavy, 3 / heavy)), st.link_lw * heavy, st.ink if not st.coloured else "#c0392b"
+
+
+def _draw_chords(ax, kc, ps, st, upto, art) -> list:
+    """Every chord of the frame (a step frame after the first: no chord of a pole not yet found); return
+    the found ones to number: ``[(chord, a, b, colour)]``."""
+    from matplotlib.lines import Line2D
+    found = [ch for ch in kc.chords if not ch.solid and ch.order > 0]
+    last = max((ch.order for ch in found if upto is None or ch.order <= upto), default=0)
+    numbered = []
+    for ch in kc.chords:
+        sought = not ch.solid and upto is not None and ch.order > upto
+        if sought and upto != 0:
+            continue
+        a, b = kc.points[ch.links[0]], kc.points[ch.links[1]]
+        ls, lw, colour = _chord_style(ch, ps.poles[ch.key], upto, last, st)
+        line = Line2D([a[0], b[0]], [a[1], b[1]], lw=lw, linestyle=ls, color=colour, zorder=2 if not sought else 1.5,
+                      gid=f"chord-sought-{ch.key}" if sought else f"chord-{ch.key}")
+        ax.add_line(line)
+        art.add("chords", line)
+        if not ch.solid and 0 < ch.order and not sought:
+            numbered.append((ch, a, b, colour))
+    return numbered
+
+
+def _number_chords(pl, kc, numbered, st, art) -> None:
+    """Each found chord's number on its own chord where it meets no other chord (so never at a crossing: on
+    a four-bar the two diagonals cross at the centre), no other number and no link label."""
     segs = {ch.key: segment(kc.points[ch.links[0]], kc.points[ch.links[1]]) for ch in kc.chords}
     for ch, a, b, colour in sorted(numbered, key=lambda x: x[0].order):
         spots = [a + (b - a) * f for f in NUMBER_SPOTS]
@@ -327,4 +388,3 @@ def draw_kennedy_circle(sol, ax=None, *, style="textbook", options=None, poleset
         if t is None:
             t = pl.place(spots[0], str(ch.order), gid=f"chord-number-{ch.key}", pad=3.0, **kw)
         art.add("numbers", t)
-    return art

@@ -18,7 +18,7 @@ import math
 import numpy as np
 import shapely
 from shapely import affinity
-from shapely.geometry import LineString, box
+from shapely.geometry import LineString, Point, box
 
 from .canvas import per_point, renderer_of, view_box
 
@@ -89,7 +89,7 @@ class LabelPlacer:
     # -- placing -----------------------------------------------------------------------
     def place(self, anchor, s: str, *, prefer: float | None = None, gap: float = 2.5, leader: bool = True,
               gid: str | None = None, obstacle: bool = True, pad: float = 1.0, within: float | None = None,
-              **text_kw):
+              accept=None, **text_kw):
         """Draw text ``s`` near ``anchor`` where it overlaps nothing; return the Text.
 
         ``prefer``: the preferred direction from the anchor (degrees), e.g.
@@ -100,96 +100,127 @@ class LabelPlacer:
         crossing the fewest obstacles (and the placement reports it through
         :attr:`overlapping`). ``within``: only directions within so many degrees
         of ``prefer`` (a label that must sit on one side of its anchor); if none
-        of them is free, every direction.
+        of them is free, every direction. ``accept``: a test of a candidate box
+        (data coordinates) it must pass where any free place does (a pole's label
+        nearer its own ring than any other). A leader crosses no other label and
+        no other leader.
         """
-        ax = self.ax
         anchor = np.asarray(anchor, float)
-        t = ax.text(anchor[0], anchor[1], s, ha="center", va="center", **text_kw)
+        t = self.ax.text(anchor[0], anchor[1], s, ha="center", va="center", **text_kw)
         if gid:
             t.set_gid(gid)
         w, h = self.text_size(t, pad)
-        pp = per_point(ax)
-        view = view_box(ax)
-        best = None
-        pin = self.pins.get(gid) if gid else None
-        if pin is not None and pin[0] == "place":
-            c = np.asarray(pin[1], float)
-            b = box(c[0] - w / 2, c[1] - h / 2, c[0] + w / 2, c[1] + h / 2)
-            if view.contains(b) and self.free(b):
-                best = (0, c, b, pin[2])
-        rings = () if best is not None else (gap,) + tuple(r for r in RINGS if r > gap)
-        # when nothing is free within the rings (a crowd of labels and their leaders): farther out, in
-        # finer steps of direction, before giving up
-        rings = rings + tuple((r, True) for r in FAR_RINGS) if rings else rings
-        for ring_i, ring in enumerate(rings):
-            far = isinstance(ring, tuple)
-            if far:
-                if best is not None:
-                    break
-                ring = ring[0]
-            for ang in _directions(prefer, 24 if far else 16 if ring_i >= 2 else 8):
-                if within is not None and abs((ang - (prefer or 45.0) + 180.0) % 360.0 - 180.0) > within + 1e-9:
-                    continue
-                u = np.array([math.cos(math.radians(ang)), math.sin(math.radians(ang))])
-                # put the box's near side at distance ring from the anchor along u
-                reach = ring * pp + half_extent(w, h, u)
-                c = anchor + u * reach
-                b = box(c[0] - w / 2, c[1] - h / 2, c[0] + w / 2, c[1] + h / 2)
-                if not view.contains(b) or not self.free(b):
-                    continue
-                if leader and ring >= 9.0 and self.boxes and bool(np.any(shapely.intersects(
-                        np.array(self.boxes, dtype=object), LineString([tuple(anchor), tuple(_toward(b, anchor))])))):
-                    continue   # its leader would cross another label
-                hits = self.soft_hits(b)
-                if best is None or hits < best[0]:
-                    best = (hits, c, b, ring)
-                if hits == 0:
-                    break
-            if best is not None and best[0] == 0:
-                break
+        best = self._pinned(gid, w, h)
+        if best is None:
+            best = self._search(anchor, w, h, prefer, gap, leader, within, accept)
+            if accept is not None and (best is None or best[0] != (0, 0)):   # a line under it is worse
+                anywhere = self._search(anchor, w, h, prefer, gap, leader, within, None)
+                if anywhere is not None and (best is None or anywhere[0] < best[0]):
+                    best = anywhere
         if best is None and within is not None:   # nothing free on that side: any side
             t.remove()
             return self.place(anchor, s, prefer=prefer, gap=gap, leader=leader, gid=gid, obstacle=obstacle, pad=pad,
                               **text_kw)
         if best is None:
-            # nothing free: the place clear of every label (and of their leaders) covering the fewest
-            # arrowheads and pins, then lines
-            hard = np.array(self.hard, dtype=object)
-            boxes = np.array(self.boxes + self.leaders, dtype=object)   # what its box must keep off
-            labels_ = np.array(self.boxes, dtype=object)               # what its leader must not cross
-            for ring in (gap,) + tuple(r for r in RINGS if r > gap) + FAR_RINGS[3:] + (135.0,):
-                for ang in _directions(prefer, 16):
-                    u = np.array([math.cos(math.radians(ang)), math.sin(math.radians(ang))])
-                    c = anchor + u * (ring * pp + half_extent(w, h, u))
-                    b = box(c[0] - w / 2, c[1] - h / 2, c[0] + w / 2, c[1] + h / 2)
-                    if not view.contains(b) or (len(boxes) and bool(np.any(shapely.intersects(boxes, b)))):
-                        continue
-                    crossed = int(np.count_nonzero(shapely.intersects(
-                        labels_, LineString([tuple(anchor), tuple(_toward(b, anchor))])))) \
-                        if leader and ring >= 9.0 and len(labels_) else 0
-                    score = (crossed, int(np.count_nonzero(shapely.intersects(hard, b))) if len(hard) else 0,
-                             self.soft_hits(b))
-                    if best is None or score < best[0]:
-                        best = (score, c, b, ring)
-            if best is not None:
-                self.overlapping.append(t)
-        if best is None:  # nothing clear of the labels in view: fall back to the first ring's preferred spot
-            u = np.array([math.cos(math.radians(prefer or 45.0)), math.sin(math.radians(prefer or 45.0))])
-            c = anchor + u * (gap * pp + half_extent(w, h, u))
-            b = box(c[0] - w / 2, c[1] - h / 2, c[0] + w / 2, c[1] + h / 2)
-            best = (math.inf, c, b, gap)
+            best = self._least_bad(anchor, w, h, prefer, gap, leader)
             self.overlapping.append(t)
+        self._put(t, anchor, best, gid, leader, obstacle)
+        return t
+
+    def _pinned(self, gid, w: float, h: float):
+        """Where the finished construction put this label, if it is free here too."""
+        pin = self.pins.get(gid) if gid else None
+        if pin is None or pin[0] != "place":
+            return None
+        c = np.asarray(pin[1], float)
+        b = _box(c, w, h)
+        return (0, c, b, pin[2]) if view_box(self.ax).contains(b) and self.free(b) else None
+
+    def _candidates(self, anchor, w: float, h: float, prefer, ring: float, k: int, within=None):
+        """(centre, box) of the candidate boxes ``ring`` points from the anchor in ``k`` directions."""
+        pp = per_point(self.ax)
+        for ang in _directions(prefer, k):
+            if within is not None and abs((ang - (prefer or 45.0) + 180.0) % 360.0 - 180.0) > within + 1e-9:
+                continue
+            u = np.array([math.cos(math.radians(ang)), math.sin(math.radians(ang))])
+            c = anchor + u * (ring * pp + half_extent(w, h, u))   # the box's near side ``ring`` from the anchor
+            yield c, _box(c, w, h)
+
+    def _leader_crosses(self, anchor, b, labels_only: bool = False) -> int:
+        """How many labels (and leaders) the leader from ``anchor`` to box ``b`` would cross."""
+        line = LineString([tuple(anchor), tuple(_toward(b, anchor))])
+        others = self.boxes + ([] if labels_only else self.leaders)
+        if not others:
+            return 0
+        return int(np.count_nonzero(shapely.intersects(np.array(others, dtype=object), line)))
+
+    def _leader_hits(self, anchor, b) -> int:
+        """How many lines and outlines the leader to box ``b`` would cross, besides those at its anchor."""
+        if not self.soft:
+            return 0
+        soft = np.array(self.soft, dtype=object)
+        line = LineString([tuple(anchor), tuple(_toward(b, anchor))])
+        at = Point(*anchor).buffer(2.0 * per_point(self.ax))
+        return int(np.count_nonzero(shapely.intersects(soft, line) & ~shapely.intersects(soft, at)))
+
+    def _search(self, anchor, w: float, h: float, prefer, gap: float, leader: bool, within, accept):
+        """The first free candidate, ring after ring, crossing the fewest soft obstacles (None if none is free)."""
+        view = view_box(self.ax)
+        rings = (gap,) + tuple(r for r in RINGS if r > gap)
+        best = None
+        for ring_i, ring in enumerate(rings + FAR_RINGS):
+            far = ring_i >= len(rings)
+            if far and best is not None:   # farther out, in finer steps, only when nothing nearer is free
+                break
+            for c, b in self._candidates(anchor, w, h, prefer, ring, 24 if far else 16 if ring_i >= 2 else 8, within):
+                if not view.contains(b) or not self.free(b) or (accept is not None and not accept(b)):
+                    continue
+                hits = (self.soft_hits(b), 0)   # lines under the box first, then lines its leader crosses
+                if leader and ring >= 9.0:
+                    if self._leader_crosses(anchor, b):
+                        continue
+                    hits = (hits[0], self._leader_hits(anchor, b))
+                if best is None or hits < best[0]:
+                    best = (hits, c, b, ring)
+                if hits == (0, 0):
+                    return best
+        return best
+
+    def _least_bad(self, anchor, w: float, h: float, prefer, gap: float, leader: bool):
+        """Nothing free: the place clear of every label (and of their leaders) covering the fewest arrowheads
+        and pins, then lines; else the first ring's preferred spot."""
+        view = view_box(self.ax)
+        hard = np.array(self.hard, dtype=object)
+        boxes = np.array(self.boxes + self.leaders, dtype=object)   # what its box must keep off
+        best = None
+        for ring in (gap,) + tuple(r for r in RINGS if r > gap) + FAR_RINGS[3:] + (135.0,):
+            for c, b in self._candidates(anchor, w, h, prefer, ring, 16):
+                if not view.contains(b) or (len(boxes) and bool(np.any(shapely.intersects(boxes, b)))):
+                    continue
+                crossed = self._leader_crosses(anchor, b, labels_only=True) if leader and ring >= 9.0 else 0
+                score = (crossed, int(np.count_nonzero(shapely.intersects(hard, b))) if len(hard) else 0,
+                         self.soft_hits(b))
+                if best is None or score < best[0]:
+                    best = (score, c, b, ring)
+        if best is None:
+            c, b = next(self._candidates(anchor, w, h, prefer, gap, 1))
+            best = (math.inf, c, b, gap)
+        return best
+
+    def _put(self, t, anchor, best, gid, leader: bool, obstacle: bool) -> None:
+        """Move the text to the place chosen, with its leader where it stands far from its anchor."""
         _, c, b, ring = best
         t.set_position((float(c[0]), float(c[1])))
         if gid:
             self.placed[gid] = ("place", (float(c[0]), float(c[1])), ring)
         if leader and ring >= 9.0:
             from matplotlib.lines import Line2D
+            pp = per_point(self.ax)
             edge = _toward(b, anchor)
             start = anchor + (edge - anchor) * (1.5 * pp / max(np.hypot(*(edge - anchor)), 1e-300))
             ln = Line2D([start[0], edge[0]], [start[1], edge[1]], lw=0.4, color=t.get_color(),
-                        zorder=t.get_zorder())
-            ax.add_line(ln)
+                        zorder=t.get_zorder(), gid=(gid + "-leader") if gid else None)
+            self.ax.add_line(ln)
             t._velpoly_leader = ln
             if obstacle:   # later labels keep off it
                 self.leaders.append(LineString([tuple(start), tuple(edge)]).buffer(0.4 * pp))
@@ -197,7 +228,6 @@ class LabelPlacer:
         if obstacle:
             self.boxes.append(b)
             self.texts.append(t)
-        return t
 
     def place_at(self, centres, s: str, *, gid: str | None = None, pad: float = 1.0, avoid=(), soft: bool = False,
                  **text_kw):
@@ -288,6 +318,11 @@ class LabelPlacer:
         if not hasattr(self, "_overlapping"):
             self._overlapping = []
         return self._overlapping
+
+
+def _box(c, w: float, h: float):
+    """The w x h box centred on c."""
+    return box(c[0] - w / 2, c[1] - h / 2, c[0] + w / 2, c[1] + h / 2)
 
 
 def _directions(prefer: float | None, k: int) -> list[float]:

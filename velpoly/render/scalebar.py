@@ -27,70 +27,33 @@ def scale_text(value: float, units: str, power: int) -> str:
     return f"1 cm = {value:g} {unit_label(units, power)}".rstrip()
 
 
+BAR_GAP = 1.0   # cm of paper at least between the scale bars of two panels (they must not read as one bar)
+
+
 def scale_bar(ax, style, units: str, power: int, *, target_cm: float = 2.5, gid: str = "scale-bar"):
     """Draw a segmented scale bar of a round length in a free corner; return its artists.
 
     The bar is the largest of 1, 2, 5 x 10^k units not longer than
     ``target_cm`` of paper. The returned list starts with the bar's outline
     (a Rectangle whose width is the length in data units) and holds the
-    segments and the two labels; ``bar._velpoly_length`` is that length.
+    segments and the two labels; ``bar._velpoly_length`` is that length. It
+    keeps :data:`BAR_GAP` from the scale bars of the figure's other panels.
     """
-    from matplotlib.patches import Rectangle
     pc, pp = per_cm(ax), per_point(ax)
     length = nice_length(target_cm * pc)
     h = 0.09 * pc
-    nseg = 5 if round(length / 10 ** math.floor(math.log10(length))) == 5 else 2
-    pl = placer(ax)
-    view = view_box(ax)
-    x0, y0, x1, y1 = view.bounds
-    m = 0.35 * pc
-    text_h = style.small_size * pp * 1.6
     unit = unit_label(units, power)
     kw = dict(fontsize=style.small_size, va="bottom", zorder=6)
+    x0, y0 = view_box(ax).bounds[:2]
     t1 = ax.text(x0, y0, f"{length:g} {unit}".rstrip(), ha="center", **kw)
-    w1 = pl.text_size(t1, 0.0)[0]
     t0 = ax.text(x0, y0, "0", ha="center", gid=f"{gid}-0", **kw)
-    w0 = pl.text_size(t0, 0.0)[0]
+    w0, w1 = placer(ax).text_size(t0, 0.0)[0], placer(ax).text_size(t1, 0.0)[0]
     # the end label over the bar's end, or beside the bar where "0" and it would run into each other
     beside = length < (w0 + w1) / 2 + 3.0 * pp
-    if beside:
-        right = length + 3.0 * pp + w1 + 0.1 * pc
-    else:
-        right = max(length + 0.2 * pc, length + w1 / 2 + 0.1 * pc)   # the label reaches past the end
-    lo_x, hi_x = x0 + m, x1 - m - right
-    lo_y, hi_y = y0 + m, y1 - m - h - text_h
-    xs = [lo_x, hi_x] + [lo_x + (hi_x - lo_x) * f for f in (0.25, 0.5, 0.75, 0.125, 0.375, 0.625, 0.875)]
-    corners = [(x, y) for y in (lo_y, hi_y) for x in xs]
-    corners += [(x, lo_y + (hi_y - lo_y) * f) for f in (0.125, 0.25, 0.375, 0.5, 0.625, 0.75, 0.875)
-                for x in (lo_x, hi_x)]
-    # the first place along the bottom, the top, then the sides, whose room (bar, labels) is free of everything
-    # drawn; else the one crossing the fewest lines and no label, legend or arrowhead if it can
-    geoms = np.array(pl.boxes + pl.hard + pl.soft, dtype=object)
-    weights = np.array([10] * (len(pl.boxes) + len(pl.hard)) + [1] * len(pl.soft))
-    best = None
-    pin = pl.pins.get(gid)
-    if pin is not None and pin[0] == "bar":   # a step frame: where the finished construction has it
-        corners = [pin[1]]
-    for c in corners:
-        region = box(c[0] - 0.2 * pc, c[1] - 0.1 * pc, c[0] + right, c[1] + h + text_h + 0.1 * pc)
-        hits = int(np.dot(shapely.intersects(geoms, region), weights)) if len(geoms) else 0
-        if best is None or hits < best[0]:
-            best = (hits, c)
-        if hits == 0:
-            break
-    bx, by = best[1]
-    pl.placed[gid] = ("bar", (float(bx), float(by)))
-    out = []
-    bar = Rectangle((bx, by), length, h, facecolor=style.paper, edgecolor=style.ink, lw=style.thin_lw * 1.4,
-                    zorder=6, gid=gid)
-    bar._velpoly_length = length
-    ax.add_patch(bar)
-    out.append(bar)
-    seg = length / nseg
-    for i in range(0, nseg, 2):
-        r = Rectangle((bx + i * seg, by), seg, h, facecolor=style.ink, edgecolor=style.ink, lw=0, zorder=6)
-        ax.add_patch(r)
-        out.append(r)
+    right = length + 3.0 * pp + w1 + 0.1 * pc if beside else max(length + 0.2 * pc, length + w1 / 2 + 0.1 * pc)
+    room = (right, h + style.small_size * pp * 1.6)   # the bar's and its labels' extent from its corner
+    bx, by = _bar_corner(ax, _corners(ax, room), room, gid)
+    out = _bar_patches(ax, style, bx, by, length, h, gid)
     t0.remove()
     t0.set_position((bx, by + h + 1.5 * pp))
     ax.add_artist(t0)   # after the bar: the bar, "0", the end label, in this order
@@ -104,7 +67,87 @@ def scale_bar(ax, style, units: str, power: int, *, target_cm: float = 2.5, gid:
         t1.set_position((bx + length, by + h + 1.5 * pp))
     ax.add_artist(t1)
     out += [t0, t1]
+    pl = placer(ax)
     pl.add_obstacle(box(bx, by, bx + length, by + h))
     pl.add_box(t0)
     pl.add_box(t1)
+    _register(ax, out)
     return out
+
+
+def _corners(ax, room) -> list:
+    """The places tried for the bar's lower left corner: along the bottom, the top, then the sides."""
+    pc = per_cm(ax)
+    x0, y0, x1, y1 = view_box(ax).bounds
+    m = 0.35 * pc
+    lo_x, hi_x = x0 + m, x1 - m - room[0]
+    lo_y, hi_y = y0 + m, y1 - m - room[1]
+    xs = [lo_x, hi_x] + [lo_x + (hi_x - lo_x) * f for f in (0.25, 0.5, 0.75, 0.125, 0.375, 0.625, 0.875)]
+    corners = [(x, y) for y in (lo_y, hi_y) for x in xs]
+    return corners + [(x, lo_y + (hi_y - lo_y) * f) for f in (0.125, 0.25, 0.375, 0.5, 0.625, 0.75, 0.875)
+                      for x in (lo_x, hi_x)]
+
+
+def _others(ax) -> list:
+    """The other panels' scale bars (their bars and labels) in this axes' data coordinates, grown by
+    :data:`BAR_GAP`."""
+    grow = BAR_GAP * per_cm(ax)
+    inv = ax.transData.inverted()
+    out = []
+    for other, bb in getattr(ax.figure, "_velpoly_bars", ()):
+        if other is ax:
+            continue
+        (a, b), (c, d) = inv.transform([[bb.x0, bb.y0], [bb.x1, bb.y1]])
+        out.append(box(min(a, c), min(b, d), max(a, c), max(b, d)).buffer(grow))
+    return out
+
+
+def _bar_corner(ax, corners, room, gid: str):
+    """The first corner whose room (bar, labels) is free of everything drawn and of the other panels' bars;
+    else the one crossing the fewest lines and no label, legend or arrowhead if it can. A step frame: where
+    the finished construction has it."""
+    pc = per_cm(ax)
+    pl = placer(ax)
+    others = _others(ax)
+    geoms = np.array(pl.boxes + pl.hard + others + pl.soft, dtype=object)
+    weights = np.array([10] * (len(pl.boxes) + len(pl.hard)) + [100] * len(others) + [1] * len(pl.soft))
+    pin = pl.pins.get(gid)
+    if pin is not None and pin[0] == "bar":
+        corners = [pin[1]]
+    best = None
+    for c in corners:
+        region = box(c[0] - 0.2 * pc, c[1] - 0.1 * pc, c[0] + room[0], c[1] + room[1] + 0.1 * pc)
+        hits = int(np.dot(shapely.intersects(geoms, region), weights)) if len(geoms) else 0
+        if best is None or hits < best[0]:
+            best = (hits, c)
+        if hits == 0:
+            break
+    pl.placed[gid] = ("bar", (float(best[1][0]), float(best[1][1])))
+    return best[1]
+
+
+def _bar_patches(ax, style, bx: float, by: float, length: float, h: float, gid: str) -> list:
+    """The bar's outline and its black segments (five for a length of 5 x 10^k, else two)."""
+    from matplotlib.patches import Rectangle
+    nseg = 5 if round(length / 10 ** math.floor(math.log10(length))) == 5 else 2
+    bar = Rectangle((bx, by), length, h, facecolor=style.paper, edgecolor=style.ink, lw=style.thin_lw * 1.4,
+                    zorder=6, gid=gid)
+    bar._velpoly_length = length
+    ax.add_patch(bar)
+    out = [bar]
+    seg = length / nseg
+    for i in range(0, nseg, 2):
+        r = Rectangle((bx + i * seg, by), seg, h, facecolor=style.ink, edgecolor=style.ink, lw=0, zorder=6)
+        ax.add_patch(r)
+        out.append(r)
+    return out
+
+
+def _register(ax, artists) -> None:
+    """Keep the bar's extent (display coordinates) on the figure, for the other panels' bars."""
+    from matplotlib.transforms import Bbox
+    from .canvas import renderer_of
+    r = renderer_of(ax.figure)
+    bb = Bbox.union([a.get_window_extent(r) for a in artists])
+    kept = [(other, b) for other, b in getattr(ax.figure, "_velpoly_bars", ()) if other is not ax]
+    ax.figure._velpoly_bars = kept + [(ax, bb)]   # a panel drawn again (a polygon given its legend's strip): once

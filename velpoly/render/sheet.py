@@ -26,7 +26,7 @@ from __future__ import annotations
 
 import io
 import re
-from dataclasses import dataclass
+from dataclasses import dataclass, replace
 from pathlib import Path
 
 from ..errors import InputError
@@ -36,6 +36,7 @@ from .constructions import Constructions, check_sheet as _check_sheet, construct
 from .displacement import draw_mechanism, equivalent_linkage_note, mark_auxiliary, mechanism_bounds
 from .kennedy import draw_kennedy_circle, draw_poles, pole_label
 from .labels import placer
+from .layout import MARGIN, arrange, share_row
 from .options import SHEETS, drawing_options
 from .polygon import draw_polygon, legend_room, polygon_bounds
 from .scalebar import scale_text
@@ -53,27 +54,13 @@ def default_sheet(m) -> str:
     return drawing_options(m).sheet
 
 
-# -- layouts (fractions of the page: left, bottom, width, height) ----------------------------------
-_LAYOUTS = {
-    "velocity": {"mechanism": (0.02, 0.31, 0.47, 0.545), "velocity": (0.51, 0.31, 0.47, 0.545),
-                 "table": (0.05, 0.02, 0.9, 0.23)},
-    "acceleration": {"mechanism": (0.02, 0.31, 0.47, 0.545), "acceleration": (0.51, 0.31, 0.47, 0.545),
-                     "table": (0.05, 0.02, 0.9, 0.23)},
-    # the poles' panel takes the full height left of the Kennedy circle, the table sits beneath the
-    # circle; a table too wide for that column (its type would shrink, or rows be cut) goes to the bottom
-    "poles": {"poles": (0.01, 0.03, 0.65, 0.83), "kennedy": (0.69, 0.5, 0.29, 0.34),
-              "table": (0.68, 0.03, 0.31, 0.42)},
-    "poles-wide-table": {"poles": (0.02, 0.31, 0.62, 0.545), "kennedy": (0.67, 0.36, 0.3, 0.375),
-                         "table": (0.05, 0.02, 0.9, 0.23)},
-    # a wide, flat mechanism (a far pole on the line of frame pivots): the whole width for it, the
-    # Kennedy circle and the table beneath
-    "poles-wide": {"poles": (0.01, 0.4, 0.98, 0.46), "kennedy": (0.02, 0.02, 0.28, 0.33),
-                   "table": (0.33, 0.02, 0.65, 0.33)},
-    # the problem's handout: the space diagram large, the given data beside it
-    "displacement": {"mechanism": (0.02, 0.03, 0.63, 0.83), "table": (0.68, 0.03, 0.3, 0.83)},
-    "full": {"mechanism": (0.01, 0.37, 0.33, 0.485), "velocity": (0.34, 0.37, 0.32, 0.485),
-             "acceleration": (0.67, 0.37, 0.32, 0.485), "table": (0.05, 0.02, 0.9, 0.29)},
-}
+# -- layouts ----------------------------------------------------------------------------------------
+_PANELS = {"velocity": ("mechanism", "velocity"), "acceleration": ("mechanism", "acceleration"),
+           "poles": ("poles", "kennedy"), "full": ("mechanism", "velocity", "acceleration"),
+           "displacement": ("mechanism",)}
+# the problem's handout (fractions of the page: left, bottom, width, height): the space diagram large,
+# the given data beside it
+_LAYOUTS = {"displacement": {"mechanism": (0.02, 0.03, 0.63, 0.83), "table": (0.68, 0.03, 0.3, 0.83)}}
 _CAPTIONS = {"mechanism": "Space diagram", "velocity": "Velocity polygon", "acceleration": "Acceleration polygon",
              "poles": "Instant centres", "kennedy": "Kennedy circle (order of discovery)"}
 
@@ -100,6 +87,7 @@ class Frame:
     acceleration: int | None = None
     poles: int | None = None
     caption: str = ""
+    table: bool = True   # the results table (a step before the last does not give the answers away)
 
 
 def _pole_caption(p) -> str:
@@ -127,7 +115,9 @@ def frames(sheet: str, cons: Constructions, steps: bool) -> list[Frame]:
         out.append(Frame(poles=0, caption="Poles known by inspection: pins, sliders, rolling contacts"))
         for p in found:
             out.append(Frame(poles=p.order, caption=f"Step {p.order}: " + _pole_caption(p)))
-    return out or [Frame()]
+    if not out:
+        return [Frame()]
+    return [replace(f, table=False) for f in out[:-1]] + out[-1:]
 
 
 def fit_width(fig, text, width: float, smallest: float = 0.7) -> None:
@@ -172,36 +162,317 @@ def _step_caption(fig, st, title, caption: str) -> float:
     return bottom / hpx - 0.008
 
 
-def _poles_layout(sol, st, opts, cons: Constructions) -> str:
-    """The poles sheet's layout that draws the mechanism largest (the first of equals, in order:
-    table beside the panel, beneath it, panel across the page)."""
+def _page_cm(st) -> tuple[float, float]:
+    return st.figsize[0] * 2.54, st.figsize[1] * 2.54
+
+
+def _fit(ax, bounds, s: float | None) -> None:
+    """The view of ``bounds`` at scale ``s`` (None: the round scale that fits), centred between the panel's
+    margins (the scale bar's strip at the bottom is the widest)."""
+    s = fit_view(ax, bounds, scale=s, margin=0.1)
+    _, mt, mb = MARGIN
+    y0, y1 = ax.get_ylim()
+    d = (mb - mt) / 2 * s
+    ax.set_ylim(y0 - d, y1 - d)
+
+
+def _bounds(sol, cons: Constructions, name: str):
+    """What panel ``name`` draws, as a box in its own units."""
     from .kennedy import poles_bounds
-    names = ["poles", "poles-wide-table", "poles-wide"]
-    if opts.scale is not None or cons.poles is None:
-        return names[0] if _fits_beside(sol, st, cons) else names[1]
-    x0, y0, x1, y1 = poles_bounds(sol, cons.poles)
-    w_in, h_in = st.figsize
-
-    def scale(name):
-        _, _, w, h = _LAYOUTS[name]["poles"]
-        usable = 0.8     # draw_poles fits with a margin of 0.1 a side
-        need = max((x1 - x0) / (w * w_in * 2.54 * usable), (y1 - y0) / (h * h_in * 2.54 * usable), 1e-300)
-        return nice_scale(need)
-    best = min(names, key=lambda n: (scale(n), names.index(n)))
-    if best == "poles" and not _fits_beside(sol, st, cons):   # measured only when it would win
-        best = min(names[1:], key=lambda n: (scale(n), names.index(n)))
-    return best
+    if name == "mechanism":
+        return _space_bounds(sol, cons)
+    if name == "poles":
+        return poles_bounds(sol, cons.poles)
+    if name == "kennedy":
+        return (-1.3, -1.3, 1.3, 1.3)   # the circle and its links' labels
+    return polygon_bounds(getattr(cons, name))
 
 
-def _fits_beside(sol, st, cons: Constructions) -> bool:
-    """Whether the poles sheet's table fits the column beneath the Kennedy circle at its full type size."""
-    from matplotlib.backends.backend_agg import FigureCanvasAgg
-    from matplotlib.figure import Figure
-    fig = Figure(figsize=st.figsize, dpi=72)
-    FigureCanvasAgg(fig)
-    ax = fig.add_axes(_LAYOUTS["poles"]["table"])
-    art = draw_results_table(sol, ax, sheet="poles", style=st, poleset=cons.poles)
-    return art.size >= st.small_size - 1e-9 and art.shown == len(art.table.rows)
+def _user_scale(opts, name: str):
+    return {"mechanism": opts.scale, "poles": opts.scale, "velocity": opts.velocity_scale,
+            "acceleration": opts.acceleration_scale}.get(name)
+
+
+@dataclass
+class _Plan:
+    """Where a sheet's panels go (rects in fractions of the page), their scales, and the table's axes."""
+
+    rects: dict
+    scales: dict
+    table: object = None
+
+
+class _Planner:
+    """Lays out one sheet's panels and table on its page (see :mod:`velpoly.render.layout`)."""
+
+    def __init__(self, fig, sol, st, opts, cons, sheet, top: float, table: bool, lines: int = 1):
+        self.lines = lines        # of the panels' captions
+        self.fig, self.sol, self.st, self.opts, self.cons, self.sheet = fig, sol, st, opts, cons, sheet
+        self.W, self.H = _page_cm(st)
+        self.top = top            # cm from the page's bottom: where the panels' captions end
+        self.want_table = table
+        self.width = self.W - 2 * EDGE
+
+    def rect(self, x: float, y: float, w: float, h: float) -> tuple:
+        return (x / self.W, y / self.H, w / self.W, h / self.H)
+
+    def spans(self, names):
+        out = []
+        for name in names:
+            x0, y0, x1, y1 = _bounds(self.sol, self.cons, name)
+            out.append((x1 - x0, y1 - y0))
+        return out
+
+    def least(self, names):
+        """Each panel's caption width (cm) with a scale as long as most: a panel no narrower than it."""
+        from .canvas import renderer_of
+        r = renderer_of(self.fig)
+        out = []
+        for name in names:
+            t = self.fig.text(0, 0, _CAPTIONS[name] + ("   (1 cm = 20000 mm/s²)" if name != "kennedy" else ""),
+                              fontsize=self.st.font_size, style="italic")
+            out.append(t.get_window_extent(r).width / self.fig.dpi * 2.54 + 0.2)
+            t.remove()
+        return out
+
+    def draw_table(self, x: float, width: float, room: float):
+        """The table drawn in an axes ``width`` x ``room`` cm at ``x``, the page's bottom; (axes, cm used,
+        whether it shows every row at its full type size)."""
+        ax = self.fig.add_axes(self.rect(x, EDGE, width, room), label="table")
+        art = _draw_table(self.sol, ax, self.sheet, self.st, self.cons)
+        if art.whole * room < art.used * room - 0.3:   # in fewer rows of more blocks: less of the page's height
+            self.fig.delaxes(ax)
+            room = art.whole * room
+            ax = self.fig.add_axes(self.rect(x, EDGE, width, room), label="table")
+            art = _draw_table(self.sol, ax, self.sheet, self.st, self.cons)
+        whole = art.size >= self.st.small_size - 1e-9 and art.shown == len(art.table.rows)
+        return ax, art.used * room, whole
+
+    def row(self, names, x: float, width: float, height: float, bottom: float, least=None):
+        """Panels ``names`` side by side in the band ``width`` x ``height`` cm at (x, bottom)."""
+        users = [_user_scale(self.opts, n) for n in names]
+        row = share_row(self.spans(names), width, height, GAP, users, least=least)
+        rects, xs = {}, x
+        for name, w in zip(names, row.widths):
+            rects[name] = self.rect(xs, bottom, w, height)
+            xs += w + GAP
+        return rects, dict(zip(names, row.scales))
+
+    def over_table(self, names) -> _Plan:
+        """The table across the page's bottom in as few lines as its blocks take (at most
+        :data:`TABLE_MOST` of the page), the panels above it in one row or two (:func:`arrange`)."""
+        spans = dict(zip(names, self.spans(names)))
+        least = dict(zip(names, self.least(names)))
+        users = {n: _user_scale(self.opts, n) for n in names}
+        floor, tax = EDGE, None
+        if self.want_table:
+            tax, used, _ = self.draw_table(EDGE, self.width, TABLE_MOST * self.H)
+            _move(tax, self, EDGE + used)
+            floor = EDGE + used + TABLE_GAP
+        bands = arrange(spans, names, self.width, self.top, floor, GAP, _caption_cm(self.st, self.lines), users,
+                        least, {"mechanism": LABEL_ROOM * self.st.font_size / 10})
+        rects, scales = {}, {}
+        for band in bands:
+            x = EDGE
+            for name, w, s in zip(band.names, band.row.widths, band.row.scales):
+                rects[name] = self.rect(x, band.bottom, w, band.height)
+                scales[name] = s
+                x += w + GAP
+        return _Plan(rects, scales, tax)
+
+    def poles(self) -> _Plan:
+        """The poles sheet: the mechanism at the full height with the Kennedy circle and the table in a
+        column beside it, or across the page with them beneath it (whichever draws it larger), or, where
+        the table is too wide for the column, the panels side by side over the table."""
+        if not self.want_table:
+            return self.over_table(["poles", "kennedy"])
+        total = self.top - EDGE
+        (pw, ph), = self.spans(["poles"])
+        user = _user_scale(self.opts, "poles")
+        mx, mt, mb = MARGIN
+        column = min(max(self.width - GAP - pw / ph * (total - mt - mb) - 2 * mx, 0.3 * self.W), 0.42 * self.W)
+        beside = share_row([(pw, ph)], self.width - GAP - column, total, 0.0, [user])
+        wide = share_row([(pw, ph)], self.width, total - TABLE_GAP - TABLE_LEAST * self.H, 0.0, [user])
+        if beside.scales[0] > wide.scales[0]:
+            return self._poles_across(wide)
+        return self._poles_beside(column, beside) or self._poles_across(wide)
+
+    def _poles_beside(self, column: float, row) -> _Plan | None:
+        total = self.top - EDGE
+        side = min(column, 0.45 * total, KENNEDY_MOST)
+        x = EDGE + self.width - column
+        tax, used, whole = self.draw_table(x, column, total - side - TABLE_GAP)
+        if not whole:
+            self.fig.delaxes(tax)
+            return None
+        _move(tax, self, self.top - side - TABLE_GAP)
+        rects = {"poles": self.rect(EDGE, EDGE, row.widths[0], total),
+                 "kennedy": self.rect(x + (column - side) / 2, self.top - side, side, side)}
+        return _Plan(rects, {"poles": row.scales[0]}, tax)
+
+    def _poles_across(self, row) -> _Plan:
+        total = self.top - EDGE
+        room = total - TABLE_GAP - row.height
+        side = min(room, KENNEDY_MOST)
+        tax, used, _ = self.draw_table(EDGE + side + GAP, self.width - side - GAP, room)
+        _move(tax, self, EDGE + room)
+        rects = {"poles": self.rect(EDGE, self.top - row.height, self.width, row.height),
+                 "kennedy": self.rect(EDGE, EDGE + room - side, side, side)}
+        return _Plan(rects, {"poles": row.scales[0]}, tax)
+
+
+EDGE = 0.3          # cm of paper kept free along the page's sides and bottom
+GAP = 0.35          # cm between panels side by side
+TABLE_GAP = 0.5     # cm between the panels and the table beneath them
+TABLE_LEAST = 0.22  # of the page's height: the table's room at least, before the panels take theirs
+TABLE_MOST = 0.4   # of the page's height: the table's room at most
+LABEL_ROOM = 2.0    # cm beside a mechanism for its labels (at 10 pt type)
+KENNEDY_MOST = 8.0  # cm: the Kennedy circle's panel at most
+
+
+def _move(tax, planner, top: float) -> None:
+    """Move the table's axes so that its top stands ``top`` cm from the page's bottom (its texts and rules
+    are in axes coordinates: they move with it)."""
+    x, _, w, h = tax.get_position().bounds
+    tax.set_position((x, top / planner.H - h, w, h))
+
+
+def _draw_table(sol, ax, sheet: str, st, cons: Constructions):
+    if sheet == "displacement":
+        art = draw_results_table(sol, ax, style=st, table=given_table(sol))
+        for t in art.get("title"):
+            t.set_gid("data-table")
+        return art
+    shows = {"velocity": ("velocity",), "acceleration": ("acceleration",), "poles": (),
+             "full": ("velocity", "acceleration")}[sheet]
+    return draw_results_table(sol, ax, sheet=sheet, style=st,
+                              velocity=cons.velocity if "velocity" in shows else None,
+                              acceleration=cons.acceleration if "acceleration" in shows else None,
+                              poleset=cons.poles)
+
+
+def _panel_names(sheet: str, cons: Constructions) -> list[str]:
+    if sheet == "full" and cons.acceleration is None:
+        return list(_PANELS["velocity"])
+    return list(_PANELS[sheet])
+
+
+def _plan(fig, sol, st, opts, cons, sheet: str, top: float, table: bool) -> _Plan:
+    """Where the sheet's panels and table go (the table is drawn: its height decides the panels')."""
+    if sheet == "displacement":
+        H = _page_cm(st)[1]
+        rects = {k: (l, b, w, min(h, top / H - b)) for k, (l, b, w, h) in _LAYOUTS["displacement"].items()}
+        tax = fig.add_axes(rects.pop("table"), label="table")
+        _draw_table(sol, tax, sheet, st, cons)
+        return _Plan(rects, {"mechanism": opts.scale}, tax)
+    two = bool(equivalent_linkage_note(sol.mechanism)) and sheet != "poles"
+    planner = _Planner(fig, sol, st, opts, cons, sheet, top, table and opts.table, 2 if two else 1)
+    if sheet == "poles":
+        return planner.poles()
+    return planner.over_table(_panel_names(sheet, cons))
+
+
+def _caption_cm(st, lines: int) -> float:
+    """The height (cm) a panel's caption of ``lines`` lines takes over it."""
+    return lines * 1.3 * st.font_size / 72 * 2.54 + 0.15
+
+
+def _top(fig, st, title, caption: str, two_lines: bool) -> float:
+    """Where the panels end at the top (cm from the page's bottom): under the title (and the frame's
+    caption), room left for the panels' captions."""
+    from .canvas import renderer_of
+    H = _page_cm(st)[1]
+    if caption:
+        limit = _step_caption(fig, st, title, caption)
+    else:
+        limit = title.get_window_extent(renderer_of(fig)).y0 / (fig.get_figheight() * fig.dpi) - 0.01
+    return limit * H - _caption_cm(st, 2 if two_lines else 1)
+
+
+def _draw_mechanism_panel(sol, ax, st, opts, cons, sheet, scale):
+    _fit(ax, _space_bounds(sol, cons), scale)
+    ax.set_axis_off()
+    draw_mechanism(sol, ax, style=st, options=opts)
+    for poly in (cons.velocity, cons.acceleration):
+        if poly is not None and (sheet != "full" or poly is cons.velocity):
+            mark_auxiliary(sol, ax, poly, style=st)
+    return scale_text(view_scale(ax), sol.mechanism.units, 0)
+
+
+def _draw_polygon_panel(sol, ax, st, opts, poly, upto, scale, power: int, pinned):
+    """A polygon in its panel at ``scale`` (a step frame: the finished construction's view, ``pinned``);
+    a legend that finds no free place gets a strip kept for it, else a round scale smaller."""
+    m = sol.mechanism
+    user = opts.velocity_scale if power == 1 else opts.acceleration_scale
+    _fit(ax, polygon_bounds(poly), scale if pinned is None else pinned[1])
+    s = view_scale(ax)
+    if pinned is not None:   # the finished construction's view (it may leave a strip for the legend)
+        ax.set_xlim(*pinned[2])
+        ax.set_ylim(*pinned[3])
+    ax.set_axis_off()
+    art = draw_polygon(poly, ax, mechanism=m, style=st, options=opts, upto=upto)
+    for attempt in range(3 if user is None and pinned is None else 0):
+        leg = art.get("legend")
+        if not leg or getattr(leg[0], "_velpoly_hits", 0) == 0:
+            break
+        bounds, room = polygon_bounds(poly), None
+        if attempt == 0:
+            bounds, room = legend_room(ax, bounds, leg[0]._velpoly_paper, 0.08, label=st.font_size)
+        pos = ax.get_position(original=True)
+        ax.cla()   # (its limits then square: the box must not shrink to them, as an equal aspect would)
+        ax.set_aspect("auto")
+        ax.set_position(pos)
+        del ax._velpoly_placer
+        s = fit_view(ax, bounds, scale=room if room is not None else nice_scale(s * 1.001), margin=0.08)
+        ax.set_axis_off()
+        art = draw_polygon(poly, ax, mechanism=m, style=st, options=opts, upto=upto)
+    placer(ax).placed["_scale"] = ("scale", s, tuple(ax.get_xlim()), tuple(ax.get_ylim()))
+    return scale_text(s, m.units, power)
+
+
+def _draw_panels(sol, axes, st, opts, cons, sheet, frame, plan, pins) -> dict:
+    """Draw every panel; return each one's scale text (for its caption)."""
+    captions = {}
+    if "mechanism" in axes:
+        captions["mechanism"] = _draw_mechanism_panel(sol, axes["mechanism"], st, opts, cons, sheet,
+                                                      plan.scales.get("mechanism"))
+    if "poles" in axes:
+        ax = axes["poles"]
+        from .kennedy import poles_bounds
+        _fit(ax, poles_bounds(sol, cons.poles), plan.scales["poles"])
+        ax.set_axis_off()
+        draw_poles(sol, ax, style=st, options=opts, poleset=cons.poles, upto=frame.poles)
+        captions["poles"] = scale_text(view_scale(ax), sol.mechanism.units, 0)
+    if "kennedy" in axes:
+        draw_kennedy_circle(sol, axes["kennedy"], style=st, options=opts, poleset=cons.poles, upto=frame.poles)
+    for kind, poly, upto, power in (("velocity", cons.velocity, frame.velocity, 1),
+                                    ("acceleration", cons.acceleration, frame.acceleration, 2)):
+        if kind in axes and poly is not None:
+            captions[kind] = _draw_polygon_panel(sol, axes[kind], st, opts, poly, upto, plan.scales[kind], power,
+                                                 pins.get(kind, {}).get("_scale"))
+    return captions
+
+
+def _draw_captions(fig, st, m, axes, captions) -> None:
+    """Each panel's caption over it with its scale, all in one size (that of the one that shrank most)."""
+    caps = []
+    for name, ax in axes.items():
+        pos = ax.get_position()
+        text = _CAPTIONS[name] + (f"   ({captions[name]})" if name in captions else "")
+        if name == "mechanism" and equivalent_linkage_note(m):   # a second line: the dashed linkage
+            text += "\n" + equivalent_linkage_note(m)
+        cap = fig.text(pos.x0 + pos.width / 2, pos.y1 + 0.004, text, ha="center", va="bottom",
+                       fontsize=st.font_size, style="italic", gid=f"caption-{name}")
+        fit_width(fig, cap, pos.width + 0.008)   # within its column: clear of its neighbours and the page's edge
+        caps.append(cap)
+    size = min((c.get_fontsize() for c in caps), default=st.font_size)
+    from .canvas import renderer_of
+    r, wpx = renderer_of(fig), fig.get_figwidth() * fig.dpi
+    for cap in caps:   # the sheet's captions in one size; one wider than its panel kept on the page
+        cap.set_fontsize(size)
+        bb = cap.get_window_extent(r)
+        shift = max(0.004 * wpx - bb.x0, 0.0) + min(0.996 * wpx - bb.x1, 0.0)
+        cap.set_x(cap.get_position()[0] + shift / wpx)
 
 
 def render_sheet(sol, sheet: str = "full", style="textbook", *, cons: Constructions | None = None,
@@ -212,7 +483,9 @@ def render_sheet(sol, sheet: str = "full", style="textbook", *, cons: Constructi
     (:func:`draw_to_file` does). ``pins``: the ``_velpoly_pins`` of the
     finished construction's figure (every figure has them): a step frame
     then has its labels, scale bars, legend and scales where the finished
-    construction has them, so that nothing jumps from frame to frame.
+    construction has them, so that nothing jumps from frame to frame. The
+    panels are laid out to fill the page (:mod:`velpoly.render.layout`); a
+    frame without the table (a step before the last) is laid out as if it had it.
     """
     from matplotlib.backends.backend_agg import FigureCanvasAgg
     from matplotlib.figure import Figure
@@ -222,100 +495,20 @@ def render_sheet(sol, sheet: str = "full", style="textbook", *, cons: Constructi
     opts = drawing_options(m)
     cons = cons if cons is not None else constructions(sol, sheet)
     frame = frame or Frame()
-    layout = dict(_LAYOUTS[sheet])
-    if sheet == "poles" and opts.table:
-        layout = dict(_LAYOUTS[_poles_layout(sol, st, opts, cons)])
-    if sheet == "full" and cons.acceleration is None:
-        layout = dict(_LAYOUTS["velocity"])
-    if not opts.table and sheet != "displacement":   # the handout's table is the problem's data
-        layout.pop("table")
-        for k, (l, b, w, h) in layout.items():
-            layout[k] = (l, b - 0.24 if b >= 0.3 else b, w, h + 0.24) if b >= 0.3 else (l, b, w, h)
     fig = Figure(figsize=st.figsize, dpi=72)   # text is measured at the dpi vector output is written at
     FigureCanvasAgg(fig)
     title = _page(fig, st, m, sol)
-    if frame.caption:
-        # the frame's caption takes its own room under the title: the panels beneath it, their captions
-        # clear of it (the panels of every frame alike, so that frames do not jump)
-        limit = _step_caption(fig, st, title, frame.caption) - 1.35 * st.font_size / (72 * st.figsize[1]) - 0.004
-        for k, (l, b, w, h) in layout.items():
-            if k != "table" and b + h > limit:
-                layout[k] = (l, b, w, limit - b)
-    axes = {name: fig.add_axes(rect, label=name) for name, rect in layout.items()}
+    two = bool(equivalent_linkage_note(m)) and sheet != "poles"
+    plan = _plan(fig, sol, st, opts, cons, sheet, _top(fig, st, title, frame.caption, two), True)
+    axes = {name: fig.add_axes(rect, label=name) for name, rect in plan.rects.items()}
     pins = pins or {}
     for name, ax in axes.items():
         placer(ax).pins = pins.get(name, {})
-    captions = {}
-    if "mechanism" in axes:
-        ax = axes["mechanism"]
-        s = fit_view(ax, _space_bounds(sol, cons), scale=opts.scale, margin=0.1)
-        ax.set_axis_off()
-        draw_mechanism(sol, ax, style=st, options=opts)
-        for poly in (cons.velocity, cons.acceleration):
-            if poly is not None and (sheet != "full" or poly is cons.velocity):
-                mark_auxiliary(sol, ax, poly, style=st)
-        captions["mechanism"] = scale_text(s, m.units, 0)
-    if "poles" in axes:
-        ax = axes["poles"]
-        draw_poles(sol, ax, style=st, options=opts, poleset=cons.poles, upto=frame.poles)
-        captions["poles"] = scale_text(view_scale(ax), m.units, 0)
-    if "kennedy" in axes:
-        draw_kennedy_circle(sol, axes["kennedy"], style=st, options=opts, poleset=cons.poles, upto=frame.poles)
-    for kind, poly, upto, power in (("velocity", cons.velocity, frame.velocity, 1),
-                                    ("acceleration", cons.acceleration, frame.acceleration, 2)):
-        if kind not in axes or poly is None:
-            continue
-        ax = axes[kind]
-        user = opts.velocity_scale if kind == "velocity" else opts.acceleration_scale
-        pinned = pins.get(kind, {}).get("_scale")
-        s = fit_view(ax, polygon_bounds(poly), scale=user if pinned is None else pinned[1], margin=0.08)
-        if pinned is not None:   # the finished construction's view (it may leave a strip for the legend)
-            ax.set_xlim(*pinned[2])
-            ax.set_ylim(*pinned[3])
-        ax.set_axis_off()
-        art = draw_polygon(poly, ax, mechanism=m, style=st, options=opts, upto=upto)
-        for attempt in range(3 if user is None and pinned is None else 0):
-            # a legend that finds no free place: the polygon fitted beside a strip kept for it (along the
-            # top or the right, whichever draws the polygon larger); else a round scale smaller
-            leg = art.get("legend")
-            if not leg or getattr(leg[0], "_velpoly_hits", 0) == 0:
-                break
-            bounds, room = polygon_bounds(poly), None
-            if attempt == 0:
-                bounds, room = legend_room(ax, bounds, leg[0]._velpoly_paper, 0.08, label=st.font_size)
-            ax.cla()
-            del ax._velpoly_placer
-            s = fit_view(ax, bounds, scale=room if room is not None else nice_scale(s * 1.001), margin=0.08)
-            ax.set_axis_off()
-            art = draw_polygon(poly, ax, mechanism=m, style=st, options=opts, upto=upto)
-        placer(ax).placed["_scale"] = ("scale", s, tuple(ax.get_xlim()), tuple(ax.get_ylim()))
-        captions[kind] = scale_text(s, m.units, power)
-    caps = []
-    for name, ax in axes.items():
-        if name == "table":
-            continue
-        pos = ax.get_position()
-        text = _CAPTIONS[name] + (f"   ({captions[name]})" if name in captions else "")
-        if name == "mechanism" and equivalent_linkage_note(m):   # a second line: the dashed linkage
-            text += "\n" + equivalent_linkage_note(m)
-        cap = fig.text(pos.x0 + pos.width / 2, pos.y1 + 0.004, text, ha="center", va="bottom",
-                       fontsize=st.font_size, style="italic", gid=f"caption-{name}")
-        fit_width(fig, cap, pos.width + 0.008)   # within its column: clear of its neighbours and the page's edge
-        caps.append(cap)
-    for cap in caps:   # the captions of a sheet in one size, that of the one that had to shrink most
-        cap.set_fontsize(min(c.get_fontsize() for c in caps))
+    captions = _draw_panels(sol, axes, st, opts, cons, sheet, frame, plan, pins)
+    _draw_captions(fig, st, m, axes, captions)
     fig._velpoly_pins = {name: dict(placer(ax).placed) for name, ax in axes.items()}
-    if "table" in axes and sheet == "displacement":
-        art = draw_results_table(sol, axes["table"], style=st, table=given_table(sol))
-        for t in art.get("title"):
-            t.set_gid("data-table")
-    elif "table" in axes:
-        shows = {"velocity": ("velocity",), "acceleration": ("acceleration",), "poles": (),
-                 "full": ("velocity", "acceleration")}[sheet]
-        draw_results_table(sol, axes["table"], sheet=sheet, style=st,
-                           velocity=cons.velocity if "velocity" in shows else None,
-                           acceleration=cons.acceleration if "acceleration" in shows else None,
-                           poleset=cons.poles)
+    if plan.table is not None and not frame.table:   # a step before the last: the answers not yet given
+        fig.delaxes(plan.table)
     return fig
 
 

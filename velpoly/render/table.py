@@ -508,13 +508,18 @@ def _layout(rows, room, width_pt, need, bgap):
     return blocks, per, (rows if len(rows) <= per * blocks else rows[:per * blocks - 1])
 
 
+def _foot_height(shown, foot, size, foot_size) -> float:
+    """The height (points) of the footnotes of the rows ``shown``, with the gap above them."""
+    marks = {(row[-1].split() or [""])[-1] for row in shown}
+    n = sum(len(lines) for mark, lines in foot.items() if mark in marks)
+    return 0.5 * size + n * 1.3 * foot_size if n else 0.0
+
+
 def _room(rows, top, line_h, foot, size, foot_size, width_pt, need, bgap):
     """The most rows a block has room for beside the footnotes of the rows it then shows (the rows a note
     explains come first, so the footnotes kept are theirs), and the layout it gives."""
     def foot_height(shown):
-        marks = {(row[-1].split() or [""])[-1] for row in shown}
-        n = sum(len(lines) for mark, lines in foot.items() if mark in marks)
-        return 0.5 * size + n * 1.3 * foot_size if n else 0.0
+        return _foot_height(shown, foot, size, foot_size)
     room = max(int((top - 1.9 * line_h) // line_h), 1)
     while room > 1 and (1.9 + room) * line_h + foot_height(_layout(rows, room, width_pt, need, bgap)[2]) > top:
         room -= 1
@@ -534,8 +539,9 @@ def _cell(art, ax, widths: _Widths, box, x, y, text, size, style=None) -> None:
         x += w * size / widths.st.small_size
 
 
-def _footnotes(art, ax, t: Table, shown, foot, bottom, size, foot_size, box) -> None:
-    """The footnotes of the rows shown beneath the table (``art.notes``)."""
+def _footnotes(art, ax, t: Table, shown, foot, bottom, size, foot_size, box) -> float:
+    """The footnotes of the rows shown beneath the table (``art.notes``); return the last one's baseline
+    (points; the table's lowest rule less a gap where there is none)."""
     marks = {row[-1].split()[-1] for row in shown if row[-1]}
     art.notes = [n for n in t.notes if n[0] in marks]   # the footnotes of the rows shown
     y = bottom - 0.5 * size
@@ -544,6 +550,7 @@ def _footnotes(art, ax, t: Table, shown, foot, bottom, size, foot_size, box) -> 
             y -= 1.3 * foot_size
             art.add("footnotes", ax.text(0, y / box[1], line, fontsize=foot_size, va="baseline", ha="left",
                                          gid=f"footnote-{k}" if i == 0 else None))
+    return y
 
 
 def _draw_blocks(art, st, widths_of: _Widths, layout, size, top, spacing, box) -> float:
@@ -618,7 +625,9 @@ def draw_results_table(sol, ax=None, *, sheet: str = "full", style="textbook", v
         (the ``[reference]`` notes of the marked rows shown, ``artists.notes``);
         ``artists.table`` is the Table drawn, ``artists.shown`` the number of
         its rows drawn, ``artists.size`` its type size (points, after any shrinking),
-        ``artists.blocks`` each block's column names.
+        ``artists.blocks`` each block's column names, ``artists.used`` the share of the axes'
+        height (from its top) the table takes, ``artists.whole`` the share it would take to show
+        every row (in as many blocks as the width takes).
     """
     ax = get_ax(ax)
     st = get_style(style)
@@ -645,6 +654,9 @@ def draw_results_table(sol, ax=None, *, sheet: str = "full", style="textbook", v
     lines = wrap_title(t.title)
     art.add("title", title)
     top = height_pt - 1.6 * size * 1.1 - (lines - 1) * 1.4 * size * 1.1
+    # the first rule under the title's last line as drawn (its descenders), never through it
+    drawn = (title.get_window_extent(r).y0 - ax.get_window_extent(r).y0) * 72 / fig.dpi
+    top = min(top, drawn - 0.35 * size)
     # the footnotes (the [reference] notes of the marked rows) beneath the table, across its room: their
     # lines are kept free of rows
     foot_size = 0.9 * size
@@ -652,14 +664,19 @@ def draw_results_table(sol, ax=None, *, sheet: str = "full", style="textbook", v
     rows = list(t.rows)
     bgap = 3.0 * size
     blocks, per, shown = _room(rows, top, line_h, foot, size, foot_size, width_pt, need, bgap)
+    # the height that would show every row in as many blocks as the width takes (the sheet's layout asks)
+    most = max(1, min(3, int((width_pt + bgap) // (need + bgap))))
+    art.whole = (height_pt - top + (1.9 + -(-len(rows) // most)) * line_h + _foot_height(rows, foot, size, foot_size)
+                 + 0.9 * size) / height_pt
 
     bottom = _draw_blocks(art, st, widths_of, (rows, shown, blocks, per), size, top, (widths, gap, bgap),
                           (width_pt, height_pt))
-    _footnotes(art, ax, t, shown, foot, bottom, size, foot_size, (width_pt, height_pt))
+    y = _footnotes(art, ax, t, shown, foot, bottom, size, foot_size, (width_pt, height_pt))
     if t.notes and not art.notes:   # the title promises no footnote that the rows shown do not have
         wrap_title(t.title.replace(f"; {NOTED} the book's value is explained in a footnote", ""))
     art.shown = len(shown)
     art.size = size
+    art.used = min(1.0, (height_pt - y + 0.4 * size) / height_pt)   # the share of the axes' height drawn in
     return art
 
 

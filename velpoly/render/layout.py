@@ -1,0 +1,170 @@
+"""Page layouts that use the page: panels sized to what they draw (no matplotlib here, arithmetic only).
+
+A sheet's panels stand side by side in a band, the results table beneath
+them across the page. Each panel gets the share of the band's width that
+its drawing needs at the band's height (a wide mechanism a wide panel, a
+tall polygon a narrow one), every drawing at the same fraction of the band
+first; then each scale is rounded (:func:`~velpoly.render.canvas.nice_scale`)
+and the width the rounding frees goes to the panels that can then be drawn a
+round scale larger. What no drawing needs of the band's height goes to the
+table, so that it shows more rows. Every size is in centimetres of paper.
+"""
+from __future__ import annotations
+
+import math
+from dataclasses import dataclass
+
+from .canvas import nice_scale
+
+__all__ = ["MARGIN", "Row", "share_row", "smaller_scale"]
+
+# paper kept about a drawing inside its panel (cm): each side, top, bottom (the scale bar's strip)
+MARGIN = (0.5, 0.45, 1.05)
+_ROUND = (1.0, 1.5, 2.0, 2.5, 3.0, 4.0, 5.0, 6.0, 8.0)
+
+
+def smaller_scale(s: float) -> float:
+    """The largest round scale below ``s`` (a drawing one step larger on paper).
+
+    >>> smaller_scale(2.0), smaller_scale(1.0), smaller_scale(0.15)
+    (1.5, 0.8, 0.1)
+    """
+    e = math.floor(math.log10(s))
+    cands = [f * 10.0 ** k for k in (e - 1, e) for f in _ROUND]
+    return float(f"{max(c for c in cands if c < s * (1 - 1e-9)):.12g}")
+
+
+@dataclass(frozen=True)
+class Row:
+    """Panels side by side: each one's width (cm, margins included) and scale (units per cm), and the
+    height (cm, margins included) the tallest drawing needs."""
+
+    widths: tuple[float, ...]
+    scales: tuple[float, ...]
+    height: float
+
+
+def _spans(spans):
+    """Each drawing's (width, height), neither of them nothing (a drawing on a line keeps a height)."""
+    out = []
+    for w, h in spans:
+        big = max(w, h, 1e-300)
+        out.append((max(w, 1e-3 * big), max(h, 1e-3 * big)))
+    return out
+
+
+def share_row(spans, width: float, height: float, gap: float, scales=None, margin=MARGIN, least=None,
+              extra=None) -> Row:
+    """Share ``width`` cm between drawings of ``spans`` [(width, height) in their units] side by side in a
+    band ``height`` cm tall, ``gap`` cm apart. ``scales``: a user's scale for a panel (None: chosen);
+    ``least``: the width (cm) a panel needs whatever it draws (its caption's); ``extra``: the width (cm) it
+    needs beside its drawing (a mechanism's labels, the driver's value beside its pivot).
+
+    Every drawing first at the same fraction of the band's height (or of its share of the width), each scale
+    then rounded up; the width freed goes, a round step at a time, to the drawing smallest on paper that can
+    take the next larger size. What is left is shared out evenly."""
+    spans = _spans(spans)
+    n = len(spans)
+    mx, mt, mb = margin
+    inner_h = max(height - mt - mb, 0.5)
+    avail = max(width - gap * (n - 1) - 2 * mx * n, 0.5 * n)
+    scales = list(scales) if scales is not None else [None] * n
+    floor = [max(q - 2 * mx, 0.0) for q in (least or [0.0] * n)]
+    if sum(floor) > avail:   # the captions cannot all have their room: each its share (they are set smaller)
+        floor = [f * avail / sum(floor) for f in floor]
+    add = list(extra or [0.0] * n)
+    ratios = [w / h for w, h in spans]
+    room = max(avail - sum(add), 0.1 * avail)   # for the drawings themselves
+    first = _first(ratios, [max(f - a, 0.0) for f, a in zip(floor, add)], room, inner_h)
+    out = []
+    for (w, h), room, user in zip(spans, first, scales):
+        out.append(float(user) if user is not None else nice_scale(max(w / room, h / inner_h)))
+    need = [max(min(w / s + a, avail), f) for (w, _), s, f, a in zip(spans, out, floor, add)]
+    free = avail - sum(need)
+    grown = True
+    while grown:
+        grown = False
+        order = sorted(range(n), key=lambda i: spans[i][0] * spans[i][1] / out[i] ** 2)
+        for i in order:
+            if scales[i] is not None:
+                continue
+            s = smaller_scale(out[i])
+            w, h = spans[i]
+            more = max(w / s + add[i], floor[i]) - need[i]
+            if h / s <= inner_h * (1 + 1e-9) and more <= free * (1 + 1e-9):
+                free -= more
+                need[i], out[i] = max(w / s + add[i], floor[i]), s
+                grown = True
+                break
+    widths = tuple(w + max(free, 0.0) / n + 2 * mx for w in need)
+    tallest = max(min(h / s, inner_h) for (_, h), s in zip(spans, out))
+    return Row(widths, tuple(out), tallest + mt + mb)
+
+
+def _first(ratios, fixed, room: float, inner_h: float) -> list[float]:
+    """Each drawing's width at the same fraction of the band's height, each at least its ``fixed`` width,
+    all together ``room`` (what is left over shared evenly)."""
+    n = len(ratios)
+    base = [r * min(1.0, room / (sum(ratios) * inner_h)) * inner_h for r in ratios]
+    k = 1.0
+    for _ in range(8):   # shrink the drawings that are above their fixed width until all fit
+        first = [max(k * b, f) for b, f in zip(base, fixed)]
+        over = sum(first) - room
+        free = sum(k * b for b, f in zip(base, fixed) if k * b > f)
+        if over <= 1e-9 or free <= 0:
+            break
+        k *= max(1.0 - over / free, 0.0)
+    if sum(first) > room:   # not even the fixed widths fit: all shrunk alike
+        first = [w * room / sum(first) for w in first]
+    return [w + (room - sum(first)) / n for w in first]
+
+
+def _size(spans, row: Row) -> float:
+    """How much of the page a row's drawings take: the sum of their boxes' areas on paper (cm²)."""
+    return sum(w * h / s ** 2 for (w, h), s in zip(_spans(spans), row.scales))
+
+
+@dataclass(frozen=True)
+class Band:
+    """One row of an arrangement: its panels, their widths and scales, its height and its bottom (cm)."""
+
+    names: tuple[str, ...]
+    row: Row
+    height: float
+    bottom: float
+
+
+def _splits(names):
+    """The panels in one row, or in two (the first ones above): the arrangements tried, in this order."""
+    yield (tuple(names),)
+    for k in range(1, len(names)):
+        yield tuple(names[:k]), tuple(names[k:])
+
+
+def arrange(spans: dict, names, width: float, top: float, bottom: float, gap: float, caption: float,
+            scales: dict, least: dict, extra: dict | None = None) -> list[Band]:
+    """The panels ``names`` in one row or two between ``bottom`` and ``top`` (cm), whichever draws them
+    largest (:func:`_size`: the area they cover; one row unless two cover a tenth more): a wide mechanism
+    across the page above its polygons. ``caption``: the height (cm) of a second row's captions. Each row is as tall
+    as its drawings need; the height left over is shared out between the rows."""
+    best, extra = None, extra or {}
+    for rows in _splits(list(names)):
+        room = top - bottom - caption * (len(rows) - 1)
+        fracs = (1.0,) if len(rows) == 1 else tuple(0.3 + 0.05 * i for i in range(9))
+        for f in fracs:
+            heights = (room,) if len(rows) == 1 else (room * f, room * (1 - f))
+            made = [share_row([spans[n] for n in r], width, h, gap, [scales.get(n) for n in r],
+                              least=[least.get(n, 0.0) for n in r], extra=[extra.get(n, 0.0) for n in r])
+                    for r, h in zip(rows, heights)]
+            score = sum(_size([spans[n] for n in r], m) for r, m in zip(rows, made))
+            score /= 1.0 if len(rows) == 1 else 1.1
+            if best is None or score > best[0] + 1e-9:
+                best = (score, rows, made)
+    _, rows, made = best
+    slack = max(top - bottom - caption * (len(rows) - 1) - sum(m.height for m in made), 0.0) / len(rows)
+    out, y = [], top
+    for r, m in zip(rows, made):
+        h = m.height + slack
+        out.append(Band(r, m, h, y - h))
+        y -= h + caption
+    return out
