@@ -42,7 +42,7 @@ from __future__ import annotations
 import math
 import re
 
-__all__ = ["split_key", "link_sub", "link_of", "place", "key_text", "lower_name", "upper_name", "relative", "quantity_text",
+__all__ = ["split_key", "link_sub", "link_of", "place", "key_text", "point_text", "lower_name", "upper_name", "relative", "quantity_text",
            "math_literal", "literal", "link_math", "name_math", "name_tex", "index_math", "quantity_math", "direction",
            "polar", "unit", "NAME"]
 
@@ -74,6 +74,20 @@ def place(point: str, link: str | None = None, *, lower: bool = False, primes: i
 def key_text(key: str, *, lower: bool = False, primes: int = 0) -> str:
     """A point key as plain text: ``P@2`` -> P₂, ``P@cam`` -> P(cam), ``B`` -> B."""
     return place(*split_key(key), lower=lower, primes=primes)
+
+
+def point_text(point: str, link: str | None = None) -> str:
+    """A point as a step's caption writes it in words: as :func:`place`, and a name's own trailing
+    digits as a subscript too (``O2`` -> O₂; ``B`` of link 4 -> B₄, of link ``cam`` -> B(cam); a name of
+    digits alone stays as it is). ``point_text("P@cam")`` reads a point key the same way.
+
+    >>> point_text("O2"), point_text("B", "4"), point_text("P@cam"), point_text("o2", "3"), point_text("12")
+    ('O₂', 'B₄', 'P(cam)', 'o₂₃', '12')
+    """
+    if link is None:
+        point, link = split_key(point)
+    head = point.rstrip("0123456789")
+    return place(head + point[len(head):].translate(_SUB_DIGITS) if head else point, link)
 
 
 def link_of(sub: str) -> str:

@@ -75,7 +75,7 @@ from .errors import ConstructionError, InputError, SingularPoseError
 from .kinematics import SINGULAR
 from .motion import point_keys
 from .rigid import coriolis as coriolis_term, dot as _dot, normal_acceleration, perp, rate_cross, xy as _xy
-from .names import lower_name, relative
+from .names import lower_name, point_text, relative
 from .names import place as named
 
 __all__ = [
@@ -1411,23 +1411,6 @@ class _Run:
 
 
 # -- the plan's steps, by their textbook names ------------------------------------------------------
-_SUBSCRIPT = str.maketrans("0123456789", "₀₁₂₃₄₅₆₇₈₉")
-
-
-def point_text(point: str, link: str | None = None) -> str:
-    """How a caption writes a point in words (every caption's point and image names come from here):
-    a name's trailing digits as a subscript (``O2`` -> O₂), a link's point at a point of other links
-    with the link (``B`` of link 4 -> B₄; of link ``cam`` -> B(cam)). ``point_text("P@cam")`` reads a
-    point key the same way."""
-    if link is None and "@" in point:
-        point, link = point.split("@", 1)
-    head = point.rstrip("0123456789")
-    text = head + point[len(head):].translate(_SUBSCRIPT) if head else point
-    if link is None:
-        return text
-    return text + (link.translate(_SUBSCRIPT) if link.isdigit() else f"({link})")
-
-
 def _segment(q: str, w: str) -> str:
     """The segment QW in words: O₂A."""
     return point_text(q) + point_text(w)
