@@ -286,33 +286,9 @@ def build_gallery(source=None, out=None, style: str = "textbook", draw=None, log
     files = _gallery_files(source, names)
     pool = None if draw is not None else _pool(len(files), jobs)   # a given draw runs here, in order
     draw = draw or _draw_to_file()
-    written, built, failed, sections = [], [], [], []
+    extra = ""
     try:
-        if pool is not None:   # every example in a worker, drawn into memory; written here, in order
-            results = [pool.submit(_example_in_worker, path, out, style, copy) for path in files]
-        for i, path in enumerate(files):
-            try:
-                if pool is None:
-                    title, text, figs, final = _example(path, out, style, copy, draw)
-                else:
-                    done, line = results[i].result()
-                    if line is not None:
-                        failed.append((path, line))
-                        if log:
-                            log(line)
-                        continue
-                    title, text, figs, final = done
-                    figs = [atomic_write_bytes(f, data) for f, data in figs]
-                written += figs
-                sections.append((title, text))
-                built.append(final)
-            except Exception as e:  # one example's failure must not stop the others
-                raise_if_interrupted()   # unless it is Ctrl-C's aftermath: then nothing more is built
-                line = _error_line(e, path)
-                failed.append((path, line))
-                if log:
-                    log(line)
-        extra = ""
+        written, built, failed, sections = _build_examples(files, pool, out, style, copy, draw, log)
         if animations:   # one animation a mechanism family (velpoly.render.animate.gallery_animations)
             from .render.animate import gallery_animations
             run = None if pool is None else (lambda todo: _animations_in(pool, todo))
@@ -328,6 +304,45 @@ def build_gallery(source=None, out=None, style: str = "textbook", draw=None, log
     readme = _readme(sections, failed, source, out, extra)
     written.append(atomic_write_text(out / "README.md", readme))
     return GalleryResult(tuple(written), tuple(built), tuple(failed))
+
+
+def _build_examples(files, pool, out: Path, style: str, copy: bool, draw, log) -> tuple[list, list, list, list]:
+    """Every example of ``files`` built, in order: (figures written, final files built, failed as
+    (file, error line), README sections as (title, text)). With a ``pool`` each is drawn in a worker
+    and its figures written here; else ``draw`` draws it here. A failing example is logged and the
+    others are built."""
+    written, built, failed, sections = [], [], [], []
+    results = [None] * len(files) if pool is None else [   # every example in a worker, into memory
+        pool.submit(_example_in_worker, path, out, style, copy) for path in files]
+    for path, result in zip(files, results):
+        try:
+            done, line = _example_result(path, result, out, style, copy, draw)
+        except Exception as e:  # one example's failure must not stop the others
+            raise_if_interrupted()   # unless it is Ctrl-C's aftermath: then nothing more is built
+            done, line = None, _error_line(e, path)
+        if line is not None:
+            failed.append((path, line))
+            if log:
+                log(line)
+            continue
+        title, text, figs, final = done
+        written += figs
+        sections.append((title, text))
+        built.append(final)
+    return written, built, failed, sections
+
+
+def _example_result(path: Path, result, out: Path, style: str, copy: bool, draw) -> tuple:
+    """One example built: ((title, text, figures written, final file), None), or (None, the error
+    line its worker sent). ``result`` is its worker's future (its figures are written here, in
+    order); None: ``draw`` draws it in this process."""
+    if result is None:
+        return _example(path, out, style, copy, draw), None
+    done, line = result.result()
+    if line is not None:
+        return None, line
+    title, text, figs, final = done
+    return (title, text, [atomic_write_bytes(f, data) for f, data in figs], final), None
 
 
 def _gallery_files(source: Path, names=None) -> list[Path]:
