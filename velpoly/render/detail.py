@@ -247,7 +247,6 @@ def draw_detail(d) -> Detail | None:
     """Draw the detail of the polygon drawing ``d`` (:class:`velpoly.render.polygon._PolygonDrawing`) if the
     rule calls for one; return it (or None). Called before the panel's legend and labels, which keep clear
     of it; the panel's view may move (not its scale) to make room for it."""
-    from .polygon import _PolygonDrawing
     pl, pc, ax = d.pl, d.pc, d.ax
     c = crowd(d.polygon, pc, d.tol)
     if c is None:
@@ -273,7 +272,7 @@ def draw_detail(d) -> Detail | None:
     ipl = placer(inset)
     pin = pl.pins.get("detail")
     ipl.pins = pin[3] if pin is not None else {}
-    inner = _PolygonDrawing(d.polygon, inset, d.st, d.opts, d.m, d.upto)
+    inner = type(d)(d.polygon, inset, d.st, d.opts, d.m, d.upto)   # the same drawing in the inset
     inner.shade_images()
     inner.construction_lines()
     inner.vectors()
