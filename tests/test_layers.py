@@ -100,14 +100,18 @@ def test_no_import_cycle_not_even_inside_functions():
     assert not found, "import cycles: " + "; ".join(" <-> ".join(c) for c in found)
 
 
-def test_the_cycle_finder_finds_a_cycle_through_a_function_level_import(tmp_path):
+def package(tmp_path: Path, **files: str) -> Path:
+    """A package ``pkg`` under ``tmp_path`` of the modules ``files`` (name -> source), for the rules' own tests."""
     pkg = tmp_path / "pkg"
     pkg.mkdir()
-    (pkg / "__init__.py").write_text("")
-    (pkg / "a.py").write_text("from .b import f\n")
-    (pkg / "b.py").write_text("def f():\n    from . import c\n")
-    (pkg / "c.py").write_text("import pkg.a\n")
-    (pkg / "d.py").write_text("from .a import f\n")
+    for name, text in {"__init__": "", **files}.items():
+        (pkg / f"{name}.py").write_text(text)
+    return pkg
+
+
+def test_the_cycle_finder_finds_a_cycle_through_a_function_level_import(tmp_path):
+    pkg = package(tmp_path, a="from .b import f\n", b="def f():\n    from . import c\n", c="import pkg.a\n",
+                  d="from .a import f\n")
     edges, _ = import_graph(pkg)
     assert cycles(edges) == [["pkg.a", "pkg.b", "pkg.c"]]
 
@@ -253,11 +257,8 @@ def test_no_module_uses_another_modules_private_names():
 
 
 def test_the_private_name_rule_sees_both_forms(tmp_path):
-    pkg = tmp_path / "pkg"
-    pkg.mkdir()
-    (pkg / "__init__.py").write_text("")
-    (pkg / "a.py").write_text("def _f():\n    pass\n\n\ndef g():\n    _f()\n")
-    (pkg / "b.py").write_text("from .a import _f\nfrom . import a\nimport pkg.a as c\na.g()\nc.g()\nx = a.__name__\n")
+    pkg = package(tmp_path, a="def _f():\n    pass\n\n\ndef g():\n    _f()\n",
+                  b="from .a import _f\nfrom . import a\nimport pkg.a as c\na.g()\nc.g()\nx = a.__name__\n")
     assert foreign_private_names(pkg) == {("pkg.b", "pkg.a._f")}
     (pkg / "b.py").write_text("from . import a\nimport pkg.a as c\nc._f()\n")
     assert foreign_private_names(pkg) == {("pkg.b", "pkg.a._f")}
@@ -299,11 +300,8 @@ def test_no_function_over_60_lines_unless_its_docstring_says_why():
 
 
 def test_the_length_rule_counts_lines_and_reads_the_why(tmp_path):
-    pkg = tmp_path / "pkg"
-    pkg.mkdir()
-    body = "".join(f"    x{i} = {i}\n" for i in range(60))
-    (pkg / "__init__.py").write_text("")
-    (pkg / "a.py").write_text(
-        f"def f():\n{body}\n\ndef g():\n{body[:-11]}\n\nclass C:\n    def h(self):\n{body.replace('    ', '        ')}"
-        f"\n\ndef k():\n    'One sequence. Long because it is one.'\n{body}")
+    body = "".join(f"    x{i} = {i}\n" for i in range(60))   # with its def, a function of 61 lines
+    pkg = package(tmp_path, a=(
+        f"def f():\n{body}\n\ndef g():\n{body[:body.rindex('    x')]}\n\nclass C:\n    def h(self):\n{body.replace('    ', '        ')}"
+        f"\n\ndef k():\n    'One sequence. Long because it is one.'\n{body}"))
     assert long_functions(pkg) == {"pkg.a.f": 61, "pkg.a.C.h": 61}
