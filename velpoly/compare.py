@@ -18,10 +18,9 @@ from dataclasses import dataclass
 import numpy as np
 
 from .errors import InputError
-from .names import direction
 from .reference import Quantity, compare, evaluate, parse_key
 from .rigid import point_acceleration, point_velocity
-from .tables import Table, fmt, magnitude_direction
+from .tables import Table, coordinates, fmt, magnitude_angle, magnitude_direction
 
 __all__ = ["Graphical", "Comparison", "comparison", "HEADER", "Value", "polygon_values"]
 
@@ -124,9 +123,9 @@ def _show(value, kind: str) -> str:
     if value is None:
         return "-"
     if kind == "P":
-        return f"({fmt(value[0])}, {fmt(value[1])})"
+        return coordinates(value)
     if isinstance(value, tuple):
-        return f"{fmt(value[0])} ∠ {direction(value[1], 3)}°"
+        return magnitude_angle(value[0], value[1])
     return fmt(value)
 
 

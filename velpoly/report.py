@@ -18,7 +18,7 @@ import numpy as np
 from .compare import polygon_values
 from .driver import driver_label
 from .names import direction, key_text, place, relative
-from .tables import Table, fmt, magnitude_direction, polar, render_table   # re-exported: the tables' primitives
+from .tables import Table, coordinates, fmt, magnitude_angle, magnitude_direction, polar, render_table   # re-exported: the tables' primitives
 from .reference import at_file_pose, compare, file_pose_angle
 
 __all__ = ["Table", "render_table", "solution_tables", "solution_report", "fmt", "polar", "magnitude_direction", "poles_tables", "polygon_tables",
@@ -73,7 +73,7 @@ def _points(sol) -> Table:
         if key in pinned and pinned[key] is None:
             continue   # shown with the first key of its pinned group
         label = f"{pinned[key][0]} (on {on_links(pinned[key][1])})" if key in pinned else key_text(key)
-        rows.append((label, f"({fmt(p[0])}, {fmt(p[1])})", polar(sol.velocity[key]), polar(sol.acceleration[key])))
+        rows.append((label, coordinates(p), polar(sol.velocity[key]), polar(sol.acceleration[key])))
     u = sol.mechanism.units or "units"
     return Table("Points", ("point", f"position ({u})", f"velocity ({u}/s)", f"acceleration ({u}/s^2)"),
                  tuple(rows))
@@ -106,7 +106,7 @@ def _show_value(v) -> str:
         return "at infinity"
     if isinstance(v, tuple):
         if len(v) == 2:
-            return f"{fmt(v[0])} ∠ {direction(v[1], 3)}°"
+            return magnitude_angle(v[0], v[1])
     return fmt(v)
 
 
@@ -116,11 +116,8 @@ def _compass(sol) -> Table | None:
     cons = sol.mechanism.constructions
     if not cons:
         return None
-
-    def xy(p):
-        return f"({fmt(p[0])}, {fmt(p[1])})"
-    rows = tuple((c.point, c.given, xy(c.chosen) + (f" {c.side}" if c.side else ""),
-                  "-" if c.other is None else xy(c.other) + (f" {'right' if c.side == 'left' else 'left'}"
+    rows = tuple((c.point, c.given, coordinates(c.chosen) + (f" {c.side}" if c.side else ""),
+                  "-" if c.other is None else coordinates(c.other) + (f" {'right' if c.side == 'left' else 'left'}"
                                                              if c.side else ""),
                   c.rule, c.switch or "(the two touch: one point)") for c in cons)
     return Table("Compass constructions of the file (reference pose): the intersection taken and the other one; "
@@ -134,7 +131,7 @@ def _is_pole(r) -> bool:
 
 
 def _pole_text(xy) -> str:
-    return "at infinity" if xy is None else f"({fmt(xy[0])}, {fmt(xy[1])})"
+    return "at infinity" if xy is None else coordinates(xy)
 
 
 def _reference(sol) -> Table | None:
@@ -167,7 +164,7 @@ def _pole_where(p) -> str:
         return "undefined (links move alike)"
     if p.position is None:
         return f"at infinity, {direction(p.direction, 3)}°"
-    return f"({fmt(p.position[0])}, {fmt(p.position[1])})"
+    return coordinates(p.position)
 
 
 def _pole_found(p, compact: bool) -> str:

@@ -1,4 +1,5 @@
-"""A table and the formats of its cells: :class:`Table`, :func:`fmt`, :func:`polar`, :func:`render_table`.
+"""A table and the formats of its cells: :class:`Table`, :func:`fmt`, :func:`polar`, :func:`magnitude_angle`,
+:func:`coordinates`, :func:`render_table`.
 
 The bottom of the reporting layer: :mod:`velpoly.compare` and :mod:`velpoly.report`
 build Tables, :func:`render_table` writes them as text, Markdown, LaTeX or CSV;
@@ -14,9 +15,9 @@ from dataclasses import dataclass
 
 import numpy as np
 
-from .names import direction
+from .names import polar as _angle_text
 
-__all__ = ["Table", "fmt", "polar", "magnitude_direction", "render_table"]
+__all__ = ["Table", "fmt", "polar", "magnitude_angle", "coordinates", "magnitude_direction", "render_table"]
 
 
 @dataclass(frozen=True)
@@ -61,7 +62,17 @@ def polar(v) -> str:
         return "-"
     if md[0] == 0:
         return "0"
-    return f"{fmt(md[0])} ∠ {direction(md[1], 3)}°"
+    return magnitude_angle(*md)
+
+
+def magnitude_angle(magnitude, deg) -> str:
+    """A magnitude and a direction in degrees as a cell: ``12.5 ∠ 30.000°`` (the direction in [0, 360))."""
+    return _angle_text(fmt(magnitude), deg, 3)
+
+
+def coordinates(p) -> str:
+    """A position as a cell: ``(0.1, -2.5)``."""
+    return f"({fmt(p[0])}, {fmt(p[1])})"
 
 
 def render_table(t: Table, style: str = "text") -> str:
