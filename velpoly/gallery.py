@@ -295,7 +295,8 @@ def build_gallery(source=None, out=None, style: str = "textbook", draw=None, log
     extra = ""
     if animations:   # one animation a mechanism family (velpoly.render.animate.gallery_animations)
         from .render.animate import gallery_animations
-        files, extra = gallery_animations(source, out / "figures", log)
+        only = [p.stem for p in files] if names else None   # a partial build: its examples' families
+        files, extra = gallery_animations(source, out / "figures", log, only)
         written += files
     readme = _readme(sections, failed, source, out, extra)
     written.append(atomic_write_text(out / "README.md", readme))

@@ -1483,17 +1483,18 @@ def gallery_animation(m, out, size=None, step: float | None = None, fps: float =
     return write_animation(anim, out, fps)
 
 
-def gallery_animations(source, figures, log=None) -> tuple[list, str]:
+def gallery_animations(source, figures, log=None, names=None) -> tuple[list, str]:
     """One animation for each mechanism family of GALLERY_FAMILIES found in ``source`` (a folder of
     ``*.toml`` files), written as ``figures/animate-NAME.gif``; returns the files written and the
-    README's section (empty if none was made). A family whose example is missing is left out; one
+    README's section (empty if none was made). A family whose example is missing, or not among
+    ``names`` (file stems; None: every family) when the gallery builds only those, is left out; one
     that fails is reported to ``log`` and left out."""
     from .. import load
     source, figures = Path(source), Path(figures)
     written, rows = [], []
     for family, stem in GALLERY_FAMILIES:
         path = source / f"{stem}.toml"
-        if not path.exists():
+        if not path.exists() or (names is not None and stem not in names):
             continue
         try:
             out = gallery_animation(load(path), figures / f"animate-{stem}.gif")
