@@ -349,6 +349,9 @@ def test_the_gallery_gets_one_animation_a_family(tmp_path, monkeypatch):
     shutil.copy(GALLERY / "ex3_6_fourbar.toml", plain)
     build_gallery(plain, draw=fake_draw([]))                  # not asked for: none
     assert not list((plain / "figures").glob("animate-*")) and "## Animations" not in (plain / "README.md").read_text()
+    some = tmp_path / "some"
+    build_gallery(src, some, draw=fake_draw([]), animations=True, names=["ex3_5_slider_crank", "stephenson_sixbar"])
+    assert [p.name for p in (some / "figures").glob("animate-*")] == ["animate-ex3_5_slider_crank.gif"]   # theirs only
 
 
 def test_sweep_gif_is_drawn_by_the_animate_renderer(tmp_path):

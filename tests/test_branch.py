@@ -192,6 +192,25 @@ def test_angle_beyond_the_toggle_exits_3_with_the_reachable_range(capsys, tmp_pa
     capsys.readouterr()
 
 
+def test_the_reachable_range_is_kept_for_an_equal_mechanism_only(monkeypatch):
+    """driver.reachable_range keeps its last answers: the same file loaded again gets the range
+    without a continuation; a mechanism that differs in one length gets its own."""
+    from velpoly import driver
+    from velpoly.kinematics import prepare
+    text = fourbar(80, 60, 70, 100, theta=60.0, branch=0)
+    first = driver.reachable_range(prepare(velpoly.load(text)))
+    computed = []
+    real = driver._reachable_range
+    monkeypatch.setattr(driver, "_reachable_range", lambda *a: computed.append(1) or real(*a))
+    assert driver.reachable_range(prepare(velpoly.load(text))) == first and not computed
+    other = driver.reachable_range(prepare(velpoly.load(fourbar(80, 60, 72, 100, theta=60.0, branch=0))))
+    assert computed == [1] and other != first
+    _, top = toggle_range(80, 60, 72, 100)
+    lo, hi = (60.0 + x for x in other)   # displacements from the drawn 60 deg
+    assert top - 1.5 <= hi <= top and -top <= lo <= -top + 1.5, (lo, hi, top)
+    assert driver.reachable_range(prepare(velpoly.load(text)), step=2.0) == first and computed == [1, 1]
+
+
 @pytest.mark.parametrize("branch", [0, 1])
 def test_solve_at_an_angle_stays_on_the_drawn_branch(branch):
     m = velpoly.load(fourbar(40, 120, 80, 100, theta=60.0, branch=branch))

@@ -89,10 +89,13 @@ def test_examples_lists_every_gallery_file_and_prints_one(installed):
 def test_gallery_and_demo_from_the_wheel(installed):
     work = installed[3]
     # one example keeps the test short; the whole gallery is the same path 19 times (checked by hand: 38 s)
+    # (and animates one family of 7)
     r = _run(installed, "gallery", "-o", "site", "ex3_6_fourbar")
     assert r.returncode == 0, r.stderr
     site = work / "site"
     assert (site / "figures" / "ex3_6_fourbar.png").read_bytes().startswith(b"\x89PNG")
+    # its family's animation (the renderer ships too), and only that one: the others were not asked for
+    assert [p.name for p in (site / "figures").glob("animate-*")] == ["animate-ex3_6_fourbar.gif"]
     # the folder stands alone: the files its README links to are beside it
     assert (site / "ex3_6_fourbar.toml").read_text(encoding="utf-8") == (EXAMPLES / "ex3_6_fourbar.toml").read_text(
         encoding="utf-8")

@@ -29,12 +29,39 @@ def driver_reference_angle(m: Mechanism) -> float | None:
     return wrap_deg_float(math.degrees(math.atan2(float(by) - float(ay), float(bx) - float(ax))))
 
 
+_RANGES: list = []   # (mechanism, arguments, range) of the last few reachable_range calls, newest last
+
+
 def reachable_range(kin: Kinematics, limit: float = 360.0, step: float = 1.0,
                     resolution: float = 0.01) -> tuple[float, float]:
     """Driver displacements (degrees) reachable from the reference pose on its branch, each end to
     ``resolution`` degrees: followed in ``step``-degree steps to the last pose before a toggle, then
     in ``resolution`` steps across the next ``step`` (one more continuation each way). An end where
-    a pin leaves its bounded slot is given to 1e-6 degree (where it reaches the slot's end)."""
+    a pin leaves its bounded slot is given to 1e-6 degree (where it reaches the slot's end).
+
+    The answer depends on the mechanism alone (its equations and the drawn pose): the last few are
+    kept and an equal mechanism (the same file loaded again: a solve, a sweep, a page and a report of
+    it each ask) gets its range without the continuation again (a second or more past a toggle)."""
+    m, args = kin.system.mechanism, (tuple(kin.rows), limit, step, resolution)
+    for known, known_args, found in reversed(_RANGES):
+        if known_args == args and _same(known, m):
+            return found
+    found = _reachable_range(kin, limit, step, resolution)
+    _RANGES.append((m, args, found))
+    del _RANGES[:-16]
+    return found
+
+
+def _same(a: Mechanism, b: Mechanism) -> bool:
+    """Whether two mechanisms are equal (frozen dataclasses of tuples, mappings and floats)."""
+    try:
+        return a is b or bool(a == b)
+    except (TypeError, ValueError):   # a field that does not compare (an array): not known equal
+        return False
+
+
+def _reachable_range(kin: Kinematics, limit: float, step: float, resolution: float) -> tuple[float, float]:
+    """:func:`reachable_range`, computed."""
     out = []
     for sign in (1.0, -1.0):
         coarse = np.arange(step, limit + step / 2, step)

@@ -292,7 +292,8 @@ def build_gallery(source=None, out=None, style: str = "textbook", draw=None, log
         if animations:   # one animation a mechanism family (velpoly.render.animate.gallery_animations)
             from .render.animate import gallery_animations
             run = None if pool is None else (lambda todo: _animations_in(pool, todo))
-            files, extra = gallery_animations(source, out / "figures", log, run=run)
+            only = [p.stem for p in files] if names else None   # a partial build: its examples' families
+            files, extra = gallery_animations(source, out / "figures", log, only, run=run)
             written += files
     except BaseException:
         if pool is not None:   # Ctrl-C or an error: the workers stop at once, what they drew is dropped

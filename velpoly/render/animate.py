@@ -1534,15 +1534,16 @@ def _animations_here(todo: list) -> list:
     return made
 
 
-def gallery_animations(source, figures, log=None, run=None) -> tuple[list, str]:
+def gallery_animations(source, figures, log=None, names=None, run=None) -> tuple[list, str]:
     """One animation for each mechanism family of GALLERY_FAMILIES found in ``source`` (a folder of
     ``*.toml`` files), written as ``figures/animate-NAME.gif``; returns the files written and the
-    README's section (empty if none was made). A family whose example is missing is left out; one
+    README's section (empty if none was made). A family whose example is missing, or not among
+    ``names`` (file stems; None: every family) when the gallery builds only those, is left out; one
     that fails is reported to ``log`` and left out. ``run`` (the gallery's worker processes) makes
     ``[(file, out), ...]``: each one's written path or the exception it raised, in order."""
     source, figures = Path(source), Path(figures)
     todo = [(family, stem, source / f"{stem}.toml") for family, stem in GALLERY_FAMILIES
-            if (source / f"{stem}.toml").exists()]
+            if (source / f"{stem}.toml").exists() and (names is None or stem in names)]
     made = (run or _animations_here)([(path, figures / f"animate-{stem}.gif") for _, stem, path in todo])
     written, rows = [], []
     for (family, stem, path), out in zip(todo, made):
