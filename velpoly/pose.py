@@ -113,12 +113,18 @@ def _newton(system: System, rows, q, targets, iters=30, tol=1e-12):
     """Batched Newton on the selected rows plus the driver row.
 
     Iterates until the correction is at rounding level (at least once, so a
-    good prediction is still corrected to full precision). Steps are limited
-    so that Newton cannot jump to another branch. Returns (q, converged mask).
+    good prediction is still corrected to full precision): below 1e-14, or,
+    where rounding in the equations leaves more than that (a Jacobian
+    conditioned worse than ~100), once the correction is below 1e-10 and no
+    longer shrinks (Newton converging would cut it by orders of magnitude; what
+    is left is noise, and iterating on it only walks q about in its last
+    digits). Steps are limited so that Newton cannot jump to another branch.
+    Returns (q, converged mask).
     """
     q = q.copy()
     L = max(system.size, 1e-300)
     active = np.ones(len(q), bool)
+    last = np.full(len(q), np.inf)     # each pose's previous correction
     for _ in range(iters):
         if not active.any():
             break
@@ -134,7 +140,8 @@ def _newton(system: System, rows, q, targets, iters=30, tol=1e-12):
         scale = np.where(size > 0.5, 0.5 / np.maximum(size, 1e-300), 1.0)
         idx = np.flatnonzero(active)
         q[idx] += dq * scale[:, None]
-        done = size <= 1e-14
+        done = (size <= 1e-14) | ((size <= 1e-10) & (size >= last[idx]))
+        last[idx] = size
         active[idx[done]] = False
     phi, jac, _ = system.evaluate(q)
     phi = phi[:, rows]
