@@ -491,17 +491,19 @@ class _Kennedy(_Construction):
     def spread(self, new) -> None:
         """The Kennedy lines the new poles complete: with P_xy new and P_xc known, the line
         P_xy P_xc carries the unknown P_yc (triangle y, c, x of the Kennedy circle)."""
-        state, pole = self.state, self.pole
+        state, pole, sqrt = self.state, self.pole, math.sqrt
         drawn = []
         for x, y in [(a, b) for a, b in new] + [(b, a) for a, b in new]:
+            sx, sy = state[x], state[y]
+            a0, a1, a2 = pole[x][y]
             for c in range(self.n):
-                if state[x][c] != _KNOWN or state[y][c] != _UNKNOWN:
+                if sx[c] != _KNOWN or sy[c] != _UNKNOWN:
                     continue
-                line = _cross3(pole[x][y], pole[x][c])
-                sep = _norm3(line)
+                b0, b1, b2 = pole[x][c]   # the line P_xy x P_xc (_cross3 and _norm3 written out: the same floats)
+                l0, l1, l2 = a1 * b2 - a2 * b1, a2 * b0 - a0 * b2, a0 * b1 - a1 * b0
+                sep = sqrt(l0 * l0 + l1 * l1 + l2 * l2)
                 q = min(1.0, sep / _CLOSE) if sep >= _DEGENERATE else 0.0
-                if sep > 0:
-                    line = (line[0] / sep, line[1] / sep, line[2] / sep)
+                line = (l0 / sep, l1 / sep, l2 / sep) if sep > 0 else (l0, l1, l2)
                 drawn.append((x, y, c, line, q))
         # P_yc's line through P_xy and P_xc may come from both new poles (then with opposite signs):
         # L[y][c] keeps the one drawn from P_xc, L[c][y] the one from P_xy
@@ -520,22 +522,26 @@ class _Kennedy(_Construction):
         Of a pole's drawn lines, the pair with the best score, max(sine, |l x m|) times both
         lines' qualities, is taken (the first such pair in slot order).
         """
-        n, state = self.n, self.state
+        n, state, hypot, sqrt = self.n, self.state, math.hypot, math.sqrt
         out = []
         for a in range(n):
             for b in range(a + 1, n):
                 if state[a][b] != _UNKNOWN:
                     continue
-                lines = self.drawn(a, b)
+                qs = self.quality[a][b]
+                lines = [(k, ln, q) for k, (ln, q) in enumerate(zip(self.line[a][b], qs)) if q > 0] \
+                    if max(qs) > 0 else ()   # self.drawn(a, b)
                 best = None
                 for u in range(len(lines)):
                     i, li, qi = lines[u]
-                    ni = math.hypot(li[0], li[1])
+                    ni = hypot(li[0], li[1])
+                    a0, a1, a2 = li
                     for v in range(u + 1, len(lines)):
                         j, lj, qj = lines[v]
-                        x = _cross3(li, lj)
-                        proj = _norm3(x)
-                        den = ni * math.hypot(lj[0], lj[1])
+                        b0, b1, b2 = lj   # x = li x lj, proj = |x| (_cross3, _norm3 written out)
+                        x = (a1 * b2 - a2 * b1, a2 * b0 - a0 * b2, a0 * b1 - a1 * b0)
+                        proj = sqrt(x[0] * x[0] + x[1] * x[1] + x[2] * x[2])
+                        den = ni * hypot(b0, b1)
                         sine = abs(x[2]) / den if den > 0 else 0.0
                         score = max(sine, proj) * qi * qj
                         if best is None or score > best[0]:
@@ -844,18 +850,26 @@ def locate_poles(sol, *, cached: bool = True) -> PoleSet:
 
 
 def _locate(sol) -> PoleSet:
-    # tens of thousands of small objects for a big chain, none in a reference cycle: the cyclic garbage
-    # collector's passes over them would cost a third of the time at 200 links, so it waits until the end
+    return _without_gc(_pole_set, sol)
+
+
+def _without_gc(finish, sol):
+    """``finish(sol, *_construct(sol))``: the construction and what is made of it (the PoleSet, or the
+    JSON alone). Tens of thousands of small objects for a big chain, none in a reference cycle: the
+    cyclic garbage collector's passes over them would cost a third of the time at 200 links, so it
+    waits until the end."""
     enabled = gc.isenabled()
     gc.disable()
     try:
-        return _construct(sol)
+        return finish(sol, *_construct(sol))
     finally:
         if enabled:
             gc.enable()
 
 
-def _construct(sol) -> PoleSet:
+def _construct(sol) -> tuple:
+    """The Kennedy construction run to its end: ``(kennedy, centre, scale, found)``, what
+    :func:`_pole_set` (the PoleSet) and :func:`_pole_places` (the JSON alone) read."""
     m = sol.mechanism
     names = list(m.link_names)
     idx = {nm: i for i, nm in enumerate(names)}
@@ -906,7 +920,7 @@ def _construct(sol) -> PoleSet:
         new = [(a, b) for a, b, _, _ in new]
         found.extend(new)
         kennedy.spread(new)
-    return _pole_set(sol, kennedy, centre, scale, found)
+    return kennedy, centre, scale, found
 
 
 def _lines_drawn(kennedy, used, where, centre, scale) -> list:
@@ -998,6 +1012,31 @@ def _pole_set(sol, kennedy, centre, scale, found) -> PoleSet:
           for (a, b), items in kennedy.constraints.items()}
     return PoleSet(tuple(names), poles, sol.mechanism.frame.name, tuple(kennedy.key(a, b) for a, b in found), cl, err,
                    np.asarray(centre, float), scale)
+
+
+def _pole_places(sol, kennedy, centre, scale, found) -> dict:
+    """The JSON ``poles`` section from the construction as :func:`_pole_set` makes its PoleSet (the same
+    positions, directions, how and order), without the lines drawn: what ``solve --json`` needs."""
+    names, n, keys, infos, exact = kennedy.names, kennedy.n, kennedy.keys, kennedy.info, kennedy.exact
+    world = {(a, b): (hk, pos, inf) for a, b, hk, pos, inf in kennedy.world(centre, scale)[1]}
+    out = {}
+    for a in range(n):
+        for b in range(a + 1, n):
+            got = world.get((a, b))
+            if got is None:
+                out[keys[a][b]] = {"position": None, "direction": None, "how": "undefined", "order": 0}
+                continue
+            hk, pos, inf = got
+            at = exact.get((a, b))
+            if at is not None:
+                pos = at
+            elif inf:
+                out[keys[a][b]] = {"position": None, "direction": _direction(hk), "how": infos[a, b]["how"],
+                                   "order": infos[a, b]["order"]}
+                continue
+            out[keys[a][b]] = {"position": [float(pos[0]), float(pos[1])], "how": infos[a, b]["how"],
+                               "order": infos[a, b]["order"]}
+    return out
 
 
 def kennedy_circle(ps: PoleSet) -> KennedyCircle:
@@ -1202,8 +1241,11 @@ def _slider_driver(sol, m, idx, f, pole, state, t, known, path, names, centre, s
 # -- the JSON section --------------------------------------------------------------------------------
 def poles_section(sol) -> dict:
     """The JSON ``poles`` section (FORMAT.md section 2), with ``how`` and ``order`` added."""
+    hit = _CACHE.get(id(sol))
+    if hit is None or hit[0]() is not sol:   # no pole set built: the construction without its lines
+        return _without_gc(_pole_places, sol)
     out = {}
-    for key, p in locate_poles(sol).poles.items():
+    for key, p in hit[1].poles.items():
         if p.position is not None:
             d = {"position": [float(p.position[0]), float(p.position[1])]}
         else:
