@@ -579,7 +579,7 @@ class _Kennedy(_Construction):
     def world(self, centre, scale):
         """The known poles in frame coordinates: the largest disagreement with the velocity solution,
         |P_ab x (T_a - T_b)|, and ``(a, b, (x, y, w) unit, position or None, at infinity)`` for each (a
-        pole farther than FAR sizes is at infinity; the position never a signed zero)."""
+        pole farther than FAR sizes is at infinity; the position never a signed zero; tuples of floats)."""
         c0, c1 = float(centre[0]), float(centre[1])
         twists, state, pole = self.twists.tolist(), self.state, self.pole
         err, out = 0.0, []
@@ -595,8 +595,8 @@ class _Kennedy(_Construction):
                 nw = max(_norm3(hw), 1e-300)
                 x, y, w = hw = (hw[0] / nw, hw[1] / nw, hw[2] / nw)
                 far = w == 0 or math.hypot(x, y) > FAR * scale * abs(w)
-                out.append((a, b, np.array(hw), None if far else np.array((x / w + 0.0, y / w + 0.0)), far))
-        return err, out
+                out.append((a, b, hw, None if far else (x / w + 0.0, y / w + 0.0), far))   # tuples: the
+        return err, out                                                                # PoleSet makes arrays
 
     def _alike_pair(self, a, b):
         """P_ab = P_ib when link a moves like link i, or P_ai when b moves like i (the first such i)."""
@@ -978,8 +978,8 @@ def _pole_set(sol, kennedy, centre, scale, found) -> PoleSet:
         elif inf:
             pos, direction = None, _direction(hk)
         else:
-            direction = None
-        world[a, b] = hk, pos, direction
+            pos, direction = np.asarray(pos, float), None
+        world[a, b] = np.asarray(hk, float), pos, direction
         where[a][b] = where[b][a] = pos
     pairs = [ab for ab, info in kennedy.info.items() if "slots" in info]   # poles found by two lines
     used = [(a, b, slot, v) for a, b in pairs
