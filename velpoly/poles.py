@@ -514,7 +514,8 @@ class _Kennedy(_Construction):
 
     def drawn(self, a, b) -> list:
         """The lines drawn for the pair: [(slot, line, quality)], in slot order."""
-        return [(k, ln, q) for k, (ln, q) in enumerate(zip(self.line[a][b], self.quality[a][b])) if q > 0]
+        qs = self.quality[a][b]
+        return [(k, ln, q) for k, (ln, q) in enumerate(zip(self.line[a][b], qs)) if q > 0] if max(qs) > 0 else []
 
     def candidates(self) -> list:
         """The unknown poles two lines locate now, in key order: (a, b, score, info).
@@ -528,9 +529,7 @@ class _Kennedy(_Construction):
             for b in range(a + 1, n):
                 if state[a][b] != _UNKNOWN:
                     continue
-                qs = self.quality[a][b]
-                lines = [(k, ln, q) for k, (ln, q) in enumerate(zip(self.line[a][b], qs)) if q > 0] \
-                    if max(qs) > 0 else ()   # self.drawn(a, b)
+                lines = self.drawn(a, b)
                 best = None
                 for u in range(len(lines)):
                     i, li, qi = lines[u]
@@ -1017,7 +1016,7 @@ def _pole_set(sol, kennedy, centre, scale, found) -> PoleSet:
 def _pole_places(sol, kennedy, centre, scale, found) -> dict:
     """The JSON ``poles`` section from the construction as :func:`_pole_set` makes its PoleSet (the same
     positions, directions, how and order), without the lines drawn: what ``solve --json`` needs."""
-    names, n, keys, infos, exact = kennedy.names, kennedy.n, kennedy.keys, kennedy.info, kennedy.exact
+    n, keys, infos, exact = kennedy.n, kennedy.keys, kennedy.info, kennedy.exact
     world = {(a, b): (hk, pos, inf) for a, b, hk, pos, inf in kennedy.world(centre, scale)[1]}
     out = {}
     for a in range(n):
