@@ -10,7 +10,10 @@ one of the n(n-1)/2 poles is defined) at n = 20, 50, 100 and 200 links: ``locate
 best of ``--repeats`` (at most 3 at 100 links and more), wall and CPU time, the exponent of the
 growth between sizes (from the CPU times, steadier than wall times on a machine shared with other work),
 and at 200 links the peak memory it allocates (tracemalloc, in a run of its own). Target at 200
-links: under 1 s. The solve of each chain is not timed (it is printed).
+links: under 1 s. The first solve of each chain (the equations prepared, the velocities and
+accelerations) is timed once and printed, and at the largest size reported as a row of its own,
+with the BLAS threads it ran with (see docs/performance.md: on a loaded machine OpenBLAS's threads
+cost more than they bring at this size).
 
 Every result is checked before it is timed: all n(n-1)/2 poles, none undefined, every pin's pole the
 pin exactly, and the largest disagreement with the velocity solution under 1e-9.
@@ -19,6 +22,7 @@ from __future__ import annotations
 
 import collections
 import math
+import os
 import sys
 import time
 import tracemalloc
@@ -93,9 +97,10 @@ def main(argv=None) -> int:
     sizes = [int(x) for x in args.sizes.split(",") if x]
     times = {}
     for size in sizes:
-        t0 = time.perf_counter()
-        s = velpoly.solve(velpoly.load(parallel_chain(size)))
-        t_solve = time.perf_counter() - t0
+        mech = velpoly.load(parallel_chain(size))
+        t0, c0 = time.perf_counter(), time.process_time()
+        s = velpoly.solve(mech)   # the first solve of a mechanism prepares its equations (kinematics.prepare)
+        t_solve, c_solve = time.perf_counter() - t0, time.process_time() - c0
         ps = locate_poles(s, cached=False)
         hows = check(s, ps)
         assert not hows.get("undefined"), hows
@@ -116,6 +121,10 @@ def main(argv=None) -> int:
         target = ("< 1 s", t < 1.0) if size == 200 else ("", None)
         rows.append(row(f"poles: all {npoles:,} of a {size}-link chain", t * 1e3, "ms", *target,
                         note=f"CPU {cpu * 1e3:.4g} ms" + extra))
+        if size == max(sizes):
+            rows.append(row(f"solve: the {size}-link chain (first solve, equations prepared)", t_solve, "s",
+                            note=f"CPU {c_solve:.3g} s; BLAS threads: OPENBLAS_NUM_THREADS="
+                                 f"{os.environ.get('OPENBLAS_NUM_THREADS', 'unset')}"))
     for a, b in zip(sizes, sizes[1:]):
         k = math.log(times[b] / times[a]) / math.log(b / a)
         print(f"  growth {a} -> {b} links: n^{k:.2f} (CPU times)")

@@ -99,12 +99,15 @@ def _prepare(m: Mechanism) -> Kinematics:
     _, jg, _ = system.evaluate(qg)
     rows_g = select_rows(system, system.scale_matrix(jg[0][:m_eq], driver=False), tol=1e-8)
     structural = nq - len(rows_g)
-    changes = _involved(system, j0[0], list(range(m_eq)), False) if m_eq else ()
+
+    def changes() -> tuple[str, ...]:   # the links a singular-pose error names (an SVD: only for the error)
+        return _involved(system, j0[0], list(range(m_eq)), False) if m_eq else ()
+
     if mobility != 1:
         if structural == 1 and mobility > 1:
             raise SingularPoseError(
                 "singular pose: the joints lose independence at the reference pose (a change point)",
-                where="links", file=m.source, links=changes,
+                where="links", file=m.source, links=changes(),
                 hint="draw the mechanism in a pose away from the change point")
         raise InputError(
             f"mobility is {mobility} (3 x {len(m.moving_links)} moving-link coordinates minus "
@@ -112,15 +115,15 @@ def _prepare(m: Mechanism) -> Kinematics:
             where="links", file=m.source,
             hint=("add the joints that are missing (a point shared by two links is a pin)"
                   if mobility > 1 else "remove a joint or a link: the mechanism is locked"))
-    r_full, _ = _scaled_rank(system, jg[0][list(rows_g) + [m_eq]], list(rows_g) + [m_eq], driver=True)
-    if structural == 1 and r_full < nq:
+    if structural == 1 and _scaled_rank(system, jg[0][list(rows_g) + [m_eq]], list(rows_g) + [m_eq],
+                                        driver=True)[0] < nq:
         raise InputError("the driver's motion is fixed by the joints: it cannot drive the mechanism",
                          where="driver", file=m.source, hint="drive a link the joints leave free")
     kin = Kinematics(m, system, tuple(rows) + (m_eq,), mobility)
     if len(rows_g) > len(rows) and not _moves(kin):
         raise SingularPoseError(
             "singular pose: the joints lose independence at the reference pose (a change point)",
-            where="links", file=m.source, links=changes,
+            where="links", file=m.source, links=changes(),
             hint="draw the mechanism in a pose away from the change point")
     return kin
 

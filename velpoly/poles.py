@@ -491,17 +491,19 @@ class _Kennedy(_Construction):
     def spread(self, new) -> None:
         """The Kennedy lines the new poles complete: with P_xy new and P_xc known, the line
         P_xy P_xc carries the unknown P_yc (triangle y, c, x of the Kennedy circle)."""
-        state, pole = self.state, self.pole
+        state, pole, sqrt = self.state, self.pole, math.sqrt
         drawn = []
         for x, y in [(a, b) for a, b in new] + [(b, a) for a, b in new]:
+            sx, sy = state[x], state[y]
+            a0, a1, a2 = pole[x][y]
             for c in range(self.n):
-                if state[x][c] != _KNOWN or state[y][c] != _UNKNOWN:
+                if sx[c] != _KNOWN or sy[c] != _UNKNOWN:
                     continue
-                line = _cross3(pole[x][y], pole[x][c])
-                sep = _norm3(line)
+                b0, b1, b2 = pole[x][c]   # the line P_xy x P_xc (_cross3 and _norm3 written out: the same floats)
+                l0, l1, l2 = a1 * b2 - a2 * b1, a2 * b0 - a0 * b2, a0 * b1 - a1 * b0
+                sep = sqrt(l0 * l0 + l1 * l1 + l2 * l2)
                 q = min(1.0, sep / _CLOSE) if sep >= _DEGENERATE else 0.0
-                if sep > 0:
-                    line = (line[0] / sep, line[1] / sep, line[2] / sep)
+                line = (l0 / sep, l1 / sep, l2 / sep) if sep > 0 else (l0, l1, l2)
                 drawn.append((x, y, c, line, q))
         # P_yc's line through P_xy and P_xc may come from both new poles (then with opposite signs):
         # L[y][c] keeps the one drawn from P_xc, L[c][y] the one from P_xy
@@ -512,7 +514,8 @@ class _Kennedy(_Construction):
 
     def drawn(self, a, b) -> list:
         """The lines drawn for the pair: [(slot, line, quality)], in slot order."""
-        return [(k, ln, q) for k, (ln, q) in enumerate(zip(self.line[a][b], self.quality[a][b])) if q > 0]
+        qs = self.quality[a][b]
+        return [(k, ln, q) for k, (ln, q) in enumerate(zip(self.line[a][b], qs)) if q > 0] if max(qs) > 0 else []
 
     def candidates(self) -> list:
         """The unknown poles two lines locate now, in key order: (a, b, score, info).
@@ -520,7 +523,7 @@ class _Kennedy(_Construction):
         Of a pole's drawn lines, the pair with the best score, max(sine, |l x m|) times both
         lines' qualities, is taken (the first such pair in slot order).
         """
-        n, state = self.n, self.state
+        n, state, hypot, sqrt = self.n, self.state, math.hypot, math.sqrt
         out = []
         for a in range(n):
             for b in range(a + 1, n):
@@ -530,12 +533,14 @@ class _Kennedy(_Construction):
                 best = None
                 for u in range(len(lines)):
                     i, li, qi = lines[u]
-                    ni = math.hypot(li[0], li[1])
+                    ni = hypot(li[0], li[1])
+                    a0, a1, a2 = li
                     for v in range(u + 1, len(lines)):
                         j, lj, qj = lines[v]
-                        x = _cross3(li, lj)
-                        proj = _norm3(x)
-                        den = ni * math.hypot(lj[0], lj[1])
+                        b0, b1, b2 = lj   # x = li x lj, proj = |x| (_cross3, _norm3 written out)
+                        x = (a1 * b2 - a2 * b1, a2 * b0 - a0 * b2, a0 * b1 - a1 * b0)
+                        proj = sqrt(x[0] * x[0] + x[1] * x[1] + x[2] * x[2])
+                        den = ni * hypot(b0, b1)
                         sine = abs(x[2]) / den if den > 0 else 0.0
                         score = max(sine, proj) * qi * qj
                         if best is None or score > best[0]:
@@ -573,7 +578,7 @@ class _Kennedy(_Construction):
     def world(self, centre, scale):
         """The known poles in frame coordinates: the largest disagreement with the velocity solution,
         |P_ab x (T_a - T_b)|, and ``(a, b, (x, y, w) unit, position or None, at infinity)`` for each (a
-        pole farther than FAR sizes is at infinity; the position never a signed zero)."""
+        pole farther than FAR sizes is at infinity; the position never a signed zero; tuples of floats)."""
         c0, c1 = float(centre[0]), float(centre[1])
         twists, state, pole = self.twists.tolist(), self.state, self.pole
         err, out = 0.0, []
@@ -589,8 +594,8 @@ class _Kennedy(_Construction):
                 nw = max(_norm3(hw), 1e-300)
                 x, y, w = hw = (hw[0] / nw, hw[1] / nw, hw[2] / nw)
                 far = w == 0 or math.hypot(x, y) > FAR * scale * abs(w)
-                out.append((a, b, np.array(hw), None if far else np.array((x / w + 0.0, y / w + 0.0)), far))
-        return err, out
+                out.append((a, b, hw, None if far else (x / w + 0.0, y / w + 0.0), far))   # tuples: the
+        return err, out                                                                # PoleSet makes arrays
 
     def _alike_pair(self, a, b):
         """P_ab = P_ib when link a moves like link i, or P_ai when b moves like i (the first such i)."""
@@ -844,18 +849,26 @@ def locate_poles(sol, *, cached: bool = True) -> PoleSet:
 
 
 def _locate(sol) -> PoleSet:
-    # tens of thousands of small objects for a big chain, none in a reference cycle: the cyclic garbage
-    # collector's passes over them would cost a third of the time at 200 links, so it waits until the end
+    return _without_gc(_pole_set, sol)
+
+
+def _without_gc(finish, sol):
+    """``finish(sol, *_construct(sol))``: the construction and what is made of it (the PoleSet, or the
+    JSON alone). Tens of thousands of small objects for a big chain, none in a reference cycle: the
+    cyclic garbage collector's passes over them would cost a third of the time at 200 links, so it
+    waits until the end."""
     enabled = gc.isenabled()
     gc.disable()
     try:
-        return _construct(sol)
+        return finish(sol, *_construct(sol))
     finally:
         if enabled:
             gc.enable()
 
 
-def _construct(sol) -> PoleSet:
+def _construct(sol) -> tuple:
+    """The Kennedy construction run to its end: ``(kennedy, centre, scale, found)``, what
+    :func:`_pole_set` (the PoleSet) and :func:`_pole_places` (the JSON alone) read."""
     m = sol.mechanism
     names = list(m.link_names)
     idx = {nm: i for i, nm in enumerate(names)}
@@ -906,7 +919,7 @@ def _construct(sol) -> PoleSet:
         new = [(a, b) for a, b, _, _ in new]
         found.extend(new)
         kennedy.spread(new)
-    return _pole_set(sol, kennedy, centre, scale, found)
+    return kennedy, centre, scale, found
 
 
 def _lines_drawn(kennedy, used, where, centre, scale) -> list:
@@ -964,8 +977,8 @@ def _pole_set(sol, kennedy, centre, scale, found) -> PoleSet:
         elif inf:
             pos, direction = None, _direction(hk)
         else:
-            direction = None
-        world[a, b] = hk, pos, direction
+            pos, direction = np.asarray(pos, float), None
+        world[a, b] = np.asarray(hk, float), pos, direction
         where[a][b] = where[b][a] = pos
     pairs = [ab for ab, info in kennedy.info.items() if "slots" in info]   # poles found by two lines
     used = [(a, b, slot, v) for a, b in pairs
@@ -998,6 +1011,31 @@ def _pole_set(sol, kennedy, centre, scale, found) -> PoleSet:
           for (a, b), items in kennedy.constraints.items()}
     return PoleSet(tuple(names), poles, sol.mechanism.frame.name, tuple(kennedy.key(a, b) for a, b in found), cl, err,
                    np.asarray(centre, float), scale)
+
+
+def _pole_places(sol, kennedy, centre, scale, found) -> dict:
+    """The JSON ``poles`` section from the construction as :func:`_pole_set` makes its PoleSet (the same
+    positions, directions, how and order), without the lines drawn: what ``solve --json`` needs."""
+    n, keys, infos, exact = kennedy.n, kennedy.keys, kennedy.info, kennedy.exact
+    world = {(a, b): (hk, pos, inf) for a, b, hk, pos, inf in kennedy.world(centre, scale)[1]}
+    out = {}
+    for a in range(n):
+        for b in range(a + 1, n):
+            got = world.get((a, b))
+            if got is None:
+                out[keys[a][b]] = {"position": None, "direction": None, "how": "undefined", "order": 0}
+                continue
+            hk, pos, inf = got
+            at = exact.get((a, b))
+            if at is not None:
+                pos = at
+            elif inf:
+                out[keys[a][b]] = {"position": None, "direction": _direction(hk), "how": infos[a, b]["how"],
+                                   "order": infos[a, b]["order"]}
+                continue
+            out[keys[a][b]] = {"position": [float(pos[0]), float(pos[1])], "how": infos[a, b]["how"],
+                               "order": infos[a, b]["order"]}
+    return out
 
 
 def kennedy_circle(ps: PoleSet) -> KennedyCircle:
@@ -1202,8 +1240,11 @@ def _slider_driver(sol, m, idx, f, pole, state, t, known, path, names, centre, s
 # -- the JSON section --------------------------------------------------------------------------------
 def poles_section(sol) -> dict:
     """The JSON ``poles`` section (FORMAT.md section 2), with ``how`` and ``order`` added."""
+    hit = _CACHE.get(id(sol))
+    if hit is None or hit[0]() is not sol:   # no pole set built: the construction without its lines
+        return _without_gc(_pole_places, sol)
     out = {}
-    for key, p in locate_poles(sol).poles.items():
+    for key, p in hit[1].poles.items():
         if p.position is not None:
             d = {"position": [float(p.position[0]), float(p.position[1])]}
         else:

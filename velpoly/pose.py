@@ -79,18 +79,35 @@ def _pow2(x: float) -> float:
 
 # -- Newton and continuation -------------------------------------------------------
 def select_rows(system: System, jac: np.ndarray, tol: float = 1e-9) -> list[int]:
-    """Indices of a maximal set of independent constraint rows of ``jac`` (m x nq), in order."""
+    """Indices of a maximal set of independent constraint rows of ``jac`` (m x nq), in order.
+
+    Row i is kept when its part orthogonal to the rows kept before it is longer than ``tol`` times
+    its length (at least 1). Gram-Schmidt in blocks of rows: a block is first cleared of the basis
+    so far by two matrix products (classical Gram-Schmidt twice, as accurate as one row at a time),
+    then its rows are taken one by one against the basis vectors of the block only; a long chain's
+    few hundred rows cost matrix products, not a Python loop per pair of rows.
+    """
+    jac = np.asarray(jac, float)
     keep: list[int] = []
-    basis = np.zeros((0, jac.shape[1]))
-    for i, row in enumerate(jac):
-        r = row.copy()
-        for b in basis:
-            r -= np.dot(r, b) * b
-        nr = np.linalg.norm(r)
-        if nr > tol * max(1.0, np.linalg.norm(row)):
-            basis = np.vstack([basis, r / nr])
-            keep.append(i)
+    basis = np.empty((min(len(jac), jac.shape[1]), jac.shape[1]))
+    k = 0
+    for start in range(0, len(jac), _ROW_BLOCK):
+        block = jac[start:start + _ROW_BLOCK].copy()
+        for _ in range(2 if k else 0):
+            block -= (block @ basis[:k].T) @ basis[:k]
+        first = k
+        for i, r in enumerate(block):
+            for b in basis[first:k]:
+                r -= np.dot(r, b) * b
+            nr = np.linalg.norm(r)
+            if nr > tol * max(1.0, np.linalg.norm(jac[start + i])):
+                basis[k] = r / nr
+                k += 1
+                keep.append(start + i)
     return keep
+
+
+_ROW_BLOCK = 32   # rows cleared of the basis together (select_rows)
 
 
 class Reassembly:
