@@ -358,9 +358,9 @@ def test_a_signal_while_the_workers_draw_leaves_nothing_behind(tmp_path, sig, co
                          stdout=subprocess.PIPE, stderr=subprocess.PIPE, env=env)
     try:
         deadline = time.monotonic() + 90
-        while not list(tmp.iterdir()) and p.poll() is None and time.monotonic() < deadline:
-            time.sleep(0.02)     # a worker's temporary folder: it draws
-        assert list(tmp.iterdir()), "no worker began to draw"
+        while not list(tmp.glob("*/*")) and p.poll() is None and time.monotonic() < deadline:
+            time.sleep(0.02)     # a worker's temporary folder in the pool's: it draws
+        assert list(tmp.glob("*/*")), "no worker began to draw"
         p.send_signal(getattr(signal, sig))
         sent = time.monotonic()
         lines = p.communicate(timeout=60)[1].decode().strip().splitlines()

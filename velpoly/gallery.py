@@ -14,6 +14,7 @@ the render module.
 from __future__ import annotations
 
 import re
+import shutil
 from dataclasses import dataclass
 from pathlib import Path
 
@@ -284,10 +285,10 @@ def build_gallery(source=None, out=None, style: str = "textbook", draw=None, log
     if copy is None:   # the built-in examples drawn anywhere but their own checkout's gallery
         copy = source.resolve() == EXAMPLES and out.resolve() not in (EXAMPLES, EXAMPLES.parent.parent / "gallery")
     files = _gallery_files(source, names)
-    pool = None if draw is not None else _pool(len(files), jobs)   # a given draw runs here, in order
+    here, pool, extra = draw is not None, None, ""   # a given draw runs here, in order
     draw = draw or _draw_to_file()
-    extra = ""
     try:
+        pool = None if here else _pool(len(files), jobs)
         written, built, failed, sections = _build_examples(files, pool, out, style, copy, draw, log)
         if animations:   # one animation a mechanism family (velpoly.render.animate.gallery_animations)
             from .render.animate import gallery_animations
@@ -302,6 +303,7 @@ def build_gallery(source=None, out=None, style: str = "textbook", draw=None, log
     finally:
         if pool is not None:
             pool.shutdown(wait=True, cancel_futures=True)
+            shutil.rmtree(pool.scratch, ignore_errors=True)   # what a stopped worker left half removed
     readme = _readme(sections, failed, source, out, extra)
     written.append(atomic_write_text(out / "README.md", readme))
     return GalleryResult(tuple(written), tuple(built), tuple(failed))
@@ -396,7 +398,7 @@ def _in_memory(draw, what, target: Path, **kw) -> list:
     """``draw(what, OUT, **kw)`` into a private temporary folder: ``[(path, bytes)]`` of the files it
     wrote (one path or a list), each named as beside ``target``."""
     import tempfile
-    with tempfile.TemporaryDirectory(prefix="velpoly-gallery-") as tmp:
+    with tempfile.TemporaryDirectory(prefix="velpoly-gallery-", dir=_WORKER["scratch"]) as tmp:
         written = draw(what, Path(tmp) / target.name, **kw)
         written = written if isinstance(written, (list, tuple)) else [written]
         return [(target.with_name(Path(f).name), Path(f).read_bytes()) for f in written]
@@ -443,7 +445,9 @@ def _animations_in(pool, todo: list) -> list:
 
 def _pool(tasks: int, jobs: int | None):
     """A process pool of ``jobs`` workers (default: the cores this process may use), or None where
-    one process does as well (one core, one task)."""
+    one process does as well (one core, one task). ``pool.scratch``: the one temporary folder the
+    workers draw in, which the command removes when the pool is done (a worker stopped in the middle of
+    removing its own leaves nothing behind)."""
     import os
     if jobs is None:
         jobs = len(os.sched_getaffinity(0)) if hasattr(os, "sched_getaffinity") else (os.cpu_count() or 1)
@@ -454,15 +458,26 @@ def _pool(tasks: int, jobs: int | None):
     from concurrent.futures import ProcessPoolExecutor
     methods = multiprocessing.get_all_start_methods()
     ctx = multiprocessing.get_context("fork" if "fork" in methods else None)   # fork: the modules come along
-    return ProcessPoolExecutor(jobs, mp_context=ctx, initializer=_worker_start)
+    import tempfile
+    scratch = tempfile.mkdtemp(prefix="velpoly-gallery-")
+    try:
+        pool = ProcessPoolExecutor(jobs, mp_context=ctx, initializer=_worker_start, initargs=(scratch,))
+    except BaseException:   # Ctrl-C on the way: no folder left behind
+        shutil.rmtree(scratch, ignore_errors=True)
+        raise
+    pool.scratch = scratch
+    return pool
 
 
-_WORKER = {"busy": False, "stopped": False}   # in a worker: drawing now; told to stop (SIGTERM)
+_WORKER = {"busy": False, "stopped": False, "scratch": None}   # in a worker: drawing now; told to stop
+                                                               # (SIGTERM); the pool's temporary folder
 
 
-def _worker_start() -> None:
-    """A worker leaves Ctrl-C to the command, which stops the build (:func:`_stop_workers`)."""
+def _worker_start(scratch: str | None = None) -> None:
+    """A worker leaves Ctrl-C to the command, which stops the build (:func:`_stop_workers`); it draws
+    in the pool's ``scratch`` folder."""
     import signal
+    _WORKER["scratch"] = scratch
     signal.signal(signal.SIGINT, signal.SIG_IGN)
     signal.signal(signal.SIGTERM, _worker_stop)
 
