@@ -155,6 +155,33 @@ def test_pole_labels_by_their_rings_and_leaders_apart(specimens):
             assert not labels_on_lines(fig), f"{sp.kind}: {labels_on_lines(fig)}"
 
 
+def test_driver_values_off_the_kennedy_lines():
+    """Generated mechanisms whose driver has an alpha or is a slider, on the poles sheet (its Kennedy lines drawn
+    before the mechanism): omega's, alpha's, a slider's speed's and acceleration's values lie on no line, no arc
+    or arrow of the driver lost."""
+    from matplotlib.backends.backend_agg import FigureCanvasAgg
+    from matplotlib.figure import Figure
+    from zoo import zoo
+    from velpoly.poles import locate_poles
+    from velpoly.render.kennedy import draw_poles
+    chosen = [sp for sp in zoo(8, 16) if sp.drawn.mechanism.driver.alpha or sp.drawn.mechanism.driver.is_slider]
+    assert len(chosen) >= 8
+    for i, sp in enumerate(chosen[1:9]):
+        drv = sp.drawn.mechanism.driver
+        st = get_style(STYLES[i % 2])
+        with rc_context(st):
+            fig = Figure(figsize=(8, 6), dpi=72)
+            FigureCanvasAgg(fig)
+            ax = fig.add_axes((0.02, 0.02, 0.96, 0.96))
+            draw_poles(sp.drawn, ax, style=st, poleset=locate_poles(sp.drawn))
+            gids = {a.get_gid() for a in ax.get_children()}
+            want = {"driver-label"} | ({"driver-label-accel"} if drv.is_slider and drv.accel else set()) | \
+                ({"driver-alpha-arc", "driver-label-alpha"} if not drv.is_slider and drv.alpha else set())
+            assert want <= gids, f"{sp.kind}: {want - gids}"
+            on = [hit for hit in labels_on_lines(fig) if hit[0].startswith("driver-label")]
+            assert not on, f"{sp.kind}/{STYLES[i % 2]}: {on}"
+
+
 def test_steps_keep_the_answers_to_the_last_frame():
     """The results table only in the last frame; the first Kennedy frame shows the chords sought dashed
     and unnumbered, the later ones only the chords found so far."""
