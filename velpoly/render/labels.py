@@ -28,7 +28,7 @@ __all__ = ["LabelPlacer", "placer", "segment", "half_extent"]
 # ring radii, in points of gap between the anchor and the box
 RINGS = (2.5, 5.0, 9.0, 14.0, 21.0, 30.0, 42.0, 58.0)
 FAR_RINGS = (9.0, 21.0, 42.0, 80.0, 105.0)   # finer directions, only when nothing above is free
-LEADER_MOST = 2   # the most lines and outlines a far label's leader (see LabelPlacer.place's clear) may cross
+LEADER_MOST = 0   # the most lines and outlines a far label's leader (see LabelPlacer.place's clear) may cross
 
 
 class LabelPlacer:

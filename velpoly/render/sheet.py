@@ -36,7 +36,7 @@ from .constructions import Constructions, check_sheet as _check_sheet, construct
 from .displacement import draw_mechanism, equivalent_linkage_note, mark_auxiliary, mechanism_bounds
 from .kennedy import draw_kennedy_circle, draw_poles, pole_label
 from .labels import placer
-from .layout import MARGIN, arrange, share_row
+from .layout import MARGIN, arrange, drawn_size, share_row
 from .options import SHEETS, drawing_options
 from .polygon import draw_polygon, legend_room, polygon_bounds
 from .scalebar import scale_text
@@ -269,8 +269,9 @@ class _Planner:
             tax, used, _ = self.draw_table(EDGE, self.width, TABLE_MOST * self.H)
             _move(tax, self, EDGE + used)
             floor = EDGE + used + TABLE_GAP
+        extra = {"mechanism": LABEL_ROOM * self.st.font_size / 10}
         bands = arrange(spans, names, self.width, self.top, floor, GAP, _caption_cm(self.st, self.lines), users,
-                        least, {"mechanism": LABEL_ROOM * self.st.font_size / 10})
+                        least, extra)
         rects, scales = {}, {}
         for band in bands:
             x = EDGE
@@ -278,7 +279,59 @@ class _Planner:
                 rects[name] = self.rect(x, band.bottom, w, band.height)
                 scales[name] = s
                 x += w + GAP
-        return _Plan(rects, scales, tax)
+        plan = _Plan(rects, scales, tax)
+        if tax is None or len(names) < 2:
+            return plan
+        size = sum(drawn_size([spans[n] for n in band.names], band.row) for band in bands)
+        beside = self.table_beside(names, spans, least, users, extra, scales)
+        if beside is not None and beside[0] > size * (1 + 1e-9):
+            self.fig.delaxes(tax)
+            return beside[1]
+        if beside is not None:
+            self.fig.delaxes(beside[1].table)
+        return plan
+
+    def table_beside(self, names, spans, least, users, extra, under):
+        """One panel (the first, or the last) in a row with the table beside it, in a column as tall as that
+        row, the other panels side by side in the other row (the first one's row above): (the area the
+        drawings cover, the plan) of the one that draws them largest, every drawing at least as large as at
+        the scales ``under`` (those with the table beneath), or None where none is (or the table shows not
+        every row at its full size in any such column)."""
+        total = self.top - EDGE
+        caption = _caption_cm(self.st, self.lines)
+        mx, mt, mb = MARGIN
+        best = None
+        for alone, others, f in [(names[0], names[1:], f) for f in BESIDE_FRACTIONS] + \
+                                [(names[-1], names[:-1], f) for f in BESIDE_FRACTIONS]:
+            first = alone == names[0]
+            low = total * f
+            high = total - low - caption
+            (lw, lh) = spans[alone]
+            need = lw / max(lh, 1e-300) * (low - mt - mb) + 2 * mx + extra.get(alone, 0.0)
+            width = min(max(need, least.get(alone, 0.0)), 0.5 * self.width)
+            bottom = self.top - low if first else EDGE        # the panel with the table beside it
+            tax, used, whole = self.draw_table(EDGE + width + GAP, self.width - width - GAP, low + caption)
+            if not whole:
+                self.fig.delaxes(tax)
+                continue
+            _move(tax, self, bottom + low + caption)
+            row = share_row([spans[n] for n in others], self.width, high, GAP, [users.get(n) for n in others],
+                            least=[least.get(n, 0.0) for n in others], extra=[extra.get(n, 0.0) for n in others])
+            one = share_row([spans[alone]], width, low, 0.0, [users.get(alone)], least=[least.get(alone, 0.0)],
+                            extra=[extra.get(alone, 0.0)])
+            size = drawn_size([spans[n] for n in others], row) + drawn_size([spans[alone]], one)
+            smaller = any(s > under[n] * (1 + 1e-9) for n, s in zip(others + [alone], row.scales + one.scales))
+            if smaller or (best is not None and size <= best[0] * (1 + 1e-9)):
+                self.fig.delaxes(tax)
+                continue
+            if best is not None:
+                self.fig.delaxes(best[1].table)
+            rects, x = {alone: self.rect(EDGE, bottom, width, low)}, EDGE
+            for name, w in zip(others, row.widths):
+                rects[name] = self.rect(x, EDGE if first else self.top - high, w, high)
+                x += w + GAP
+            best = (size, _Plan(rects, {**dict(zip(others, row.scales)), alone: one.scales[0]}, tax))
+        return best
 
     def poles(self) -> _Plan:
         """The poles sheet: the mechanism at the full height with the Kennedy circle and the table in a
@@ -328,6 +381,7 @@ TABLE_LEAST = 0.22  # of the page's height: the table's room at least, before th
 TABLE_MOST = 0.4   # of the page's height: the table's room at most
 LABEL_ROOM = 2.0    # cm beside a mechanism for its labels (at 10 pt type)
 KENNEDY_MOST = 8.0  # cm: the Kennedy circle's panel at most
+BESIDE_FRACTIONS = (0.4, 0.5)   # of the panels' height: the last row's, with the table beside its panel
 
 
 def _move(tax, planner, top: float) -> None:
