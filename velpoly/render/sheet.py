@@ -44,7 +44,7 @@ from .style import get_style, rc_context
 from ..reference import at_file_pose
 from .table import draw_results_table, given_table
 
-__all__ = ["SHEETS", "fit_width", "Constructions", "constructions", "render_sheet", "frames", "draw_to_file", "mechanism_svg",
+__all__ = ["SHEETS", "fit_width", "wrap_caption", "Constructions", "constructions", "render_sheet", "frames", "draw_to_file", "mechanism_svg",
            "equation_tex", "default_sheet"]
 FORMATS = (".svg", ".png", ".pdf")
 
@@ -151,15 +151,50 @@ def _step_caption(fig, st, title, caption: str) -> float:
     top = title.get_window_extent(r).y0 / hpx - 0.012
     t = fig.text(0.5, top, caption, ha="center", va="top", fontsize=st.font_size * 1.1, gid="step-caption",
                  bbox=dict(boxstyle="round,pad=0.3", facecolor=st.paper, edgecolor=st.ink, lw=st.thin_lw))
+    if t.get_window_extent(r).width > 0.94 * fig.get_figwidth() * fig.dpi:   # too long: in two lines
+
+        def width_of(text):
+            t.set_text(text)
+            return t.get_window_extent(r).width
+        t.set_text(wrap_caption(caption, width_of))
     fit_width(fig, t, 0.94)
-    # the room is that of a line with sub- and superscripts at the full size, whatever this frame's
+    # the room is that of two lines with sub- and superscripts at the full size, whatever this frame's
     # equation, so that every frame's panels are alike; the box's patch is laid out when drawn: the text's
     # box grown by the pad (0.3 of the type size)
-    probe = fig.text(0.5, top, r"Step 1: $A^{t}_{B_{3}}$ (Mg)", ha="center", va="top", fontsize=st.font_size * 1.1)
+    probe = fig.text(0.5, top, "Step 1: $A^{t}_{B_{3}}$ (Mg)\n$A^{t}_{B_{3}}$ (Mg)", ha="center", va="top",
+                     fontsize=st.font_size * 1.1)
     bottom = min(probe.get_window_extent(r).y0, t.get_window_extent(r).y0)
     probe.remove()
     bottom -= (0.3 * st.font_size * 1.1 + st.thin_lw) * fig.dpi / 72
     return bottom / hpx - 0.008
+
+
+def wrap_caption(caption: str, width_of=len) -> str:
+    """``caption`` in two lines, broken at a space outside mathtext ($...$) where its first line is as wide as
+    its second (``width_of``: a text's width; by default its number of characters).
+
+    >>> wrap_caption("Step 2: $V_B = V_A + V_{BA}$, along the path of B, perpendicular to AB")
+    'Step 2: $V_B = V_A + V_{BA}$, along\\nthe path of B, perpendicular to AB'
+    """
+    spaces, inside = [], False
+    for i, ch in enumerate(caption):
+        if ch == "$":
+            inside = not inside
+        elif ch == " " and not inside:
+            spaces.append(i)
+    if not spaces:
+        return caption
+    half = width_of(caption) / 2
+    lo, hi = 0, len(spaces) - 1   # the first space whose first line is at least half the width (widths grow)
+    while lo < hi:
+        mid = (lo + hi) // 2
+        if width_of(caption[:spaces[mid]]) >= half:
+            hi = mid
+        else:
+            lo = mid + 1
+    cands = spaces[max(lo - 1, 0):lo + 1]
+    k = min(cands, key=lambda c: max(width_of(caption[:c]), width_of(caption[c + 1:])))
+    return caption[:k] + "\n" + caption[k + 1:]
 
 
 def _page_cm(st) -> tuple[float, float]:
