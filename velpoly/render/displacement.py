@@ -31,7 +31,8 @@ from .scalebar import scale_bar, unit_label
 from .style import get_style, link_fill
 
 __all__ = ["draw_mechanism", "away_from", "neighbours", "mechanism_bounds", "shape_patch", "link_bodies", "mark_auxiliary",
-           "equivalent_linkage_note", "plate_outline", "PLATE_FILL", "NUMBER_RADIUS"]
+           "equivalent_linkage_note", "plate_outline", "plate_fill", "plain_links", "PLATE_FILL",
+           "NUMBER_RADIUS"]
 
 PLATE_FILL = "0.9"      # a plate's fill where links are white (textbook): light, so that it reads as one body
 NUMBER_RADIUS = 0.8     # slides: a link number's circle at most this many bar widths in radius
@@ -168,6 +169,18 @@ def plate_outline(sol, link, bar_width: float):
     return hull
 
 
+def plate_fill(fill, st):
+    """A plate's fill: the link's, or :data:`PLATE_FILL` where links are white (it must read as one body)."""
+    return PLATE_FILL if fill == st.paper else fill
+
+
+def plain_links(m) -> set:
+    """The links drawn as bars or plates alone: none that carries a moving guide, a slot or a contact's
+    profile (those are drawn with their own bodies)."""
+    extra = {s.guide for s in m.sliders} | {s.slot for s in m.slots} | {lk for c in m.contacts for lk in c.links}
+    return {k.name for k in m.moving_links} - extra
+
+
 class _ArcPlace(NamedTuple):
     """Where a driver's curved arrow goes: its rank among the choices, mid direction and span (deg) about the
     pivot, radius, and the angular gap (width, start) it lies in."""
@@ -215,8 +228,7 @@ class _Drawing:
         if lk not in self.plates:
             return self.patch(geom, "links", zorder, fill, gid=f"link-{lk}")
         from matplotlib.patches import Polygon as MPolygon
-        if fill == self.st.paper:
-            fill = PLATE_FILL
+        fill = plate_fill(fill, self.st)
         p = MPolygon(np.asarray(geom.exterior.coords)[:-1], closed=True, facecolor=fill, edgecolor=self.st.ink,
                      lw=self.st.link_lw, zorder=zorder, gid=f"link-{lk}")
         self.ax.add_patch(p)
