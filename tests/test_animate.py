@@ -90,6 +90,29 @@ def check_frame(anim, k, tol=1e-9):
             assert float(t.get_text().replace("−", "-")) == pytest.approx(sol.omega[lk] * sense, abs=10.0 ** -dec)
 
 
+def test_a_coupler_is_drawn_as_a_plate_as_in_the_space_diagram(coupler_anim):
+    """A link of three points is one plate with its corners at its points in every frame (as the space
+    diagram draws it: issue 17 item 7), not bars about them; a bar stays a bar."""
+    from velpoly.render.displacement import plate_outline
+    anim = coupler_anim
+    m = anim.m
+    plates = [lk for lk in anim.bodies if len(m.link(lk).points) >= 3]
+    assert plates
+    for k in (0, len(anim.sols) // 2):
+        anim.update(k)
+        sol = anim.sols[k]
+        for lk, patch in anim.bodies.items():
+            xy = patch.get_path().vertices[:-1]
+            corners = np.array([sol.place(lk, p) for p in m.link(lk).points], float)
+            if lk in plates:
+                assert plate_outline(sol, lk, anim.bw) is not None
+                # every corner of the drawn outline is one of the link's points, and every point a corner
+                assert all(np.min(np.hypot(*(corners - v).T)) < 1e-9 for v in xy), lk
+                assert all(np.min(np.hypot(*(xy - c).T)) < 1e-9 for c in corners), lk
+            else:   # a bar: rounded, half a bar's width about its points
+                assert len(xy) > 8 and np.max(np.hypot(*(xy - corners[0]).T)) > anim.bw / 2 * 0.99
+
+
 def test_a_full_turn_is_one_frame_every_two_degrees_in_the_sense_of_omega():
     for omega in (10.0, -10.0):
         m = velpoly.load(fourbar(omega=omega))

@@ -847,6 +847,35 @@ def test_step_caption_has_its_own_room(sixbar):
             assert [any(ax.get_label() == "table" for ax in fig.axes) for fig in figs] == [False, True]
 
 
+def test_long_step_caption_in_two_lines():
+    """A step's caption too long for one line (the crank shaper's Coriolis step) is wrapped into two lines of
+    about equal width, at a space outside mathtext, nearly at full size (it was shrunk to 0.7 of it); clear of
+    the title and the panels' captions, the panels where a one-line frame has them."""
+    sol = velpoly.solve(velpoly.load(EXAMPLES / "crank_shaper.toml"))
+    st = sheet.get_style("slides")
+    cons = sheet.constructions(sol, "full")
+    fr = sheet.frames("full", cons, True)
+    short, long = min(fr, key=lambda f: len(f.caption)), max(fr, key=lambda f: len(f.caption))
+    with rc_context(st):
+        figs = [sheet.render_sheet(sol, "full", st, cons=cons, frame=f) for f in (short, long)]
+    caps = [next(t for t in fig.texts if t.get_gid() == "step-caption") for fig in figs]
+    assert "\n" not in caps[0].get_text() and caps[0].get_fontsize() == pytest.approx(st.font_size * 1.1)
+    first, second = caps[1].get_text().split("\n")
+    assert first.count("$") % 2 == 0 and first + " " + second == long.caption
+    assert caps[1].get_fontsize() >= 0.85 * st.font_size * 1.1
+    r = figs[1].canvas.get_renderer()
+    widths = []
+    for line in (first, second):
+        probe = figs[1].text(0, 0, line, fontsize=caps[1].get_fontsize())
+        widths.append(probe.get_window_extent(r).width)
+        probe.remove()
+    assert max(widths) < 1.25 * min(widths)
+    for fig in figs:
+        assert_page_texts_clear(fig)
+    pos = [[tuple(ax.get_position().bounds) for ax in fig.axes if ax.get_label() != "table"] for fig in figs]
+    assert pos[0] == pos[1]
+
+
 def test_long_captions_fit_their_columns():
     """Slide type: 'Acceleration polygon (1 cm = 20000 mm/s²)' ran into its neighbour and off the page."""
     m = velpoly.load(SIXBAR)

@@ -892,13 +892,19 @@ class Animator:
             t.set_text("–" if not math.isfinite(v) else f"{v:.{dec}f}".replace("-", "−"))
 
     def _update_bodies(self, k: int, sol) -> None:
-        """The links' bodies, the slider blocks and the contact profiles at frame k."""
-        from .displacement import link_bodies, shape_patch
+        """The links' bodies (a link of three or more points as one plate with its corners at its points, as
+        the space diagram draws it), the slider blocks and the contact profiles at frame k."""
+        from .displacement import link_bodies, plain_links, plate_fill, plate_outline, shape_patch
+        from .style import link_fill
         m, st = self.m, self.st
         bodies = link_bodies(sol, self.bw)
+        plain = plain_links(m)
         for lk, patch in self.bodies.items():
-            g = bodies.get(lk)
+            plate = plate_outline(sol, lk, self.bw) if lk in plain else None
+            g = plate if plate is not None else bodies.get(lk)
             patch.set_path(shape_patch(g).get_path() if g is not None else _empty_path())
+            fill = link_fill(m, self.opts, st, lk)
+            patch.set_facecolor(plate_fill(fill, st) if plate is not None else fill)
         pc = self.bw / st.bar_width
         for (block, point), patch in self.blocks.items():
             j = [i for i, s in enumerate(m.sliders) if s.block == block and s.point == point][0]

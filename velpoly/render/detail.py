@@ -148,11 +148,10 @@ def _shifts(d, pc) -> list:
     """Moves (dx, dy) of the panel's view that keep the polygon in it, the present view first: the polygon
     against a side or a corner of the panel leaves the room on the other side in one piece. None in a step
     frame or a view the caller set to a scale of its own (the finished construction's view stays)."""
-    from .polygon import polygon_bounds
     if d.pl.pins.get("_scale") is not None:
         return [(0.0, 0.0)]
     vx0, vy0, vx1, vy1 = view_box(d.ax).bounds
-    px0, py0, px1, py1 = polygon_bounds(d.polygon)
+    px0, py0, px1, py1 = d.bounds()
     gap = 0.4 * pc
     xs = (0.0, min(0.0, px1 + gap - vx1), max(0.0, px0 - gap - vx0))
     ys = (0.0, min(0.0, py1 + gap - vy1), max(0.0, py0 - gap - vy0))
@@ -168,7 +167,6 @@ def _place(d, region, min_w: float):
     """(scale, frame box in panel data units, view shift): the finest candidate scale whose inset finds a
     place free of every mark and line of the panel and away from the region, in the present view or one
     moved with the polygon against a side; else the place meeting the fewest marks, then lines."""
-    from .polygon import hit_counter, spots
     pl, pc = d.pl, d.pc
     pin = pl.pins.get("detail")
     if pin is not None:      # a step frame: where the finished construction has it
@@ -176,7 +174,7 @@ def _place(d, region, min_w: float):
     view = view_box(d.ax)
     wcm, hcm = (view.bounds[2] - view.bounds[0]) / pc, (view.bounds[3] - view.bounds[1]) / pc
     cap = _caption_cm(d.st)
-    hits_of = hit_counter(pl)
+    hits_of = d.hit_counter(pl)
     keep_off = region.buffer(0.3 * pc)
     best = None
     scales = _scales(region.bounds, pc, (0.7 * wcm, 0.6 * hcm), PAD_CM, cap)
@@ -184,7 +182,7 @@ def _place(d, region, min_w: float):
         w, h = (v * pc for v in _inset_size(region.bounds, s, PAD_CM, cap, min_w))
         for dx, dy in _shifts(d, pc):
             moved = shapely.affinity.translate(view, dx, dy)
-            named, grid = spots(moved.bounds, w, h, 0.1 * pc)
+            named, grid = d.spots(moved.bounds, w, h, 0.1 * pc)
             for lx, ly in named + grid:
                 b = box(lx, ly, lx + w, ly + h)
                 if not moved.contains(b):
@@ -272,7 +270,7 @@ def draw_detail(d) -> Detail | None:
     ipl = placer(inset)
     pin = pl.pins.get("detail")
     ipl.pins = pin[3] if pin is not None else {}
-    inner = type(d)(d.polygon, inset, d.st, d.opts, d.m, d.upto)   # the same drawing in the inset
+    inner = type(d)(d.polygon, inset, d.st, d.opts, d.m, d.upto)   # (the polygon module's class: no import cycle)
     inner.shade_images()
     inner.construction_lines()
     inner.vectors()

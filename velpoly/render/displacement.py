@@ -14,6 +14,7 @@ another driver angle draws the re-assembled pose.
 from __future__ import annotations
 
 import math
+from typing import NamedTuple
 
 import numpy as np
 from shapely.geometry import LineString, MultiPoint, Point
@@ -30,7 +31,8 @@ from .scalebar import scale_bar, unit_label
 from .style import get_style, link_fill
 
 __all__ = ["draw_mechanism", "away_from", "neighbours", "mechanism_bounds", "shape_patch", "link_bodies", "mark_auxiliary",
-           "equivalent_linkage_note", "plate_outline", "PLATE_FILL", "NUMBER_RADIUS"]
+           "equivalent_linkage_note", "plate_outline", "plate_fill", "plain_links", "PLATE_FILL",
+           "NUMBER_RADIUS"]
 
 PLATE_FILL = "0.9"      # a plate's fill where links are white (textbook): light, so that it reads as one body
 NUMBER_RADIUS = 0.8     # slides: a link number's circle at most this many bar widths in radius
@@ -167,6 +169,28 @@ def plate_outline(sol, link, bar_width: float):
     return hull
 
 
+def plate_fill(fill, st):
+    """A plate's fill: the link's, or :data:`PLATE_FILL` where links are white (it must read as one body)."""
+    return PLATE_FILL if fill == st.paper else fill
+
+
+def plain_links(m) -> set:
+    """The links drawn as bars or plates alone: none that carries a moving guide, a slot or a contact's
+    profile (those are drawn with their own bodies)."""
+    extra = {s.guide for s in m.sliders} | {s.slot for s in m.slots} | {lk for c in m.contacts for lk in c.links}
+    return {k.name for k in m.moving_links} - extra
+
+
+class _ArcPlace(NamedTuple):
+    """Where a driver's curved arrow goes: its rank among the choices, mid direction and span (deg) about the
+    pivot, radius, and the angular gap (width, start) it lies in."""
+    rank: int
+    mid: float
+    span: float
+    rad: float
+    gap: tuple
+
+
 class _Drawing:
     """The state of one displacement diagram being drawn."""
 
@@ -204,8 +228,7 @@ class _Drawing:
         if lk not in self.plates:
             return self.patch(geom, "links", zorder, fill, gid=f"link-{lk}")
         from matplotlib.patches import Polygon as MPolygon
-        if fill == self.st.paper:
-            fill = PLATE_FILL
+        fill = plate_fill(fill, self.st)
         p = MPolygon(np.asarray(geom.exterior.coords)[:-1], closed=True, facecolor=fill, edgecolor=self.st.ink,
                      lw=self.st.link_lw, zorder=zorder, gid=f"link-{lk}")
         self.ax.add_patch(p)
@@ -762,7 +785,7 @@ class _Drawing:
             spots.append(((a + b) / 2, f"{symbol} = {abs(value):.4g} {unit_label(m.units, power)}", label_gid))
         for at, text, label_gid in spots:   # the values once both arrows are drawn: clear of both
             t = self.pl.place(at, text, prefer=math.degrees(math.atan2(n[1], n[0])), fontsize=st.small_size * 1.15,
-                              zorder=7, gid=label_gid)
+                              zorder=7, gid=label_gid, clear=True)
             self.art.add("driver", t)
 
     def guide_side(self, s, p, n) -> float:
@@ -803,37 +826,65 @@ class _Drawing:
         t = np.radians(np.linspace(a0, a1, 60))
         return np.c_[p[0] + rad * np.cos(t), p[1] + rad * np.sin(t)]
 
-    def _driver_gap(self, p, gaps, rad, sense, text, label_kw):
-        """(mid direction, arc points, the gap (width, start)) of a driver's curved arrow: in the widest gap, unless it would cross another
-        link (a slotted lever passing by the pivot), a block or a label: then the next gap; of those, the one
-        whose value sits close to the arc over no link."""
-        drv = self.m.driver
-        others = [g for lk, g in self.geoms.items() if lk != drv.link]
-        others += [g for lk, g in self.block_geom.items() if lk != drv.link] + list(self.pl.boxes)
-        cands = []
+    @staticmethod
+    def _arc_options(gaps, rad, least: float = 0.0) -> list:
+        """The places for a driver's arc in the angular ``gaps`` (widest first; a gap under 50 deg only when it
+        is the widest): (rank, mid direction, span, radius, gap), for gaps at least ``least`` deg wide."""
+        out = []
         for rank, (gap, start) in enumerate(sorted(gaps, reverse=True)):
             if gap < 50.0 and rank > 0:
                 break
-            mid = start + gap / 2
-            cand = self._arc_points(p, rad, mid, min(130.0, 0.75 * gap), sense)
-            arc = LineString(cand)
-            cands.append((sum(1 for g in others if g.intersects(arc)), rank, mid, cand, (gap, start)))
-        fewest = min(c[0] for c in cands)
-        best = None
-        for hits, rank, mid, cand, gap in cands:
-            if hits > fewest:
+            if gap >= least:
+                out.append(_ArcPlace(len(out), start + gap / 2, min(130.0, 0.75 * gap), rad, (gap, start)))
+        return out
+
+    def _driver_plans(self, gaps, rad) -> list:
+        """Every (omega's place, alpha's place or None) to choose from: omega's arc in a gap about the pivot;
+        alpha's in another gap at least 50 deg wide, or beyond omega's arc in the same gap."""
+        plans = []
+        for w in self._arc_options(gaps, rad):
+            if not self.m.driver.alpha:
+                plans.append((w, None))
                 continue
-            # where its value would go: a gap whose label sits close to the arc, over no link, wins
-            self.pl.hard.append(LineString(cand).buffer(1.0 * self.pp))
-            trial = self.pl.place(p + rad * _unit(mid), text, prefer=mid, leader=False, obstacle=False, **label_kw)
-            self.pl.hard.pop()
-            tb = self.pl.box_of(trial, pad=0.0)
-            trial.remove()
-            score = (self.pl.soft_hits(tb), round(float(tb.distance(Point(*(p + rad * _unit(mid))))) / self.pp / 6.0),
-                     rank)
-            if best is None or score < best[0]:
-                best = (score, mid, cand, gap)
-        return best[1], best[2], best[3]
+            rest = self._arc_options([g for g in gaps if g != w.gap], rad, least=50.0)
+            beyond = _ArcPlace(len(rest), w.mid, min(110.0, 0.7 * w.gap[0]), rad + 0.45 * self.pc, w.gap)
+            plans += [(w, a) for a in rest + [beyond]]
+        return plans
+
+    def _draw_driver(self, p, plan, texts, label_kw) -> tuple[list, list]:
+        """omega's arc (alpha's, double-headed) at the places of ``plan``, then their values beside them:
+        (the artists, the labels)."""
+        drv = self.m.driver
+        arts, labels = [], []
+        for place, value, gid, label_gid, text in zip(plan, (drv.omega, drv.alpha), ("driver", "driver-alpha"),
+                                                     ("driver-label", "driver-label-alpha"), texts):
+            if place is not None:
+                xy = self._arc_points(p, place.rad, place.mid, place.span, 1.0 if value >= 0 else -1.0)
+                arts += self.curved_arrow(xy, gid, double=gid == "driver-alpha")
+        for place, label_gid, text in zip(plan, ("driver-label", "driver-label-alpha"), texts):
+            if place is not None:
+                labels.append(self.pl.place(p + place.rad * _unit(place.mid), text, prefer=place.mid, gid=label_gid,
+                                            clear=True, **label_kw))
+        return arts, labels
+
+    def _plan_score(self, p, plan, texts, label_kw) -> tuple:
+        """How a plan reads, lower is better: its arcs cross no other link, block or label; then its values
+        lie on no line (soft obstacle) and are placed, close to their arcs; then the wider gaps."""
+        drv = self.m.driver
+        others = [g for lk, g in self.geoms.items() if lk != drv.link]
+        others += [g for lk, g in self.block_geom.items() if lk != drv.link] + list(self.pl.boxes)
+        crossed = sum(1 for place, value in zip(plan, (drv.omega, drv.alpha)) if place is not None
+                      for g in others if g.intersects(LineString(self._arc_points(
+                          p, place.rad, place.mid, place.span, 1.0 if value >= 0 else -1.0))))
+        with self.pl.trial():
+            n_bad = len(self.pl.overlapping)
+            _, labels = self._draw_driver(p, plan, texts, label_kw)
+            boxes = [self.pl.box_of(t, pad=0.0) for t in labels]
+            lost = len(self.pl.overlapping) - n_bad
+            on_lines = sum(self.pl.soft_hits(b) for b in boxes)
+            far = sum(round(float(b.distance(Point(*(p + place.rad * _unit(place.mid))))) / self.pp / 6.0)
+                      for b, place in zip(boxes, [q for q in plan if q is not None]))
+        return (crossed, lost, on_lines, far) + tuple(q.rank for q in plan if q is not None)
 
     def curved_arrow(self, xy, gid, double=False) -> list:
         """An arrow along the points ``xy`` (its head at the last; a second head behind it when ``double``)."""
@@ -866,32 +917,19 @@ class _Drawing:
         return hd
 
     def turning_driver(self, pivot, p, ground_dir):
-        """omega's arc in the widest free gap about the pivot, alpha's (double-headed) in the next free gap (or
-        beyond omega's in the same), each in its sense, each labelled with its value beside it."""
-        drv, st, pc = self.m.driver, self.st, self.pc
+        """omega's arc in a free gap about the pivot (the widest, unless another reads better), alpha's
+        (double-headed) in another free gap or beyond omega's in the same, each in its sense, each labelled
+        with its value beside it: of every such layout, the one whose arcs cross nothing and whose values lie
+        on no line, close to their arcs."""
+        drv, st = self.m.driver, self.st
         lk = link_math(drv.link)   # velpoly.names: a word upright, as written
-        w_text = rf"$\omega_{{{lk}}}$ = {abs(drv.omega):.4g} rad/s {'ccw' if drv.omega >= 0 else 'cw'}"
+        texts = (rf"$\omega_{{{lk}}}$ = {abs(drv.omega):.4g} rad/s {'ccw' if drv.omega >= 0 else 'cw'}",
+                 rf"$\alpha_{{{lk}}}$ = {abs(drv.alpha):.4g} rad/s² {'ccw' if drv.alpha > 0 else 'cw'}")
         label_kw = dict(fontsize=st.small_size * 1.15, zorder=7)
-        rad = 0.8 * pc
-        gaps = self._driver_gaps(pivot, p, ground_dir)
-        mid, xy, used = self._driver_gap(p, gaps, rad, 1.0 if drv.omega >= 0 else -1.0, w_text, label_kw)
-        self.art.add("driver", *self.curved_arrow(xy, "driver"))
-        self.art.add("driver", self.pl.place(p + rad * _unit(mid), w_text, prefer=mid, gid="driver-label",
-                                             **label_kw))
-        if not drv.alpha:
-            return
-        sense = 1.0 if drv.alpha > 0 else -1.0
-        a_text = rf"$\alpha_{{{lk}}}$ = {abs(drv.alpha):.4g} rad/s² {'ccw' if drv.alpha > 0 else 'cw'}"
-        rest = [g for g in gaps if g != used]
-        if rest and max(rest)[0] >= 50.0:
-            mid, a_xy, _ = self._driver_gap(p, rest, rad, sense, a_text, label_kw)
-            r_a = rad
-        else:   # one gap only: beyond omega's arc
-            r_a = rad + 0.45 * pc
-            a_xy = self._arc_points(p, r_a, mid, min(110.0, 0.7 * used[0]), sense)
-        self.art.add("driver", *self.curved_arrow(a_xy, "driver-alpha", double=True))
-        self.art.add("driver", self.pl.place(p + r_a * _unit(mid), a_text, prefer=mid, gid="driver-label-alpha",
-                                             **label_kw))
+        plans = self._driver_plans(self._driver_gaps(pivot, p, ground_dir), 0.8 * self.pc)
+        best = min(plans, key=lambda plan: self._plan_score(p, plan, texts, label_kw))
+        arts, labels = self._draw_driver(p, best, texts, label_kw)
+        self.art.add("driver", *arts, *labels)
 
 
 def draw_mechanism(sol, ax=None, *, style="textbook", options=None, scale: float | None = None) -> Artists:

@@ -14,6 +14,7 @@ the same placement.
 from __future__ import annotations
 
 import math
+from contextlib import contextmanager
 
 import numpy as np
 import shapely
@@ -27,6 +28,7 @@ __all__ = ["LabelPlacer", "placer", "segment", "half_extent"]
 # ring radii, in points of gap between the anchor and the box
 RINGS = (2.5, 5.0, 9.0, 14.0, 21.0, 30.0, 42.0, 58.0)
 FAR_RINGS = (9.0, 21.0, 42.0, 80.0, 105.0)   # finer directions, only when nothing above is free
+LEADER_MOST = 0   # the most lines and outlines a far label's leader (see LabelPlacer.place's clear) may cross
 
 
 class LabelPlacer:
@@ -56,6 +58,25 @@ class LabelPlacer:
         """Register an already drawn Text as a placed label (its box)."""
         self.boxes.append(self.box_of(text))
         self.texts.append(text)
+
+    @contextmanager
+    def trial(self):
+        """Draw and place tentatively: on leaving, every label, obstacle, leader and artist added to the axes
+        inside is gone again (to score a layout before choosing it)."""
+        sizes = [(lst, len(lst)) for lst in (self.boxes, self.texts, self.hard, self.soft, self.leaders,
+                                             self.overlapping)]
+        placed = dict(self.placed)
+        before = {id(a) for a in self.ax.get_children()}
+        try:
+            yield self
+        finally:
+            for lst, n in sizes:
+                del lst[n:]
+            self.placed.clear()
+            self.placed.update(placed)
+            for a in self.ax.get_children():
+                if id(a) not in before:
+                    a.remove()
 
     # -- measuring ---------------------------------------------------------------------
     def box_of(self, text, pad: float = 1.0):
@@ -89,7 +110,7 @@ class LabelPlacer:
     # -- placing -----------------------------------------------------------------------
     def place(self, anchor, s: str, *, prefer: float | None = None, gap: float = 2.5, leader: bool = True,
               gid: str | None = None, obstacle: bool = True, pad: float = 1.0, within: float | None = None,
-              accept=None, **text_kw):
+              accept=None, clear: bool = False, **text_kw):
         """Draw text ``s`` near ``anchor`` where it overlaps nothing; return the Text.
 
         ``prefer``: the preferred direction from the anchor (degrees), e.g.
@@ -102,8 +123,10 @@ class LabelPlacer:
         of ``prefer`` (a label that must sit on one side of its anchor); if none
         of them is free, every direction. ``accept``: a test of a candidate box
         (data coordinates) it must pass where any free place does (a pole's label
-        nearer its own ring than any other). A leader crosses no other label and
-        no other leader.
+        nearer its own ring than any other). ``clear``: when every free place near
+        the anchor lies on a line (a soft obstacle), look farther out (with a
+        leader) for one on none. A leader crosses no other label and no other
+        leader.
         """
         anchor = np.asarray(anchor, float)
         t = self.ax.text(anchor[0], anchor[1], s, ha="center", va="center", **text_kw)
@@ -112,15 +135,15 @@ class LabelPlacer:
         w, h = self.text_size(t, pad)
         best = self._pinned(gid, w, h)
         if best is None:
-            best = self._search(anchor, w, h, prefer, gap, leader, within, accept)
+            best = self._search(anchor, w, h, prefer, gap, leader, within, accept, clear)
             if accept is not None and (best is None or best[0] != (0, 0)):   # a line under it is worse
-                anywhere = self._search(anchor, w, h, prefer, gap, leader, within, None)
+                anywhere = self._search(anchor, w, h, prefer, gap, leader, within, None, clear)
                 if anywhere is not None and (best is None or anywhere[0] < best[0]):
                     best = anywhere
         if best is None and within is not None:   # nothing free on that side: any side
             t.remove()
             return self.place(anchor, s, prefer=prefer, gap=gap, leader=leader, gid=gid, obstacle=obstacle, pad=pad,
-                              **text_kw)
+                              clear=clear, **text_kw)
         if best is None:
             best = self._least_bad(anchor, w, h, prefer, gap, leader)
             self.overlapping.append(t)
@@ -163,23 +186,32 @@ class LabelPlacer:
         at = Point(*anchor).buffer(2.0 * per_point(self.ax))
         return int(np.count_nonzero(shapely.intersects(soft, line) & ~shapely.intersects(soft, at)))
 
-    def _search(self, anchor, w: float, h: float, prefer, gap: float, leader: bool, within, accept):
-        """The first free candidate, ring after ring, crossing the fewest soft obstacles (None if none is free)."""
+    def _search(self, anchor, w: float, h: float, prefer, gap: float, leader: bool, within, accept,
+                clear: bool = False):
+        """The first free candidate, ring after ring, crossing the fewest soft obstacles (None if none is free);
+        ``clear``: the far rings too while every free candidate nearer lies on a line (a place there off
+        every line, whose leader crosses at most one line or outline)."""
         view = view_box(self.ax)
         rings = (gap,) + tuple(r for r in RINGS if r > gap)
         best = None
         for ring_i, ring in enumerate(rings + FAR_RINGS):
             far = ring_i >= len(rings)
-            if far and best is not None:   # farther out, in finer steps, only when nothing nearer is free
+            # farther out, in finer steps, only when nothing nearer is free (or, ``clear``, free of lines)
+            seeking = far and best is not None
+            if seeking and not (clear and leader and best[0][0] > 0):
                 break
             for c, b in self._candidates(anchor, w, h, prefer, ring, 24 if far else 16 if ring_i >= 2 else 8, within):
                 if not view.contains(b) or not self.free(b) or (accept is not None and not accept(b)):
                     continue
                 hits = (self.soft_hits(b), 0)   # lines under the box first, then lines its leader crosses
+                if seeking and hits[0]:
+                    continue
                 if leader and ring >= 9.0:
                     if self._leader_crosses(anchor, b):
                         continue
                     hits = (hits[0], self._leader_hits(anchor, b))
+                    if seeking and hits[1] > LEADER_MOST:
+                        continue
                 if best is None or hits < best[0]:
                     best = (hits, c, b, ring)
                 if hits == (0, 0):

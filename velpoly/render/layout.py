@@ -16,7 +16,7 @@ from dataclasses import dataclass
 
 from .canvas import nice_scale
 
-__all__ = ["MARGIN", "Row", "share_row", "smaller_scale"]
+__all__ = ["MARGIN", "Row", "share_row", "smaller_scale", "arrange", "drawn_size"]
 
 # paper kept about a drawing inside its panel (cm): each side, top, bottom (the scale bar's strip)
 MARGIN = (0.5, 0.45, 1.05)
@@ -119,7 +119,7 @@ def _first(ratios, fixed, room: float, inner_h: float) -> list[float]:
     return [w + (room - sum(first)) / n for w in first]
 
 
-def _size(spans, row: Row) -> float:
+def drawn_size(spans, row: Row) -> float:
     """How much of the page a row's drawings take: the sum of their boxes' areas on paper (cm²)."""
     return sum(w * h / s ** 2 for (w, h), s in zip(_spans(spans), row.scales))
 
@@ -144,7 +144,7 @@ def _splits(names):
 def arrange(spans: dict, names, width: float, top: float, bottom: float, gap: float, caption: float,
             scales: dict, least: dict, extra: dict | None = None) -> list[Band]:
     """The panels ``names`` in one row or two between ``bottom`` and ``top`` (cm), whichever draws them
-    largest (:func:`_size`: the area they cover; one row unless two cover a tenth more): a wide mechanism
+    largest (:func:`drawn_size`: the area they cover; one row unless two cover a tenth more): a wide mechanism
     across the page above its polygons. ``caption``: the height (cm) of a second row's captions. Each row is as tall
     as its drawings need; the height left over is shared out between the rows."""
     best, extra = None, extra or {}
@@ -156,7 +156,7 @@ def arrange(spans: dict, names, width: float, top: float, bottom: float, gap: fl
             made = [share_row([spans[n] for n in r], width, h, gap, [scales.get(n) for n in r],
                               least=[least.get(n, 0.0) for n in r], extra=[extra.get(n, 0.0) for n in r])
                     for r, h in zip(rows, heights)]
-            score = sum(_size([spans[n] for n in r], m) for r, m in zip(rows, made))
+            score = sum(drawn_size([spans[n] for n in r], m) for r, m in zip(rows, made))
             score /= 1.0 if len(rows) == 1 else 1.1
             if best is None or score > best[0] + 1e-9:
                 best = (score, rows, made)

@@ -96,6 +96,18 @@ def _label_text(polygon, names: dict, keys, with_origin: bool) -> str:
 class _PolygonDrawing:
     """One polygon being drawn on one axes (the panel, or its detail): what is known and where."""
 
+    # what the detail (velpoly.render.detail, which must not import this module back) uses of a drawing
+    def bounds(self) -> tuple[float, float, float, float]:
+        return polygon_bounds(self.polygon)
+
+    @staticmethod
+    def spots(bounds, w: float, h: float, pad: float) -> tuple[list, list]:
+        return spots(bounds, w, h, pad)
+
+    @staticmethod
+    def hit_counter(pl):
+        return hit_counter(pl)
+
     def __init__(self, polygon, ax, st, opts, mechanism, upto):
         self.polygon, self.ax, self.st, self.opts, self.m = polygon, ax, st, opts, mechanism
         self.velocity = polygon.kind == "velocity"

@@ -36,7 +36,7 @@ from .constructions import Constructions, check_sheet as _check_sheet, construct
 from .displacement import draw_mechanism, equivalent_linkage_note, mark_auxiliary, mechanism_bounds
 from .kennedy import draw_kennedy_circle, draw_poles, pole_label
 from .labels import placer
-from .layout import MARGIN, arrange, share_row
+from .layout import MARGIN, arrange, drawn_size, share_row
 from .options import SHEETS, drawing_options
 from .polygon import draw_polygon, legend_room, polygon_bounds
 from .scalebar import scale_text
@@ -44,7 +44,7 @@ from .style import get_style, rc_context
 from ..reference import at_file_pose
 from .table import draw_results_table, given_table
 
-__all__ = ["SHEETS", "fit_width", "Constructions", "constructions", "render_sheet", "frames", "draw_to_file", "mechanism_svg",
+__all__ = ["SHEETS", "fit_width", "wrap_caption", "Constructions", "constructions", "render_sheet", "frames", "draw_to_file", "mechanism_svg",
            "equation_tex", "default_sheet"]
 FORMATS = (".svg", ".png", ".pdf")
 
@@ -151,15 +151,50 @@ def _step_caption(fig, st, title, caption: str) -> float:
     top = title.get_window_extent(r).y0 / hpx - 0.012
     t = fig.text(0.5, top, caption, ha="center", va="top", fontsize=st.font_size * 1.1, gid="step-caption",
                  bbox=dict(boxstyle="round,pad=0.3", facecolor=st.paper, edgecolor=st.ink, lw=st.thin_lw))
+    if t.get_window_extent(r).width > 0.94 * fig.get_figwidth() * fig.dpi:   # too long: in two lines
+
+        def width_of(text):
+            t.set_text(text)
+            return t.get_window_extent(r).width
+        t.set_text(wrap_caption(caption, width_of))
     fit_width(fig, t, 0.94)
-    # the room is that of a line with sub- and superscripts at the full size, whatever this frame's
+    # the room is that of two lines with sub- and superscripts at the full size, whatever this frame's
     # equation, so that every frame's panels are alike; the box's patch is laid out when drawn: the text's
     # box grown by the pad (0.3 of the type size)
-    probe = fig.text(0.5, top, r"Step 1: $A^{t}_{B_{3}}$ (Mg)", ha="center", va="top", fontsize=st.font_size * 1.1)
+    probe = fig.text(0.5, top, "Step 1: $A^{t}_{B_{3}}$ (Mg)\n$A^{t}_{B_{3}}$ (Mg)", ha="center", va="top",
+                     fontsize=st.font_size * 1.1)
     bottom = min(probe.get_window_extent(r).y0, t.get_window_extent(r).y0)
     probe.remove()
     bottom -= (0.3 * st.font_size * 1.1 + st.thin_lw) * fig.dpi / 72
     return bottom / hpx - 0.008
+
+
+def wrap_caption(caption: str, width_of=len) -> str:
+    """``caption`` in two lines, broken at a space outside mathtext ($...$) where its first line is as wide as
+    its second (``width_of``: a text's width; by default its number of characters).
+
+    >>> wrap_caption("Step 2: $V_B = V_A + V_{BA}$, along the path of B, perpendicular to AB")
+    'Step 2: $V_B = V_A + V_{BA}$, along\\nthe path of B, perpendicular to AB'
+    """
+    spaces, inside = [], False
+    for i, ch in enumerate(caption):
+        if ch == "$":
+            inside = not inside
+        elif ch == " " and not inside:
+            spaces.append(i)
+    if not spaces:
+        return caption
+    half = width_of(caption) / 2
+    lo, hi = 0, len(spaces) - 1   # the first space whose first line is at least half the width (widths grow)
+    while lo < hi:
+        mid = (lo + hi) // 2
+        if width_of(caption[:spaces[mid]]) >= half:
+            hi = mid
+        else:
+            lo = mid + 1
+    cands = spaces[max(lo - 1, 0):lo + 1]
+    k = min(cands, key=lambda c: max(width_of(caption[:c]), width_of(caption[c + 1:])))
+    return caption[:k] + "\n" + caption[k + 1:]
 
 
 def _page_cm(st) -> tuple[float, float]:
@@ -269,8 +304,9 @@ class _Planner:
             tax, used, _ = self.draw_table(EDGE, self.width, TABLE_MOST * self.H)
             _move(tax, self, EDGE + used)
             floor = EDGE + used + TABLE_GAP
+        extra = {"mechanism": LABEL_ROOM * self.st.font_size / 10}
         bands = arrange(spans, names, self.width, self.top, floor, GAP, _caption_cm(self.st, self.lines), users,
-                        least, {"mechanism": LABEL_ROOM * self.st.font_size / 10})
+                        least, extra)
         rects, scales = {}, {}
         for band in bands:
             x = EDGE
@@ -278,7 +314,59 @@ class _Planner:
                 rects[name] = self.rect(x, band.bottom, w, band.height)
                 scales[name] = s
                 x += w + GAP
-        return _Plan(rects, scales, tax)
+        plan = _Plan(rects, scales, tax)
+        if tax is None or len(names) < 2:
+            return plan
+        size = sum(drawn_size([spans[n] for n in band.names], band.row) for band in bands)
+        beside = self.table_beside(names, spans, least, users, extra, scales)
+        if beside is not None and beside[0] > size * (1 + 1e-9):
+            self.fig.delaxes(tax)
+            return beside[1]
+        if beside is not None:
+            self.fig.delaxes(beside[1].table)
+        return plan
+
+    def table_beside(self, names, spans, least, users, extra, under):
+        """One panel (the first, or the last) in a row with the table beside it, in a column as tall as that
+        row, the other panels side by side in the other row (the first one's row above): (the area the
+        drawings cover, the plan) of the one that draws them largest, every drawing at least as large as at
+        the scales ``under`` (those with the table beneath), or None where none is (or the table shows not
+        every row at its full size in any such column)."""
+        total = self.top - EDGE
+        caption = _caption_cm(self.st, self.lines)
+        mx, mt, mb = MARGIN
+        best = None
+        for alone, others, f in [(names[0], names[1:], f) for f in BESIDE_FRACTIONS] + \
+                                [(names[-1], names[:-1], f) for f in BESIDE_FRACTIONS]:
+            first = alone == names[0]
+            low = total * f
+            high = total - low - caption
+            (lw, lh) = spans[alone]
+            need = lw / max(lh, 1e-300) * (low - mt - mb) + 2 * mx + extra.get(alone, 0.0)
+            width = min(max(need, least.get(alone, 0.0)), 0.5 * self.width)
+            bottom = self.top - low if first else EDGE        # the panel with the table beside it
+            tax, used, whole = self.draw_table(EDGE + width + GAP, self.width - width - GAP, low + caption)
+            if not whole:
+                self.fig.delaxes(tax)
+                continue
+            _move(tax, self, bottom + low + caption)
+            row = share_row([spans[n] for n in others], self.width, high, GAP, [users.get(n) for n in others],
+                            least=[least.get(n, 0.0) for n in others], extra=[extra.get(n, 0.0) for n in others])
+            one = share_row([spans[alone]], width, low, 0.0, [users.get(alone)], least=[least.get(alone, 0.0)],
+                            extra=[extra.get(alone, 0.0)])
+            size = drawn_size([spans[n] for n in others], row) + drawn_size([spans[alone]], one)
+            smaller = any(s > under[n] * (1 + 1e-9) for n, s in zip(others + [alone], row.scales + one.scales))
+            if smaller or (best is not None and size <= best[0] * (1 + 1e-9)):
+                self.fig.delaxes(tax)
+                continue
+            if best is not None:
+                self.fig.delaxes(best[1].table)
+            rects, x = {alone: self.rect(EDGE, bottom, width, low)}, EDGE
+            for name, w in zip(others, row.widths):
+                rects[name] = self.rect(x, EDGE if first else self.top - high, w, high)
+                x += w + GAP
+            best = (size, _Plan(rects, {**dict(zip(others, row.scales)), alone: one.scales[0]}, tax))
+        return best
 
     def poles(self) -> _Plan:
         """The poles sheet: the mechanism at the full height with the Kennedy circle and the table in a
@@ -328,6 +416,7 @@ TABLE_LEAST = 0.22  # of the page's height: the table's room at least, before th
 TABLE_MOST = 0.4   # of the page's height: the table's room at most
 LABEL_ROOM = 2.0    # cm beside a mechanism for its labels (at 10 pt type)
 KENNEDY_MOST = 8.0  # cm: the Kennedy circle's panel at most
+BESIDE_FRACTIONS = (0.4, 0.5)   # of the panels' height: the last row's, with the table beside its panel
 
 
 def _move(tax, planner, top: float) -> None:
