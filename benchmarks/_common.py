@@ -164,6 +164,17 @@ def finish(name: str, args, rows: list[dict], notes: list[str]) -> int:
 BEFORE = "dec406d"   # the last commit before issue 20's work on the JSON, the sheets, the draw command and the gallery
 
 
+def file_before_arguments(doc: str, argv=None) -> argparse.Namespace:
+    """A benchmark's arguments: ``--file`` (a mechanism, default Problem 1.4.4's six-bar, made absolute)
+    and ``--before`` (the commit to compare with), besides :func:`parser`'s."""
+    p = parser(doc.splitlines()[0])
+    p.add_argument("--file", default=str(ROOT / "velpoly" / "examples" / "problem_1_4_4_sixbar.toml"))
+    p.add_argument("--before", default=BEFORE, help="the commit to compare with (default %(default)s)")
+    args = p.parse_args(argv)
+    args.file = str(Path(args.file).resolve())
+    return args
+
+
 def export(commit: str, dest: Path) -> Path | None:
     """The ``velpoly`` package of ``commit`` under ``dest``; None where git cannot give it."""
     try:

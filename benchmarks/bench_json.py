@@ -26,7 +26,7 @@ import tempfile
 import time
 from pathlib import Path
 
-from _common import BEFORE, ROOT, export, finish, parser, row
+from _common import ROOT, export, file_before_arguments, finish, row
 
 CALLS = 100
 
@@ -54,11 +54,7 @@ def per_call(fn, calls: int) -> float:
 
 
 def main(argv=None) -> int:
-    p = parser(__doc__.splitlines()[0])
-    p.add_argument("--file", default=str(ROOT / "velpoly" / "examples" / "problem_1_4_4_sixbar.toml"))
-    p.add_argument("--before", default=BEFORE, help="the commit to compare with (default %(default)s)")
-    args = p.parse_args(argv)
-    args.file = str(Path(args.file).resolve())
+    args = file_before_arguments(__doc__, argv)
     import velpoly
     from velpoly.poles import locate_poles
     from velpoly.polygons import acceleration_polygon, velocity_polygon

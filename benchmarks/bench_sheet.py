@@ -28,7 +28,7 @@ import tempfile
 import time
 from pathlib import Path
 
-from _common import BEFORE, ROOT, export, finish, parser, row
+from _common import ROOT, export, file_before_arguments, finish, row
 
 TIMER = r'''
 import json, sys, time
@@ -91,11 +91,7 @@ def parts(path: str, repeats: int) -> dict:
 
 
 def main(argv=None) -> int:
-    p = parser(__doc__.splitlines()[0])
-    p.add_argument("--file", default=str(ROOT / "velpoly" / "examples" / "problem_1_4_4_sixbar.toml"))
-    p.add_argument("--before", default=BEFORE, help="the commit to compare with (default %(default)s)")
-    args = p.parse_args(argv)
-    args.file = str(Path(args.file).resolve())
+    args = file_before_arguments(__doc__, argv)
     notes: list[str] = []
     with tempfile.TemporaryDirectory(prefix="velpoly-bench-sheet-") as tmp:
         tmp = Path(tmp)
