@@ -609,6 +609,36 @@ def _draw_blocks(art, st, widths_of: _Widths, layout, size, top, spacing, box) -
     return bottom
 
 
+class _Title:
+    """The results table's title (italic, at 1.1 times the table's type), wrapped to the table's width
+    ``wrap_pt`` (points) where it is longer (a long source wraps)."""
+
+    def __init__(self, ax, text: str, size: float, wrap_pt: float):
+        self.ax, self.size, self.wrap_pt = ax, size, wrap_pt
+        fig = ax.figure
+        self.text = ax.text(0, 1, literal(text), fontsize=size * 1.1, va="top", ha="left", style="italic",
+                            gid="results-table")
+        self.width = self.text.get_window_extent(renderer_of(fig)).width * 72 / fig.dpi
+        self.chars = len(text) * wrap_pt / self.width * 0.97   # characters a line of the title holds
+        self.lines = self.wrap(text)
+
+    def wrap(self, text: str) -> int:
+        """Set ``text``, wrapped; the number of its lines."""
+        import textwrap
+        wrapped = textwrap.wrap(text, max(20, int(self.chars))) if self.width > self.wrap_pt else [text]
+        self.text.set_text(literal("\n".join(wrapped)))
+        return len(wrapped)
+
+    def rule_at(self, height_pt: float, size: float) -> float:
+        """The height (points, in an axes ``height_pt`` tall) of the table's first rule: under the title's
+        last line as drawn (its descenders), never through it."""
+        ax, fig = self.ax, self.ax.figure
+        r = renderer_of(fig)
+        top = height_pt - 1.6 * size * 1.1 - (self.lines - 1) * 1.4 * size * 1.1
+        drawn = (self.text.get_window_extent(r).y0 - ax.get_window_extent(r).y0) * 72 / fig.dpi
+        return min(top, drawn - 0.35 * size)
+
+
 def draw_results_table(sol, ax=None, *, sheet: str = "full", style="textbook", velocity=None,
                        acceleration=None, poleset=None, table: Table | None = None) -> Artists:
     """Draw the sheet's results table in ``ax`` (booktabs style); return the Artists.
@@ -634,29 +664,13 @@ def draw_results_table(sol, ax=None, *, sheet: str = "full", style="textbook", v
     t = _sheet_table(sol, sheet, velocity, acceleration, poleset, table)
     art = Artists(ax)
     art.table = t
-    fig = ax.figure
-    r = renderer_of(fig)
     width_pt, height_pt = _box(ax)
     widths_of = _Widths(ax, st, t)
     size, widths, need, gap = widths_of.fit(width_pt)
     line_h = 1.45 * size
-    title = ax.text(0, 1, literal(t.title), fontsize=size * 1.1, va="top", ha="left", style="italic", gid="results-table")
-    tw = title.get_window_extent(r).width * 72 / fig.dpi
-    wrap_pt = min(width_pt, max(need, 0.6 * width_pt))   # the table's own width (not less than 0.6 of the room)
-    chars = len(t.title) * wrap_pt / tw * 0.97   # characters a line of the title holds
-
-    def wrap_title(text):
-        """The title wrapped to the table's width (a long source wraps); the number of its lines."""
-        import textwrap
-        wrapped = textwrap.wrap(text, max(20, int(chars))) if tw > wrap_pt else [text]
-        title.set_text(literal("\n".join(wrapped)))
-        return len(wrapped)
-    lines = wrap_title(t.title)
-    art.add("title", title)
-    top = height_pt - 1.6 * size * 1.1 - (lines - 1) * 1.4 * size * 1.1
-    # the first rule under the title's last line as drawn (its descenders), never through it
-    drawn = (title.get_window_extent(r).y0 - ax.get_window_extent(r).y0) * 72 / fig.dpi
-    top = min(top, drawn - 0.35 * size)
+    title = _Title(ax, t.title, size, min(width_pt, max(need, 0.6 * width_pt)))   # not less than 0.6 of the room
+    art.add("title", title.text)
+    top = title.rule_at(height_pt, size)
     # the footnotes (the [reference] notes of the marked rows) beneath the table, across its room: their
     # lines are kept free of rows
     foot_size = 0.9 * size
@@ -668,12 +682,11 @@ def draw_results_table(sol, ax=None, *, sheet: str = "full", style="textbook", v
     most = max(1, min(3, int((width_pt + bgap) // (need + bgap))))
     art.whole = (height_pt - top + (1.9 + -(-len(rows) // most)) * line_h + _foot_height(rows, foot, size, foot_size)
                  + 0.9 * size) / height_pt
-
     bottom = _draw_blocks(art, st, widths_of, (rows, shown, blocks, per), size, top, (widths, gap, bgap),
                           (width_pt, height_pt))
     y = _footnotes(art, ax, t, shown, foot, bottom, size, foot_size, (width_pt, height_pt))
     if t.notes and not art.notes:   # the title promises no footnote that the rows shown do not have
-        wrap_title(t.title.replace(f"; {NOTED} the book's value is explained in a footnote", ""))
+        title.wrap(t.title.replace(f"; {NOTED} the book's value is explained in a footnote", ""))
     art.shown = len(shown)
     art.size = size
     art.used = min(1.0, (height_pt - y + 0.4 * size) / height_pt)   # the share of the axes' height drawn in
