@@ -95,12 +95,15 @@ def test_share_row_fills_the_band_at_round_scales():
     assert any(h > 11.0 - 1.5 for _, h in grown) or sum(w for w, _ in grown) + 3.6 > 28.0
 
 
-def test_gallery_sheets_use_the_page():
-    """Every gallery file's own sheet (one style each, alternating): the blank fraction's mean under its
-    bound in each style; scale bars apart; the table's rule under its title; no label on a line."""
-    fractions = {st: [] for st in STYLES}
+@pytest.mark.parametrize("style", STYLES)
+def test_gallery_sheets_use_the_page(style):
+    """Every gallery file's own sheet (one style each, alternating; a test a style, so that the two run
+    side by side): the blank fraction's mean under its bound in each style; scale bars apart; the table's
+    rule under its title; no label on a line."""
+    fractions = {style: []}
     for i, path in enumerate(GALLERY_FILES):
-        style = STYLES[i % 2]
+        if STYLES[i % 2] != style:
+            continue
         st = get_style(style)
         sol = velpoly.solve(velpoly.load(path))
         name = sheet.default_sheet(sol.mechanism)
