@@ -1439,6 +1439,7 @@ class PlanStep:
         return self.sine
 
     def equation(self, run: "_Run") -> str:
+        """The step's vector equation (every kind of step below writes its own: an abstract method)."""
         raise NotImplementedError
 
     def caption(self, run: "_Run") -> str:
@@ -1447,6 +1448,7 @@ class PlanStep:
         return run.located_first(self) + self.words(run) + run.pinned_words(self) + run.rates_words(self)
 
     def words(self, run: "_Run") -> str:
+        """What the step constructs, in words (every kind of step below writes its own: an abstract method)."""
         raise NotImplementedError
 
 
