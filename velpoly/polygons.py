@@ -65,6 +65,7 @@ from __future__ import annotations
 import dataclasses
 import math
 import weakref
+from abc import ABC, abstractmethod
 from dataclasses import dataclass, field
 from typing import ClassVar, NamedTuple
 
@@ -1417,7 +1418,7 @@ def _segment(q: str, w: str) -> str:
 
 
 @dataclass(frozen=True)
-class PlanStep:
+class PlanStep(ABC):
     """One step of the plan, from the mechanism alone (the same at both levels): its operations
     (:class:`VelocityImage`, :class:`Intersection`, ...), the canonical places it locates, the links
     whose rates it fixes. Each kind writes its own vector equation and caption at a level."""
@@ -1438,18 +1439,18 @@ class PlanStep:
     def sine_at(self, run: "_Run") -> float:
         return self.sine
 
+    @abstractmethod
     def equation(self, run: "_Run") -> str:
-        """The step's vector equation (every kind of step below writes its own: an abstract method)."""
-        raise NotImplementedError
+        """The step's vector equation (every kind of step below writes its own)."""
 
     def caption(self, run: "_Run") -> str:
         """The step in the textbook's words: the coincident points it locates first from their
         links' images, what it constructs (:meth:`words`), the rates it fixes."""
         return run.located_first(self) + self.words(run) + run.pinned_words(self) + run.rates_words(self)
 
+    @abstractmethod
     def words(self, run: "_Run") -> str:
-        """What the step constructs, in words (every kind of step below writes its own: an abstract method)."""
-        raise NotImplementedError
+        """What the step constructs, in words (every kind of step below writes its own)."""
 
 
 @dataclass(frozen=True)
