@@ -1,18 +1,19 @@
 """Every example renders, with the real constructions, in every sheet kind and style.
 
-Every built-in example (velpoly/examples/*.toml, the gallery's files) draws its full sheet as SVG (every
+Every built-in example (velpoly/examples/*.toml, the gallery's files) draws its full sheet (every
 panel of that file), in one style (alternating textbook and slides through the sorted files) and in
 both for the few files in ``BOTH_STYLES`` (a four-bar, a six-bar with a slider, a Coriolis and a
 rolling-contact example), so that each style meets every kind of panel. Every second file also draws one of
 the other sheets (velocity, acceleration, poles, displacement, in turn through the files, first in
 textbook style, then in slides), so that every sheet kind is drawn in each style while the suite stays
-fast (``test_every_sheet_kind_and_style_is_covered``). On every page no two labels overlap.
+fast (``test_every_sheet_kind_and_style_is_covered``). Each page is a test of its own, drawn once per worker
+by tests/sheets.py (other tests look at the same pages) and drawn through, every text laid out: it has its
+sheet's panels and table, no two labels overlap, captions state their panels' scales.
 A file whose contacts are given by their normals only has no acceleration sheet (an InputError saying
 that centres of curvature are needed, FORMAT.md section 5); its full sheet shows velocities only.
 """
 from __future__ import annotations
 
-import io
 import itertools
 import re
 from pathlib import Path
@@ -25,7 +26,8 @@ from render_contract import assert_page_texts_clear, leaders_crossing_labels, le
 from velpoly.errors import InputError
 from velpoly.render import sheet
 from velpoly.render.canvas import per_cm
-from velpoly.render.style import get_style, rc_context
+from velpoly.render.options import drawing_options
+import sheets
 from paths import GALLERY_FILES
 from test_detail import expected as expected_detail
 
@@ -92,25 +94,32 @@ def test_every_sheet_kind_and_style_is_covered():
     assert drawn.keys() == {(n, st) for n in sheet.SHEETS for st in STYLES}, drawn
 
 
-@pytest.mark.parametrize("index,path", list(enumerate(FILES)), ids=[p.stem for p in FILES])
-def test_every_file_renders_its_pages(index, path):
+PAGES = [(index, path, name, style) for index, path in enumerate(FILES) for name, style in pages_for(index, path)]
+
+
+@pytest.mark.parametrize("index,path,name,style", [pytest.param(*p, marks=sheets.on(p[3])) for p in PAGES],
+                         ids=[f"{p.stem}-{name}-{style}" for _, p, name, style in PAGES])
+def test_every_page_is_drawn_clear(index, path, name, style):
+    """One page (sheet, style) of a gallery file, drawn as ``velpoly draw`` draws it (tests/sheets.py: once
+    per worker, shared with the other tests that look at it) and drawn through (every text laid out)."""
     m = velpoly.load(path)      # a gallery file that stops loading fails here (never a skip)
-    sol = velpoly.solve(m)
-    full = sheet.constructions(sol, "full")     # built once; each sheet draws what it needs of them
-    if not sol.has_accelerations:
+    sol = sheets.solved(path.stem)
+    if (name, style) == pages_for(index, path)[0] and not sol.has_accelerations:
         with pytest.raises(InputError, match="centres of curvature"):
             sheet.constructions(sol, "acceleration")
-    for name, style in pages_for(index, path):
-        if name == "acceleration" and not sol.has_accelerations:
-            continue
-        st = get_style(style)
-        with rc_context(st):
-            fig = sheet.render_sheet(sol, name, st, cons=full)
-            buf = io.BytesIO()
-            fig.savefig(buf, format="svg", metadata={"Date": None})
-        svg = buf.getvalue()
-        assert svg.startswith(b"<?xml") and (b'id="results-table"' if name != "displacement"
-                                              else b'id="data-table"') in svg
+    assert sol.mechanism == m
+    if name == "acceleration" and not sol.has_accelerations:
+        return
+    fig = sheets.page(path.stem, name, style)
+    cons = sheets.constructions(path.stem, name)
+    with sheets.styled(style):
+        labels = {ax.get_label() for ax in fig.axes}       # the sheet's panels and its table
+        assert labels == set(sheet._PANELS[name]) | ({"table"} if drawing_options(m).table else set()), labels
+        if style == "slides":
+            w, h = fig.get_size_inches()
+            assert w / h == pytest.approx(16 / 9, rel=1e-3)
+        table = "data-table" if name == "displacement" else "results-table"
+        assert any(t.get_gid() == table for ax in fig.axes for t in ax.texts), f"{name}/{style}: no {table}"
         assert_page_texts_clear(fig)
         assert not legend_trouble(fig), f"{name}/{style}: the legend runs {legend_trouble(fig)[:3]}"
         assert not reasons_too_close(fig), f"{name}/{style}: reasons run into labels {reasons_too_close(fig)}"
@@ -129,7 +138,7 @@ def test_every_file_renders_its_pages(index, path):
             assert not bad, f"{name}/{style}: hyphen for minus in {bad}"
         for ax in fig.axes:   # a polygon crushed by a long vector has its detail, and only that (test_detail)
             if ax.get_label() in ("velocity", "acceleration"):
-                poly = full.velocity if ax.get_label() == "velocity" else full.acceleration
+                poly = cons.velocity if ax.get_label() == "velocity" else cons.acceleration
                 has = any(p.get_gid() == "detail-frame" for p in ax.patches)
                 assert has == expected_detail(poly, per_cm(ax)), f"{name}/{style}: {ax.get_label()} detail"
         boxes = _label_boxes(fig)

@@ -18,6 +18,7 @@ accepts, each solved at its drawn pose and at other driver angles, and checked:
 from __future__ import annotations
 
 import collections
+import functools
 import json
 import math
 
@@ -41,10 +42,24 @@ except ImportError:
 SEED = 20261125
 COUNT = 300                      # cycling through the (kind, variant) pairs: 5 or 6 of each
 TOL = 1e-9
-SPECIMENS = zoo.zoo(SEED, COUNT)
-BY_KIND = collections.defaultdict(list)
-for _s in SPECIMENS:
-    BY_KIND[_s.kind.split(" ")[0]].append(_s)
+# the specimens' kinds by their first word (test_zoo_is_big_and_covers_every_kind checks this is all of them)
+ZOO_KINDS = ("contact", "eight-bar", "four-bar", "inverted", "pin", "six-bar", "slider-crank")
+# generated when a test first needs them, not at collection (where every xdist worker would); the module's
+# tests run on one worker (its xdist group), which generates them once
+pytestmark = pytest.mark.xdist_group("zoo")
+
+
+@functools.cache
+def specimens() -> list:
+    return zoo.zoo(SEED, COUNT)
+
+
+@functools.cache
+def by_kind() -> dict:
+    out = collections.defaultdict(list)
+    for sp in specimens():
+        out[sp.kind.split(" ")[0]].append(sp)
+    return dict(out)
 
 
 @pytest.fixture(autouse=True)
@@ -165,31 +180,32 @@ def _solve_all(specimens):
 
 
 def test_zoo_is_big_and_covers_every_kind():
-    assert len(SPECIMENS) >= 300
-    kinds = {sp.kind for sp in SPECIMENS}
+    assert len(specimens()) >= 300
+    assert tuple(sorted(by_kind())) == ZOO_KINDS
+    kinds = {sp.kind for sp in specimens()}
     for kind, (_, variants) in zoo.KINDS.items():
         for v in variants:
             assert any(k.endswith(v) for k in kinds), (kind, v)
-    assert any(sp.mech["driver"].get("slider") for sp in BY_KIND["inverted"])
+    assert any(sp.mech["driver"].get("slider") for sp in by_kind()["inverted"])
     # the same seed, the same zoo
     again = zoo.zoo(SEED, 20)
-    assert [s.mech for s in again] == [s.mech for s in SPECIMENS[:20]]
+    assert [s.mech for s in again] == [s.mech for s in specimens()[:20]]
 
 
-@pytest.mark.parametrize("kind", sorted(BY_KIND))
+@pytest.mark.parametrize("kind", ZOO_KINDS)
 def test_zoo(kind):
-    failures, counts = _solve_all(BY_KIND[kind])
+    failures, counts = _solve_all(by_kind()[kind])
     assert not failures, f"{len(failures)} failures:\n" + "\n".join(map(str, failures[:20]))
     # most poses solve (so the checks ran): every drawn pose, and most of the others
-    offsets = sum(len(sp.offsets) for sp in BY_KIND[kind])
-    assert counts["solved"] >= len(BY_KIND[kind]) and counts["solved"] >= 0.8 * offsets, counts
+    offsets = sum(len(sp.offsets) for sp in by_kind()[kind])
+    assert counts["solved"] >= len(by_kind()[kind]) and counts["solved"] >= 0.8 * offsets, counts
 
 
 def test_inverted_slider_driven_uses_case_2a():
     """A slider driver on a turning guide: the block's image is found by the ordinary dyad step,
     its two lines through known images (the other link's, and the guide's offset by the slip)."""
     n = 0
-    for sp in BY_KIND["inverted"]:
+    for sp in by_kind()["inverted"]:
         if not sp.mech["driver"].get("slider"):
             continue
         sol = velpoly.solve(velpoly.load(sp.mech))
@@ -211,7 +227,7 @@ def test_slider_driver_on_a_turning_guide_lines_are_the_books():
     along the path) perpendicular to O4X; in the acceleration polygon the offset line starts at
     o4' + A^n_X4O4 + A_X3/X4 + 2 omega_4 x V_X3/X4, every term from the analytic solve."""
     n = 0
-    for sp in BY_KIND["inverted"]:
+    for sp in by_kind()["inverted"]:
         drv = sp.mech["driver"]
         if not drv.get("slider") or "swinging" in sp.kind or "curved" in sp.kind:
             continue
@@ -296,7 +312,7 @@ def test_zoo_sheets_draw(kind, tmp_path):
     """The full or the poles sheet of a few specimens draws (SVG, no error, a real drawing): each sheet
     on two kinds (every gallery file draws its full sheet and some their poles sheet: test_render_gallery)."""
     from velpoly.render import draw_to_file
-    sp = next(s for s in SPECIMENS if s.kind.endswith(kind))
+    sp = next(s for s in specimens() if s.kind.endswith(kind))
     sol = velpoly.solve(velpoly.load(sp.mech))
     sheet = RENDER[kind]
     out = draw_to_file(sol, tmp_path / f"{sheet}.svg", sheet=sheet)
