@@ -32,6 +32,7 @@ from velpoly.render.displacement import draw_mechanism
 from velpoly.render.labels import LabelPlacer
 from velpoly.render.polygon import draw_polygon
 from velpoly.render.style import rc_context
+import sheets
 from paths import EXAMPLES
 
 ROOT = Path(__file__).resolve().parent.parent
@@ -329,15 +330,12 @@ def test_labels_of_close_images_stand_apart_on_their_own_sides(sixbar):
     _no_overlaps(ax, art["labels"])
 
 
-@pytest.mark.parametrize("stem,name,style", [("ex3_6_fourbar", "poles", "textbook"), ("ex3_6_fourbar", "poles", "slides"),
-                                              ("crank_shaper", "full", "textbook")])
+@pytest.mark.parametrize("stem,name,style", [pytest.param(*p, marks=sheets.on(p[2])) for p in (
+    ("ex3_6_fourbar", "poles", "textbook"), ("ex3_6_fourbar", "poles", "slides"), ("crank_shaper", "full", "textbook"))])
 def test_driver_value_sits_by_its_arc_over_no_link(stem, name, style):
     """The omega arrow goes where its value can stand next to it, over no link's outline (ex3_6's poles
     sheet in slides had it across link 4 and the label of P_14)."""
-    sol = velpoly.solve(velpoly.load(EXAMPLES / f"{stem}.toml"))
-    st = sheet.get_style(style)
-    with rc_context(st):
-        fig = sheet.render_sheet(sol, name, st)
+    fig = sheets.page(stem, name, style)      # drawn once per worker, shared (tests/sheets.py)
     ax = next(a for a in fig.axes if any(t.get_gid() == "driver-label" for t in a.texts))
     to_data = ax.transData.inverted()
     label = next(t for t in ax.texts if t.get_gid() == "driver-label")
@@ -448,6 +446,7 @@ def test_poles_are_drawn_where_they_are(sixbar):
 
 @pytest.mark.parametrize("stem,key", [("problem_1_4_4_sixbar", "0-4"), ("ex3_4_slotted_lever", "4-5"),
                                       ("watt_sixbar", "1-3")])
+@sheets.on("textbook")
 def test_far_pole_arrow_stands_on_its_kennedy_line_at_the_border(stem, key):
     """A finite pole too far to show is an arrow at the panel's border, on a Kennedy line that located it
     where that line leaves the view, pointing along it towards the pole: a reader follows it to the pole
@@ -455,11 +454,10 @@ def test_far_pole_arrow_stands_on_its_kennedy_line_at_the_border(stem, key):
     pytest.importorskip("velpoly.poles")
     from shapely.geometry import LineString, Point
     from velpoly.render.canvas import view_box
-    sol = velpoly.solve(velpoly.load(EXAMPLES / f"{stem}.toml"))
-    cons = sheet.constructions(sol, "poles")
-    pole = cons.poles.poles[key]
+    sol = sheets.solved(stem)
+    pole = sheets.constructions(stem, "poles").poles.poles[key]
     assert pole.position is not None
-    fig = sheet.render_sheet(sol, "poles", cons=cons)
+    fig = sheets.page(stem, "poles", "textbook")      # drawn once per worker, shared (tests/sheets.py)
     ax = next(a for a in fig.axes if any((ln.get_gid() or "").startswith("kennedy-line-") for ln in a.lines))
     view = view_box(ax)
     assert not view.contains(Point(*pole.position))
@@ -593,9 +591,9 @@ def _cons(sol):
 
 def test_same_input_same_bytes(sixbar, tmp_path):
     m, sol = sixbar
-    for suffix in (".svg", ".pdf"):
-        a = sheet.draw_to_file(sol, tmp_path / f"a{suffix}", "full", cons=_cons(sol))[0]
-        b = sheet.draw_to_file(velpoly.solve(velpoly.load(SIXBAR)), tmp_path / f"b{suffix}", "full",
+    for suffix, name in ((".svg", "full"), (".pdf", "velocity")):   # each drawn twice, from its own solve
+        a = sheet.draw_to_file(sol, tmp_path / f"a{suffix}", name, cons=_cons(sol))[0]
+        b = sheet.draw_to_file(velpoly.solve(velpoly.load(SIXBAR)), tmp_path / f"b{suffix}", name,
                                cons=_cons(sol))[0]
         assert a.read_bytes() == b.read_bytes()
     assert b"<dc:date>" not in a.with_suffix(".svg").read_bytes()
@@ -614,38 +612,28 @@ def test_a_failed_drawing_leaves_no_file(sixbar, tmp_path, monkeypatch):
 
 
 def test_steps_write_numbered_files_and_pdf_pages(sixbar, tmp_path):
+    """A file a frame (SVG), a page a frame (PDF): drawn for a four-bar, whose polygons take few steps; the
+    six-bar's frames (one a step of each polygon) and their captions."""
     m, sol = sixbar
     cons = _cons(sol)
-    files = sheet.draw_to_file(sol, tmp_path / "v.svg", "velocity", steps=True, cons=cons)
+    frames = sheet.frames("full", cons, True)
+    assert len(frames) == len(cons.velocity.steps) + len(cons.acceleration.steps)
+    assert frames[1].caption.startswith("Step 2: ") and r"$V_{CB}$" in frames[1].caption
+    four = velpoly.solve(velpoly.load(EXAMPLES / "ex3_6_fourbar.toml"))
+    cons = sheet.constructions(four, "full")
+    files = sheet.draw_to_file(four, tmp_path / "v.svg", "velocity", steps=True, cons=cons)
     n = len(cons.velocity.steps)
-    assert [p.name for p in files] == [f"v-{i:02d}.svg" for i in range(1, n + 1)]
+    assert n >= 2 and [p.name for p in files] == [f"v-{i:02d}.svg" for i in range(1, n + 1)]
     assert all(p.exists() for p in files)
     text = files[1].read_text()
     assert 'id="step-caption"' in text
-    frames = sheet.frames("full", cons, True)
-    assert len(frames) == n + len(cons.acceleration.steps)
-    assert frames[1].caption.startswith("Step 2: ") and r"$V_{CB}$" in frames[1].caption
-    pdf = sheet.draw_to_file(sol, tmp_path / "a.pdf", "acceleration", steps=True, cons=cons)[0]
+    pdf = sheet.draw_to_file(four, tmp_path / "a.pdf", "acceleration", steps=True, cons=cons)[0]
+    assert len(cons.acceleration.steps) >= 2
     assert pdf.read_bytes().count(b"/Type /Page\n") + pdf.read_bytes().count(b"/Type /Page ") >= \
         len(cons.acceleration.steps)
 
 
-def test_sheets_have_their_panels_and_a_table(sixbar):
-    m, sol = sixbar
-    cons = _cons(sol)
-    with rc_context(sheet.get_style("textbook")):
-        for name in sheet.SHEETS:
-            if name == "poles" and cons.poles is None:
-                continue
-            fig = sheet.render_sheet(sol, name, "textbook", cons=cons)
-            labels = {ax.get_label() for ax in fig.axes}
-            assert "table" in labels
-            assert labels - {"table"} == set(sheet._PANELS[name])
-    fig = sheet.render_sheet(sol, "full", "slides", cons=cons)
-    w, h = fig.get_size_inches()
-    assert w / h == pytest.approx(16 / 9, rel=1e-3)
-
-
+@sheets.on("textbook")
 def test_poles_sheet_layouts_draw_the_mechanism_large():
     """The poles sheet picks the layout drawing the mechanism largest; the panels never overlap and stay on
     the page, and the table keeps its full type size (ex3_6's far P_24 used to shrink the mechanism to
@@ -654,9 +642,7 @@ def test_poles_sheet_layouts_draw_the_mechanism_large():
     from shapely.geometry import box as sbox
     st = sheet.get_style("textbook")
     for stem, largest in (("ex3_6_fourbar", 10.0), ("crank_shaper", 80.0), ("ex3_7_instant_centres", 10.0)):
-        sol = velpoly.solve(velpoly.load(EXAMPLES / f"{stem}.toml"))
-        with rc_context(st):
-            fig = sheet.render_sheet(sol, "poles", st)
+        fig = sheets.page(stem, "poles", "textbook")      # drawn once per worker, shared (tests/sheets.py)
         axes = {ax.get_label(): ax for ax in fig.axes}
         assert view_scale(axes["poles"]) <= largest
         rects = {k: sbox(*ax.get_position().bounds[:2], *(np.add(ax.get_position().bounds[:2],
@@ -916,7 +902,7 @@ def test_typesetting_of_numbers_equations_and_reasons():
             parser.parse("$" + part + "$")
 
 
-def test_frames_put_everything_where_the_finished_construction_has_it(sixbar, tmp_path):
+def test_frames_put_everything_where_the_finished_construction_has_it(sixbar):
     """--steps: the labels, scale bars, legend and views of every frame are those of the last frame
     (the acceleration scale bar moved from the bottom to the top between frames, labels moved about)."""
     m, sol = sixbar
@@ -946,8 +932,6 @@ def test_frames_put_everything_where_the_finished_construction_has_it(sixbar, tm
             ("velocity", "label-velocity-origin+A+D")} <= common
     moved = {k: (a[k], b[k]) for k in common if a[k] != b[k]}
     assert not moved
-    files = sheet.draw_to_file(sol, tmp_path / "s.svg", "velocity", steps=True, cons=cons)
-    assert len(files) == len(cons.velocity.steps)
 
 
 def test_poles_at_infinity_are_labelled_arrows_beyond_the_mechanism():
