@@ -815,16 +815,28 @@ def test_legend_lists_only_the_kinds_drawn(sixbar):
     assert drawn == {"absolute", "normal", "tangential"}
 
 
-def test_step_caption_has_its_own_room(sixbar):
-    """The frame's equation, boxed under the title, runs into no panel caption (it struck through
-    'Instant centres' and the three captions of the full sheet); the frames' panels are alike."""
+@pytest.fixture(scope="module")
+def slide_frames(sixbar):
+    """The six-bar's first and last --steps frames in slides, of the full and the poles sheets (the first drawn
+    as --steps draws it, with the last frame's pins), shared by the frame tests. Read only."""
     m, sol = sixbar
     cons = _cons(sol)
     st = sheet.get_style("slides")
+    out = {}
     with rc_context(st):
         for name in ("full", "poles"):
             fr = sheet.frames(name, cons, True)
-            figs = [sheet.render_sheet(sol, name, st, cons=cons, frame=f) for f in (fr[0], fr[-1])]
+            last = sheet.render_sheet(sol, name, st, cons=cons, frame=fr[-1])
+            out[name] = (sheet.render_sheet(sol, name, st, cons=cons, frame=fr[0], pins=last._velpoly_pins), last)
+    return out
+
+
+def test_step_caption_has_its_own_room(slide_frames):
+    """The frame's equation, boxed under the title, runs into no panel caption (it struck through
+    'Instant centres' and the three captions of the full sheet); the frames' panels are alike."""
+    with rc_context(sheet.get_style("slides")):
+        for name in ("full", "poles"):
+            figs = slide_frames[name]
             for fig in figs:
                 assert_page_texts_clear(fig)
             pos = [[tuple(ax.get_position().bounds) for ax in fig.axes if ax.get_label() != "table"] for fig in figs]
@@ -902,16 +914,10 @@ def test_typesetting_of_numbers_equations_and_reasons():
             parser.parse("$" + part + "$")
 
 
-def test_frames_put_everything_where_the_finished_construction_has_it(sixbar):
+def test_frames_put_everything_where_the_finished_construction_has_it(slide_frames):
     """--steps: the labels, scale bars, legend and views of every frame are those of the last frame
     (the acceleration scale bar moved from the bottom to the top between frames, labels moved about)."""
-    m, sol = sixbar
-    cons = _cons(sol)
-    st = sheet.get_style("slides")
-    fr = sheet.frames("full", cons, True)
-    with rc_context(st):
-        last = sheet.render_sheet(sol, "full", st, cons=cons, frame=fr[-1])
-        first = sheet.render_sheet(sol, "full", st, cons=cons, frame=fr[0], pins=last._velpoly_pins)
+    first, last = slide_frames["full"]
 
     def where(fig):
         out = {}
