@@ -18,6 +18,9 @@ from test_cycle import run, write
 SMALL = (320, 180)
 
 
+ON_COUPLER = pytest.mark.xdist_group("animate-coupler")   # the tests sharing coupler_anim: one worker builds it
+
+
 @pytest.fixture(scope="module")
 def coupler_anim():
     """A four-bar with a coupler point, 12 frames at 320 x 180 (shared: building it is the costly part)."""
@@ -90,6 +93,7 @@ def check_frame(anim, k, tol=1e-9):
             assert float(t.get_text().replace("−", "-")) == pytest.approx(sol.omega[lk] * sense, abs=10.0 ** -dec)
 
 
+@ON_COUPLER
 def test_a_coupler_is_drawn_as_a_plate_as_in_the_space_diagram(coupler_anim):
     """A link of three points is one plate with its corners at its points in every frame (as the space
     diagram draws it: issue 17 item 7), not bars about them; a bar stays a bar."""
@@ -233,6 +237,7 @@ def test_labels_sit_beside_their_points():
             assert 5 <= math.hypot(*t.get_position()) * anim.dpi / 72 <= 60     # pixels from the point
 
 
+@ON_COUPLER
 @pytest.mark.parametrize("suffix", [".gif", ".png", ".pdf"])
 def test_each_format_is_written_and_readable(tmp_path, suffix, coupler_anim):
     from PIL import Image
@@ -277,6 +282,7 @@ def test_mp4_needs_the_video_extra(tmp_path, capsys, monkeypatch):
     assert not (tmp_path / "a.mp4").exists() and not list(tmp_path.glob(".*part"))
 
 
+@ON_COUPLER
 def test_mp4_when_imageio_ffmpeg_is_there(tmp_path, coupler_anim):
     pytest.importorskip("imageio_ffmpeg")
     out = write_animation(coupler_anim, tmp_path / "a.mp4", 10)
@@ -312,6 +318,7 @@ def test_the_output_never_replaces_the_input(tmp_path, capsys):
     assert code == 2 and f.read_bytes() == before
 
 
+@ON_COUPLER
 @pytest.mark.parametrize("error", [RuntimeError, KeyboardInterrupt])
 def test_a_failure_leaves_no_file(tmp_path, monkeypatch, error, coupler_anim):
     anim = coupler_anim

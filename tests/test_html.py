@@ -192,6 +192,11 @@ def test_template_order_is_a_browsers():
     assert nums == [5.0, 3.0, 2.0, 1.0, 4.0] and strs == ["x"]
 
 
+# the tests of the six-bar's page and of the browser share its module fixtures: one worker builds them (their
+# xdist group), the page and the browser once
+ON_PAGE = pytest.mark.xdist_group("html-page")
+
+
 @pytest.fixture(scope="module")
 def sixbar_page(tmp_path_factory):
     out = tmp_path_factory.mktemp("html") / "sixbar.html"
@@ -202,6 +207,7 @@ def sixbar_page(tmp_path_factory):
     return out
 
 
+@ON_PAGE
 def test_sixbar_page_is_small_and_self_contained(sixbar_page):
     text = sixbar_page.read_text(encoding="utf-8")
     assert len(text.encode("utf-8")) < 2_000_000
@@ -369,6 +375,7 @@ def _similar(marks, x="data-x", y="data-y", flip=True):
         assert Y1 - Y0 == pytest.approx(-k * (y1 - y0), abs=1e-6 * (1 + abs(Y1)))
 
 
+@ON_PAGE
 @pytest.mark.parametrize("case", BROWSER_CASES, ids=lambda c: c[0] + c[1])
 def test_browser_draws_the_solution(case, browser_runs):
     """What the browser drew (the DOM after the page's script ran) is what velpoly solve gives at
@@ -475,6 +482,7 @@ def test_browser_draws_the_solution(case, browser_runs):
     assert 0.005 < dark < 0.5
 
 
+@ON_PAGE
 def test_browser_controls(browser, sixbar_page):
     """Keys, the slider, play/pause, hover and tap, in the browser with real input events."""
     static, data = embedded(sixbar_page.read_text(encoding="utf-8"))

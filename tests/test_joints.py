@@ -343,6 +343,7 @@ def rolling_sweep(omega: float):
     return velpoly.sweep(rolling, five_turns(omega))
 
 
+@pytest.mark.xdist_group("joints-rolling-sweeps")   # one worker: rolling_sweep computed once a rate
 @pytest.mark.parametrize("slip, omega", [(6.0, 10.0), (60.0, 10.0), (-60.0, 10.0), (60.0, -10.0)])
 def test_prescribed_slip_sweeps_with_the_driver_at_a_constant_rate(slip, omega):
     m = velpoly.load(slipping_cam(slip, omega))

@@ -18,7 +18,8 @@ import pytest
 
 from paths import EXAMPLES, ROOT
 
-pytestmark = pytest.mark.wheel
+# one worker runs the module (its xdist group): the wheel is built and installed once
+pytestmark = [pytest.mark.wheel, pytest.mark.xdist_group("wheel")]
 
 
 def _build_wheel(tmp: Path) -> Path:
