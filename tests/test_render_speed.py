@@ -117,3 +117,28 @@ def test_a_table_measured_for_its_room_is_the_table_drawn_there(style):
                           len(lay.blocks) > 1 if style == "textbook" else lay.size < st.small_size))
     # rows cut, footnotes; blocks side by side (textbook), type shrunk (the slides' large type)
     assert all(any(s[i] for s in seen) for i in range(3)), seen
+
+
+def test_figures_share_their_mathtext_parses_and_only_the_same_ones():
+    """Every renderer has its own mathtext parser; velpoly.render.style.share_mathtext lets them share what
+    they parsed: a second parser gets the first one's parse of the same text, dpi, font and settings (the
+    very object), and a fresh one where any of them differs (another dpi, font size, output type, or a
+    mathtext setting changed in between)."""
+    import matplotlib
+    from matplotlib.font_manager import FontProperties
+    from matplotlib.mathtext import MathTextParser
+    from velpoly.render.style import share_mathtext
+    assert share_mathtext() and share_mathtext()   # installed once, idempotent
+    prop = FontProperties(family="DejaVu Sans", size=9.0)
+    text = r"$V_{B_{3}/B_{4}} = \omega_{2}^{2}\,R$ (test 20)"
+    a, b = MathTextParser("agg"), MathTextParser("agg")
+    first = a.parse(text, 72, prop)
+    assert b.parse(text, 72, prop.copy()) is first
+    others = [b.parse(text, 200, prop), b.parse(text, 72, FontProperties(family="DejaVu Sans", size=9.5)),
+              MathTextParser("path").parse(text, 72, prop)]
+    assert all(o is not first for o in others) and others[0].width > 2.5 * first.width
+    with matplotlib.rc_context({"mathtext.default": "bf"}):
+        bold = b.parse(text, 72, prop)
+    assert bold is not first and bold.width != first.width
+    assert b.parse(text, 72, prop) is first   # the setting back: the first parse again
+
