@@ -458,8 +458,9 @@ def _pool(tasks: int, jobs: int | None):
     from concurrent.futures import ProcessPoolExecutor
     methods = multiprocessing.get_all_start_methods()
     ctx = multiprocessing.get_context("fork" if "fork" in methods else None)   # fork: the modules come along
-    if ctx.get_start_method() == "fork":
-        _warm()   # once here rather than once a worker
+    if ctx.get_start_method() == "fork":   # what every worker's first drawing loads: once here, not once a worker
+        from .render.style import preload
+        preload()
     import tempfile
     scratch = tempfile.mkdtemp(prefix="velpoly-gallery-")
     try:
@@ -469,16 +470,6 @@ def _pool(tasks: int, jobs: int | None):
         raise
     pool.scratch = scratch
     return pool
-
-
-def _warm() -> None:
-    """What every worker's first drawing would load, loaded before the workers are forked, so that they
-    share it: matplotlib's figure, Agg canvas and font list, and the mathtext grammar (0.5-0.7 s of CPU a
-    process)."""
-    from matplotlib.backends.backend_agg import FigureCanvasAgg  # noqa: F401
-    from matplotlib.figure import Figure  # noqa: F401
-    from matplotlib.mathtext import MathTextParser
-    MathTextParser("agg").parse("$x_{1}$")
 
 
 _WORKER = {"busy": False, "stopped": False, "scratch": None}   # in a worker: drawing now; told to stop
