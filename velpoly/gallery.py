@@ -458,6 +458,9 @@ def _pool(tasks: int, jobs: int | None):
     from concurrent.futures import ProcessPoolExecutor
     methods = multiprocessing.get_all_start_methods()
     ctx = multiprocessing.get_context("fork" if "fork" in methods else None)   # fork: the modules come along
+    if ctx.get_start_method() == "fork":   # what every worker's first drawing loads: once here, not once a worker
+        from .render.style import preload
+        preload()
     import tempfile
     scratch = tempfile.mkdtemp(prefix="velpoly-gallery-")
     try:

@@ -23,8 +23,8 @@ from shapely.ops import unary_union
 
 from ..rigid import direction as _unit, perp as _perp
 from ..names import key_text, link_math, upper_name
-from .canvas import (Artists, arrow, border_point, fit_view, get_ax, literal, math_literal, per_cm, per_point, tex,
-                     view_box, view_scale)
+from .canvas import (Artists, add_patch, arrow, border_point, fit_view, get_ax, literal, math_literal, per_cm,
+                     per_point, tex, view_box, view_scale)
 from .labels import placer
 from .options import drawing_options
 from .scalebar import scale_bar, unit_label
@@ -217,7 +217,7 @@ class _Drawing:
                         lw=self.st.link_lw if lw is None else lw, zorder=zorder, **kw)
         if gid:
             p.set_gid(gid)
-        self.ax.add_patch(p)
+        add_patch(self.ax, p)
         self.art.add(role, p)
         return p
 
@@ -231,7 +231,7 @@ class _Drawing:
         fill = plate_fill(fill, self.st)
         p = MPolygon(np.asarray(geom.exterior.coords)[:-1], closed=True, facecolor=fill, edgecolor=self.st.ink,
                      lw=self.st.link_lw, zorder=zorder, gid=f"link-{lk}")
-        self.ax.add_patch(p)
+        add_patch(self.ax, p)
         self.art.add("links", p)
         return p
 
@@ -500,7 +500,7 @@ class _Drawing:
             for q in (ca, cb):   # the coupler's pins
                 ring = Point(*q).buffer(0.6 * st.pin_radius * pc, quad_segs=8)
                 p = shape_patch(ring, facecolor="none", edgecolor=st.ink, lw=st.thin_lw, zorder=4.6, linestyle=dash)
-                self.ax.add_patch(p)
+                add_patch(self.ax, p)
                 self.art.add("equivalent", p)
         else:
             q = ca if ca is not None else cb
@@ -1012,7 +1012,7 @@ def mark_auxiliary(sol, ax, polygon, *, style="textbook") -> Artists:
         ring = Point(*p).buffer(0.07 * pc, quad_segs=8)
         patch = shape_patch(ring, facecolor=st.paper, edgecolor=st.ink, lw=st.thin_lw * 1.5, zorder=5,
                             gid=f"auxiliary-{key}")
-        ax.add_patch(patch)
+        add_patch(ax, patch)
         pl.add_obstacle(ring)
         t = pl.place(p, tex(name), fontsize=st.font_size, fontstyle="italic", zorder=7, gid=f"label-point-{key}")
         art.add("auxiliary", patch)

@@ -19,9 +19,9 @@ from contextlib import contextmanager
 import numpy as np
 import shapely
 from shapely import affinity
-from shapely.geometry import LineString, Point, box
+from shapely.geometry import LineString, Point
 
-from .canvas import per_point, renderer_of, view_box
+from .canvas import box, per_point, renderer_of, view_box
 
 __all__ = ["LabelPlacer", "placer", "segment", "half_extent"]
 
@@ -159,9 +159,10 @@ class LabelPlacer:
         b = _box(c, w, h)
         return (0, c, b, pin[2]) if view_box(self.ax).contains(b) and self.free(b) else None
 
-    def _candidates(self, anchor, w: float, h: float, prefer, ring: float, k: int, within=None):
-        """(centre, box) of the candidate boxes ``ring`` points from the anchor in ``k`` directions."""
-        pp = per_point(self.ax)
+    def _candidates(self, anchor, w: float, h: float, prefer, ring: float, k: int, within=None, pp=None):
+        """(centre, box) of the candidate boxes ``ring`` points from the anchor in ``k`` directions (``pp``: the
+        axes' :func:`per_point`, where known)."""
+        pp = per_point(self.ax) if pp is None else pp
         for ang in _directions(prefer, k):
             if within is not None and abs((ang - (prefer or 45.0) + 180.0) % 360.0 - 180.0) > within + 1e-9:
                 continue
@@ -177,21 +178,13 @@ class LabelPlacer:
             return 0
         return int(np.count_nonzero(shapely.intersects(np.array(others, dtype=object), line)))
 
-    def _leader_hits(self, anchor, b) -> int:
-        """How many lines and outlines the leader to box ``b`` would cross, besides those at its anchor."""
-        if not self.soft:
-            return 0
-        soft = np.array(self.soft, dtype=object)
-        line = LineString([tuple(anchor), tuple(_toward(b, anchor))])
-        at = Point(*anchor).buffer(2.0 * per_point(self.ax))
-        return int(np.count_nonzero(shapely.intersects(soft, line) & ~shapely.intersects(soft, at)))
-
     def _search(self, anchor, w: float, h: float, prefer, gap: float, leader: bool, within, accept,
                 clear: bool = False):
         """The first free candidate, ring after ring, crossing the fewest soft obstacles (None if none is free);
         ``clear``: the far rings too while every free candidate nearer lies on a line (a place there off
         every line, whose leader crosses at most one line or outline)."""
         view = view_box(self.ax)
+        scene = _Scene(self, anchor)
         rings = (gap,) + tuple(r for r in RINGS if r > gap)
         best = None
         for ring_i, ring in enumerate(rings + FAR_RINGS):
@@ -200,16 +193,18 @@ class LabelPlacer:
             seeking = far and best is not None
             if seeking and not (clear and leader and best[0][0] > 0):
                 break
-            for c, b in self._candidates(anchor, w, h, prefer, ring, 24 if far else 16 if ring_i >= 2 else 8, within):
-                if not view.contains(b) or not self.free(b) or (accept is not None and not accept(b)):
+            for c, b in self._candidates(anchor, w, h, prefer, ring, 24 if far else 16 if ring_i >= 2 else 8, within,
+                                         scene.pp):
+                if not view.contains(b) or not scene.free(b) or (accept is not None and not accept(b)):
                     continue
-                hits = (self.soft_hits(b), 0)   # lines under the box first, then lines its leader crosses
+                hits = (scene.soft_hits(b), 0)   # lines under the box first, then lines its leader crosses
                 if seeking and hits[0]:
                     continue
                 if leader and ring >= 9.0:
-                    if self._leader_crosses(anchor, b):
+                    line = LineString([tuple(anchor), tuple(_toward(b, anchor))])
+                    if scene.leader_crosses(line):
                         continue
-                    hits = (hits[0], self._leader_hits(anchor, b))
+                    hits = (hits[0], scene.leader_hits(line))
                     if seeking and hits[1] > LEADER_MOST:
                         continue
                 if best is None or hits < best[0]:
@@ -350,6 +345,39 @@ class LabelPlacer:
         if not hasattr(self, "_overlapping"):
             self._overlapping = []
         return self._overlapping
+
+
+class _Scene:
+    """What one label's search tests its candidates against, gathered once: nothing is placed while it
+    searches (the placed labels and hard obstacles, the soft ones, the leaders, the lines through the
+    anchor, the axes' scale)."""
+
+    def __init__(self, pl: LabelPlacer, anchor):
+        self.pp = per_point(pl.ax)
+        self.taken = np.array(pl.boxes + pl.hard, dtype=object)        # what a label's box must not meet
+        self.soft = np.array(pl.soft, dtype=object)
+        self.crossed = np.array(pl.boxes + pl.leaders, dtype=object)    # what a leader must not cross
+        # the lines and outlines at the anchor itself: a leader leaving it does not count them
+        self.at_anchor = (shapely.intersects(self.soft, Point(*anchor).buffer(2.0 * self.pp)) if len(self.soft)
+                          else None)
+
+    def free(self, geom) -> bool:
+        """:meth:`LabelPlacer.free`."""
+        return not len(self.taken) or not bool(np.any(shapely.intersects(self.taken, geom)))
+
+    def soft_hits(self, geom) -> int:
+        """:meth:`LabelPlacer.soft_hits`."""
+        return int(np.count_nonzero(shapely.intersects(self.soft, geom))) if len(self.soft) else 0
+
+    def leader_crosses(self, line) -> int:
+        """How many labels and leaders the leader ``line`` would cross."""
+        return int(np.count_nonzero(shapely.intersects(self.crossed, line))) if len(self.crossed) else 0
+
+    def leader_hits(self, line) -> int:
+        """How many lines and outlines the leader ``line`` would cross, besides those at its anchor."""
+        if not len(self.soft):
+            return 0
+        return int(np.count_nonzero(shapely.intersects(self.soft, line) & ~self.at_anchor))
 
 
 def _box(c, w: float, h: float):

@@ -19,10 +19,11 @@ import math
 
 import numpy as np
 import shapely
-from shapely.geometry import Point, box
+from shapely.geometry import Point
 from shapely.geometry import Polygon as SPolygon
 
-from .canvas import Artists, arrow, fit_view, get_ax, per_cm, per_point, prose_tex, tex, view_box, view_scale
+from .canvas import (Artists, add_patch, arrow, box, fit_view, get_ax, per_cm, per_point, prose_tex, tex, view_box,
+                     view_scale)
 from .labels import placer, segment
 from .options import drawing_options
 from .scalebar import scale_bar
@@ -145,7 +146,7 @@ class _PolygonDrawing:
             colour = link_colour(m, self.opts, st, lk) if m is not None else st.palette[z % len(st.palette)]
             patch = MPolygon(pts, closed=True, facecolor=colour, alpha=st.image_alpha, edgecolor="none",
                              zorder=1, gid=f"image-{lk}")
-            self.ax.add_patch(patch)
+            add_patch(self.ax, patch)
             self.art.add("images", patch)
 
     def construction_lines(self):
@@ -222,7 +223,7 @@ class _PolygonDrawing:
         st = self.st
         o = Point(0, 0).buffer(0.05 * self.pc, quad_segs=8)
         op = shape_patch(o, facecolor=st.ink, edgecolor=st.ink, lw=0, zorder=4, gid=f"origin-{self.polygon.kind}")
-        self.ax.add_patch(op)
+        add_patch(self.ax, op)
         self.art.add("origin", op)
         self.pl.add_obstacle(o)
 

@@ -42,7 +42,7 @@ from .polygon import draw_polygon, legend_room, polygon_bounds
 from .scalebar import scale_text
 from .style import get_style, rc_context
 from ..reference import at_file_pose
-from .table import draw_results_table, given_table
+from .table import draw_results_table, given_table, measure_results_table
 
 __all__ = ["SHEETS", "fit_width", "wrap_caption", "Constructions", "constructions", "render_sheet", "frames", "draw_to_file", "mechanism_svg",
            "equation_tex", "default_sheet"]
@@ -230,7 +230,8 @@ def _user_scale(opts, name: str):
 
 @dataclass
 class _Plan:
-    """Where a sheet's panels go (rects in fractions of the page), their scales, and the table's axes."""
+    """Where a sheet's panels go (rects in fractions of the page), their scales, and the table (measured for
+    its room: :class:`velpoly.render.table.TableLayout`)."""
 
     rects: dict
     scales: dict
@@ -247,6 +248,7 @@ class _Planner:
         self.top = top            # cm from the page's bottom: where the panels' captions end
         self.want_table = table
         self.width = self.W - 2 * EDGE
+        self.table_rows = None    # the table's rows, gathered once for every room it is measured in
 
     def rect(self, x: float, y: float, w: float, h: float) -> tuple:
         return (x / self.W, y / self.H, w / self.W, h / self.H)
@@ -271,17 +273,18 @@ class _Planner:
         return out
 
     def draw_table(self, x: float, width: float, room: float):
-        """The table drawn in an axes ``width`` x ``room`` cm at ``x``, the page's bottom; (axes, cm used,
-        whether it shows every row at its full type size)."""
-        ax = self.fig.add_axes(self.rect(x, EDGE, width, room), label="table")
-        art = _draw_table(self.sol, ax, self.sheet, self.st, self.cons)
+        """The table measured for a room ``width`` x ``room`` cm at ``x``, the page's bottom (drawn once the
+        layout is chosen, :func:`render_sheet`); (the measured table, cm used, whether it shows every row at
+        its full type size)."""
+        art = _measure_table(self.sol, self.fig, self.rect(x, EDGE, width, room), self.sheet, self.st, self.cons,
+                             self.table_rows)
+        self.table_rows = art.table
         if art.whole * room < art.used * room - 0.3:   # in fewer rows of more blocks: less of the page's height
-            self.fig.delaxes(ax)
             room = art.whole * room
-            ax = self.fig.add_axes(self.rect(x, EDGE, width, room), label="table")
-            art = _draw_table(self.sol, ax, self.sheet, self.st, self.cons)
+            art = _measure_table(self.sol, self.fig, self.rect(x, EDGE, width, room), self.sheet, self.st,
+                                 self.cons, art.table)
         whole = art.size >= self.st.small_size - 1e-9 and art.shown == len(art.table.rows)
-        return ax, art.used * room, whole
+        return art, art.used * room, whole
 
     def row(self, names, x: float, width: float, height: float, bottom: float, least=None):
         """Panels ``names`` side by side in the band ``width`` x ``height`` cm at (x, bottom)."""
@@ -320,10 +323,7 @@ class _Planner:
         size = sum(drawn_size([spans[n] for n in band.names], band.row) for band in bands)
         beside = self.table_beside(names, spans, least, users, extra, scales)
         if beside is not None and beside[0] > size * (1 + 1e-9):
-            self.fig.delaxes(tax)
             return beside[1]
-        if beside is not None:
-            self.fig.delaxes(beside[1].table)
         return plan
 
     def table_beside(self, names, spans, least, users, extra, under):
@@ -347,7 +347,6 @@ class _Planner:
             bottom = self.top - low if first else EDGE        # the panel with the table beside it
             tax, used, whole = self.draw_table(EDGE + width + GAP, self.width - width - GAP, low + caption)
             if not whole:
-                self.fig.delaxes(tax)
                 continue
             _move(tax, self, bottom + low + caption)
             row = share_row([spans[n] for n in others], self.width, high, GAP, [users.get(n) for n in others],
@@ -357,10 +356,7 @@ class _Planner:
             size = drawn_size([spans[n] for n in others], row) + drawn_size([spans[alone]], one)
             smaller = any(s > under[n] * (1 + 1e-9) for n, s in zip(others + [alone], row.scales + one.scales))
             if smaller or (best is not None and size <= best[0] * (1 + 1e-9)):
-                self.fig.delaxes(tax)
                 continue
-            if best is not None:
-                self.fig.delaxes(best[1].table)
             rects, x = {alone: self.rect(EDGE, bottom, width, low)}, EDGE
             for name, w in zip(others, row.widths):
                 rects[name] = self.rect(x, EDGE if first else self.top - high, w, high)
@@ -391,7 +387,6 @@ class _Planner:
         x = EDGE + self.width - column
         tax, used, whole = self.draw_table(x, column, total - side - TABLE_GAP)
         if not whole:
-            self.fig.delaxes(tax)
             return None
         _move(tax, self, self.top - side - TABLE_GAP)
         rects = {"poles": self.rect(EDGE, EDGE, row.widths[0], total),
@@ -426,18 +421,26 @@ def _move(tax, planner, top: float) -> None:
     tax.set_position((x, top / planner.H - h, w, h))
 
 
-def _draw_table(sol, ax, sheet: str, st, cons: Constructions):
+def _measure_table(sol, fig, rect, sheet: str, st, cons: Constructions, table=None):
+    """The sheet's table measured for ``rect`` (fractions of the page), not drawn: the layout tries it in
+    several rooms (``table``: its rows gathered already)."""
     if sheet == "displacement":
-        art = draw_results_table(sol, ax, style=st, table=given_table(sol))
-        for t in art.get("title"):
-            t.set_gid("data-table")
-        return art
+        return measure_results_table(sol, (fig, rect), style=st, table=table or given_table(sol))
     shows = {"velocity": ("velocity",), "acceleration": ("acceleration",), "poles": (),
              "full": ("velocity", "acceleration")}[sheet]
-    return draw_results_table(sol, ax, sheet=sheet, style=st,
-                              velocity=cons.velocity if "velocity" in shows else None,
-                              acceleration=cons.acceleration if "acceleration" in shows else None,
-                              poleset=cons.poles)
+    return measure_results_table(sol, (fig, rect), sheet=sheet, style=st, table=table,
+                                 velocity=cons.velocity if "velocity" in shows else None,
+                                 acceleration=cons.acceleration if "acceleration" in shows else None,
+                                 poleset=cons.poles)
+
+
+def _draw_table(sol, fig, sheet: str, st, layout):
+    """The table measured (:func:`_measure_table`) drawn in an axes made at its room."""
+    art = draw_results_table(sol, fig.add_axes(layout.rect, label="table"), style=st, layout=layout)
+    if sheet == "displacement":
+        for t in art.get("title"):
+            t.set_gid("data-table")
+    return art
 
 
 def _panel_names(sheet: str, cons: Constructions) -> list[str]:
@@ -447,13 +450,12 @@ def _panel_names(sheet: str, cons: Constructions) -> list[str]:
 
 
 def _plan(fig, sol, st, opts, cons, sheet: str, top: float, table: bool) -> _Plan:
-    """Where the sheet's panels and table go (the table is drawn: its height decides the panels')."""
+    """Where the sheet's panels and table go (the table is measured: its height decides the panels')."""
     if sheet == "displacement":
         H = _page_cm(st)[1]
         rects = {k: (l, b, w, min(h, top / H - b)) for k, (l, b, w, h) in _LAYOUTS["displacement"].items()}
-        tax = fig.add_axes(rects.pop("table"), label="table")
-        _draw_table(sol, tax, sheet, st, cons)
-        return _Plan(rects, {"mechanism": opts.scale}, tax)
+        tab = _measure_table(sol, fig, rects.pop("table"), sheet, st, cons)
+        return _Plan(rects, {"mechanism": opts.scale}, tab)
     two = bool(equivalent_linkage_note(sol.mechanism)) and sheet != "poles"
     planner = _Planner(fig, sol, st, opts, cons, sheet, top, table and opts.table, 2 if two else 1)
     if sheet == "poles":
@@ -589,6 +591,8 @@ def render_sheet(sol, sheet: str = "full", style="textbook", *, cons: Constructi
     title = _page(fig, st, m, sol)
     two = bool(equivalent_linkage_note(m)) and sheet != "poles"
     plan = _plan(fig, sol, st, opts, cons, sheet, _top(fig, st, title, frame.caption, two), True)
+    if plan.table is not None and frame.table:   # a step before the last: the answers not yet given
+        _draw_table(sol, fig, sheet, st, plan.table)
     axes = {name: fig.add_axes(rect, label=name) for name, rect in plan.rects.items()}
     pins = pins or {}
     for name, ax in axes.items():
@@ -596,8 +600,6 @@ def render_sheet(sol, sheet: str = "full", style="textbook", *, cons: Constructi
     captions = _draw_panels(sol, axes, st, opts, cons, sheet, frame, plan, pins)
     _draw_captions(fig, st, m, axes, captions)
     fig._velpoly_pins = {name: dict(placer(ax).placed) for name, ax in axes.items()}
-    if plan.table is not None and not frame.table:   # a step before the last: the answers not yet given
-        fig.delaxes(plan.table)
     return fig
 
 

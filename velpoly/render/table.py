@@ -433,6 +433,38 @@ def _box(ax) -> tuple[float, float]:
     return pos.width * w_in * 72, pos.height * h_in * 72
 
 
+class _Room:
+    """Where a table is measured: an axes (bare, (0, 1) limits: :func:`_box`), or a rectangle of a figure
+    (fractions of the page) where no axes is made yet. Its texts are measured as that axes would lay them
+    out (the same transform, to the bit), by probe texts that are never drawn: a sheet's layout tries a
+    table in several rooms and draws it once, in the room chosen."""
+
+    def __init__(self, fig, rect=None, ax=None):
+        from matplotlib.transforms import Bbox, BboxTransformTo, TransformedBbox
+        self.figure = fig
+        if ax is not None:
+            self.width_pt, self.height_pt = _box(ax)
+            self.bbox, self.trans = ax.bbox, ax.transData
+        else:   # what an axes made at ``rect`` would have: its box and its transAxes (= its transData at (0, 1))
+            pos = Bbox.from_bounds(*rect)
+            w_in, h_in = fig.get_size_inches()
+            self.width_pt, self.height_pt = pos.width * w_in * 72, pos.height * h_in * 72
+            self.bbox = TransformedBbox(pos, fig.transSubfigure)
+            self.trans = BboxTransformTo(self.bbox)
+        self.renderer = renderer_of(fig)
+
+    def extent(self, x: float, y: float, s: str, **kw):
+        """The window extent (pixels) of the text ``s`` at (x, y) as ``ax.text(x, y, s, **kw)`` draws it."""
+        from matplotlib.text import Text
+        t = Text(x, y, s, **{"verticalalignment": "baseline", "horizontalalignment": "left",
+                             "transform": self.trans, "clip_on": False, **kw})
+        t.set_figure(self.figure)
+        return t.get_window_extent(self.renderer)
+
+    def points(self, pixels: float) -> float:
+        return pixels * 72 / self.figure.dpi
+
+
 def _sheet_table(sol, sheet, velocity, acceleration, poleset, table) -> Table:
     """The table to draw: ``table``, else :func:`results_table` of the constructions given, else (none
     given) of those the sheet named builds."""
@@ -452,22 +484,19 @@ class _Widths:
     """The widths (points) of a table's cells, each piece measured once at the style's small size (widths
     scale with the type size), cached across tables (:data:`_WIDTHS`)."""
 
-    def __init__(self, ax, st, t: Table):
-        self.ax, self.st, self.t = ax, st, t
-        self.fig = ax.figure
-        self.r = renderer_of(self.fig)
+    def __init__(self, room: _Room, st, t: Table):
+        self.room, self.st, self.t = room, st, t
         self.at: dict = {}   # cell -> its pieces' widths
 
     def part(self, text, scale, style) -> float:
         import matplotlib
         rc = matplotlib.rcParams   # the fonts in force (the style's, inside rc_context)
         key = (tuple(rc["font.family"]), tuple(rc.get(f"font.{rc['font.family'][0]}", ())),
-               rc["mathtext.fontset"], self.st.small_size, self.fig.dpi, text, scale, style)
+               rc["mathtext.fontset"], self.st.small_size, self.room.figure.dpi, text, scale, style)
         w = _WIDTHS.get(key)
         if w is None:
-            tx = self.ax.text(0, 0, text, fontsize=self.st.small_size * scale, fontstyle=style)
-            w = _WIDTHS[key] = tx.get_window_extent(self.r).width * 72 / self.fig.dpi
-            tx.remove()
+            box = self.room.extent(0, 0, text, fontsize=self.st.small_size * scale, fontstyle=style)
+            w = _WIDTHS[key] = self.room.points(box.width)
         return w
 
     def columns(self, size, rows=None, cols=None) -> list[float]:
@@ -526,56 +555,48 @@ def _room(rows, top, line_h, foot, size, foot_size, width_pt, need, bgap):
     return _layout(rows, room, width_pt, need, bgap)
 
 
-def _cell(art, ax, widths: _Widths, box, x, y, text, size, style=None) -> None:
-    """A cell's text at (x, y) points; a quantity's subscripts set as smaller, lowered texts (no mathtext:
-    fast). ``box``: the axes' (width, height) in points."""
-    parts = _parts(text)
-    ws = widths.at.get(text) or [0.0] * len(parts)
-    for (piece, scale, dy, st_), w in zip(parts, ws):
-        if piece:
-            art.add("cells", ax.text(x / box[0], (y + 0.3 * size + dy * size) / box[1], piece,
-                                     fontsize=size * scale, fontstyle=style or st_, va="baseline",
-                                     ha="left", transform=ax.transAxes))
-        x += w * size / widths.st.small_size
+class TableLayout:
+    """A results table measured for its room, not drawn yet (:func:`measure_results_table`): where every
+    rule and text goes, and what the sheet's layout asks of it; :func:`draw_results_table` draws it.
+
+    ``used`` is the share of the room's height (from its top) the table takes, ``whole`` the share it
+    would take to show every row (in as many blocks as the width takes), ``size`` its type size
+    (points, after any shrinking), ``shown`` the number of rows drawn, ``table`` the Table, ``notes``
+    the footnotes drawn, ``blocks`` each block's column names. ``rect`` is the room (fractions of the
+    page); :meth:`set_position` moves it (the table's texts and rules are in the room's own coordinates).
+    """
+
+    def __init__(self, table: Table, rect, box):
+        self.table, self.rect = table, rect
+        self.width_pt, self.height_pt = box
+        self.rules: list = []        # (x0, y, line width, length), points from the room's bottom left
+        self.cells: list = []        # (x, y, text, size, style or None), points
+        self.footnotes: list = []    # (y, line, size, gid or None), points
+        self.blocks: list = []
+        self.notes: list = []
+        self.title = ""              # as drawn (wrapped), with its type size
+        self.title_size = 0.0
+        self.shown = 0
+        self.size = self.used = self.whole = 0.0
+
+    def get_position(self):
+        from matplotlib.transforms import Bbox
+        return Bbox.from_bounds(*self.rect)
+
+    def set_position(self, rect) -> None:
+        self.rect = tuple(rect)
 
 
-def _footnotes(art, ax, t: Table, shown, foot, bottom, size, foot_size, box) -> float:
-    """The footnotes of the rows shown beneath the table (``art.notes``); return the last one's baseline
-    (points; the table's lowest rule less a gap where there is none)."""
-    marks = {row[-1].split()[-1] for row in shown if row[-1]}
-    art.notes = [n for n in t.notes if n[0] in marks]   # the footnotes of the rows shown
-    y = bottom - 0.5 * size
-    for k, (mark, key, _) in enumerate(art.notes):
-        for i, line in enumerate(foot[mark]):
-            y -= 1.3 * foot_size
-            art.add("footnotes", ax.text(0, y / box[1], line, fontsize=foot_size, va="baseline", ha="left",
-                                         gid=f"footnote-{k}" if i == 0 else None))
-    return y
-
-
-def _draw_blocks(art, st, widths_of: _Widths, layout, size, top, spacing, box) -> float:
+def _blocks(lay: TableLayout, st, widths_of: _Widths, layout, size, top, spacing) -> float:
     """The table's blocks side by side, each between rules: ``layout`` = (rows, rows shown, blocks, rows a
-    block), ``spacing`` = (the one block's column widths, the gap between columns, between blocks),
-    ``box`` = the axes' (width, height) in points; return the lowest rule's height (points)."""
-    from matplotlib.lines import Line2D
-    ax, t = art.ax, widths_of.t
+    block), ``spacing`` = (the one block's column widths, the gap between columns, between blocks); their
+    rules and cells into ``lay``; return the lowest rule's height (points)."""
+    t = widths_of.t
     rows, shown, blocks, per = layout
     widths, gap, bgap = spacing
-    width_pt, height_pt = box
     line_h = 1.45 * size
-
-    def rule(x0, y, lw, total):
-        ln = Line2D([x0 / width_pt, (x0 + total) / width_pt], [y / height_pt] * 2, lw=lw, color=st.ink,
-                    transform=ax.transAxes)
-        ax.add_line(ln)
-        art.add("rules", ln)
-
-    def cell(x, y, text, **kw):
-        _cell(art, ax, widths_of, box, x, y, text, size, kw.get("style"))
-
     bottom = top
     x0 = 0.0
-    art.blocks = []
     for b in range(blocks):
         chunk = shown[b * per:(b + 1) * per]
         if not chunk and b:
@@ -586,39 +607,48 @@ def _draw_blocks(art, st, widths_of: _Widths, layout, size, top, spacing, box) -
             else list(range(len(t.header)))
         wb = widths_of.columns(size, chunk, cols) if blocks > 1 else widths
         xs = np.cumsum([0.0] + [w + gap for w in wb[:-1]])
-        total = min(sum(wb) + gap * (len(wb) - 1), width_pt)
-        art.blocks.append(tuple(t.header[i] for i in cols))
+        total = min(sum(wb) + gap * (len(wb) - 1), lay.width_pt)
+        lay.blocks.append(tuple(t.header[i] for i in cols))
         y = top
-        rule(x0, y, st.link_lw, total)
+        lay.rules.append((x0, y, st.link_lw, total))
         y -= line_h
-        for x, i in zip(xs, cols):
-            cell(x0 + x, y, t.header[i])
+        lay.cells += [(x0 + x, y, t.header[i], size, None) for x, i in zip(xs, cols)]
         y -= 0.45 * size
-        rule(x0, y, st.thin_lw, total)
+        lay.rules.append((x0, y, st.thin_lw, total))
         for row in chunk:
             y -= line_h
-            for x, i in zip(xs, cols):
-                cell(x0 + x, y, row[i])
+            lay.cells += [(x0 + x, y, row[i], size, None) for x, i in zip(xs, cols)]
         if b == blocks - 1 and len(shown) < len(rows):
             y -= line_h
-            cell(x0, y, f"… {len(rows) - len(shown)} more rows: velpoly solve FILE", style="italic")
+            lay.cells.append((x0, y, f"… {len(rows) - len(shown)} more rows: velpoly solve FILE", size, "italic"))
         y -= 0.6 * size
         bottom = min(bottom, y)
-        rule(x0, y, st.link_lw, total)
+        lay.rules.append((x0, y, st.link_lw, total))
         x0 += total + bgap
     return bottom
+
+
+def _footnotes(lay: TableLayout, shown, foot, bottom, size, foot_size) -> float:
+    """The footnotes of the rows shown beneath the table into ``lay`` (``lay.notes``); return the last one's
+    baseline (points; the table's lowest rule less a gap where there is none)."""
+    marks = {row[-1].split()[-1] for row in shown if row[-1]}
+    lay.notes = [n for n in lay.table.notes if n[0] in marks]   # the footnotes of the rows shown
+    y = bottom - 0.5 * size
+    for k, (mark, key, _) in enumerate(lay.notes):
+        for i, line in enumerate(foot[mark]):
+            y -= 1.3 * foot_size
+            lay.footnotes.append((y, line, foot_size, f"footnote-{k}" if i == 0 else None))
+    return y
 
 
 class _Title:
     """The results table's title (italic, at 1.1 times the table's type), wrapped to the table's width
     ``wrap_pt`` (points) where it is longer (a long source wraps)."""
 
-    def __init__(self, ax, text: str, size: float, wrap_pt: float):
-        self.ax, self.size, self.wrap_pt = ax, size, wrap_pt
-        fig = ax.figure
-        self.text = ax.text(0, 1, literal(text), fontsize=size * 1.1, va="top", ha="left", style="italic",
-                            gid="results-table")
-        self.width = self.text.get_window_extent(renderer_of(fig)).width * 72 / fig.dpi
+    def __init__(self, room: _Room, text: str, size: float, wrap_pt: float):
+        self.room, self.size, self.wrap_pt = room, size, wrap_pt
+        self.kw = dict(fontsize=size * 1.1, va="top", ha="left", style="italic")
+        self.width = room.points(room.extent(0, 1, literal(text), **self.kw).width)
         self.chars = len(text) * wrap_pt / self.width * 0.97   # characters a line of the title holds
         self.lines = self.wrap(text)
 
@@ -626,32 +656,104 @@ class _Title:
         """Set ``text``, wrapped; the number of its lines."""
         import textwrap
         wrapped = textwrap.wrap(text, max(20, int(self.chars))) if self.width > self.wrap_pt else [text]
-        self.text.set_text(literal("\n".join(wrapped)))
+        self.text = literal("\n".join(wrapped))
         return len(wrapped)
 
     def rule_at(self, height_pt: float, size: float) -> float:
-        """The height (points, in an axes ``height_pt`` tall) of the table's first rule: under the title's
+        """The height (points, in a room ``height_pt`` tall) of the table's first rule: under the title's
         last line as drawn (its descenders), never through it."""
-        ax, fig = self.ax, self.ax.figure
-        r = renderer_of(fig)
         top = height_pt - 1.6 * size * 1.1 - (self.lines - 1) * 1.4 * size * 1.1
-        drawn = (self.text.get_window_extent(r).y0 - ax.get_window_extent(r).y0) * 72 / fig.dpi
+        drawn = self.room.points(self.room.extent(0, 1, self.text, **self.kw).y0 - self.room.bbox.y0)
         return min(top, drawn - 0.35 * size)
 
 
+def measure_results_table(sol, room, *, sheet: str = "full", style="textbook", velocity=None, acceleration=None,
+                          poleset=None, table: Table | None = None) -> TableLayout:
+    """The results table laid out in ``room`` (an axes, or ``(figure, rect)``: a rectangle of the page in
+    fractions of it, where no axes need exist), measured and not drawn (:class:`TableLayout`); the
+    arguments as :func:`draw_results_table`'s, which draws what this measures."""
+    st = get_style(style)
+    t = _sheet_table(sol, sheet, velocity, acceleration, poleset, table)
+    where = _Room(room.figure, ax=room) if hasattr(room, "transAxes") else _Room(*room)
+    width_pt, height_pt = where.width_pt, where.height_pt
+    rect = None if hasattr(room, "transAxes") else tuple(room[1])
+    lay = TableLayout(t, rect, (width_pt, height_pt))
+    widths_of = _Widths(where, st, t)
+    size, widths, need, gap = widths_of.fit(width_pt)
+    line_h = 1.45 * size
+    title = _Title(where, t.title, size, min(width_pt, max(need, 0.6 * width_pt)))   # not less than 0.6 of the room
+    top = title.rule_at(height_pt, size)
+    # the footnotes (the [reference] notes of the marked rows) beneath the table, across its room: their
+    # lines are kept free of rows
+    foot_size = 0.9 * size
+    foot = _footnote_lines(where, t.notes, width_pt, foot_size, sol.mechanism)
+    rows = list(t.rows)
+    bgap = 3.0 * size
+    blocks, per, shown = _room(rows, top, line_h, foot, size, foot_size, width_pt, need, bgap)
+    # the height that would show every row in as many blocks as the width takes (the sheet's layout asks)
+    most = max(1, min(3, int((width_pt + bgap) // (need + bgap))))
+    lay.whole = (height_pt - top + (1.9 + -(-len(rows) // most)) * line_h + _foot_height(rows, foot, size, foot_size)
+                 + 0.9 * size) / height_pt
+    lay.widths_of = widths_of
+    bottom = _blocks(lay, st, widths_of, (rows, shown, blocks, per), size, top, (widths, gap, bgap))
+    y = _footnotes(lay, shown, foot, bottom, size, foot_size)
+    if t.notes and not lay.notes:   # the title promises no footnote that the rows shown do not have
+        title.wrap(t.title.replace(f"; {NOTED} the book's value is explained in a footnote", ""))
+    lay.title, lay.title_size = title.text, title.kw["fontsize"]
+    lay.shown = len(shown)
+    lay.size = size
+    lay.used = min(1.0, (height_pt - y + 0.4 * size) / height_pt)   # the share of the room's height drawn in
+    return lay
+
+
+def _paint(lay: TableLayout, ax, st) -> Artists:
+    """Draw the measured table ``lay`` in ``ax`` (made at its room); return the Artists."""
+    from matplotlib.lines import Line2D
+    _box(ax)
+    width_pt, height_pt = lay.width_pt, lay.height_pt
+    art = Artists(ax)
+    art.add("title", ax.text(0, 1, lay.title, fontsize=lay.title_size, va="top", ha="left", style="italic",
+                             gid="results-table"))
+    small = lay.widths_of.st.small_size
+    cells = iter(lay.cells)
+    for x0, y, lw, total in lay.rules:
+        ln = Line2D([x0 / width_pt, (x0 + total) / width_pt], [y / height_pt] * 2, lw=lw, color=st.ink,
+                    transform=ax.transAxes)
+        ax.add_line(ln)
+        art.add("rules", ln)
+    for x, y, text, size, style in cells:
+        # a quantity's subscripts set as smaller, lowered texts (no mathtext: fast)
+        parts = _parts(text)
+        ws = lay.widths_of.at.get(text) or [0.0] * len(parts)
+        for (piece, scale, dy, st_), w in zip(parts, ws):
+            if piece:
+                art.add("cells", ax.text(x / width_pt, (y + 0.3 * size + dy * size) / height_pt, piece,
+                                         fontsize=size * scale, fontstyle=style or st_, va="baseline",
+                                         ha="left", transform=ax.transAxes))
+            x += w * size / small
+    for y, line, size, gid in lay.footnotes:
+        art.add("footnotes", ax.text(0, y / height_pt, line, fontsize=size, va="baseline", ha="left", gid=gid))
+    art.table, art.notes, art.shown, art.size, art.blocks = lay.table, lay.notes, lay.shown, lay.size, lay.blocks
+    art.used, art.whole = lay.used, lay.whole
+    return art
+
+
 def draw_results_table(sol, ax=None, *, sheet: str = "full", style="textbook", velocity=None,
-                       acceleration=None, poleset=None, table: Table | None = None) -> Artists:
+                       acceleration=None, poleset=None, table: Table | None = None,
+                       layout: TableLayout | None = None) -> Artists:
     """Draw the sheet's results table in ``ax`` (booktabs style); return the Artists.
 
     The table is :func:`results_table` unless ``table`` is given; without
     constructions given, those of ``sheet`` are built. It fills the
     axes' width at most; type shrinks (down to 5 pt) to fit the widest row,
     and rows that do not fit the height are summarised in a last line.
+    ``layout``: the table measured already (:func:`measure_results_table`) for a room where ``ax`` is
+    made (a sheet's layout measures a table in several rooms and draws it once).
 
     Returns
     -------
     Artists
-        Roles ``cells`` (Texts, row by row), ``rules``, ``title`` and ``footnotes``
+        Roles ``title``, ``rules``, ``cells`` (Texts, row by row) and ``footnotes``
         (the ``[reference]`` notes of the marked rows shown, ``artists.notes``);
         ``artists.table`` is the Table drawn, ``artists.shown`` the number of
         its rows drawn, ``artists.size`` its type size (points, after any shrinking),
@@ -661,53 +763,23 @@ def draw_results_table(sol, ax=None, *, sheet: str = "full", style="textbook", v
     """
     ax = get_ax(ax)
     st = get_style(style)
-    t = _sheet_table(sol, sheet, velocity, acceleration, poleset, table)
-    art = Artists(ax)
-    art.table = t
-    width_pt, height_pt = _box(ax)
-    widths_of = _Widths(ax, st, t)
-    size, widths, need, gap = widths_of.fit(width_pt)
-    line_h = 1.45 * size
-    title = _Title(ax, t.title, size, min(width_pt, max(need, 0.6 * width_pt)))   # not less than 0.6 of the room
-    art.add("title", title.text)
-    top = title.rule_at(height_pt, size)
-    # the footnotes (the [reference] notes of the marked rows) beneath the table, across its room: their
-    # lines are kept free of rows
-    foot_size = 0.9 * size
-    foot = _footnote_lines(ax, t.notes, width_pt, foot_size, sol.mechanism)
-    rows = list(t.rows)
-    bgap = 3.0 * size
-    blocks, per, shown = _room(rows, top, line_h, foot, size, foot_size, width_pt, need, bgap)
-    # the height that would show every row in as many blocks as the width takes (the sheet's layout asks)
-    most = max(1, min(3, int((width_pt + bgap) // (need + bgap))))
-    art.whole = (height_pt - top + (1.9 + -(-len(rows) // most)) * line_h + _foot_height(rows, foot, size, foot_size)
-                 + 0.9 * size) / height_pt
-    bottom = _draw_blocks(art, st, widths_of, (rows, shown, blocks, per), size, top, (widths, gap, bgap),
-                          (width_pt, height_pt))
-    y = _footnotes(art, ax, t, shown, foot, bottom, size, foot_size, (width_pt, height_pt))
-    if t.notes and not art.notes:   # the title promises no footnote that the rows shown do not have
-        title.wrap(t.title.replace(f"; {NOTED} the book's value is explained in a footnote", ""))
-    art.shown = len(shown)
-    art.size = size
-    art.used = min(1.0, (height_pt - y + 0.4 * size) / height_pt)   # the share of the axes' height drawn in
-    return art
+    if layout is None:
+        layout = measure_results_table(sol, ax, sheet=sheet, style=st, velocity=velocity, acceleration=acceleration,
+                                       poleset=poleset, table=table)
+    return _paint(layout, ax, st)
 
 
-def _footnote_lines(ax, notes, width_pt: float, size: float, m=None) -> dict:
+def _footnote_lines(room: _Room, notes, width_pt: float, size: float, m=None) -> dict:
     """Each footnote ``(mark, key, text)`` as the lines it takes at ``size`` within ``width_pt``:
     ``{mark: [line, ...]}``, the first line starting with the mark and the quantity it explains (named
     as the table names it, with the mechanism ``m``)."""
     import textwrap
-    fig = ax.figure
-    r = renderer_of(fig)
     out = {}
     for mark, key, text in notes:
         # typeset as the sheet's equations are (omega_5 -> omega with subscript 5, 400 x 2 -> 400 × 2), a minus
         # sign for a negative number's hyphen
         full = f"{mark} {_math(_key(key, m))}: " + re.sub(r"(?<![\w.])-(?=[0-9.])", "−", equation_tex(text))
-        probe = ax.text(0, 0, full, fontsize=size)
-        w = probe.get_window_extent(r).width * 72 / fig.dpi
-        probe.remove()
+        w = room.points(room.extent(0, 0, full, fontsize=size).width)
         if w <= width_pt:
             out[mark] = [full]
         else:
