@@ -16,7 +16,7 @@ from dataclasses import dataclass
 
 from .canvas import nice_scale
 
-__all__ = ["MARGIN", "Row", "share_row", "smaller_scale", "arrange", "drawn_size"]
+__all__ = ["MARGIN", "Row", "share_row", "smaller_scale", "arrange", "drawn_size", "drawn_areas", "cover"]
 
 # paper kept about a drawing inside its panel (cm): each side, top, bottom (the scale bar's strip)
 MARGIN = (0.5, 0.45, 1.05)
@@ -119,19 +119,34 @@ def _first(ratios, fixed, room: float, inner_h: float) -> list[float]:
     return [w + (room - sum(first)) / n for w in first]
 
 
+def drawn_areas(spans, row: Row) -> list[float]:
+    """Each drawing's box's area on paper (cm²) in a row."""
+    return [w * h / s ** 2 for (w, h), s in zip(_spans(spans), row.scales)]
+
+
 def drawn_size(spans, row: Row) -> float:
     """How much of the page a row's drawings take: the sum of their boxes' areas on paper (cm²)."""
-    return sum(w * h / s ** 2 for (w, h), s in zip(_spans(spans), row.scales))
+    return sum(drawn_areas(spans, row))
+
+
+def cover(areas) -> float:
+    """How large drawings of these areas (cm²) are, all together: their number times their geometric mean
+    (every drawing counts: one drawing grown at the cost of the others' shrinking alike gains nothing, and
+    a polygon squeezed to a corner loses much)."""
+    areas = [max(a, 1e-12) for a in areas]
+    return len(areas) * math.exp(sum(math.log(a) for a in areas) / len(areas)) if areas else 0.0
 
 
 @dataclass(frozen=True)
 class Band:
-    """One row of an arrangement: its panels, their widths and scales, its height and its bottom (cm)."""
+    """Panels side by side: their names, widths and scales, the band's height, its bottom and its left
+    (cm; the left from the arrangement's left edge)."""
 
     names: tuple[str, ...]
     row: Row
     height: float
     bottom: float
+    left: float = 0.0
 
 
 def _splits(names):
@@ -141,30 +156,60 @@ def _splits(names):
         yield tuple(names[:k]), tuple(names[k:])
 
 
+def _notched(rows):
+    """Each arrangement's last row split in two (the panels over the table, those beside it), the row
+    whole first (None: nothing beside the table)."""
+    for k in range(len(rows[-1]) + 1):
+        if k == 0:
+            yield None
+        elif k < len(rows[-1]):
+            yield rows[-1][:k], rows[-1][k:]
+
+
 def arrange(spans: dict, names, width: float, top: float, bottom: float, gap: float, caption: float,
-            scales: dict, least: dict, extra: dict | None = None) -> list[Band]:
+            scales: dict, least: dict, extra: dict | None = None, notch: tuple[float, float] | None = None
+            ) -> list[Band]:
     """The panels ``names`` in one row or two between ``bottom`` and ``top`` (cm), whichever draws them
-    largest (:func:`drawn_size`: the area they cover; one row unless two cover a tenth more): a wide mechanism
+    largest (:func:`cover`; one row unless two cover a tenth more): a wide mechanism
     across the page above its polygons. ``caption``: the height (cm) of a second row's captions. Each row is as tall
-    as its drawings need; the height left over is shared out between the rows."""
+    as its drawings need; the height left over is shared out between the rows.
+
+    ``notch``: (width, height) cm at the bottom's left kept for the table (narrower than ``width``). The
+    rows then stand over it, or the last row's first panels stand over it and its others beside it, down
+    to ``bottom`` (a narrow table in the page's corner, the last polygon at the height the table leaves)."""
     best, extra = None, extra or {}
+    nw, nh = notch if notch is not None else (0.0, 0.0)
+
+    def share(r, w, h):
+        return share_row([spans[n] for n in r], w, h, gap, [scales.get(n) for n in r],
+                         least=[least.get(n, 0.0) for n in r], extra=[extra.get(n, 0.0) for n in r])
     for rows in _splits(list(names)):
-        room = top - bottom - caption * (len(rows) - 1)
+        room = top - bottom - nh - caption * (len(rows) - 1)
         fracs = (1.0,) if len(rows) == 1 else tuple(0.3 + 0.05 * i for i in range(9))
-        for f in fracs:
-            heights = (room,) if len(rows) == 1 else (room * f, room * (1 - f))
-            made = [share_row([spans[n] for n in r], width, h, gap, [scales.get(n) for n in r],
-                              least=[least.get(n, 0.0) for n in r], extra=[extra.get(n, 0.0) for n in r])
-                    for r, h in zip(rows, heights)]
-            score = sum(drawn_size([spans[n] for n in r], m) for r, m in zip(rows, made))
-            score /= 1.0 if len(rows) == 1 else 1.1
-            if best is None or score > best[0] + 1e-9:
-                best = (score, rows, made)
-    _, rows, made = best
-    slack = max(top - bottom - caption * (len(rows) - 1) - sum(m.height for m in made), 0.0) / len(rows)
+        for split in (_notched(rows) if notch is not None else (None,)):
+            for f in fracs:
+                heights = (room,) if len(rows) == 1 else (room * f, room * (1 - f))
+                made = [share(r, width, h) for r, h in zip(rows, heights)]
+                if split is not None:
+                    over, beside = split
+                    made[-1:] = [share(over, nw, heights[-1]), share(beside, width - nw - gap, heights[-1] + nh)]
+                parts = rows[:-1] + ((rows[-1],) if split is None else split)
+                score = cover([a for r, m in zip(parts, made) for a in drawn_areas([spans[n] for n in r], m)])
+                score /= 1.0 if len(rows) == 1 else 1.1
+                if best is None or score > best[0] + 1e-9:
+                    best = (score, rows, made, split)
+    _, rows, made, split = best
+    heights = [m.height for m in made[:len(rows)]]
+    if split is not None:   # the last row's height: that of the taller part (the part beside less the notch)
+        heights[-1] = max(made[-2].height, made[-1].height - nh)
+    slack = max(top - bottom - nh - caption * (len(rows) - 1) - sum(heights), 0.0) / len(rows)
     out, y = [], top
-    for r, m in zip(rows, made):
-        h = m.height + slack
-        out.append(Band(r, m, h, y - h))
+    for i, r in enumerate(rows):
+        h = heights[i] + slack
+        if split is not None and i == len(rows) - 1:
+            out.append(Band(split[0], made[-2], h, y - h))
+            out.append(Band(split[1], made[-1], h + nh, y - h - nh, nw + gap))
+        else:
+            out.append(Band(r, made[i], h, y - h))
         y -= h + caption
     return out
