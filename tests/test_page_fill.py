@@ -218,3 +218,59 @@ def test_steps_keep_the_answers_to_the_last_frame():
     with rc_context(st):
         first = sheet.render_sheet(sol6, "velocity", st, cons=cons6, frame=fr[0])
     assert not any(t.get_gid() == "results-table" for ax in first.axes for t in ax.texts)
+
+
+def _with_reference(sp) -> dict:
+    """A generated mechanism's file with a ``[reference]`` as a book prints one: omega of every moving link but
+    the driver, alpha of the last, the velocity and acceleration of its last two moving points (polar, from the
+    analytic solve, the last digits rounded), and a footnote on the first velocity."""
+    import copy
+    sol = sp.drawn
+    mech = copy.deepcopy(sp.mech)
+    driver = mech["driver"]["link"]
+    frame = {n for n, link in mech["links"].items() if link.get("frame")}
+    links = [n for n in mech["links"] if n not in frame | {driver}]
+    moving = [p for p in mech["points"] if float(np.hypot(*sol.velocity[p])) > 0][-2:]
+
+    def polar(v):
+        return [float(f"{np.hypot(*v):.4g}"), round(float(np.degrees(np.arctan2(v[1], v[0]))) % 360.0, 2)]
+    mech["reference"] = {
+        "source": "a generated problem",
+        "omega": {n: float(f"{sol.omega[n]:.4g}") for n in links},
+        "alpha": {n: float(f"{sol.alpha[n]:.4g}") for n in links[-1:]},
+        "velocity": {p: polar(sol.velocity[p]) for p in moving},
+        "acceleration": {p: polar(sol.acceleration[p]) for p in moving},
+        "note": {f"V_{moving[0]}": "rounded intermediate: the book rounds the angular velocity first"}}
+    return mech
+
+
+def test_generated_sheets_show_every_book_row():
+    """Generated six-bars and slider-cranks with a book's answers (omega of every link, alpha of the last, V
+    and A of two points, a footnote), full sheet, both styles: the table shows every row with a reference value (they
+    come first; a table cut to its room counts the rest in its last line) with the footnote, and nothing of
+    the table lies under a panel."""
+    from zoo import specimen
+    rng = np.random.default_rng(17)
+    picked = [specimen(rng, "six-bar", "watt II"), specimen(rng, "slider-crank", "offset crank")]
+    for i, sp in enumerate(picked):
+        mech = _with_reference(sp)
+        sol = velpoly.solve(velpoly.load(mech))
+        for style in STYLES:
+            st = get_style(style)
+            with rc_context(st):
+                fig = sheet.render_sheet(sol, "full", st)
+            table = next(ax for ax in fig.axes if ax.get_label() == "table")
+            texts = [t.get_text() for t in table.texts]
+            more = [int(t.split()[1]) for t in texts if "more rows" in t]
+            rows = sheet.constructions(sol, "full")
+            from velpoly.render.table import results_table
+            t = results_table(sol, "full", velocity=rows.velocity, acceleration=rows.acceleration, poleset=rows.poles)
+            refs = sum(1 for r in t.rows if r[t.header.index("reference")])
+            assert refs >= 6, f"{sp.kind}: {refs} rows with a book's value"
+            shown = len(t.rows) - (more[0] if more else 0)
+            assert shown >= refs, f"{sp.kind}/{style}: {shown} rows shown of {refs} with a book's value"
+            assert any((g or "").startswith("footnote-") for g in (x.get_gid() for x in table.texts))
+            tb = _window(fig, table)
+            for ax in fig.axes:
+                if ax is not table:
+                    assert _window(fig, ax).intersection(tb).area < 1.0, f"{sp.kind}/{style}: {ax.get_label()} on the table"

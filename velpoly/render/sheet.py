@@ -450,13 +450,19 @@ class _Planner:
         """The mechanism across the page, the Kennedy circle and the table beneath it; the mechanism a round
         scale or two smaller (down to :data:`TABLE_SHRINK` of its size) where the table then shows every row."""
         total = self.top - EDGE
-        for r in [*self._smaller(row, "poles", total), row]:   # the original last: where none shows them all
+
+        def place(r):
             room = total - TABLE_GAP - r.height
             side = min(room, KENNEDY_MOST)
-            tax, used, whole = self.draw_table(EDGE + side + GAP, self.width - side - GAP, room)
-            if whole or r is row:
+            return room, side, self.draw_table(EDGE + side + GAP, self.width - side - GAP, room)
+        for r in [row, *self._smaller(row, "poles", total)]:
+            room, side, (tax, used, whole) = place(r)
+            if whole:
                 break
             self.fig.delaxes(tax)
+        else:   # no such scale shows every row: the drawing at its own
+            r = row
+            room, side, (tax, used, whole) = place(r)
         _move(tax, self, EDGE + room)
         rects = {"poles": self.rect(EDGE, self.top - r.height, self.width, r.height),
                  "kennedy": self.rect(EDGE, EDGE + room - side, side, side)}
