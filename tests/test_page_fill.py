@@ -22,7 +22,7 @@ from shapely.geometry import LineString, box
 import velpoly
 from paths import GALLERY_FILES, example
 from velpoly.render import sheet
-from velpoly.render.layout import share_row, smaller_scale
+from velpoly.render.layout import MARGIN, arrange, cover, drawn_areas, share_row, smaller_scale
 from velpoly.render.scalebar import BAR_GAP
 from velpoly.render.style import get_style, rc_context
 
@@ -93,6 +93,46 @@ def test_share_row_fills_the_band_at_round_scales():
     # no round scale one step larger would still fit: the drawings are as large as the band allows
     grown = [(w / smaller_scale(s), h / smaller_scale(s)) for (w, h), s in zip(spans, row.scales)]
     assert any(h > 11.0 - 1.5 for _, h in grown) or sum(w for w, _ in grown) + 3.6 > 28.0
+
+
+def _panels(bands, spans):
+    """Each panel's box (cm) and the area its drawing covers, from an arrangement's bands."""
+    out = {}
+    for b in bands:
+        x = b.left
+        for name, w, a in zip(b.names, b.row.widths, drawn_areas([spans[n] for n in b.names], b.row)):
+            out[name] = (box(x, b.bottom, x + w, b.bottom + b.height), a)
+            x += w + 0.35
+    return out
+
+
+@pytest.mark.parametrize("seed", range(6))
+def test_arrange_fills_the_corner_beside_a_narrow_table(seed):
+    """Random drawings and tables: with the table's corner kept (``notch``), every panel lies on the page, off
+    the table and off the other panels with their captions; every drawing fits its panel; the arrangement
+    draws them at least as large as the rows over the table do (it may stand beside the table)."""
+    rng = np.random.default_rng(seed)
+    names = ["mechanism", "velocity", "acceleration"]
+    spans = {n: (float(rng.uniform(1, 10)), float(rng.uniform(1, 10))) for n in names}
+    width, top, bottom, cap = 28.0, 18.0, 0.3, 0.6
+    nw, nh = float(rng.uniform(8, 20)), float(rng.uniform(3, 10))
+    over = arrange(spans, names, width, top, bottom + nh, 0.35, cap, {}, {})
+    bands = arrange(spans, names, width, top, bottom, 0.35, cap, {}, {}, notch=(nw, nh))
+    got = _panels(bands, spans)
+    assert set(got) == set(names)
+    table = box(0, bottom, nw, bottom + nh - 1e-6)
+    mx, mt, mb = MARGIN
+    for b in bands:
+        for (w, h), s, pw in zip([spans[n] for n in b.names], b.row.scales, b.row.widths):
+            assert w / s <= pw - 2 * mx + 1e-6 and h / s <= b.height - mt - mb + 1e-6
+    for name, (panel, _) in got.items():
+        x0, y0, x1, y1 = panel.bounds
+        assert x0 >= -1e-9 and x1 <= width + 1e-6 and y0 >= bottom - 1e-6 and y1 <= top + 1e-6, name
+        assert panel.intersection(table).area < 1e-6, f"{name} on the table"
+    for (a, (pa, _)), (b, (pb, _)) in itertools.combinations(got.items(), 2):
+        grown = [box(*p.bounds[:3], p.bounds[3] + cap) for p in (pa, pb)]
+        assert grown[0].intersection(grown[1]).area < 1e-6, f"{a} and {b} overlap"
+    assert cover([a for _, a in got.values()]) >= cover([a for _, a in _panels(over, spans).values()]) - 1e-9
 
 
 @pytest.mark.parametrize("style", STYLES)

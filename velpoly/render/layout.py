@@ -158,12 +158,11 @@ def _splits(names):
 
 def _notched(rows):
     """Each arrangement's last row split in two (the panels over the table, those beside it), the row
-    whole first (None: nothing beside the table)."""
-    for k in range(len(rows[-1]) + 1):
-        if k == 0:
-            yield None
-        elif k < len(rows[-1]):
-            yield rows[-1][:k], rows[-1][k:]
+    whole first (None: nothing beside the table); of two rows, the last one may stand beside the table
+    alone (nothing over it: the first row takes the height above the table)."""
+    yield None
+    for k in range(0 if len(rows) > 1 else 1, len(rows[-1])):
+        yield rows[-1][:k], rows[-1][k:]
 
 
 def arrange(spans: dict, names, width: float, top: float, bottom: float, gap: float, caption: float,
@@ -176,7 +175,8 @@ def arrange(spans: dict, names, width: float, top: float, bottom: float, gap: fl
 
     ``notch``: (width, height) cm at the bottom's left kept for the table (narrower than ``width``). The
     rows then stand over it, or the last row's first panels stand over it and its others beside it, down
-    to ``bottom`` (a narrow table in the page's corner, the last polygon at the height the table leaves)."""
+    to ``bottom`` (a narrow table in the page's corner, the last polygon at the height the table leaves),
+    or, of two rows, the last one beside the table alone."""
     best, extra = None, extra or {}
     nw, nh = notch if notch is not None else (0.0, 0.0)
 
@@ -185,29 +185,35 @@ def arrange(spans: dict, names, width: float, top: float, bottom: float, gap: fl
                          least=[least.get(n, 0.0) for n in r], extra=[extra.get(n, 0.0) for n in r])
     for rows in _splits(list(names)):
         room = top - bottom - nh - caption * (len(rows) - 1)
-        fracs = (1.0,) if len(rows) == 1 else tuple(0.3 + 0.05 * i for i in range(9))
         for split in (_notched(rows) if notch is not None else (None,)):
+            alone = split is not None and not split[0]   # the last row beside the table, nothing over it
+            fracs = (1.0,) if len(rows) == 1 or alone else tuple(0.3 + 0.05 * i for i in range(9))
             for f in fracs:
                 heights = (room,) if len(rows) == 1 else (room * f, room * (1 - f))
-                made = [share(r, width, h) for r, h in zip(rows, heights)]
+                made = [share(r, width, h) for r, h in zip(rows[:-1] if split else rows, heights)]
                 if split is not None:
                     over, beside = split
-                    made[-1:] = [share(over, nw, heights[-1]), share(beside, width - nw - gap, heights[-1] + nh)]
-                parts = rows[:-1] + ((rows[-1],) if split is None else split)
+                    made += [share(over, nw, heights[-1])] if over else []
+                    made += [share(beside, width - nw - gap, heights[-1] + nh)]
+                parts = rows[:-1] + ((rows[-1],) if split is None else tuple(r for r in split if r))
                 score = cover([a for r, m in zip(parts, made) for a in drawn_areas([spans[n] for n in r], m)])
                 score /= 1.0 if len(rows) == 1 else 1.1
                 if best is None or score > best[0] + 1e-9:
-                    best = (score, rows, made, split)
-    _, rows, made, split = best
+                    best = (score, rows, parts, made, split)
+    _, rows, parts, made, split = best
+    alone = split is not None and not split[0]
     heights = [m.height for m in made[:len(rows)]]
-    if split is not None:   # the last row's height: that of the taller part (the part beside less the notch)
+    if alone:   # the rows over the table take its height; the last one beside it is as tall as the table
+        heights = heights[:-1] + [0.0]
+    elif split is not None:   # the last row's height: that of the taller part (the part beside less the notch)
         heights[-1] = max(made[-2].height, made[-1].height - nh)
-    slack = max(top - bottom - nh - caption * (len(rows) - 1) - sum(heights), 0.0) / len(rows)
+    slack = max(top - bottom - nh - caption * (len(rows) - 1) - sum(heights), 0.0) / (len(rows) - alone)
     out, y = [], top
     for i, r in enumerate(rows):
-        h = heights[i] + slack
+        h = heights[i] + (slack if not (alone and i == len(rows) - 1) else 0.0)
         if split is not None and i == len(rows) - 1:
-            out.append(Band(split[0], made[-2], h, y - h))
+            if split[0]:
+                out.append(Band(split[0], made[-2], h, y - h))
             out.append(Band(split[1], made[-1], h + nh, y - h - nh, nw + gap))
         else:
             out.append(Band(r, made[i], h, y - h))

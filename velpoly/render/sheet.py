@@ -448,20 +448,24 @@ class _Planner:
 
     def _poles_across(self, row) -> _Plan:
         """The mechanism across the page, the Kennedy circle and the table beneath it; the mechanism a round
-        scale or two smaller (down to :data:`TABLE_SHRINK` of its size) where the table then shows every row."""
+        scale or two smaller (down to :data:`TABLE_SHRINK` of its size) where the table then shows more rows
+        (the largest that shows every row, else the largest that shows the most)."""
         total = self.top - EDGE
 
         def place(r):
             room = total - TABLE_GAP - r.height
             side = min(room, KENNEDY_MOST)
             return room, side, self.draw_table(EDGE + side + GAP, self.width - side - GAP, room)
+        most = None
         for r in [row, *self._smaller(row, "poles", total)]:
             room, side, (tax, used, whole) = place(r)
             if whole:
                 break
             self.fig.delaxes(tax)
-        else:   # no such scale shows every row: the drawing at its own
-            r = row
+            if most is None or self.shown > most[0]:
+                most = (self.shown, r)
+        else:   # no such scale shows every row: the largest drawing with the table showing the most rows
+            r = most[1]
             room, side, (tax, used, whole) = place(r)
         _move(tax, self, EDGE + room)
         rects = {"poles": self.rect(EDGE, self.top - r.height, self.width, r.height),
