@@ -183,6 +183,8 @@ def arrange(spans: dict, names, width: float, top: float, bottom: float, gap: fl
     def share(r, w, h):
         return share_row([spans[n] for n in r], w, h, gap, [scales.get(n) for n in r],
                          least=[least.get(n, 0.0) for n in r], extra=[extra.get(n, 0.0) for n in r])
+    def _room_for(part, w):
+        return sum(least.get(n, 0.0) for n in part) + gap * max(len(part) - 1, 0) <= w + 1e-9
     for rows in _splits(list(names)):
         room = top - bottom - nh - caption * (len(rows) - 1)
         for split in (_notched(rows) if notch is not None else (None,)):
@@ -193,6 +195,8 @@ def arrange(spans: dict, names, width: float, top: float, bottom: float, gap: fl
                 made = [share(r, width, h) for r, h in zip(rows[:-1] if split else rows, heights)]
                 if split is not None:
                     over, beside = split
+                    if not (_room_for(over, nw) and _room_for(beside, width - nw - gap)):
+                        break   # a caption would not fit its column
                     made += [share(over, nw, heights[-1])] if over else []
                     made += [share(beside, width - nw - gap, heights[-1] + nh)]
                 parts = rows[:-1] + ((rows[-1],) if split is None else tuple(r for r in split if r))

@@ -452,9 +452,11 @@ class _Planner:
         (the largest that shows every row, else the largest that shows the most)."""
         total = self.top - EDGE
 
+        cap = max(_caption_cm(self.st, 1) - TABLE_GAP, 0.0)   # the Kennedy circle's caption's room over it
+
         def place(r):
             room = total - TABLE_GAP - r.height
-            side = min(room, KENNEDY_MOST)
+            side = min(room - cap, KENNEDY_MOST)
             return room, side, self.draw_table(EDGE + side + GAP, self.width - side - GAP, room)
         most = None
         for r in [row, *self._smaller(row, "poles", total)]:
@@ -469,7 +471,7 @@ class _Planner:
             room, side, (tax, used, whole) = place(r)
         _move(tax, self, EDGE + room)
         rects = {"poles": self.rect(EDGE, self.top - r.height, self.width, r.height),
-                 "kennedy": self.rect(EDGE, EDGE + room - side, side, side)}
+                 "kennedy": self.rect(EDGE, EDGE + room - cap - side, side, side)}
         return _Plan(rects, {"poles": r.scales[0]}, tax)
 
     def _smaller(self, row, name: str, height: float) -> list:
