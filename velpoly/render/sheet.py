@@ -282,6 +282,7 @@ class _Planner:
             art = _draw_table(self.sol, ax, self.sheet, self.st, self.cons)
         whole = art.size >= self.st.small_size - 1e-9 and art.shown == len(art.table.rows)
         self.shown = art.shown   # (the rows the table last drawn shows, of them those with a book's value)
+        self.need = art.whole * room   # (cm: the height it would take to show every row at this width)
         ref = art.table.header.index("reference") if "reference" in art.table.header else None
         self.refs = sum(1 for r in art.table.rows if r[ref]) if ref is not None else 0
         return ax, art.used * room, whole
@@ -307,6 +308,7 @@ class _Planner:
             tax, used, _ = self.draw_table(EDGE, self.width, room)
             _move(tax, self, EDGE + used)
             floor = EDGE + used + TABLE_GAP
+            need = self.need
         extra = {"mechanism": LABEL_ROOM * self.st.font_size / 10}
         caption = _caption_cm(self.st, self.lines)
 
@@ -348,7 +350,10 @@ class _Planner:
         plan = _Plan(rects, scales, tax)
         if tax is None or len(names) < 2:
             return plan
-        beside = self.table_beside(names, spans, least, users, extra, scales)
+        # a column beside a panel is narrower than the page: no taller than the tallest such row, it cannot
+        # show every row where the page's width cannot
+        column = max(BESIDE_FRACTIONS) * (self.top - EDGE) + caption
+        beside = self.table_beside(names, spans, least, users, extra, scales) if need <= column else None
         if beside is not None and beside[0] > size * (1 + 1e-9):
             self.fig.delaxes(tax)
             return beside[1]
