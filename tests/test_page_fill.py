@@ -28,7 +28,7 @@ from velpoly.render.style import get_style, rc_context
 
 STYLES = ("textbook", "slides")
 # the mean blank fraction of the gallery's own sheets, by style: before issue 17 0.60 (textbook) and 0.46
-# (slides); 0.533 and 0.382 before the table's corner (all files); now 0.526 and 0.352 (all files), 0.510 and 0.359
+# (slides); 0.533 and 0.382 before the table's corner (all files); now 0.529 and 0.359 (all files), 0.510 and 0.364
 # over the halves tested below (every other file in each style, at 30 dpi). The issue's target, under 0.40 in both,
 # is reached in the slides style; in the textbook style (thin lines, 7.5 pt table on A4) the inside of every
 # linkage and polygon stays blank however large it is drawn: the bound keeps what was gained

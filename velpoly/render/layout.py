@@ -1,13 +1,16 @@
 """Page layouts that use the page: panels sized to what they draw (no matplotlib here, arithmetic only).
 
-A sheet's panels stand side by side in a band, the results table beneath
-them across the page. Each panel gets the share of the band's width that
-its drawing needs at the band's height (a wide mechanism a wide panel, a
-tall polygon a narrow one), every drawing at the same fraction of the band
-first; then each scale is rounded (:func:`~velpoly.render.canvas.nice_scale`)
-and the width the rounding frees goes to the panels that can then be drawn a
-round scale larger. What no drawing needs of the band's height goes to the
-table, so that it shows more rows. Every size is in centimetres of paper.
+A sheet's panels stand side by side in a band, or in two bands, the results
+table beneath them across the page, or in the page's bottom left corner with
+the last panels beside it down to the page's bottom (:func:`arrange`'s
+``notch``). Each panel gets the share of the band's width that its drawing
+needs at the band's height (a wide mechanism a wide panel, a tall polygon a
+narrow one), every drawing at the same fraction of the band first; then each
+scale is rounded (:func:`~velpoly.render.canvas.nice_scale`) and the width
+the rounding frees goes to the panels that can then be drawn a round scale
+larger. Arrangements are compared by :func:`cover` (the drawings' number
+times the geometric mean of their areas). Every size is in centimetres of
+paper.
 """
 from __future__ import annotations
 

@@ -299,7 +299,10 @@ class _Planner:
 
     def over_table(self, names) -> _Plan:
         """The table across the page's bottom in as few lines as its blocks take (at most
-        :data:`TABLE_MOST` of the page), the panels above it in one row or two (:func:`arrange`)."""
+        :data:`TABLE_MOST` of the page; up to the last of :data:`TABLE_TALLER` where rows with a book's value
+        are cut and the drawings keep :data:`TABLE_SHRINK` of their size), the panels above it in one row or
+        two (:func:`arrange`); or the table in the page's corner (:meth:`table_in_corner`) or beside a
+        panel (:meth:`table_beside`), whichever draws the panels largest."""
         spans = dict(zip(names, self.spans(names)))
         least = dict(zip(names, self.least(names)))
         users = {n: _user_scale(self.opts, n) for n in names}
@@ -316,24 +319,9 @@ class _Planner:
             return arrange(spans, names, self.width, self.top, floor, GAP, caption, users, least, extra)
         bands = panels(floor)
         size = _cover(spans, bands)
-        shown = self.shown if tax is not None else 0
-        if tax is not None and shown < self.refs:   # rows with a book's value cut: the table taller, where the
-            base = size                              # drawings keep TABLE_SHRINK of their size
-            for frac in TABLE_TALLER:
-                nax, nused, _ = self.draw_table(EDGE, self.width, frac * self.H)
-                more = self.shown > shown
-                nbands = panels(EDGE + nused + TABLE_GAP) if more else None
-                if not more or _cover(spans, nbands) < TABLE_SHRINK ** 2 * base:
-                    self.fig.delaxes(nax)
-                    if more:
-                        break
-                    continue
-                self.fig.delaxes(tax)
-                _move(nax, self, EDGE + nused)
-                tax, bands, size, shown, room = nax, nbands, _cover(spans, nbands), self.shown, frac * self.H
-                if shown >= self.refs:
-                    break
-        self.shown = shown
+        if tax is not None and self.shown < self.refs:   # rows with a book's value cut
+            tax, bands, room = self.taller_table(tax, bands, room, lambda b: _cover(spans, b), panels)
+            size = _cover(spans, bands)
         corner = self.table_in_corner(tax, room, names, spans, least, users, extra) if tax is not None else None
         if corner is not None and corner[0] > size * (1 + 1e-9):
             self.fig.delaxes(tax)
@@ -360,6 +348,29 @@ class _Planner:
         if beside is not None:
             self.fig.delaxes(beside[1].table)
         return plan
+
+    def taller_table(self, tax, bands, room, size, panels):
+        """The table ``tax`` (``room`` cm tall, the panels' ``bands`` above it) taller, up to the last of
+        :data:`TABLE_TALLER` of the page, while it then shows more rows and the drawings keep
+        :data:`TABLE_SHRINK` of their size (``size``: how large bands' drawings are; ``panels``: the bands over a
+        floor), until every row with a book's value shows: (the table, the bands, its room)."""
+        shown, base = self.shown, size(bands)
+        for frac in TABLE_TALLER:
+            nax, used, _ = self.draw_table(EDGE, self.width, frac * self.H)
+            more = self.shown > shown
+            grown = panels(EDGE + used + TABLE_GAP) if more else None
+            if not more or size(grown) < TABLE_SHRINK ** 2 * base:
+                self.fig.delaxes(nax)
+                if more:
+                    break
+                continue
+            self.fig.delaxes(tax)
+            _move(nax, self, EDGE + used)
+            tax, bands, room, shown = nax, grown, frac * self.H, self.shown
+            if shown >= self.refs:
+                break
+        self.shown = shown
+        return tax, bands, room
 
     def table_in_corner(self, tax, room, names, spans, least, users, extra):
         """The table ``tax`` (drawn across the page) narrowed to the width its blocks take, in the page's
