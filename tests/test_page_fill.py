@@ -286,32 +286,29 @@ def _with_reference(sp) -> dict:
 
 
 def test_generated_sheets_show_every_book_row():
-    """Generated six-bars and slider-cranks with a book's answers (omega of every link, alpha of the last, V
-    and A of two points, a footnote), full sheet, both styles: the table shows every row with a reference value (they
-    come first; a table cut to its room counts the rest in its last line) with the footnote, and nothing of
-    the table lies under a panel."""
+    """A generated six-bar (slides) and slider-crank (textbook) with a book's answers (omega of every link, alpha
+    of the last, V and A of two points, a footnote), full sheet: the table shows every row with a reference
+    value (they come first; a table cut to its room counts the rest in its last line) with the footnote, and
+    nothing of the table lies under a panel."""
     from zoo import specimen
+    from velpoly.render.table import results_table
     rng = np.random.default_rng(17)
-    picked = [specimen(rng, "six-bar", "watt II"), specimen(rng, "slider-crank", "offset crank")]
-    for i, sp in enumerate(picked):
-        mech = _with_reference(sp)
-        sol = velpoly.solve(velpoly.load(mech))
-        for style in STYLES:
-            st = get_style(style)
-            with rc_context(st):
-                fig = sheet.render_sheet(sol, "full", st)
-            table = next(ax for ax in fig.axes if ax.get_label() == "table")
-            texts = [t.get_text() for t in table.texts]
-            more = [int(t.split()[1]) for t in texts if "more rows" in t]
-            rows = sheet.constructions(sol, "full")
-            from velpoly.render.table import results_table
-            t = results_table(sol, "full", velocity=rows.velocity, acceleration=rows.acceleration, poleset=rows.poles)
-            refs = sum(1 for r in t.rows if r[t.header.index("reference")])
-            assert refs >= 6, f"{sp.kind}: {refs} rows with a book's value"
-            shown = len(t.rows) - (more[0] if more else 0)
-            assert shown >= refs, f"{sp.kind}/{style}: {shown} rows shown of {refs} with a book's value"
-            assert any((g or "").startswith("footnote-") for g in (x.get_gid() for x in table.texts))
-            tb = _window(fig, table)
-            for ax in fig.axes:
-                if ax is not table:
-                    assert _window(fig, ax).intersection(tb).area < 1.0, f"{sp.kind}/{style}: {ax.get_label()} on the table"
+    picked = [(specimen(rng, "six-bar", "watt II"), "slides"), (specimen(rng, "slider-crank", "offset crank"), "textbook")]
+    for sp, style in picked:
+        sol = velpoly.solve(velpoly.load(_with_reference(sp)))
+        cons = sheet.constructions(sol, "full")
+        t = results_table(sol, "full", velocity=cons.velocity, acceleration=cons.acceleration, poleset=cons.poles)
+        refs = sum(1 for r in t.rows if r[t.header.index("reference")])
+        assert refs >= 6, f"{sp.kind}: {refs} rows with a book's value"
+        st = get_style(style)
+        with rc_context(st):
+            fig = sheet.render_sheet(sol, "full", st, cons=cons)
+        table = next(ax for ax in fig.axes if ax.get_label() == "table")
+        more = [int(x.get_text().split()[1]) for x in table.texts if "more rows" in x.get_text()]
+        shown = len(t.rows) - (more[0] if more else 0)
+        assert shown >= refs, f"{sp.kind}/{style}: {shown} rows shown of {refs} with a book's value"
+        assert any((x.get_gid() or "").startswith("footnote-") for x in table.texts)
+        tb = _window(fig, table)
+        for ax in fig.axes:
+            if ax is not table:
+                assert _window(fig, ax).intersection(tb).area < 1.0, f"{sp.kind}/{style}: {ax.get_label()} on the table"
