@@ -1,13 +1,16 @@
 """Page layouts that use the page: panels sized to what they draw (no matplotlib here, arithmetic only).
 
-A sheet's panels stand side by side in a band, the results table beneath
-them across the page. Each panel gets the share of the band's width that
-its drawing needs at the band's height (a wide mechanism a wide panel, a
-tall polygon a narrow one), every drawing at the same fraction of the band
-first; then each scale is rounded (:func:`~velpoly.render.canvas.nice_scale`)
-and the width the rounding frees goes to the panels that can then be drawn a
-round scale larger. What no drawing needs of the band's height goes to the
-table, so that it shows more rows. Every size is in centimetres of paper.
+A sheet's panels stand side by side in a band, or in two bands, the results
+table beneath them across the page, or in the page's bottom left corner with
+the last panels beside it down to the page's bottom (:func:`arrange`'s
+``notch``). Each panel gets the share of the band's width that its drawing
+needs at the band's height (a wide mechanism a wide panel, a tall polygon a
+narrow one), every drawing at the same fraction of the band first; then each
+scale is rounded (:func:`~velpoly.render.canvas.nice_scale`) and the width
+the rounding frees goes to the panels that can then be drawn a round scale
+larger. Arrangements are compared by :func:`cover` (the drawings' number
+times the geometric mean of their areas). Every size is in centimetres of
+paper.
 """
 from __future__ import annotations
 
@@ -16,7 +19,7 @@ from dataclasses import dataclass
 
 from .canvas import nice_scale
 
-__all__ = ["MARGIN", "Row", "share_row", "smaller_scale", "arrange", "drawn_size"]
+__all__ = ["MARGIN", "Row", "share_row", "smaller_scale", "arrange", "drawn_size", "drawn_areas", "cover"]
 
 # paper kept about a drawing inside its panel (cm): each side, top, bottom (the scale bar's strip)
 MARGIN = (0.5, 0.45, 1.05)
@@ -119,19 +122,34 @@ def _first(ratios, fixed, room: float, inner_h: float) -> list[float]:
     return [w + (room - sum(first)) / n for w in first]
 
 
+def drawn_areas(spans, row: Row) -> list[float]:
+    """Each drawing's box's area on paper (cm²) in a row."""
+    return [w * h / s ** 2 for (w, h), s in zip(_spans(spans), row.scales)]
+
+
 def drawn_size(spans, row: Row) -> float:
     """How much of the page a row's drawings take: the sum of their boxes' areas on paper (cm²)."""
-    return sum(w * h / s ** 2 for (w, h), s in zip(_spans(spans), row.scales))
+    return sum(drawn_areas(spans, row))
+
+
+def cover(areas) -> float:
+    """How large drawings of these areas (cm²) are, all together: their number times their geometric mean
+    (every drawing counts: one drawing grown at the cost of the others' shrinking alike gains nothing, and
+    a polygon squeezed to a corner loses much)."""
+    areas = [max(a, 1e-12) for a in areas]
+    return len(areas) * math.exp(sum(math.log(a) for a in areas) / len(areas)) if areas else 0.0
 
 
 @dataclass(frozen=True)
 class Band:
-    """One row of an arrangement: its panels, their widths and scales, its height and its bottom (cm)."""
+    """Panels side by side: their names, widths and scales, the band's height, its bottom and its left
+    (cm; the left from the arrangement's left edge)."""
 
     names: tuple[str, ...]
     row: Row
     height: float
     bottom: float
+    left: float = 0.0
 
 
 def _splits(names):
@@ -141,30 +159,70 @@ def _splits(names):
         yield tuple(names[:k]), tuple(names[k:])
 
 
+def _notched(rows):
+    """Each arrangement's last row split in two (the panels over the table, those beside it), the row
+    whole first (None: nothing beside the table); of two rows, the last one may stand beside the table
+    alone (nothing over it: the first row takes the height above the table)."""
+    yield None
+    for k in range(0 if len(rows) > 1 else 1, len(rows[-1])):
+        yield rows[-1][:k], rows[-1][k:]
+
+
 def arrange(spans: dict, names, width: float, top: float, bottom: float, gap: float, caption: float,
-            scales: dict, least: dict, extra: dict | None = None) -> list[Band]:
+            scales: dict, least: dict, extra: dict | None = None, notch: tuple[float, float] | None = None
+            ) -> list[Band]:
     """The panels ``names`` in one row or two between ``bottom`` and ``top`` (cm), whichever draws them
-    largest (:func:`drawn_size`: the area they cover; one row unless two cover a tenth more): a wide mechanism
+    largest (:func:`cover`; one row unless two cover a tenth more): a wide mechanism
     across the page above its polygons. ``caption``: the height (cm) of a second row's captions. Each row is as tall
-    as its drawings need; the height left over is shared out between the rows."""
+    as its drawings need; the height left over is shared out between the rows.
+
+    ``notch``: (width, height) cm at the bottom's left kept for the table (narrower than ``width``). The
+    rows then stand over it, or the last row's first panels stand over it and its others beside it, down
+    to ``bottom`` (a narrow table in the page's corner, the last polygon at the height the table leaves),
+    or, of two rows, the last one beside the table alone."""
     best, extra = None, extra or {}
+    nw, nh = notch if notch is not None else (0.0, 0.0)
+
+    def share(r, w, h):
+        return share_row([spans[n] for n in r], w, h, gap, [scales.get(n) for n in r],
+                         least=[least.get(n, 0.0) for n in r], extra=[extra.get(n, 0.0) for n in r])
+    def _room_for(part, w):
+        return sum(least.get(n, 0.0) for n in part) + gap * max(len(part) - 1, 0) <= w + 1e-9
     for rows in _splits(list(names)):
-        room = top - bottom - caption * (len(rows) - 1)
-        fracs = (1.0,) if len(rows) == 1 else tuple(0.3 + 0.05 * i for i in range(9))
-        for f in fracs:
-            heights = (room,) if len(rows) == 1 else (room * f, room * (1 - f))
-            made = [share_row([spans[n] for n in r], width, h, gap, [scales.get(n) for n in r],
-                              least=[least.get(n, 0.0) for n in r], extra=[extra.get(n, 0.0) for n in r])
-                    for r, h in zip(rows, heights)]
-            score = sum(drawn_size([spans[n] for n in r], m) for r, m in zip(rows, made))
-            score /= 1.0 if len(rows) == 1 else 1.1
-            if best is None or score > best[0] + 1e-9:
-                best = (score, rows, made)
-    _, rows, made = best
-    slack = max(top - bottom - caption * (len(rows) - 1) - sum(m.height for m in made), 0.0) / len(rows)
+        room = top - bottom - nh - caption * (len(rows) - 1)
+        for split in (_notched(rows) if notch is not None else (None,)):
+            alone = split is not None and not split[0]   # the last row beside the table, nothing over it
+            fracs = (1.0,) if len(rows) == 1 or alone else tuple(0.3 + 0.05 * i for i in range(9))
+            for f in fracs:
+                heights = (room,) if len(rows) == 1 else (room * f, room * (1 - f))
+                made = [share(r, width, h) for r, h in zip(rows[:-1] if split else rows, heights)]
+                if split is not None:
+                    over, beside = split
+                    if not (_room_for(over, nw) and _room_for(beside, width - nw - gap)):
+                        break   # a caption would not fit its column
+                    made += [share(over, nw, heights[-1])] if over else []
+                    made += [share(beside, width - nw - gap, heights[-1] + nh)]
+                parts = rows[:-1] + ((rows[-1],) if split is None else tuple(r for r in split if r))
+                score = cover([a for r, m in zip(parts, made) for a in drawn_areas([spans[n] for n in r], m)])
+                score /= 1.0 if len(rows) == 1 else 1.1
+                if best is None or score > best[0] + 1e-9:
+                    best = (score, rows, parts, made, split)
+    _, rows, parts, made, split = best
+    alone = split is not None and not split[0]
+    heights = [m.height for m in made[:len(rows)]]
+    if alone:   # the rows over the table take its height; the last one beside it is as tall as the table
+        heights = heights[:-1] + [0.0]
+    elif split is not None:   # the last row's height: that of the taller part (the part beside less the notch)
+        heights[-1] = max(made[-2].height, made[-1].height - nh)
+    slack = max(top - bottom - nh - caption * (len(rows) - 1) - sum(heights), 0.0) / (len(rows) - alone)
     out, y = [], top
-    for r, m in zip(rows, made):
-        h = m.height + slack
-        out.append(Band(r, m, h, y - h))
+    for i, r in enumerate(rows):
+        h = heights[i] + (slack if not (alone and i == len(rows) - 1) else 0.0)
+        if split is not None and i == len(rows) - 1:
+            if split[0]:
+                out.append(Band(split[0], made[-2], h, y - h))
+            out.append(Band(split[1], made[-1], h + nh, y - h - nh, nw + gap))
+        else:
+            out.append(Band(r, made[i], h, y - h))
         y -= h + caption
     return out

@@ -36,7 +36,7 @@ from .constructions import Constructions, check_sheet as _check_sheet, construct
 from .displacement import draw_mechanism, equivalent_linkage_note, mark_auxiliary, mechanism_bounds
 from .kennedy import draw_kennedy_circle, draw_poles, pole_label
 from .labels import placer
-from .layout import MARGIN, arrange, drawn_size, share_row
+from .layout import MARGIN, arrange, cover, drawn_areas, share_row
 from .options import SHEETS, drawing_options
 from .polygon import draw_polygon, legend_room, polygon_bounds
 from .scalebar import scale_text
@@ -284,6 +284,10 @@ class _Planner:
             art = _measure_table(self.sol, self.fig, self.rect(x, EDGE, width, room), self.sheet, self.st,
                                  self.cons, art.table)
         whole = art.size >= self.st.small_size - 1e-9 and art.shown == len(art.table.rows)
+        self.shown = art.shown   # (the rows the table last drawn shows, of them those with a book's value)
+        self.need = art.whole * room   # (cm: the height it would take to show every row at this width)
+        ref = art.table.header.index("reference") if "reference" in art.table.header else None
+        self.refs = sum(1 for r in art.table.rows if r[ref]) if ref is not None else 0
         return art, art.used * room, whole
 
     def row(self, names, x: float, width: float, height: float, bottom: float, least=None):
@@ -298,21 +302,35 @@ class _Planner:
 
     def over_table(self, names) -> _Plan:
         """The table across the page's bottom in as few lines as its blocks take (at most
-        :data:`TABLE_MOST` of the page), the panels above it in one row or two (:func:`arrange`)."""
+        :data:`TABLE_MOST` of the page; up to the last of :data:`TABLE_TALLER` where rows with a book's value
+        are cut and the drawings keep :data:`TABLE_SHRINK` of their size), the panels above it in one row or
+        two (:func:`arrange`); or the table in the page's corner (:meth:`table_in_corner`) or beside a
+        panel (:meth:`table_beside`), whichever draws the panels largest."""
         spans = dict(zip(names, self.spans(names)))
         least = dict(zip(names, self.least(names)))
         users = {n: _user_scale(self.opts, n) for n in names}
-        floor, tax = EDGE, None
+        floor, tax, room = EDGE, None, TABLE_MOST * self.H
         if self.want_table:
-            tax, used, _ = self.draw_table(EDGE, self.width, TABLE_MOST * self.H)
+            tax, used, _ = self.draw_table(EDGE, self.width, room)
             _move(tax, self, EDGE + used)
             floor = EDGE + used + TABLE_GAP
+            need = self.need
         extra = {"mechanism": LABEL_ROOM * self.st.font_size / 10}
-        bands = arrange(spans, names, self.width, self.top, floor, GAP, _caption_cm(self.st, self.lines), users,
-                        least, extra)
+        caption = _caption_cm(self.st, self.lines)
+
+        def panels(floor):
+            return arrange(spans, names, self.width, self.top, floor, GAP, caption, users, least, extra)
+        bands = panels(floor)
+        size = _cover(spans, bands)
+        if tax is not None and self.shown < self.refs:   # rows with a book's value cut
+            tax, bands, room = self.taller_table(tax, bands, room, lambda b: _cover(spans, b), panels)
+            size = _cover(spans, bands)
+        corner = self.table_in_corner(tax, room, names, spans, least, users, extra) if tax is not None else None
+        if corner is not None and corner[0] > size * (1 + 1e-9):
+            size, bands, tax = corner
         rects, scales = {}, {}
         for band in bands:
-            x = EDGE
+            x = EDGE + band.left
             for name, w, s in zip(band.names, band.row.widths, band.row.scales):
                 rects[name] = self.rect(x, band.bottom, w, band.height)
                 scales[name] = s
@@ -320,11 +338,51 @@ class _Planner:
         plan = _Plan(rects, scales, tax)
         if tax is None or len(names) < 2:
             return plan
-        size = sum(drawn_size([spans[n] for n in band.names], band.row) for band in bands)
-        beside = self.table_beside(names, spans, least, users, extra, scales)
+        # a column beside a panel is narrower than the page: no taller than the tallest such row, it cannot
+        # show every row where the page's width cannot
+        column = max(BESIDE_FRACTIONS) * (self.top - EDGE) + caption
+        beside = self.table_beside(names, spans, least, users, extra, scales) if need <= column else None
         if beside is not None and beside[0] > size * (1 + 1e-9):
             return beside[1]
         return plan
+
+    def taller_table(self, tax, bands, room, size, panels):
+        """The table ``tax`` (``room`` cm tall, the panels' ``bands`` above it) taller, up to the last of
+        :data:`TABLE_TALLER` of the page, while it then shows more rows and the drawings keep
+        :data:`TABLE_SHRINK` of their size (``size``: how large bands' drawings are; ``panels``: the bands over a
+        floor), until every row with a book's value shows: (the table, the bands, its room)."""
+        shown, base = self.shown, size(bands)
+        for frac in TABLE_TALLER:
+            nax, used, _ = self.draw_table(EDGE, self.width, frac * self.H)
+            more = self.shown > shown
+            grown = panels(EDGE + used + TABLE_GAP) if more else None
+            if not more or size(grown) < TABLE_SHRINK ** 2 * base:
+                if more:
+                    break
+                continue
+            _move(nax, self, EDGE + used)
+            tax, bands, room, shown = nax, grown, frac * self.H, self.shown
+            if shown >= self.refs:
+                break
+        self.shown = shown
+        return tax, bands, room
+
+    def table_in_corner(self, tax, room, names, spans, least, users, extra):
+        """The table ``tax`` (drawn across the page) narrowed to the width its blocks take, in the page's
+        bottom left corner, the last row's last panels beside it down to the page's bottom
+        (:func:`arrange`'s notch): (the area the drawings cover, the bands, the table's axes), or None where
+        the table leaves no room beside it or shows fewer rows so narrowed."""
+        shown = self.shown
+        tw = _drawn_width(tax, self) + 0.2
+        if self.width - tw < CORNER_LEAST:
+            return None
+        nax, used, _ = self.draw_table(EDGE, tw, room)
+        if self.shown < shown:
+            return None
+        _move(nax, self, EDGE + used)
+        bands = arrange(spans, names, self.width, self.top, EDGE, GAP, _caption_cm(self.st, self.lines), users,
+                        least, extra, notch=(tw, used + TABLE_GAP))
+        return _cover(spans, bands), bands, nax
 
     def table_beside(self, names, spans, least, users, extra, under):
         """One panel (the first, or the last) in a row with the table beside it, in a column as tall as that
@@ -353,7 +411,7 @@ class _Planner:
                             least=[least.get(n, 0.0) for n in others], extra=[extra.get(n, 0.0) for n in others])
             one = share_row([spans[alone]], width, low, 0.0, [users.get(alone)], least=[least.get(alone, 0.0)],
                             extra=[extra.get(alone, 0.0)])
-            size = drawn_size([spans[n] for n in others], row) + drawn_size([spans[alone]], one)
+            size = cover(drawn_areas([spans[n] for n in others], row) + drawn_areas([spans[alone]], one))
             smaller = any(s > under[n] * (1 + 1e-9) for n, s in zip(others + [alone], row.scales + one.scales))
             if smaller or (best is not None and size <= best[0] * (1 + 1e-9)):
                 continue
@@ -394,14 +452,45 @@ class _Planner:
         return _Plan(rects, {"poles": row.scales[0]}, tax)
 
     def _poles_across(self, row) -> _Plan:
+        """The mechanism across the page, the Kennedy circle and the table beneath it; the mechanism a round
+        scale or two smaller (down to :data:`TABLE_SHRINK` of its size) where the table then shows more rows
+        (the largest that shows every row, else the largest that shows the most)."""
         total = self.top - EDGE
-        room = total - TABLE_GAP - row.height
-        side = min(room, KENNEDY_MOST)
-        tax, used, _ = self.draw_table(EDGE + side + GAP, self.width - side - GAP, room)
+
+        cap = max(_caption_cm(self.st, 1) - TABLE_GAP, 0.0)   # the Kennedy circle's caption's room over it
+
+        def place(r):
+            room = total - TABLE_GAP - r.height
+            side = min(room - cap, KENNEDY_MOST)
+            return room, side, self.draw_table(EDGE + side + GAP, self.width - side - GAP, room)
+        most = None
+        for r in [row, *self._smaller(row, "poles", total)]:
+            room, side, (tax, used, whole) = place(r)
+            if whole:
+                break
+            if most is None or self.shown > most[0]:
+                most = (self.shown, r)
+        else:   # no such scale shows every row: the largest drawing with the table showing the most rows
+            r = most[1]
+            room, side, (tax, used, whole) = place(r)
         _move(tax, self, EDGE + room)
-        rects = {"poles": self.rect(EDGE, self.top - row.height, self.width, row.height),
-                 "kennedy": self.rect(EDGE, EDGE + room - side, side, side)}
-        return _Plan(rects, {"poles": row.scales[0]}, tax)
+        rects = {"poles": self.rect(EDGE, self.top - r.height, self.width, r.height),
+                 "kennedy": self.rect(EDGE, EDGE + room - cap - side, side, side)}
+        return _Plan(rects, {"poles": r.scales[0]}, tax)
+
+    def _smaller(self, row, name: str, height: float) -> list:
+        """The one-panel ``row`` of panel ``name`` at each round scale smaller, down to :data:`TABLE_SHRINK` of its
+        size (none for a user's scale), largest first: the room the table may take from a drawing to show
+        its rows."""
+        if _user_scale(self.opts, name) is not None:
+            return []
+        (w, h), = self.spans([name])
+        out, s = [], row.scales[0]
+        while True:
+            s = nice_scale(s * 1.001)
+            if row.scales[0] / s < TABLE_SHRINK - 1e-9:
+                return out
+            out.append(share_row([(w, h)], self.width, height, 0.0, [s]))
 
 
 EDGE = 0.3          # cm of paper kept free along the page's sides and bottom
@@ -411,7 +500,28 @@ TABLE_LEAST = 0.22  # of the page's height: the table's room at least, before th
 TABLE_MOST = 0.4   # of the page's height: the table's room at most
 LABEL_ROOM = 2.0    # cm beside a mechanism for its labels (at 10 pt type)
 KENNEDY_MOST = 8.0  # cm: the Kennedy circle's panel at most
+TABLE_TALLER = (0.45, 0.5, 0.55)   # of the page's height: the table's room where rows with a book's value are cut
+TABLE_SHRINK = 0.75  # a drawing shrunk to no less than this (its length) so that the table shows every row
+CORNER_LEAST = 6.0  # cm beside the table in the page's corner: the least room for panels there
 BESIDE_FRACTIONS = (0.4, 0.5)   # of the panels' height: the last row's, with the table beside its panel
+
+
+def _cover(spans, bands) -> float:
+    """How large the bands' drawings are, all together (:func:`velpoly.render.layout.cover`)."""
+    return cover([a for b in bands for a in drawn_areas([spans[n] for n in b.names], b.row)])
+
+
+def _drawn_width(tab, planner) -> float:
+    """The width (cm) the measured table ``tab``'s blocks, title and footnotes take in its room, from its left
+    edge (drawn once in a scratch axes, then taken away)."""
+    from .canvas import renderer_of
+    fig = planner.fig
+    tax = _draw_table(planner.sol, fig, planner.sheet, planner.st, tab).ax
+    r = renderer_of(fig)
+    x0 = tax.get_window_extent(r).x0
+    right = max((a.get_window_extent(r).x1 for a in (*tax.texts, *tax.lines)), default=x0)
+    fig.delaxes(tax)
+    return (right - x0) / fig.dpi * 2.54
 
 
 def _move(tax, planner, top: float) -> None:
