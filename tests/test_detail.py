@@ -249,3 +249,29 @@ def test_example_3_10_full_sheet_detail_has_its_room(style):
     inset = next(t for t in ax.texts if t.get_gid() == "detail-caption")
     s = float(re.search(r"= ([0-9.e+-]+)", inset.get_text()).group(1))
     assert s <= view_scale(ax) / 2 and per_cm(ax.child_axes[0]) == pytest.approx(s, rel=REL)
+
+
+def test_detail_frames_that_covered_their_panel():
+    """The generated polygons (a seeded zoo, points 1 to 30 sizes out) whose detail's frame covered part of
+    their panel when the frame took the place meeting the fewest marks (a link image, vectors, or beyond the
+    panel's edge): now clear of everything (the frame keeps off link images; a panel with no room has its
+    scale made coarser)."""
+    from frame_checks import frame_clashes
+    cases = {(13, "velocity"): 3, (16, "acceleration"): 3, (27, "velocity"): 2, (27, "acceleration"): 0}
+    rng = np.random.default_rng(17)
+    for i, sp in enumerate(zoo.zoo(seed=1703, count=28)):
+        try:
+            sol = velpoly.solve(velpoly.load(_far_point(sp.mech, rng)))   # (every specimen draws from rng)
+        except VelpolyError:
+            continue
+        for poly in [velocity_polygon(sol)] + ([acceleration_polygon(sol)] if sol.has_accelerations else []):
+            if (i, poly.kind) not in cases:
+                continue
+            ax = _panel(rect=PANELS[cases.pop((i, poly.kind))])
+            fit_view(ax, polygon_bounds(poly), margin=0.08)
+            ax.set_axis_off()
+            with rc_context(get_style("textbook")):
+                art = draw_polygon(poly, ax, mechanism=sol.mechanism, style="textbook")
+            assert art.detail is not None
+            assert not frame_clashes(ax), (i, sp.kind, poly.kind, frame_clashes(ax))
+    assert not cases
