@@ -23,6 +23,7 @@ import zoo
 from paths import EXAMPLES
 from velpoly.polygons import acceleration_polygon, velocity_polygon
 from velpoly.render import sheet
+from velpoly.render.detail import crowd as crowd_of
 from velpoly.render.canvas import fit_view, per_cm, view_scale
 from velpoly.render.polygon import draw_polygon, polygon_bounds
 from velpoly.render.scalebar import scale_text
@@ -55,11 +56,11 @@ def expected(poly, unit_per_cm) -> bool:
 PANEL = (0.34, 0.37, 0.32, 0.485)   # a polygon's panel of a full sheet (fractions of the page): a third of its width
 
 
-def _panel(style="textbook"):
+def _panel(style="textbook", rect=PANEL):
     st = get_style(style)
     fig = Figure(figsize=st.figsize, dpi=72)
     FigureCanvasAgg(fig)
-    return fig.add_axes(PANEL)
+    return fig.add_axes(rect)
 
 
 def _draw(sol, poly, style="textbook"):
@@ -69,7 +70,8 @@ def _draw(sol, poly, style="textbook"):
     pc = per_cm(ax)
     with rc_context(get_style(style)):
         art = draw_polygon(poly, ax, mechanism=sol.mechanism, style=style)
-    return ax, pc, art
+    assert per_cm(ax) >= pc * (1 - REL)      # kept, or made coarser to give the detail its room
+    return ax, per_cm(ax), art
 
 
 def check_detail(sol, poly, ax, pc, art):
@@ -79,7 +81,7 @@ def check_detail(sol, poly, ax, pc, art):
     if det is None:
         assert "detail" not in art
         return
-    assert view_scale(ax) == pytest.approx(pc, rel=REL)              # the panel kept its scale
+    assert view_scale(ax) == pytest.approx(pc, rel=REL)              # the panel's scale as stated
     s = det.scale
     assert s <= pc / 2 * (1 + REL)                                    # enlarged at least twice
     units = sol.mechanism.units
@@ -118,7 +120,7 @@ def _pt(p):
     return Point(float(p[0]), float(p[1]))
 
 
-def _far_point(mech: dict, rng) -> dict:
+def _far_point(mech: dict, rng, far=(1.0, 3.0, 8.0, 15.0, 30.0)) -> dict:
     """The specimen with a point Z on one moving link, far out along it: that link's far image is long."""
     links = [k for k, v in mech["links"].items() if not v.get("frame") and len(v["points"]) >= 2]
     lk = links[int(rng.integers(len(links)))]
@@ -126,7 +128,7 @@ def _far_point(mech: dict, rng) -> dict:
     m = velpoly.load(mech)
     xy = np.array([m.position(p) for p in m.point_order if not m.link(m.carriers[p][0]).frame] or [[0, 0]])
     size = float(np.ptp(xy, axis=0).max()) or 1.0
-    far = float(rng.choice([1.0, 3.0, 8.0, 15.0, 30.0]))
+    far = float(rng.choice(list(far)))
     out = {**mech, "points": dict(mech["points"]), "links": {k: dict(v) for k, v in mech["links"].items()}}
     out["points"]["Z"] = {"from": a, "length": far * size, "along": [a, b], "turn": float(rng.uniform(-40, 40))}
     out["links"][lk]["points"] = list(mech["links"][lk]["points"]) + ["Z"]
@@ -187,3 +189,89 @@ def test_step_frames_keep_the_finished_detail():
         last = sheet.render_sheet(sol, "velocity", st, cons=cons, frame=fr[-1])
         first = sheet.render_sheet(sol, "velocity", st, cons=cons, frame=fr[0], pins=last._velpoly_pins)
     assert detail(first) == detail(last)
+
+
+# (left, bottom, width, height) of a panel on the page: a narrow tall column, a full sheet's third, a wide
+# short band, a small square
+PANELS = [(0.05, 0.1, 0.22, 0.7), PANEL, (0.1, 0.1, 0.6, 0.35), (0.3, 0.2, 0.3, 0.3)]
+
+
+def test_detail_frames_cover_nothing_of_their_panel_on_generated_mechanisms():
+    """Seeded zoo mechanisms, one link given a point 8 to 30 sizes out (its image far longer than the rest),
+    ten crushed polygons drawn in panels of four shapes in turn: the detail's frame covers no link image,
+    vector, construction line, label, reason, legend or scale bar of its panel, nor the region it enlarges,
+    and stays in its panel (a panel with no room for it at its scale has the scale made coarser, as the
+    caption and the scale bar state, the detail still at least twice as fine)."""
+    from frame_checks import frame_clashes
+    rng = np.random.default_rng(1721)
+    drawn, kinds, scales = 0, set(), []
+    for sp in zoo.zoo(seed=1721, count=16):
+        try:
+            sol = velpoly.solve(velpoly.load(_far_point(sp.mech, rng, far=(8.0, 15.0, 30.0))))
+        except VelpolyError:
+            continue
+        for poly in [velocity_polygon(sol)] + ([acceleration_polygon(sol)] if sol.has_accelerations else []):
+            rect = PANELS[drawn % len(PANELS)]
+            ax = _panel(rect=rect)
+            pc0 = fit_view(ax, polygon_bounds(poly), margin=0.08)
+            if crowd_of(poly, pc0) is None or drawn == 10:
+                continue
+            ax.set_axis_off()
+            with rc_context(get_style("textbook")):
+                art = draw_polygon(poly, ax, mechanism=sol.mechanism, style="textbook")
+            assert art.detail is not None
+            pc = per_cm(ax)
+            assert view_scale(ax) == pytest.approx(pc, rel=REL) and pc >= pc0 * (1 - REL)
+            assert art.detail.scale <= pc / 2 * (1 + REL)
+            clashes = frame_clashes(ax)
+            assert not clashes, (sp.kind, poly.kind, rect, clashes)
+            drawn += 1
+            kinds.add(poly.kind)
+            scales.append(pc / pc0)
+    assert drawn == 10 and kinds == {"velocity", "acceleration"}, (drawn, kinds)
+
+
+@pytest.mark.parametrize("style", ["textbook", "slides"])
+def test_example_3_10_full_sheet_detail_has_its_room(style):
+    """Example 3.10's acceleration polygon in its narrow column of the full sheet: no free place held the
+    detail at the planned scale (its frame lay over the polygon and ran above the panel); the panel's scale is
+    made coarser until one does, and the caption states the scale drawn."""
+    from frame_checks import frame_clashes
+    sol = velpoly.solve(velpoly.load(EXAMPLES / "ex3_10_rolling_contact.toml"))
+    st = get_style(style)
+    with rc_context(st):
+        fig = sheet.render_sheet(sol, "full", st)
+    ax = next(a for a in fig.axes if a.get_label() == "acceleration")
+    assert not frame_clashes(ax)
+    cap = next(t for t in fig.texts if t.get_gid() == "caption-acceleration")
+    assert cap.get_text().endswith("(" + scale_text(view_scale(ax), sol.mechanism.units, 2) + ")")
+    assert view_scale(ax) == pytest.approx(per_cm(ax), rel=REL)
+    inset = next(t for t in ax.texts if t.get_gid() == "detail-caption")
+    s = float(re.search(r"= ([0-9.e+-]+)", inset.get_text()).group(1))
+    assert s <= view_scale(ax) / 2 and per_cm(ax.child_axes[0]) == pytest.approx(s, rel=REL)
+
+
+def test_detail_frames_that_covered_their_panel():
+    """The generated polygons (a seeded zoo, points 1 to 30 sizes out) whose detail's frame covered part of
+    their panel when the frame took the place meeting the fewest marks (a link image, vectors, or beyond the
+    panel's edge): now clear of everything (the frame keeps off link images; a panel with no room has its
+    scale made coarser)."""
+    from frame_checks import frame_clashes
+    cases = {(13, "velocity"): 3, (16, "acceleration"): 3, (27, "velocity"): 2, (27, "acceleration"): 0}
+    rng = np.random.default_rng(17)
+    for i, sp in enumerate(zoo.zoo(seed=1703, count=28)):
+        try:
+            sol = velpoly.solve(velpoly.load(_far_point(sp.mech, rng)))   # (every specimen draws from rng)
+        except VelpolyError:
+            continue
+        for poly in [velocity_polygon(sol)] + ([acceleration_polygon(sol)] if sol.has_accelerations else []):
+            if (i, poly.kind) not in cases:
+                continue
+            ax = _panel(rect=PANELS[cases.pop((i, poly.kind))])
+            fit_view(ax, polygon_bounds(poly), margin=0.08)
+            ax.set_axis_off()
+            with rc_context(get_style("textbook")):
+                art = draw_polygon(poly, ax, mechanism=sol.mechanism, style="textbook")
+            assert art.detail is not None
+            assert not frame_clashes(ax), (i, sp.kind, poly.kind, frame_clashes(ax))
+    assert not cases

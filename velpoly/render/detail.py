@@ -21,15 +21,17 @@ from __future__ import annotations
 from dataclasses import dataclass
 
 import numpy as np
+import shapely
 import shapely.affinity
-from shapely.geometry import box
+from shapely.geometry import Polygon, box
 from shapely.ops import nearest_points
 
-from .canvas import Artists, fit_view, nice_scale, view_box
+from .canvas import Artists, fit_view, nice_scale, per_cm, view_box, view_scale
 from .labels import placer
 from .scalebar import scale_text
 
-__all__ = ["Crowd", "Detail", "crowd", "draw_detail", "JOIN_CM", "JOIN_PART", "MIN_POINTS", "MAX_CM", "RATIO", "MIN_ZOOM"]
+__all__ = ["Crowd", "Detail", "crowd", "draw_detail", "JOIN_CM", "JOIN_PART", "MIN_POINTS", "MAX_CM", "RATIO", "MIN_ZOOM",
+           "MOST_STEPS", "make_room"]
 
 JOIN_CM = 1.3      # two points closer than this on paper belong to one group,
 JOIN_PART = 6.0    # or than this part of the polygon's larger side
@@ -39,6 +41,7 @@ RATIO = 3.0        # the polygon at least this many times larger than the crowd
 MIN_ZOOM = 2.0     # the detail at least twice the panel's scale
 PAD_CM = 0.45      # room about the region in the detail, for the labels
 MARK_CM = 0.15     # the region's mark about the crowd's box, on the polygon
+MOST_STEPS = 4     # the panel's scale at most so many round steps coarser, to make room for the detail
 
 
 @dataclass(frozen=True)
@@ -109,6 +112,7 @@ class Detail:
     caption: object
     art: Artists
     marks: list
+    hits: int = 0          # what its frame meets of the panel (0: a free place)
 
 
 def _inset_size(bounds, s: float, pad: float, cap: float, min_w: float = 0.0) -> tuple[float, float]:
@@ -163,19 +167,22 @@ def _shifts(d, pc) -> list:
     return out
 
 
-def _place(d, region, min_w: float):
-    """(scale, frame box in panel data units, view shift): the finest candidate scale whose inset finds a
-    place free of every mark and line of the panel and away from the region, in the present view or one
-    moved with the polygon against a side; else the place meeting the fewest marks, then lines."""
+def _find(d, region, min_w: float):
+    """(hits, scale, frame box in panel data units, view shift): the finest candidate scale whose inset finds a
+    place free of every mark, line and link image of the panel and away from the region (hits 0), in the
+    present view or one moved with the polygon against a side; else the place meeting the fewest marks, then
+    lines and images."""
     pl, pc = d.pl, d.pc
-    pin = pl.pins.get("detail")
-    if pin is not None:      # a step frame: where the finished construction has it
-        return pin[2], box(*pin[1]), (0.0, 0.0)
     view = view_box(d.ax)
     wcm, hcm = (view.bounds[2] - view.bounds[0]) / pc, (view.bounds[3] - view.bounds[1]) / pc
     cap = _caption_cm(d.st)
-    hits_of = d.hit_counter(pl)
+    marks = d.hit_counter(pl)
+    # and the link images (not obstacles of the labels, which may sit on them)
+    images = np.array([Polygon(p.get_xy()) for p in d.art.get("images", [])], dtype=object)
     keep_off = region.buffer(0.3 * pc)
+
+    def hits_of(b):
+        return marks(b) + (int(np.count_nonzero(shapely.intersects(images, b))) if len(images) else 0)
     best = None
     scales = _scales(region.bounds, pc, (0.7 * wcm, 0.6 * hcm), PAD_CM, cap)
     for s in scales:
@@ -189,14 +196,88 @@ def _place(d, region, min_w: float):
                     continue
                 score = hits_of(b) + (1000 if b.intersects(keep_off) else 0)
                 if score == 0:
-                    return s, b, (dx, dy)
+                    return 0, s, b, (dx, dy)
                 if best is None or score < best[0]:
                     best = (score, s, b, (dx, dy))
     if best is None:   # an inset larger than the panel: the coarsest, at the upper right
         w, h = (v * pc for v in _inset_size(region.bounds, scales[-1], PAD_CM, cap, min_w))
         vx0, vy0, vx1, vy1 = view.bounds
-        return scales[-1], box(vx1 - w, vy1 - h, vx1, vy1), (0.0, 0.0)
-    return best[1:]
+        b = box(vx1 - w, vy1 - h, vx1, vy1)
+        return 10000 + hits_of(b), scales[-1], b, (0.0, 0.0)
+    return best
+
+
+def _place(d, region, min_w: float):
+    """(hits, scale, frame box in panel data units, view shift) of the detail (:func:`_find`; a step frame:
+    where the finished construction has it)."""
+    pin = d.pl.pins.get("detail")
+    if pin is not None:      # a step frame: where the finished construction has it
+        return 0, pin[2], box(*pin[1]), (0.0, 0.0)
+    return _find(d, region, min_w)
+
+
+def _region(c: Crowd, pc: float):
+    """The region marked on the polygon: the crowd's box, ``MARK_CM`` of paper about it."""
+    x0, y0, x1, y1 = c.bounds
+    m = MARK_CM * pc
+    return box(x0 - m, y0 - m, x1 + m, y1 + m)
+
+
+def _caption_width(d) -> float:
+    """The width (cm) the detail's caption needs at its longest scale: the inset at least as wide."""
+    units = d.m.units if d.m is not None else ""
+    probe = d.ax.text(0, 0, "detail, " + scale_text(1.0, units, 1 if d.velocity else 2) + "0000",
+                      fontsize=d.st.small_size, style="italic")
+    bb = probe.get_window_extent(d.pl.renderer)
+    probe.remove()
+    return bb.width / d.ax.figure.dpi * 2.54 + 0.3
+
+
+def _zoom(ax, lims, centre, k: float) -> None:
+    """The view ``lims`` (xlim, ylim) scaled by ``k`` about ``centre``: the same panel, ``k`` times coarser."""
+    (x0, x1), (y0, y1) = lims
+    cx, cy = centre
+    ax.set_xlim(cx + (x0 - cx) * k, cx + (x1 - cx) * k)
+    ax.set_ylim(cy + (y0 - cy) * k, cy + (y1 - cy) * k)
+
+
+def _bar_on(art, frame) -> int:
+    """1 if the panel's scale bar (drawn last) found its place only on the detail's frame."""
+    bar = art.get("scale_bar", [])
+    return int(bool(bar) and box(*bar[0].get_bbox().get_points().ravel()).intersects(frame))
+
+
+def make_room(polygon, ax, draw, fixed: bool = False) -> None:
+    """Before ``polygon`` is drawn on ``ax`` by ``draw()`` (its Artists): where it calls for a detail that finds
+    no free place in its panel (a narrow panel, a crowd as wide as the polygon), make the panel's scale a round
+    step coarser, and again (at most ``MOST_STEPS``), until the detail finds one: the polygon drawn smaller
+    leaves the detail its room. Each scale is tried by drawing the polygon tentatively
+    (``LabelPlacer.trial``), the scale bar too needing a place off the detail's frame; where none gives a free
+    place, the one whose place meets the fewest marks and lines. The scale stays where it is ``fixed`` (the
+    user's), or pinned (a step frame)."""
+    pl = placer(ax)
+    s0 = view_scale(ax) or per_cm(ax)
+    if fixed or pl.pins.get("_scale") is not None or pl.pins.get("detail") is not None or \
+            crowd(polygon, per_cm(ax)) is None:
+        return
+    lims = (ax.get_xlim(), ax.get_ylim())
+    xy = np.array([np.zeros(2)] + list(_all_points(polygon).values()))
+    centre = tuple((xy.min(axis=0) + xy.max(axis=0)) / 2)     # the polygon's box's, kept where it is
+    best, s = None, s0
+    for _ in range(MOST_STEPS + 1):
+        _zoom(ax, lims, centre, s / s0)
+        ax._velpoly_scale = s
+        with pl.trial():
+            art = draw()
+            hits = None if art.detail is None else art.detail.hits + _bar_on(art, art.detail.frame)
+        if hits is not None and (best is None or hits < best[0]):
+            best = (hits, s)
+        if hits == 0:
+            break
+        s = nice_scale(s * 1.0001)
+    s = s0 if best is None else best[1]
+    _zoom(ax, lims, centre, s / s0)
+    ax._velpoly_scale = s
 
 
 def _mark(d, region, frame) -> list:
@@ -244,21 +325,15 @@ def _inset(d, region, frame, s):
 def draw_detail(d) -> Detail | None:
     """Draw the detail of the polygon drawing ``d`` (:class:`velpoly.render.polygon._PolygonDrawing`) if the
     rule calls for one; return it (or None). Called before the panel's legend and labels, which keep clear
-    of it; the panel's view may move (not its scale) to make room for it."""
+    of it; the panel's view may move (not its scale: :func:`make_room` chose it) to make room for it."""
     pl, pc, ax = d.pl, d.pc, d.ax
     c = crowd(d.polygon, pc, d.tol)
     if c is None:
         return None
-    x0, y0, x1, y1 = c.bounds
-    m = MARK_CM * pc
-    region = box(x0 - m, y0 - m, x1 + m, y1 + m)
+    region = _region(c, pc)
     units = d.m.units if d.m is not None else ""
-    probe = ax.text(0, 0, "detail, " + scale_text(1.0, units, 1 if d.velocity else 2) + "0000",
-                    fontsize=d.st.small_size, style="italic")
-    bb = probe.get_window_extent(pl.renderer)
-    probe.remove()
-    min_w = bb.width / ax.figure.dpi * 2.54 + 0.3     # cm: the caption's width at its longest scale
-    s, frame, (dx, dy) = _place(d, region, min_w)
+    min_w = _caption_width(d)
+    hits, s, frame, (dx, dy) = _place(d, region, min_w)
     if dx or dy:
         ax.set_xlim(*(v + dx for v in ax.get_xlim()))
         ax.set_ylim(*(v + dy for v in ax.get_ylim()))
@@ -278,4 +353,4 @@ def draw_detail(d) -> Detail | None:
     inner.labels(within=region, gid_prefix="detail-label")
     pl.placed["detail"] = ("detail", tuple(map(float, frame.bounds)), s, ipl.placed)
     outside = view_box(ax).difference(region)
-    return Detail(c, s, inset, region, frame, outside, caption, inner.art, marks)
+    return Detail(c, s, inset, region, frame, outside, caption, inner.art, marks, hits)

@@ -139,7 +139,8 @@ def draw_poles(sol, ax=None, *, style="textbook", options=None, poleset=None, up
     current = max((p.order for p in shown), default=0) if upto is not None else None
     # the Kennedy lines, known before the mechanism's labels are placed so that these keep clear of them
     klines, pole_lines = _kennedy_lines(ps, shown, current, view_box(ax), per_cm(ax))
-    for xy, _, _ in klines:
+    for xy, _, _ in klines:   # no label on one (hard); a leader crosses as few as it can (soft)
+        pl.add_obstacle(segment(xy[0], xy[-1]), hard=True)
         pl.add_obstacle(segment(xy[0], xy[-1]), hard=False)
     if mechanism:
         # the poles' marks first, so that the mechanism's labels keep clear of them
@@ -246,6 +247,23 @@ def _nearer_own(own, rings):
     return accept
 
 
+SMALLER = (0.85, 0.72)   # a pole's label with no free place at its size: these fractions of it tried
+
+
+def _place_free(pl, anchor, text, *, fontsize: float, **kw):
+    """A pole's label (or an arrow's to a pole out of view) where a free place exists (off every Kennedy line,
+    label, leader and mark), smaller
+    (:data:`SMALLER`) if only that finds one, else at its size where it covers least (a crowd of poles)."""
+    for f in (1.0,) + SMALLER:
+        with pl.trial():
+            n = len(pl.overlapping)
+            t = pl.place(anchor, text, fontsize=fontsize * f, **kw)
+            pl.keep = len(pl.overlapping) == n
+            if pl.keep:
+                return t
+    return pl.place(anchor, text, fontsize=fontsize, **kw)
+
+
 def _label_poles(sol, ax, ps, shown, pole_lines, st, art) -> None:
     """Each pole's label: by its ring (nearer it than any other ring), or by the arrow at the border that
     points to a pole at infinity or out of view."""
@@ -265,8 +283,8 @@ def _label_poles(sol, ax, ps, shown, pole_lines, st, art) -> None:
             continue   # undefined: the links move alike (listed in the table)
         label = pole_label(p.links)
         if _in_view(ax, p):   # in view: where it is
-            t = pl.place(np.asarray(p.position, float), label, prefer=-45.0, gid=f"label-pole-{p.key}",
-                         accept=_nearer_own(art.rings[p.key], rings), **kw)
+            t = _place_free(pl, np.asarray(p.position, float), label, prefer=-45.0, gid=f"label-pole-{p.key}",
+                            accept=_nearer_own(art.rings[p.key], rings), **kw)
         else:
             if p.position is None:
                 d = np.array([math.cos(math.radians(p.direction)), math.sin(math.radians(p.direction))])
@@ -281,7 +299,8 @@ def _label_poles(sol, ax, ps, shown, pole_lines, st, art) -> None:
             art.add("far", sh, hd)
             pl.add_obstacle(poly)
             pl.add_obstacle(segment(tail, tip).buffer(pp), hard=True)
-            t = pl.place(tail, text, prefer=math.degrees(math.atan2(-d[1], -d[0])), gid=f"label-pole-{p.key}", **kw)
+            t = _place_free(pl, tail, text, prefer=math.degrees(math.atan2(-d[1], -d[0])), gid=f"label-pole-{p.key}",
+                            **kw)
         art.add("labels", t)
         art.labels[p.key] = t
 

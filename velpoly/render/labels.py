@@ -62,21 +62,24 @@ class LabelPlacer:
     @contextmanager
     def trial(self):
         """Draw and place tentatively: on leaving, every label, obstacle, leader and artist added to the axes
-        inside is gone again (to score a layout before choosing it)."""
+        inside is gone again (to score a layout before choosing it), unless ``keep`` was set inside."""
         sizes = [(lst, len(lst)) for lst in (self.boxes, self.texts, self.hard, self.soft, self.leaders,
                                              self.overlapping)]
         placed = dict(self.placed)
         before = {id(a) for a in self.ax.get_children()}
+        self.keep = False   # set inside to keep what was placed
         try:
             yield self
         finally:
-            for lst, n in sizes:
-                del lst[n:]
-            self.placed.clear()
-            self.placed.update(placed)
-            for a in self.ax.get_children():
-                if id(a) not in before:
-                    a.remove()
+            if not self.keep:
+                for lst, n in sizes:
+                    del lst[n:]
+                self.placed.clear()
+                self.placed.update(placed)
+                for a in self.ax.get_children():
+                    if id(a) not in before:
+                        a.remove()
+            self.keep = False
 
     # -- measuring ---------------------------------------------------------------------
     def box_of(self, text, pad: float = 1.0):

@@ -293,7 +293,9 @@ def draw_polygon(polygon, ax=None, *, mechanism=None, style="textbook", options=
     polygon : Polygon
         From :func:`velpoly.polygons.velocity_polygon` or ``acceleration_polygon``.
     ax : matplotlib Axes, optional
-        pyplot's current axes if None; an axes with a velpoly view keeps its scale.
+        pyplot's current axes if None; an axes with a velpoly view keeps its scale, unless the
+        polygon's detail finds no room at it (then a round step or more coarser, see
+        :func:`velpoly.render.detail.make_room`; ``view_scale(ax)`` tells) and no scale was given.
     mechanism : Mechanism, optional
         For the links' colours, the units and the ``[drawing]`` options.
     upto : int, optional
@@ -315,17 +317,27 @@ def draw_polygon(polygon, ax=None, *, mechanism=None, style="textbook", options=
     st = get_style(style)
     m = mechanism
     opts = options if options is not None else (drawing_options(m) if m is not None else None)
+    user = None if opts is None else (opts.velocity_scale if polygon.kind == "velocity" else
+                                      opts.acceleration_scale)
     if view_scale(ax) is None:
-        user = None if opts is None else (opts.velocity_scale if polygon.kind == "velocity" else
-                                          opts.acceleration_scale)
         fit_view(ax, polygon_bounds(polygon), scale=scale if scale is not None else user, margin=0.08)
         ax.set_axis_off()
+    from .detail import make_room     # a detail with no room: the scale a round step coarser
+
+    def draw():
+        return _draw(polygon, ax, st, opts, m, upto)
+    make_room(polygon, ax, draw, fixed=scale is not None or user is not None)
+    return draw()
+
+
+def _draw(polygon, ax, st, opts, m, upto) -> Artists:
+    """The polygon on ``ax`` at its view (:func:`draw_polygon`)."""
+    from .detail import draw_detail
     d = _PolygonDrawing(polygon, ax, st, opts, m, upto)
     d.shade_images()
     d.construction_lines()
     kinds = d.vectors()
     d.origin()
-    from .detail import draw_detail
     detail = draw_detail(d)     # before the legend and the labels, which keep clear of it
     d.legend(kinds)
     d.labels(within=None if detail is None else detail.outside)

@@ -627,6 +627,7 @@ def _draw_polygon_panel(sol, ax, st, opts, poly, upto, scale, power: int, pinned
         s = fit_view(ax, bounds, scale=room if room is not None else nice_scale(s * 1.001), margin=0.08)
         ax.set_axis_off()
         art = draw_polygon(poly, ax, mechanism=m, style=st, options=opts, upto=upto)
+    s = view_scale(ax)   # (a detail with no room at the planned scale made it coarser)
     placer(ax).placed["_scale"] = ("scale", s, tuple(ax.get_xlim()), tuple(ax.get_ylim()))
     return scale_text(s, m.units, power)
 

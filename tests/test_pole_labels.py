@@ -1,0 +1,72 @@
+"""Pole labels and the driver's values never lie on a Kennedy line (issue 17, item 4; render/kennedy.py).
+
+On a poles drawing the Kennedy lines are obstacles no label may cover (a leader may cross them, as few as
+it can). Checked on dense generated six-bars (eight poles found by Kennedy's theorem, fifteen in all, the
+driver's omega and alpha or a slider's speed and acceleration written beside it) at the data level: every
+pole label's and driver value's text box on the canvas against every Kennedy line as drawn (and against the
+other labels' leaders)."""
+from __future__ import annotations
+
+import numpy as np
+import pytest
+from matplotlib.backends.backend_agg import FigureCanvasAgg
+from matplotlib.figure import Figure
+from shapely.geometry import LineString, box
+
+import zoo
+from velpoly.poles import locate_poles
+from velpoly.render.canvas import renderer_of
+from velpoly.render.kennedy import draw_poles
+from velpoly.render.style import get_style, rc_context
+
+TEXTS = ("label-pole-", "driver-label")
+
+
+def texts_on_lines(ax) -> list:
+    """(text's gid, line's gid) of every pole label and driver value whose box on the canvas (shrunk by a
+    pixel: a text touching a line's end is not on it) meets a Kennedy line or another text's leader."""
+    r = renderer_of(ax.figure)
+    lines = [(ln.get_gid(), LineString(ax.transData.transform(np.column_stack(ln.get_data()))))
+             for ln in ax.lines if (ln.get_gid() or "").startswith(("kennedy-line-",)) or
+             (ln.get_gid() or "").endswith("-leader")]
+    out = []
+    for t in ax.texts:
+        gid = t.get_gid() or ""
+        if not gid.startswith(TEXTS) or not t.get_text():
+            continue
+        bb = t.get_window_extent(r)
+        b = box(bb.x0, bb.y0, bb.x1, bb.y1).buffer(-1.0)
+        out += [(gid, g) for g, ln in lines if g != gid + "-leader" and ln.intersects(b)]
+    return out
+
+
+def sixbars(seed: int, count: int):
+    """``count`` seeded six-bars of the zoo, its six-bar variants in turn."""
+    rng = np.random.default_rng(seed)
+    variants = [v for k, v in zoo.variants() if k == "six-bar"]
+    return [zoo.specimen(rng, "six-bar", variants[i % len(variants)]) for i in range(count)]
+
+
+@pytest.mark.parametrize("style", ["textbook", "slides"])
+def test_pole_labels_and_driver_values_lie_on_no_kennedy_line(style):
+    """Four dense generated six-bars a style: every pole labelled, the driver's values written, and no such
+    text on a Kennedy line or a leader."""
+    st = get_style(style)
+    checked = 0
+    for sp in sixbars(6 if style == "textbook" else 5, 4):   # before: 2 and 3 of them had such texts
+        sol = sp.drawn
+        ps = locate_poles(sol)
+        with rc_context(st):
+            fig = Figure(figsize=(7.5, 7.0), dpi=72)
+            FigureCanvasAgg(fig)
+            ax = fig.add_axes((0.02, 0.02, 0.96, 0.96))
+            art = draw_poles(sol, ax, style=st, poleset=ps)
+        gids = {t.get_gid() for t in ax.texts}
+        assert "driver-label" in gids, sp.kind
+        assert {f"label-pole-{k}" for k, p in ps.poles.items() if p.position is not None or p.direction is not None} \
+            <= gids, sp.kind
+        assert len(art["kennedy_lines"]) >= 8, sp.kind
+        on = texts_on_lines(ax)
+        assert not on, (sp.kind, on)
+        checked += sum(1 for g in gids if (g or "").startswith(TEXTS))
+    assert checked >= 4 * 16, checked
