@@ -20,6 +20,7 @@ import pytest
 from shapely.geometry import LineString, box
 
 import velpoly
+import sheets
 from paths import GALLERY_FILES, example
 from velpoly.render import sheet
 from velpoly.render.layout import MARGIN, arrange, cover, drawn_areas, share_row, smaller_scale
@@ -136,7 +137,7 @@ def test_arrange_fills_the_corner_beside_a_narrow_table(seed):
     assert cover([a for _, a in got.values()]) >= cover([a for _, a in _panels(over, spans).values()]) - 1e-9
 
 
-@pytest.mark.parametrize("style", STYLES)
+@pytest.mark.parametrize("style", [pytest.param(st, marks=sheets.on(st)) for st in STYLES])
 def test_gallery_sheets_use_the_page(style):
     """Every gallery file's own sheet (one style each, alternating; a test a style, so that the two run
     side by side): the blank fraction's mean under its bound in each style; scale bars apart; the table's
@@ -145,11 +146,9 @@ def test_gallery_sheets_use_the_page(style):
     for i, path in enumerate(GALLERY_FILES):
         if STYLES[i % 2] != style:
             continue
-        st = get_style(style)
-        sol = velpoly.solve(velpoly.load(path))
-        name = sheet.default_sheet(sol.mechanism)
-        with rc_context(st):
-            fig = sheet.render_sheet(sol, name, st)
+        name = sheet.default_sheet(sheets.solved(path.stem).mechanism)
+        fig = sheets.page(path.stem, name, style)     # drawn once per worker, shared (tests/sheets.py)
+        with sheets.styled(style):
             fractions[style].append(blank_fraction(fig))
             cm = fig.dpi / 2.54
             for (a, ga), (b, gb) in itertools.combinations(bar_groups(fig).items(), 2):
