@@ -204,6 +204,11 @@ class _Rel:
     centre: str | None = None
     prefer: str | None = None   # where a relation that holds everywhere (at None) is best applied
 
+    @property
+    def zdir(self) -> complex:
+        """The path's direction as x + iy."""
+        return _z(self.direction)
+
 
 class _Geo:
     """Positions, places and joints of a solved pose (no velocities)."""
@@ -410,6 +415,12 @@ class RotationAbout:
     def direction_words(self, run: "_Run") -> str:
         return f"⊥ {_segment(self.q, self.w)}"
 
+    def zdir(self, g: _Geo) -> complex:
+        """The line's unit direction at the pose of ``g``, perpendicular to QW: ``i R_WQ / |R_WQ|``."""
+        r = g.zpos[self.w] - g.zpos[self.q]
+        rn = abs(r)
+        return complex(-r.imag / rn, r.real / rn)
+
 
 @dataclass(frozen=True)
 class SlipAlongPath:
@@ -428,6 +439,10 @@ class SlipAlongPath:
 
     def direction_words(self, run: "_Run") -> str:
         return _path_reason(run.g, run.g.rels[self.rel], prose=True)
+
+    def zdir(self, g: _Geo) -> complex:
+        """The path's unit direction at the pose of ``g`` (the slider's, slot's or common tangent's)."""
+        return g.rels[self.rel].zdir
 
 
 @dataclass(frozen=True)
@@ -452,10 +467,15 @@ class ThroughAuxiliaryPoint:
     def direction_words(self, run: "_Run") -> str:
         return self.line.unknown.direction_words(run)
 
+    def zdir(self, g: _Geo) -> complex:
+        """X's own line's direction (S lies on X's normal)."""
+        return self.line.unknown.zdir(g)
+
 
 @dataclass(frozen=True)
 class _Line:
-    """A construction line on an unknown image: the chain ``base`` + ``terms``, then along ``direction``.
+    """A construction line on an unknown image: the chain ``base`` + ``terms``, then along the
+    unknown's direction (:meth:`zdir`: the pose's, so that a plan serves every pose of its mechanism).
 
     ``terms``: :class:`CentripetalTerm` and :class:`JointMotionTerm` (the known vectors chained);
     ``unknown``: :class:`RotationAbout`, :class:`SlipAlongPath` or :class:`ThroughAuxiliaryPoint`.
@@ -463,7 +483,6 @@ class _Line:
 
     base: tuple
     terms: tuple
-    direction: np.ndarray
     unknown: object
     reason: str
     links: tuple
@@ -475,6 +494,15 @@ class _Line:
         if isinstance(u, ThroughAuxiliaryPoint):
             u = u.line.unknown
         return u.link if isinstance(u, RotationAbout) else None
+
+    def zdir(self, g: _Geo) -> complex:
+        """The line's unit direction at the pose of ``g``, as x + iy."""
+        return self.unknown.zdir(g)
+
+    def direction(self, g: _Geo) -> np.ndarray:
+        """The line's unit direction at the pose of ``g``, as the contract's 2-vector."""
+        z = self.unknown.zdir(g)
+        return np.array((z.real, z.imag))
 
 
 # The operations of the plan: each applies itself to a replay (_Run) of the construction.
@@ -603,6 +631,11 @@ class _Planner:
         self.trial = False       # inside a trial solution: links' rigidity is tracked
         self.rigid_used = set()  # links whose rigidity located one of their images
         self.closure = None      # (link, Q, W): a link whose two images were located without it
+        self.tape = _Tape()      # the decisions the pose made (the plan serves every pose that makes them alike)
+
+    def decide(self, fn, *args):
+        """``fn(geometry, *args)``: a decision that depends on the pose, recorded on the tape."""
+        return self.tape.record(fn, self.g, args)
 
     # knowledge ---------------------------------------------------------------------------------
     def is_known(self, place) -> bool:
@@ -646,8 +679,8 @@ class _Planner:
                 if lk in self.rk or len(self.kp[lk]) < 2 or self.closure:
                     continue
                 q = self.kp[lk][0]
-                w = max(self.kp[lk][1:], key=lambda n: self.g.dist(q, n))
-                if self.g.dist(q, w) > self.g.tol:
+                w = self.decide(_farthest, q, tuple(self.kp[lk][1:]))
+                if w is not None:
                     if self.trial and lk not in self.rigid_used:   # over-determined: closes the trial
                         self.closure = (lk, q, w)
                         return
@@ -709,6 +742,7 @@ class _Planner:
         is linear in tau, so two trial values give the closing condition exactly. Of the
         possible assumptions, the one whose construction is best conditioned is taken.
         """
+        self.tape.usable = False   # which trial is best compares whole constructions: planned afresh each pose
         best = None
         for t in self._targets(every=True):
             lines = self.lines_for(t)
@@ -800,13 +834,10 @@ class _Planner:
         out = []
         for lk, n in g.group(place):
             if lk not in self.rk and lk != g.frame:
-                ks = [q for q in self.kp[lk] if g.dist(q, n) > g.tol]
-                if ks:
-                    q = ks[0]
-                    r = g.zpos[n] - g.zpos[q]
-                    rn = abs(r)
-                    out.append(_Line((lk, q), (CentripetalTerm(lk, q, n),), np.array((-r.imag / rn, r.real / rn)),
-                                     RotationAbout(lk, q, n), f"perpendicular to {q}{n}", (lk,)))
+                q = self.decide(_apart, n, tuple(self.kp[lk]))
+                if q is not None:
+                    out.append(_Line((lk, q), (CentripetalTerm(lk, q, n),), RotationAbout(lk, q, n),
+                                     f"perpendicular to {q}{n}", (lk,)))
             for i, r in enumerate(g.rels):
                 if r.exact or r.at not in (None, n) or lk not in (r.a, r.b):
                     continue
@@ -815,7 +846,7 @@ class _Planner:
                 partner, sign = (r.b, 1) if lk == r.a else (r.a, -1)
                 pp = (partner, n)
                 if self.is_known(pp) or self.full(partner):
-                    out.append(_Line(pp, (JointMotionTerm(i, sign, n),), r.direction, SlipAlongPath(i, sign, n),
+                    out.append(_Line(pp, (JointMotionTerm(i, sign, n),), SlipAlongPath(i, sign, n),
                                      _path_reason(g, r), (r.a, r.b)))
         return out
 
@@ -837,7 +868,7 @@ class _Planner:
                 if g.canon(pp) == c or self.is_known(pp) or self.full(partner):
                     continue   # known: an equality step, not a line
                 for ln in self.lines_on(pp):
-                    out.append(_Line(ln.base, ln.terms + (JointMotionTerm(i, sign, n),), ln.direction, ln.unknown,
+                    out.append(_Line(ln.base, ln.terms + (JointMotionTerm(i, sign, n),), ln.unknown,
                                      f"{ln.reason}, offset by the driver's slip of {n}{r.a} on {n}{r.b}",
                                      tuple(dict.fromkeys(ln.links + (r.a, r.b)))))
         return out
@@ -869,12 +900,13 @@ class _Planner:
 
     def _intersection(self) -> bool:
         for t in self._targets():
-            lines = self.lines_for(t)
-            best = _best_pair(lines)
+            lines = tuple(self.lines_for(t))
+            best = self.decide(_best_pair, lines) if len(lines) > 1 else None
             if best is None:
                 continue
-            l1, l2, sine = best
-            if sine < SINE_LIMIT:
+            l1, l2 = lines[best[0]], lines[best[1]]
+            sine = _pair_sine(self.g, l1, l2)
+            if not best[2]:   # closer to parallel than SINE_LIMIT
                 self.singular = self.singular or (t, l1, l2, sine)
                 continue
             s = _PStep(IntersectionStep, lines=(l1, l2), sine=sine, target=t)
@@ -891,7 +923,7 @@ class _Planner:
     def _auxiliary(self) -> bool:
         """A link T with no known image: the point S of T where two of its points' lines meet."""
         g = self.g
-        best = None
+        groups = []   # (link, ((point, its first line), ...)) for each link T that may have one
         for lk in g.moving:
             if lk in self.rk or self.kp[lk] or len(g.places(lk)) < 3:   # S must locate a third point
                 continue
@@ -900,27 +932,18 @@ class _Planner:
                 ls = self.lines_for((lk, n))
                 if ls:
                     one.append((n, ls[0]))
-            for i in range(len(one)):
-                for j in range(i + 1, len(one)):
-                    (x, lx), (y, ly) = one[i], one[j]
-                    s, _, _, sine = G.intersect_lines(g.pos[x], perp(lx.direction), g.pos[y], perp(ly.direction))
-                    if s is None or sine < SINE_LIMIT:
-                        continue
-                    # prefer the instant centre (both lines through O_v: Kennedy) unless badly conditioned
-                    pole = g.grounded(lx.base) and g.grounded(ly.base) and sine >= 0.05
-                    if best is None or (pole, sine) > best[0]:
-                        best = ((pole, sine), lk, x, lx, y, ly, s)
+            groups.append((lk, tuple(one)))
+        best = self.decide(_auxiliary_choice, tuple(groups))
         if best is None:
             return False
-        (_, sine), lk, x, lx, y, ly, spos = best
+        lk, one = groups[best[0]]
+        (x, lx), (y, ly) = one[best[1]], one[best[2]]
         name = named("S", lk)
         while name in g.pos:
             name += "'"
-        g.pos[name] = np.asarray(spos, float)
-        g.zpos[name] = _z(spos)
-        g.extra[lk].append(name)
-        g.names[(lk, name)] = name
-        aux = [_Line(ln.base, ln.terms + (CentripetalTerm(lk, p, name),), ln.direction, ThroughAuxiliaryPoint(ln, lk, p, name),
+        self.decide(_place_auxiliary, lk, name, x, lx, y, ly)
+        sine = _normals_meet(g, x, lx, y, ly)[1]
+        aux = [_Line(ln.base, ln.terms + (CentripetalTerm(lk, p, name),), ThroughAuxiliaryPoint(ln, lk, p, name),
                      ln.reason + f" (auxiliary point {name} of link {lk} on the normal through {p})",
                      ln.links + (lk,)) for p, ln in ((x, lx), (y, ly))]
         s = _PStep(AuxiliaryPointStep, lines=tuple(aux), sine=sine, target=(lk, name), link=lk)
@@ -951,15 +974,107 @@ class _Planner:
             file=g.m.source, hint="the analytic results (velpoly solve) are still exact")
 
 
-def _best_pair(lines):
+class _Tape:
+    """The decisions a plan was made with that depend on the pose, each ``(fn, args, outcome)`` once, in
+    the order made (with the auxiliary points placed on the way, :func:`_place_auxiliary`).
+
+    The planner reads the pose only through them (the directions, sines and auxiliary points' places
+    are computed at each pose from the plan's lines): a pose where every one gives the same outcome
+    (:meth:`holds`) gets the same plan from the planner. ``usable`` is False where the planner
+    compared whole trial constructions (a trial solution), which are not recorded.
+    """
+
+    def __init__(self):
+        self.entries, self.seen, self.usable = [], set(), True
+
+    def record(self, fn, g: _Geo, args):
+        out = fn(g, *args)
+        if self.usable and (fn, args) not in self.seen:
+            self.seen.add((fn, args))
+            self.entries.append((fn, args, out))
+        return out
+
+    def holds(self, g: _Geo) -> bool:
+        """Whether the pose of ``g`` makes every decision alike (placing the auxiliary points in g)."""
+        try:
+            for fn, args, out in self.entries:
+                if fn(g, *args) != out:
+                    return False
+        except (ArithmeticError, ValueError):   # a degenerate pose: planned afresh, as without the tape
+            return False
+        return True
+
+
+# The planner's decisions that depend on the pose (the rest follows from the mechanism alone): each is a
+# function of the pose's geometry and of what the plan knows, giving a plain outcome (a point's name, a
+# pair of indices, a flag), so that another pose can be checked to give the same ones (:class:`_Tape`).
+def _apart(g: _Geo, n, cands):
+    """The first of ``cands`` (points of a link with known images) apart from n (to draw a line ⊥ QN)."""
+    for q in cands:
+        if g.dist(q, n) > g.tol:
+            return q
+    return None
+
+
+def _farthest(g: _Geo, q, cands):
+    """The point of ``cands`` farthest from q, which with q gives a link's rate; None if all are at q."""
+    w = max(cands, key=lambda n: g.dist(q, n))
+    return w if g.dist(q, w) > g.tol else None
+
+
+def _normals_meet(g: _Geo, x, lx, y, ly) -> tuple:
+    """(S, sine): where the normals at x and y to their lines ``lx`` and ``ly`` meet (S None where they
+    are parallel) and the sine of their angle."""
+    s, _, _, sine = G.intersect_lines(g.pos[x], perp(lx.direction(g)), g.pos[y], perp(ly.direction(g)))
+    return s, sine
+
+
+def _auxiliary_choice(g: _Geo, groups):
+    """(k, i, j): of each link's points with a line (``groups``), the two whose normals meet at the
+    link's auxiliary point S best: the instant centre (both lines through O_v, Kennedy) unless badly
+    conditioned, else the largest sine; None where no two normals meet at SINE_LIMIT or better."""
+    best = None
+    for k, (_, one) in enumerate(groups):
+        for i in range(len(one)):
+            for j in range(i + 1, len(one)):
+                (x, lx), (y, ly) = one[i], one[j]
+                s, sine = _normals_meet(g, x, lx, y, ly)
+                if s is None or sine < SINE_LIMIT:
+                    continue
+                pole = g.grounded(lx.base) and g.grounded(ly.base) and sine >= 0.05
+                if best is None or (pole, sine) > best[0]:
+                    best = ((pole, sine), k, i, j)
+    return None if best is None else best[1:]
+
+
+def _place_auxiliary(g: _Geo, lk, name, x, lx, y, ly) -> None:
+    """Add the auxiliary point ``name`` of link lk to the pose, where the normals at x and y meet."""
+    spos = _normals_meet(g, x, lx, y, ly)[0]
+    g.pos[name] = np.asarray(spos, float)
+    g.zpos[name] = _z(spos)
+    g.extra[lk].append(name)
+    g.names[(lk, name)] = name
+
+
+def _pair_sine(g: _Geo, l1, l2) -> float:
+    """|sin| of the angle between two construction lines at the pose of ``g``."""
+    d, e = l1.zdir(g), l2.zdir(g)
+    return abs(d.real * e.imag - d.imag * e.real)
+
+
+def _best_pair(g: _Geo, lines):
+    """(i, j, regular): the two lines meeting at the largest angle (the first such pair), and whether
+    that angle's sine reaches SINE_LIMIT."""
+    dirs = [ln.zdir(g) for ln in lines]
     best = None
     for i in range(len(lines)):
+        d = dirs[i]
         for j in range(i + 1, len(lines)):
-            d, e = lines[i].direction, lines[j].direction
-            sine = abs(d[0] * e[1] - d[1] * e[0])
+            e = dirs[j]
+            sine = abs(d.real * e.imag - d.imag * e.real)
             if best is None or sine > best[2]:
-                best = (lines[i], lines[j], sine)
-    return best
+                best = (i, j, sine)
+    return best[0], best[1], not best[2] < SINE_LIMIT
 
 
 def _path_reason(g: _Geo, r: _Rel, prose: bool = False) -> str:
@@ -1212,11 +1327,11 @@ class _Run:
         for ln in (l1, l2):
             tip, parts = self.chain(ln.base, ln.terms, self.mixed(ln))
             tips.append(tip)
-            dirs.append(self._turn(_z(ln.direction)))
+            dirs.append(self._turn(ln.zdir(self.g)))
             self._draw(parts)
             if self.record:
                 label = _sum([self.base_label(ln.base)] + self.term_labels(ln.terms))
-                self.lines.append(ConstructionLine(_xy(tip), ln.direction.copy(), label, ln.reason))
+                self.lines.append(ConstructionLine(_xy(tip), ln.direction(self.g), label, ln.reason))
         x, _, _ = self._intersect(tips[0], dirs[0], tips[1], dirs[1])
         if x is None:   # the planner checked the directions; only a degenerate pose gets here
             raise SingularPoseError(f"parallel construction lines for {self.g.name(target)}",
@@ -1250,7 +1365,7 @@ class _Run:
         """
         lk, q, w = closure
         tip, parts = self.chain(line.base, line.terms, self.mixed(line))
-        e = self._turn(_z(line.direction))
+        e = self._turn(line.zdir(self.g))
         known = [abs(v) for v in self.img.values()] + [abs(tip), self._const(self._level_scale())]
         tau1 = np.maximum(np.max(known, axis=0), 1e-300)
         start, record = (dict(self.img), dict(self.rate)), self.record
@@ -1284,7 +1399,7 @@ class _Run:
                                                f"locus of {self.X}_{w}{q} over the trial values"))
             self.lines.append(ConstructionLine(_xy(target), _xy(1j * r / rn), self.origin,
                                                f"perpendicular to {q}{w}: link {lk} is rigid"))
-            self.lines.append(ConstructionLine(_xy(tip), line.direction.copy(),
+            self.lines.append(ConstructionLine(_xy(tip), line.direction(self.g),
                                                _sum([self.base_label(line.base)] + self.term_labels(line.terms)),
                                                line.reason + " (the trial image's line)"))
             self.vectors.append(self.unknown_vector(line, tip, found))
@@ -1438,6 +1553,10 @@ class PlanStep(ABC):
 
     def sine_at(self, run: "_Run") -> float:
         return self.sine
+
+    def at(self, g: _Geo) -> "PlanStep":
+        """The step at the pose of ``g`` (a plan made at another pose: its numbers at this one)."""
+        return self
 
     @abstractmethod
     def equation(self, run: "_Run") -> str:
@@ -1601,6 +1720,9 @@ class IntersectionStep(PlanStep):
 
     kind: ClassVar[str] = "intersection"
 
+    def at(self, g):
+        return dataclasses.replace(self, sine=_pair_sine(g, *self.lines))
+
     def equation(self, run):
         g, X = run.g, run.X
         chains = [_sum([f"{X}_{g.name(ln.base)}"] + run.term_labels(ln.terms) + [run.unknown_label(ln)])
@@ -1619,6 +1741,10 @@ class AuxiliaryPointStep(IntersectionStep):
     when both lines pass through O_v (kind 'instant-centre')."""
 
     kind: ClassVar[str] = "auxiliary"
+
+    def at(self, g):
+        u, v = self.lines[0].unknown, self.lines[1].unknown
+        return dataclasses.replace(self, sine=_normals_meet(g, u.x, u.line, v.x, v.line)[1])
 
     def kind_at(self, run):
         if run.level == "velocity" and all(run.g.grounded(ln.base) and not run.terms(ln.terms)
@@ -1684,18 +1810,60 @@ class _Construction:
 
     def __init__(self, sol):
         self.ref = weakref.ref(sol)
-        self.geo = geo = _Geo(sol)
-        self.plan = _Planner(geo).run()
+        self.geo, self.plan, reported = _planned(sol)
+        self.found, self.aux, self.aux_places, self.link_images = reported
         self.polygons = {}
         self.lean = {}   # level -> a replay without its record (max_error alone: the JSON)
-        # what both levels report of the plan: each step's point keys and auxiliary points found,
-        # every auxiliary place (not a point key, not on the frame) and the links' image figures
-        self.found = [_found_keys(geo, st.found) for st in self.plan]
-        self.aux = [tuple(geo.aux_key(p) for p in st.found if geo.point_key(p) is None) for st in self.plan]
-        self.aux_places = {geo.aux_key(q): q for st in self.plan for p in st.found for q in geo.group(p)
-                           if geo.point_key(q) is None and q[0] != geo.frame}
-        m = sol.mechanism
-        self.link_images = {k.name: tuple(geo.key[(p, k.name)] for p in k.points) for k in m.links}
+
+
+class _Kept(NamedTuple):
+    """A plan kept for its mechanism: the decisions it was made with, its steps, what it reports."""
+
+    tape: _Tape
+    steps: tuple
+    reported: tuple
+
+
+_PLANS: dict = {}   # id(mechanism) -> (weak reference, [_Kept, ...] latest first), dropped with the mechanism
+KEPT_PLANS = 4      # plans kept per mechanism (a sweep across a pose where a decision changes uses two)
+
+
+def _planned(sol) -> tuple:
+    """``(geometry, plan, reported)`` of the solution's pose: a plan kept for its mechanism where this
+    pose makes every decision the plan was made with alike (then the planner would make the same plan;
+    only its sines are the pose's), else the planner's, kept for the next pose."""
+    m = sol.mechanism
+    hit = _PLANS.get(id(m))
+    kept = hit[1] if hit is not None and hit[0]() is m else None
+    geo = _Geo(sol)
+    for k, plan in enumerate(kept or ()):
+        if plan.tape.holds(geo):
+            kept.insert(0, kept.pop(k))
+            return geo, [st.at(geo) for st in plan.steps], plan.reported
+        if geo.names:   # auxiliary points placed on the way: a clean geometry for the next
+            geo = _Geo(sol)
+    planner = _Planner(geo)
+    steps = planner.run()
+    reported = _reported(geo, steps, m)
+    if planner.tape.usable:
+        if kept is None:
+            kept = []
+            _PLANS[id(m)] = (weakref.ref(m), kept)
+            weakref.finalize(m, _PLANS.pop, id(m), None)
+        kept.insert(0, _Kept(planner.tape, tuple(steps), reported))
+        del kept[KEPT_PLANS:]
+    return geo, steps, reported
+
+
+def _reported(geo: _Geo, plan, m) -> tuple:
+    """What both levels report of a plan (the mechanism's alone): each step's point keys and auxiliary
+    points found, every auxiliary place (not a point key, not on the frame), the links' image figures."""
+    found = [_found_keys(geo, st.found) for st in plan]
+    aux = [tuple(geo.aux_key(p) for p in st.found if geo.point_key(p) is None) for st in plan]
+    aux_places = {geo.aux_key(q): q for st in plan for p in st.found for q in geo.group(p)
+                  if geo.point_key(q) is None and q[0] != geo.frame}
+    link_images = {k.name: tuple(geo.key[(p, k.name)] for p in k.points) for k in m.links}
+    return found, aux, aux_places, link_images
 
 
 _CACHE: dict = {}   # id(solution) -> _Construction, dropped when the solution is
