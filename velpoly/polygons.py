@@ -63,6 +63,7 @@ over many random perturbations (directions within +-0.25 deg, points within
 from __future__ import annotations
 
 import dataclasses
+import functools
 import math
 import weakref
 from abc import ABC, abstractmethod
@@ -210,65 +211,67 @@ class _Rel:
         return _z(self.direction)
 
 
-class _Geo:
-    """Positions, places and joints of a solved pose (no velocities)."""
+class _Shape:
+    """What a pose's geometry (:class:`_Geo`) has of its mechanism alone, made once per mechanism: the
+    links, the point keys and which link carries which point, the places pins join (union-find: each
+    group's canonical place first, a frame place where there is one), the joints (``specs``: a
+    :class:`_Rel` but for its direction, which is the pose's) and the links turning together."""
 
     def __init__(self, sol):
         m = sol.mechanism
-        self.m = m
-        self.frame = m.frame.name
-        self.links = m.link_names
-        self.moving = tuple(k.name for k in m.moving_links)
-        self.size = sol.kinematics.system.size   # m.size, computed once for the system
-        self.tol = 1e-9 * self.size
-        self.key, self.pos, self.own = {}, {}, {lk: [] for lk in self.links}
-        self.zpos = {}   # the same positions as complex numbers x + iy (what the replays compute with)
-        position = sol.position
-        for key, p, lk in point_keys(m):   # one key P for every carrier, or P@link for each
-            if p not in self.pos:
-                self.pos[p] = np.asarray(position[key], float)
-                self.zpos[p] = _z(self.pos[p])
-            for c in (m.carriers[p] if key == p else (lk,)):
-                self.key[(p, c)] = key
-                self.own[c].append(p)
-        self.extra = {lk: [] for lk in self.links}
-        self.names = {}          # place -> textbook name of a place that is no point key
+        self.fixed = dict(m=m, frame=m.frame.name, links=m.link_names, moving=tuple(k.name for k in m.moving_links),
+                          size=sol.kinematics.system.size,   # m.size, computed once for the system
+                          tol=1e-9 * sol.kinematics.system.size, key={}, own={lk: [] for lk in m.link_names},
+                          rate_eq=[])
+        self.frame, key, own = m.frame.name, self.fixed["key"], self.fixed["own"]
+        self.places, seen = [], set()   # (key, point): each point's position, read from its first key
+        for k, p, lk in point_keys(m):   # one key P for every carrier, or P@link for each
+            if p not in seen:
+                seen.add(p)
+                self.places.append((k, p))
+            for c in (m.carriers[p] if k == p else (lk,)):
+                key[(p, c)] = k
+                own[c].append(p)
+        self.extra = {lk: [] for lk in m.link_names}
         self._parent = {}
         for pin in m.pins:
             self._union((pin.links[0], pin.point), (pin.links[1], pin.point))
-        mo = sol.motion
-        self.rels, self.rate_eq = [], []
-        drv = m.driver
-        for i, (s, r) in enumerate(zip(m.sliders, mo.sliders)):
-            d = G.from_polar(1.0, float(r["direction"][0]))
+        self.specs = self._joints(m, own)
+        root = {p: self._find(p) for p in self._parent}   # the unions are complete
+        groups = {}
+        for p, r in root.items():
+            groups.setdefault(r, [r]).extend([p] if p != r else [])
+        self.fixed.update(_root=root, _groups=groups)
+
+    def _joints(self, m, own) -> list:
+        """The joints as :class:`_Rel` s but for their directions: ``(origin, fields)``, origin the
+        (kind, index) of the motion's entry that gives the pose's direction."""
+        specs, drv, rate_eq = [], m.driver, self.fixed["rate_eq"]
+        for i, s in enumerate(m.sliders):
             if s.centre is not None:   # a curved block turns about K relative to its guide: a pin at K
-                if s.centre not in self.own[s.block]:
+                if s.centre not in own[s.block]:
                     self.extra[s.block].append(s.centre)
                 self._union((s.block, s.centre), (s.guide, s.centre))
             else:
-                self.rate_eq.append((s.block, s.guide))
+                rate_eq.append((s.block, s.guide))
             if drv.is_slider and drv.slider == s.point:
                 # on a straight path block and guide turn together: the driver's slip is the
                 # relative velocity of every pair of coincident points, not only at the block's point
                 at = s.point if s.centre is not None else None
-                self.rels.append(_Rel("drive", i, s.block, s.guide, at, d, True, s.centre, s.point))
+                specs.append((("slider", i), ("drive", i, s.block, s.guide, at, True, s.centre, s.point)))
             elif s.centre is None:
-                self.rels.append(_Rel("slider", i, s.block, s.guide, None, d, False))
-        for i, (s, r) in enumerate(zip(m.slots, mo.slots)):
-            self.rels.append(_Rel("slot", i, s.link, s.slot, s.pin, G.from_polar(1.0, float(r["direction"][0])), False, s.centre))
-        for i, (c, r) in enumerate(zip(m.contacts, mo.contacts)):
-            t = perp(G.from_polar(1.0, float(r["normal"][0])))
+                specs.append((("slider", i), ("slider", i, s.block, s.guide, None, False, None, None)))
+        for i, s in enumerate(m.slots):
+            specs.append((("slot", i), ("slot", i, s.link, s.slot, s.pin, False, s.centre, None)))
+        for i, c in enumerate(m.contacts):
             exact = c.kind == "rolling" or c.slip is not None
-            self.rels.append(_Rel("contact", i, c.links[0], c.links[1], c.point, t, exact))
+            specs.append((("contact", i), ("contact", i, c.links[0], c.links[1], c.point, exact, None, None)))
             # the equivalent linkage: each centre of curvature moves on the other link along the
             # tangent, on a circle about the other centre (or parallel to the other's flat)
             for k, (ca, cb) in enumerate((c.centres, c.centres[::-1]) if c.centres else ()):
                 if ca is not None:
-                    self.rels.append(_Rel("centre", i, c.links[k], c.links[1 - k], ca, t, False, cb))
-        self._root = {p: self._find(p) for p in self._parent}   # the unions are complete
-        self._groups = {}
-        for p, r in self._root.items():
-            self._groups.setdefault(r, [r]).extend([p] if p != r else [])
+                    specs.append((("contact", i), ("centre", i, c.links[k], c.links[1 - k], ca, False, cb, None)))
+        return specs
 
     # places are (link, point name); pins (and the centres of curved sliders) share one image
     def _find(self, p):
@@ -282,6 +285,50 @@ class _Geo:
             a, b = b, a
         if a != b:
             self._parent[b] = a
+
+    def rels(self, mo) -> list:
+        """The joints at the pose of ``mo``: sliders' and slots' paths, contacts' common tangents."""
+        dirs, out = {}, []
+        for origin, (source, i, a, b, at, exact, centre, prefer) in self.specs:
+            d = dirs.get(origin)
+            if d is None:
+                kind, k = origin
+                if kind == "contact":
+                    d = perp(G.from_polar(1.0, float(mo.contacts[k]["normal"][0])))
+                else:
+                    d = G.from_polar(1.0, float((mo.sliders if kind == "slider" else mo.slots)[k]["direction"][0]))
+                dirs[origin] = d
+            out.append(_Rel(source, i, a, b, at, d, exact, centre, prefer))
+        return out
+
+
+def _of_mechanism(cache: dict, m, make):
+    """``cache``'s value for the mechanism m, ``make()`` where there is none yet; dropped with m."""
+    hit = cache.get(id(m))
+    if hit is not None and hit[0]() is m:
+        return hit[1]
+    value = make()
+    cache[id(m)] = (weakref.ref(m), value)
+    weakref.finalize(m, cache.pop, id(m), None)
+    return value
+
+
+_SHAPES: dict = {}   # id(mechanism) -> (weak reference, _Shape)
+
+
+class _Geo:
+    """Positions, places and joints of a solved pose (no velocities); the mechanism's part
+    (:class:`_Shape`) shared by its poses, never changed."""
+
+    def __init__(self, sol):
+        shape = _of_mechanism(_SHAPES, sol.mechanism, lambda: _Shape(sol))
+        self.__dict__.update(shape.fixed)
+        self.extra = {lk: list(v) for lk, v in shape.extra.items()}   # auxiliary points are added per pose
+        self.names = {}          # place -> textbook name of a place that is no point key
+        position = sol.motion.position
+        self.pos = {p: position[k][0] for k, p in shape.places}
+        self.zpos = {p: _z(v) for p, v in self.pos.items()}   # as x + iy (what the replays compute with)
+        self.rels = shape.rels(sol.motion)
 
     def canon(self, place):
         """The place whose image stands for this one's (pinned places share one image)."""
@@ -403,6 +450,7 @@ class RotationAbout:
     link: str
     q: str
     w: str
+    sign: ClassVar[int] = 1   # the line adds it
 
     def describe(self, run: "_Run") -> UnknownPart:
         g, lk = run.g, self.link
@@ -434,7 +482,7 @@ class SlipAlongPath:
     def describe(self, run: "_Run") -> UnknownPart:
         r = run.g.rels[self.rel]
         ka, kb, kk = run.rel_keys(r, self.w)
-        return UnknownPart(f"{run.X}_{relative(named(self.w, r.a), named(self.w, r.b))}", self.sign, ("slip", ka, kb, r.b, kk),
+        return UnknownPart(f"{run.X}_{_relative_names(self.w, r.a, r.b)[0]}", self.sign, ("slip", ka, kb, r.b, kk),
                            "relative" if run.level == "velocity" else "slip")
 
     def direction_words(self, run: "_Run") -> str:
@@ -454,6 +502,7 @@ class ThroughAuxiliaryPoint:
     link: str
     x: str
     s: str
+    sign: ClassVar[int] = 1   # the line adds it
 
     def describe(self, run: "_Run") -> UnknownPart:
         g, lk = run.g, self.link
@@ -1097,6 +1146,12 @@ def _path_reason(g: _Geo, r: _Rel, prose: bool = False) -> str:
 
 
 # -- evaluating the plan: exact, or perturbed like a hand drawing ---------------------------------
+@functools.lru_cache(maxsize=4096)   # a pure function of three names, asked again at every pose
+def _relative_names(w: str, a: str, b: str) -> tuple[str, str]:
+    """Link a's point W relative to link b's, and back, as names: ("B3/B4", "B4/B3")."""
+    return relative(named(w, a), named(w, b)), relative(named(w, b), named(w, a))
+
+
 def _z(v) -> complex:
     """The 2-vector (x, y) as the complex number x + iy."""
     return complex(v[0], v[1])
@@ -1186,7 +1241,7 @@ class _Run:
         """
         g, r = self.g, self.g.rels[i]
         m = g.m
-        rel, rrel = relative(named(w, r.a), named(w, r.b)), relative(named(w, r.b), named(w, r.a))
+        rel, rrel = _relative_names(w, r.a, r.b)
         ka, kb, kk = self.rel_keys(r, w)
         slip_of = ("slip", ka, kb, r.b, kk)
         if self.level == "velocity":
@@ -1227,7 +1282,7 @@ class _Run:
         """The Coriolis term of link a's point W moving relative to link b (the guide, slot or other
         profile): ``2 omega_b x V_Wa/Wb``, with V_Wa/Wb = ``vrel`` from the velocity polygon."""
         ka, kb, _ = self.rel_keys(r, w)
-        rel, rrel = relative(named(w, r.a), named(w, r.b)), relative(named(w, r.b), named(w, r.a))
+        rel, rrel = _relative_names(w, r.a, r.b)
         return KnownVector("coriolis", f"2 omega_{r.b} x V_{rel}", coriolis_term(self.vel.rate[r.b], vrel),
                            ("coriolis", r.b, ka, kb), 1, (f"2 omega_{r.b} x V_{rrel}", ("coriolis", r.b, kb, ka)))
 
@@ -1261,7 +1316,7 @@ class _Run:
         return k * u
 
     # operations ------------------------------------------------------------------------------------
-    def chain(self, base, terms, forward: bool = False) -> tuple:
+    def chain(self, base, terms, forward: bool = False, known=None) -> tuple:
         """The tip of base image + known terms, and the arrows drawn: (tip, [(kind, label, tail, head, of)]).
 
         Every arrow points in the true sense of what its label names and they run tip to tail:
@@ -1272,11 +1327,12 @@ class _Run:
         subtracted term is drawn forwards as the negative quantity it equals, under that
         quantity's own name (-V_A3/A4 is V_A4/A3, -A^n_SA is A^n_AS), so that the arrows run tip
         to tail from the base image to the image found; only a term with no such name (a
-        circular path's V_rel^2/rho) is still drawn back from the base image.
+        circular path's V_rel^2/rho) is still drawn back from the base image. ``known``: the terms'
+        known vectors where the caller has them already.
         """
         tip = self.image(base)
         parts = []
-        ts = self.terms(terms)
+        ts = self.terms(terms) if known is None else known
         drawn_back = [t.sign < 0 and not (forward and t.reverse) for t in ts]
         back = [t for t, b in zip(ts, drawn_back) if b]
         ahead = [t if t.sign > 0 else KnownVector(t.kind, t.reverse[0], -t.value, t.reverse[1])
@@ -1291,12 +1347,12 @@ class _Run:
             tip = new
         return tip, parts
 
-    def mixed(self, ln: _Line) -> bool:
+    def mixed(self, ln: _Line, known=None) -> bool:
         """Whether the line's chain both subtracts and adds (its known terms and its unknown at this
         level): then no order of true-sense arrows runs tip to tail, and :meth:`chain` draws the
         subtracted ones as their negatives (an auxiliary point reached through a driven slip:
         ``V_S4 = V_O2 + V_A2O2 - V_A3/A4 + V_S4A4``; a block's line offset by a slip it subtracts)."""
-        signs = {t.sign for t in self.terms(ln.terms)} | {self.unknown(ln).sign}
+        signs = {t.sign for t in (self.terms(ln.terms) if known is None else known)} | {ln.unknown.sign}
         return len(signs) > 1
 
     def _draw(self, parts):
@@ -1325,7 +1381,8 @@ class _Run:
         """Case 2a: the image of ``target`` where the two lines meet (each drawn from the tip of its chain)."""
         tips, dirs = [], []
         for ln in (l1, l2):
-            tip, parts = self.chain(ln.base, ln.terms, self.mixed(ln))
+            known = self.terms(ln.terms)
+            tip, parts = self.chain(ln.base, ln.terms, self.mixed(ln, known), known)
             tips.append(tip)
             dirs.append(self._turn(ln.zdir(self.g)))
             self._draw(parts)
@@ -1364,7 +1421,8 @@ class _Run:
         values, drawn from the origin, meets the line perpendicular to R_WQ at the true value.
         """
         lk, q, w = closure
-        tip, parts = self.chain(line.base, line.terms, self.mixed(line))
+        known = self.terms(line.terms)
+        tip, parts = self.chain(line.base, line.terms, self.mixed(line, known), known)
         e = self._turn(line.zdir(self.g))
         known = [abs(v) for v in self.img.values()] + [abs(tip), self._const(self._level_scale())]
         tau1 = np.maximum(np.max(known, axis=0), 1e-300)
@@ -1833,10 +1891,9 @@ def _planned(sol) -> tuple:
     pose makes every decision the plan was made with alike (then the planner would make the same plan;
     only its sines are the pose's), else the planner's, kept for the next pose."""
     m = sol.mechanism
-    hit = _PLANS.get(id(m))
-    kept = hit[1] if hit is not None and hit[0]() is m else None
+    kept = _of_mechanism(_PLANS, m, list)
     geo = _Geo(sol)
-    for k, plan in enumerate(kept or ()):
+    for k, plan in enumerate(kept):
         if plan.tape.holds(geo):
             kept.insert(0, kept.pop(k))
             return geo, [st.at(geo) for st in plan.steps], plan.reported
@@ -1846,10 +1903,6 @@ def _planned(sol) -> tuple:
     steps = planner.run()
     reported = _reported(geo, steps, m)
     if planner.tape.usable:
-        if kept is None:
-            kept = []
-            _PLANS[id(m)] = (weakref.ref(m), kept)
-            weakref.finalize(m, _PLANS.pop, id(m), None)
         kept.insert(0, _Kept(planner.tape, tuple(steps), reported))
         del kept[KEPT_PLANS:]
     return geo, steps, reported
