@@ -139,7 +139,7 @@ ZOO = [zoo.specimen(_RNG, kind) for kind in zoo.KINDS for _ in range(2)]   # fou
 @pytest.mark.parametrize("sp", ZOO, ids=[f"{i}-{s.kind}" for i, s in enumerate(ZOO)])
 def test_zoo_alike_with_kept_plans(sp, planned):
     m = velpoly.load(sp.mech)
-    angles = [None] if sp.offsets == (None,) else _angles(m, 6, 12.0)
+    angles = [None] if sp.offsets == (None,) else _angles(m, 4, 15.0)
     _sweep_alike(m, angles)
 
 
@@ -153,7 +153,7 @@ GENERATED = ([mechanisms.block_on_driven_crank(s) for s in range(2)]
 @pytest.mark.parametrize("mech", GENERATED, ids=range(len(GENERATED)))
 def test_coriolis_slots_and_contacts_alike_with_kept_plans(mech, planned):
     m = velpoly.load(mech)
-    _sweep_alike(m, _angles(m, 6, 12.0))
+    _sweep_alike(m, _angles(m, 4, 15.0))
 
 
 @pytest.mark.parametrize("mech", [_stephenson3(STEPHENSON3, "1", 3.0, 1.0), TRIAD], ids=["stephenson III", "triad"])
