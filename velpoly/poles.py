@@ -67,6 +67,7 @@ are :func:`velpoly.report.poles_tables`. This module imports neither.
 """
 from __future__ import annotations
 
+import functools
 import gc
 import math
 import weakref
@@ -390,6 +391,12 @@ def _alike_limit(twists, condition: float) -> float:
     return ALIKE * max(condition, 1.0) * tw if tw > 0 else -1.0
 
 
+@functools.lru_cache(maxsize=16)   # the same links at every pose of a mechanism
+def _pair_keys(names: tuple) -> tuple:
+    """``keys[a][b]``: the pole key "i-j" of links a and b (i the one first in file order)."""
+    return tuple(tuple(f"{x}-{y}" if a < b else f"{y}-{x}" for b, y in enumerate(names)) for a, x in enumerate(names))
+
+
 class _Construction:
     """What both forms of the construction share (docs/poles.md): the links, their twists, which
     move alike, the constraint lines and what the figures need of them.
@@ -401,7 +408,7 @@ class _Construction:
 
     def __init__(self, names, twists, alike, pairs):
         self.names, self.n = names, len(names)
-        self.keys = [[f"{x}-{y}" if a < b else f"{y}-{x}" for b, y in enumerate(names)] for a, x in enumerate(names)]
+        self.keys = _pair_keys(tuple(names))
         self.twists = np.asarray(twists, float).reshape(self.n, 3)
         self.alike = alike               # alike[a][b]: the links move alike (a != b)
         self.info = {}
@@ -467,6 +474,7 @@ class _Kennedy(_Construction):
         self.quality = [[[0.0] * m for _ in range(n)] for _ in range(n)]
         self.unknown = n * (n - 1) // 2 - len(pairs)  # pairs a < b still unknown
         self.any_alike = bool(pairs)
+        self.best = {}   # (a, b) -> the best pair of the pair's lines drawn so far (None: none), until one is drawn
         for a in range(n):
             self.state[a][a] = _UNDEFINED
         for a, b in pairs:
@@ -484,6 +492,7 @@ class _Kennedy(_Construction):
     def add_constraint(self, a, b, h, label, desc, marks=()) -> None:
         super().add_constraint(a, b, h, label, desc, marks)
         a, b = min(a, b), max(a, b)
+        self.best.pop((a, b), None)
         slot = self.n + len(self.cons[(a, b)]) - 1
         self.line[a][b][slot] = self.line[b][a][slot] = self.cons[(a, b)][-1]
         self.quality[a][b][slot] = self.quality[b][a][slot] = 1.0
@@ -507,8 +516,10 @@ class _Kennedy(_Construction):
                 drawn.append((x, y, c, line, q))
         # P_yc's line through P_xy and P_xc may come from both new poles (then with opposite signs):
         # L[y][c] keeps the one drawn from P_xc, L[c][y] the one from P_xy
+        best = self.best
         for x, y, c, line, q in drawn:
             self.line[y][c][x], self.quality[y][c][x] = line, q
+            best.pop((y, c) if y < c else (c, y), None)
         for x, y, c, line, q in drawn:
             self.line[c][y][x], self.quality[c][y][x] = line, q
 
@@ -521,30 +532,18 @@ class _Kennedy(_Construction):
         """The unknown poles two lines locate now, in key order: (a, b, score, info).
 
         Of a pole's drawn lines, the pair with the best score, max(sine, |l x m|) times both
-        lines' qualities, is taken (the first such pair in slot order).
+        lines' qualities, is taken (the first such pair in slot order); it stands until another line
+        is drawn for the pole (``self.best``).
         """
-        n, state, hypot, sqrt = self.n, self.state, math.hypot, math.sqrt
+        n, state, memo = self.n, self.state, self.best
         out = []
         for a in range(n):
             for b in range(a + 1, n):
                 if state[a][b] != _UNKNOWN:
                     continue
-                lines = self.drawn(a, b)
-                best = None
-                for u in range(len(lines)):
-                    i, li, qi = lines[u]
-                    ni = hypot(li[0], li[1])
-                    a0, a1, a2 = li
-                    for v in range(u + 1, len(lines)):
-                        j, lj, qj = lines[v]
-                        b0, b1, b2 = lj   # x = li x lj, proj = |x| (_cross3, _norm3 written out)
-                        x = (a1 * b2 - a2 * b1, a2 * b0 - a0 * b2, a0 * b1 - a1 * b0)
-                        proj = sqrt(x[0] * x[0] + x[1] * x[1] + x[2] * x[2])
-                        den = ni * hypot(b0, b1)
-                        sine = abs(x[2]) / den if den > 0 else 0.0
-                        score = max(sine, proj) * qi * qj
-                        if best is None or score > best[0]:
-                            best = (score, i, j, li, lj, x, proj, sine)
+                best = memo.get((a, b), False)
+                if best is False:
+                    best = memo[a, b] = self._best_lines(a, b)
                 if best is None:
                     continue
                 score, i, j, li, lj, x, proj, sine = best
@@ -564,6 +563,28 @@ class _Kennedy(_Construction):
         out.sort(key=lambda o: (o[0], o[1]))
         return out
 
+    def _best_lines(self, a, b):
+        """Of the pair's lines drawn, the two with the best score: ``(score, slot i, slot j, line i, line j,
+        their meet x, |x|, sine)``, None where fewer than two are drawn."""
+        hypot, sqrt = math.hypot, math.sqrt
+        lines = self.drawn(a, b)
+        best = None
+        for u in range(len(lines)):
+            i, li, qi = lines[u]
+            ni = hypot(li[0], li[1])
+            a0, a1, a2 = li
+            for v in range(u + 1, len(lines)):
+                j, lj, qj = lines[v]
+                b0, b1, b2 = lj   # x = li x lj, proj = |x| (_cross3, _norm3 written out)
+                x = (a1 * b2 - a2 * b1, a2 * b0 - a0 * b2, a0 * b1 - a1 * b0)
+                proj = sqrt(x[0] * x[0] + x[1] * x[1] + x[2] * x[2])
+                den = ni * hypot(b0, b1)
+                sine = abs(x[2]) / den if den > 0 else 0.0
+                score = max(sine, proj) * qi * qj
+                if best is None or score > best[0]:
+                    best = (score, i, j, li, lj, x, proj, sine)
+        return best
+
     def most_lines(self) -> tuple[int, int]:
         """The unknown pair with the most lines drawn (the first in key order)."""
         best = None
@@ -575,10 +596,11 @@ class _Kennedy(_Construction):
                         best = (count, a, b)
         return best[1], best[2]
 
-    def world(self, centre, scale):
+    def world(self, centre, scale, error: bool = True):
         """The known poles in frame coordinates: the largest disagreement with the velocity solution,
-        |P_ab x (T_a - T_b)|, and ``(a, b, (x, y, w) unit, position or None, at infinity)`` for each (a
-        pole farther than FAR sizes is at infinity; the position never a signed zero; tuples of floats)."""
+        |P_ab x (T_a - T_b)| (0 without ``error``), and ``(a, b, (x, y, w) unit, position or None, at
+        infinity)`` for each (a pole farther than FAR sizes is at infinity; the position never a signed
+        zero; tuples of floats)."""
         c0, c1 = float(centre[0]), float(centre[1])
         twists, state, pole = self.twists.tolist(), self.state, self.pole
         err, out = 0.0, []
@@ -586,10 +608,12 @@ class _Kennedy(_Construction):
             for b in range(a + 1, self.n):
                 if state[a][b] != _KNOWN:
                     continue
-                h, ta, tb = pole[a][b], twists[a], twists[b]
-                e = _norm3(_cross3(h, (ta[0] - tb[0], ta[1] - tb[1], ta[2] - tb[2])))
-                if e > err:
-                    err = e
+                h = pole[a][b]
+                if error:
+                    ta, tb = twists[a], twists[b]
+                    e = _norm3(_cross3(h, (ta[0] - tb[0], ta[1] - tb[1], ta[2] - tb[2])))
+                    if e > err:
+                        err = e
                 hw = (scale * h[0] + c0 * h[2], scale * h[1] + c1 * h[2], h[2])
                 nw = max(_norm3(hw), 1e-300)
                 x, y, w = hw = (hw[0] / nw, hw[1] / nw, hw[2] / nw)
@@ -658,12 +682,12 @@ class _KennedyArrays(_Construction):
         self.state[a, b] = self.state[b, a] = _KNOWN
         self.info[(min(a, b), max(a, b))] = info
 
-    def world(self, centre, scale):
+    def world(self, centre, scale, error: bool = True):
         """As :meth:`_Kennedy.world`, on arrays."""
         n, twists = self.n, self.twists
         A, B = np.nonzero(np.triu(self.state == _KNOWN, 1))
         h = self.pole[A, B]
-        err = float(_norm_rows(_cross_rows(h, twists[A] - twists[B])).max()) if len(A) else 0.0
+        err = float(_norm_rows(_cross_rows(h, twists[A] - twists[B])).max()) if len(A) and error else 0.0
         hw = np.stack((scale * h[:, 0] + centre[0] * h[:, 2], scale * h[:, 1] + centre[1] * h[:, 2], h[:, 2]),
                       axis=1)
         hw /= np.maximum(_norm_rows(hw), 1e-300)[:, None]
@@ -1017,7 +1041,7 @@ def _pole_places(sol, kennedy, centre, scale, found) -> dict:
     """The JSON ``poles`` section from the construction as :func:`_pole_set` makes its PoleSet (the same
     positions, directions, how and order), without the lines drawn: what ``solve --json`` needs."""
     n, keys, infos, exact = kennedy.n, kennedy.keys, kennedy.info, kennedy.exact
-    world = {(a, b): (hk, pos, inf) for a, b, hk, pos, inf in kennedy.world(centre, scale)[1]}
+    world = {(a, b): (hk, pos, inf) for a, b, hk, pos, inf in kennedy.world(centre, scale, error=False)[1]}
     out = {}
     for a in range(n):
         for b in range(a + 1, n):

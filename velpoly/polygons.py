@@ -63,6 +63,7 @@ over many random perturbations (directions within +-0.25 deg, points within
 from __future__ import annotations
 
 import dataclasses
+import functools
 import math
 import weakref
 from abc import ABC, abstractmethod
@@ -204,66 +205,73 @@ class _Rel:
     centre: str | None = None
     prefer: str | None = None   # where a relation that holds everywhere (at None) is best applied
 
+    @property
+    def zdir(self) -> complex:
+        """The path's direction as x + iy."""
+        return _z(self.direction)
 
-class _Geo:
-    """Positions, places and joints of a solved pose (no velocities)."""
+
+class _Shape:
+    """What a pose's geometry (:class:`_Geo`) has of its mechanism alone, made once per mechanism: the
+    links, the point keys and which link carries which point, the places pins join (union-find: each
+    group's canonical place first, a frame place where there is one), the joints (``specs``: a
+    :class:`_Rel` but for its direction, which is the pose's) and the links turning together."""
 
     def __init__(self, sol):
         m = sol.mechanism
-        self.m = m
-        self.frame = m.frame.name
-        self.links = m.link_names
-        self.moving = tuple(k.name for k in m.moving_links)
-        self.size = sol.kinematics.system.size   # m.size, computed once for the system
-        self.tol = 1e-9 * self.size
-        self.key, self.pos, self.own = {}, {}, {lk: [] for lk in self.links}
-        self.zpos = {}   # the same positions as complex numbers x + iy (what the replays compute with)
-        position = sol.position
-        for key, p, lk in point_keys(m):   # one key P for every carrier, or P@link for each
-            if p not in self.pos:
-                self.pos[p] = np.asarray(position[key], float)
-                self.zpos[p] = _z(self.pos[p])
-            for c in (m.carriers[p] if key == p else (lk,)):
-                self.key[(p, c)] = key
-                self.own[c].append(p)
-        self.extra = {lk: [] for lk in self.links}
-        self.names = {}          # place -> textbook name of a place that is no point key
+        self.fixed = dict(m=m, frame=m.frame.name, links=m.link_names, moving=tuple(k.name for k in m.moving_links),
+                          size=sol.kinematics.system.size,   # m.size, computed once for the system
+                          tol=1e-9 * sol.kinematics.system.size, key={}, own={lk: [] for lk in m.link_names},
+                          rate_eq=[])
+        self.frame, key, own = m.frame.name, self.fixed["key"], self.fixed["own"]
+        self.places, seen = [], set()   # (key, point): each point's position, read from its first key
+        for k, p, lk in point_keys(m):   # one key P for every carrier, or P@link for each
+            if p not in seen:
+                seen.add(p)
+                self.places.append((k, p))
+            for c in (m.carriers[p] if k == p else (lk,)):
+                key[(p, c)] = k
+                own[c].append(p)
+        self.extra = {lk: [] for lk in m.link_names}
         self._parent = {}
         for pin in m.pins:
             self._union((pin.links[0], pin.point), (pin.links[1], pin.point))
-        mo = sol.motion
-        self.rels, self.rate_eq = [], []
-        drv = m.driver
-        for i, (s, r) in enumerate(zip(m.sliders, mo.sliders)):
-            d = G.from_polar(1.0, float(r["direction"][0]))
+        self.specs = self._joints(m, own)
+        root = {p: self._find(p) for p in self._parent}   # the unions are complete
+        groups = {}
+        for p, r in root.items():
+            groups.setdefault(r, [r]).extend([p] if p != r else [])
+        self.fixed.update(_root=root, _groups=groups)
+
+    def _joints(self, m, own) -> list:
+        """The joints as :class:`_Rel` s but for their directions: ``(origin, fields)``, origin the
+        (kind, index) of the motion's entry that gives the pose's direction."""
+        specs, drv, rate_eq = [], m.driver, self.fixed["rate_eq"]
+        for i, s in enumerate(m.sliders):
             if s.centre is not None:   # a curved block turns about K relative to its guide: a pin at K
-                if s.centre not in self.own[s.block]:
+                if s.centre not in own[s.block]:
                     self.extra[s.block].append(s.centre)
                 self._union((s.block, s.centre), (s.guide, s.centre))
             else:
-                self.rate_eq.append((s.block, s.guide))
+                rate_eq.append((s.block, s.guide))
             if drv.is_slider and drv.slider == s.point:
                 # on a straight path block and guide turn together: the driver's slip is the
                 # relative velocity of every pair of coincident points, not only at the block's point
                 at = s.point if s.centre is not None else None
-                self.rels.append(_Rel("drive", i, s.block, s.guide, at, d, True, s.centre, s.point))
+                specs.append((("slider", i), ("drive", i, s.block, s.guide, at, True, s.centre, s.point)))
             elif s.centre is None:
-                self.rels.append(_Rel("slider", i, s.block, s.guide, None, d, False))
-        for i, (s, r) in enumerate(zip(m.slots, mo.slots)):
-            self.rels.append(_Rel("slot", i, s.link, s.slot, s.pin, G.from_polar(1.0, float(r["direction"][0])), False, s.centre))
-        for i, (c, r) in enumerate(zip(m.contacts, mo.contacts)):
-            t = perp(G.from_polar(1.0, float(r["normal"][0])))
+                specs.append((("slider", i), ("slider", i, s.block, s.guide, None, False, None, None)))
+        for i, s in enumerate(m.slots):
+            specs.append((("slot", i), ("slot", i, s.link, s.slot, s.pin, False, s.centre, None)))
+        for i, c in enumerate(m.contacts):
             exact = c.kind == "rolling" or c.slip is not None
-            self.rels.append(_Rel("contact", i, c.links[0], c.links[1], c.point, t, exact))
+            specs.append((("contact", i), ("contact", i, c.links[0], c.links[1], c.point, exact, None, None)))
             # the equivalent linkage: each centre of curvature moves on the other link along the
             # tangent, on a circle about the other centre (or parallel to the other's flat)
             for k, (ca, cb) in enumerate((c.centres, c.centres[::-1]) if c.centres else ()):
                 if ca is not None:
-                    self.rels.append(_Rel("centre", i, c.links[k], c.links[1 - k], ca, t, False, cb))
-        self._root = {p: self._find(p) for p in self._parent}   # the unions are complete
-        self._groups = {}
-        for p, r in self._root.items():
-            self._groups.setdefault(r, [r]).extend([p] if p != r else [])
+                    specs.append((("contact", i), ("centre", i, c.links[k], c.links[1 - k], ca, False, cb, None)))
+        return specs
 
     # places are (link, point name); pins (and the centres of curved sliders) share one image
     def _find(self, p):
@@ -277,6 +285,50 @@ class _Geo:
             a, b = b, a
         if a != b:
             self._parent[b] = a
+
+    def rels(self, mo) -> list:
+        """The joints at the pose of ``mo``: sliders' and slots' paths, contacts' common tangents."""
+        dirs, out = {}, []
+        for origin, (source, i, a, b, at, exact, centre, prefer) in self.specs:
+            d = dirs.get(origin)
+            if d is None:
+                kind, k = origin
+                if kind == "contact":
+                    d = perp(G.from_polar(1.0, float(mo.contacts[k]["normal"][0])))
+                else:
+                    d = G.from_polar(1.0, float((mo.sliders if kind == "slider" else mo.slots)[k]["direction"][0]))
+                dirs[origin] = d
+            out.append(_Rel(source, i, a, b, at, d, exact, centre, prefer))
+        return out
+
+
+def _of_mechanism(cache: dict, m, make):
+    """``cache``'s value for the mechanism m, ``make()`` where there is none yet; dropped with m."""
+    hit = cache.get(id(m))
+    if hit is not None and hit[0]() is m:
+        return hit[1]
+    value = make()
+    cache[id(m)] = (weakref.ref(m), value)
+    weakref.finalize(m, cache.pop, id(m), None)
+    return value
+
+
+_SHAPES: dict = {}   # id(mechanism) -> (weak reference, _Shape)
+
+
+class _Geo:
+    """Positions, places and joints of a solved pose (no velocities); the mechanism's part
+    (:class:`_Shape`) shared by its poses, never changed."""
+
+    def __init__(self, sol):
+        shape = _of_mechanism(_SHAPES, sol.mechanism, lambda: _Shape(sol))
+        self.__dict__.update(shape.fixed)
+        self.extra = {lk: list(v) for lk, v in shape.extra.items()}   # auxiliary points are added per pose
+        self.names = {}          # place -> textbook name of a place that is no point key
+        position = sol.motion.position
+        self.pos = {p: position[k][0] for k, p in shape.places}
+        self.zpos = {p: _z(v) for p, v in self.pos.items()}   # as x + iy (what the replays compute with)
+        self.rels = shape.rels(sol.motion)
 
     def canon(self, place):
         """The place whose image stands for this one's (pinned places share one image)."""
@@ -398,6 +450,7 @@ class RotationAbout:
     link: str
     q: str
     w: str
+    sign: ClassVar[int] = 1   # the line adds it
 
     def describe(self, run: "_Run") -> UnknownPart:
         g, lk = run.g, self.link
@@ -409,6 +462,12 @@ class RotationAbout:
 
     def direction_words(self, run: "_Run") -> str:
         return f"⊥ {_segment(self.q, self.w)}"
+
+    def zdir(self, g: _Geo) -> complex:
+        """The line's unit direction at the pose of ``g``, perpendicular to QW: ``i R_WQ / |R_WQ|``."""
+        r = g.zpos[self.w] - g.zpos[self.q]
+        rn = abs(r)
+        return complex(-r.imag / rn, r.real / rn)
 
 
 @dataclass(frozen=True)
@@ -423,11 +482,15 @@ class SlipAlongPath:
     def describe(self, run: "_Run") -> UnknownPart:
         r = run.g.rels[self.rel]
         ka, kb, kk = run.rel_keys(r, self.w)
-        return UnknownPart(f"{run.X}_{relative(named(self.w, r.a), named(self.w, r.b))}", self.sign, ("slip", ka, kb, r.b, kk),
+        return UnknownPart(f"{run.X}_{_relative_names(self.w, r.a, r.b)[0]}", self.sign, ("slip", ka, kb, r.b, kk),
                            "relative" if run.level == "velocity" else "slip")
 
     def direction_words(self, run: "_Run") -> str:
         return _path_reason(run.g, run.g.rels[self.rel], prose=True)
+
+    def zdir(self, g: _Geo) -> complex:
+        """The path's unit direction at the pose of ``g`` (the slider's, slot's or common tangent's)."""
+        return g.rels[self.rel].zdir
 
 
 @dataclass(frozen=True)
@@ -439,6 +502,7 @@ class ThroughAuxiliaryPoint:
     link: str
     x: str
     s: str
+    sign: ClassVar[int] = 1   # the line adds it
 
     def describe(self, run: "_Run") -> UnknownPart:
         g, lk = run.g, self.link
@@ -452,10 +516,15 @@ class ThroughAuxiliaryPoint:
     def direction_words(self, run: "_Run") -> str:
         return self.line.unknown.direction_words(run)
 
+    def zdir(self, g: _Geo) -> complex:
+        """X's own line's direction (S lies on X's normal)."""
+        return self.line.unknown.zdir(g)
+
 
 @dataclass(frozen=True)
 class _Line:
-    """A construction line on an unknown image: the chain ``base`` + ``terms``, then along ``direction``.
+    """A construction line on an unknown image: the chain ``base`` + ``terms``, then along the
+    unknown's direction (:meth:`zdir`: the pose's, so that a plan serves every pose of its mechanism).
 
     ``terms``: :class:`CentripetalTerm` and :class:`JointMotionTerm` (the known vectors chained);
     ``unknown``: :class:`RotationAbout`, :class:`SlipAlongPath` or :class:`ThroughAuxiliaryPoint`.
@@ -463,7 +532,6 @@ class _Line:
 
     base: tuple
     terms: tuple
-    direction: np.ndarray
     unknown: object
     reason: str
     links: tuple
@@ -475,6 +543,15 @@ class _Line:
         if isinstance(u, ThroughAuxiliaryPoint):
             u = u.line.unknown
         return u.link if isinstance(u, RotationAbout) else None
+
+    def zdir(self, g: _Geo) -> complex:
+        """The line's unit direction at the pose of ``g``, as x + iy."""
+        return self.unknown.zdir(g)
+
+    def direction(self, g: _Geo) -> np.ndarray:
+        """The line's unit direction at the pose of ``g``, as the contract's 2-vector."""
+        z = self.unknown.zdir(g)
+        return np.array((z.real, z.imag))
 
 
 # The operations of the plan: each applies itself to a replay (_Run) of the construction.
@@ -603,6 +680,11 @@ class _Planner:
         self.trial = False       # inside a trial solution: links' rigidity is tracked
         self.rigid_used = set()  # links whose rigidity located one of their images
         self.closure = None      # (link, Q, W): a link whose two images were located without it
+        self.tape = _Tape()      # the decisions the pose made (the plan serves every pose that makes them alike)
+
+    def decide(self, fn, *args):
+        """``fn(geometry, *args)``: a decision that depends on the pose, recorded on the tape."""
+        return self.tape.record(fn, self.g, args)
 
     # knowledge ---------------------------------------------------------------------------------
     def is_known(self, place) -> bool:
@@ -646,8 +728,8 @@ class _Planner:
                 if lk in self.rk or len(self.kp[lk]) < 2 or self.closure:
                     continue
                 q = self.kp[lk][0]
-                w = max(self.kp[lk][1:], key=lambda n: self.g.dist(q, n))
-                if self.g.dist(q, w) > self.g.tol:
+                w = self.decide(_farthest, q, tuple(self.kp[lk][1:]))
+                if w is not None:
                     if self.trial and lk not in self.rigid_used:   # over-determined: closes the trial
                         self.closure = (lk, q, w)
                         return
@@ -709,6 +791,7 @@ class _Planner:
         is linear in tau, so two trial values give the closing condition exactly. Of the
         possible assumptions, the one whose construction is best conditioned is taken.
         """
+        self.tape.usable = False   # which trial is best compares whole constructions: planned afresh each pose
         best = None
         for t in self._targets(every=True):
             lines = self.lines_for(t)
@@ -800,13 +883,10 @@ class _Planner:
         out = []
         for lk, n in g.group(place):
             if lk not in self.rk and lk != g.frame:
-                ks = [q for q in self.kp[lk] if g.dist(q, n) > g.tol]
-                if ks:
-                    q = ks[0]
-                    r = g.zpos[n] - g.zpos[q]
-                    rn = abs(r)
-                    out.append(_Line((lk, q), (CentripetalTerm(lk, q, n),), np.array((-r.imag / rn, r.real / rn)),
-                                     RotationAbout(lk, q, n), f"perpendicular to {q}{n}", (lk,)))
+                q = self.decide(_apart, n, tuple(self.kp[lk]))
+                if q is not None:
+                    out.append(_Line((lk, q), (CentripetalTerm(lk, q, n),), RotationAbout(lk, q, n),
+                                     f"perpendicular to {q}{n}", (lk,)))
             for i, r in enumerate(g.rels):
                 if r.exact or r.at not in (None, n) or lk not in (r.a, r.b):
                     continue
@@ -815,7 +895,7 @@ class _Planner:
                 partner, sign = (r.b, 1) if lk == r.a else (r.a, -1)
                 pp = (partner, n)
                 if self.is_known(pp) or self.full(partner):
-                    out.append(_Line(pp, (JointMotionTerm(i, sign, n),), r.direction, SlipAlongPath(i, sign, n),
+                    out.append(_Line(pp, (JointMotionTerm(i, sign, n),), SlipAlongPath(i, sign, n),
                                      _path_reason(g, r), (r.a, r.b)))
         return out
 
@@ -837,7 +917,7 @@ class _Planner:
                 if g.canon(pp) == c or self.is_known(pp) or self.full(partner):
                     continue   # known: an equality step, not a line
                 for ln in self.lines_on(pp):
-                    out.append(_Line(ln.base, ln.terms + (JointMotionTerm(i, sign, n),), ln.direction, ln.unknown,
+                    out.append(_Line(ln.base, ln.terms + (JointMotionTerm(i, sign, n),), ln.unknown,
                                      f"{ln.reason}, offset by the driver's slip of {n}{r.a} on {n}{r.b}",
                                      tuple(dict.fromkeys(ln.links + (r.a, r.b)))))
         return out
@@ -869,12 +949,13 @@ class _Planner:
 
     def _intersection(self) -> bool:
         for t in self._targets():
-            lines = self.lines_for(t)
-            best = _best_pair(lines)
+            lines = tuple(self.lines_for(t))
+            best = self.decide(_best_pair, lines) if len(lines) > 1 else None
             if best is None:
                 continue
-            l1, l2, sine = best
-            if sine < SINE_LIMIT:
+            l1, l2 = lines[best[0]], lines[best[1]]
+            sine = _pair_sine(self.g, l1, l2)
+            if not best[2]:   # closer to parallel than SINE_LIMIT
                 self.singular = self.singular or (t, l1, l2, sine)
                 continue
             s = _PStep(IntersectionStep, lines=(l1, l2), sine=sine, target=t)
@@ -891,7 +972,7 @@ class _Planner:
     def _auxiliary(self) -> bool:
         """A link T with no known image: the point S of T where two of its points' lines meet."""
         g = self.g
-        best = None
+        groups = []   # (link, ((point, its first line), ...)) for each link T that may have one
         for lk in g.moving:
             if lk in self.rk or self.kp[lk] or len(g.places(lk)) < 3:   # S must locate a third point
                 continue
@@ -900,27 +981,18 @@ class _Planner:
                 ls = self.lines_for((lk, n))
                 if ls:
                     one.append((n, ls[0]))
-            for i in range(len(one)):
-                for j in range(i + 1, len(one)):
-                    (x, lx), (y, ly) = one[i], one[j]
-                    s, _, _, sine = G.intersect_lines(g.pos[x], perp(lx.direction), g.pos[y], perp(ly.direction))
-                    if s is None or sine < SINE_LIMIT:
-                        continue
-                    # prefer the instant centre (both lines through O_v: Kennedy) unless badly conditioned
-                    pole = g.grounded(lx.base) and g.grounded(ly.base) and sine >= 0.05
-                    if best is None or (pole, sine) > best[0]:
-                        best = ((pole, sine), lk, x, lx, y, ly, s)
+            groups.append((lk, tuple(one)))
+        best = self.decide(_auxiliary_choice, tuple(groups))
         if best is None:
             return False
-        (_, sine), lk, x, lx, y, ly, spos = best
+        lk, one = groups[best[0]]
+        (x, lx), (y, ly) = one[best[1]], one[best[2]]
         name = named("S", lk)
         while name in g.pos:
             name += "'"
-        g.pos[name] = np.asarray(spos, float)
-        g.zpos[name] = _z(spos)
-        g.extra[lk].append(name)
-        g.names[(lk, name)] = name
-        aux = [_Line(ln.base, ln.terms + (CentripetalTerm(lk, p, name),), ln.direction, ThroughAuxiliaryPoint(ln, lk, p, name),
+        self.decide(_place_auxiliary, lk, name, x, lx, y, ly)
+        sine = _normals_meet(g, x, lx, y, ly)[1]
+        aux = [_Line(ln.base, ln.terms + (CentripetalTerm(lk, p, name),), ThroughAuxiliaryPoint(ln, lk, p, name),
                      ln.reason + f" (auxiliary point {name} of link {lk} on the normal through {p})",
                      ln.links + (lk,)) for p, ln in ((x, lx), (y, ly))]
         s = _PStep(AuxiliaryPointStep, lines=tuple(aux), sine=sine, target=(lk, name), link=lk)
@@ -951,15 +1023,107 @@ class _Planner:
             file=g.m.source, hint="the analytic results (velpoly solve) are still exact")
 
 
-def _best_pair(lines):
+class _Tape:
+    """The decisions a plan was made with that depend on the pose, each ``(fn, args, outcome)`` once, in
+    the order made (with the auxiliary points placed on the way, :func:`_place_auxiliary`).
+
+    The planner reads the pose only through them (the directions, sines and auxiliary points' places
+    are computed at each pose from the plan's lines): a pose where every one gives the same outcome
+    (:meth:`holds`) gets the same plan from the planner. ``usable`` is False where the planner
+    compared whole trial constructions (a trial solution), which are not recorded.
+    """
+
+    def __init__(self):
+        self.entries, self.seen, self.usable = [], set(), True
+
+    def record(self, fn, g: _Geo, args):
+        out = fn(g, *args)
+        if self.usable and (fn, args) not in self.seen:
+            self.seen.add((fn, args))
+            self.entries.append((fn, args, out))
+        return out
+
+    def holds(self, g: _Geo) -> bool:
+        """Whether the pose of ``g`` makes every decision alike (placing the auxiliary points in g)."""
+        try:
+            for fn, args, out in self.entries:
+                if fn(g, *args) != out:
+                    return False
+        except (ArithmeticError, ValueError):   # a degenerate pose: planned afresh, as without the tape
+            return False
+        return True
+
+
+# The planner's decisions that depend on the pose (the rest follows from the mechanism alone): each is a
+# function of the pose's geometry and of what the plan knows, giving a plain outcome (a point's name, a
+# pair of indices, a flag), so that another pose can be checked to give the same ones (:class:`_Tape`).
+def _apart(g: _Geo, n, cands):
+    """The first of ``cands`` (points of a link with known images) apart from n (to draw a line ⊥ QN)."""
+    for q in cands:
+        if g.dist(q, n) > g.tol:
+            return q
+    return None
+
+
+def _farthest(g: _Geo, q, cands):
+    """The point of ``cands`` farthest from q, which with q gives a link's rate; None if all are at q."""
+    w = max(cands, key=lambda n: g.dist(q, n))
+    return w if g.dist(q, w) > g.tol else None
+
+
+def _normals_meet(g: _Geo, x, lx, y, ly) -> tuple:
+    """(S, sine): where the normals at x and y to their lines ``lx`` and ``ly`` meet (S None where they
+    are parallel) and the sine of their angle."""
+    s, _, _, sine = G.intersect_lines(g.pos[x], perp(lx.direction(g)), g.pos[y], perp(ly.direction(g)))
+    return s, sine
+
+
+def _auxiliary_choice(g: _Geo, groups):
+    """(k, i, j): of each link's points with a line (``groups``), the two whose normals meet at the
+    link's auxiliary point S best: the instant centre (both lines through O_v, Kennedy) unless badly
+    conditioned, else the largest sine; None where no two normals meet at SINE_LIMIT or better."""
+    best = None
+    for k, (_, one) in enumerate(groups):
+        for i in range(len(one)):
+            for j in range(i + 1, len(one)):
+                (x, lx), (y, ly) = one[i], one[j]
+                s, sine = _normals_meet(g, x, lx, y, ly)
+                if s is None or sine < SINE_LIMIT:
+                    continue
+                pole = g.grounded(lx.base) and g.grounded(ly.base) and sine >= 0.05
+                if best is None or (pole, sine) > best[0]:
+                    best = ((pole, sine), k, i, j)
+    return None if best is None else best[1:]
+
+
+def _place_auxiliary(g: _Geo, lk, name, x, lx, y, ly) -> None:
+    """Add the auxiliary point ``name`` of link lk to the pose, where the normals at x and y meet."""
+    spos = _normals_meet(g, x, lx, y, ly)[0]
+    g.pos[name] = np.asarray(spos, float)
+    g.zpos[name] = _z(spos)
+    g.extra[lk].append(name)
+    g.names[(lk, name)] = name
+
+
+def _pair_sine(g: _Geo, l1, l2) -> float:
+    """|sin| of the angle between two construction lines at the pose of ``g``."""
+    d, e = l1.zdir(g), l2.zdir(g)
+    return abs(d.real * e.imag - d.imag * e.real)
+
+
+def _best_pair(g: _Geo, lines):
+    """(i, j, regular): the two lines meeting at the largest angle (the first such pair), and whether
+    that angle's sine reaches SINE_LIMIT."""
+    dirs = [ln.zdir(g) for ln in lines]
     best = None
     for i in range(len(lines)):
+        d = dirs[i]
         for j in range(i + 1, len(lines)):
-            d, e = lines[i].direction, lines[j].direction
-            sine = abs(d[0] * e[1] - d[1] * e[0])
+            e = dirs[j]
+            sine = abs(d.real * e.imag - d.imag * e.real)
             if best is None or sine > best[2]:
-                best = (lines[i], lines[j], sine)
-    return best
+                best = (i, j, sine)
+    return best[0], best[1], not best[2] < SINE_LIMIT
 
 
 def _path_reason(g: _Geo, r: _Rel, prose: bool = False) -> str:
@@ -982,6 +1146,12 @@ def _path_reason(g: _Geo, r: _Rel, prose: bool = False) -> str:
 
 
 # -- evaluating the plan: exact, or perturbed like a hand drawing ---------------------------------
+@functools.lru_cache(maxsize=4096)   # a pure function of three names, asked again at every pose
+def _relative_names(w: str, a: str, b: str) -> tuple[str, str]:
+    """Link a's point W relative to link b's, and back, as names: ("B3/B4", "B4/B3")."""
+    return relative(named(w, a), named(w, b)), relative(named(w, b), named(w, a))
+
+
 def _z(v) -> complex:
     """The 2-vector (x, y) as the complex number x + iy."""
     return complex(v[0], v[1])
@@ -1071,7 +1241,7 @@ class _Run:
         """
         g, r = self.g, self.g.rels[i]
         m = g.m
-        rel, rrel = relative(named(w, r.a), named(w, r.b)), relative(named(w, r.b), named(w, r.a))
+        rel, rrel = _relative_names(w, r.a, r.b)
         ka, kb, kk = self.rel_keys(r, w)
         slip_of = ("slip", ka, kb, r.b, kk)
         if self.level == "velocity":
@@ -1112,7 +1282,7 @@ class _Run:
         """The Coriolis term of link a's point W moving relative to link b (the guide, slot or other
         profile): ``2 omega_b x V_Wa/Wb``, with V_Wa/Wb = ``vrel`` from the velocity polygon."""
         ka, kb, _ = self.rel_keys(r, w)
-        rel, rrel = relative(named(w, r.a), named(w, r.b)), relative(named(w, r.b), named(w, r.a))
+        rel, rrel = _relative_names(w, r.a, r.b)
         return KnownVector("coriolis", f"2 omega_{r.b} x V_{rel}", coriolis_term(self.vel.rate[r.b], vrel),
                            ("coriolis", r.b, ka, kb), 1, (f"2 omega_{r.b} x V_{rrel}", ("coriolis", r.b, kb, ka)))
 
@@ -1146,7 +1316,7 @@ class _Run:
         return k * u
 
     # operations ------------------------------------------------------------------------------------
-    def chain(self, base, terms, forward: bool = False) -> tuple:
+    def chain(self, base, terms, forward: bool = False, known=None) -> tuple:
         """The tip of base image + known terms, and the arrows drawn: (tip, [(kind, label, tail, head, of)]).
 
         Every arrow points in the true sense of what its label names and they run tip to tail:
@@ -1157,11 +1327,12 @@ class _Run:
         subtracted term is drawn forwards as the negative quantity it equals, under that
         quantity's own name (-V_A3/A4 is V_A4/A3, -A^n_SA is A^n_AS), so that the arrows run tip
         to tail from the base image to the image found; only a term with no such name (a
-        circular path's V_rel^2/rho) is still drawn back from the base image.
+        circular path's V_rel^2/rho) is still drawn back from the base image. ``known``: the terms'
+        known vectors where the caller has them already.
         """
         tip = self.image(base)
         parts = []
-        ts = self.terms(terms)
+        ts = self.terms(terms) if known is None else known
         drawn_back = [t.sign < 0 and not (forward and t.reverse) for t in ts]
         back = [t for t, b in zip(ts, drawn_back) if b]
         ahead = [t if t.sign > 0 else KnownVector(t.kind, t.reverse[0], -t.value, t.reverse[1])
@@ -1176,12 +1347,12 @@ class _Run:
             tip = new
         return tip, parts
 
-    def mixed(self, ln: _Line) -> bool:
+    def mixed(self, ln: _Line, known=None) -> bool:
         """Whether the line's chain both subtracts and adds (its known terms and its unknown at this
         level): then no order of true-sense arrows runs tip to tail, and :meth:`chain` draws the
         subtracted ones as their negatives (an auxiliary point reached through a driven slip:
         ``V_S4 = V_O2 + V_A2O2 - V_A3/A4 + V_S4A4``; a block's line offset by a slip it subtracts)."""
-        signs = {t.sign for t in self.terms(ln.terms)} | {self.unknown(ln).sign}
+        signs = {t.sign for t in (self.terms(ln.terms) if known is None else known)} | {ln.unknown.sign}
         return len(signs) > 1
 
     def _draw(self, parts):
@@ -1210,13 +1381,14 @@ class _Run:
         """Case 2a: the image of ``target`` where the two lines meet (each drawn from the tip of its chain)."""
         tips, dirs = [], []
         for ln in (l1, l2):
-            tip, parts = self.chain(ln.base, ln.terms, self.mixed(ln))
+            known = self.terms(ln.terms)
+            tip, parts = self.chain(ln.base, ln.terms, self.mixed(ln, known), known)
             tips.append(tip)
-            dirs.append(self._turn(_z(ln.direction)))
+            dirs.append(self._turn(ln.zdir(self.g)))
             self._draw(parts)
             if self.record:
                 label = _sum([self.base_label(ln.base)] + self.term_labels(ln.terms))
-                self.lines.append(ConstructionLine(_xy(tip), ln.direction.copy(), label, ln.reason))
+                self.lines.append(ConstructionLine(_xy(tip), ln.direction(self.g), label, ln.reason))
         x, _, _ = self._intersect(tips[0], dirs[0], tips[1], dirs[1])
         if x is None:   # the planner checked the directions; only a degenerate pose gets here
             raise SingularPoseError(f"parallel construction lines for {self.g.name(target)}",
@@ -1249,8 +1421,9 @@ class _Run:
         values, drawn from the origin, meets the line perpendicular to R_WQ at the true value.
         """
         lk, q, w = closure
-        tip, parts = self.chain(line.base, line.terms, self.mixed(line))
-        e = self._turn(_z(line.direction))
+        known = self.terms(line.terms)
+        tip, parts = self.chain(line.base, line.terms, self.mixed(line, known), known)
+        e = self._turn(line.zdir(self.g))
         known = [abs(v) for v in self.img.values()] + [abs(tip), self._const(self._level_scale())]
         tau1 = np.maximum(np.max(known, axis=0), 1e-300)
         start, record = (dict(self.img), dict(self.rate)), self.record
@@ -1284,7 +1457,7 @@ class _Run:
                                                f"locus of {self.X}_{w}{q} over the trial values"))
             self.lines.append(ConstructionLine(_xy(target), _xy(1j * r / rn), self.origin,
                                                f"perpendicular to {q}{w}: link {lk} is rigid"))
-            self.lines.append(ConstructionLine(_xy(tip), line.direction.copy(),
+            self.lines.append(ConstructionLine(_xy(tip), line.direction(self.g),
                                                _sum([self.base_label(line.base)] + self.term_labels(line.terms)),
                                                line.reason + " (the trial image's line)"))
             self.vectors.append(self.unknown_vector(line, tip, found))
@@ -1438,6 +1611,10 @@ class PlanStep(ABC):
 
     def sine_at(self, run: "_Run") -> float:
         return self.sine
+
+    def at(self, g: _Geo) -> "PlanStep":
+        """The step at the pose of ``g`` (a plan made at another pose: its numbers at this one)."""
+        return self
 
     @abstractmethod
     def equation(self, run: "_Run") -> str:
@@ -1601,6 +1778,9 @@ class IntersectionStep(PlanStep):
 
     kind: ClassVar[str] = "intersection"
 
+    def at(self, g):
+        return dataclasses.replace(self, sine=_pair_sine(g, *self.lines))
+
     def equation(self, run):
         g, X = run.g, run.X
         chains = [_sum([f"{X}_{g.name(ln.base)}"] + run.term_labels(ln.terms) + [run.unknown_label(ln)])
@@ -1619,6 +1799,10 @@ class AuxiliaryPointStep(IntersectionStep):
     when both lines pass through O_v (kind 'instant-centre')."""
 
     kind: ClassVar[str] = "auxiliary"
+
+    def at(self, g):
+        u, v = self.lines[0].unknown, self.lines[1].unknown
+        return dataclasses.replace(self, sine=_normals_meet(g, u.x, u.line, v.x, v.line)[1])
 
     def kind_at(self, run):
         if run.level == "velocity" and all(run.g.grounded(ln.base) and not run.terms(ln.terms)
@@ -1684,18 +1868,55 @@ class _Construction:
 
     def __init__(self, sol):
         self.ref = weakref.ref(sol)
-        self.geo = geo = _Geo(sol)
-        self.plan = _Planner(geo).run()
+        self.geo, self.plan, reported = _planned(sol)
+        self.found, self.aux, self.aux_places, self.link_images = reported
         self.polygons = {}
         self.lean = {}   # level -> a replay without its record (max_error alone: the JSON)
-        # what both levels report of the plan: each step's point keys and auxiliary points found,
-        # every auxiliary place (not a point key, not on the frame) and the links' image figures
-        self.found = [_found_keys(geo, st.found) for st in self.plan]
-        self.aux = [tuple(geo.aux_key(p) for p in st.found if geo.point_key(p) is None) for st in self.plan]
-        self.aux_places = {geo.aux_key(q): q for st in self.plan for p in st.found for q in geo.group(p)
-                           if geo.point_key(q) is None and q[0] != geo.frame}
-        m = sol.mechanism
-        self.link_images = {k.name: tuple(geo.key[(p, k.name)] for p in k.points) for k in m.links}
+
+
+class _Kept(NamedTuple):
+    """A plan kept for its mechanism: the decisions it was made with, its steps, what it reports."""
+
+    tape: _Tape
+    steps: tuple
+    reported: tuple
+
+
+_PLANS: dict = {}   # id(mechanism) -> (weak reference, [_Kept, ...] latest first), dropped with the mechanism
+KEPT_PLANS = 4      # plans kept per mechanism (a sweep across a pose where a decision changes uses two)
+
+
+def _planned(sol) -> tuple:
+    """``(geometry, plan, reported)`` of the solution's pose: a plan kept for its mechanism where this
+    pose makes every decision the plan was made with alike (then the planner would make the same plan;
+    only its sines are the pose's), else the planner's, kept for the next pose."""
+    m = sol.mechanism
+    kept = _of_mechanism(_PLANS, m, list)
+    geo = _Geo(sol)
+    for k, plan in enumerate(kept):
+        if plan.tape.holds(geo):
+            kept.insert(0, kept.pop(k))
+            return geo, [st.at(geo) for st in plan.steps], plan.reported
+        if geo.names:   # auxiliary points placed on the way: a clean geometry for the next
+            geo = _Geo(sol)
+    planner = _Planner(geo)
+    steps = planner.run()
+    reported = _reported(geo, steps, m)
+    if planner.tape.usable:
+        kept.insert(0, _Kept(planner.tape, tuple(steps), reported))
+        del kept[KEPT_PLANS:]
+    return geo, steps, reported
+
+
+def _reported(geo: _Geo, plan, m) -> tuple:
+    """What both levels report of a plan (the mechanism's alone): each step's point keys and auxiliary
+    points found, every auxiliary place (not a point key, not on the frame), the links' image figures."""
+    found = [_found_keys(geo, st.found) for st in plan]
+    aux = [tuple(geo.aux_key(p) for p in st.found if geo.point_key(p) is None) for st in plan]
+    aux_places = {geo.aux_key(q): q for st in plan for p in st.found for q in geo.group(p)
+                  if geo.point_key(q) is None and q[0] != geo.frame}
+    link_images = {k.name: tuple(geo.key[(p, k.name)] for p in k.points) for k in m.links}
+    return found, aux, aux_places, link_images
 
 
 _CACHE: dict = {}   # id(solution) -> _Construction, dropped when the solution is

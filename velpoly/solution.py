@@ -127,24 +127,24 @@ class Solution:
             "title": m.title,
             "units": {"length": m.units},
             "driver": driver,
-            "links": {k.name: {"angle": float(mo.angle[k.name][0]), "omega": float(mo.omega[k.name][0]),
-                               "alpha": _f(mo.alpha[k.name][0])} for k in m.links},
-            "points": {key: {"position": _v(mo.position[key][0]), "velocity": _v(mo.velocity[key][0]),
-                             "acceleration": _v(mo.acceleration[key][0])} for key in mo.position},
+            "links": {k.name: {"angle": mo.angle[k.name].item(), "omega": mo.omega[k.name].item(),
+                               "alpha": _f(mo.alpha[k.name].item())} for k in m.links},
+            "points": {key: {"position": _v(mo.position[key]), "velocity": _v(mo.velocity[key]),
+                             "acceleration": _v(mo.acceleration[key])} for key in mo.position},
             "sliders": [{"block": s.block, "guide": s.guide, "point": s.point,
-                         "slip_velocity": float(r["slip_velocity"][0]),
-                         "slip_acceleration": _f(r["slip_acceleration"][0]),
-                         "coriolis": _v(r["coriolis"][0])} for s, r in zip(m.sliders, mo.sliders)],
+                         "slip_velocity": r["slip_velocity"].item(),
+                         "slip_acceleration": _f(r["slip_acceleration"].item()),
+                         "coriolis": _v(r["coriolis"])} for s, r in zip(m.sliders, mo.sliders)],
             "contacts": [{"links": list(c.links), "point": c.point, "kind": c.kind,
-                          "slip_velocity": float(r["slip_velocity"][0]),
-                          "slip_acceleration": _f(r["slip_acceleration"][0]),
-                          "normal": float(r["normal"][0])} for c, r in zip(m.contacts, mo.contacts)],
+                          "slip_velocity": r["slip_velocity"].item(),
+                          "slip_acceleration": _f(r["slip_acceleration"].item()),
+                          "normal": r["normal"].item()} for c, r in zip(m.contacts, mo.contacts)],
         }
         if m.slots:
             out["slots"] = [{"pin": s.pin, "link": s.link, "slot": s.slot,
-                             "slip_velocity": float(r["slip_velocity"][0]),
-                             "slip_acceleration": _f(r["slip_acceleration"][0]),
-                             "coriolis": _v(r["coriolis"][0])} for s, r in zip(m.slots, mo.slots)]
+                             "slip_velocity": r["slip_velocity"].item(),
+                             "slip_acceleration": _f(r["slip_acceleration"].item()),
+                             "coriolis": _v(r["coriolis"])} for s, r in zip(m.slots, mo.slots)]
         from .poles import poles_section          # the constructions, a layer above the solve: their
         from .polygons import graphical_section   # JSON sections (FORMAT.md section 2), in this order
         for name, section in (("poles", poles_section(self)), ("graphical", graphical_section(self))):
@@ -160,9 +160,11 @@ def _f(x) -> float | None:
     return x if math.isfinite(x) else None
 
 
-def _v(v) -> list | None:
-    x, y = float(v[0]), float(v[1])   # plain floats: a numpy reduction per vector cost half of to_dict's own time
-    return [x, y] if math.isfinite(x) and math.isfinite(y) else None
+def _v(a) -> list | None:
+    """The one pose's vector of a (1, 2) array as plain floats (one ``tolist``: a numpy reduction, or
+    a float per component, per vector cost much of to_dict's own time), None where not finite."""
+    x, y = v = a.tolist()[0]
+    return v if math.isfinite(x) and math.isfinite(y) else None
 
 
 def solve(m: Mechanism, angle: float | None = None) -> Solution:
