@@ -14,12 +14,13 @@ paper.
 """
 from __future__ import annotations
 
+import itertools
 import math
 from dataclasses import dataclass
 
 from .canvas import nice_scale
 
-__all__ = ["MARGIN", "Row", "share_row", "smaller_scale", "arrange", "drawn_size", "drawn_areas", "cover"]
+__all__ = ["MARGIN", "Row", "Band", "Bands", "share_row", "smaller_scale", "arrange", "drawn_size", "drawn_areas", "cover"]
 
 # paper kept about a drawing inside its panel (cm): each side, top, bottom (the scale bar's strip)
 MARGIN = (0.5, 0.45, 1.05)
@@ -152,6 +153,73 @@ class Band:
     left: float = 0.0
 
 
+class Bands(list):
+    """An arrangement: its :class:`Band` s, how large it draws (``score``: :func:`cover`, less the penalty of a
+    second row or a column) and where the table's corner stands (``table_left``, cm from the arrangement's
+    left edge: right of a column at the left)."""
+
+    def __init__(self, bands=(), score: float = 0.0, table_left: float = 0.0):
+        super().__init__(bands)
+        self.score, self.table_left = score, table_left
+
+
+COLUMN_PENALTY = 1.1   # a column beside rows must draw a tenth larger than rows alone (as a second row must)
+
+
+def arrange(spans: dict, names, width: float, top: float, bottom: float, gap: float, caption: float,
+            scales: dict, least: dict, extra: dict | None = None, notch: tuple[float, float] | None = None
+            ) -> Bands:
+    """The panels ``names`` laid out between ``bottom`` and ``top`` (cm) in ``width``: in rows
+    (:func:`_in_rows`), or with the last panel (or the first) in a column at the page's right (left) from
+    ``bottom`` to ``top``, the others in rows beside it (over the table's ``notch``, which then stands
+    beside the column: a tall acceleration polygon at the full height beside the mechanism, the velocity
+    polygon and the table; or the column and the rows both over the table), whichever draws them largest (:func:`cover`; a column must draw a tenth more).
+    The column is as wide as its drawing needs at one of the round scales it can take at that height."""
+    extra = extra or {}
+    best = _in_rows(spans, names, width, top, bottom, gap, caption, scales, least, extra, notch)
+    if len(names) < 2:
+        return best
+    mx, mt, mb = MARGIN
+    # the column down to the bottom beside the table's corner, or (the same as without a corner) over the table
+    grounds = [(bottom, notch)] + ([(bottom + notch[1], None)] if notch is not None else [])
+    for (bottom, notch), first in itertools.product(grounds, (False, True)):
+        height = top - bottom
+        nw, nh = notch if notch is not None else (0.0, 0.0)
+        col, rest = (names[:1], list(names[1:])) if first else (names[-1:], list(names[:-1]))
+        (name,) = col
+        for cw in _column_widths(spans[name], height, least.get(name, 0.0), extra.get(name, 0.0), scales.get(name)):
+            rw = width - cw - gap
+            need = sum(least.get(n, 0.0) for n in rest) + gap * (len(rest) - 1)
+            if rw < max(need, nw + 1e-9 if notch is not None else 0.0) or cw > 0.6 * width:
+                continue
+            if notch is not None and nw < rw - 2 * mx - 1.0:   # room beside the table within the rows
+                sub = _in_rows(spans, rest, rw, top, bottom, gap, caption, scales, least, extra, notch)
+            else:
+                sub = _in_rows(spans, rest, rw, top, bottom + nh, gap, caption, scales, least, extra)
+            row = share_row([spans[name]], cw, height, 0.0, [scales.get(name)], least=[least.get(name, 0.0)],
+                            extra=[extra.get(name, 0.0)])
+            shift = cw + gap if first else 0.0
+            bands = [Band(b.names, b.row, b.height, b.bottom, b.left + shift) for b in sub]
+            bands.append(Band(tuple(col), row, height, bottom, 0.0 if first else rw + gap))
+            score = cover([a for b in bands for a in drawn_areas([spans[n] for n in b.names], b.row)]) / COLUMN_PENALTY
+            if score > best.score + 1e-9:
+                best = Bands(bands, score=score, table_left=shift if notch is not None else 0.0)
+    return best
+
+
+def _column_widths(span, height: float, least: float, extra: float, user) -> list[float]:
+    """The widths (cm) a column ``height`` cm tall takes to draw ``span`` at the largest round scales that fit
+    that height (the largest first, three of them; one at a user's scale)."""
+    mx, mt, mb = MARGIN
+    (w, h), = _spans([span])
+    s = float(user) if user is not None else nice_scale(h / max(height - mt - mb, 0.5))
+    out = []
+    for _ in range(1 if user is not None else 3):
+        out.append(max(w / s + 2 * mx + extra, least))
+        s = nice_scale(s * 1.001)
+    return out
+
+
 def _splits(names):
     """The panels in one row, or in two (the first ones above): the arrangements tried, in this order."""
     yield (tuple(names),)
@@ -168,9 +236,9 @@ def _notched(rows):
         yield rows[-1][:k], rows[-1][k:]
 
 
-def arrange(spans: dict, names, width: float, top: float, bottom: float, gap: float, caption: float,
-            scales: dict, least: dict, extra: dict | None = None, notch: tuple[float, float] | None = None
-            ) -> list[Band]:
+def _in_rows(spans: dict, names, width: float, top: float, bottom: float, gap: float, caption: float,
+             scales: dict, least: dict, extra: dict | None = None, notch: tuple[float, float] | None = None
+             ) -> list[Band]:
     """The panels ``names`` in one row or two between ``bottom`` and ``top`` (cm), whichever draws them
     largest (:func:`cover`; one row unless two cover a tenth more): a wide mechanism
     across the page above its polygons. ``caption``: the height (cm) of a second row's captions. Each row is as tall
@@ -207,7 +275,7 @@ def arrange(spans: dict, names, width: float, top: float, bottom: float, gap: fl
                 score /= 1.0 if len(rows) == 1 else 1.1
                 if best is None or score > best[0] + 1e-9:
                     best = (score, rows, parts, made, split)
-    _, rows, parts, made, split = best
+    score, rows, parts, made, split = best
     alone = split is not None and not split[0]
     heights = [m.height for m in made[:len(rows)]]
     if alone:   # the rows over the table take its height; the last one beside it is as tall as the table
@@ -225,4 +293,4 @@ def arrange(spans: dict, names, width: float, top: float, bottom: float, gap: fl
         else:
             out.append(Band(r, made[i], h, y - h))
         y -= h + caption
-    return out
+    return Bands(out, score=score)

@@ -382,6 +382,8 @@ class _Planner:
         _move(nax, self, EDGE + used)
         bands = arrange(spans, names, self.width, self.top, EDGE, GAP, _caption_cm(self.st, self.lines), users,
                         least, extra, notch=(tw, used + TABLE_GAP))
+        if bands.table_left:   # right of a column at the page's left
+            _move(nax, self, EDGE + used, EDGE + bands.table_left)
         return _cover(spans, bands), bands, nax
 
     def table_beside(self, names, spans, least, users, extra, under):
@@ -524,11 +526,11 @@ def _drawn_width(tab, planner) -> float:
     return (right - x0) / fig.dpi * 2.54
 
 
-def _move(tax, planner, top: float) -> None:
-    """Move the table's axes so that its top stands ``top`` cm from the page's bottom (its texts and rules
-    are in axes coordinates: they move with it)."""
+def _move(tax, planner, top: float, left: float | None = None) -> None:
+    """Move the table's axes so that its top stands ``top`` cm from the page's bottom (and its left ``left`` cm
+    from the page's left edge; its texts and rules are in axes coordinates: they move with it)."""
     x, _, w, h = tax.get_position().bounds
-    tax.set_position((x, top / planner.H - h, w, h))
+    tax.set_position((x if left is None else left / planner.W, top / planner.H - h, w, h))
 
 
 def _measure_table(sol, fig, rect, sheet: str, st, cons: Constructions, table=None):
