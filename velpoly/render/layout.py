@@ -3,7 +3,8 @@
 A sheet's panels stand side by side in a band, or in two bands, the results
 table beneath them across the page, or in the page's bottom left corner with
 the last panels beside it down to the page's bottom (:func:`arrange`'s
-``notch``). Each panel gets the share of the band's width that its drawing
+``notch``); or one panel stands in a column at the page's full height, the
+others in bands beside it (:func:`arrange`). Each panel gets the share of the band's width that its drawing
 needs at the band's height (a wide mechanism a wide panel, a tall polygon a
 narrow one), every drawing at the same fraction of the band first; then each
 scale is rounded (:func:`~velpoly.render.canvas.nice_scale`) and the width
@@ -20,7 +21,7 @@ from dataclasses import dataclass
 
 from .canvas import nice_scale
 
-__all__ = ["MARGIN", "Row", "Band", "Bands", "share_row", "smaller_scale", "arrange", "drawn_size", "drawn_areas", "cover"]
+__all__ = ["MARGIN", "Row", "Band", "Bands", "share_row", "smaller_scale", "arrange", "fuller", "drawn_size", "drawn_areas", "cover"]
 
 # paper kept about a drawing inside its panel (cm): each side, top, bottom (the scale bar's strip)
 MARGIN = (0.5, 0.45, 1.05)
@@ -164,6 +165,7 @@ class Bands(list):
 
 
 COLUMN_PENALTY = 1.1   # a column beside rows must draw a tenth larger than rows alone (as a second row must)
+COLUMN_FILL = 0.6      # of its height (within the margins): the least a column's drawing fills
 
 
 def arrange(spans: dict, names, width: float, top: float, bottom: float, gap: float, caption: float,
@@ -174,9 +176,11 @@ def arrange(spans: dict, names, width: float, top: float, bottom: float, gap: fl
     ``bottom`` to ``top``, the others in rows beside it (over the table's ``notch``, which then stands
     beside the column: a tall acceleration polygon at the full height beside the mechanism, the velocity
     polygon and the table; or the column and the rows both over the table), whichever draws them largest (:func:`cover`; a column must draw a tenth more).
-    The column is as wide as its drawing needs at one of the round scales it can take at that height."""
+    The column is as wide as its drawing needs at one of the round scales it can take at that height, and
+    taken only where its drawing fills :data:`COLUMN_FILL` of that height (a wide drawing in a column wastes
+    it) and where the drawings cover as much paper as in the rows (:func:`fuller`)."""
     extra = extra or {}
-    best = _in_rows(spans, names, width, top, bottom, gap, caption, scales, least, extra, notch)
+    best = rows = _in_rows(spans, names, width, top, bottom, gap, caption, scales, least, extra, notch)
     if len(names) < 2:
         return best
     mx, mt, mb = MARGIN
@@ -198,13 +202,25 @@ def arrange(spans: dict, names, width: float, top: float, bottom: float, gap: fl
                 sub = _in_rows(spans, rest, rw, top, bottom + nh, gap, caption, scales, least, extra)
             row = share_row([spans[name]], cw, height, 0.0, [scales.get(name)], least=[least.get(name, 0.0)],
                             extra=[extra.get(name, 0.0)])
+            if _spans([spans[name]])[0][1] / row.scales[0] < COLUMN_FILL * (height - mt - mb):
+                continue   # a column is for a tall drawing: one that does not fill its height wastes it
             shift = cw + gap if first else 0.0
             bands = [Band(b.names, b.row, b.height, b.bottom, b.left + shift) for b in sub]
             bands.append(Band(tuple(col), row, height, bottom, 0.0 if first else rw + gap))
             score = cover([a for b in bands for a in drawn_areas([spans[n] for n in b.names], b.row)]) / COLUMN_PENALTY
-            if score > best.score + 1e-9:
+            if score > best.score + 1e-9 and fuller(spans, bands, rows):
                 best = Bands(bands, score=score, table_left=shift if notch is not None else 0.0)
     return best
+
+
+def fuller(spans: dict, bands, base) -> bool:
+    """Whether the arrangement ``bands`` covers at least as much paper with its drawings as ``base`` does (the
+    sum of their boxes' areas): one that draws larger by :func:`cover` is taken only where it also uses as
+    much of the page (a drawing grown into a column or beside the table, while another shrinks and leaves
+    its room blank, does not)."""
+    def paper(bs):
+        return sum(a for b in bs for a in drawn_areas([spans[n] for n in b.names], b.row))
+    return paper(bands) >= paper(base) * (1 - 1e-9)
 
 
 def _column_widths(span, height: float, least: float, extra: float, user) -> list[float]:

@@ -36,7 +36,7 @@ from .constructions import Constructions, check_sheet as _check_sheet, construct
 from .displacement import draw_mechanism, equivalent_linkage_note, mark_auxiliary, mechanism_bounds
 from .kennedy import draw_kennedy_circle, draw_poles, pole_label
 from .labels import placer
-from .layout import MARGIN, arrange, cover, drawn_areas, share_row
+from .layout import MARGIN, arrange, cover, drawn_areas, fuller, share_row
 from .options import SHEETS, drawing_options
 from .polygon import draw_polygon, legend_room, polygon_bounds
 from .scalebar import scale_text
@@ -326,7 +326,7 @@ class _Planner:
             tax, bands, room = self.taller_table(tax, bands, room, lambda b: _cover(spans, b), panels)
             size = _cover(spans, bands)
         corner = self.table_in_corner(tax, room, names, spans, least, users, extra) if tax is not None else None
-        if corner is not None and corner[0] > size * (1 + 1e-9):
+        if corner is not None and corner[0] > size * (1 + 1e-9) and fuller(spans, corner[1], bands):
             size, bands, tax = corner
         rects, scales = {}, {}
         for band in bands:
@@ -379,6 +379,13 @@ class _Planner:
         nax, used, _ = self.draw_table(EDGE, tw, room)
         if self.shown < shown:
             return None
+        narrow = _drawn_width(nax, self) + 0.2
+        if narrow < tw - 0.5:   # so narrowed, its blocks stand one under another: narrower still
+            again, more, _ = self.draw_table(EDGE, narrow, room)
+            if self.shown >= shown and more <= used + 1e-6:
+                tw, nax, used = narrow, again, more
+            else:
+                self.draw_table(EDGE, tw, room)   # (the planner's counts: those of the table kept)
         _move(nax, self, EDGE + used)
         bands = arrange(spans, names, self.width, self.top, EDGE, GAP, _caption_cm(self.st, self.lines), users,
                         least, extra, notch=(tw, used + TABLE_GAP))
