@@ -2,8 +2,8 @@
 
 The drawings' sizes come from real constructions of generated mechanisms (tests/zoo.py): every arrangement
 keeps its panels on the page, off each other (captions included), off the table's corner, every drawing in its
-panel; a column is taken only where it draws larger (``score``) than the rows alone, and over the specimens the
-drawings cover at least as much paper as in rows. A generated sheet drawn with and without columns: the
+panel; a column is taken only where it draws larger (``score``) than the rows alone and its drawings cover at
+least as much paper as in rows (over the specimens a tenth more). A generated sheet drawn with and without columns: the
 blank fraction (tests/test_page_fill.py's measure) is lower with them.
 """
 from __future__ import annotations
@@ -87,7 +87,8 @@ def test_columns_keep_panels_apart_and_draw_larger(specimens):
         ratios.append(area / sum(drawn_areas([spans[n] for n in b.names], b.row)[k]
                                  for b in rows for k in range(len(b.names))))
     assert len(ratios) >= 20 and columns >= 5, (len(ratios), columns)
-    assert np.mean(ratios) >= 1.0, np.round(ratios, 3)
+    # never less paper (layout.fuller); over these specimens a tenth more (1.11 when measured)
+    assert min(ratios) >= 1.0 - 1e-9 and np.mean(ratios) >= 1.05, np.round(ratios, 3)
 
 
 @pytest.mark.parametrize("style", [pytest.param("textbook", marks=sheets.on("textbook"))])
