@@ -24,7 +24,7 @@ from shapely.geometry import LineString, Point
 
 from .canvas import (Artists, arrow, border_point, fit_view, get_ax, math_literal, per_cm, per_point, view_box,
                      view_scale)
-from .displacement import draw_mechanism, mechanism_bounds, shape_patch
+from .displacement import SMALLER, draw_mechanism, mechanism_bounds, shape_patch
 from .labels import placer, segment
 from .options import drawing_options
 from .style import get_style
@@ -247,7 +247,6 @@ def _nearer_own(own, rings):
     return accept
 
 
-SMALLER = (0.85, 0.72)   # a pole's label with no free place at its size: these fractions of it tried
 
 
 def _place_free(pl, anchor, text, *, fontsize: float, **kw):

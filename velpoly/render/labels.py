@@ -223,8 +223,9 @@ class LabelPlacer:
         hard = np.array(self.hard, dtype=object)
         boxes = np.array(self.boxes + self.leaders, dtype=object)   # what its box must keep off
         best = None
-        for ring in (gap,) + tuple(r for r in RINGS if r > gap) + FAR_RINGS[3:] + (135.0,):
-            for c, b in self._candidates(anchor, w, h, prefer, ring, 16):
+        # (the far rings in finer steps too: a leader that crosses a label, the worst, is rarely the only way)
+        for ring in sorted({gap, *(r for r in RINGS if r > gap), *FAR_RINGS, 135.0}):
+            for c, b in self._candidates(anchor, w, h, prefer, ring, 24 if ring in FAR_RINGS else 16):
                 if not view.contains(b) or (len(boxes) and bool(np.any(shapely.intersects(boxes, b)))):
                     continue
                 crossed = self._leader_crosses(anchor, b, labels_only=True) if leader and ring >= 9.0 else 0
