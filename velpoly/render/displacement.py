@@ -872,14 +872,19 @@ class _Drawing:
         """A driver's value beside its arrow (at ``at``), off every line where any free place is: at its size, else
         smaller (:data:`SMALLER`) where only that finds such a place (a crowd of Kennedy lines on a poles
         sheet), else at its size where it covers least."""
+        def again():   # placed again, where a later label's leader crosses it (velpoly.render.kennedy)
+            return self.value(at, text, fontsize=fontsize, **kw)
         for f in (1.0,) + SMALLER:
             with self.pl.trial():
                 n = len(self.pl.overlapping)
                 t = self.pl.place(at, text, fontsize=fontsize * f, clear=True, **kw)
                 self.pl.keep = len(self.pl.overlapping) == n and not self.pl.soft_hits(self.pl.box_of(t, pad=0.0))
                 if self.pl.keep:
+                    t._velpoly_again = again
                     return t
-        return self.pl.place(at, text, fontsize=fontsize, clear=True, **kw)
+        t = self.pl.place(at, text, fontsize=fontsize, clear=True, **kw)
+        t._velpoly_again = again
+        return t
 
     def _plan_score(self, p, plan, texts, label_kw) -> tuple:
         """How a plan reads, lower is better: its arcs cross no other link, block or label; then its values
