@@ -733,8 +733,10 @@ def table_page(sol, sheet: str = "full", style="textbook", *, cons: Construction
     W, H = _page_cm(st)
     top = _top(fig, st, title, "", False) + _caption_cm(st, 1) - EDGE
     rect = (EDGE / W, EDGE / H, 1 - 2 * EDGE / W, (top - EDGE) / H)
-    # at the body's type size where that shows every row the book gives, else at the table's own size
-    for size in (st.font_size, (st.font_size + st.small_size) / 2, st.small_size):
+    # at the body's type size where that shows every row the book gives, else smaller, down to 0.72 of the
+    # table's own size (a book that prints some thirty answers with their notes, on a slide)
+    for size in (st.font_size, (st.font_size + st.small_size) / 2, st.small_size, 0.85 * st.small_size,
+                 0.72 * st.small_size):
         big = replace(st, small_size=size)
         lay = _measure_table(sol, fig, rect, sheet, big, cons)
         if not cuts_the_book(lay):

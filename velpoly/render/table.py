@@ -712,7 +712,7 @@ def measure_results_table(sol, room, *, sheet: str = "full", style="textbook", v
     lay.shown = len(shown)
     lay.size = size
     lay.used = min(1.0, (height_pt - y + 0.4 * size) / height_pt)   # the share of the room's height drawn in
-    lay.overflows = y - 0.4 * size < -1e-6   # (its last footnote runs out of the room)
+    lay.overflows = (y - 0.25 * foot_size if lay.notes else bottom) < -1e-6   # (its last line runs out of the room)
     return lay
 
 
