@@ -14,8 +14,8 @@ import copy
 import numpy as np
 import pytest
 
+import sheets
 import velpoly
-from paths import example
 from velpoly.render import sheet
 from velpoly.render.style import get_style, rc_context
 from velpoly.render.table import results_table
@@ -109,22 +109,28 @@ def test_every_book_row_and_footnote_is_drawn(specimens, which, style, name):
             assert bb.x0 >= -1 and bb.y0 >= -1 and bb.x1 <= W + 1 and bb.y1 <= H + 1, t.get_text()
 
 
-def test_the_book_cut_on_one_slide_gets_a_table_page(tmp_path):
+@pytest.mark.parametrize("style", [pytest.param(st, marks=sheets.on(st)) for st in ("textbook", "slides")])
+def test_the_book_cut_on_one_slide_gets_a_table_page(style):
     """The gallery's sheets that cut the book's rows (Example 3.4 on slides: 7 of 14 shown; Example 3.8's poles
-    on slides: 2 of 6; Example 3.10, 13 of 17 in both styles): a table page with all of them; drawn to files, the PDF has two pages and the SVG a second
-    file OUT-table.svg (the sheet keeps what fits); the textbook style has them all on its sheet."""
+    on slides: 2 of 6; Example 3.10, 13 of 17 in both styles): a table page with all of them and their notes;
+    the others keep every row on the sheet (the gallery's own pages, drawn once a worker: tests/sheets.py)."""
+    st = get_style(style)
     for stem, name in (("ex3_4_slotted_lever", "full"), ("ex3_10_rolling_contact", "full"),
                        ("ex3_8_instant_centres_cw", "poles")):
-        sol = velpoly.solve(velpoly.load(example(stem)))
-        cons = sheet.constructions(sol, name)
-        for style in ("slides", "textbook"):
-            st = get_style(style)
-            with rc_context(st):
-                fig = sheet.render_sheet(sol, name, st, cons=cons)
-                page = sheet.table_page(sol, name, st, cons=cons) if fig._velpoly_table_page else None
-            assert (page is not None) == (style == "slides" or stem == "ex3_10_rolling_contact"), f"{stem}/{style}"
-            refs, shown, notes, drawn = _book_rows_drawn(sol, name, cons, fig, page)
-            assert shown >= refs >= 6 and drawn == notes >= 5, (stem, style, refs, shown, notes, drawn)
+        sol, cons = sheets.solved(stem), sheets.constructions(stem, name)
+        fig = sheets.page(stem, name, style)
+        with sheets.styled(style):
+            page = sheet.table_page(sol, name, st, cons=cons) if fig._velpoly_table_page else None
+        assert (page is not None) == (style == "slides" or stem == "ex3_10_rolling_contact"), f"{stem}/{style}"
+        refs, shown, notes, drawn = _book_rows_drawn(sol, name, cons, fig, page)
+        assert shown >= refs >= 6 and drawn == notes >= 5, (stem, style, refs, shown, notes, drawn)
+
+
+def test_the_table_page_is_written(tmp_path):
+    """Drawn to files: the PDF has the table page as its second page, an SVG has it as a second file
+    OUT-table.svg with the footnotes the sheet could not hold."""
+    sol = sheets.solved("ex3_8_instant_centres_cw")
+    cons = sheets.constructions("ex3_8_instant_centres_cw", "poles")
     written = sheet.draw_to_file(sol, tmp_path / "ic.svg", "poles", "slides", cons=cons)
     assert [p.name for p in written] == ["ic.svg", "ic-table.svg"]
     assert "footnote-4" in written[1].read_text() and "footnote-4" not in written[0].read_text()

@@ -782,8 +782,7 @@ def draw_to_file(sol, out, sheet: str = "full", style: str = "textbook", steps: 
         # the finished construction first: every frame then puts things where it has them
         last = render_sheet(sol, sheet, st, cons=cons, frame=pictures[-1])
 
-        # the table on a page of its own (every row the book gives, with its notes): the PDF's last page, else
-        # a file of its own beside OUT, OUT-table.svg (.png)
+        # the table page (every row the book gives, with its notes): the PDF's last page, else OUT-table.svg
         extra = table_page(sol, sheet, st, cons=cons) if last._velpoly_table_page else None
 
         def figures():
