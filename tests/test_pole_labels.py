@@ -70,3 +70,24 @@ def test_pole_labels_and_driver_values_lie_on_no_kennedy_line(style):
         assert not on, (sp.kind, on)
         checked += sum(1 for g in gids if (g or "").startswith(TEXTS))
     assert checked >= 4 * 16, checked
+
+
+def test_driver_values_clear_of_lines_and_leaders_in_a_crowd():
+    """Slides, the dense six-bars of seed 5 whose driver's values lay on a Kennedy line or under a pole label's
+    leader (3 of its first 24: a value with no free place off the lines, a crowded pole's label whose only place
+    had its leader across a value): each value set smaller where only that finds a place off the lines, and
+    placed again clear of a later leader; no driver's value then meets a line or a leader."""
+    st = get_style("slides")
+    specs = sixbars(5, 24)
+    for i in (6, 22, 23):
+        sol = specs[i].drawn
+        with rc_context(st):
+            fig = Figure(figsize=(7.5, 7.0), dpi=72)
+            FigureCanvasAgg(fig)
+            ax = fig.add_axes((0.02, 0.02, 0.96, 0.96))
+            draw_poles(sol, ax, style=st, poleset=locate_poles(sol))
+        values = [t for t in ax.texts if (t.get_gid() or "").startswith("driver-label") and t.get_text()]
+        assert values, specs[i].kind
+        on = [hit for hit in texts_on_lines(ax) if hit[0].startswith("driver-label") or
+              hit[1].startswith("driver-label")]
+        assert not on, (i, specs[i].kind, on)

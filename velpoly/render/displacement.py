@@ -35,6 +35,7 @@ __all__ = ["draw_mechanism", "away_from", "neighbours", "mechanism_bounds", "sha
            "NUMBER_RADIUS"]
 
 PLATE_FILL = "0.9"      # a plate's fill where links are white (textbook): light, so that it reads as one body
+SMALLER = (0.85, 0.72)   # a text with no free place off the lines at its size: these fractions of it tried
 NUMBER_RADIUS = 0.8     # slides: a link number's circle at most this many bar widths in radius
 
 
@@ -784,8 +785,8 @@ class _Drawing:
             self.art.add("driver", *self.straight_arrow(a, b, gid, double=power == 2))
             spots.append(((a + b) / 2, f"{symbol} = {abs(value):.4g} {unit_label(m.units, power)}", label_gid))
         for at, text, label_gid in spots:   # the values once both arrows are drawn: clear of both
-            t = self.pl.place(at, text, prefer=math.degrees(math.atan2(n[1], n[0])), fontsize=st.small_size * 1.15,
-                              zorder=7, gid=label_gid, clear=True)
+            t = self.value(at, text, prefer=math.degrees(math.atan2(n[1], n[0])), fontsize=st.small_size * 1.15,
+                           zorder=7, gid=label_gid)
             self.art.add("driver", t)
 
     def guide_side(self, s, p, n) -> float:
@@ -863,9 +864,27 @@ class _Drawing:
                 arts += self.curved_arrow(xy, gid, double=gid == "driver-alpha")
         for place, label_gid, text in zip(plan, ("driver-label", "driver-label-alpha"), texts):
             if place is not None:
-                labels.append(self.pl.place(p + place.rad * _unit(place.mid), text, prefer=place.mid, gid=label_gid,
-                                            clear=True, **label_kw))
+                labels.append(self.value(p + place.rad * _unit(place.mid), text, prefer=place.mid, gid=label_gid,
+                                         **label_kw))
         return arts, labels
+
+    def value(self, at, text, *, fontsize: float, **kw):
+        """A driver's value beside its arrow (at ``at``), off every line where any free place is: at its size, else
+        smaller (:data:`SMALLER`) where only that finds such a place (a crowd of Kennedy lines on a poles
+        sheet), else at its size where it covers least."""
+        def again():   # placed again, where a later label's leader crosses it (velpoly.render.kennedy)
+            return self.value(at, text, fontsize=fontsize, **kw)
+        for f in (1.0,) + SMALLER:
+            with self.pl.trial():
+                n = len(self.pl.overlapping)
+                t = self.pl.place(at, text, fontsize=fontsize * f, clear=True, **kw)
+                self.pl.keep = len(self.pl.overlapping) == n and not self.pl.soft_hits(self.pl.box_of(t, pad=0.0))
+                if self.pl.keep:
+                    t._velpoly_again = again
+                    return t
+        t = self.pl.place(at, text, fontsize=fontsize, clear=True, **kw)
+        t._velpoly_again = again
+        return t
 
     def _plan_score(self, p, plan, texts, label_kw) -> tuple:
         """How a plan reads, lower is better: its arcs cross no other link, block or label; then its values

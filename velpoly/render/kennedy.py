@@ -24,7 +24,7 @@ from shapely.geometry import LineString, Point
 
 from .canvas import (Artists, arrow, border_point, fit_view, get_ax, math_literal, per_cm, per_point, view_box,
                      view_scale)
-from .displacement import draw_mechanism, mechanism_bounds, shape_patch
+from .displacement import SMALLER, draw_mechanism, mechanism_bounds, shape_patch
 from .labels import placer, segment
 from .options import drawing_options
 from .style import get_style
@@ -154,7 +154,32 @@ def draw_poles(sol, ax=None, *, style="textbook", options=None, poleset=None, up
     _draw_kennedy_lines(ax, klines, st, art)
     _draw_pole_marks(sol, ax, shown, st, art)
     _label_poles(sol, ax, ps, shown, pole_lines, st, art)
+    _off_the_leaders(pl, art)
     return art
+
+
+def _off_the_leaders(pl, art) -> None:
+    """The driver's values that a pole label's leader crosses (they are placed before the poles' labels, and a
+    crowded pole's label may have had no other place) placed again, now clear of the leaders."""
+    lines = [LineString(np.column_stack(t._velpoly_leader.get_data())) for t in art.labels.values()
+             if getattr(t, "_velpoly_leader", None) is not None]
+    for t in [t for t in pl.texts if getattr(t, "_velpoly_again", None) is not None]:
+        box = pl.box_of(t, pad=0.0)
+        if not any(line.intersects(box) for line in lines):
+            continue
+        i = pl.texts.index(t)
+        del pl.texts[i], pl.boxes[i]
+        own = getattr(t, "_velpoly_leader", None)
+        if own is not None:   # its own leader goes with it (no longer an obstacle: it is drawn again)
+            own.remove()
+            keep = [k for k, g in enumerate(pl.leaders) if not g.contains(Point(*own.get_xydata()[-1]))]
+            gone = [pl.leaders[k] for k in range(len(pl.leaders)) if k not in keep]
+            pl.leaders[:] = [pl.leaders[k] for k in keep]
+            pl.hard[:] = [g for g in pl.hard if not any(g is x for x in gone)]
+        t.remove()
+        new = t._velpoly_again()
+        for role in art.values():
+            role[:] = [new if a is t else a for a in role]
 
 
 def _kennedy_lines(ps, shown, current, vb, pc):
@@ -247,7 +272,6 @@ def _nearer_own(own, rings):
     return accept
 
 
-SMALLER = (0.85, 0.72)   # a pole's label with no free place at its size: these fractions of it tried
 
 
 def _place_free(pl, anchor, text, *, fontsize: float, **kw):

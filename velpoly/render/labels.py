@@ -23,11 +23,12 @@ from shapely.geometry import LineString, Point
 
 from .canvas import box, per_point, renderer_of, view_box
 
-__all__ = ["LabelPlacer", "placer", "segment", "half_extent"]
+__all__ = ["LabelPlacer", "placer", "segment", "half_extent", "ALONG_APART"]
 
 # ring radii, in points of gap between the anchor and the box
 RINGS = (2.5, 5.0, 9.0, 14.0, 21.0, 30.0, 42.0, 58.0)
 FAR_RINGS = (9.0, 21.0, 42.0, 80.0, 105.0)   # finer directions, only when nothing above is free
+ALONG_APART = 1.0   # of the type size: the gap two texts along lines keep between their boxes
 LEADER_MOST = 0   # the most lines and outlines a far label's leader (see LabelPlacer.place's clear) may cross
 
 
@@ -46,6 +47,8 @@ class LabelPlacer:
         self.placed: dict = {}
         self.pins: dict = {}
         self.leaders: list = []    # leader lines drawn (also hard obstacles)
+        self.along: list = []      # the boxes of the texts written along lines (a line's reason), each grown by
+        #                            the em its neighbours keep from it
 
     # -- obstacles ---------------------------------------------------------------------
     def add_obstacle(self, geom, hard: bool = True) -> None:
@@ -64,7 +67,7 @@ class LabelPlacer:
         """Draw and place tentatively: on leaving, every label, obstacle, leader and artist added to the axes
         inside is gone again (to score a layout before choosing it), unless ``keep`` was set inside."""
         sizes = [(lst, len(lst)) for lst in (self.boxes, self.texts, self.hard, self.soft, self.leaders,
-                                             self.overlapping)]
+                                             self.overlapping, self.along)]
         placed = dict(self.placed)
         before = {id(a) for a in self.ax.get_children()}
         self.keep = False   # set inside to keep what was placed
@@ -223,8 +226,9 @@ class LabelPlacer:
         hard = np.array(self.hard, dtype=object)
         boxes = np.array(self.boxes + self.leaders, dtype=object)   # what its box must keep off
         best = None
-        for ring in (gap,) + tuple(r for r in RINGS if r > gap) + FAR_RINGS[3:] + (135.0,):
-            for c, b in self._candidates(anchor, w, h, prefer, ring, 16):
+        # (the far rings in finer steps too: a leader that crosses a label, the worst, is rarely the only way)
+        for ring in sorted({gap, *(r for r in RINGS if r > gap), *FAR_RINGS, 135.0}):
+            for c, b in self._candidates(anchor, w, h, prefer, ring, 24 if ring in FAR_RINGS else 16):
                 if not view.contains(b) or (len(boxes) and bool(np.any(shapely.intersects(boxes, b)))):
                     continue
                 crossed = self._leader_crosses(anchor, b, labels_only=True) if leader and ring >= 9.0 else 0
@@ -297,7 +301,9 @@ class LabelPlacer:
 
         Tried at fractions of the segment from its far end inwards, on either side. ``pad``: the
         margin (points) kept between the text's ends and other labels or arrowheads, so that the
-        words do not run on into a label ("... the path of B on 1 O_v").
+        words do not run on into a label ("... the path of B on 1 O_v"). Two texts along lines keep
+        an em (:data:`ALONG_APART` of the type size) apart, so that two reasons never read as one
+        text of two lines (the reasons of two paths along one line, one each side of it).
         """
         ax = self.ax
         p0, p1 = np.asarray(p0, float), np.asarray(p1, float)
@@ -333,12 +339,14 @@ class LabelPlacer:
             # its ends kept ``pad`` from labels and arrowheads (the words must not run on into a label)
             big = affinity.rotate(box(c[0] - w / 2 - grow, c[1] - h / 2, c[0] + w / 2 + grow, c[1] + h / 2), ang,
                                   origin=(c[0], c[1]))
-            if view.contains(b) and self.free(b, soft=True) and (grow == 0 or self.free(big)):
+            if view.contains(b) and self.free(b, soft=True) and (grow == 0 or self.free(big)) and \
+                    not any(g.intersects(b) for g in self.along):
                 t.set_position((float(c[0]), float(c[1])))
                 if gid:
                     self.placed[gid] = ("along", (frac, side))
                 self.boxes.append(b)
                 self.texts.append(t)
+                self.along.append(b.buffer(ALONG_APART * t.get_fontsize() * pp))
                 return t
         t.remove()
         return None

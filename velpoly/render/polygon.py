@@ -274,14 +274,56 @@ class _PolygonDrawing:
         """The construction lines' reasons, where there is room (after the labels, which matter more)."""
         if self.opts is not None and not self.opts.reasons:
             return
-        for line in self.art.get("construction", []):
-            ln = line._velpoly_line
+        for group in _collinear(self.art.get("construction", [])):
+            # lines drawn along one line (the paths of two blocks on one guide): one text, along the longest
+            line = max(group, key=lambda g: float(np.hypot(*np.diff(np.asarray(g.get_data(), float), axis=1).ravel())))
             xs, ys = line.get_data()
-            t = self.pl.place_along((xs[0], ys[0]), (xs[1], ys[1]), prose_tex(ln.reason), pad=8.0,
+            reason = joined_reasons([g._velpoly_line.reason for g in group])
+            t = self.pl.place_along((xs[0], ys[0]), (xs[1], ys[1]), prose_tex(reason), pad=8.0,
                                     fontsize=self.st.small_size * 0.9, style="italic", zorder=6,
                                     gid=line.get_gid() + "-reason")
             if t is not None:
                 self.art.add("reasons", t)
+
+
+def _collinear(lines) -> list[list]:
+    """The construction lines (Line2D, two points each) in groups that lie along one line, in drawing order."""
+    groups: list[list] = []
+    for line in lines:
+        (x0, x1), (y0, y1) = (np.asarray(v, float) for v in line.get_data())
+        p, d = np.array([x0, y0]), np.array([x1 - x0, y1 - y0])
+        for g in groups:
+            (a0, a1), (b0, b1) = (np.asarray(v, float) for v in g[0].get_data())
+            q, e = np.array([a0, b0]), np.array([a1 - a0, b1 - b0])
+            size = max(float(np.hypot(*d)), float(np.hypot(*e)), 1e-300)
+            r = p - q
+            if abs(d[0] * e[1] - d[1] * e[0]) <= 1e-9 * size ** 2 and abs(e[0] * r[1] - e[1] * r[0]) <= 1e-9 * size ** 2:
+                g.append(line)
+                break
+        else:
+            groups.append([line])
+    return groups
+
+
+def joined_reasons(reasons: list[str]) -> str:
+    """The reasons of lines along one line as one text: the same once; two that differ in one word, that word
+    joined ("parallel to the path of E and F on 1", "perpendicular to DE and GF"); else one after the other.
+
+    >>> joined_reasons(["parallel to the path of E on 1", "parallel to the path of F on 1"])
+    'parallel to the path of E and F on 1'
+    >>> joined_reasons(["perpendicular to AB", "perpendicular to AB"])
+    'perpendicular to AB'
+    """
+    unique = list(dict.fromkeys(reasons))
+    words = [r.split(" ") for r in unique]
+    if len(unique) > 1 and len({len(w) for w in words}) == 1:
+        differ = [i for i in range(len(words[0])) if len({w[i] for w in words}) > 1]
+        if len(differ) == 1:
+            i = differ[0]
+            names = [w[i] for w in words]
+            joined = ", ".join(names[:-1]) + " and " + names[-1]
+            return " ".join(words[0][:i] + [joined] + words[0][i + 1:])
+    return "; ".join(unique)
 
 
 def draw_polygon(polygon, ax=None, *, mechanism=None, style="textbook", options=None, scale: float | None = None,

@@ -42,9 +42,10 @@ from .polygon import draw_polygon, legend_room, polygon_bounds
 from .scalebar import scale_text
 from .style import get_style, rc_context
 from ..reference import at_file_pose
-from .table import draw_results_table, given_table, measure_results_table
+from .table import cuts_the_book, draw_results_table, given_table, measure_results_table
 
-__all__ = ["SHEETS", "fit_width", "wrap_caption", "Constructions", "constructions", "render_sheet", "frames", "draw_to_file", "mechanism_svg",
+__all__ = ["SHEETS", "fit_width", "wrap_caption", "Constructions", "constructions", "render_sheet", "table_page", "frames",
+           "draw_to_file", "mechanism_svg",
            "equation_tex", "default_sheet"]
 FORMATS = (".svg", ".png", ".pdf")
 
@@ -711,6 +712,10 @@ def render_sheet(sol, sheet: str = "full", style="textbook", *, cons: Constructi
     title = _page(fig, st, m, sol)
     two = bool(equivalent_linkage_note(m)) and sheet != "poles"
     plan = _plan(fig, sol, st, opts, cons, sheet, _top(fig, st, title, frame.caption, two), True)
+    # the book's rows or notes cut: every one of them on a page of its own (table_page), as the last line says
+    fig._velpoly_table_page = plan.table is not None and cuts_the_book(plan.table)
+    if fig._velpoly_table_page:
+        plan.table.see_table_page()
     if plan.table is not None and frame.table:   # a step before the last: the answers not yet given
         _draw_table(sol, fig, sheet, st, plan.table)
     axes = {name: fig.add_axes(rect, label=name) for name, rect in plan.rects.items()}
@@ -720,6 +725,32 @@ def render_sheet(sol, sheet: str = "full", style="textbook", *, cons: Constructi
     captions = _draw_panels(sol, axes, st, opts, cons, sheet, frame, plan, pins)
     _draw_captions(fig, st, m, axes, captions)
     fig._velpoly_pins = {name: dict(placer(ax).placed) for name, ax in axes.items()}
+    return fig
+
+
+def table_page(sol, sheet: str = "full", style="textbook", *, cons: Constructions | None = None):
+    """The sheet's results table on a page of its own, under the page's title, every row the book gives and
+    its footnotes (the page a sheet adds where its drawings and its table cannot share one page with them:
+    ``fig._velpoly_table_page`` of :func:`render_sheet`'s figure). Call inside the style's rc_context."""
+    from matplotlib.backends.backend_agg import FigureCanvasAgg
+    from matplotlib.figure import Figure
+    st = get_style(style)
+    cons = cons if cons is not None else constructions(sol, sheet)
+    fig = Figure(figsize=st.figsize, dpi=72)
+    FigureCanvasAgg(fig)
+    title = _page(fig, st, sol.mechanism, sol)
+    W, H = _page_cm(st)
+    top = _top(fig, st, title, "", False) + _caption_cm(st, 1) - EDGE
+    rect = (EDGE / W, EDGE / H, 1 - 2 * EDGE / W, (top - EDGE) / H)
+    # at the body's type size where that shows every row the book gives, else smaller, down to 0.72 of the
+    # table's own size (a book that prints some thirty answers with their notes, on a slide)
+    for size in (st.font_size, (st.font_size + st.small_size) / 2, st.small_size, 0.85 * st.small_size,
+                 0.72 * st.small_size):
+        big = replace(st, small_size=size)
+        lay = _measure_table(sol, fig, rect, sheet, big, cons)
+        if not cuts_the_book(lay):
+            break
+    _draw_table(sol, fig, sheet, big, lay)
     return fig
 
 
@@ -760,11 +791,16 @@ def draw_to_file(sol, out, sheet: str = "full", style: str = "textbook", steps: 
         # the finished construction first: every frame then puts things where it has them
         last = render_sheet(sol, sheet, st, cons=cons, frame=pictures[-1])
 
+        # the table page (every row the book gives, with its notes): the PDF's last page, else OUT-table.svg
+        extra = table_page(sol, sheet, st, cons=cons) if last._velpoly_table_page else None
+
         def figures():
             for fr in pictures[:-1]:
                 yield render_sheet(sol, sheet, st, cons=cons, frame=fr, pins=last._velpoly_pins)
             yield last
-        if steps and fmt == "pdf":
+            if extra is not None:
+                yield extra
+        if fmt == "pdf" and (steps or extra is not None):
             from matplotlib.backends.backend_pdf import PdfPages
             with atomic_path(out) as tmp:
                 with PdfPages(tmp, metadata={"CreationDate": None, "ModDate": None}) as pdf:
@@ -776,7 +812,9 @@ def draw_to_file(sol, out, sheet: str = "full", style: str = "textbook", steps: 
             buf = io.BytesIO()
             _save(fig, buf, fmt, st)
             blobs.append(buf.getvalue())
-    targets = [out] if not steps else [_numbered(out, i, len(blobs)) for i in range(1, len(blobs) + 1)]
+    frames_n = len(blobs) - (extra is not None)
+    targets = [out] if not steps else [_numbered(out, i, frames_n) for i in range(1, frames_n + 1)]
+    targets += [out.with_name(f"{out.stem}-table{out.suffix}")] if extra is not None else []
     written = []
     try:
         for target, data in zip(targets, blobs):

@@ -27,7 +27,7 @@ from ..report import Table, fmt
 from .canvas import Artists, equation_tex, get_ax, literal, renderer_of
 from .style import get_style
 
-__all__ = ["results_table", "draw_results_table", "given_table"]
+__all__ = ["results_table", "draw_results_table", "given_table", "cuts_the_book"]
 
 
 _SUPERSCRIPT = str.maketrans("-0123456789", "⁻⁰¹²³⁴⁵⁶⁷⁸⁹")
@@ -520,8 +520,9 @@ class _Widths:
         gap = 1.6 * size   # between columns, points
         widths = self.columns(size)
         need = sum(widths) + gap * (len(widths) - 1)
-        if need > width_pt:
+        if need > width_pt:   # every width and gap in proportion to the type
             size = max(5.0, size * width_pt / need)
+            gap = 1.6 * size
             widths = self.columns(size)
             need = sum(widths) + gap * (len(widths) - 1)
         return size, widths, need, gap
@@ -578,6 +579,14 @@ class TableLayout:
         self.title_size = 0.0
         self.shown = 0
         self.size = self.used = self.whole = 0.0
+        self.overflows = False
+
+    def see_table_page(self) -> None:
+        """The last line, that counts the rows left out, sends the reader to the table page (where the sheet has
+        one: every row with a book's value and every footnote there)."""
+        self.cells = [(x, y, re.sub(r": velpoly solve FILE$", ", every book's value and note: on the table page",
+                                    text), size, style) if style == "italic" else (x, y, text, size, style)
+                      for x, y, text, size, style in self.cells]
 
     def get_position(self):
         from matplotlib.transforms import Bbox
@@ -703,7 +712,20 @@ def measure_results_table(sol, room, *, sheet: str = "full", style="textbook", v
     lay.shown = len(shown)
     lay.size = size
     lay.used = min(1.0, (height_pt - y + 0.4 * size) / height_pt)   # the share of the room's height drawn in
+    lay.overflows = (y - 0.25 * foot_size if lay.notes else bottom) < -1e-6   # (its last line runs out of the room)
     return lay
+
+
+def cuts_the_book(lay: TableLayout) -> bool:
+    """Whether the measured table ``lay`` leaves out a row with a book's value or a footnote (or runs its
+    footnotes out of its room): the sheet then has its table on a page of its own, in the room a page
+    gives it (:func:`velpoly.render.sheet.table_page`)."""
+    t = lay.table
+    if "reference" not in t.header:
+        return False
+    ref = t.header.index("reference")
+    refs = sum(1 for row in t.rows if row[ref])
+    return lay.shown < refs or len(lay.notes) < len(t.notes) or lay.overflows
 
 
 def _paint(lay: TableLayout, ax, st) -> Artists:
