@@ -147,6 +147,25 @@ def test_gallery_readme_has_a_row_per_reference_value(tmp_path):
             assert (f"```text\n{body}\n```" if kind == "pre" else _md(body)) in readme
 
 
+def test_a_sheet_with_a_table_page_links_it_from_the_readme(tmp_path):
+    """A sheet whose table cannot show every book's row beside the drawings writes a table page beside
+    its figure (FORMAT.md, draw); the gallery's README links it under the figure, and only then."""
+    src = two_examples(tmp_path)
+
+    def draw(sol, out, sheet="full", style="textbook", steps=False):
+        written = [atomic_write_bytes(out, b"x")]
+        if "sixbar" in out.name:
+            written.append(atomic_write_bytes(out.with_name(f"{out.stem}-table{out.suffix}"), b"t"))
+        return written
+    result = build_gallery(src, draw=draw)
+    assert not result.failed
+    readme = (src / "README.md").read_text()
+    link = "[the sheet's table page](figures/problem_1_4_4_sixbar-table.png)"
+    assert readme.count("the sheet's table page") == 1 and link in readme
+    assert (src / "figures" / "problem_1_4_4_sixbar-table.png").read_bytes() == b"t"
+    assert readme.index(link) > readme.index("](figures/problem_1_4_4_sixbar.png)")
+
+
 def test_one_failing_example_does_not_stop_the_others(tmp_path, capsys):
     src = two_examples(tmp_path)
     (src / "broken.toml").write_text('title = "broken"\n[points]\nA = [0, 0]\n')

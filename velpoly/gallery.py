@@ -188,8 +188,9 @@ def _md_table(t: Table) -> str:
     return "\n".join(lines) + "\n"
 
 
-def example_markdown(path, sol, figure: str | None) -> str:
-    """The README section of one example: title, file, figure, table, notes, the file's comments."""
+def example_markdown(path, sol, figure: str | None, table_page: str | None = None) -> str:
+    """The README section of one example: title, file, figure (and its table page, where the sheet has
+    one: every row the book gives with its notes), table, notes, the file's comments."""
     m = sol.mechanism
     path = Path(path)
     c = comparison(sol)
@@ -197,6 +198,8 @@ def example_markdown(path, sol, figure: str | None) -> str:
            + (f" · source: {_md(m.reference.source)}" if m.reference.source else ""), ""]
     if figure:
         out += [f"![{_md(m.title)}]({figure})", ""]
+    if table_page:
+        out += [f"Every value the book gives, with its notes: [the sheet's table page]({table_page}).", ""]
     if not m.reference:
         out += ["No printed values to compare (the file has no `[reference]` table): the graphical "
                 "constructions against the analytic solve.", ""]
@@ -388,7 +391,9 @@ def _example(path: Path, out: Path, style: str, copy: bool, draw, keep: bool = F
     figs = _in_memory(draw, sol, target, **kw) if keep else list(draw(sol, target, **kw))
     files += figs
     first = (figs[0][0] if keep else Path(figs[0])) if figs else target
-    text = example_markdown(src, sol, _relative(first, out))   # src: the same text as its copy
+    names = [Path(f[0] if keep else f) for f in figs]
+    page = next((p for p in names if p.stem.endswith("-table")), None)   # the sheet's table page, if any
+    text = example_markdown(src, sol, _relative(first, out), page and _relative(page, out))   # src: its copy's text
     # links in the README point to the example files from where the README is
     text = text.replace(f"]({path.name})", f"]({_relative(path, out)})", 1)
     return m.title, text, files, path
