@@ -154,7 +154,35 @@ class Step:
     sine: float
     auxiliary: tuple = ()
     link: str | None = None
-    caption: str = ""
+    caption: str = field(default_factory=str)   # a factory, not a class attribute: see __getattr__
+
+    # A polygon's steps write their equation and caption when first read (:meth:`_written`): most
+    # uses of a polygon (the JSON's checks, a sheet without step frames) read neither, and writing
+    # them was a third of building the polygons. The texts depend on the plan step and the names of
+    # the pose's places alone, which the rest of the replay does not change: the same strings.
+    def __getattr__(self, name):
+        """``equation`` or ``caption`` of a step built by :meth:`_written`, written on first use and kept."""
+        if name in ("equation", "caption"):
+            texts = self.__dict__.get("_texts")
+            if texts is not None:
+                plan_step, run = texts
+                value = plan_step.equation(run) if name == "equation" else plan_step.caption(run)
+                object.__setattr__(self, name, value)
+                return value
+        raise AttributeError(f"{type(self).__name__!r} object has no attribute {name!r}")
+
+    @classmethod
+    def _written(cls, plan_step, run, **fields) -> "Step":
+        """A step whose equation and caption ``plan_step`` writes from ``run`` when they are first read."""
+        step = object.__new__(cls)
+        step.__dict__.update(fields, _texts=(plan_step, run))
+        return step
+
+    def __getstate__(self):   # a copy or a pickle carries the texts, not the replay
+        return {f.name: getattr(self, f.name) for f in dataclasses.fields(self)}
+
+    def __setstate__(self, state):
+        self.__dict__.update(state)
 
 
 @dataclass(frozen=True)
@@ -1975,7 +2003,7 @@ def _level(c: _Construction, sol, level) -> tuple[Polygon, _Run]:
     return c.polygons[level]
 
 
-def _assemble(c: _Construction, sol, level: str, vel) -> tuple[Polygon, _Run]:
+def _assemble(c: _Construction, sol, level: str, vel, eager: bool = False) -> tuple[Polygon, _Run]:
     geo, m = c.geo, sol.mechanism
     run = _Run(geo, level, vel, record=True)
     steps = []
@@ -1986,10 +2014,12 @@ def _assemble(c: _Construction, sol, level: str, vel) -> tuple[Polygon, _Run]:
         for p in st.found:   # absolute vectors of the images located
             if not geo.grounded(p):
                 run._vec(0j, run.image(p), "absolute", f"{run.X}_{geo.name(p)}", ("point", geo.qkey(p)))
-        kind = st.kind_at(run)
-        steps.append(Step(i, kind, st.equation(run), tuple(run.lines), c.found[i], tuple(run.vectors),
-                          {lk: float(run.rate[lk]) for lk in st.omegas}, float(st.sine_at(run)), c.aux[i], st.link,
-                          st.caption(run)))
+        step = Step._written(st, run, index=i, kind=st.kind_at(run), lines=tuple(run.lines), found=c.found[i],
+                             vectors=tuple(run.vectors), omegas={lk: float(run.rate[lk]) for lk in st.omegas},
+                             sine=float(st.sine_at(run)), auxiliary=c.aux[i], link=st.link)
+        if eager:   # the texts written at once, as the step is drawn (tests: the same as when read later)
+            step.equation, step.caption
+        steps.append(step)
     images, labels, zimages = {}, {}, {}
     for key, p, lk in point_keys(m):
         zimages[key] = run.image((lk, p))
