@@ -1644,6 +1644,12 @@ class PlanStep(ABC):
         """The step at the pose of ``g`` (a plan made at another pose: its numbers at this one)."""
         return self
 
+    def _with_sine(self, sine) -> "PlanStep":
+        """``dataclasses.replace(self, sine=sine)`` without its checks (every pose of a kept plan)."""
+        step = object.__new__(type(self))
+        step.__dict__.update(self.__dict__, sine=sine)
+        return step
+
     @abstractmethod
     def equation(self, run: "_Run") -> str:
         """The step's vector equation (every kind of step below writes its own)."""
@@ -1807,7 +1813,7 @@ class IntersectionStep(PlanStep):
     kind: ClassVar[str] = "intersection"
 
     def at(self, g):
-        return dataclasses.replace(self, sine=_pair_sine(g, *self.lines))
+        return self._with_sine(_pair_sine(g, *self.lines))
 
     def equation(self, run):
         g, X = run.g, run.X
@@ -1830,7 +1836,7 @@ class AuxiliaryPointStep(IntersectionStep):
 
     def at(self, g):
         u, v = self.lines[0].unknown, self.lines[1].unknown
-        return dataclasses.replace(self, sine=_normals_meet(g, u.x, u.line, v.x, v.line)[1])
+        return self._with_sine(_normals_meet(g, u.x, u.line, v.x, v.line)[1])
 
     def kind_at(self, run):
         if run.level == "velocity" and all(run.g.grounded(ln.base) and not run.terms(ln.terms)
