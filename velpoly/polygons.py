@@ -425,6 +425,9 @@ class KnownVector:
         return ("-" if self.sign < 0 else "") + self.label
 
 
+_UNNAMED = ("", ())   # a KnownVector's reverse in a replay that records nothing (its names unused)
+
+
 @dataclass(frozen=True)
 class CentripetalTerm:
     """The normal (centripetal) acceleration of W about Q on a rigid link:
@@ -440,6 +443,8 @@ class CentripetalTerm:
         g = run.g
         om = run.vel.rate[self.link]
         r = g.zpos[self.w] - g.zpos[self.q]
+        if not run.record:   # a replay for its images alone (max_error): the value, no names
+            return [KnownVector("normal", "", normal_acceleration(om, r), (), 1, _UNNAMED)]
         nw, nq = g.name((self.link, self.w)), g.name((self.link, self.q))
         kw, kq = g.qkey((self.link, self.w)), g.qkey((self.link, self.q))
         return [KnownVector("normal", f"A^n_{nw}{nq}", normal_acceleration(om, r), ("normal", self.link, kw, kq), 1,
@@ -457,7 +462,8 @@ class JointMotionTerm:
     w: str
 
     def known(self, run: "_Run") -> list[KnownVector]:
-        return [dataclasses.replace(k, sign=self.sign) for k in run.joint_motion(self.rel, self.w)]
+        sign = self.sign   # each term added sign times (KnownVector built anew: dataclasses.replace's checks cost more)
+        return [KnownVector(k.kind, k.label, k.value, k.of, sign, k.reverse) for k in run.joint_motion(self.rel, self.w)]
 
 
 class UnknownPart(NamedTuple):
@@ -1392,6 +1398,11 @@ class _Run:
         r = self.g.zpos[w] - self.g.zpos[q]
         base = self.image((lk, q))
         rate = self.rate[lk]
+        if not self.record:   # the images alone (max_error): the same arithmetic, no arrows named
+            if self.level == "velocity":
+                return self._mark(base + self._turn(rate_cross(rate, r)))
+            mid = self._mark(base + self._turn(normal_acceleration(self.vel.rate[lk], r)))
+            return self._mark(mid + self._turn(rate_cross(rate, r)))
         name_w, name_q = self.g.name((lk, w)), self.g.name((lk, q))
         kw, kq = self.g.qkey((lk, w)), self.g.qkey((lk, q))
         if self.level == "velocity":
@@ -2041,7 +2052,8 @@ def _assemble(c: _Construction, sol, level: str, vel, eager: bool = False) -> tu
 
 def _max_error(sol, level: str, zimages: dict) -> float:
     """The largest |graphical - analytic| over the points' images, relative to the largest analytic one."""
-    analytic = {k: _z(v) for k, v in (sol.velocity if level == "velocity" else sol.acceleration).items()}
+    mo = sol.motion   # each point's analytic vector, a (1, 2) array, as x + iy
+    analytic = {k: complex(*v.tolist()[0]) for k, v in (mo.velocity if level == "velocity" else mo.acceleration).items()}
     scale_ref = max(map(abs, analytic.values()), default=0.0)
     err = max((abs(zimages[k] - analytic[k]) for k in zimages), default=0.0)
     return err / scale_ref if scale_ref > 0 else err
