@@ -209,7 +209,8 @@ def cmd_draw(args) -> int:
                          hint="end the output's name with .svg, .png or .pdf")
     _, sol = _load_and_solve(args)
     _warn(sol)
-    _matplotlib_without_3d()
+    from .render.style import without_3d
+    without_3d()
     from .render import draw_to_file
     from .render.sheet import default_sheet
     sheet = args.sheet or default_sheet(sol.mechanism)
@@ -217,23 +218,6 @@ def cmd_draw(args) -> int:
     for path in written:
         print(path)
     return 0
-
-
-def _matplotlib_without_3d() -> None:
-    """Import matplotlib's projections without its 3-D one: ``matplotlib.figure`` imports
-    ``mpl_toolkits.mplot3d`` to register it (5-10 % of importing matplotlib, docs/performance.md), and
-    a command's process draws no 3-D axes. Its note that the 3-D projection is unavailable is not shown."""
-    if "matplotlib.projections" in sys.modules or "mpl_toolkits.mplot3d" in sys.modules:
-        return
-    sys.modules["mpl_toolkits.mplot3d"] = None   # its import fails: matplotlib goes on without it
-    try:
-        with warnings.catch_warnings():
-            warnings.filterwarnings("ignore", message="Unable to import Axes3D")
-            import matplotlib.projections  # noqa: F401
-    except ImportError:   # no matplotlib: the drawing says so as before
-        pass
-    finally:
-        del sys.modules["mpl_toolkits.mplot3d"]
 
 
 MIN_STEP = 1e-3   # degrees: 360 000 poses a turn; a finer step would only exhaust the memory
