@@ -14,7 +14,7 @@ process: steadier than wall time on a machine shared with other work):
 * solve:     ``velpoly.solve(m)`` alone, the floor (pose, velocities, accelerations);
 * instant:   solve, both polygons and all poles (``bench_instant.py``'s instant);
 * json text: ``json.dumps(to_dict, indent=2)``, what the command prints, on top of to_dict;
-* before:    to_dict of the velpoly of ``--before`` (default: the commit before issue 20's work),
+* before:    to_dict (and the whole instant) of the velpoly of ``--before`` (default: the commit before issue 20's work),
   exported from git, against this checkout's, each timed alike in a fresh process of its own in
   every round, best of 5 batches each (the ratio before / now comes from these two).
 
@@ -39,14 +39,23 @@ import json, sys, time
 import velpoly
 m = velpoly.load(sys.argv[1])
 calls, repeats = int(sys.argv[2]), int(sys.argv[3])
+from velpoly.polygons import velocity_polygon, acceleration_polygon
+from velpoly.poles import locate_poles
 text = json.dumps(velpoly.solve(m).to_dict(), indent=2, allow_nan=False)
-best = float("inf")
+
+def instant():
+    sol = velpoly.solve(m)
+    velocity_polygon(sol), acceleration_polygon(sol), locate_poles(sol)
+
+instant()
+best = {"best": float("inf"), "instant": float("inf")}
 for _ in range(repeats):
-    t0 = time.process_time()
-    for _ in range(calls):
-        velpoly.solve(m).to_dict()
-    best = min(best, (time.process_time() - t0) / calls)
-print(json.dumps({"best": best, "text": text}))
+    for key, fn in (("best", lambda: velpoly.solve(m).to_dict()), ("instant", instant)):
+        t0 = time.process_time()
+        for _ in range(calls):
+            fn()
+        best[key] = min(best[key], (time.process_time() - t0) / calls)
+print(json.dumps(dict(best, text=text)))
 '''
 
 
@@ -86,7 +95,7 @@ def main(argv=None) -> int:
         if old is None:
             notes.append(f"commit {args.before} not available (git archive failed): no 'before'")
         else:
-            best["before"] = best["now"] = float("inf")
+            best["before"] = best["now"] = best["instant before"] = best["instant now"] = float("inf")
         for fn in contenders.values():
             fn()                                                   # warm-up (prepare is cached per mechanism)
         for _ in range(args.repeats):                              # side by side: one batch of each a round
@@ -103,11 +112,12 @@ def main(argv=None) -> int:
                     print(f"the JSON of {args.before} and of this checkout differ", file=sys.stderr)
                     return 1
                 best[which] = min(best[which], got["best"])
+                best[f"instant {which}"] = min(best[f"instant {which}"], got["instant"])
     name = Path(args.file).name
     print(f"{name}, per call, CPU time, best of {args.repeats} x {CALLS} calls"
           + (f"; the JSON is the same bytes as {args.before}'s" if old is not None else "") + ":")
     for k, v in best.items():
-        print(f"  {k:10s} {v * 1e3:8.3f} ms" + (f"   ({v / best['solve']:.2f}x solve)" if k != "solve" else ""))
+        print(f"  {k:14s} {v * 1e3:8.3f} ms" + (f"   ({v / best['solve']:.2f}x solve)" if k != "solve" else ""))
     t = best["to_dict"]
     rows = [row("to_dict: velpoly.solve(m).to_dict(), six-bar", t * 1e3, "ms", "< 1 ms", t < 1e-3),
             row("to_dict: solve(m) alone (the floor)", best["solve"] * 1e3, "ms"),
@@ -118,7 +128,10 @@ def main(argv=None) -> int:
     if "before" in best:
         rows += [row(f"to_dict before ({args.before}), a process of its own", best["before"] * 1e3, "ms"),
                  row("to_dict now, a process of its own", best["now"] * 1e3, "ms"),
-                 row("to_dict: before / now", best["before"] / best["now"], "x", note="same JSON bytes")]
+                 row("to_dict: before / now", best["before"] / best["now"], "x", note="same JSON bytes"),
+                 row(f"whole instant before ({args.before}), a process of its own", best["instant before"] * 1e3, "ms"),
+                 row("whole instant now, a process of its own", best["instant now"] * 1e3, "ms"),
+                 row("whole instant: before / now", best["instant before"] / best["instant now"], "x")]
     notes.append("CPU time of the process (time.process_time), per call")
     return finish("json", args, rows, notes)
 

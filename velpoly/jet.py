@@ -69,13 +69,17 @@ class Jet:
     def __neg__(self):
         return Jet(-self.v, None if self.g is None else -self.g, -self.vd, -self.h)
 
-    def __sub__(self, o):
-        return self + (-o)
+    def __sub__(self, o):   # a - b is a + (-b) to the bit; one Jet made instead of two
+        if isinstance(o, Jet):
+            return Jet(self.v - o.v, None if self.g is None else self.g - o.g, self.vd - o.vd, self.h - o.h)
+        return Jet(self.v - o, self.g, self.vd, self.h)
 
     def __rsub__(self, o):
-        return (-self) + o
+        return Jet(o - self.v, None if self.g is None else -self.g, -self.vd, -self.h)
 
     def __mul__(self, o):
+        if type(o) is float:   # a constant (a point's reference coordinate): the same products as below
+            return Jet(self.v * o, None if self.g is None else self.g * o, self.vd * o, self.h * o)
         if isinstance(o, Jet):
             return Jet(self.v * o.v,
                        None if self.g is None else self.g * _col(o.v) + o.g * _col(self.v),

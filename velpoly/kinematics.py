@@ -172,11 +172,18 @@ def _involved(system: System, jac, rows, driver) -> tuple[str, ...]:
 
 
 def _rates(kin: Kinematics) -> np.ndarray:
-    eqs = kin.system.equations + (kin.system.driver,)
-    drv = kin.mechanism.driver
-    w = np.array([e.rate for e in eqs])
-    w[-1] = drv.speed if drv.is_slider else drv.omega
-    return w[list(kin.rows)]
+    """The velocity equations' right-hand side (each row's rate, the driver's last), made once per
+    Kinematics (read-only: callers copy it)."""
+    w = kin.__dict__.get("_rates")
+    if w is None:
+        eqs = kin.system.equations + (kin.system.driver,)
+        drv = kin.mechanism.driver
+        w = np.array([e.rate for e in eqs])
+        w[-1] = drv.speed if drv.is_slider else drv.omega
+        w = w[list(kin.rows)]
+        w.setflags(write=False)
+        kin.__dict__["_rates"] = w   # a frozen dataclass: kept beside its fields, as a cached_property would
+    return w
 
 
 def _scaled_cond(system: System, a: np.ndarray, rows) -> np.ndarray:

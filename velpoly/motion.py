@@ -15,6 +15,7 @@ is evaluated at the point's current place. Relative motion along a path
 from __future__ import annotations
 
 import math
+import weakref
 from dataclasses import dataclass, replace
 
 import numpy as np
@@ -524,20 +525,41 @@ def _path_dir1(L: dict, P: dict, s, block: str, guide: str, point: str) -> tuple
     return -(ry / n), rx / n
 
 
+_BASES: dict = {}   # id(mechanism) -> (weak reference, {link: its reference angle or None})
+
+
+def _reference_angles(m: Mechanism) -> dict:
+    """Each link's angle in the reference pose, degrees, from its first point to its second (None for a
+    link of fewer points): the same floats :func:`_link_angles1` computed at every pose, made once."""
+    hit = _BASES.get(id(m))
+    if hit is not None and hit[0]() is m:
+        return hit[1]
+    P, out = m.points, {}
+    for link in m.links:
+        if len(link.points) >= 2:
+            (x0, y0), (x1, y1) = P[link.points[0]], P[link.points[1]]
+            dx, dy = float(x1) - float(x0), float(y1) - float(y0)
+            out[link.name] = math.degrees(math.atan2(dy, dx)) if math.hypot(dx, dy) > 0 else 0.0
+        else:
+            out[link.name] = None
+    _BASES[id(m)] = (weakref.ref(m), out)
+    weakref.finalize(m, _BASES.pop, id(m), None)
+    return out
+
+
 def _link_angles1(m: Mechanism, index: dict, L: dict, q0: list) -> tuple[dict, dict, dict]:
     """:func:`_link_angles` at one pose in plain floats: (angle, omega, alpha), each value a
     (1,) view of one block."""
     P = m.points
     rows = []   # per link: angle, omega, alpha
     block_path = {s.block: s for s in m.sliders}
+    bases = _reference_angles(m)
     for link in m.links:
         b, name = L[link.name], link.name
         k = index.get(name)
         th = 0.0 if k is None else q0[3 * k + 2]
-        if len(link.points) >= 2:
-            (x0, y0), (x1, y1) = P[link.points[0]], P[link.points[1]]
-            dx, dy = float(x1) - float(x0), float(y1) - float(y0)
-            base = math.degrees(math.atan2(dy, dx)) if math.hypot(dx, dy) > 0 else 0.0
+        base = bases[name]
+        if base is not None:
             a = wrap_deg_float(base + math.degrees(th))
         elif name in block_path:
             s = block_path[name]

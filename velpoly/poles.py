@@ -455,18 +455,22 @@ class _Kennedy(_Construction):
     """
 
     def __init__(self, names, twists, condition=1.0, n_constraint=0):
-        twists = [tuple(t) for t in np.asarray(twists, float).tolist()]
+        array = np.asarray(twists, float)
+        twists = array.tolist()
         n = len(names)
         limit = _alike_limit(twists, condition)
         alike = [[False] * n for _ in range(n)]
         pairs = []
+        sqrt = math.sqrt
         for a in range(n):
+            t0, t1, t2 = twists[a]
             for b in range(a + 1, n):
-                ta, tb = twists[a], twists[b]
-                if limit < 0 or _norm3((ta[0] - tb[0], ta[1] - tb[1], ta[2] - tb[2])) <= limit:
+                u0, u1, u2 = twists[b]   # _norm3 of the difference, written out
+                d0, d1, d2 = t0 - u0, t1 - u1, t2 - u2
+                if limit < 0 or sqrt(d0 * d0 + d1 * d1 + d2 * d2) <= limit:
                     alike[a][b] = alike[b][a] = True
                     pairs.append((a, b))
-        super().__init__(names, twists, alike, pairs)
+        super().__init__(names, array, alike, pairs)
         m = n + n_constraint
         self.pole = [[(0.0, 0.0, 0.0)] * n for _ in range(n)]
         self.state = [[_UNKNOWN] * n for _ in range(n)]
@@ -502,26 +506,36 @@ class _Kennedy(_Construction):
         P_xy P_xc carries the unknown P_yc (triangle y, c, x of the Kennedy circle)."""
         state, pole, sqrt = self.state, self.pole, math.sqrt
         drawn = []
+        known = {}   # x -> the links c with P_xc known (the states do not change here)
         for x, y in [(a, b) for a, b in new] + [(b, a) for a, b in new]:
-            sx, sy = state[x], state[y]
-            a0, a1, a2 = pole[x][y]
-            for c in range(self.n):
-                if sx[c] != _KNOWN or sy[c] != _UNKNOWN:
+            px, sy = pole[x], state[y]
+            a0, a1, a2 = px[y]
+            kx = known.get(x)
+            if kx is None:
+                kx = known[x] = [c for c, u in enumerate(state[x]) if u == _KNOWN]
+            for c in kx:
+                if sy[c] != _UNKNOWN:
                     continue
-                b0, b1, b2 = pole[x][c]   # the line P_xy x P_xc (_cross3 and _norm3 written out: the same floats)
+                b0, b1, b2 = px[c]   # the line P_xy x P_xc (_cross3 and _norm3 written out: the same floats)
                 l0, l1, l2 = a1 * b2 - a2 * b1, a2 * b0 - a0 * b2, a0 * b1 - a1 * b0
                 sep = sqrt(l0 * l0 + l1 * l1 + l2 * l2)
-                q = min(1.0, sep / _CLOSE) if sep >= _DEGENERATE else 0.0
-                line = (l0 / sep, l1 / sep, l2 / sep) if sep > 0 else (l0, l1, l2)
-                drawn.append((x, y, c, line, q))
+                if sep >= _DEGENERATE:
+                    q = sep / _CLOSE
+                    if not q < 1.0:    # min(1.0, q)
+                        q = 1.0
+                else:
+                    q = 0.0
+                drawn.append((x, y, c, (l0 / sep, l1 / sep, l2 / sep) if sep > 0 else (l0, l1, l2), q))
         # P_yc's line through P_xy and P_xc may come from both new poles (then with opposite signs):
         # L[y][c] keeps the one drawn from P_xc, L[c][y] the one from P_xy
-        best = self.best
+        best, lines, quality = self.best, self.line, self.quality
         for x, y, c, line, q in drawn:
-            self.line[y][c][x], self.quality[y][c][x] = line, q
+            lines[y][c][x] = line
+            quality[y][c][x] = q
             best.pop((y, c) if y < c else (c, y), None)
         for x, y, c, line, q in drawn:
-            self.line[c][y][x], self.quality[c][y][x] = line, q
+            lines[c][y][x] = line
+            quality[c][y][x] = q
 
     def drawn(self, a, b) -> list:
         """The lines drawn for the pair: [(slot, line, quality)], in slot order."""
@@ -538,8 +552,9 @@ class _Kennedy(_Construction):
         n, state, memo = self.n, self.state, self.best
         out = []
         for a in range(n):
+            sa = state[a]
             for b in range(a + 1, n):
-                if state[a][b] != _UNKNOWN:
+                if sa[b] != _UNKNOWN:
                     continue
                 best = memo.get((a, b), False)
                 if best is False:
@@ -548,9 +563,9 @@ class _Kennedy(_Construction):
                     continue
                 score, i, j, li, lj, x, proj, sine = best
                 if proj >= _DEGENERATE and score >= _BLUNT:
-                    out.append((a, b, score, dict(how=None, slots=(i, j), sine=min(1.0, sine),
-                                                  line_vectors=(list(li), list(lj)),
-                                                  h=(x[0] / proj, x[1] / proj, x[2] / proj))))
+                    out.append((a, b, score, {"how": None, "slots": (i, j), "sine": sine if sine < 1.0 else 1.0,
+                                              "line_vectors": (list(li), list(lj)),
+                                              "h": (x[0] / proj, x[1] / proj, x[2] / proj)}))
         if self.any_alike:   # some links move alike: copy their poles
             done = {(a, b) for a, b, _, _ in out}
             for a in range(n):
@@ -568,21 +583,21 @@ class _Kennedy(_Construction):
         their meet x, |x|, sine)``, None where fewer than two are drawn."""
         hypot, sqrt = math.hypot, math.sqrt
         lines = self.drawn(a, b)
-        best = None
-        for u in range(len(lines)):
+        best, top = None, 0.0
+        for u in range(len(lines) - 1):
             i, li, qi = lines[u]
             ni = hypot(li[0], li[1])
             a0, a1, a2 = li
             for v in range(u + 1, len(lines)):
                 j, lj, qj = lines[v]
                 b0, b1, b2 = lj   # x = li x lj, proj = |x| (_cross3, _norm3 written out)
-                x = (a1 * b2 - a2 * b1, a2 * b0 - a0 * b2, a0 * b1 - a1 * b0)
-                proj = sqrt(x[0] * x[0] + x[1] * x[1] + x[2] * x[2])
+                x0, x1, x2 = a1 * b2 - a2 * b1, a2 * b0 - a0 * b2, a0 * b1 - a1 * b0
+                proj = sqrt(x0 * x0 + x1 * x1 + x2 * x2)
                 den = ni * hypot(b0, b1)
-                sine = abs(x[2]) / den if den > 0 else 0.0
-                score = max(sine, proj) * qi * qj
-                if best is None or score > best[0]:
-                    best = (score, i, j, li, lj, x, proj, sine)
+                sine = abs(x2) / den if den > 0 else 0.0
+                score = (proj if proj > sine else sine) * qi * qj   # max(sine, proj)
+                if best is None or score > top:
+                    best, top = (score, i, j, li, lj, (x0, x1, x2), proj, sine), score
         return best
 
     def most_lines(self) -> tuple[int, int]:

@@ -154,7 +154,35 @@ class Step:
     sine: float
     auxiliary: tuple = ()
     link: str | None = None
-    caption: str = ""
+    caption: str = field(default_factory=str)   # a factory, not a class attribute: see __getattr__
+
+    # A polygon's steps write their equation and caption when first read (:meth:`_written`): most
+    # uses of a polygon (the JSON's checks, a sheet without step frames) read neither, and writing
+    # them was a third of building the polygons. The texts depend on the plan step and the names of
+    # the pose's places alone, which the rest of the replay does not change: the same strings.
+    def __getattr__(self, name):
+        """``equation`` or ``caption`` of a step built by :meth:`_written`, written on first use and kept."""
+        if name in ("equation", "caption"):
+            texts = self.__dict__.get("_texts")
+            if texts is not None:
+                plan_step, run = texts
+                value = plan_step.equation(run) if name == "equation" else plan_step.caption(run)
+                object.__setattr__(self, name, value)
+                return value
+        raise AttributeError(f"{type(self).__name__!r} object has no attribute {name!r}")
+
+    @classmethod
+    def _written(cls, plan_step, run, **fields) -> "Step":
+        """A step whose equation and caption ``plan_step`` writes from ``run`` when they are first read."""
+        step = object.__new__(cls)
+        step.__dict__.update(fields, _texts=(plan_step, run))
+        return step
+
+    def __getstate__(self):   # a copy or a pickle carries the texts, not the replay
+        return {f.name: getattr(self, f.name) for f in dataclasses.fields(self)}
+
+    def __setstate__(self, state):
+        self.__dict__.update(state)
 
 
 @dataclass(frozen=True)
@@ -397,6 +425,9 @@ class KnownVector:
         return ("-" if self.sign < 0 else "") + self.label
 
 
+_UNNAMED = ("", ())   # a KnownVector's reverse in a replay that records nothing (its names unused)
+
+
 @dataclass(frozen=True)
 class CentripetalTerm:
     """The normal (centripetal) acceleration of W about Q on a rigid link:
@@ -412,6 +443,8 @@ class CentripetalTerm:
         g = run.g
         om = run.vel.rate[self.link]
         r = g.zpos[self.w] - g.zpos[self.q]
+        if not run.record:   # a replay for its images alone (max_error): the value, no names
+            return [KnownVector("normal", "", normal_acceleration(om, r), (), 1, _UNNAMED)]
         nw, nq = g.name((self.link, self.w)), g.name((self.link, self.q))
         kw, kq = g.qkey((self.link, self.w)), g.qkey((self.link, self.q))
         return [KnownVector("normal", f"A^n_{nw}{nq}", normal_acceleration(om, r), ("normal", self.link, kw, kq), 1,
@@ -429,7 +462,8 @@ class JointMotionTerm:
     w: str
 
     def known(self, run: "_Run") -> list[KnownVector]:
-        return [dataclasses.replace(k, sign=self.sign) for k in run.joint_motion(self.rel, self.w)]
+        sign = self.sign   # each term added sign times (KnownVector built anew: dataclasses.replace's checks cost more)
+        return [KnownVector(k.kind, k.label, k.value, k.of, sign, k.reverse) for k in run.joint_motion(self.rel, self.w)]
 
 
 class UnknownPart(NamedTuple):
@@ -1364,6 +1398,11 @@ class _Run:
         r = self.g.zpos[w] - self.g.zpos[q]
         base = self.image((lk, q))
         rate = self.rate[lk]
+        if not self.record:   # the images alone (max_error): the same arithmetic, no arrows named
+            if self.level == "velocity":
+                return self._mark(base + self._turn(rate_cross(rate, r)))
+            mid = self._mark(base + self._turn(normal_acceleration(self.vel.rate[lk], r)))
+            return self._mark(mid + self._turn(rate_cross(rate, r)))
         name_w, name_q = self.g.name((lk, w)), self.g.name((lk, q))
         kw, kq = self.g.qkey((lk, w)), self.g.qkey((lk, q))
         if self.level == "velocity":
@@ -1616,6 +1655,12 @@ class PlanStep(ABC):
         """The step at the pose of ``g`` (a plan made at another pose: its numbers at this one)."""
         return self
 
+    def _with_sine(self, sine) -> "PlanStep":
+        """``dataclasses.replace(self, sine=sine)`` without its checks (every pose of a kept plan)."""
+        step = object.__new__(type(self))
+        step.__dict__.update(self.__dict__, sine=sine)
+        return step
+
     @abstractmethod
     def equation(self, run: "_Run") -> str:
         """The step's vector equation (every kind of step below writes its own)."""
@@ -1779,7 +1824,7 @@ class IntersectionStep(PlanStep):
     kind: ClassVar[str] = "intersection"
 
     def at(self, g):
-        return dataclasses.replace(self, sine=_pair_sine(g, *self.lines))
+        return self._with_sine(_pair_sine(g, *self.lines))
 
     def equation(self, run):
         g, X = run.g, run.X
@@ -1802,7 +1847,7 @@ class AuxiliaryPointStep(IntersectionStep):
 
     def at(self, g):
         u, v = self.lines[0].unknown, self.lines[1].unknown
-        return dataclasses.replace(self, sine=_normals_meet(g, u.x, u.line, v.x, v.line)[1])
+        return self._with_sine(_normals_meet(g, u.x, u.line, v.x, v.line)[1])
 
     def kind_at(self, run):
         if run.level == "velocity" and all(run.g.grounded(ln.base) and not run.terms(ln.terms)
@@ -1975,7 +2020,7 @@ def _level(c: _Construction, sol, level) -> tuple[Polygon, _Run]:
     return c.polygons[level]
 
 
-def _assemble(c: _Construction, sol, level: str, vel) -> tuple[Polygon, _Run]:
+def _assemble(c: _Construction, sol, level: str, vel, eager: bool = False) -> tuple[Polygon, _Run]:
     geo, m = c.geo, sol.mechanism
     run = _Run(geo, level, vel, record=True)
     steps = []
@@ -1986,10 +2031,12 @@ def _assemble(c: _Construction, sol, level: str, vel) -> tuple[Polygon, _Run]:
         for p in st.found:   # absolute vectors of the images located
             if not geo.grounded(p):
                 run._vec(0j, run.image(p), "absolute", f"{run.X}_{geo.name(p)}", ("point", geo.qkey(p)))
-        kind = st.kind_at(run)
-        steps.append(Step(i, kind, st.equation(run), tuple(run.lines), c.found[i], tuple(run.vectors),
-                          {lk: float(run.rate[lk]) for lk in st.omegas}, float(st.sine_at(run)), c.aux[i], st.link,
-                          st.caption(run)))
+        step = Step._written(st, run, index=i, kind=st.kind_at(run), lines=tuple(run.lines), found=c.found[i],
+                             vectors=tuple(run.vectors), omegas={lk: float(run.rate[lk]) for lk in st.omegas},
+                             sine=float(st.sine_at(run)), auxiliary=c.aux[i], link=st.link)
+        if eager:   # the texts written at once, as the step is drawn (tests: the same as when read later)
+            step.equation, step.caption
+        steps.append(step)
     images, labels, zimages = {}, {}, {}
     for key, p, lk in point_keys(m):
         zimages[key] = run.image((lk, p))
@@ -2005,7 +2052,8 @@ def _assemble(c: _Construction, sol, level: str, vel) -> tuple[Polygon, _Run]:
 
 def _max_error(sol, level: str, zimages: dict) -> float:
     """The largest |graphical - analytic| over the points' images, relative to the largest analytic one."""
-    analytic = {k: _z(v) for k, v in (sol.velocity if level == "velocity" else sol.acceleration).items()}
+    mo = sol.motion   # each point's analytic vector, a (1, 2) array, as x + iy
+    analytic = {k: complex(*v.tolist()[0]) for k, v in (mo.velocity if level == "velocity" else mo.acceleration).items()}
     scale_ref = max(map(abs, analytic.values()), default=0.0)
     err = max((abs(zimages[k] - analytic[k]) for k in zimages), default=0.0)
     return err / scale_ref if scale_ref > 0 else err
