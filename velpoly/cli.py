@@ -209,8 +209,6 @@ def cmd_draw(args) -> int:
                          hint="end the output's name with .svg, .png or .pdf")
     _, sol = _load_and_solve(args)
     _warn(sol)
-    from .render.style import without_3d
-    without_3d()
     from .render import draw_to_file
     from .render.sheet import default_sheet
     sheet = args.sheet or default_sheet(sol.mechanism)

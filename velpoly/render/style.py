@@ -15,7 +15,7 @@ from dataclasses import dataclass
 from ..errors import InputError
 
 __all__ = ["Style", "STYLES", "get_style", "rc_context", "link_colour", "link_fill", "KIND_LABELS", "share_mathtext",
-           "preload", "without_3d"]
+           "preload"]
 
 # Line styles of the polygons' vectors: each kind recognisable in black and white.
 KIND_LABELS = {
@@ -184,26 +184,6 @@ def share_mathtext() -> bool:
     parse.cache_info = cached.cache_info
     MathTextParser._parse_cached = parse
     return True
-
-
-def without_3d() -> None:
-    """Import matplotlib's projections without its 3-D one, for a command's process (``velpoly draw``):
-    ``matplotlib.figure`` imports ``mpl_toolkits.mplot3d`` to register it (5-10 % of importing
-    matplotlib, docs/performance.md), and no velpoly figure is 3-D. Its note that the 3-D projection
-    is unavailable is not shown. Does nothing where matplotlib's projections are loaded already."""
-    import sys
-    import warnings
-    if "matplotlib.projections" in sys.modules or "mpl_toolkits.mplot3d" in sys.modules:
-        return
-    sys.modules["mpl_toolkits.mplot3d"] = None   # its import fails: matplotlib goes on without it
-    try:
-        with warnings.catch_warnings():
-            warnings.filterwarnings("ignore", message="Unable to import Axes3D")
-            import matplotlib.projections  # noqa: F401
-    except ImportError:   # no matplotlib: the drawing says so as before
-        pass
-    finally:
-        del sys.modules["mpl_toolkits.mplot3d"]
 
 
 def preload() -> None:
