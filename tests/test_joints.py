@@ -331,9 +331,24 @@ def assert_rates_are_those_of_the_poses(w, rate, h):
         assert np.abs(fd - w.qd[i]).max() <= 1e-6 * np.abs(w.qd[i]).max(), w.angles[i]
 
 
+TRIPLES_H = 1e-3     # deg: the triples of driver angles h apart at which rates are differenced
+
+
 def five_turns(omega: float) -> np.ndarray:
-    """Five turns of the driver from 30 deg in the sense of ``omega``: s t / D = 6 rad at slip 60."""
-    return 5 * np.sign(omega) * np.arange(0, 361, 2.0) + 30.0
+    """Five turns of the driver from 30 deg in the sense of ``omega`` every 10 deg (s t / D = 6 rad at slip 60),
+    with triples ``TRIPLES_H`` apart about four angles on the way (one sweep serves the rates' differences too;
+    it walked the five turns once more to reach them)."""
+    grid = 5 * np.arange(0, 361, 2.0)
+    base = np.array([17.0, 400.0, 1000.0, 1700.0])
+    near = (base[:, None] + TRIPLES_H * np.array([-1, 0, 1])).ravel()
+    return np.sign(omega) * np.unique(np.concatenate([grid, near])) + 30.0
+
+
+def triples(w) -> list[int]:
+    """The indices in a sweep over ``five_turns`` of its triples, each in ascending angle (its middle angle's
+    neighbours TRIPLES_H apart)."""
+    d = np.abs(np.diff(w.angles))
+    return [int(j) for i in np.flatnonzero(d < 2 * TRIPLES_H)[::2] for j in i + np.argsort(w.angles[i:i + 3])]
 
 
 @functools.cache
@@ -359,13 +374,11 @@ def test_prescribed_slip_sweeps_with_the_driver_at_a_constant_rate(slip, omega):
     t = np.radians(turns - 30.0) / omega
     k = 3 * list(m.moving_links).index(m.link("4")) + 2
     assert w.q[:, k] - wr.q[:, k] == pytest.approx(slip * t / 5, abs=1e-9)
-    # velocities against differences of the poses, anywhere on the way; accelerations too
-    h = 1e-3
-    base = 30.0 + np.array([17.0, 400.0, 1000.0, 1700.0]) * np.sign(omega)
-    fine = velpoly.sweep(m, np.concatenate([[30.0], (base[:, None] + h * np.array([-1, 0, 1])).ravel()]))
-    assert len(fine.angles) == 13
-    fine = dataclasses.replace(fine, angles=fine.angles[1:], q=fine.q[1:], qd=fine.qd[1:])
-    assert_rates_are_those_of_the_poses(fine, omega, math.radians(h))
+    # velocities against differences of the poses, anywhere on the way (the sweep's triples); accelerations too
+    at = triples(w)
+    assert len(at) == 12 and w.angles[at[1]] == 30.0 + 17.0 * np.sign(omega)
+    fine = dataclasses.replace(w, angles=w.angles[at], q=w.q[at], qd=w.qd[at])
+    assert_rates_are_those_of_the_poses(fine, omega, math.radians(TRIPLES_H))
     fd_check(m, 200.0)
     # at the reference angle the sweep is the drawn pose's solution, elsewhere that of solve(angle)
     ref, there = velpoly.solve(m), velpoly.solve(m, angle=200.0)

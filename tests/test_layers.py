@@ -13,6 +13,7 @@
 from __future__ import annotations
 
 import ast
+import functools
 import re
 from pathlib import Path
 
@@ -20,6 +21,24 @@ import pytest
 
 PACKAGE = Path(__file__).resolve().parent.parent / "velpoly"
 COMMAND_LINE = {"velpoly.cli", "velpoly.__main__"}   # the only modules that print or exit
+# every rule reads the same trees: parsed and walked once per worker (the module's tests on one worker)
+pytestmark = pytest.mark.xdist_group("layers")
+
+
+@functools.cache
+def _parsed(path: str, text: str) -> tuple[ast.Module, tuple]:
+    tree = ast.parse(text, path)
+    return tree, tuple(ast.walk(tree))
+
+
+def tree(path: Path) -> ast.Module:
+    """The module's syntax tree, parsed once for each text it has (read only)."""
+    return _parsed(str(path), path.read_text(encoding="utf-8"))[0]
+
+
+def nodes(path: Path) -> tuple:
+    """``ast.walk`` of the module's tree, in its order, walked once for each text the file has."""
+    return _parsed(str(path), path.read_text(encoding="utf-8"))[1]
 
 
 def modules(package: Path) -> dict[str, Path]:
@@ -53,7 +72,7 @@ def import_graph(package: Path = PACKAGE) -> tuple[dict[str, set], dict[str, lis
     edges, named = {}, {}
     for name, path in mods.items():
         edges[name], named[name] = set(), []
-        for node in ast.walk(ast.parse(path.read_text(encoding="utf-8"), str(path))):
+        for node in nodes(path):
             if isinstance(node, (ast.Import, ast.ImportFrom)):
                 for target in imported(name, path, node):
                     named[name].append((node.lineno, target))
@@ -146,7 +165,7 @@ def test_only_the_command_line_prints_or_exits():
         if name in COMMAND_LINE:
             continue
         found += [f"{name} line {line}: {what}"
-                  for line, what in output_calls(ast.parse(path.read_text(encoding="utf-8")))]
+                  for line, what in output_calls(tree(path))]
     assert not found, "output outside velpoly/cli.py: " + "; ".join(found)
 
 
@@ -233,9 +252,9 @@ def foreign_private_names(package: Path = PACKAGE) -> set[tuple[str, str]]:
     mods = modules(package)
     out = set()
     for name, path in mods.items():
-        tree = ast.parse(path.read_text(encoding="utf-8"))
+        walked = nodes(path)
         aliases = {}   # local name -> the package's module it is bound to
-        for node in ast.walk(tree):
+        for node in walked:
             if isinstance(node, ast.ImportFrom):
                 base = imported(name, path, node)[0]
                 out |= {(name, f"{base}.{a.name}") for a in node.names if _private(a.name) and base != name}
@@ -243,7 +262,7 @@ def foreign_private_names(package: Path = PACKAGE) -> set[tuple[str, str]]:
                                 if f"{base}.{a.name}" in mods})
             elif isinstance(node, ast.Import):
                 aliases.update({a.asname: a.name for a in node.names if a.asname and a.name in mods})
-        out |= {(name, f"{aliases[node.value.id]}.{node.attr}") for node in ast.walk(tree)
+        out |= {(name, f"{aliases[node.value.id]}.{node.attr}") for node in walked
                 if isinstance(node, ast.Attribute) and isinstance(node.value, ast.Name) and _private(node.attr)
                 and aliases.get(node.value.id, name) != name}
     return out
@@ -285,7 +304,7 @@ def long_functions(package: Path = PACKAGE, longest: int = LONGEST) -> dict[str,
             else:
                 walk(child, f"{prefix}.{child.name}" if isinstance(child, ast.ClassDef) else prefix)
     for name, path in modules(package).items():
-        walk(ast.parse(path.read_text(encoding="utf-8")), name)
+        walk(tree(path), name)
     return out
 
 

@@ -48,7 +48,7 @@ def blank_fraction(fig, dpi: float = 30.0, restore: bool = True) -> float:
     ink = (np.asarray(fig.canvas.buffer_rgba())[:, :, :3] < 235).any(axis=2)
     if restore:
         fig.set_dpi(72)
-        fig.canvas.draw()
+        fig.draw_without_rendering()   # laid out again at 72 dpi as tests/sheets.py left it (a third of a draw's cost)
     cell = dpi / 2.54
     ny, nx = int(ink.shape[0] / cell), int(ink.shape[1] / cell)
     blank = [not ink[int(i * cell):int((i + 1) * cell), int(j * cell):int((j + 1) * cell)].any()
