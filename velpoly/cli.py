@@ -19,6 +19,9 @@ import warnings
 from pathlib import Path
 
 from .errors import InputError, VelpolyError, one_line
+# at once, not when a signal comes: a Ctrl-C while a command imports fileio must find it whole
+from .fileio import (atomic_write_text, check_not_input, forget_inputs, interrupted, note_interrupt, protect_input,
+                     raise_if_interrupted)
 
 __all__ = ["main", "build_parser"]
 
@@ -202,7 +205,6 @@ def cmd_solve(args) -> int:
 def cmd_draw(args) -> int:
     out = Path(args.output) if args.output else Path(Path(args.file).stem + ".svg")
     if not args.output:   # the default name can be the input's own (a file named mech.svg)
-        from .fileio import check_not_input
         check_not_input(out, args.file, "-o", default=True)
     if out.suffix.lower() not in FIGURE_SUFFIXES:
         raise InputError(f"unknown figure type {out.suffix or '(none)'!r}", where="-o", file=str(out),
@@ -251,7 +253,6 @@ def cmd_sweep(args) -> int:
                             f"stays at infinity, no centrode")
     written = []
     if csv_out:
-        from .fileio import atomic_write_text
         from .report import cycle_csv
         written.append(atomic_write_text(csv_out, cycle_csv(sw, cen)))
     if plot_out or gif_out:
@@ -491,7 +492,6 @@ class Terminated(BaseException):
 
 
 def _on_signal(signum, frame):
-    from .fileio import note_interrupt
     note_interrupt()
     raise Terminated if signum == signal.SIGTERM else KeyboardInterrupt
 
@@ -500,7 +500,6 @@ def _unraisable(hook):
     """``sys.unraisablehook`` that records a Ctrl-C Python had to swallow (in a callback or ``__del__``)."""
     def unraisable(u):
         if isinstance(u.exc_value, (KeyboardInterrupt, Terminated)):
-            from .fileio import note_interrupt
             note_interrupt()
             return
         hook(u)
@@ -561,7 +560,6 @@ def _silence_stdout() -> None:
 
 def _check_outputs(args) -> None:
     """No output option names the input file (FORMAT.md section 3); the input is never written."""
-    from .fileio import check_not_input, forget_inputs, protect_input
     forget_inputs()
     file = getattr(args, "file", None)
     if not file:
@@ -587,7 +585,7 @@ def main(argv=None) -> int:
     finally:
         if sys.stdout is not stdout and isinstance(sys.stdout, _Stdout):
             sys.stdout = stdout
-        from .fileio import interrupted
+        _forget_unhandled_interrupt()   # a Ctrl-C handled here is handled (exit 130, not killed by SIGINT)
         if argv is None and interrupted():
             # the program (not a caller in Python) stops now: objects a library left half-built when
             # interrupted may fail in their __del__ at exit, which is no news to the user
@@ -596,6 +594,14 @@ def main(argv=None) -> int:
             sys.unraisablehook = old_hook
         for sig, handler in old_signals.items():
             signal.signal(sig, handler)
+
+
+def _forget_unhandled_interrupt() -> None:
+    """Clear CPython's note of an unhandled Ctrl-C, so that the program exits with the status returned
+    (130, 143), not killed by SIGINT. CPython notes a KeyboardInterrupt that leaves code compiled from a
+    string (``exec`` of text: every dataclass's ``__init__`` is made so) as unhandled, even when velpoly
+    handles it further up, and at exit kills itself with SIGINT; running such code again clears the note."""
+    exec("pass", {})
 
 
 def _interruption(e: BaseException | None):
@@ -607,7 +613,6 @@ def _interruption(e: BaseException | None):
             return e
         seen.add(id(e))
         e = e.__context__
-    from .fileio import interrupted
     return KeyboardInterrupt() if interrupted() else None
 
 
@@ -622,7 +627,6 @@ def _main(argv) -> int:
             stream.reconfigure(errors="backslashreplace")
         except (AttributeError, ValueError, OSError):
             pass
-    from .fileio import raise_if_interrupted
     try:
         try:
             sys.stdout = _Stdout(sys.stdout)
