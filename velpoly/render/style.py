@@ -10,6 +10,7 @@ paper, so that figures keep their proportions at any scale of the mechanism.
 from __future__ import annotations
 
 import contextlib
+import os
 from dataclasses import dataclass
 
 from ..errors import InputError
@@ -183,6 +184,13 @@ def share_mathtext() -> bool:
     parse._velpoly_shared = True
     parse.cache_info = cached.cache_info
     MathTextParser._parse_cached = parse
+    if hasattr(os, "register_at_fork"):
+        # a parse names the fonts it was laid out in, and a font reads its file through an offset that a
+        # forked process shares with its parent and siblings: a forked process (the gallery's workers) that
+        # used them would read glyphs at another's offset ("invalid outline", "too many hints"). It parses
+        # anew, as matplotlib opens its fonts anew there (font_manager clears its font cache the same way)
+        os.register_at_fork(after_in_child=store.clear)
+        os.register_at_fork(after_in_child=cached.cache_clear)   # matplotlib's own, which ours fills too
     return True
 
 
