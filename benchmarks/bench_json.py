@@ -41,7 +41,7 @@ m = velpoly.load(sys.argv[1])
 calls, repeats = int(sys.argv[2]), int(sys.argv[3])
 from velpoly.polygons import velocity_polygon, acceleration_polygon
 from velpoly.poles import locate_poles
-text = json.dumps(velpoly.solve(m).to_dict(), indent=2, allow_nan=False)
+text = json.dumps(velpoly.solve(m).to_dict(), indent=2, allow_nan=False, sort_keys=True)   # the order of a dict's keys is not the JSON's content
 
 def instant():
     sol = velpoly.solve(m)
@@ -74,7 +74,7 @@ def main(argv=None) -> int:
     from velpoly.polygons import acceleration_polygon, velocity_polygon
     notes: list[str] = []
     m = velpoly.load(args.file)
-    ours = json.dumps(velpoly.solve(m).to_dict(), indent=2, allow_nan=False)
+    ours = json.dumps(velpoly.solve(m).to_dict(), indent=2, allow_nan=False, sort_keys=True)
 
     def instant():
         sol = velpoly.solve(m)
@@ -115,7 +115,7 @@ def main(argv=None) -> int:
                 best[f"instant {which}"] = min(best[f"instant {which}"], got["instant"])
     name = Path(args.file).name
     print(f"{name}, per call, CPU time, best of {args.repeats} x {CALLS} calls"
-          + (f"; the JSON is the same bytes as {args.before}'s" if old is not None else "") + ":")
+          + (f"; the JSON the same as {args.before}'s (keys sorted)" if old is not None else "") + ":")
     for k, v in best.items():
         print(f"  {k:14s} {v * 1e3:8.3f} ms" + (f"   ({v / best['solve']:.2f}x solve)" if k != "solve" else ""))
     t = best["to_dict"]
