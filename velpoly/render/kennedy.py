@@ -167,16 +167,7 @@ def _off_the_leaders(pl, art) -> None:
         box = pl.box_of(t, pad=0.0)
         if not any(line.intersects(box) for line in lines):
             continue
-        i = pl.texts.index(t)
-        del pl.texts[i], pl.boxes[i]
-        own = getattr(t, "_velpoly_leader", None)
-        if own is not None:   # its own leader goes with it (no longer an obstacle: it is drawn again)
-            own.remove()
-            keep = [k for k, g in enumerate(pl.leaders) if not g.contains(Point(*own.get_xydata()[-1]))]
-            gone = [pl.leaders[k] for k in range(len(pl.leaders)) if k not in keep]
-            pl.leaders[:] = [pl.leaders[k] for k in keep]
-            pl.hard[:] = [g for g in pl.hard if not any(g is x for x in gone)]
-        t.remove()
+        pl.remove(t)   # with its own leader, which is drawn again with it
         new = t._velpoly_again()
         for role in art.values():
             role[:] = [new if a is t else a for a in role]

@@ -62,6 +62,20 @@ class LabelPlacer:
         self.boxes.append(self.box_of(text))
         self.texts.append(text)
 
+    def remove(self, text) -> None:
+        """Take a placed label off the axes with its box and its leader (no longer an obstacle), so that it
+        can be placed again."""
+        i = self.texts.index(text)
+        del self.texts[i], self.boxes[i]
+        own = getattr(text, "_velpoly_leader", None)
+        if own is not None:
+            own.remove()
+            end = Point(*own.get_xydata()[-1])
+            gone = [g for g in self.leaders if g.contains(end)]
+            self.leaders[:] = [g for g in self.leaders if not any(g is x for x in gone)]
+            self.hard[:] = [g for g in self.hard if not any(g is x for x in gone)]
+        text.remove()
+
     @contextmanager
     def trial(self):
         """Draw and place tentatively: on leaving, every label, obstacle, leader and artist added to the axes
