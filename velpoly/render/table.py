@@ -528,14 +528,41 @@ class _Widths:
         return size, widths, need, gap
 
 
-def _layout(rows, room, width_pt, need, bgap):
+def _layout(rows, room, fits):
     """(blocks, rows a block, rows shown) when a block has room for ``room`` rows: side by side, as many
-    blocks as the width takes (three at most), the rows shared evenly between them."""
-    blocks = 1
-    if len(rows) > room:
-        blocks = max(1, min(3, int((width_pt + bgap) // (need + bgap)), -(-len(rows) // room)))
-    per = min(room, -(-len(rows) // blocks))
-    return blocks, per, (rows if len(rows) <= per * blocks else rows[:per * blocks - 1])
+    blocks as the width takes (three at most; ``fits(blocks, per, shown)``: whether ``blocks`` blocks of
+    ``per`` of the rows ``shown`` stand side by side in it), the rows shared evenly between them."""
+    blocks = max(1, min(3, -(-len(rows) // room))) if len(rows) > room else 1
+    while True:
+        per = min(room, -(-len(rows) // blocks))
+        shown = rows if len(rows) <= per * blocks else rows[:per * blocks - 1]
+        if blocks == 1 or fits(blocks, per, shown):
+            return blocks, per, shown
+        blocks -= 1
+
+
+def _block_columns(header, chunk, blocks: int) -> list[int]:
+    """The columns a block of the rows ``chunk`` shows: those with values in its rows (the quantity always),
+    so that a second block of poles' positions prints no empty "instant centres" or "reference" beside them;
+    one block, every column of the table."""
+    if blocks == 1:
+        return list(range(len(header)))
+    return [i for i in range(len(header)) if i == 0 or any(row[i] for row in chunk)]
+
+
+def _fits(widths_of, size, gap, bgap, width_pt):
+    """Whether ``blocks`` blocks of ``per`` of the rows ``shown`` stand side by side within ``width_pt``
+    (points), each as wide as its own columns (:func:`_block_columns`) at ``size``: a block of velocities
+    and one of accelerations side by side where the page has their width, not only where it has twice the
+    width of the whole table's columns."""
+    def fits(blocks, per, shown):
+        chunks = [c for c in (shown[b * per:(b + 1) * per] for b in range(blocks)) if c]
+        total = bgap * (len(chunks) - 1)
+        for chunk in chunks:
+            wb = widths_of.columns(size, chunk, _block_columns(widths_of.t.header, chunk, blocks))
+            total += sum(wb) + gap * (len(wb) - 1)
+        return total <= width_pt * (1 + 1e-9)
+    return fits
 
 
 def _foot_height(shown, foot, size, foot_size) -> float:
@@ -545,15 +572,15 @@ def _foot_height(shown, foot, size, foot_size) -> float:
     return 0.5 * size + n * 1.3 * foot_size if n else 0.0
 
 
-def _room(rows, top, line_h, foot, size, foot_size, width_pt, need, bgap):
+def _room(rows, top, line_h, foot, size, foot_size, fits):
     """The most rows a block has room for beside the footnotes of the rows it then shows (the rows a note
     explains come first, so the footnotes kept are theirs), and the layout it gives."""
     def foot_height(shown):
         return _foot_height(shown, foot, size, foot_size)
     room = max(int((top - 1.9 * line_h) // line_h), 1)
-    while room > 1 and (1.9 + room) * line_h + foot_height(_layout(rows, room, width_pt, need, bgap)[2]) > top:
+    while room > 1 and (1.9 + room) * line_h + foot_height(_layout(rows, room, fits)[2]) > top:
         room -= 1
-    return _layout(rows, room, width_pt, need, bgap)
+    return _layout(rows, room, fits)
 
 
 class TableLayout:
@@ -610,10 +637,7 @@ def _blocks(lay: TableLayout, st, widths_of: _Widths, layout, size, top, spacing
         chunk = shown[b * per:(b + 1) * per]
         if not chunk and b:
             break
-        # a block shows the columns that have values in its rows (the quantity always): a second block of
-        # poles' positions prints no empty "instant centres" or "reference" beside them; one block, the table
-        cols = [i for i in range(len(t.header)) if i == 0 or any(row[i] for row in chunk)] if blocks > 1 \
-            else list(range(len(t.header)))
+        cols = _block_columns(t.header, chunk, blocks)
         wb = widths_of.columns(size, chunk, cols) if blocks > 1 else widths
         xs = np.cumsum([0.0] + [w + gap for w in wb[:-1]])
         total = min(sum(wb) + gap * (len(wb) - 1), lay.width_pt)
@@ -698,9 +722,10 @@ def measure_results_table(sol, room, *, sheet: str = "full", style="textbook", v
     foot = _footnote_lines(where, t.notes, width_pt, foot_size, sol.mechanism)
     rows = list(t.rows)
     bgap = 3.0 * size
-    blocks, per, shown = _room(rows, top, line_h, foot, size, foot_size, width_pt, need, bgap)
+    fits = _fits(widths_of, size, gap, bgap, width_pt)
+    blocks, per, shown = _room(rows, top, line_h, foot, size, foot_size, fits)
     # the height that would show every row in as many blocks as the width takes (the sheet's layout asks)
-    most = max(1, min(3, int((width_pt + bgap) // (need + bgap))))
+    most = next(k for k in (3, 2, 1) if k == 1 or fits(k, -(-len(rows) // k), rows))
     lay.whole = (height_pt - top + (1.9 + -(-len(rows) // most)) * line_h + _foot_height(rows, foot, size, foot_size)
                  + 0.9 * size) / height_pt
     lay.widths_of = widths_of
