@@ -83,6 +83,12 @@ def test_columns_keep_panels_apart_and_draw_larger(specimens):
             grown = [box(*p.bounds[:3], p.bounds[3] + CAPTION) for p in (pa, pb)]
             assert grown[0].intersection(grown[1]).area < 1e-6, f"{sp.kind}: {a} and {b} overlap"
         assert new.score >= rows.score - 1e-9
+        # no polygon drawn smaller than in the rows while the other is drawn larger (no trade between them)
+        was = {n: s for b in rows for n, s in zip(b.names, b.row.scales)}
+        now = {n: s for b in new for n, s in zip(b.names, b.row.scales)}
+        smaller = [n for n in ("velocity", "acceleration") if now[n] > was[n] * (1 + 1e-9)]
+        larger = [n for n in ("velocity", "acceleration") if now[n] < was[n] * (1 - 1e-9)]
+        assert not (smaller and larger), f"{sp.kind}: {smaller} drawn smaller for {larger}: {now} (rows: {was})"
         area = sum(a for a in (g[1] for g in got.values()))
         ratios.append(area / sum(drawn_areas([spans[n] for n in b.names], b.row)[k]
                                  for b in rows for k in range(len(b.names))))

@@ -21,7 +21,8 @@ from dataclasses import dataclass
 
 from .canvas import nice_scale
 
-__all__ = ["MARGIN", "Row", "Band", "Bands", "share_row", "smaller_scale", "arrange", "fuller", "drawn_size", "drawn_areas", "cover"]
+__all__ = ["MARGIN", "Row", "Band", "Bands", "share_row", "smaller_scale", "arrange", "fuller", "shrinks", "scales_of",
+           "drawn_size", "drawn_areas", "cover"]
 
 # paper kept about a drawing inside its panel (cm): each side, top, bottom (the scale bar's strip)
 MARGIN = (0.5, 0.45, 1.05)
@@ -166,6 +167,7 @@ class Bands(list):
 
 COLUMN_PENALTY = 1.1   # a column beside rows must draw a tenth larger than rows alone (as a second row must)
 COLUMN_FILL = 0.6      # of its height (within the margins): the least a column's drawing fills
+POLYGONS = ("velocity", "acceleration")   # a column may not draw one smaller than the rows do to grow the other
 
 
 def arrange(spans: dict, names, width: float, top: float, bottom: float, gap: float, caption: float,
@@ -178,7 +180,8 @@ def arrange(spans: dict, names, width: float, top: float, bottom: float, gap: fl
     polygon and the table; or the column and the rows both over the table), whichever draws them largest (:func:`cover`; a column must draw a tenth more).
     The column is as wide as its drawing needs at one of the round scales it can take at that height, and
     taken only where its drawing fills :data:`COLUMN_FILL` of that height (a wide drawing in a column wastes
-    it) and where the drawings cover as much paper as in the rows (:func:`fuller`)."""
+    it), where the drawings cover as much paper as in the rows (:func:`fuller`) and where no polygon is drawn
+    smaller than in the rows to draw the other larger (:func:`shrinks`)."""
     extra = extra or {}
     best = rows = _in_rows(spans, names, width, top, bottom, gap, caption, scales, least, extra, notch)
     if len(names) < 2:
@@ -208,9 +211,24 @@ def arrange(spans: dict, names, width: float, top: float, bottom: float, gap: fl
             bands = [Band(b.names, b.row, b.height, b.bottom, b.left + shift) for b in sub]
             bands.append(Band(tuple(col), row, height, bottom, 0.0 if first else rw + gap))
             score = cover([a for b in bands for a in drawn_areas([spans[n] for n in b.names], b.row)]) / COLUMN_PENALTY
-            if score > best.score + 1e-9 and fuller(spans, bands, rows):
+            if score > best.score + 1e-9 and fuller(spans, bands, rows) and not shrinks(bands, rows):
                 best = Bands(bands, score=score, table_left=shift if notch is not None else 0.0)
     return best
+
+
+def scales_of(bands) -> dict:
+    """Each panel's scale (units per cm) in an arrangement."""
+    return {n: s for b in bands for n, s in zip(b.names, b.row.scales)}
+
+
+def shrinks(bands, base, names=POLYGONS) -> bool:
+    """Whether the arrangement ``bands`` draws one of the panels ``names`` (the polygons) smaller than ``base``
+    does (at a larger scale) while it draws another of them larger: a column that doubles the velocity polygon
+    while it halves the acceleration polygon beside it (Problem 1.4.4's full sheet) is no gain for a reader
+    of both. (A column that grows the space diagram at the cost of a polygon may be: the cam's.)"""
+    new, old = scales_of(bands), scales_of(base)
+    both = [n for n in names if n in new and n in old]
+    return any(new[n] > old[n] * (1 + 1e-9) for n in both) and any(new[n] < old[n] * (1 - 1e-9) for n in both)
 
 
 def fuller(spans: dict, bands, base) -> bool:
