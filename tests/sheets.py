@@ -49,11 +49,17 @@ def styled(style: str):
 
 
 @functools.cache
-def page(stem: str, sheet_name: str, style: str):
-    """The Figure of one sheet of the example ``stem`` in ``style``, drawn once per process. Read only."""
+def rendered(stem: str, sheet_name: str, style: str):
+    """One sheet of the example ``stem`` in ``style`` as ``velpoly.render.sheet.render`` returns it (its figure,
+    whether it has a table page), drawn once per process. Read only."""
     from velpoly.render import sheet
     from velpoly.render.style import get_style
     with styled(style):
-        fig = sheet.render_sheet(solved(stem), sheet_name, get_style(style), cons=constructions(stem, sheet_name))
-        fig.draw_without_rendering()   # drawn through as a file would be (every text laid out), a third of an SVG's cost
-    return fig
+        done = sheet.render(solved(stem), sheet_name, get_style(style), cons=constructions(stem, sheet_name))
+        done.figure.draw_without_rendering()   # drawn through as a file would be (every text laid out), a third of an SVG's cost
+    return done
+
+
+def page(stem: str, sheet_name: str, style: str):
+    """The Figure of one sheet of the example ``stem`` in ``style``, drawn once per process. Read only."""
+    return rendered(stem, sheet_name, style).figure

@@ -90,8 +90,12 @@ def test_every_book_row_and_footnote_is_drawn(specimens, which, style, name):
     cons = sheet.constructions(sol, name)
     st = get_style(style)
     with rc_context(st):
-        fig = sheet.render_sheet(sol, name, st, cons=cons)
-        page = sheet.table_page(sol, name, st, cons=cons) if fig._velpoly_table_page else None
+        done = sheet.render(sol, name, st, cons=cons)
+        fig = done.figure
+        page = sheet.table_page(sol, name, st, cons=cons) if done.table_page else None
+    assert not hasattr(fig, "_velpoly_table_page")   # carried by the frozen result, not hung on the figure
+    with pytest.raises(AttributeError):
+        done.table_page = not done.table_page
     refs, shown, notes, drawn = _book_rows_drawn(sol, name, cons, fig, page)
     assert refs >= 4 and notes >= 3, f"{sp.kind}/{style}/{name}: {refs} book rows, {notes} notes"
     assert shown >= refs, f"{sp.kind}/{style}/{name}: {shown} rows drawn of {refs} with a book's value"
@@ -118,9 +122,10 @@ def test_the_book_cut_on_one_slide_gets_a_table_page(style):
     for stem, name in (("ex3_4_slotted_lever", "full"), ("ex3_10_rolling_contact", "full"),
                        ("ex3_8_instant_centres_cw", "poles")):
         sol, cons = sheets.solved(stem), sheets.constructions(stem, name)
-        fig = sheets.page(stem, name, style)
+        done = sheets.rendered(stem, name, style)
+        fig = done.figure
         with sheets.styled(style):
-            page = sheet.table_page(sol, name, st, cons=cons) if fig._velpoly_table_page else None
+            page = sheet.table_page(sol, name, st, cons=cons) if done.table_page else None
         assert (page is not None) == (style == "slides" or stem == "ex3_10_rolling_contact"), f"{stem}/{style}"
         refs, shown, notes, drawn = _book_rows_drawn(sol, name, cons, fig, page)
         assert shown >= refs >= 6 and drawn == notes >= 5, (stem, style, refs, shown, notes, drawn)

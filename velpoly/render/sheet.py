@@ -44,7 +44,8 @@ from .style import get_style, rc_context
 from ..reference import at_file_pose
 from .table import cuts_the_book, draw_results_table, given_table, measure_results_table
 
-__all__ = ["SHEETS", "fit_width", "wrap_caption", "Constructions", "constructions", "render_sheet", "table_page", "frames",
+__all__ = ["SHEETS", "fit_width", "wrap_caption", "Constructions", "constructions", "render_sheet", "render", "Rendered",
+           "table_page", "frames",
            "draw_to_file", "mechanism_svg",
            "equation_tex", "default_sheet"]
 FORMATS = (".svg", ".png", ".pdf")
@@ -687,9 +688,19 @@ def _draw_captions(fig, st, m, axes, captions) -> None:
         cap.set_x(cap.get_position()[0] + shift / wpx)
 
 
+@dataclass(frozen=True)
+class Rendered:
+    """One sheet drawn (:func:`render`): its matplotlib ``figure`` and whether its results table goes on a page
+    of its own as well (``table_page``: the table on the sheet cuts a row with a book's value or a footnote;
+    :func:`table_page` draws that page, :func:`draw_to_file` writes it)."""
+
+    figure: object
+    table_page: bool
+
+
 def render_sheet(sol, sheet: str = "full", style="textbook", *, cons: Constructions | None = None,
                  frame: Frame | None = None, pins: dict | None = None):
-    """The matplotlib Figure of one sheet (one frame of it); no pyplot involved.
+    """The matplotlib Figure of one sheet (one frame of it); no pyplot involved (:func:`render`'s figure).
 
     Call inside :func:`velpoly.render.style.rc_context` for the style's fonts
     (:func:`draw_to_file` does). ``pins``: the ``_velpoly_pins`` of the
@@ -699,6 +710,13 @@ def render_sheet(sol, sheet: str = "full", style="textbook", *, cons: Constructi
     panels are laid out to fill the page (:mod:`velpoly.render.layout`); a
     frame without the table (a step before the last) is laid out as if it had it.
     """
+    return render(sol, sheet, style, cons=cons, frame=frame, pins=pins).figure
+
+
+def render(sol, sheet: str = "full", style="textbook", *, cons: Constructions | None = None,
+           frame: Frame | None = None, pins: dict | None = None) -> Rendered:
+    """One sheet (one frame of it) drawn, and whether it has a table page (:class:`Rendered`); the arguments
+    as :func:`render_sheet`'s."""
     from matplotlib.backends.backend_agg import FigureCanvasAgg
     from matplotlib.figure import Figure
     _check_sheet(sheet)
@@ -713,8 +731,8 @@ def render_sheet(sol, sheet: str = "full", style="textbook", *, cons: Constructi
     two = bool(equivalent_linkage_note(m)) and sheet != "poles"
     plan = _plan(fig, sol, st, opts, cons, sheet, _top(fig, st, title, frame.caption, two), True)
     # the book's rows or notes cut: every one of them on a page of its own (table_page), as the last line says
-    fig._velpoly_table_page = plan.table is not None and cuts_the_book(plan.table)
-    if fig._velpoly_table_page:
+    own_page = plan.table is not None and cuts_the_book(plan.table)
+    if own_page:
         plan.table.see_table_page()
     if plan.table is not None and frame.table:   # a step before the last: the answers not yet given
         _draw_table(sol, fig, sheet, st, plan.table)
@@ -725,13 +743,13 @@ def render_sheet(sol, sheet: str = "full", style="textbook", *, cons: Constructi
     captions = _draw_panels(sol, axes, st, opts, cons, sheet, frame, plan, pins)
     _draw_captions(fig, st, m, axes, captions)
     fig._velpoly_pins = {name: dict(placer(ax).placed) for name, ax in axes.items()}
-    return fig
+    return Rendered(fig, own_page)
 
 
 def table_page(sol, sheet: str = "full", style="textbook", *, cons: Constructions | None = None):
     """The sheet's results table on a page of its own, under the page's title, every row the book gives and
     its footnotes (the page a sheet adds where its drawings and its table cannot share one page with them:
-    ``fig._velpoly_table_page`` of :func:`render_sheet`'s figure). Call inside the style's rc_context."""
+    :func:`render`'s ``table_page``). Call inside the style's rc_context."""
     from matplotlib.backends.backend_agg import FigureCanvasAgg
     from matplotlib.figure import Figure
     st = get_style(style)
@@ -789,10 +807,11 @@ def draw_to_file(sol, out, sheet: str = "full", style: str = "textbook", steps: 
     pictures = frames(sheet, cons, steps)
     with rc_context(st):
         # the finished construction first: every frame then puts things where it has them
-        last = render_sheet(sol, sheet, st, cons=cons, frame=pictures[-1])
+        done = render(sol, sheet, st, cons=cons, frame=pictures[-1])
+        last = done.figure
 
         # the table page (every row the book gives, with its notes): the PDF's last page, else OUT-table.svg
-        extra = table_page(sol, sheet, st, cons=cons) if last._velpoly_table_page else None
+        extra = table_page(sol, sheet, st, cons=cons) if done.table_page else None
 
         def figures():
             for fr in pictures[:-1]:
