@@ -423,12 +423,19 @@ def hit_counter(pl):
     return hits_of
 
 
+NARROW = 0   # the columns of the legend's narrow variant: one column, each entry in two lines
+# the legend's variants, in the order tried: (type size, of the style's small size; columns)
+LEGEND_VARIANTS = ((1.0, 1), (0.85, 1), (1.0, 2), (0.85, 2), (1.0, NARROW), (0.85, NARROW))
+
+
 def _legend_sizes(ax, pl, make, st) -> list:
-    """(size, columns, width, height in data units) of the legend's variants: the full legend, smaller, in two
-    columns, both."""
+    """(size, columns, width, height in data units) of the legend's variants (:data:`LEGEND_VARIANTS`): the full
+    legend, smaller, in two columns, both; then narrow (:data:`NARROW`: each entry in two lines, a tall legend
+    beside a polygon in a wide, low panel, as a slide's is: Example 3.3's five kinds), at both sizes."""
     inv = ax.transData.inverted()
     sizes = []
-    for size, ncol in ((st.small_size, 1), (st.small_size * 0.85, 1), (st.small_size, 2), (st.small_size * 0.85, 2)):
+    for f, ncol in LEGEND_VARIANTS:
+        size = st.small_size * f
         leg = make(size, ncol)
         bb = leg.get_window_extent(pl.renderer)
         (x0, y0), (x1, y1) = inv.transform([[bb.x0, bb.y0], [bb.x1, bb.y1]])
@@ -473,8 +480,10 @@ def _legend(ax, st, kinds) -> list:
     pl = placer(ax)
 
     def make(size, ncol, at=(1.0, 1.0), loc="upper right", transform=None):
-        return ax.legend(handles, [KIND_LABELS[k] for k in kinds], loc=loc, fontsize=size, ncol=ncol,
-                         handlelength=3.2 if ncol == 1 else 2.4, borderaxespad=0.0, columnspacing=1.0,
+        from .sheet import wrap_caption
+        texts = [wrap_caption(KIND_LABELS[k]) if ncol == NARROW else KIND_LABELS[k] for k in kinds]
+        return ax.legend(handles, texts, loc=loc, fontsize=size, ncol=max(ncol, 1),
+                         handlelength={1: 3.2, 2: 2.4, NARROW: 2.0}[ncol], borderaxespad=0.0, columnspacing=1.0,
                          bbox_to_anchor=at, bbox_transform=transform)
 
     sizes = _legend_sizes(ax, pl, make, st)   # measured once a variant
