@@ -30,8 +30,10 @@ from velpoly.render.style import get_style, rc_context
 STYLES = ("textbook", "slides")
 # the mean blank fraction of the gallery's own sheets, by style: before issue 17 0.60 (textbook) and 0.46
 # (slides); 0.533 and 0.382 before the table's corner (all files); 0.528 and 0.359 before a panel could take a
-# column at the page's full height, now 0.522 and 0.359 (all files), 0.503 and 0.364 over the halves tested below
-# (every other file in each style, at 30 dpi). The issue's target, under 0.40 in both, is reached in the slides
+# column at the page's full height, 0.522 and 0.359 (all files) before the table's blocks were counted by their own
+# columns, a column or the corner could no longer shrink one polygon to grow the other, and a slide with a table
+# page gave its table less room (issue 17's layout leftovers); now 0.515 and 0.380 (all files), 0.505 and 0.378
+# over the halves tested below (every other file in each style, at 30 dpi). The issue's target, under 0.40 in both, is reached in the slides
 # style only. The textbook floor, measured (issue 17 item 2): the drawings' ink boxes cover 0.52 of the page and
 # 0.55 of their 1-cm cells are blank (0.13 of the page inside the drawings' convex hulls, 0.15 in their boxes'
 # corners outside the hulls), the title band and captions leave 0.048 blank, the table's lines 0.028; filling

@@ -142,3 +142,50 @@ def test_the_table_page_is_written(tmp_path):
     pdf = sheet.draw_to_file(sol, tmp_path / "ic.pdf", "poles", "slides", cons=cons)
     assert pdf == [tmp_path / "ic.pdf"]
     assert pdf[0].read_bytes().count(b"/Type /Page\n") + pdf[0].read_bytes().count(b"/Type /Page ") == 2
+
+
+def test_a_sheet_with_a_table_page_draws_larger(specimens):
+    """Generated mechanisms with a book's many answers, on slides (full and poles sheets; the textbook page holds
+    their tables): where the whole table goes on its
+    table page, the sheet is laid out again with its own table in less room (``TABLE_CUT``): every drawing at
+    least as large as with the table cut in its usual room (some larger), the panels drawn where that plan puts
+    them, the table's ink under no panel, its last line sending the reader to the table page."""
+    from matplotlib.backends.backend_agg import FigureCanvasAgg
+    from matplotlib.figure import Figure
+    from shapely.geometry import box
+    from velpoly.render.options import drawing_options
+    style = "slides"
+    st = get_style(style)
+    pages = larger = 0
+    for sp in specimens:
+        sol = velpoly.solve(velpoly.load(book_reference(sp)))
+        for name in ("full", "poles"):
+            cons = sheet.constructions(sol, name)
+            with rc_context(st):
+                done = sheet.render(sol, name, st, cons=cons)
+                if not done.table_page:
+                    continue
+                pages += 1
+                fig = Figure(figsize=st.figsize, dpi=72)
+                FigureCanvasAgg(fig)
+                title = sheet._page(fig, st, sol.mechanism, sol)
+                top = sheet._top(fig, st, title, "", False)
+                usual = sheet._plan(fig, sol, st, drawing_options(sol.mechanism), cons, name, top, True)
+                cut = sheet._plan(fig, sol, st, drawing_options(sol.mechanism), cons, name, top, True, cut=True)
+            for panel, s in usual.scales.items():
+                if s is not None:
+                    assert cut.scales[panel] <= s * (1 + 1e-9), f"{sp.kind}/{style}/{name}: {panel} {cut.scales[panel]} > {s}"
+            larger += any(s is not None and cut.scales[p] < s * (1 - 1e-9) for p, s in usual.scales.items())
+            drawn = {ax.get_label(): ax for ax in done.figure.axes}
+            for panel, rect in cut.rects.items():
+                assert drawn[panel].get_position().bounds == pytest.approx(rect, abs=1e-9), (sp.kind, panel)
+            table = drawn["table"]
+            assert any("on the table page" in t.get_text() for t in table.texts)
+            r = done.figure.canvas.get_renderer()
+            ink = [a.get_window_extent(r) for a in (*table.texts, *table.lines)]
+            for panel in cut.rects:
+                pb = drawn[panel].get_window_extent(r)
+                for bb in ink:
+                    assert box(pb.x0, pb.y0, pb.x1, pb.y1).intersection(box(bb.x0, bb.y0, bb.x1, bb.y1)).area < 1.0, \
+                        f"{sp.kind}/{style}/{name}: the table under {panel}"
+    assert pages >= 3 and larger >= 2, (pages, larger)

@@ -36,7 +36,7 @@ from .constructions import Constructions, check_sheet as _check_sheet, construct
 from .displacement import draw_mechanism, equivalent_linkage_note, mark_auxiliary, mechanism_bounds
 from .kennedy import draw_kennedy_circle, draw_poles, pole_label
 from .labels import placer
-from .layout import MARGIN, arrange, cover, drawn_areas, fuller, share_row
+from .layout import MARGIN, arrange, cover, drawn_areas, fuller, share_row, shrinks
 from .options import SHEETS, drawing_options
 from .polygon import draw_polygon, legend_room, polygon_bounds
 from .scalebar import scale_text
@@ -243,8 +243,9 @@ class _Plan:
 class _Planner:
     """Lays out one sheet's panels and table on its page (see :mod:`velpoly.render.layout`)."""
 
-    def __init__(self, fig, sol, st, opts, cons, sheet, top: float, table: bool, lines: int = 1):
+    def __init__(self, fig, sol, st, opts, cons, sheet, top: float, table: bool, lines: int = 1, cut: bool = False):
         self.lines = lines        # of the panels' captions
+        self.cut = cut            # the whole table on the table page: this page's table in less room, cut
         self.fig, self.sol, self.st, self.opts, self.cons, self.sheet = fig, sol, st, opts, cons, sheet
         self.W, self.H = _page_cm(st)
         self.top = top            # cm from the page's bottom: where the panels' captions end
@@ -311,7 +312,7 @@ class _Planner:
         spans = dict(zip(names, self.spans(names)))
         least = dict(zip(names, self.least(names)))
         users = {n: _user_scale(self.opts, n) for n in names}
-        floor, tax, room = EDGE, None, TABLE_MOST * self.H
+        floor, tax, room = EDGE, None, (TABLE_CUT if self.cut else TABLE_MOST) * self.H
         if self.want_table:
             tax, used, _ = self.draw_table(EDGE, self.width, room)
             _move(tax, self, EDGE + used)
@@ -324,11 +325,12 @@ class _Planner:
             return arrange(spans, names, self.width, self.top, floor, GAP, caption, users, least, extra)
         bands = panels(floor)
         size = _cover(spans, bands)
-        if tax is not None and self.shown < self.refs:   # rows with a book's value cut
+        if tax is not None and self.shown < self.refs and not self.cut:   # rows with a book's value cut
             tax, bands, room = self.taller_table(tax, bands, room, lambda b: _cover(spans, b), panels)
             size = _cover(spans, bands)
         corner = self.table_in_corner(tax, room, names, spans, least, users, extra) if tax is not None else None
-        if corner is not None and corner[0] > size * (1 + 1e-9) and fuller(spans, corner[1], bands):
+        if corner is not None and corner[0] > size * (1 + 1e-9) and fuller(spans, corner[1], bands) and \
+                not shrinks(corner[1], bands):   # (not one polygon shrunk to grow the other)
             size, bands, tax = corner
         rects, scales = {}, {}
         for band in bands:
@@ -475,7 +477,7 @@ class _Planner:
             side = min(room - cap, KENNEDY_MOST)
             return room, side, self.draw_table(EDGE + side + GAP, self.width - side - GAP, room)
         most = None
-        for r in [row, *self._smaller(row, "poles", total)]:
+        for r in [row, *(self._smaller(row, "poles", total) if not self.cut else ())]:
             room, side, (tax, used, whole) = place(r)
             if whole:
                 break
@@ -509,6 +511,7 @@ GAP = 0.35          # cm between panels side by side
 TABLE_GAP = 0.5     # cm between the panels and the table beneath them
 TABLE_LEAST = 0.22  # of the page's height: the table's room at least, before the panels take theirs
 TABLE_MOST = 0.4   # of the page's height: the table's room at most
+TABLE_CUT = 0.35   # of a slide's height: the table's room at most where the whole table is on the table page
 LABEL_ROOM = 2.0    # cm beside a mechanism for its labels (at 10 pt type)
 KENNEDY_MOST = 8.0  # cm: the Kennedy circle's panel at most
 TABLE_TALLER = (0.45, 0.5, 0.55)   # of the page's height: the table's room where rows with a book's value are cut
@@ -570,15 +573,16 @@ def _panel_names(sheet: str, cons: Constructions) -> list[str]:
     return list(_PANELS[sheet])
 
 
-def _plan(fig, sol, st, opts, cons, sheet: str, top: float, table: bool) -> _Plan:
-    """Where the sheet's panels and table go (the table is measured: its height decides the panels')."""
+def _plan(fig, sol, st, opts, cons, sheet: str, top: float, table: bool, cut: bool = False) -> _Plan:
+    """Where the sheet's panels and table go (the table is measured: its height decides the panels'); ``cut``:
+    the whole table is on the sheet's table page, this page's table has less room (:data:`TABLE_CUT`)."""
     if sheet == "displacement":
         H = _page_cm(st)[1]
         rects = {k: (l, b, w, min(h, top / H - b)) for k, (l, b, w, h) in _LAYOUTS["displacement"].items()}
         tab = _measure_table(sol, fig, rects.pop("table"), sheet, st, cons)
         return _Plan(rects, {"mechanism": opts.scale}, tab)
     two = bool(equivalent_linkage_note(sol.mechanism)) and sheet != "poles"
-    planner = _Planner(fig, sol, st, opts, cons, sheet, top, table and opts.table, 2 if two else 1)
+    planner = _Planner(fig, sol, st, opts, cons, sheet, top, table and opts.table, 2 if two else 1, cut=cut)
     if sheet == "poles":
         return planner.poles()
     return planner.over_table(_panel_names(sheet, cons))
@@ -729,9 +733,14 @@ def render(sol, sheet: str = "full", style="textbook", *, cons: Constructions | 
     FigureCanvasAgg(fig)
     title = _page(fig, st, m, sol)
     two = bool(equivalent_linkage_note(m)) and sheet != "poles"
-    plan = _plan(fig, sol, st, opts, cons, sheet, _top(fig, st, title, frame.caption, two), True)
-    # the book's rows or notes cut: every one of them on a page of its own (table_page), as the last line says
+    top = _top(fig, st, title, frame.caption, two)
+    plan = _plan(fig, sol, st, opts, cons, sheet, top, True)
+    # the book's rows or notes cut: every one of them on a page of its own (table_page), as the last line says;
+    # a slide laid out again for its drawings, its table in less room (its height goes to the drawings; a
+    # page, read closer, keeps the rows it has room for)
     own_page = plan.table is not None and cuts_the_book(plan.table)
+    if own_page and st.name == "slides":
+        plan = _plan(fig, sol, st, opts, cons, sheet, top, True, cut=True)
     if own_page:
         plan.table.see_table_page()
     if plan.table is not None and frame.table:   # a step before the last: the answers not yet given
