@@ -20,7 +20,8 @@ from ..names import index_math, link_math, name_math
 from ..names import name_tex as _name_tex
 
 __all__ = ["Artists", "add_patch", "axes_cm", "box", "nice_scale", "nice_length", "fit_view", "view_scale", "per_point",
-           "per_cm", "view_box", "border_point", "tex", "prose_tex", "arrow", "get_ax", "renderer_of", "equation_tex"]
+           "per_cm", "view_box", "border_point", "tex", "prose_tex", "arrow", "get_ax", "renderer_of", "equation_tex",
+           "wrap_caption"]
 
 CM = 1 / 2.54  # inches
 
@@ -281,3 +282,31 @@ def equation_tex(eq: str) -> str:
     s = re.sub(r"\balpha\b", r"$\\alpha$", s)
     s = re.sub(r"([0-9]) deg\b", "\\1°", s)
     return s.replace(" x ", " × ").replace(" - ", " − ")
+
+
+def wrap_caption(caption: str, width_of=len) -> str:
+    """``caption`` in two lines, broken at a space outside mathtext ($...$) where its first line is as wide as
+    its second (``width_of``: a text's width; by default its number of characters).
+
+    >>> wrap_caption("Step 2: $V_B = V_A + V_{BA}$, along the path of B, perpendicular to AB")
+    'Step 2: $V_B = V_A + V_{BA}$, along\\nthe path of B, perpendicular to AB'
+    """
+    spaces, inside = [], False
+    for i, ch in enumerate(caption):
+        if ch == "$":
+            inside = not inside
+        elif ch == " " and not inside:
+            spaces.append(i)
+    if not spaces:
+        return caption
+    half = width_of(caption) / 2
+    lo, hi = 0, len(spaces) - 1   # the first space whose first line is at least half the width (widths grow)
+    while lo < hi:
+        mid = (lo + hi) // 2
+        if width_of(caption[:spaces[mid]]) >= half:
+            hi = mid
+        else:
+            lo = mid + 1
+    cands = spaces[max(lo - 1, 0):lo + 1]
+    k = min(cands, key=lambda c: max(width_of(caption[:c]), width_of(caption[c + 1:])))
+    return caption[:k] + "\n" + caption[k + 1:]

@@ -23,7 +23,7 @@ from shapely.geometry import Point
 from shapely.geometry import Polygon as SPolygon
 
 from .canvas import (Artists, add_patch, arrow, box, fit_view, get_ax, per_cm, per_point, prose_tex, tex, view_box,
-                     view_scale)
+                     view_scale, wrap_caption)
 from .labels import placer, segment
 from .options import drawing_options
 from .scalebar import scale_bar
@@ -480,7 +480,6 @@ def _legend(ax, st, kinds) -> list:
     pl = placer(ax)
 
     def make(size, ncol, at=(1.0, 1.0), loc="upper right", transform=None):
-        from .sheet import wrap_caption
         texts = [wrap_caption(KIND_LABELS[k]) if ncol == NARROW else KIND_LABELS[k] for k in kinds]
         return ax.legend(handles, texts, loc=loc, fontsize=size, ncol=max(ncol, 1),
                          handlelength={1: 3.2, 2: 2.4, NARROW: 2.0}[ncol], borderaxespad=0.0, columnspacing=1.0,

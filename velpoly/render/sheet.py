@@ -31,7 +31,7 @@ from pathlib import Path
 
 from ..errors import InputError
 from ..fileio import atomic_path
-from .canvas import equation_tex, fit_view, nice_scale, view_scale
+from .canvas import equation_tex, fit_view, nice_scale, view_scale, wrap_caption
 from .constructions import Constructions, check_sheet as _check_sheet, constructions
 from .displacement import draw_mechanism, equivalent_linkage_note, mark_auxiliary, mechanism_bounds
 from .kennedy import draw_kennedy_circle, draw_poles, pole_label
@@ -169,34 +169,6 @@ def _step_caption(fig, st, title, caption: str) -> float:
     probe.remove()
     bottom -= (0.3 * st.font_size * 1.1 + st.thin_lw) * fig.dpi / 72
     return bottom / hpx - 0.008
-
-
-def wrap_caption(caption: str, width_of=len) -> str:
-    """``caption`` in two lines, broken at a space outside mathtext ($...$) where its first line is as wide as
-    its second (``width_of``: a text's width; by default its number of characters).
-
-    >>> wrap_caption("Step 2: $V_B = V_A + V_{BA}$, along the path of B, perpendicular to AB")
-    'Step 2: $V_B = V_A + V_{BA}$, along\\nthe path of B, perpendicular to AB'
-    """
-    spaces, inside = [], False
-    for i, ch in enumerate(caption):
-        if ch == "$":
-            inside = not inside
-        elif ch == " " and not inside:
-            spaces.append(i)
-    if not spaces:
-        return caption
-    half = width_of(caption) / 2
-    lo, hi = 0, len(spaces) - 1   # the first space whose first line is at least half the width (widths grow)
-    while lo < hi:
-        mid = (lo + hi) // 2
-        if width_of(caption[:spaces[mid]]) >= half:
-            hi = mid
-        else:
-            lo = mid + 1
-    cands = spaces[max(lo - 1, 0):lo + 1]
-    k = min(cands, key=lambda c: max(width_of(caption[:c]), width_of(caption[c + 1:])))
-    return caption[:k] + "\n" + caption[k + 1:]
 
 
 def _page_cm(st) -> tuple[float, float]:
@@ -818,7 +790,6 @@ def draw_to_file(sol, out, sheet: str = "full", style: str = "textbook", steps: 
         # the finished construction first: every frame then puts things where it has them
         done = render(sol, sheet, st, cons=cons, frame=pictures[-1])
         last = done.figure
-
         # the table page (every row the book gives, with its notes): the PDF's last page, else OUT-table.svg
         extra = table_page(sol, sheet, st, cons=cons) if done.table_page else None
 
