@@ -478,7 +478,7 @@ class _Kennedy(_Construction):
         self.lines = {}  # (a, b) -> {slot: (unit line, quality > 0)}
         self.unknown = n * (n - 1) // 2 - len(pairs)  # pairs a < b still unknown
         self.any_alike = bool(pairs)
-        self.best = {}   # (a, b) -> the best pair of the pair's lines drawn so far (None: none), until one is drawn
+        self.best = {}   # (a, b) -> the pair's candidate from its lines drawn so far (None: none), until one is drawn
         for a in range(n):
             self.state[a][a] = _UNDEFINED
         for a, b in pairs:
@@ -508,36 +508,35 @@ class _Kennedy(_Construction):
 
     def spread(self, new) -> None:
         """The Kennedy lines the new poles complete: with P_xy new and P_xc known, the line
-        P_xy P_xc carries the unknown P_yc (triangle y, c, x of the Kennedy circle)."""
-        state, pole, known, sqrt = self.state, self.pole, self.known, math.sqrt
-        drawn = []
+        P_xy P_xc carries the unknown P_yc (triangle y, c, x of the Kennedy circle).
+
+        P_yc's line through P_xy and P_xc may come from both new poles (then with opposite signs):
+        the pair (a, b), a < b, keeps the one drawn from P_xb (y = b), else the one from P_xa. A
+        pair's candidate (``self.best``) is dropped whenever a line is drawn for it."""
+        state, pole, known, best, lines, sqrt = self.state, self.pole, self.known, self.best, self.lines, math.sqrt
         for x, y in [(a, b) for a, b in new] + [(b, a) for a, b in new]:
             px, sy = pole[x], state[y]
             a0, a1, a2 = px[y]
             for c in known[x]:
                 if sy[c] != _UNKNOWN:
                     continue
+                pair = (y, c) if y < c else (c, y)
+                best.pop(pair, None)
                 b0, b1, b2 = px[c]   # the line P_xy x P_xc (_cross3 and _norm3 written out: the same floats)
                 l0, l1, l2 = a1 * b2 - a2 * b1, a2 * b0 - a0 * b2, a0 * b1 - a1 * b0
                 sep = sqrt(l0 * l0 + l1 * l1 + l2 * l2)
-                if sep >= _DEGENERATE:
-                    q = sep / _CLOSE
-                    if not q < 1.0:    # min(1.0, q)
-                        q = 1.0
+                if not sep >= _DEGENERATE:   # through two coincident poles: quality 0, not kept
+                    continue
+                q = sep / _CLOSE
+                if not q < 1.0:    # min(1.0, q)
+                    q = 1.0
+                drawn = lines.get(pair)
+                if drawn is None:
+                    drawn = lines[pair] = {}
+                if y > c:   # drawn from P_xb: it stands
+                    drawn[x] = ((l0 / sep, l1 / sep, l2 / sep), q)
                 else:
-                    q = 0.0
-                drawn.append((x, y, c, (l0 / sep, l1 / sep, l2 / sep) if sep > 0 else (l0, l1, l2), q))
-        # P_yc's line through P_xy and P_xc may come from both new poles (then with opposite signs):
-        # the pair (a, b), a < b, keeps the one drawn from P_xb (y = b), else the one from P_xa
-        best, lines = self.best, self.lines
-        for x, y, c, line, q in drawn:
-            pair = (y, c) if y < c else (c, y)
-            best.pop(pair, None)
-            if q > 0 and y < c:
-                lines.setdefault(pair, {})[x] = (line, q)
-        for x, y, c, line, q in drawn:
-            if q > 0 and c < y:
-                lines.setdefault((c, y), {})[x] = (line, q)
+                    drawn.setdefault(x, ((l0 / sep, l1 / sep, l2 / sep), q))
 
     def drawn(self, a, b) -> list:
         """The lines drawn for the pair: [(slot, (line, quality))], in slot order."""
@@ -558,16 +557,11 @@ class _Kennedy(_Construction):
             for b in range(a + 1, n):
                 if sa[b] != _UNKNOWN:
                     continue
-                best = memo.get((a, b), False)
-                if best is False:
-                    best = memo[a, b] = self._best_lines(a, b)
-                if best is None:
-                    continue
-                score, i, j, li, lj, x, proj, sine = best
-                if proj >= _DEGENERATE and score >= _BLUNT:
-                    out.append((a, b, score, {"how": None, "slots": (i, j), "sine": sine if sine < 1.0 else 1.0,
-                                              "line_vectors": (list(li), list(lj)),
-                                              "h": (x[0] / proj, x[1] / proj, x[2] / proj)}))
+                cand = memo.get((a, b), False)
+                if cand is False:
+                    cand = memo[a, b] = self._candidate(a, b)
+                if cand is not None:
+                    out.append(cand)
         if self.any_alike:   # some links move alike: copy their poles
             done = {(a, b) for a, b, _, _ in out}
             for a in range(n):
@@ -579,6 +573,18 @@ class _Kennedy(_Construction):
                         out.append((a, b, 1.0, hit))
             out.sort(key=lambda o: (o[0], o[1]))
         return out
+
+    def _candidate(self, a, b):
+        """``(a, b, score, info)`` of the pole P_ab where the best pair of its lines drawn meets; None where
+        fewer than two are drawn or the best two meet too bluntly to fix it."""
+        best = self._best_lines(a, b)
+        if best is None:
+            return None
+        score, i, j, li, lj, x, proj, sine = best
+        if proj >= _DEGENERATE and score >= _BLUNT:
+            return (a, b, score, {"how": None, "slots": (i, j), "sine": sine if sine < 1.0 else 1.0,
+                                  "line_vectors": (li, lj), "h": (x[0] / proj, x[1] / proj, x[2] / proj)})
+        return None
 
     def _best_lines(self, a, b):
         """Of the pair's lines drawn, the two with the best score: ``(score, slot i, slot j, line i, line j,
