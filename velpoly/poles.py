@@ -447,12 +447,14 @@ class _Kennedy(_Construction):
     """The construction on plain floats (a few dozen links at most), in normalised coordinates.
 
     ``pole[a][b]``: the pole P_ab as a unit homogeneous triple (floats); ``state[a][b]``:
-    unknown, known or undefined; ``known[x]``: the links c with P_xc known. ``lines[a, b]``
-    (a < b) holds the lines drawn for P_ab by slot: slot k < n is the line that triangle
-    (a, b, k) of the Kennedy circle gives (through P_ak and P_bk), slot n + c the pair's c-th
-    constraint line, each with its drafting quality (a line through two nearly coincident poles,
-    quality 0, is not kept). Memory O(n^3) at most: for big mechanisms :class:`_KennedyArrays`
-    does the same without storing lines.
+    unknown, known or undefined; ``known[x]``: the set of links c with P_xc known, ``when[x][c]``
+    the round it was known in (0: by inspection). ``lines[a, b]`` (a < b) holds the lines drawn for
+    P_ab by slot: slot x < n is the line that triangle (a, b, x) of the Kennedy circle gives, drawn
+    once P_xa and P_xb are both known, from the later of them (P_xb x P_xa when both came in one
+    round); slot n + c is the pair's c-th constraint line; each with its drafting quality (a line
+    through two nearly coincident poles, quality 0, is not kept). A pair's lines are drawn when
+    its candidate is asked for (:meth:`candidates`). Memory O(n^3) at most: for big mechanisms
+    :class:`_KennedyArrays` does the same without storing lines.
     """
 
     def __init__(self, names, twists, condition=1.0):
@@ -474,8 +476,11 @@ class _Kennedy(_Construction):
         super().__init__(names, array, alike, pairs)
         self.pole = [[(0.0, 0.0, 0.0)] * n for _ in range(n)]
         self.state = [[_UNKNOWN] * n for _ in range(n)]
-        self.known = [[] for _ in range(n)]
-        self.lines = {}  # (a, b) -> {slot: (unit line, quality > 0)}
+        self.known = [set() for _ in range(n)]
+        self.when = [[0] * n for _ in range(n)]
+        self.round = 0
+        self.lines = {}     # (a, b) -> {slot: (unit line, quality > 0)}
+        self.through = {}   # (a, b) -> the links x whose triangle's line is drawn for P_ab
         self.unknown = n * (n - 1) // 2 - len(pairs)  # pairs a < b still unknown
         self.any_alike = bool(pairs)
         self.best = {}   # (a, b) -> the pair's candidate from its lines drawn so far (None: none), until one is drawn
@@ -495,8 +500,9 @@ class _Kennedy(_Construction):
             if state[a][b] == _UNKNOWN:
                 self.unknown -= 1
             state[a][b] = state[b][a] = _KNOWN
-            self.known[a].append(b)
-            self.known[b].append(a)
+            self.known[a].add(b)
+            self.known[b].add(a)
+            self.when[a][b] = self.when[b][a] = self.round
         self.info[a, b] = info
 
     def add_constraint(self, a, b, h, label, desc, marks=()) -> None:
@@ -507,57 +513,54 @@ class _Kennedy(_Construction):
         self.lines.setdefault((a, b), {})[self.n + len(cons) - 1] = (cons[-1], 1.0)
 
     def spread(self, new) -> None:
-        """The Kennedy lines the new poles complete: with P_xy new and P_xc known, the line
-        P_xy P_xc carries the unknown P_yc (triangle y, c, x of the Kennedy circle).
+        """The round's poles are set: the next round's lines may pass through them."""
+        self.round += 1
 
-        P_yc's line through P_xy and P_xc may come from both new poles (then with opposite signs):
-        the pair (a, b), a < b, keeps the one drawn from P_xb (y = b), else the one from P_xa. A
-        pair's candidate (``self.best``) is dropped whenever a line is drawn for it."""
-        state, pole, known, best, lines, sqrt = self.state, self.pole, self.known, self.best, self.lines, math.sqrt
-        for x, y in [(a, b) for a, b in new] + [(b, a) for a, b in new]:
-            px, sy = pole[x], state[y]
-            a0, a1, a2 = px[y]
-            for c in known[x]:
-                if sy[c] != _UNKNOWN:
-                    continue
-                pair = (y, c) if y < c else (c, y)
-                best.pop(pair, None)
-                b0, b1, b2 = px[c]   # the line P_xy x P_xc (_cross3 and _norm3 written out: the same floats)
-                l0, l1, l2 = a1 * b2 - a2 * b1, a2 * b0 - a0 * b2, a0 * b1 - a1 * b0
-                sep = sqrt(l0 * l0 + l1 * l1 + l2 * l2)
-                if not sep >= _DEGENERATE:   # through two coincident poles: quality 0, not kept
-                    continue
-                q = sep / _CLOSE
-                if not q < 1.0:    # min(1.0, q)
-                    q = 1.0
-                drawn = lines.get(pair)
-                if drawn is None:
-                    drawn = lines[pair] = {}
-                if y > c:   # drawn from P_xb: it stands
-                    drawn[x] = ((l0 / sep, l1 / sep, l2 / sep), q)
-                else:
-                    drawn.setdefault(x, ((l0 / sep, l1 / sep, l2 / sep), q))
-
-    def drawn(self, a, b) -> list:
-        """The lines drawn for the pair: [(slot, (line, quality))], in slot order."""
-        got = self.lines.get((a, b))
-        return sorted(got.items()) if got else []
+    def _draw(self, a, b, links) -> None:
+        """The Kennedy lines of P_ab through P_xa and P_xb for each link x of ``links`` (triangle a, b, x of
+        the Kennedy circle): the line l = P x P' from the pole known later, P, through the other, P'."""
+        pole, when, sqrt = self.pole, self.when, math.sqrt
+        drawn = self.lines.get((a, b))
+        for x in links:
+            px, wx = pole[x], when[x]
+            if wx[b] >= wx[a]:
+                (a0, a1, a2), (b0, b1, b2) = px[b], px[a]
+            else:
+                (a0, a1, a2), (b0, b1, b2) = px[a], px[b]
+            l0, l1, l2 = a1 * b2 - a2 * b1, a2 * b0 - a0 * b2, a0 * b1 - a1 * b0   # _cross3, _norm3 written out
+            sep = sqrt(l0 * l0 + l1 * l1 + l2 * l2)
+            if not sep >= _DEGENERATE:   # through two coincident poles: quality 0, not kept
+                continue
+            q = sep / _CLOSE
+            if not q < 1.0:    # min(1.0, q)
+                q = 1.0
+            if drawn is None:
+                drawn = self.lines[a, b] = {}
+            drawn[x] = ((l0 / sep, l1 / sep, l2 / sep), q)
 
     def candidates(self) -> list:
         """The unknown poles two lines locate now, in key order: (a, b, score, info).
 
-        Of a pole's drawn lines, the pair with the best score, max(sine, |l x m|) times both
-        lines' qualities, is taken (the first such pair in slot order); it stands until another line
-        is drawn for the pole (``self.best``).
+        A pair's lines through poles known since it was last asked are drawn first. Of a pole's
+        drawn lines, the pair with the best score, max(sine, |l x m|) times both lines' qualities,
+        is taken (the first such pair in slot order); it stands until another line is drawn for
+        the pole (``self.best``).
         """
-        n, state, memo = self.n, self.state, self.best
+        n, state, known, through, memo = self.n, self.state, self.known, self.through, self.best
         out = []
         for a in range(n):
-            sa = state[a]
+            sa, ka = state[a], known[a]
             for b in range(a + 1, n):
                 if sa[b] != _UNKNOWN:
                     continue
+                common = ka & known[b]   # the links x with P_xa and P_xb known
                 cand = memo.get((a, b), False)
+                if common:
+                    old = through.get((a, b), ())
+                    if len(common) > len(old):
+                        self._draw(a, b, common.difference(old))
+                        through[a, b] = common
+                        cand = False
                 if cand is False:
                     cand = memo[a, b] = self._candidate(a, b)
                 if cand is not None:
@@ -589,8 +592,11 @@ class _Kennedy(_Construction):
     def _best_lines(self, a, b):
         """Of the pair's lines drawn, the two with the best score: ``(score, slot i, slot j, line i, line j,
         their meet x, |x|, sine)``, None where fewer than two are drawn."""
+        got = self.lines.get((a, b))
+        if got is None or len(got) < 2:
+            return None
         hypot, sqrt = math.hypot, math.sqrt
-        lines = self.drawn(a, b)
+        lines = sorted(got.items())   # [(slot, (line, quality))] in slot order
         best, top = None, 0.0
         for u in range(len(lines) - 1):
             i, (li, qi) = lines[u]
