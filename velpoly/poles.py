@@ -625,17 +625,19 @@ class _Kennedy(_Construction):
                         best = (count, a, b)
         return best[1], best[2]
 
-    def world(self, centre, scale, error: bool = True):
+    def world(self, centre, scale, error: bool = True, exact: bool = True):
         """The known poles in frame coordinates: the largest disagreement with the velocity solution,
         |P_ab x (T_a - T_b)| (0 without ``error``), and ``(a, b, (x, y, w) unit, position or None, at
         infinity)`` for each (a pole farther than FAR sizes is at infinity; the position never a signed
-        zero; tuples of floats)."""
+        zero; tuples of floats); without ``exact``, not the finite poles known by inspection (``self.exact``:
+        their places are exact already)."""
         c0, c1 = float(centre[0]), float(centre[1])
         twists, state, pole, sqrt = self.twists.tolist(), self.state, self.pole, math.sqrt
+        skip = () if exact else self.exact
         err, out = 0.0, []
         for a in range(self.n):
             for b in range(a + 1, self.n):
-                if state[a][b] != _KNOWN:
+                if state[a][b] != _KNOWN or (a, b) in skip:
                     continue
                 h = pole[a][b]
                 if error:
@@ -713,8 +715,8 @@ class _KennedyArrays(_Construction):
         self.state[a, b] = self.state[b, a] = _KNOWN
         self.info[(min(a, b), max(a, b))] = info
 
-    def world(self, centre, scale, error: bool = True):
-        """As :meth:`_Kennedy.world`, on arrays."""
+    def world(self, centre, scale, error: bool = True, exact: bool = True):
+        """As :meth:`_Kennedy.world`, on arrays (every known pole, ``exact`` or not)."""
         n, twists = self.n, self.twists
         A, B = np.nonzero(np.triu(self.state == _KNOWN, 1))
         h = self.pole[A, B]
@@ -1065,26 +1067,31 @@ def _pole_set(sol, kennedy, centre, scale, found) -> PoleSet:
 def _pole_places(sol, kennedy, centre, scale, found) -> dict:
     """The JSON ``poles`` section from the construction as :func:`_pole_set` makes its PoleSet (the same
     positions, directions, how and order), without the lines drawn: what ``solve --json`` needs."""
-    n, keys, infos, exact = kennedy.n, kennedy.keys, kennedy.info, kennedy.exact
-    world = {(a, b): (hk, pos, inf) for a, b, hk, pos, inf in kennedy.world(centre, scale, error=False)[1]}
-    out = {}
-    for a in range(n):
-        for b in range(a + 1, n):
-            got = world.get((a, b))
-            if got is None:
-                out[keys[a][b]] = {"position": None, "direction": None, "how": "undefined", "order": 0}
-                continue
-            hk, pos, inf = got
-            at = exact.get((a, b))
-            if at is not None:
-                pos = at
-            elif inf:
-                out[keys[a][b]] = {"position": None, "direction": _direction(hk), "how": infos[a, b]["how"],
-                                   "order": infos[a, b]["order"]}
-                continue
-            out[keys[a][b]] = {"position": [float(pos[0]), float(pos[1])], "how": infos[a, b]["how"],
-                               "order": infos[a, b]["order"]}
+    keys, infos, exact = kennedy.keys, kennedy.info, kennedy.exact
+    out = dict.fromkeys(_key_order(keys))   # every pole in key order; None: undefined
+    for (a, b), at in exact.items():         # a finite pole by inspection: exactly where it is
+        info = infos[a, b]
+        out[keys[a][b]] = {"position": [float(at[0]), float(at[1])], "how": info["how"], "order": info["order"]}
+    for a, b, hk, pos, inf in kennedy.world(centre, scale, error=False, exact=False)[1]:
+        if (a, b) in exact:
+            continue
+        info = infos[a, b]
+        if inf:
+            out[keys[a][b]] = {"position": None, "direction": _direction(hk), "how": info["how"],
+                               "order": info["order"]}
+        else:
+            out[keys[a][b]] = {"position": [float(pos[0]), float(pos[1])], "how": info["how"],
+                               "order": info["order"]}
+    for key, got in out.items():
+        if got is None:
+            out[key] = {"position": None, "direction": None, "how": "undefined", "order": 0}
     return out
+
+
+@functools.lru_cache(maxsize=16)   # the same links at every pose of a mechanism
+def _key_order(keys: tuple) -> tuple:
+    """The pole keys of :func:`_pair_keys` in key order: (a, b) for a < b."""
+    return tuple(k for a, row in enumerate(keys) for k in row[a + 1:])
 
 
 def kennedy_circle(ps: PoleSet) -> KennedyCircle:

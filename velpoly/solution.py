@@ -72,7 +72,7 @@ class Solution:
 
     @property
     def has_accelerations(self) -> bool:
-        return bool(np.all(np.isfinite(self.qdd)))
+        return all(map(math.isfinite, self.qdd.tolist()))
 
     def _arm(self, link: str, w):
         """``(k, R)``: the link's index in q and the arm R = w - O from its point O (the one at the world
