@@ -230,7 +230,7 @@ def pole_key(links, i: str, j: str) -> str:
 # -- twists ---------------------------------------------------------------------------------
 def _normalisation(sol) -> tuple[np.ndarray, float]:
     """The centre of the points' bounding box (finite points) and the mechanism's size."""
-    pts = [(float(x), float(y)) for x, y in sol.position.values() if math.isfinite(x) and math.isfinite(y)]
+    pts = [xy for v in sol.motion.position.values() for xy in v.tolist() if math.isfinite(xy[0]) and math.isfinite(xy[1])]
     if not pts:
         return np.zeros(2), float(sol.kinematics.system.size)
     xs, ys = [x for x, _ in pts], [y for _, y in pts]
@@ -289,7 +289,7 @@ def _inspection(sol, centre, scale):
     """Poles known by inspection and the constraint lines, in normalised coordinates.
 
     Returns ``(points, lines)``: points is a list of ``(i, j, h, how, note, at)`` (``at``: the
-    frame position of a finite pole, exactly, else None); lines a list of ``(i, j, h_line,
+    frame position of a finite pole, exactly (an array, or a tuple of floats), else None); lines a list of ``(i, j, h_line,
     label_pair, description, marks)`` (``marks``: the frame points that define the line: the
     contact point, the pin, a circular slot's centre).
     """
@@ -298,7 +298,7 @@ def _inspection(sol, centre, scale):
     points, lines = [], []
     for pin in m.pins:
         i, j = pin.links
-        at = np.array(sol.place(i, pin.point), float)
+        at = sol.place_xy(i, pin.point)
         points.append((i, j, _local_point(at, centre, scale), "pin", f"pin {pin.point}", at))
     for s, r in zip(m.sliders, mo.sliders):
         if s.centre is None:
@@ -447,14 +447,17 @@ class _Kennedy(_Construction):
     """The construction on plain floats (a few dozen links at most), in normalised coordinates.
 
     ``pole[a][b]``: the pole P_ab as a unit homogeneous triple (floats); ``state[a][b]``:
-    unknown, known or undefined. ``line[a][b][k]`` is the line that triangle
-    (a, b, k) of the Kennedy circle gives for P_ab (through P_ak and P_bk),
-    and ``line[a][b][n + c]`` the pair's c-th constraint line; ``quality`` is each
-    line's drafting quality (0: not drawn yet). Memory O(n^3): for big
-    mechanisms :class:`_KennedyArrays` does the same without storing lines.
+    unknown, known or undefined; ``known[x]``: the set of links c with P_xc known, ``when[x][c]``
+    the round it was known in (0: by inspection). ``lines[a, b]`` (a < b) holds the lines drawn for
+    P_ab by slot: slot x < n is the line that triangle (a, b, x) of the Kennedy circle gives, drawn
+    once P_xa and P_xb are both known, from the later of them (P_xb x P_xa when both came in one
+    round); slot n + c is the pair's c-th constraint line; each with its drafting quality (a line
+    through two nearly coincident poles, quality 0, is not kept). A pair's lines are drawn when
+    its candidate is asked for (:meth:`candidates`). Memory O(n^3) at most: for big mechanisms
+    :class:`_KennedyArrays` does the same without storing lines.
     """
 
-    def __init__(self, names, twists, condition=1.0, n_constraint=0):
+    def __init__(self, names, twists, condition=1.0):
         array = np.asarray(twists, float)
         twists = array.tolist()
         n = len(names)
@@ -471,14 +474,16 @@ class _Kennedy(_Construction):
                     alike[a][b] = alike[b][a] = True
                     pairs.append((a, b))
         super().__init__(names, array, alike, pairs)
-        m = n + n_constraint
         self.pole = [[(0.0, 0.0, 0.0)] * n for _ in range(n)]
         self.state = [[_UNKNOWN] * n for _ in range(n)]
-        self.line = [[[None] * m for _ in range(n)] for _ in range(n)]
-        self.quality = [[[0.0] * m for _ in range(n)] for _ in range(n)]
+        self.known = [set() for _ in range(n)]
+        self.when = [[0] * n for _ in range(n)]
+        self.round = 0
+        self.lines = {}     # (a, b) -> {slot: (unit line, quality > 0)}
+        self.through = {}   # (a, b) -> the links x whose triangle's line is drawn for P_ab
         self.unknown = n * (n - 1) // 2 - len(pairs)  # pairs a < b still unknown
         self.any_alike = bool(pairs)
-        self.best = {}   # (a, b) -> the best pair of the pair's lines drawn so far (None: none), until one is drawn
+        self.best = {}   # (a, b) -> the pair's candidate from its lines drawn so far (None: none), until one is drawn
         for a in range(n):
             self.state[a][a] = _UNDEFINED
         for a, b in pairs:
@@ -487,85 +492,79 @@ class _Kennedy(_Construction):
     def set(self, a, b, h, info) -> None:
         if type(h) is not tuple:   # an array (a slider's pole at infinity, the velocity fallback)
             h = tuple(map(float, h))
+        if a > b:
+            a, b = b, a
+        state = self.state
         self.pole[a][b] = self.pole[b][a] = h
-        if self.state[a][b] == _UNKNOWN:
-            self.unknown -= 1
-        self.state[a][b] = self.state[b][a] = _KNOWN
-        self.info[(min(a, b), max(a, b))] = info
+        if state[a][b] != _KNOWN:
+            if state[a][b] == _UNKNOWN:
+                self.unknown -= 1
+            state[a][b] = state[b][a] = _KNOWN
+            self.known[a].add(b)
+            self.known[b].add(a)
+            self.when[a][b] = self.when[b][a] = self.round
+        self.info[a, b] = info
 
     def add_constraint(self, a, b, h, label, desc, marks=()) -> None:
         super().add_constraint(a, b, h, label, desc, marks)
         a, b = min(a, b), max(a, b)
         self.best.pop((a, b), None)
-        slot = self.n + len(self.cons[(a, b)]) - 1
-        self.line[a][b][slot] = self.line[b][a][slot] = self.cons[(a, b)][-1]
-        self.quality[a][b][slot] = self.quality[b][a][slot] = 1.0
+        cons = self.cons[a, b]
+        self.lines.setdefault((a, b), {})[self.n + len(cons) - 1] = (cons[-1], 1.0)
 
     def spread(self, new) -> None:
-        """The Kennedy lines the new poles complete: with P_xy new and P_xc known, the line
-        P_xy P_xc carries the unknown P_yc (triangle y, c, x of the Kennedy circle)."""
-        state, pole, sqrt = self.state, self.pole, math.sqrt
-        drawn = []
-        known = {}   # x -> the links c with P_xc known (the states do not change here)
-        for x, y in [(a, b) for a, b in new] + [(b, a) for a, b in new]:
-            px, sy = pole[x], state[y]
-            a0, a1, a2 = px[y]
-            kx = known.get(x)
-            if kx is None:
-                kx = known[x] = [c for c, u in enumerate(state[x]) if u == _KNOWN]
-            for c in kx:
-                if sy[c] != _UNKNOWN:
-                    continue
-                b0, b1, b2 = px[c]   # the line P_xy x P_xc (_cross3 and _norm3 written out: the same floats)
-                l0, l1, l2 = a1 * b2 - a2 * b1, a2 * b0 - a0 * b2, a0 * b1 - a1 * b0
-                sep = sqrt(l0 * l0 + l1 * l1 + l2 * l2)
-                if sep >= _DEGENERATE:
-                    q = sep / _CLOSE
-                    if not q < 1.0:    # min(1.0, q)
-                        q = 1.0
-                else:
-                    q = 0.0
-                drawn.append((x, y, c, (l0 / sep, l1 / sep, l2 / sep) if sep > 0 else (l0, l1, l2), q))
-        # P_yc's line through P_xy and P_xc may come from both new poles (then with opposite signs):
-        # L[y][c] keeps the one drawn from P_xc, L[c][y] the one from P_xy
-        best, lines, quality = self.best, self.line, self.quality
-        for x, y, c, line, q in drawn:
-            lines[y][c][x] = line
-            quality[y][c][x] = q
-            best.pop((y, c) if y < c else (c, y), None)
-        for x, y, c, line, q in drawn:
-            lines[c][y][x] = line
-            quality[c][y][x] = q
+        """The round's poles are set: the next round's lines may pass through them."""
+        self.round += 1
 
-    def drawn(self, a, b) -> list:
-        """The lines drawn for the pair: [(slot, line, quality)], in slot order."""
-        qs = self.quality[a][b]
-        return [(k, ln, q) for k, (ln, q) in enumerate(zip(self.line[a][b], qs)) if q > 0] if max(qs) > 0 else []
+    def _draw(self, a, b, links) -> None:
+        """The Kennedy lines of P_ab through P_xa and P_xb for each link x of ``links`` (triangle a, b, x of
+        the Kennedy circle): the line l = P x P' from the pole known later, P, through the other, P'."""
+        pole, when, sqrt = self.pole, self.when, math.sqrt
+        drawn = self.lines.get((a, b))
+        for x in links:
+            px, wx = pole[x], when[x]
+            if wx[b] >= wx[a]:
+                (a0, a1, a2), (b0, b1, b2) = px[b], px[a]
+            else:
+                (a0, a1, a2), (b0, b1, b2) = px[a], px[b]
+            l0, l1, l2 = a1 * b2 - a2 * b1, a2 * b0 - a0 * b2, a0 * b1 - a1 * b0   # _cross3, _norm3 written out
+            sep = sqrt(l0 * l0 + l1 * l1 + l2 * l2)
+            if not sep >= _DEGENERATE:   # through two coincident poles: quality 0, not kept
+                continue
+            q = sep / _CLOSE
+            if not q < 1.0:    # min(1.0, q)
+                q = 1.0
+            if drawn is None:
+                drawn = self.lines[a, b] = {}
+            drawn[x] = ((l0 / sep, l1 / sep, l2 / sep), q)
 
     def candidates(self) -> list:
         """The unknown poles two lines locate now, in key order: (a, b, score, info).
 
-        Of a pole's drawn lines, the pair with the best score, max(sine, |l x m|) times both
-        lines' qualities, is taken (the first such pair in slot order); it stands until another line
-        is drawn for the pole (``self.best``).
+        A pair's lines through poles known since it was last asked are drawn first. Of a pole's
+        drawn lines, the pair with the best score, max(sine, |l x m|) times both lines' qualities,
+        is taken (the first such pair in slot order); it stands until another line is drawn for
+        the pole (``self.best``).
         """
-        n, state, memo = self.n, self.state, self.best
+        n, state, known, through, memo = self.n, self.state, self.known, self.through, self.best
         out = []
         for a in range(n):
-            sa = state[a]
+            sa, ka = state[a], known[a]
             for b in range(a + 1, n):
                 if sa[b] != _UNKNOWN:
                     continue
-                best = memo.get((a, b), False)
-                if best is False:
-                    best = memo[a, b] = self._best_lines(a, b)
-                if best is None:
-                    continue
-                score, i, j, li, lj, x, proj, sine = best
-                if proj >= _DEGENERATE and score >= _BLUNT:
-                    out.append((a, b, score, {"how": None, "slots": (i, j), "sine": sine if sine < 1.0 else 1.0,
-                                              "line_vectors": (list(li), list(lj)),
-                                              "h": (x[0] / proj, x[1] / proj, x[2] / proj)}))
+                common = ka & known[b]   # the links x with P_xa and P_xb known
+                cand = memo.get((a, b), False)
+                if common:
+                    old = through.get((a, b), ())
+                    if len(common) > len(old):
+                        self._draw(a, b, common.difference(old))
+                        through[a, b] = common
+                        cand = False
+                if cand is False:
+                    cand = memo[a, b] = self._candidate(a, b)
+                if cand is not None:
+                    out.append(cand)
         if self.any_alike:   # some links move alike: copy their poles
             done = {(a, b) for a, b, _, _ in out}
             for a in range(n):
@@ -575,21 +574,36 @@ class _Kennedy(_Construction):
                         if (a, b) in done:
                             out = [o for o in out if (o[0], o[1]) != (a, b)]
                         out.append((a, b, 1.0, hit))
-        out.sort(key=lambda o: (o[0], o[1]))
+            out.sort(key=lambda o: (o[0], o[1]))
         return out
+
+    def _candidate(self, a, b):
+        """``(a, b, score, info)`` of the pole P_ab where the best pair of its lines drawn meets; None where
+        fewer than two are drawn or the best two meet too bluntly to fix it."""
+        best = self._best_lines(a, b)
+        if best is None:
+            return None
+        score, i, j, li, lj, x, proj, sine = best
+        if proj >= _DEGENERATE and score >= _BLUNT:
+            return (a, b, score, {"how": None, "slots": (i, j), "sine": sine if sine < 1.0 else 1.0,
+                                  "line_vectors": (li, lj), "h": (x[0] / proj, x[1] / proj, x[2] / proj)})
+        return None
 
     def _best_lines(self, a, b):
         """Of the pair's lines drawn, the two with the best score: ``(score, slot i, slot j, line i, line j,
         their meet x, |x|, sine)``, None where fewer than two are drawn."""
+        got = self.lines.get((a, b))
+        if got is None or len(got) < 2:
+            return None
         hypot, sqrt = math.hypot, math.sqrt
-        lines = self.drawn(a, b)
+        lines = sorted(got.items())   # [(slot, (line, quality))] in slot order
         best, top = None, 0.0
         for u in range(len(lines) - 1):
-            i, li, qi = lines[u]
+            i, (li, qi) = lines[u]
             ni = hypot(li[0], li[1])
             a0, a1, a2 = li
             for v in range(u + 1, len(lines)):
-                j, lj, qj = lines[v]
+                j, (lj, qj) = lines[v]
                 b0, b1, b2 = lj   # x = li x lj, proj = |x| (_cross3, _norm3 written out)
                 x0, x1, x2 = a1 * b2 - a2 * b1, a2 * b0 - a0 * b2, a0 * b1 - a1 * b0
                 proj = sqrt(x0 * x0 + x1 * x1 + x2 * x2)
@@ -606,22 +620,24 @@ class _Kennedy(_Construction):
         for a in range(self.n):
             for b in range(a + 1, self.n):
                 if self.state[a][b] == _UNKNOWN:
-                    count = sum(q > 0 for q in self.quality[a][b])
+                    count = len(self.lines.get((a, b), ()))
                     if best is None or count > best[0]:
                         best = (count, a, b)
         return best[1], best[2]
 
-    def world(self, centre, scale, error: bool = True):
+    def world(self, centre, scale, error: bool = True, exact: bool = True):
         """The known poles in frame coordinates: the largest disagreement with the velocity solution,
         |P_ab x (T_a - T_b)| (0 without ``error``), and ``(a, b, (x, y, w) unit, position or None, at
         infinity)`` for each (a pole farther than FAR sizes is at infinity; the position never a signed
-        zero; tuples of floats)."""
+        zero; tuples of floats); without ``exact``, not the finite poles known by inspection (``self.exact``:
+        their places are exact already)."""
         c0, c1 = float(centre[0]), float(centre[1])
-        twists, state, pole = self.twists.tolist(), self.state, self.pole
+        twists, state, pole, sqrt = self.twists.tolist(), self.state, self.pole, math.sqrt
+        skip = () if exact else self.exact
         err, out = 0.0, []
         for a in range(self.n):
             for b in range(a + 1, self.n):
-                if state[a][b] != _KNOWN:
+                if state[a][b] != _KNOWN or (a, b) in skip:
                     continue
                 h = pole[a][b]
                 if error:
@@ -629,9 +645,11 @@ class _Kennedy(_Construction):
                     e = _norm3(_cross3(h, (ta[0] - tb[0], ta[1] - tb[1], ta[2] - tb[2])))
                     if e > err:
                         err = e
-                hw = (scale * h[0] + c0 * h[2], scale * h[1] + c1 * h[2], h[2])
-                nw = max(_norm3(hw), 1e-300)
-                x, y, w = hw = (hw[0] / nw, hw[1] / nw, hw[2] / nw)
+                x, y, w = scale * h[0] + c0 * h[2], scale * h[1] + c1 * h[2], h[2]
+                nw = sqrt(x * x + y * y + w * w)   # max(_norm3(hw), 1e-300), written out
+                if 1e-300 > nw:
+                    nw = 1e-300
+                x, y, w = hw = (x / nw, y / nw, w / nw)
                 far = w == 0 or math.hypot(x, y) > FAR * scale * abs(w)
                 out.append((a, b, hw, None if far else (x / w + 0.0, y / w + 0.0), far))   # tuples: the
         return err, out                                                                # PoleSet makes arrays
@@ -697,8 +715,8 @@ class _KennedyArrays(_Construction):
         self.state[a, b] = self.state[b, a] = _KNOWN
         self.info[(min(a, b), max(a, b))] = info
 
-    def world(self, centre, scale, error: bool = True):
-        """As :meth:`_Kennedy.world`, on arrays."""
+    def world(self, centre, scale, error: bool = True, exact: bool = True):
+        """As :meth:`_Kennedy.world`, on arrays (every known pole, ``exact`` or not)."""
         n, twists = self.n, self.twists
         A, B = np.nonzero(np.triu(self.state == _KNOWN, 1))
         h = self.pole[A, B]
@@ -914,13 +932,7 @@ def _construct(sol) -> tuple:
     centre, scale = _normalisation(sol)
     twists = link_twists(sol, centre, scale)
     points, cons = _inspection(sol, centre, scale)
-    if len(names) <= _SMALL:
-        per_pair = {}
-        for i, j, *_ in cons:
-            per_pair[frozenset((i, j))] = per_pair.get(frozenset((i, j)), 0) + 1
-        kennedy = _Kennedy(names, twists, sol.condition, max(per_pair.values(), default=0))
-    else:
-        kennedy = _KennedyArrays(names, twists, sol.condition)
+    kennedy = (_Kennedy if len(names) <= _SMALL else _KennedyArrays)(names, twists, sol.condition)
 
     # by inspection: a pin is its pole whatever the other links do and however fast they move, even
     # when the two links move alike (then P_ik = P_jk stays decided from the velocities)
@@ -1012,7 +1024,7 @@ def _pole_set(sol, kennedy, centre, scale, found) -> PoleSet:
     for a, b, hk, pos, inf in known:
         at = exact.get((a, b))   # a finite pole by inspection: exactly where it is
         if at is not None:
-            pos, direction = at, None
+            pos, direction = np.array(at, float), None
         elif inf:
             pos, direction = None, _direction(hk)
         else:
@@ -1055,26 +1067,31 @@ def _pole_set(sol, kennedy, centre, scale, found) -> PoleSet:
 def _pole_places(sol, kennedy, centre, scale, found) -> dict:
     """The JSON ``poles`` section from the construction as :func:`_pole_set` makes its PoleSet (the same
     positions, directions, how and order), without the lines drawn: what ``solve --json`` needs."""
-    n, keys, infos, exact = kennedy.n, kennedy.keys, kennedy.info, kennedy.exact
-    world = {(a, b): (hk, pos, inf) for a, b, hk, pos, inf in kennedy.world(centre, scale, error=False)[1]}
-    out = {}
-    for a in range(n):
-        for b in range(a + 1, n):
-            got = world.get((a, b))
-            if got is None:
-                out[keys[a][b]] = {"position": None, "direction": None, "how": "undefined", "order": 0}
-                continue
-            hk, pos, inf = got
-            at = exact.get((a, b))
-            if at is not None:
-                pos = at
-            elif inf:
-                out[keys[a][b]] = {"position": None, "direction": _direction(hk), "how": infos[a, b]["how"],
-                                   "order": infos[a, b]["order"]}
-                continue
-            out[keys[a][b]] = {"position": [float(pos[0]), float(pos[1])], "how": infos[a, b]["how"],
-                               "order": infos[a, b]["order"]}
+    keys, infos, exact = kennedy.keys, kennedy.info, kennedy.exact
+    out = dict.fromkeys(_key_order(keys))   # every pole in key order; None: undefined
+    for (a, b), at in exact.items():         # a finite pole by inspection: exactly where it is
+        info = infos[a, b]
+        out[keys[a][b]] = {"position": [float(at[0]), float(at[1])], "how": info["how"], "order": info["order"]}
+    for a, b, hk, pos, inf in kennedy.world(centre, scale, error=False, exact=False)[1]:
+        if (a, b) in exact:
+            continue
+        info = infos[a, b]
+        if inf:
+            out[keys[a][b]] = {"position": None, "direction": _direction(hk), "how": info["how"],
+                               "order": info["order"]}
+        else:
+            out[keys[a][b]] = {"position": [float(pos[0]), float(pos[1])], "how": info["how"],
+                               "order": info["order"]}
+    for key, got in out.items():
+        if got is None:
+            out[key] = {"position": None, "direction": None, "how": "undefined", "order": 0}
     return out
+
+
+@functools.lru_cache(maxsize=16)   # the same links at every pose of a mechanism
+def _key_order(keys: tuple) -> tuple:
+    """The pole keys of :func:`_pair_keys` in key order: (a, b) for a < b."""
+    return tuple(k for a, row in enumerate(keys) for k in row[a + 1:])
 
 
 def kennedy_circle(ps: PoleSet) -> KennedyCircle:

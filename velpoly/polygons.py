@@ -1287,7 +1287,7 @@ class _Run:
             return []
         vrel = self.vel.image((r.a, w)) - self.vel.image((r.b, w))
         out = []
-        cor = self.coriolis_term(r, w, vrel)
+        cor = self.coriolis_term(r, w, vrel) if r.b != g.frame else None   # a guide on the frame has none
         # the slip reversed (A_b - A_a + 2 omega_b x V_a/b) is b's slip on a only on a straight path
         back = (f"A_{rrel}", ("slip", kb, ka, r.b, None)) if kk is None else None
         if r.source != "contact":

@@ -72,7 +72,7 @@ class Solution:
 
     @property
     def has_accelerations(self) -> bool:
-        return bool(np.all(np.isfinite(self.qdd)))
+        return all(map(math.isfinite, self.qdd.tolist()))
 
     def _arm(self, link: str, w):
         """``(k, R)``: the link's index in q and the arm R = w - O from its point O (the one at the world
@@ -100,13 +100,18 @@ class Solution:
 
     def place(self, link: str, point: str) -> np.ndarray:
         """Where the point of ``link`` that was at ``point`` in the reference pose is now."""
+        return np.array(self.place_xy(link, point), float)
+
+    def place_xy(self, link: str, point: str) -> tuple[float, float]:
+        """:meth:`place` as a tuple of floats: (x, y) + R(theta) s for the point s of the reference pose
+        on the link whose coordinates are (x, y, theta) (s itself on the frame)."""
+        sx, sy = self.mechanism.points[point]
         k = self.kinematics.system.index.get(link)
         if k is None:
-            return self.mechanism.position(point)
-        sx, sy = self.mechanism.points[point]
+            return float(sx), float(sy)
         x, y, th = self.q[3 * k:3 * k + 3].tolist()
         c, sn = math.cos(th), math.sin(th)
-        return np.array((x + (c * sx - sn * sy), y + (sn * sx + c * sy)))
+        return x + (c * sx - sn * sy), y + (sn * sx + c * sy)
 
     def _repr_html_(self) -> str:   # a notebook shows the tables of `velpoly solve`
         from .report import solution_html
