@@ -26,11 +26,12 @@ import sys
 import tomllib
 
 import numpy as np
+import pytest
 from hypothesis import HealthCheck, given, note, settings, strategies as st
 
 import velpoly
 from mechanisms import (CAM_FLAT, CAM_ROLLER, EXAMPLE_3_6, SIXBAR_1_4_4, SLOTTED_LEVER, WHEEL_ROLLING, fourbar,
-                        inverted_slider_crank, slider_crank)
+                        inverted_slider_crank, ranges_by_dyads_only, slider_crank)
 
 SCALE = float(os.environ.get("VELPOLY_FUZZ_SCALE", "1"))   # e.g. 20 for a long hunt; CI runs 1
 EXAMPLES = {k: int(n * SCALE) for k, n in {"valid": 150, "mutated": 250, "corrupted": 200, "random": 150}.items()}
@@ -92,6 +93,16 @@ def test_the_writer_round_trips():
         assert tomllib.loads(to_toml(d)) == d
     d = {"a": [1.5, float("inf"), "x\x7f\n\"y"], "t": {"k": {"n": True}}}
     assert tomllib.loads(to_toml(d)) == d
+
+
+@pytest.fixture(scope="module", autouse=True)
+def _ranges_by_dyads_only():
+    """A generated file asking for an angle beyond a toggle is refused with the reachable range in its
+    message: by a dyad walk where the mechanism has one, else (0, 0) (tests/mechanisms.py): the contact
+    examples took one to nine seconds a run, as many as hypothesis happened to send past a toggle."""
+    with pytest.MonkeyPatch.context() as mp:
+        ranges_by_dyads_only(mp)
+        yield
 
 
 # -- the property --------------------------------------------------------------------------------------
