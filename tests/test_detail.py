@@ -19,6 +19,7 @@ from matplotlib.figure import Figure
 
 import velpoly
 from velpoly.errors import VelpolyError
+import sheets
 import zoo
 from paths import EXAMPLES
 from velpoly.polygons import acceleration_polygon, velocity_polygon
@@ -231,7 +232,7 @@ def test_detail_frames_cover_nothing_of_their_panel_on_generated_mechanisms():
     assert drawn == 10 and kinds == {"velocity", "acceleration"}, (drawn, kinds)
 
 
-@pytest.mark.parametrize("style", ["textbook", "slides"])
+@pytest.mark.parametrize("style", [pytest.param(st, marks=sheets.on(st)) for st in sheets.STYLES])
 def test_example_3_10_full_sheet_detail_has_its_room(style):
     """Example 3.10's acceleration polygon on the full sheet: where the page's layout gives it a column in
     which the rule calls for a detail, no free place held the detail at the planned scale (its frame lay
@@ -239,10 +240,8 @@ def test_example_3_10_full_sheet_detail_has_its_room(style):
     the layout gives it room enough (the tall corner column), the rule calls for none at the scale drawn.
     Either way the caption states the scale drawn."""
     from frame_checks import frame_clashes
-    sol = velpoly.solve(velpoly.load(EXAMPLES / "ex3_10_rolling_contact.toml"))
-    st = get_style(style)
-    with rc_context(st):
-        fig = sheet.render_sheet(sol, "full", st)
+    sol = sheets.solved("ex3_10_rolling_contact")
+    fig = sheets.page("ex3_10_rolling_contact", "full", style)   # the gallery's page, shared: read only
     ax = next(a for a in fig.axes if a.get_label() == "acceleration")
     cap = next(t for t in fig.texts if t.get_gid() == "caption-acceleration")
     assert cap.get_text().endswith("(" + scale_text(view_scale(ax), sol.mechanism.units, 2) + ")")
