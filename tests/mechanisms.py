@@ -7,6 +7,24 @@ from __future__ import annotations
 import math
 
 
+def ranges_by_dyads_only(monkeypatch) -> None:
+    """Make the reachable range an AssemblyError names (``solve`` at an angle beyond a toggle) cheap for a
+    test that checks the refusal, not the range: computed, and checked to hold the drawn pose, where the
+    mechanism has a chain of dyads (a walk: milliseconds); (0, 0) where only continuation reaches its poses
+    (four continuations past the toggles: a second or more a mechanism). That path is tested on its own
+    (test_slot_ends, test_cycle's and test_gallery's rolling-contact sweeps, test_change_points,
+    test_branch)."""
+    from velpoly import pose, solution
+    real = solution.reachable_range
+
+    def ranged(kin):
+        if pose.plan_for(kin.system.positions) is None:
+            return 0.0, 0.0
+        lo, hi = real(kin)
+        assert lo <= 0.0 <= hi, (lo, hi)
+        return lo, hi
+    monkeypatch.setattr(solution, "reachable_range", ranged)
+
 def fourbar(a=5.0, b=8.0, c=9.0, d=8.0, theta=40.0, omega=10.0, alpha=0.0, branch="left",
             coupler=None):
     """Crank O2A = a, coupler AB = b, rocker O4B = c, frame O2O4 = d along +x."""

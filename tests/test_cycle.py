@@ -6,6 +6,7 @@ b = 5, c = 6, d = 9 reaches its toggle (coupler and rocker in line) where |A - O
 i.e. at cos(theta) = (a^2 + d^2 - (b + c)^2) / (2 a d) = 9 / 126: theta = +-85.904 deg.
 """
 import csv
+import functools
 import io
 import math
 import re
@@ -21,6 +22,7 @@ from velpoly.cli import _Progress
 from velpoly.render.sweep import cycle_figure
 from velpoly.report import cycle_columns, cycle_csv, summary_table
 from velpoly.sweeps import run_cycle
+from velpoly.driver import reachable_text
 from velpoly.kinematics import prepare
 from velpoly.reference import relative_pole
 from mechanisms import fourbar, slider_crank
@@ -382,17 +384,31 @@ PARTIAL = {"fig3_15a_rolling": (-61.0, 151.0),    # a flat-faced cam: see the fi
            "fig3_15b_sliding": (-61.0, 151.0)}    # the same lever and cam; the slip turns the wheel only
 
 
-@pytest.mark.parametrize("path", GALLERY, ids=[p.stem for p in GALLERY])
+ON_FIG3_15 = pytest.mark.xdist_group("cycle-fig3-15")   # one worker sweeps the two cases once (partial_cycle)
+
+
+@functools.cache
+def partial_cycle(stem: str):
+    """(mechanism, its cycle swept every 2 deg) of a PARTIAL gallery file, as `velpoly sweep --step 2` sweeps
+    it: the two cases of Fig. 3.15 walk by continuation up to their toggle (seconds each), shared by the
+    tests that look at them (ON_FIG3_15 keeps them on one worker). Read only."""
+    m = velpoly.load(next(p for p in GALLERY if p.stem == stem))
+    return m, run_cycle(m, 2.0)
+
+
+@pytest.mark.parametrize("path", [pytest.param(p, marks=[ON_FIG3_15] if p.stem in PARTIAL else [])
+                                  for p in GALLERY], ids=[p.stem for p in GALLERY])
 def test_every_gallery_mechanism_sweeps_its_cycle(path):
     """`velpoly sweep` on each gallery file: the whole turn on the drawn branch (or the reachable part,
     with the toggle named), continuous, and the CSV with a row per pose and every column filled."""
-    m = velpoly.load(path)
-    sw = run_cycle(m, 2.0)
+    m, sw = partial_cycle(path.stem) if path.stem in PARTIAL else (None, None)
+    if sw is None:
+        m = velpoly.load(path)
+        sw = run_cycle(m, 2.0)
     if path.stem in PARTIAL:
         lo, hi = PARTIAL[path.stem]
         assert "toggle" in sw.stopped
         assert hi - 3 <= sw.angles[-1] <= hi                      # stops within a step or so of the toggle
-        from velpoly.driver import reachable_text
         text = reachable_text(m, prepare(m))
         got = [float(x) for x in text.split(": ")[1].split(" deg")[0].split(" to ")]
         assert lo <= got[0] <= lo + 4 and hi - 2 <= got[1] <= hi
@@ -411,3 +427,33 @@ def test_every_gallery_mechanism_sweeps_its_cycle(path):
     assert len(rows) == len(sw.angles)
     assert all(v != "" for r in rows for k, v in r.items()
                if not k.startswith(("alpha", "ax_", "ay_", "slip_acceleration")))
+
+
+# -- Fig. 3.15 (b) over its cycle: a prescribed slip (formerly issue 2 of gallery/SOLVER_ISSUES.md) ---------
+@ON_FIG3_15
+def test_fig3_15b_sweeps_the_cycle_of_case_a_with_the_wheel_slipping():
+    """The cycle `velpoly sweep --step 2` sweeps of case (b) (slip s = 6 of wheel 3 on cam 4, omega_4 = 5
+    constant): the reachable part of case (a)'s cycle (its flat-faced cam stops at the same toggle), every
+    link and point as in case (a) but wheel 3, which turns s / r3 faster and by s t / r3 more (r3 = 1,
+    t = theta_4 / omega_4). Read from the CSV of the sweeps test_every_gallery_mechanism_sweeps_its_cycle
+    looks at (partial_cycle); the command's own output is tested above."""
+    cols, stops = {}, {}
+    for case in ("fig3_15a_rolling", "fig3_15b_sliding"):
+        m, sw = partial_cycle(case)
+        assert sw.stopped.startswith("stopped at a toggle after 150 deg"), sw.stopped
+        stops[case] = (sw.stopped, reachable_text(m, prepare(m)))
+        rows = list(csv.DictReader(io.StringIO(cycle_csv(sw))))
+        cols[case] = {k: np.array([float(r[k]) for r in rows]) for k in rows[0]}
+    assert stops["fig3_15b_sliding"] == stops["fig3_15a_rolling"]     # the same toggle, the same range
+    a, b = cols["fig3_15a_rolling"], cols["fig3_15b_sliding"]
+    assert list(a) == list(b) and len(b["driver"]) == 76
+    wheel = {"theta_3", "omega_3", "slip_velocity_P_3/4"} | {k for k in b if k.endswith("_P@3")}
+    for k in set(b) - wheel:
+        assert b[k] == pytest.approx(a[k], rel=1e-9, abs=1e-9 * max(np.abs(a[k]).max(), 1.0)), k
+    s, t = 6.0, np.radians(b["driver"]) / 5.0
+    assert b["slip_velocity_P_3/4"] == pytest.approx(np.full(76, s), rel=1e-10)
+    assert b["omega_3"] - a["omega_3"] == pytest.approx(np.full(76, s), rel=1e-9)
+    turn = b["theta_3"] - a["theta_3"] - np.degrees(s * t)
+    assert np.abs((turn + 180) % 360 - 180).max() < 1e-8
+    dv = np.hypot(b["vx_P@3"] - a["vx_P@3"], b["vy_P@3"] - a["vy_P@3"])   # s along the tangent
+    assert dv == pytest.approx(np.full(76, s), rel=1e-9)

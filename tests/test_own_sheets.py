@@ -17,6 +17,7 @@ from velpoly.render import sheet
 from velpoly.render.options import SHEETS, drawing_options
 from velpoly.render.style import get_style, rc_context
 
+import sheets
 import zoo
 from paths import EXAMPLES
 
@@ -349,23 +350,28 @@ def test_merge_series_keeps_curves_that_only_touch():
 
 
 @pytest.mark.parametrize("stem", ["ex3_4_slotted_lever", "ex3_10_rolling_contact", "fig3_15b_sliding"])
+@sheets.on("textbook")
 def test_a_promised_footnote_is_on_the_sheet(stem):
     """The rows a [reference] note explains lead the book's rows, so a table cut to its room keeps them
     and their footnotes; the title announces a footnote only when one is drawn (Ex. 3.4's full sheet
-    promised a † whose row was among the rows cut)."""
-    from paths import example
+    promised a † whose row was among the rows cut). The sheet is the shared gallery page (tests/sheets.py:
+    the first two are drawn for test_render_gallery anyway); the table is drawn again on a page of its own
+    of the same size, in the sheet's table's place."""
+    from matplotlib.backends.backend_agg import FigureCanvasAgg
+    from matplotlib.figure import Figure
     from velpoly.render.table import NOTED, draw_results_table, results_table
-    sol = velpoly.solve(velpoly.load(example(stem)))
-    cons = sheet.constructions(sol, "full")
+    sol, cons = sheets.solved(stem), sheets.constructions(stem, "full")
     t = results_table(sol, "full", velocity=cons.velocity, acceleration=cons.acceleration, poleset=cons.poles)
     marks = {n[0] for n in t.notes}
     ref = t.header.index("reference")
     kinds = [(bool(row[ref]), (row[-1].split() or [""])[-1] in marks) for row in t.rows]
     assert any(k[1] for k in kinds) and kinds == sorted(kinds, key=lambda k: (not k[0], not k[1]))
-    with rc_context(get_style("textbook")):
-        fig = sheet.render_sheet(sol, "full", "textbook", cons=cons)
-        tab = next(ax for ax in fig.axes if ax.get_label() == "table")
-        art = draw_results_table(sol, fig.add_axes(tab.get_position().bounds, label="probe"), sheet="full",
+    fig = sheets.page(stem, "full", "textbook")     # read only
+    tab = next(ax for ax in fig.axes if ax.get_label() == "table")
+    probe = Figure(figsize=fig.get_size_inches(), dpi=fig.dpi)
+    FigureCanvasAgg(probe)
+    with sheets.styled("textbook"):
+        art = draw_results_table(sol, probe.add_axes(tab.get_position().bounds, label="probe"), sheet="full",
                                  style="textbook", velocity=cons.velocity, acceleration=cons.acceleration,
                                  poleset=cons.poles)
     promised = f"{NOTED} the book's value is explained in a footnote" in " ".join(art["title"][0].get_text().split())

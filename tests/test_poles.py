@@ -800,7 +800,7 @@ def check_drawn_lines(sol):
     return checked
 
 
-@pytest.mark.parametrize("seed", range(2))
+@pytest.mark.parametrize("seed", [0])   # one seed (two until the suite had to fit 2 minutes): every kind once
 def test_kennedy_lines_are_drawn_through_every_found_pole_and_over_the_bodies(seed):
     kinds, lines = set(), 0
     for kind, d in seeded_mechanisms(seed):

@@ -32,6 +32,7 @@ from velpoly.polygons import acceleration_polygon, hand_drafting, velocity_polyg
 from velpoly.solution import driver_reference_angle
 
 import zoo
+from mechanisms import ranges_by_dyads_only
 from test_poles import check_ic, check_poles
 
 try:   # the arrow-sense checks (tests/checks_arrows.py), where that module is in the tree
@@ -64,21 +65,9 @@ def by_kind() -> dict:
 
 @pytest.fixture(autouse=True)
 def _ranges_by_dyads_only(monkeypatch):
-    """The reachable range an AssemblyError names (``solve`` beyond a toggle): computed, and checked
-    to hold the drawn pose, where the mechanism has a chain of dyads (a walk: milliseconds). By
-    continuation it takes four continuations past the toggle (seconds a specimen); that path is
-    tested on its own (test_slot_ends, test_cycle's and test_gallery's rolling-contact sweeps,
-    test_change_points), so here it gives (0, 0)."""
-    from velpoly import pose, solution
-    real = solution.reachable_range
-
-    def ranged(kin):
-        if pose.plan_for(kin.system.positions) is None:
-            return 0.0, 0.0
-        lo, hi = real(kin)
-        assert lo <= 0.0 <= hi, (lo, hi)
-        return lo, hi
-    monkeypatch.setattr(solution, "reachable_range", ranged)
+    """The reachable range an AssemblyError names: by a dyad walk where there is one, else (0, 0)
+    (tests/mechanisms.py's ranges_by_dyads_only)."""
+    ranges_by_dyads_only(monkeypatch)
 
 
 def check_solution(sol):
