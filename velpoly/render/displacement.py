@@ -200,6 +200,7 @@ class _Drawing:
         self.pc, self.pp = per_cm(ax), per_point(ax)
         self.pl = placer(ax)
         self.art = Artists(ax)
+        self.art.exempt = {}   # each ground hatch (a LineCollection) -> the links it may touch
         self.pins_at: dict = {}          # point -> set of links pinned there
         for pin in self.m.pins:
             self.pins_at.setdefault(pin.point, set()).update(pin.links)
@@ -282,7 +283,7 @@ class _Drawing:
             if not lines:
                 continue
             lc = LineCollection(lines, colors=self.st.ink, linewidths=widths, zorder=zorder)
-            lc._velpoly_exempt = exempt
+            self.art.exempt[lc] = exempt
             self.ax.add_collection(lc)
             self.art.add(role, lc)
             # the hatched strip itself (the strokes lie on one side of the line), with a little margin
@@ -721,8 +722,7 @@ class _Drawing:
                 t = self.ax.text(*anchor, literal(lk), ha="center", va="center", gid=f"link-number-{lk}", **kw)
                 b = self.pl.box_of(t, pad=3.5 if "bbox" in kw else 1.0)
                 if g.contains(b) and self.pl.free(b):
-                    self.pl.boxes.append(b)
-                    self.pl.texts.append(t)
+                    self.pl.add_box(t, b)
                     self.art.add("link_numbers", t)
                     continue
                 t.remove()
@@ -877,14 +877,11 @@ class _Drawing:
         for f in (1.0,) + SMALLER:
             with self.pl.trial():
                 n = len(self.pl.overlapping)
-                t = self.pl.place(at, text, fontsize=fontsize * f, clear=True, **kw)
+                t = self.pl.place(at, text, fontsize=fontsize * f, clear=True, again=again, **kw)
                 self.pl.keep = len(self.pl.overlapping) == n and not self.pl.soft_hits(self.pl.box_of(t, pad=0.0))
                 if self.pl.keep:
-                    t._velpoly_again = again
                     return t
-        t = self.pl.place(at, text, fontsize=fontsize, clear=True, **kw)
-        t._velpoly_again = again
-        return t
+        return self.pl.place(at, text, fontsize=fontsize, clear=True, again=again, **kw)
 
     def _plan_score(self, p, plan, texts, label_kw) -> tuple:
         """How a plan reads, lower is better: its arcs cross no other link, block or label; then its values
@@ -977,8 +974,8 @@ def draw_mechanism(sol, ax=None, *, style="textbook", options=None, scale: float
         ``.labels`` maps each point key to its label, ``.bodies`` each moving
         link to its drawn body (shapely), ``.plates`` each link drawn as a plate to
         its polygon, ``.slot_cuts`` each moving link's slot
-        (by index) to ``(link, centre line, cut)``. Every ground hatch (a
-        LineCollection) has ``_velpoly_exempt``: the links it may touch.
+        (by index) to ``(link, centre line, cut)``, ``.exempt`` each ground hatch
+        (a LineCollection) to the links it may touch.
     """
     ax = get_ax(ax)
     st = get_style(style)

@@ -492,8 +492,7 @@ def _legend(ax, st, kinds) -> list:
     leg._velpoly_hits = hits
     leg._velpoly_paper = [(w / per_cm(ax), h / per_cm(ax)) for _, _, w, h in sizes]   # the variants' sizes in cm
     pl.placed["legend"] = ("legend", size, ncol, (float(b.bounds[0]), float(b.bounds[1])), tuple(kinds))
-    pl.boxes.append(b)
-    pl.texts.append(leg)
+    pl.add_box(leg, b)
     return [leg]
 
 
