@@ -423,6 +423,7 @@ class _Drawing:
                     zorder=1.1)
         self.ax.add_line(ln)
         self.art.add("guides", ln)
+        self.pl.add_obstacle(path, hard=False)   # a label (its point's own) rather off the path it reads along
 
     def slot_ends(self, s):
         """The positions of a slot's ``ends`` (FORMAT.md ``[[slots]] ends``) now, or None without them."""

@@ -247,7 +247,7 @@ class _PolygonDrawing:
             prefer, near = self._label_side(p, np.array([cx, cy]), groups)
             t = self.pl.place(p, _label_text(self.polygon, self.names, g, gi == 0), prefer=prefer,
                               fontsize=self.st.font_size, zorder=7, fontstyle="italic", within=70.0 if near else None,
-                              gid=f"{gid_prefix}-{self.polygon.kind}-" + ("origin+" if gi == 0 else "") + "+".join(g))
+                              clear=True, gid=f"{gid_prefix}-{self.polygon.kind}-" + ("origin+" if gi == 0 else "") + "+".join(g))
             self.art.add("labels", t)
             for k in g:
                 self.art.labels[k] = t
