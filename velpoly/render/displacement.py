@@ -885,14 +885,17 @@ class _Drawing:
         return self.pl.place(at, text, fontsize=fontsize, clear=True, again=again, **kw)
 
     def _plan_score(self, p, plan, texts, label_kw) -> tuple:
-        """How a plan reads, lower is better: its arcs cross no other link, block or label; then its values
-        lie on no line (soft obstacle) and are placed, close to their arcs; then the wider gaps."""
+        """How a plan reads, lower is better: its arcs cross no other link, block or label and stay in view (an
+        arc cut by the panel's edge runs into the caption above it); then its values lie on no line (soft
+        obstacle) and are placed, close to their arcs; then the wider gaps."""
         drv = self.m.driver
         others = [g for lk, g in self.geoms.items() if lk != drv.link]
         others += [g for lk, g in self.block_geom.items() if lk != drv.link] + list(self.pl.boxes)
-        crossed = sum(1 for place, value in zip(plan, (drv.omega, drv.alpha)) if place is not None
-                      for g in others if g.intersects(LineString(self._arc_points(
-                          p, place.rad, place.mid, place.span, 1.0 if value >= 0 else -1.0))))
+        view = view_box(self.ax)
+        arcs = [LineString(self._arc_points(p, place.rad, place.mid, place.span, 1.0 if value >= 0 else -1.0))
+                for place, value in zip(plan, (drv.omega, drv.alpha)) if place is not None]
+        crossed = sum(1 for arc in arcs for g in others if g.intersects(arc)) + \
+            sum(1 for arc in arcs if not view.contains(arc))
         with self.pl.trial():
             n_bad = len(self.pl.overlapping)
             _, labels = self._draw_driver(p, plan, texts, label_kw)
