@@ -519,6 +519,7 @@ class _Drawing:
                         gid=f"equivalent-{i}")
             self.ax.add_line(ln)
             self.art.add("equivalent", ln)
+            self.pl.add_obstacle(LineString([tuple(q) for q in xy]), hard=False)   # labels rather off it
 
     def contact(self, i, c, r):
         sol, st, pc = self.sol, self.st, self.pc
@@ -718,16 +719,28 @@ class _Drawing:
                 anchor = np.array(g.centroid.coords[0])
                 prefer = away_from(anchor, [np.array([cx, cy])], default=90.0)
             kw = self.number_style(lk)
+            pad = 3.5 if "bbox" in kw else 1.0
             if len(pts) >= 3:
-                # a plate: its number inside, at the centroid, if there is room
+                # a plate: its number inside, at the centroid, if there is room there off every line; else near it
+                # off every line; else at the centroid all the same
                 t = self.ax.text(*anchor, literal(lk), ha="center", va="center", gid=f"link-number-{lk}", **kw)
-                b = self.pl.box_of(t, pad=3.5 if "bbox" in kw else 1.0)
-                if g.contains(b) and self.pl.free(b):
+                b = self.pl.box_of(t, pad=pad)
+                inside = g.contains(b) and self.pl.free(b)
+                if inside and self.pl.soft_hits(b):
+                    t.remove()
+                    t = self._off_the_lines(anchor, literal(lk), prefer=prefer, gap=2.0, gid=f"link-number-{lk}",
+                                            pad=pad, **kw)
+                    if t is None:
+                        t = self.ax.text(*anchor, literal(lk), ha="center", va="center", gid=f"link-number-{lk}",
+                                         **kw)
+                        self.pl.add_box(t, b)
+                    self.art.add("link_numbers", t)
+                    continue
+                if inside:
                     self.pl.add_box(t, b)
                     self.art.add("link_numbers", t)
                     continue
                 t.remove()
-            pad = 3.5 if "bbox" in kw else 1.0
             t = None
             if len(pts) == 2:
                 # a bar: its number beside it, near its middle, on the side clear of everything
@@ -740,11 +753,25 @@ class _Drawing:
                          for side in (1, -1)]
                 if np.hypot(*(b - a)) > 2 * off:
                     t = self.pl.place_at(spots, literal(lk), gid=f"link-number-{lk}", pad=pad, soft=True, **kw)
-                    if t is None:   # nothing clear of every line beside it: clear of marks and labels
+                    if t is None:   # nothing clear of every line beside it: near it off every line, if anywhere
+                        t = self._off_the_lines(anchor, literal(lk), prefer=prefer, gap=2.0, gid=f"link-number-{lk}",
+                                                pad=pad, **kw)
+                    if t is None:   # else clear of marks and labels beside it
                         t = self.pl.place_at(spots, literal(lk), gid=f"link-number-{lk}", pad=pad, **kw)
             if t is None:
                 t = self.pl.place(anchor, literal(lk), prefer=prefer, gap=2.0, gid=f"link-number-{lk}", pad=pad, **kw)
             self.art.add("link_numbers", t)
+
+    def _off_the_lines(self, anchor, text, **kw):
+        """The text placed near ``anchor`` where it is free and on no line (a soft obstacle); None if no such
+        place is near."""
+        kept = None
+        with self.pl.trial():
+            n = len(self.pl.overlapping)
+            t = self.pl.place(anchor, text, **kw)
+            self.pl.keep = len(self.pl.overlapping) == n and not self.pl.soft_hits(self.pl.box_of(t, pad=0.0))
+            kept = t if self.pl.keep else None
+        return kept
 
     def driver(self, ground_dir):
         """The driver's motion: omega (and alpha, when not zero) as curved arrows about its pivot in their
