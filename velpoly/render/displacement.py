@@ -721,26 +721,10 @@ class _Drawing:
             kw = self.number_style(lk)
             pad = 3.5 if "bbox" in kw else 1.0
             if len(pts) >= 3:
-                # a plate: its number inside, at the centroid, if there is room there off every line; else near it
-                # off every line; else at the centroid all the same
-                t = self.ax.text(*anchor, literal(lk), ha="center", va="center", gid=f"link-number-{lk}", **kw)
-                b = self.pl.box_of(t, pad=pad)
-                inside = g.contains(b) and self.pl.free(b)
-                if inside and self.pl.soft_hits(b):
-                    t.remove()
-                    t = self._off_the_lines(anchor, literal(lk), prefer=prefer, gap=2.0, gid=f"link-number-{lk}",
-                                            pad=pad, **kw)
-                    if t is None:
-                        t = self.ax.text(*anchor, literal(lk), ha="center", va="center", gid=f"link-number-{lk}",
-                                         **kw)
-                        self.pl.add_box(t, b)
+                t = self._plate_number(lk, g, anchor, prefer, pad, kw)
+                if t is not None:
                     self.art.add("link_numbers", t)
                     continue
-                if inside:
-                    self.pl.add_box(t, b)
-                    self.art.add("link_numbers", t)
-                    continue
-                t.remove()
             t = None
             if len(pts) == 2:
                 # a bar: its number beside it, near its middle, on the side clear of everything
@@ -761,6 +745,24 @@ class _Drawing:
             if t is None:
                 t = self.pl.place(anchor, literal(lk), prefer=prefer, gap=2.0, gid=f"link-number-{lk}", pad=pad, **kw)
             self.art.add("link_numbers", t)
+
+    def _plate_number(self, lk, g, anchor, prefer, pad: float, kw):
+        """A plate's number inside it, at its centroid ``anchor``, if there is room there off every line; else
+        near it off every line; else at the centroid all the same; None if the centroid has no room."""
+        gid = f"link-number-{lk}"
+        t = self.ax.text(*anchor, literal(lk), ha="center", va="center", gid=gid, **kw)
+        b = self.pl.box_of(t, pad=pad)
+        if not (g.contains(b) and self.pl.free(b)):
+            t.remove()
+            return None
+        if self.pl.soft_hits(b):
+            t.remove()
+            near = self._off_the_lines(anchor, literal(lk), prefer=prefer, gap=2.0, gid=gid, pad=pad, **kw)
+            if near is not None:
+                return near
+            t = self.ax.text(*anchor, literal(lk), ha="center", va="center", gid=gid, **kw)
+        self.pl.add_box(t, b)
+        return t
 
     def _off_the_lines(self, anchor, text, **kw):
         """The text placed near ``anchor`` where it is free and on no line (a soft obstacle); None if no such
