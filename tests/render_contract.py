@@ -16,6 +16,7 @@ from shapely.geometry import box
 
 import velpoly
 from velpoly.polygons import ConstructionLine, Polygon, Step, Vector
+from velpoly.render.labels import placer
 
 from paths import SIXBAR  # noqa: E402
 
@@ -193,7 +194,7 @@ def leaders_crossing_labels(fig) -> list:
             bb = t.get_window_extent(r)
             boxes.append((t, box(bb.x0 + s, bb.y0 + s, bb.x1 - s, bb.y1 - s)))
         for t in texts:
-            ld = getattr(t, "_velpoly_leader", None)
+            ld = getattr(placer(ax).of(t), "leader", None)
             if ld is None or ld.axes is None:
                 continue
             line = LineString(ax.transData.transform(ld.get_xydata()))

@@ -23,6 +23,7 @@ import velpoly
 import sheets
 from paths import GALLERY_FILES, example
 from velpoly.render import sheet
+from velpoly.render.labels import placer
 from velpoly.render.layout import MARGIN, arrange, cover, drawn_areas, share_row, smaller_scale
 from velpoly.render.scalebar import BAR_GAP
 from velpoly.render.style import get_style, rc_context
@@ -200,8 +201,8 @@ def test_pole_labels_by_their_rings_and_leaders_apart(specimens):
                 for other, g in art.rings.items():
                     if other != key and not g.equals(ring):
                         assert own < lab.distance(g) + 1e-9, f"{sp.kind}: P{key}'s label nearer P{other}"
-            leaders = [LineString(np.column_stack(t._velpoly_leader.get_data())) for t in ax.texts
-                       if getattr(t, "_velpoly_leader", None) is not None]
+            leaders = [LineString(np.column_stack(p.leader.get_data())) for p in placer(ax).labels
+                       if p.leader is not None]
             for a, b in itertools.combinations(leaders, 2):
                 assert not a.intersects(b), f"{sp.kind}: two leaders cross"
             assert not labels_on_lines(fig), f"{sp.kind}: {labels_on_lines(fig)}"

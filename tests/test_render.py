@@ -29,7 +29,7 @@ from velpoly.errors import InputError
 from velpoly.render import canvas, sheet
 from velpoly.render.canvas import per_cm, tex, view_scale
 from velpoly.render.displacement import draw_mechanism
-from velpoly.render.labels import LabelPlacer
+from velpoly.render.labels import LabelPlacer, placer
 from velpoly.render.polygon import draw_polygon
 from velpoly.render.style import rc_context
 import sheets
@@ -252,7 +252,7 @@ def test_placer_keeps_crowded_labels_apart():
     boxes = [_display_box(ax, t) for t in texts]
     leaders = 0
     for i, t in enumerate(texts):
-        ld = getattr(t, "_velpoly_leader", None)
+        ld = getattr(pl.of(t), "leader", None)
         if ld is not None:
             leaders += 1
             line = LineString(ax.transData.transform(ld.get_xydata()))
@@ -342,7 +342,7 @@ def test_driver_value_sits_by_its_arc_over_no_link(stem, name, style):
     bb = label.get_window_extent(fig.canvas.get_renderer())
     (x0, y0), (x1, y1) = to_data.transform([[bb.x0, bb.y0], [bb.x1, bb.y1]])
     lab = box(x0, y0, x1, y1)
-    leader = getattr(label, "_velpoly_leader", None)
+    leader = getattr(placer(ax).of(label), "leader", None)
     from shapely.geometry import LineString
     lead = LineString(np.column_stack(leader.get_data())) if leader is not None else None
     for p in ax.patches:

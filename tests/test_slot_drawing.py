@@ -90,12 +90,12 @@ def _check_ground(art, tol):
     n = 0
     for role in ("ground", "guides", "contacts"):
         for lc in art.get(role, []):
-            if not hasattr(lc, "_velpoly_exempt"):
+            if lc not in art.exempt:
                 continue
             segs = [s for s in lc.get_segments() if len(s) >= 2]
             ground = MultiLineString([[tuple(p) for p in s] for s in segs])
             for lk, body in art.bodies.items():
-                if lk in lc._velpoly_exempt:
+                if lk in art.exempt[lc]:
                     continue
                 assert not ground.intersects(body.buffer(-tol)), f"{role} hatching crosses link {lk}"
             n += 1

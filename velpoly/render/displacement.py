@@ -200,6 +200,7 @@ class _Drawing:
         self.pc, self.pp = per_cm(ax), per_point(ax)
         self.pl = placer(ax)
         self.art = Artists(ax)
+        self.art.exempt = {}   # each ground hatch (a LineCollection) -> the links it may touch
         self.pins_at: dict = {}          # point -> set of links pinned there
         for pin in self.m.pins:
             self.pins_at.setdefault(pin.point, set()).update(pin.links)
@@ -282,7 +283,7 @@ class _Drawing:
             if not lines:
                 continue
             lc = LineCollection(lines, colors=self.st.ink, linewidths=widths, zorder=zorder)
-            lc._velpoly_exempt = exempt
+            self.art.exempt[lc] = exempt
             self.ax.add_collection(lc)
             self.art.add(role, lc)
             # the hatched strip itself (the strokes lie on one side of the line), with a little margin
@@ -422,6 +423,7 @@ class _Drawing:
                     zorder=1.1)
         self.ax.add_line(ln)
         self.art.add("guides", ln)
+        self.pl.add_obstacle(path, hard=False)   # a label (its point's own) rather off the path it reads along
 
     def slot_ends(self, s):
         """The positions of a slot's ``ends`` (FORMAT.md ``[[slots]] ends``) now, or None without them."""
@@ -517,6 +519,7 @@ class _Drawing:
                         gid=f"equivalent-{i}")
             self.ax.add_line(ln)
             self.art.add("equivalent", ln)
+            self.pl.add_obstacle(LineString([tuple(q) for q in xy]), hard=False)   # labels rather off it
 
     def contact(self, i, c, r):
         sol, st, pc = self.sol, self.st, self.pc
@@ -716,17 +719,12 @@ class _Drawing:
                 anchor = np.array(g.centroid.coords[0])
                 prefer = away_from(anchor, [np.array([cx, cy])], default=90.0)
             kw = self.number_style(lk)
+            pad = 3.5 if "bbox" in kw else 1.0
             if len(pts) >= 3:
-                # a plate: its number inside, at the centroid, if there is room
-                t = self.ax.text(*anchor, literal(lk), ha="center", va="center", gid=f"link-number-{lk}", **kw)
-                b = self.pl.box_of(t, pad=3.5 if "bbox" in kw else 1.0)
-                if g.contains(b) and self.pl.free(b):
-                    self.pl.boxes.append(b)
-                    self.pl.texts.append(t)
+                t = self._plate_number(lk, g, anchor, prefer, pad, kw)
+                if t is not None:
                     self.art.add("link_numbers", t)
                     continue
-                t.remove()
-            pad = 3.5 if "bbox" in kw else 1.0
             t = None
             if len(pts) == 2:
                 # a bar: its number beside it, near its middle, on the side clear of everything
@@ -739,11 +737,43 @@ class _Drawing:
                          for side in (1, -1)]
                 if np.hypot(*(b - a)) > 2 * off:
                     t = self.pl.place_at(spots, literal(lk), gid=f"link-number-{lk}", pad=pad, soft=True, **kw)
-                    if t is None:   # nothing clear of every line beside it: clear of marks and labels
+                    if t is None:   # nothing clear of every line beside it: near it off every line, if anywhere
+                        t = self._off_the_lines(anchor, literal(lk), prefer=prefer, gap=2.0, gid=f"link-number-{lk}",
+                                                pad=pad, **kw)
+                    if t is None:   # else clear of marks and labels beside it
                         t = self.pl.place_at(spots, literal(lk), gid=f"link-number-{lk}", pad=pad, **kw)
             if t is None:
                 t = self.pl.place(anchor, literal(lk), prefer=prefer, gap=2.0, gid=f"link-number-{lk}", pad=pad, **kw)
             self.art.add("link_numbers", t)
+
+    def _plate_number(self, lk, g, anchor, prefer, pad: float, kw):
+        """A plate's number inside it, at its centroid ``anchor``, if there is room there off every line; else
+        near it off every line; else at the centroid all the same; None if the centroid has no room."""
+        gid = f"link-number-{lk}"
+        t = self.ax.text(*anchor, literal(lk), ha="center", va="center", gid=gid, **kw)
+        b = self.pl.box_of(t, pad=pad)
+        if not (g.contains(b) and self.pl.free(b)):
+            t.remove()
+            return None
+        if self.pl.soft_hits(b):
+            t.remove()
+            near = self._off_the_lines(anchor, literal(lk), prefer=prefer, gap=2.0, gid=gid, pad=pad, **kw)
+            if near is not None:
+                return near
+            t = self.ax.text(*anchor, literal(lk), ha="center", va="center", gid=gid, **kw)
+        self.pl.add_box(t, b)
+        return t
+
+    def _off_the_lines(self, anchor, text, **kw):
+        """The text placed near ``anchor`` where it is free and on no line (a soft obstacle); None if no such
+        place is near."""
+        kept = None
+        with self.pl.trial():
+            n = len(self.pl.overlapping)
+            t = self.pl.place(anchor, text, **kw)
+            self.pl.keep = len(self.pl.overlapping) == n and not self.pl.soft_hits(self.pl.box_of(t, pad=0.0))
+            kept = t if self.pl.keep else None
+        return kept
 
     def driver(self, ground_dir):
         """The driver's motion: omega (and alpha, when not zero) as curved arrows about its pivot in their
@@ -877,24 +907,24 @@ class _Drawing:
         for f in (1.0,) + SMALLER:
             with self.pl.trial():
                 n = len(self.pl.overlapping)
-                t = self.pl.place(at, text, fontsize=fontsize * f, clear=True, **kw)
+                t = self.pl.place(at, text, fontsize=fontsize * f, clear=True, again=again, **kw)
                 self.pl.keep = len(self.pl.overlapping) == n and not self.pl.soft_hits(self.pl.box_of(t, pad=0.0))
                 if self.pl.keep:
-                    t._velpoly_again = again
                     return t
-        t = self.pl.place(at, text, fontsize=fontsize, clear=True, **kw)
-        t._velpoly_again = again
-        return t
+        return self.pl.place(at, text, fontsize=fontsize, clear=True, again=again, **kw)
 
     def _plan_score(self, p, plan, texts, label_kw) -> tuple:
-        """How a plan reads, lower is better: its arcs cross no other link, block or label; then its values
-        lie on no line (soft obstacle) and are placed, close to their arcs; then the wider gaps."""
+        """How a plan reads, lower is better: its arcs cross no other link, block or label and stay in view (an
+        arc cut by the panel's edge runs into the caption above it); then its values lie on no line (soft
+        obstacle) and are placed, close to their arcs; then the wider gaps."""
         drv = self.m.driver
         others = [g for lk, g in self.geoms.items() if lk != drv.link]
         others += [g for lk, g in self.block_geom.items() if lk != drv.link] + list(self.pl.boxes)
-        crossed = sum(1 for place, value in zip(plan, (drv.omega, drv.alpha)) if place is not None
-                      for g in others if g.intersects(LineString(self._arc_points(
-                          p, place.rad, place.mid, place.span, 1.0 if value >= 0 else -1.0))))
+        view = view_box(self.ax)
+        arcs = [LineString(self._arc_points(p, place.rad, place.mid, place.span, 1.0 if value >= 0 else -1.0))
+                for place, value in zip(plan, (drv.omega, drv.alpha)) if place is not None]
+        crossed = sum(1 for arc in arcs for g in others if g.intersects(arc)) + \
+            sum(1 for arc in arcs if not view.contains(arc))
         with self.pl.trial():
             n_bad = len(self.pl.overlapping)
             _, labels = self._draw_driver(p, plan, texts, label_kw)
@@ -977,8 +1007,8 @@ def draw_mechanism(sol, ax=None, *, style="textbook", options=None, scale: float
         ``.labels`` maps each point key to its label, ``.bodies`` each moving
         link to its drawn body (shapely), ``.plates`` each link drawn as a plate to
         its polygon, ``.slot_cuts`` each moving link's slot
-        (by index) to ``(link, centre line, cut)``. Every ground hatch (a
-        LineCollection) has ``_velpoly_exempt``: the links it may touch.
+        (by index) to ``(link, centre line, cut)``, ``.exempt`` each ground hatch
+        (a LineCollection) to the links it may touch.
     """
     ax = get_ax(ax)
     st = get_style(style)

@@ -161,14 +161,16 @@ def draw_poles(sol, ax=None, *, style="textbook", options=None, poleset=None, up
 def _off_the_leaders(pl, art) -> None:
     """The driver's values that a pole label's leader crosses (they are placed before the poles' labels, and a
     crowded pole's label may have had no other place) placed again, now clear of the leaders."""
-    lines = [LineString(np.column_stack(t._velpoly_leader.get_data())) for t in art.labels.values()
-             if getattr(t, "_velpoly_leader", None) is not None]
-    for t in [t for t in pl.texts if getattr(t, "_velpoly_again", None) is not None]:
+    poles = {id(t) for t in art.labels.values()}
+    lines = [LineString(np.column_stack(p.leader.get_data())) for p in pl.labels
+             if id(p.text) in poles and p.leader is not None]
+    for p in [p for p in pl.labels if p.again is not None]:
+        t = p.text
         box = pl.box_of(t, pad=0.0)
         if not any(line.intersects(box) for line in lines):
             continue
         pl.remove(t)   # with its own leader, which is drawn again with it
-        new = t._velpoly_again()
+        new = p.again()
         for role in art.values():
             role[:] = [new if a is t else a for a in role]
 
@@ -267,16 +269,37 @@ def _nearer_own(own, rings):
 
 def _place_free(pl, anchor, text, *, fontsize: float, **kw):
     """A pole's label (or an arrow's to a pole out of view) where a free place exists (off every Kennedy line,
-    label, leader and mark), smaller
-    (:data:`SMALLER`) if only that finds one, else at its size where it covers least (a crowd of poles)."""
-    for f in (1.0,) + SMALLER:
+    label, leader and mark), smaller (:data:`SMALLER`) if only that finds one, else at the end of a longer
+    leader (:data:`~velpoly.render.labels.REACH_RINGS`, at its size, else smaller), else at its size where it
+    covers least (a crowd of poles)."""
+    for reach, f in [(reach, f) for reach in (False, True) for f in (1.0,) + SMALLER]:
         with pl.trial():
             n = len(pl.overlapping)
-            t = pl.place(anchor, text, fontsize=fontsize * f, **kw)
+            t = pl.place(anchor, text, fontsize=fontsize * f, reach=reach, **kw)
             pl.keep = len(pl.overlapping) == n
             if pl.keep:
                 return t
     return pl.place(anchor, text, fontsize=fontsize, **kw)
+
+
+INFINITY_SHIFTS = (0.0,) + tuple(x for k in range(1, 16) for x in (0.4 * k, -0.4 * k))   # cm, across its way
+
+
+def _infinity_arrow_tip(pl, content, c, d, pc: float, far) -> np.ndarray:
+    """Where the arrow to a pole at infinity (in direction ``d``) ends: at the border of what is drawn
+    (``content``) on the ray from the centre ``c`` along ``d``, or on a ray beside it (shifted across by
+    :data:`INFINITY_SHIFTS`; a pole at infinity is a direction, not a place) where the arrow and the room
+    for its label at its tail meet no label, no leader and no other such arrow (the first such ray; in a
+    crowd, the centre's)."""
+    n = np.array([-d[1], d[0]])
+    taken = pl.boxes + pl.leaders + list(far)
+    for s in INFINITY_SHIFTS:
+        tip = border_point(content, c + n * s * pc, d, 0.2 * pc)
+        tail = tip - d * 1.1 * pc
+        room = segment(tail, tip).buffer(0.1 * pc).union(Point(*tail).buffer(0.35 * pc))
+        if content.contains(Point(*tip)) and not any(g.intersects(room) for g in taken):
+            return tip
+    return border_point(content, c, d, 0.2 * pc)
 
 
 def _label_poles(sol, ax, ps, shown, pole_lines, st, art) -> None:
@@ -293,6 +316,7 @@ def _label_poles(sol, ax, ps, shown, pole_lines, st, art) -> None:
     rings = list(art.rings.values())
     colour = _pole_colour(st)
     kw = dict(fontsize=st.font_size * 0.9, color=colour, zorder=7)
+    far = []   # the arrows drawn to poles out of view (another such arrow keeps off them)
     for p in shown:
         if p.position is None and p.direction is None:
             continue   # undefined: the links move alike (listed in the table)
@@ -304,7 +328,7 @@ def _label_poles(sol, ax, ps, shown, pole_lines, st, art) -> None:
             if p.position is None:
                 d = np.array([math.cos(math.radians(p.direction)), math.sin(math.radians(p.direction))])
                 text = label + r" $\infty$"
-                tip = border_point(content, c, d, 0.2 * pc)
+                tip = _infinity_arrow_tip(pl, content, c, d, pc, far)
             else:
                 text = label + f" ({p.position[0]:.4g}, {p.position[1]:.4g})".replace("-", "−")
                 tip, d = far_pole_arrow(view, p.position, pole_lines.get(p.key, ()), c, 0.2 * pc)
@@ -314,6 +338,7 @@ def _label_poles(sol, ax, ps, shown, pole_lines, st, art) -> None:
             art.add("far", sh, hd)
             pl.add_obstacle(poly)
             pl.add_obstacle(segment(tail, tip).buffer(pp), hard=True)
+            far.append(segment(tail, tip).buffer(pp))
             t = _place_free(pl, tail, text, prefer=math.degrees(math.atan2(-d[1], -d[0])), gid=f"label-pole-{p.key}",
                             **kw)
         art.add("labels", t)

@@ -15,6 +15,8 @@ from __future__ import annotations
 
 import math
 from contextlib import contextmanager
+from dataclasses import dataclass
+from typing import Any, Callable
 
 import numpy as np
 import shapely
@@ -23,65 +25,100 @@ from shapely.geometry import LineString, Point
 
 from .canvas import box, per_point, renderer_of, view_box
 
-__all__ = ["LabelPlacer", "placer", "segment", "half_extent", "ALONG_APART"]
+__all__ = ["LabelPlacer", "Placed", "placer", "segment", "half_extent", "ALONG_APART"]
 
 # ring radii, in points of gap between the anchor and the box
 RINGS = (2.5, 5.0, 9.0, 14.0, 21.0, 30.0, 42.0, 58.0)
 FAR_RINGS = (9.0, 21.0, 42.0, 80.0, 105.0)   # finer directions, only when nothing above is free
+REACH_RINGS = (135.0, 170.0, 220.0, 280.0)   # finer still, with ``reach`` only, when nothing above is free
 ALONG_APART = 1.0   # of the type size: the gap two texts along lines keep between their boxes
 LEADER_MOST = 0   # the most lines and outlines a far label's leader (see LabelPlacer.place's clear) may cross
 
 
+@dataclass(frozen=True, eq=False)
+class Placed:
+    """One label the placer put down: its ``text`` (a matplotlib Text), its ``box`` (shapely, data
+    coordinates, with the margin it keeps), its ``leader`` (the Line2D drawn from its anchor, or None) with
+    ``leader_geom`` (that line as the obstacle later labels keep off), and ``again``: how its drawing places
+    it anew (a driver's value a later leader crosses), or None."""
+
+    text: Any
+    box: Any
+    leader: Any = None
+    leader_geom: Any = None
+    again: Callable | None = None
+
+
 class LabelPlacer:
-    """Place texts on an axes so that no two boxes intersect (see the module's docstring)."""
+    """Place texts on an axes so that no two boxes intersect (see the module's docstring).
+
+    What it placed is :attr:`labels`, a list of :class:`Placed` (:meth:`of` finds a Text's); the texts,
+    their boxes and their leaders as obstacles are read from it (:attr:`texts`, :attr:`boxes`,
+    :attr:`leaders`)."""
 
     def __init__(self, ax):
         self.ax = ax
         self.renderer = renderer_of(ax.figure)
-        self.hard: list = []
+        self._hard: list = []      # hard obstacles registered (the leaders are hard too: :attr:`hard`)
         self.soft: list = []
-        self.boxes: list = []      # shapely polygons of placed labels
-        self.texts: list = []      # their Text artists, same order
+        self.labels: list[Placed] = []
         # where each label (by gid) went, and where it must go: the frames of a step sequence put every
         # label, scale bar and legend where the finished construction has it, so that nothing jumps
         self.placed: dict = {}
         self.pins: dict = {}
-        self.leaders: list = []    # leader lines drawn (also hard obstacles)
         self.along: list = []      # the boxes of the texts written along lines (a line's reason), each grown by
         #                            the em its neighbours keep from it
+
+    @property
+    def boxes(self) -> list:
+        """The shapely boxes of the placed labels."""
+        return [p.box for p in self.labels]
+
+    @property
+    def texts(self) -> list:
+        """The Text artists of the placed labels, in the same order."""
+        return [p.text for p in self.labels]
+
+    @property
+    def leaders(self) -> list:
+        """The leader lines drawn, as obstacles."""
+        return [p.leader_geom for p in self.labels if p.leader_geom is not None]
+
+    @property
+    def hard(self) -> list:
+        """Every hard obstacle: those registered and the leaders."""
+        return self._hard + self.leaders
+
+    def of(self, text) -> Placed | None:
+        """The :class:`Placed` of a Text this placer put down (None if it did not)."""
+        return next((p for p in self.labels if p.text is text), None)
 
     # -- obstacles ---------------------------------------------------------------------
     def add_obstacle(self, geom, hard: bool = True) -> None:
         """Register a shapely geometry (data coordinates) labels must avoid (hard) or should (soft)."""
         if geom is None or geom.is_empty:
             return
-        (self.hard if hard else self.soft).append(geom)
+        (self._hard if hard else self.soft).append(geom)
 
-    def add_box(self, text) -> None:
-        """Register an already drawn Text as a placed label (its box)."""
-        self.boxes.append(self.box_of(text))
-        self.texts.append(text)
+    def add_box(self, text, box=None) -> Placed:
+        """Register an already drawn Text as a placed label (its box: measured if not given)."""
+        self.labels.append(Placed(text, self.box_of(text) if box is None else box))
+        return self.labels[-1]
 
     def remove(self, text) -> None:
         """Take a placed label off the axes with its box and its leader (no longer an obstacle), so that it
         can be placed again."""
-        i = self.texts.index(text)
-        del self.texts[i], self.boxes[i]
-        own = getattr(text, "_velpoly_leader", None)
-        if own is not None:
-            own.remove()
-            end = Point(*own.get_xydata()[-1])
-            gone = [g for g in self.leaders if g.contains(end)]
-            self.leaders[:] = [g for g in self.leaders if not any(g is x for x in gone)]
-            self.hard[:] = [g for g in self.hard if not any(g is x for x in gone)]
+        own = self.of(text)
+        self.labels.remove(own)
+        if own.leader is not None:
+            own.leader.remove()
         text.remove()
 
     @contextmanager
     def trial(self):
         """Draw and place tentatively: on leaving, every label, obstacle, leader and artist added to the axes
         inside is gone again (to score a layout before choosing it), unless ``keep`` was set inside."""
-        sizes = [(lst, len(lst)) for lst in (self.boxes, self.texts, self.hard, self.soft, self.leaders,
-                                             self.overlapping, self.along)]
+        sizes = [(lst, len(lst)) for lst in (self.labels, self._hard, self.soft, self.overlapping, self.along)]
         placed = dict(self.placed)
         before = {id(a) for a in self.ax.get_children()}
         self.keep = False   # set inside to keep what was placed
@@ -130,7 +167,7 @@ class LabelPlacer:
     # -- placing -----------------------------------------------------------------------
     def place(self, anchor, s: str, *, prefer: float | None = None, gap: float = 2.5, leader: bool = True,
               gid: str | None = None, obstacle: bool = True, pad: float = 1.0, within: float | None = None,
-              accept=None, clear: bool = False, **text_kw):
+              accept=None, clear: bool = False, reach: bool = False, again: Callable | None = None, **text_kw):
         """Draw text ``s`` near ``anchor`` where it overlaps nothing; return the Text.
 
         ``prefer``: the preferred direction from the anchor (degrees), e.g.
@@ -145,8 +182,10 @@ class LabelPlacer:
         (data coordinates) it must pass where any free place does (a pole's label
         nearer its own ring than any other). ``clear``: when every free place near
         the anchor lies on a line (a soft obstacle), look farther out (with a
-        leader) for one on none. A leader crosses no other label and no other
-        leader.
+        leader) for one on none. ``reach``: when nothing is free within the far
+        rings, farther still (:data:`REACH_RINGS`: a long leader out of a crowd
+        to a free place). A leader crosses no other label and no other leader.
+        ``again``: kept in the label's :class:`Placed` (how to place it anew).
         """
         anchor = np.asarray(anchor, float)
         t = self.ax.text(anchor[0], anchor[1], s, ha="center", va="center", **text_kw)
@@ -155,19 +194,19 @@ class LabelPlacer:
         w, h = self.text_size(t, pad)
         best = self._pinned(gid, w, h)
         if best is None:
-            best = self._search(anchor, w, h, prefer, gap, leader, within, accept, clear)
+            best = self._search(anchor, w, h, prefer, gap, leader, within, accept, clear, reach)
             if accept is not None and (best is None or best[0] != (0, 0)):   # a line under it is worse
-                anywhere = self._search(anchor, w, h, prefer, gap, leader, within, None, clear)
+                anywhere = self._search(anchor, w, h, prefer, gap, leader, within, None, clear, reach)
                 if anywhere is not None and (best is None or anywhere[0] < best[0]):
                     best = anywhere
         if best is None and within is not None:   # nothing free on that side: any side
             t.remove()
             return self.place(anchor, s, prefer=prefer, gap=gap, leader=leader, gid=gid, obstacle=obstacle, pad=pad,
-                              clear=clear, **text_kw)
+                              clear=clear, reach=reach, again=again, **text_kw)
         if best is None:
             best = self._least_bad(anchor, w, h, prefer, gap, leader)
             self.overlapping.append(t)
-        self._put(t, anchor, best, gid, leader, obstacle)
+        self._put(t, anchor, best, gid, leader, obstacle, again)
         return t
 
     def _pinned(self, gid, w: float, h: float):
@@ -199,22 +238,23 @@ class LabelPlacer:
         return int(np.count_nonzero(shapely.intersects(np.array(others, dtype=object), line)))
 
     def _search(self, anchor, w: float, h: float, prefer, gap: float, leader: bool, within, accept,
-                clear: bool = False):
+                clear: bool = False, reach: bool = False):
         """The first free candidate, ring after ring, crossing the fewest soft obstacles (None if none is free);
         ``clear``: the far rings too while every free candidate nearer lies on a line (a place there off
-        every line, whose leader crosses at most one line or outline)."""
+        every line, whose leader crosses at most one line or outline); ``reach``: the farthest rings too
+        while nothing nearer is free."""
         view = view_box(self.ax)
         scene = _Scene(self, anchor)
         rings = (gap,) + tuple(r for r in RINGS if r > gap)
         best = None
-        for ring_i, ring in enumerate(rings + FAR_RINGS):
+        for ring_i, ring in enumerate(rings + FAR_RINGS + (REACH_RINGS if reach and leader else ())):
             far = ring_i >= len(rings)
             # farther out, in finer steps, only when nothing nearer is free (or, ``clear``, free of lines)
             seeking = far and best is not None
             if seeking and not (clear and leader and best[0][0] > 0):
                 break
-            for c, b in self._candidates(anchor, w, h, prefer, ring, 24 if far else 16 if ring_i >= 2 else 8, within,
-                                         scene.pp):
+            k = 48 if ring in REACH_RINGS else 24 if far else 16 if ring_i >= 2 else 8
+            for c, b in self._candidates(anchor, w, h, prefer, ring, k, within, scene.pp):
                 if not view.contains(b) or not scene.free(b) or (accept is not None and not accept(b)):
                     continue
                 hits = (scene.soft_hits(b), 0)   # lines under the box first, then lines its leader crosses
@@ -255,12 +295,14 @@ class LabelPlacer:
             best = (math.inf, c, b, gap)
         return best
 
-    def _put(self, t, anchor, best, gid, leader: bool, obstacle: bool) -> None:
-        """Move the text to the place chosen, with its leader where it stands far from its anchor."""
+    def _put(self, t, anchor, best, gid, leader: bool, obstacle: bool, again) -> None:
+        """Move the text to the place chosen, with its leader where it stands far from its anchor; keep its
+        :class:`Placed` (a label that is an obstacle to the later ones)."""
         _, c, b, ring = best
         t.set_position((float(c[0]), float(c[1])))
         if gid:
             self.placed[gid] = ("place", (float(c[0]), float(c[1])), ring)
+        ln = geom = None
         if leader and ring >= 9.0:
             from matplotlib.lines import Line2D
             pp = per_point(self.ax)
@@ -269,13 +311,9 @@ class LabelPlacer:
             ln = Line2D([start[0], edge[0]], [start[1], edge[1]], lw=0.4, color=t.get_color(),
                         zorder=t.get_zorder(), gid=(gid + "-leader") if gid else None)
             self.ax.add_line(ln)
-            t._velpoly_leader = ln
-            if obstacle:   # later labels keep off it
-                self.leaders.append(LineString([tuple(start), tuple(edge)]).buffer(0.4 * pp))
-                self.hard.append(self.leaders[-1])
+            geom = LineString([tuple(start), tuple(edge)]).buffer(0.4 * pp)   # later labels keep off it
         if obstacle:
-            self.boxes.append(b)
-            self.texts.append(t)
+            self.labels.append(Placed(t, b, ln, geom, again))
 
     def place_at(self, centres, s: str, *, gid: str | None = None, pad: float = 1.0, avoid=(), soft: bool = False,
                  **text_kw):
@@ -303,8 +341,7 @@ class LabelPlacer:
                 t.set_position((float(c[0]), float(c[1])))
                 if gid:
                     self.placed[gid] = ("at", (float(c[0]), float(c[1])))
-                self.boxes.append(b)
-                self.texts.append(t)
+                self.labels.append(Placed(t, b))
                 return t
         t.remove()
         return None
@@ -358,8 +395,7 @@ class LabelPlacer:
                 t.set_position((float(c[0]), float(c[1])))
                 if gid:
                     self.placed[gid] = ("along", (frac, side))
-                self.boxes.append(b)
-                self.texts.append(t)
+                self.labels.append(Placed(t, b))
                 self.along.append(b.buffer(ALONG_APART * t.get_fontsize() * pp))
                 return t
         t.remove()

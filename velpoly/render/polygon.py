@@ -247,7 +247,7 @@ class _PolygonDrawing:
             prefer, near = self._label_side(p, np.array([cx, cy]), groups)
             t = self.pl.place(p, _label_text(self.polygon, self.names, g, gi == 0), prefer=prefer,
                               fontsize=self.st.font_size, zorder=7, fontstyle="italic", within=70.0 if near else None,
-                              gid=f"{gid_prefix}-{self.polygon.kind}-" + ("origin+" if gi == 0 else "") + "+".join(g))
+                              clear=True, gid=f"{gid_prefix}-{self.polygon.kind}-" + ("origin+" if gi == 0 else "") + "+".join(g))
             self.art.add("labels", t)
             for k in g:
                 self.art.labels[k] = t
@@ -500,8 +500,7 @@ def _legend(ax, st, kinds) -> list:
     leg._velpoly_hits = hits
     leg._velpoly_paper = [(w / per_cm(ax), h / per_cm(ax)) for _, _, w, h in sizes]   # the variants' sizes in cm
     pl.placed["legend"] = ("legend", size, ncol, (float(b.bounds[0]), float(b.bounds[1])), tuple(kinds))
-    pl.boxes.append(b)
-    pl.texts.append(leg)
+    pl.add_box(leg, b)
     return [leg]
 
 
