@@ -10,7 +10,8 @@ follower's textbook sheet, blank fraction 0.555 -> 0.616).
 Checked on the full and poles sheets of generated mechanisms (tests/zoo.py; some given a book's many answers,
 tests/test_table_page.py) in both styles, at the data level: the table drawn (its measured layout) is in as
 many blocks as fit its room's width, by its cells' measured widths, wherever more blocks would take fewer lines;
-its ink (texts and rules) lies under no panel.
+its ink (texts and rules) lies under no panel and on no caption (the Kennedy circle's caption, wider than its
+panel on a slide, once had the table's title on it).
 """
 from __future__ import annotations
 
@@ -63,19 +64,21 @@ def _drawn(sol, name, style, cons, monkeypatch):
 def _cases():
     """(kind, file, style, sheet): generated four-bars, inverted slider-cranks and a six-bar (tests/zoo.py; three
     whose tables stand narrowed in the page's corner or in three blocks on textbook pages), a six-bar and a
-    slider-crank given a book's many answers, on slides and on a poles sheet."""
+    slider-crank given a book's many answers, on slides and on a poles sheet, and a poles slide."""
     specimens = zoo.zoo(5, 27)
     out = [(specimens[i].kind, specimens[i].mech, style, "full")
            for i, style in ((0, "textbook"), (12, "textbook"), (22, "textbook"), (5, "slides"), (26, "slides"))]
     rng = np.random.default_rng(1717)
     book = [zoo.specimen(rng, "six-bar", "watt II"), zoo.specimen(rng, "slider-crank", "offset crank")]
     return out + [(book[0].kind, book_reference(book[0], notes=2), "slides", "full"),
-                  (book[1].kind, book_reference(book[1], notes=2), "textbook", "poles")]
+                  (book[1].kind, book_reference(book[1], notes=2), "textbook", "poles"),
+                  (specimens[1].kind, specimens[1].mech, "slides", "poles"),
+                  (specimens[7].kind, specimens[7].mech, "slides", "poles")]
 
 
 def test_blocks_side_by_side_where_they_fit(monkeypatch):
     """Generated mechanisms, full and poles sheets, both styles: the table is in as many blocks (three at most) as
-    fit its room's width wherever more would take fewer lines; its ink lies under no panel. Some tables stand in
+    fit its room's width wherever more would take fewer lines; its ink lies under no panel and on no caption. Some tables stand in
     blocks that the whole table's width (every column) would not have let stand side by side."""
     narrow_blocks, blocks_seen = 0, 0
     for kind, mech, style, name in _cases():
@@ -107,6 +110,12 @@ def test_blocks_side_by_side_where_they_fit(monkeypatch):
             for bb in ink:
                 assert panel.intersection(box(bb.x0, bb.y0, bb.x1, bb.y1)).area < 1.0, \
                     f"{kind}/{style}/{name}: the table under {ax.get_label()}"
+        # and off every caption (a panel's caption may be wider than its panel: the Kennedy circle's on slides)
+        for cap in fig.texts:
+            cb = cap.get_window_extent(r)
+            for bb in ink:
+                assert box(cb.x0, cb.y0, cb.x1, cb.y1).intersection(box(bb.x0, bb.y0, bb.x1, bb.y1)).area < 1.0, \
+                    f"{kind}/{style}/{name}: the table on the caption {cap.get_text()!r}"
     assert blocks_seen >= 2 and narrow_blocks >= 1, (blocks_seen, narrow_blocks)
 
 

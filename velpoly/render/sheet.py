@@ -443,11 +443,13 @@ class _Planner:
         total = self.top - EDGE
 
         cap = max(_caption_cm(self.st, 1) - TABLE_GAP, 0.0)   # the Kennedy circle's caption's room over it
+        caption, = self.least(["kennedy"])                    # and its width: the table starts beside both
 
         def place(r):
             room = total - TABLE_GAP - r.height
             side = min(room - cap, KENNEDY_MOST)
-            return room, side, self.draw_table(EDGE + side + GAP, self.width - side - GAP, room)
+            beside = max(side, caption)
+            return room, side, self.draw_table(EDGE + beside + GAP, self.width - beside - GAP, room)
         most = None
         for r in [row, *(self._smaller(row, "poles", total) if not self.cut else ())]:
             room, side, (tax, used, whole) = place(r)
@@ -460,7 +462,7 @@ class _Planner:
             room, side, (tax, used, whole) = place(r)
         _move(tax, self, EDGE + room)
         rects = {"poles": self.rect(EDGE, self.top - r.height, self.width, r.height),
-                 "kennedy": self.rect(EDGE, EDGE + room - cap - side, side, side)}
+                 "kennedy": self.rect(EDGE + max(caption - side, 0.0) / 2, EDGE + room - cap - side, side, side)}
         return _Plan(rects, {"poles": r.scales[0]}, tax)
 
     def _smaller(self, row, name: str, height: float) -> list:
