@@ -26,8 +26,25 @@ FOURBAR = DATA / "fourbar.toml"
 
 
 def velpoly_cmd(*args, cwd=None):
+    """``python -m velpoly ARGS`` in a subprocess: for what only the real process shows (its exit status as the
+    shell sees it, a traceback, a broken pipe, the entry point)."""
     return subprocess.run([sys.executable, "-m", "velpoly", *map(str, args)], capture_output=True, text=True,
                           timeout=120, cwd=cwd)
+
+
+@pytest.fixture
+def cli(capsys, monkeypatch):
+    """``velpoly ARGS`` run in this process (``velpoly.cli.main``, what ``python -m velpoly`` runs), as a
+    CompletedProcess (returncode, stdout, stderr): the same exit codes and text without a second of imports a
+    subprocess pays."""
+    def run(*args, cwd=None):
+        if cwd is not None:
+            monkeypatch.chdir(cwd)
+        capsys.readouterr()
+        rc = main([str(a) for a in args])
+        out = capsys.readouterr()
+        return subprocess.CompletedProcess(args, rc, out.out, out.err)
+    return run
 
 
 # -- exit codes and messages, as a user sees them ------------------------------------------------------
@@ -43,24 +60,24 @@ def test_missing_file_exit_2_one_line_and_a_hint(tmp_path):
     assert r.stderr.splitlines() == [f"error: {tmp_path / 'fourbar.toml'}: no such file", "hint: check the path"]
 
 
-def test_bad_toml_exit_2(tmp_path):
+def test_bad_toml_exit_2(tmp_path, cli):
     f = tmp_path / "bad.toml"
     f.write_text("[points]\nA = [0, 0\n")
-    r = velpoly_cmd("solve", f)
+    r = cli("solve", f)
     err = r.stderr.splitlines()
     assert r.returncode == 2 and len(err) == 2 and "Traceback" not in r.stderr
     assert err[0].startswith(f"error: {f}: line 2: bad TOML: ")
 
 
-def test_singular_pose_exit_3():
-    r = velpoly_cmd("solve", DATA / "toggle_fourbar.toml")
+def test_singular_pose_exit_3(cli):
+    r = cli("solve", DATA / "toggle_fourbar.toml")
     err = r.stderr.splitlines()
     assert r.returncode == 3 and r.stdout == "" and len(err) == 2
     assert "singular" in err[0] and err[0].endswith("(links 3, 4)") and err[1].startswith("hint: ")
 
 
-def test_near_singular_warning_on_stderr_and_in_the_json():
-    r = velpoly_cmd("solve", DATA / "near_toggle.toml", "--json")
+def test_near_singular_warning_on_stderr_and_in_the_json(cli):
+    r = cli("solve", DATA / "near_toggle.toml", "--json")
     assert r.returncode == 0
     w = json.loads(r.stdout)["warnings"]
     assert r.stderr.splitlines() == [f"warning: {DATA / 'near_toggle.toml'}: {w[0]}"]
@@ -206,14 +223,14 @@ def snapshot(folder: Path):
 
 
 @pytest.mark.parametrize("name", ["fourbar.toml", "toggle_fourbar.toml"])
-def test_reading_never_modifies_the_input(tmp_path, name):
+def test_reading_never_modifies_the_input(tmp_path, name, cli):
     f = tmp_path / name
     f.write_bytes((DATA / name).read_bytes())
     os.chmod(f, 0o444)
     before = snapshot(tmp_path)
     velpoly.load(f)
     velpoly.load(str(f))
-    r = velpoly_cmd("solve", f, "--json", cwd=tmp_path)
+    r = cli("solve", f, "--json", cwd=tmp_path)
     assert r.returncode in (0, 3)
     assert snapshot(tmp_path) == before
     if name == "fourbar.toml":   # drawing and sweeping read it too, writing elsewhere only
@@ -311,14 +328,14 @@ def many_points(folder: Path) -> Path:
     return f
 
 
-def test_a_file_with_500_points(tmp_path):
+def test_a_file_with_500_points(tmp_path, cli):
     f = many_points(tmp_path)
     t0 = time.perf_counter()
     s = velpoly.solve(velpoly.load(f))
     assert time.perf_counter() - t0 < 5.0
     assert len(s.position) == 500
     t0 = time.perf_counter()
-    r = velpoly_cmd("solve", f, "--json")
+    r = cli("solve", f, "--json")
     assert time.perf_counter() - t0 < 10.0
     assert r.returncode == 0, r.stderr
     points = json.loads(r.stdout)["points"]
@@ -341,9 +358,9 @@ def test_solve_does_not_import_matplotlib():
 from paths import SIXBAR  # noqa: E402  FORMAT.md section 1's file
 
 
-def test_json_is_format_section_2():
+def test_json_is_format_section_2(cli):
     """The example of FORMAT.md section 2, value by value, on the file of section 1."""
-    r = velpoly_cmd("solve", SIXBAR, "--json")
+    r = cli("solve", SIXBAR, "--json")
     assert r.returncode == 0 and r.stderr == ""
     d = json.loads(r.stdout)
     assert list(d)[:4] == ["format", "title", "units", "driver"]
@@ -378,8 +395,8 @@ def test_json_is_format_section_2():
     assert max(d["graphical"]["max_error"].values()) < 1e-9
 
 
-def test_the_table_shows_each_printed_value_beside_the_computed_one_and_the_deviation(tmp_path):
-    r = velpoly_cmd("solve", SIXBAR)
+def test_the_table_shows_each_printed_value_beside_the_computed_one_and_the_deviation(tmp_path, cli):
+    r = cli("solve", SIXBAR)
     assert r.returncode == 0 and r.stderr == ""
     part = r.stdout.split("Reference values (Problem 1.4.4 (Fig. 3.19)", 1)[1].split("\n", 1)[1]
     header, rule, *rows = part.strip().splitlines()
@@ -392,14 +409,14 @@ def test_the_table_shows_each_printed_value_beside_the_computed_one_and_the_devi
     # a wrong printed value shows as a large deviation (6.3 % off)
     f = tmp_path / "wrong.toml"
     f.write_text(SIXBAR.read_text().replace('"3" = -2.82169', '"3" = -3.0'))
-    r = velpoly_cmd("solve", f)
+    r = cli("solve", f)
     line = next(x for x in r.stdout.split("Reference values")[1].splitlines() if x.startswith("omega_3 "))
     assert line.split()[1:3] == ["-3", "-2.82169"] and float(line.split()[3].rstrip("%")) == pytest.approx(5.94, abs=0.01)
 
 
-def test_at_another_angle_the_printed_values_are_listed_not_compared():
+def test_at_another_angle_the_printed_values_are_listed_not_compared(cli):
     """The book's answers belong to the file's pose: at --angle 40 they would be 50 % "off"."""
-    r = velpoly_cmd("solve", SIXBAR, "--angle", "40")
+    r = cli("solve", SIXBAR, "--angle", "40")
     assert r.returncode == 0
     part = r.stdout.split("Reference values (Problem 1.4.4 (Fig. 3.19)", 1)[1].split("\n", 1)[1]
     header, _, first = part.splitlines()[:3]
