@@ -7,7 +7,7 @@ to ``velpoly.load`` + ``velpoly.solve`` in-process, both as dicts and as TOML
 text, along with corrupted and random TOML text. Every example either solves
 (with a JSON-serialisable result) or raises a :class:`velpoly.VelpolyError`
 whose message is one line naming the file: no other exception, ever. A
-sample also goes through the real command line.
+sample also goes through the command line (velpoly.cli.main in-process: its exit codes and messages).
 
 The examples add up to about 700 a run (``EXAMPLES``): most of them mutated files, whose errors
 only this module explores (250: each is loaded and solved twice, as a dict and as TOML text; the
@@ -22,7 +22,6 @@ import json
 import math
 import os
 import subprocess
-import sys
 import tomllib
 
 import numpy as np
@@ -30,6 +29,7 @@ import pytest
 from hypothesis import HealthCheck, given, note, settings, strategies as st
 
 import velpoly
+from velpoly.cli import main
 from mechanisms import (CAM_FLAT, CAM_ROLLER, EXAMPLE_3_6, SIXBAR_1_4_4, SLOTTED_LEVER, WHEEL_ROLLING, fourbar,
                         inverted_slider_crank, ranges_by_dyads_only, slider_crank)
 
@@ -327,11 +327,10 @@ def test_command_line_sample(tmp_path_factory, d, command):
     folder = tmp_path_factory.mktemp("cli")
     f = folder / "mech.toml"
     f.write_text(to_toml(d), encoding="utf-8")
-    args = [sys.executable, "-m", "velpoly", "solve", str(f), "--json"]
+    args = ["solve", str(f), "--json"]
     if command == "draw":   # a wrong output type is refused before any work
-        args = [sys.executable, "-m", "velpoly", "draw", str(f), "-o", str(folder / "out.txt")]
-    r = subprocess.run(args, capture_output=True, text=True, timeout=60,
-                       env={**os.environ, "PYTHONHASHSEED": "0"})
+        args = ["draw", str(f), "-o", str(folder / "out.txt")]
+    r = _in_process(args)
     assert "Traceback" not in r.stderr
     if command == "draw":
         assert r.returncode == 2 and r.stderr.splitlines()[0].endswith("unknown figure type '.txt'")
@@ -345,6 +344,18 @@ def test_command_line_sample(tmp_path_factory, d, command):
         err = r.stderr.splitlines()
         assert r.stdout == "" and len(err) == 2, r.stderr
         assert err[0].startswith(f"error: {f}: ") and err[1].startswith("hint: ")
+
+
+def _in_process(args):
+    """``velpoly ARGS`` run in this process (``velpoly.cli.main``, what ``python -m velpoly`` runs) with its
+    output captured: the exit code and text a user sees, without a subprocess's second of imports; an exception
+    main let escape fails the test (a process would print its traceback)."""
+    import contextlib
+    import io
+    out, err = io.StringIO(), io.StringIO()
+    with contextlib.redirect_stdout(out), contextlib.redirect_stderr(err):
+        rc = main(args)
+    return subprocess.CompletedProcess(args, rc, out.getvalue(), err.getvalue())
 
 
 def _writable(d) -> bool:

@@ -25,6 +25,7 @@ import numpy as np
 import pytest
 
 import velpoly
+from velpoly.cli import main
 from velpoly.html import _split, cycle_solutions, page, pose_values, sheet_data
 from velpoly.names import key_text
 from velpoly.polygons import acceleration_polygon, velocity_polygon
@@ -225,10 +226,12 @@ def test_sixbar_page_is_small_and_self_contained(sixbar_page):
         check_pose(m, decode(data, i), wrap(static["angles"][i]))
 
 
-def test_cli_errors(tmp_path):
-    def run(*args):
-        return subprocess.run([sys.executable, "-m", "velpoly", "html", *map(str, args)], capture_output=True,
-                              text=True, timeout=120)
+def test_cli_errors(tmp_path, capsys):
+    def run(*args):   # velpoly html ARGS in this process (velpoly.cli.main: the exit code and the messages)
+        capsys.readouterr()
+        rc = main(["html", *map(str, args)])
+        out = capsys.readouterr()
+        return subprocess.CompletedProcess(args, rc, out.out, out.err)
     r = run(SIXBAR, "-o", tmp_path / "x.png")
     assert r.returncode == 2 and r.stderr.startswith("error: ") and "hint:" in r.stderr
     r = run(tmp_path / "missing.toml", "-o", tmp_path / "x.html")
