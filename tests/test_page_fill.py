@@ -45,13 +45,19 @@ BLANK_MOST = {"textbook": 0.51, "slides": 0.38}
 
 def blank_fraction(fig, dpi: float = 30.0, restore: bool = True) -> float:
     """The share of the page's 1-cm cells without a pixel of ink (any channel below 235 of 255); ``restore``:
-    the figure drawn again at 72 dpi afterwards (a figure thrown away after need not be)."""
+    the figure left at 72 dpi as it was (a figure thrown away after need not be)."""
     fig.set_dpi(dpi)
     fig.canvas.draw()
     ink = (np.asarray(fig.canvas.buffer_rgba())[:, :, :3] < 235).any(axis=2)
+    fig.set_dpi(72)
     if restore:
-        fig.set_dpi(72)
-        fig.draw_without_rendering()   # laid out again at 72 dpi as tests/sheets.py left it (a third of a draw's cost)
+        # a draw leaves only the legends' boxes at that dpi's pixel offsets (every other artist's place is computed
+        # when asked): drawn again at 72 dpi, every artist's window extent is what tests/sheets.py's draw left (checked
+        # on every gallery page); a whole draw again cost a third of the page's
+        r = fig.canvas.get_renderer()
+        for legend in [ax.get_legend() for ax in fig.axes] + list(fig.legends):
+            if legend is not None:
+                legend.draw(r)
     cell = dpi / 2.54
     ny, nx = int(ink.shape[0] / cell), int(ink.shape[1] / cell)
     blank = [not ink[int(i * cell):int((i + 1) * cell), int(j * cell):int((j + 1) * cell)].any()
