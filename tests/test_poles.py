@@ -26,7 +26,10 @@ from paths import GALLERY_FILES, SIXBAR
 from chains import ladder, stage_chain
 
 TOL = 1e-9
-SETTINGS = dict(max_examples=50, deadline=None, suppress_health_check=[HealthCheck.filter_too_much,
+# 25 examples a property (50 until the suite had to fit 2 minutes): every kind these properties draw from is also
+# checked pole by pole at the data level on the zoo's 300 seeded specimens (test_zoo's check_solution runs
+# check_poles at every solved pose), so hypothesis here explores the shapes a seeded batch may miss, not the kinds
+SETTINGS = dict(max_examples=25, deadline=None, suppress_health_check=[HealthCheck.filter_too_much,
                                                                        HealthCheck.too_slow])
 
 
