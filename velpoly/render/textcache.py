@@ -12,6 +12,8 @@ for the whole process, what each of these requests depends on and what came back
 
 * a plain (non-math) text's width, height and descent: keyed by the string, the font properties, the
   font settings that choose the font file (``font.*``), the kerning factor, the hinting flag and the dpi;
+* a font's ascent, descent and line gap (``Text._get_layout`` reads the font's OS/2 or hhea table again for
+  every text it lays out, unless the renderer gives them: ``_get_font_height_metrics``), keyed alike;
 * a plain text's glyph layout for drawing (``FT2Font._layout``: glyph, font and position), keyed alike;
 * a glyph's rendered bitmap (``FT2Font._render_glyph``), keyed by its font object, size, dpi, glyph,
   transformation matrix, load flags, antialiasing and its position's fraction of a pixel (26.6 fixed
