@@ -21,6 +21,8 @@ line.set(color="red", lw=2.5)   # set() made without its help text takes the sam
 assert (line.get_color(), line.get_linewidth()) == ("red", 2.5)
 assert "mpl_toolkits.mplot3d" not in sys.modules
 assert "Supported properties" not in (Line2D.set.__doc__ or "")   # the lean import did run
+import gc
+assert gc.isenabled() and gc.get_freeze_count() > 0   # the imports frozen, the collector on again
 sys.exit(status)
 '''
 

@@ -210,7 +210,7 @@ def _lean_matplotlib() -> None:
     (velpoly.render.lean); velpoly called from Python imports it as it is."""
     if _PROGRAM["run"]:
         from .render.lean import import_matplotlib
-        import_matplotlib()
+        import_matplotlib(freeze=True)
 
 
 def cmd_draw(args) -> int:
