@@ -14,7 +14,8 @@ for the whole process, what each of these requests depends on and what came back
   font settings that choose the font file (``font.*``), the kerning factor, the hinting flag and the dpi;
 * a font's ascent, descent and line gap (``Text._get_layout`` reads the font's OS/2 or hhea table again for
   every text it lays out, unless the renderer gives them: ``_get_font_height_metrics``), keyed alike;
-* a plain text's glyph layout for drawing (``FT2Font._layout``: glyph, font and position), keyed alike;
+* a plain text's glyph layout for drawing (``FT2Font._layout``: glyph, font and position), keyed alike
+  and by the thread (matplotlib gives each thread its own font objects);
 * a glyph's rendered bitmap (``FT2Font._render_glyph``), keyed by its font object, size, dpi, glyph,
   transformation matrix, load flags, antialiasing and its position's fraction of a pixel (26.6 fixed
   point, the six low bits): FreeType rasterises an outline moved by whole pixels into the same bitmap
@@ -33,11 +34,13 @@ from __future__ import annotations
 
 import math
 import os
+import threading
 from collections import OrderedDict
 
 __all__ = ["canvas_class", "new_canvas", "clear", "stats", "LIMITS"]
 
-LIMITS = {"metrics": 20000, "height": 1000, "layout": 10000, "glyph": 40000}   # entries kept per cache (a glyph ~1 KB)
+LIMITS = {"metrics": 20000, "height": 1000, "layout": 10000, "glyph": 20000}   # entries kept per cache (a glyph
+# bitmap 0.3-3 KB at 200 dpi)
 
 _CACHES: dict[str, OrderedDict] = {name: OrderedDict() for name in LIMITS}
 _HITS = {name: [0, 0] for name in LIMITS}   # name -> [found, computed]
@@ -179,7 +182,7 @@ def _make():
             flags = backend_agg.get_hinting_flag()
             features = mtext.get_fontfeatures() if mtext is not None else None
             language = mtext.get_language() if mtext is not None else None
-            key = (s, _font_key(prop, self.dpi), flags,
+            key = (s, _font_key(prop, self.dpi), flags, threading.get_ident(),   # its fonts are this thread's
                    tuple(features) if isinstance(features, list) else features,
                    tuple(language) if isinstance(language, list) else language)
             items = _get("layout", key)
