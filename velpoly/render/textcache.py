@@ -136,26 +136,88 @@ def new_canvas(fig):
     return canvas_class()(fig)
 
 
+_MATRICES: dict = {}   # (angle, slant, extend) -> FreeType's 16.16 matrix of a glyph, as matplotlib computes it
+
+
+def _matrix(angle, slant, extend):
+    """(matrix, its four integers, cos, sin) of a glyph drawn at ``angle`` degrees, slanted and extended, as
+    matplotlib's Agg renderer computes it."""
+    key = (angle, slant, extend)
+    got = _MATRICES.get(key)
+    if got is None:
+        import numpy as np
+        cos, sin = math.cos(math.radians(angle)), math.sin(math.radians(angle))
+        m = (0x10000 * np.array([[cos, -sin], [sin, cos]]) @ [[extend, extend * slant], [0, 1]]).round().astype(int)
+        got = _MATRICES[key] = (m, tuple(m.ravel().tolist()), cos, sin)
+    return got
+
+
+def _layout(renderer, s, prop, mtext, flags) -> tuple:
+    """A plain text's glyphs for drawing, ``(font, glyph index, x, y)`` each (``FT2Font._layout``), kept."""
+    features = mtext.get_fontfeatures() if mtext is not None else None
+    language = mtext.get_language() if mtext is not None else None
+    key = (s, _font_key(prop, renderer.dpi), flags, threading.get_ident(),   # its fonts are this thread's
+           tuple(features) if isinstance(features, list) else features,
+           tuple(language) if isinstance(language, list) else language)
+    items = _get("layout", key)
+    if items is None:
+        font = renderer._prepare_font(prop)
+        laid = font._layout(s, flags=flags, features=features, language=language)
+        items = _put("layout", key, tuple((it.ft_object, it.glyph_index, it.x, it.y) for it in laid))
+    return items
+
+
+def _draw_glyphs(renderer, gc, x, y, angle, glyphs, load_flags, mode) -> None:
+    """matplotlib's ``RendererAgg._draw_text_glyphs_and_boxes`` for the glyphs, each glyph's bitmap kept by
+    its fraction of a pixel (module doc)."""
+    antialiased = gc.get_antialiased()
+    height, dpi = renderer.height, renderer.dpi
+    draw = renderer._renderer.draw_text_image
+    for font, size, glyph_index, slant, extend, dx, dy in glyphs:   # dy is upwards
+        m, mkey, cos, sin = _matrix(angle, slant, extend)
+        px = round(0x40 * (x + dx * cos - dy * sin))
+        py = round(0x40 * (height - y + dx * sin + dy * cos))   # FreeType's y is upwards
+        key = (font, size, dpi, glyph_index, mkey, px & 63, py & 63, load_flags, antialiased)
+        got = _get("glyph", key)
+        if got is None:
+            font.set_size(size, dpi)
+            font._set_transform(m, [px, py])
+            bitmap = font._render_glyph(glyph_index, load_flags, mode)
+            buffer = bitmap.buffer
+            if not antialiased:
+                buffer *= 0xff
+            got = _put("glyph", key, (buffer, bitmap.left - (px >> 6), bitmap.top - (py >> 6)))
+        buffer, left, top = got
+        # draw_text_image's y is downwards & the bitmap bottom side
+        draw(buffer, left + (px >> 6), int(height) - (top + (py >> 6)) + buffer.shape[0], 0, gc)
+
+
 def _make():
-    import numpy as np
+    from matplotlib.backends.backend_agg import FigureCanvasAgg
+    renderer_class = _renderer_class()
+
+    class TextCanvas(FigureCanvasAgg):
+        """matplotlib's Agg canvas, its renderer kept text per process (module doc)."""
+
+        def get_renderer(self):
+            w, h = self.get_width_height(physical=True)
+            key = w, h, self.figure.dpi
+            if self._lastKey != key:
+                self.renderer = renderer_class(w, h, self.figure.dpi)
+                self._lastKey = key
+            return self.renderer
+
+    return TextCanvas
+
+
+def _renderer_class():
     from matplotlib.backends import backend_agg
-    from matplotlib.backends.backend_agg import FigureCanvasAgg, RendererAgg
+    from matplotlib.backends.backend_agg import RendererAgg
     from matplotlib.ft2font import RenderMode
 
-    matrices: dict = {}
-
-    def matrix(angle, slant, extend):
-        """FreeType's 16.16 matrix of a glyph, as matplotlib computes it (kept per angle, slant, extend)."""
-        key = (angle, slant, extend)
-        got = matrices.get(key)
-        if got is None:
-            cos, sin = math.cos(math.radians(angle)), math.sin(math.radians(angle))
-            m = (0x10000 * np.array([[cos, -sin], [sin, cos]]) @ [[extend, extend * slant], [0, 1]]).round().astype(int)
-            got = matrices[key] = (m, tuple(m.ravel().tolist()), cos, sin)
-        return got
-
     class _Renderer(RendererAgg):
-        """matplotlib's Agg renderer, whose text measures, layouts and glyph bitmaps are kept (module doc)."""
+        """matplotlib's Agg renderer, whose text measures, layouts, font heights and glyph bitmaps are kept
+        (module doc)."""
 
         def get_text_width_height_descent(self, s, prop, ismath):
             if ismath:   # mathtext (its parses are shared) or TeX: matplotlib's own
@@ -179,57 +241,15 @@ def _make():
         def draw_text(self, gc, x, y, s, prop, angle, ismath=False, mtext=None):
             if ismath:
                 return super().draw_text(gc, x, y, s, prop, angle, ismath, mtext)
-            flags = backend_agg.get_hinting_flag()
-            features = mtext.get_fontfeatures() if mtext is not None else None
-            language = mtext.get_language() if mtext is not None else None
-            key = (s, _font_key(prop, self.dpi), flags, threading.get_ident(),   # its fonts are this thread's
-                   tuple(features) if isinstance(features, list) else features,
-                   tuple(language) if isinstance(language, list) else language)
-            items = _get("layout", key)
-            if items is None:
-                font = self._prepare_font(prop)
-                laid = font._layout(s, flags=flags, features=features, language=language)
-                items = _put("layout", key, tuple((it.ft_object, it.glyph_index, it.x, it.y) for it in laid))
+            items = _layout(self, s, prop, mtext, backend_agg.get_hinting_flag())
             size = prop.get_size_in_points()
             self._draw_text_glyphs_and_boxes(
                 gc, x, y, angle, ((font, size, index, 0, 1, dx, dy) for font, index, dx, dy in items), [])
 
         def _draw_text_glyphs_and_boxes(self, gc, x, y, angle, glyphs, boxes):
-            # matplotlib's (backend_agg.RendererAgg._draw_text_glyphs_and_boxes), each glyph's bitmap kept
-            load_flags = backend_agg.get_hinting_flag()
-            antialiased = gc.get_antialiased()
-            mode = RenderMode.NORMAL if antialiased else RenderMode.MONO
-            height = self.height
-            draw = self._renderer.draw_text_image
-            for font, size, glyph_index, slant, extend, dx, dy in glyphs:   # dy is upwards
-                m, mkey, cos, sin = matrix(angle, slant, extend)
-                px = round(0x40 * (x + dx * cos - dy * sin))
-                py = round(0x40 * (height - y + dx * sin + dy * cos))   # FreeType's y is upwards
-                key = (font, size, self.dpi, glyph_index, mkey, px & 63, py & 63, load_flags, antialiased)
-                got = _get("glyph", key)
-                if got is None:
-                    font.set_size(size, self.dpi)
-                    font._set_transform(m, [px, py])
-                    bitmap = font._render_glyph(glyph_index, load_flags, mode)
-                    buffer = bitmap.buffer
-                    if not antialiased:
-                        buffer *= 0xff
-                    got = _put("glyph", key, (buffer, bitmap.left - (px >> 6), bitmap.top - (py >> 6)))
-                buffer, left, top = got
-                # draw_text_image's y is downwards & the bitmap bottom side
-                draw(buffer, left + (px >> 6), int(height) - (top + (py >> 6)) + buffer.shape[0], 0, gc)
+            mode = RenderMode.NORMAL if gc.get_antialiased() else RenderMode.MONO
+            _draw_glyphs(self, gc, x, y, angle, glyphs, backend_agg.get_hinting_flag(), mode)
             if boxes:
                 super()._draw_text_glyphs_and_boxes(gc, x, y, angle, (), boxes)
 
-    class TextCanvas(FigureCanvasAgg):
-        """matplotlib's Agg canvas, its renderer :class:`_Renderer` (text kept per process: module doc)."""
-
-        def get_renderer(self):
-            w, h = self.get_width_height(physical=True)
-            key = w, h, self.figure.dpi
-            if self._lastKey != key:
-                self.renderer = _Renderer(w, h, self.figure.dpi)
-                self._lastKey = key
-            return self.renderer
-
-    return TextCanvas
+    return _Renderer
