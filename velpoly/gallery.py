@@ -318,8 +318,11 @@ def _build_examples(files, pool, out: Path, style: str, copy: bool, draw, log) -
     and its figures written here; else ``draw`` draws it here. A failing example is logged and the
     others are built."""
     written, built, failed, sections = [], [], [], []
-    results = [None] * len(files) if pool is None else [   # every example in a worker, into memory
-        pool.submit(_example_in_worker, path, out, style, copy) for path in files]
+    results = [None] * len(files)
+    if pool is not None:   # every example in a worker, into memory; the longest first (by its file's size),
+        # so that no core waits alone for a long one at the end; the files are written here in order
+        for i in sorted(range(len(files)), key=lambda i: -_size(files[i])):
+            results[i] = pool.submit(_example_in_worker, files[i], out, style, copy)
     for path, result in zip(files, results):
         try:
             done, line = _example_result(path, result, out, style, copy, draw)
@@ -336,6 +339,14 @@ def _build_examples(files, pool, out: Path, style: str, copy: bool, draw, log) -
         sections.append((title, text))
         built.append(final)
     return written, built, failed, sections
+
+
+def _size(path: Path) -> int:
+    """A file's size in bytes (0 where it cannot be read): the gallery's guess of how long it draws."""
+    try:
+        return path.stat().st_size
+    except OSError:
+        return 0
 
 
 def _example_result(path: Path, result, out: Path, style: str, copy: bool, draw) -> tuple:

@@ -42,6 +42,7 @@ from .polygon import draw_polygon, legend_room, polygon_bounds
 from .scalebar import scale_text
 from .style import get_style, rc_context
 from ..reference import at_file_pose
+from .textcache import new_canvas
 from .table import cuts_the_book, draw_results_table, given_table, measure_results_table
 
 __all__ = ["SHEETS", "fit_width", "wrap_caption", "Constructions", "constructions", "render_sheet", "render", "Rendered",
@@ -695,7 +696,6 @@ def render(sol, sheet: str = "full", style="textbook", *, cons: Constructions | 
            frame: Frame | None = None, pins: dict | None = None) -> Rendered:
     """One sheet (one frame of it) drawn, and whether it has a table page (:class:`Rendered`); the arguments
     as :func:`render_sheet`'s."""
-    from matplotlib.backends.backend_agg import FigureCanvasAgg
     from matplotlib.figure import Figure
     _check_sheet(sheet)
     st = get_style(style)
@@ -704,7 +704,7 @@ def render(sol, sheet: str = "full", style="textbook", *, cons: Constructions | 
     cons = cons if cons is not None else constructions(sol, sheet)
     frame = frame or Frame()
     fig = Figure(figsize=st.figsize, dpi=72)   # text is measured at the dpi vector output is written at
-    FigureCanvasAgg(fig)
+    new_canvas(fig)
     title = _page(fig, st, m, sol)
     two = bool(equivalent_linkage_note(m)) and sheet != "poles"
     top = _top(fig, st, title, frame.caption, two)
@@ -733,12 +733,11 @@ def table_page(sol, sheet: str = "full", style="textbook", *, cons: Construction
     """The sheet's results table on a page of its own, under the page's title, every row the book gives and
     its footnotes (the page a sheet adds where its drawings and its table cannot share one page with them:
     :func:`render`'s ``table_page``). Call inside the style's rc_context."""
-    from matplotlib.backends.backend_agg import FigureCanvasAgg
     from matplotlib.figure import Figure
     st = get_style(style)
     cons = cons if cons is not None else constructions(sol, sheet)
     fig = Figure(figsize=st.figsize, dpi=72)
-    FigureCanvasAgg(fig)
+    new_canvas(fig)
     title = _page(fig, st, sol.mechanism, sol)
     W, H = _page_cm(st)
     top = _top(fig, st, title, "", False) + _caption_cm(st, 1) - EDGE
@@ -832,7 +831,6 @@ def draw_to_file(sol, out, sheet: str = "full", style: str = "textbook", steps: 
 
 def mechanism_svg(m, style: str = "textbook") -> str:
     """The displacement diagram of a Mechanism at its reference pose as SVG text (Jupyter's view)."""
-    from matplotlib.backends.backend_agg import FigureCanvasAgg
     from matplotlib.figure import Figure
     from ..solution import solve
     sol = solve(m)
@@ -843,7 +841,7 @@ def mechanism_svg(m, style: str = "textbook") -> str:
     h = min(max(w * aspect, 3.0), 6.0)
     with rc_context(st):
         fig = Figure(figsize=(w, h), dpi=72)
-        FigureCanvasAgg(fig)
+        new_canvas(fig)
         ax = fig.add_axes((0, 0, 1, 1))
         fit_view(ax, (x0, y0, x1, y1), scale=drawing_options(m).scale, margin=0.1)
         ax.set_axis_off()

@@ -195,10 +195,19 @@ def share_mathtext() -> bool:
 
 
 def preload() -> None:
-    """Load what a process's first drawing loads: matplotlib's figure, Agg canvas and font list, and the
-    mathtext grammar (0.5-0.7 s of CPU). The gallery calls it before it forks its workers, so that they
+    """Load what a process's first drawing loads: matplotlib's figure, Agg canvas and font list, the
+    mathtext grammar (0.5-0.7 s of CPU), velpoly's loader, solver and sheet modules, and Pillow's image
+    plugins (which its first PNG loads). The gallery calls it before it forks its workers, so that they
     share it rather than each loading it."""
+    import importlib
     from matplotlib.backends.backend_agg import FigureCanvasAgg  # noqa: F401
     from matplotlib.figure import Figure  # noqa: F401
     from matplotlib.mathtext import MathTextParser
     MathTextParser("agg").parse("$x_{1}$")
+    for name in ("velpoly.loader", "velpoly.solution", "velpoly.polygons", "velpoly.poles", "velpoly.render.sheet",
+                 "velpoly.render.detail", "velpoly.render.pngfile", "numpy.random"):
+        importlib.import_module(name)
+    from PIL import Image
+    Image.preinit()
+    from .textcache import canvas_class
+    canvas_class()

@@ -1,0 +1,255 @@
+"""Text measured and drawn once per process: an Agg canvas whose renderer remembers what FreeType did.
+
+A sheet's figure is an Agg figure (:func:`velpoly.render.sheet.render`): its text is measured at 72 dpi
+while the page is laid out (labels placed, the table measured, captions wrapped) and measured again and
+drawn at 200 dpi for a PNG. matplotlib keeps a text's measure per renderer, and every figure (every dpi)
+has a new renderer, so each sheet asks FreeType again for what an earlier one already had: the same
+column heads, units and names, the same sheet drawn again (a notebook, step frames, the tests). Every
+such request loads each character's glyph again (50-100 us a glyph here: docs/performance.md).
+
+:class:`TextCanvas` is matplotlib's ``FigureCanvasAgg`` with a renderer (:class:`_Renderer`) that keeps,
+for the whole process, what each of these requests depends on and what came back:
+
+* a plain (non-math) text's width, height and descent: keyed by the string, the font properties, the
+  font settings that choose the font file (``font.*``), the kerning factor, the hinting flag and the dpi;
+* a font's ascent, descent and line gap (``Text._get_layout`` reads the font's OS/2 or hhea table again for
+  every text it lays out, unless the renderer gives them: ``_get_font_height_metrics``), keyed alike;
+* a plain text's glyph layout for drawing (``FT2Font._layout``: glyph, font and position), keyed alike
+  and by the thread (matplotlib gives each thread its own font objects);
+* a glyph's rendered bitmap (``FT2Font._render_glyph``), keyed by its font object, size, dpi, glyph,
+  transformation matrix, load flags, antialiasing and its position's fraction of a pixel (26.6 fixed
+  point, the six low bits): FreeType rasterises an outline moved by whole pixels into the same bitmap
+  moved by those pixels, so the bitmap is kept with its offset from the whole-pixel position.
+
+Each is a pure function of its key, so a value found is the value FreeType would give: the pixels, SVG
+and PDF output are the same bytes (tests/test_textcache.py checks the three against matplotlib's own
+renderer on generated texts; /work/wt/golden.sh checks every example's SVG). Mathtext needs none of it:
+its parses are shared already (:func:`velpoly.render.style.share_mathtext`), its glyphs go through the
+glyph cache. The caches are bounded (oldest dropped first) and emptied in a forked child (a font object
+reads its file through an offset shared with the parent: the gallery's workers start empty), as
+matplotlib empties its own font cache there. Where matplotlib's Agg renderer is not as this module
+expects (another version), :func:`canvas_class` gives matplotlib's own canvas and nothing changes.
+"""
+from __future__ import annotations
+
+import math
+import os
+import threading
+from collections import OrderedDict
+
+__all__ = ["canvas_class", "new_canvas", "clear", "stats", "LIMITS"]
+
+LIMITS = {"metrics": 20000, "height": 1000, "layout": 10000, "glyph": 20000}   # entries kept per cache (a glyph
+# bitmap 0.3-3 KB at 200 dpi)
+
+_CACHES: dict[str, OrderedDict] = {name: OrderedDict() for name in LIMITS}
+_HITS = {name: [0, 0] for name in LIMITS}   # name -> [found, computed]
+_RC = ("font.family", "font.style", "font.variant", "font.weight", "font.stretch", "font.size",
+       "font.serif", "font.sans-serif", "font.cursive", "font.fantasy", "font.monospace",
+       "font.enable_last_resort", "text.kerning_factor", "text.hinting")
+_CLASS = []   # the canvas class, made once
+
+
+def clear() -> None:
+    """Empty every cache (and its counts)."""
+    for name, c in _CACHES.items():
+        c.clear()
+        _HITS[name][:] = [0, 0]
+
+
+def stats() -> dict:
+    """``{cache: (found, computed, kept)}`` since the last :func:`clear`."""
+    return {name: (*_HITS[name], len(_CACHES[name])) for name in LIMITS}
+
+
+if hasattr(os, "register_at_fork"):
+    os.register_at_fork(after_in_child=clear)
+
+
+def _get(name: str, key):
+    c = _CACHES[name]
+    got = c.get(key)
+    if got is not None:
+        _HITS[name][0] += 1
+    return got
+
+
+def _put(name: str, key, value):
+    c = _CACHES[name]
+    c[key] = value
+    _HITS[name][1] += 1
+    if len(c) > LIMITS[name]:
+        c.popitem(last=False)
+    return value
+
+
+def _font_key(prop, dpi: float) -> tuple:
+    """What chooses and sizes a plain text's font: the properties, the settings in force, the dpi."""
+    import matplotlib
+    rc = matplotlib.rcParams
+    return (tuple(prop.get_family()), prop.get_style(), prop.get_variant(), prop.get_weight(),
+            prop.get_stretch(), prop.get_size_in_points(), str(prop.get_file()), prop.get_math_fontfamily(),
+            tuple(tuple(v) if isinstance(v, list) else v for v in (rc[k] for k in _RC)), dpi)
+
+
+def _height_metrics(prop, dpi: float) -> tuple:
+    """``(ascent, descent, line gap)`` of ``prop``'s font in pixels at ``dpi``, as matplotlib 3.11's
+    ``Text._get_layout`` computes them (the same tables, the same arithmetic); (None, None, None) where
+    the font has neither table (matplotlib then measures "lp")."""
+    from matplotlib.font_manager import fontManager, get_font
+    font = get_font(fontManager._find_fonts_by_props(prop))
+    for table_name, gap, ascent, descent in (("OS/2", "sTypoLineGap", "sTypoAscender", "sTypoDescender"),
+                                             ("hhea", "lineGap", "ascent", "descent")):
+        table = font.get_sfnt_table(table_name)
+        if table is None:
+            continue
+        fontsize = prop.get_size_in_points()
+        units_per_em = font.get_sfnt_table("head")["unitsPerEm"]
+        scale = 1 / units_per_em * fontsize * dpi / 72
+        return table[ascent] * scale, -table[descent] * scale, table[gap] * scale
+    return None, None, None
+
+
+def _supported() -> bool:
+    """matplotlib's Agg renderer draws text as this module expects (matplotlib 3.11's glyph-by-glyph path)."""
+    from matplotlib.backends import backend_agg
+    from matplotlib.ft2font import FT2Font
+    from matplotlib.text import Text
+    return all(hasattr(backend_agg.RendererAgg, n) for n in
+               ("_draw_text_glyphs_and_boxes", "_prepare_font", "get_text_width_height_descent", "draw_text")) \
+        and all(hasattr(FT2Font, n) for n in ("_layout", "_render_glyph", "_set_transform")) \
+        and hasattr(backend_agg, "get_hinting_flag") \
+        and "_get_font_height_metrics" in Text._get_layout.__code__.co_names
+
+
+def canvas_class():
+    """The Agg canvas class for a sheet's figure: :class:`TextCanvas`, or matplotlib's ``FigureCanvasAgg``
+    where its renderer is not the one this module knows."""
+    if not _CLASS:
+        from matplotlib.backends.backend_agg import FigureCanvasAgg
+        _CLASS.append(_make() if _supported() else FigureCanvasAgg)
+    return _CLASS[0]
+
+
+def new_canvas(fig):
+    """Give ``fig`` a :func:`canvas_class` canvas (as ``FigureCanvasAgg(fig)`` does) and return it."""
+    return canvas_class()(fig)
+
+
+_MATRICES: dict = {}   # (angle, slant, extend) -> FreeType's 16.16 matrix of a glyph, as matplotlib computes it
+
+
+def _matrix(angle, slant, extend):
+    """(matrix, its four integers, cos, sin) of a glyph drawn at ``angle`` degrees, slanted and extended, as
+    matplotlib's Agg renderer computes it."""
+    key = (angle, slant, extend)
+    got = _MATRICES.get(key)
+    if got is None:
+        import numpy as np
+        cos, sin = math.cos(math.radians(angle)), math.sin(math.radians(angle))
+        m = (0x10000 * np.array([[cos, -sin], [sin, cos]]) @ [[extend, extend * slant], [0, 1]]).round().astype(int)
+        got = _MATRICES[key] = (m, tuple(m.ravel().tolist()), cos, sin)
+    return got
+
+
+def _layout(renderer, s, prop, mtext, flags) -> tuple:
+    """A plain text's glyphs for drawing, ``(font, glyph index, x, y)`` each (``FT2Font._layout``), kept."""
+    features = mtext.get_fontfeatures() if mtext is not None else None
+    language = mtext.get_language() if mtext is not None else None
+    key = (s, _font_key(prop, renderer.dpi), flags, threading.get_ident(),   # its fonts are this thread's
+           tuple(features) if isinstance(features, list) else features,
+           tuple(language) if isinstance(language, list) else language)
+    items = _get("layout", key)
+    if items is None:
+        font = renderer._prepare_font(prop)
+        laid = font._layout(s, flags=flags, features=features, language=language)
+        items = _put("layout", key, tuple((it.ft_object, it.glyph_index, it.x, it.y) for it in laid))
+    return items
+
+
+def _draw_glyphs(renderer, gc, x, y, angle, glyphs, load_flags, mode) -> None:
+    """matplotlib's ``RendererAgg._draw_text_glyphs_and_boxes`` for the glyphs, each glyph's bitmap kept by
+    its fraction of a pixel (module doc)."""
+    antialiased = gc.get_antialiased()
+    height, dpi = renderer.height, renderer.dpi
+    draw = renderer._renderer.draw_text_image
+    for font, size, glyph_index, slant, extend, dx, dy in glyphs:   # dy is upwards
+        m, mkey, cos, sin = _matrix(angle, slant, extend)
+        px = round(0x40 * (x + dx * cos - dy * sin))
+        py = round(0x40 * (height - y + dx * sin + dy * cos))   # FreeType's y is upwards
+        key = (font, size, dpi, glyph_index, mkey, px & 63, py & 63, load_flags, antialiased)
+        got = _get("glyph", key)
+        if got is None:
+            font.set_size(size, dpi)
+            font._set_transform(m, [px, py])
+            bitmap = font._render_glyph(glyph_index, load_flags, mode)
+            buffer = bitmap.buffer
+            if not antialiased:
+                buffer *= 0xff
+            got = _put("glyph", key, (buffer, bitmap.left - (px >> 6), bitmap.top - (py >> 6)))
+        buffer, left, top = got
+        # draw_text_image's y is downwards & the bitmap bottom side
+        draw(buffer, left + (px >> 6), int(height) - (top + (py >> 6)) + buffer.shape[0], 0, gc)
+
+
+def _make():
+    from matplotlib.backends.backend_agg import FigureCanvasAgg
+    renderer_class = _renderer_class()
+
+    class TextCanvas(FigureCanvasAgg):
+        """matplotlib's Agg canvas, its renderer kept text per process (module doc)."""
+
+        def get_renderer(self):
+            w, h = self.get_width_height(physical=True)
+            key = w, h, self.figure.dpi
+            if self._lastKey != key:
+                self.renderer = renderer_class(w, h, self.figure.dpi)
+                self._lastKey = key
+            return self.renderer
+
+    return TextCanvas
+
+
+def _renderer_class():
+    from matplotlib.backends import backend_agg
+    from matplotlib.backends.backend_agg import RendererAgg
+    from matplotlib.ft2font import RenderMode
+
+    class _Renderer(RendererAgg):
+        """matplotlib's Agg renderer, whose text measures, layouts, font heights and glyph bitmaps are kept
+        (module doc)."""
+
+        def get_text_width_height_descent(self, s, prop, ismath):
+            if ismath:   # mathtext (its parses are shared) or TeX: matplotlib's own
+                return super().get_text_width_height_descent(s, prop, ismath)
+            key = (s, _font_key(prop, self.dpi))
+            got = _get("metrics", key)
+            if got is None:
+                got = _put("metrics", key, super().get_text_width_height_descent(s, prop, ismath))
+            return got
+
+        def _get_font_height_metrics(self, prop):
+            # Text._get_layout's hook (matplotlib 3.11): the font's ascent, descent and line gap that
+            # _get_layout computes itself from the font's OS/2 or hhea table where a renderer has none,
+            # by the same arithmetic, at this renderer's dpi (the figure's while it measures or draws)
+            key = _font_key(prop, self.dpi)
+            got = _get("height", key)
+            if got is None:
+                got = _put("height", key, _height_metrics(prop, self.dpi))
+            return got
+
+        def draw_text(self, gc, x, y, s, prop, angle, ismath=False, mtext=None):
+            if ismath:
+                return super().draw_text(gc, x, y, s, prop, angle, ismath, mtext)
+            items = _layout(self, s, prop, mtext, backend_agg.get_hinting_flag())
+            size = prop.get_size_in_points()
+            self._draw_text_glyphs_and_boxes(
+                gc, x, y, angle, ((font, size, index, 0, 1, dx, dy) for font, index, dx, dy in items), [])
+
+        def _draw_text_glyphs_and_boxes(self, gc, x, y, angle, glyphs, boxes):
+            mode = RenderMode.NORMAL if gc.get_antialiased() else RenderMode.MONO
+            _draw_glyphs(self, gc, x, y, angle, glyphs, backend_agg.get_hinting_flag(), mode)
+            if boxes:
+                super()._draw_text_glyphs_and_boxes(gc, x, y, angle, (), boxes)
+
+    return _Renderer
