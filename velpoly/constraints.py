@@ -34,6 +34,7 @@ from __future__ import annotations
 
 import dataclasses
 import functools
+import math
 from dataclasses import dataclass
 from typing import Callable
 
@@ -85,11 +86,14 @@ class Frame:
                  values_only: bool = False, one_pose: bool = False):
         q = np.atleast_2d(q)
         n, nq = q.shape
-        qd = np.zeros_like(q) if qd is None else np.atleast_2d(qd)
         self.n, self.nq = n, (None if values_only else nq)
         self.values_only = values_only
         self.scalar = one_pose and n == 1
-        self.q, self.qd = q, qd
+        if self.scalar:   # the pose's coordinates and rates as floats
+            self.q = q[0].tolist()
+            self.qd = [0.0] * nq if qd is None else np.atleast_2d(qd)[0].tolist()
+        else:
+            self.q, self.qd = q, (np.zeros_like(q) if qd is None else np.atleast_2d(qd))
         self._index = system.index
         self._cache = {}
 
@@ -100,7 +104,7 @@ class Frame:
             if k is None:
                 return None
             x, y, th = (self._coordinate(3 * k + i) for i in range(3))
-            b = (x, y, th.cos(), th.sin(), th)
+            b = (x, y, *th.cos_sin(), th)
             self._cache[link] = b
         return b
 
@@ -110,7 +114,7 @@ class Frame:
             if not self.values_only:
                 g = np.zeros(self.nq)
                 g[i] = 1.0
-            return Jet(float(self.q[0, i]), g, float(self.qd[0, i]), 0.0)
+            return Jet(self.q[i], g, self.qd[i], 0.0)
         return Jet.coordinate(self.q, self.qd, i, self.values_only)
 
     def const(self, c) -> Jet:
@@ -168,6 +172,16 @@ class PinBlock:
     flat_y: np.ndarray
     sign: np.ndarray      # (moving sides,) +1 for side 0, -1 for side 1
 
+    @functools.cached_property
+    def sides(self) -> tuple:
+        """Each side's (theta, x, y columns in the padded q, reference x, y) as lists (:func:`_pins_one`)."""
+        return (self.theta.tolist(), self.x.tolist(), self.y.tolist(), self.sx.tolist(), self.sy.tolist())
+
+    @functools.cached_property
+    def moving_sides(self) -> list:
+        """The moving sides' numbers (side 0 of pin p is p, side 1 is p + L), as ``flat_x`` lists them."""
+        return np.flatnonzero(self.moving).tolist()
+
     @staticmethod
     def build(ki, kj, s, nq: int) -> "PinBlock":
         n_pins = len(ki)
@@ -190,8 +204,11 @@ def _pins_bulk(block: PinBlock, q, qd, phi, jac, h) -> int:
 
     dr/dx_k = I, dr/dtheta_k = k x R s, and h = -theta_i'^2 R_i s + theta_j'^2 R_j s.
     ``jac`` and ``h`` (with ``qd``) are filled where given. Returns the number of rows (2 per pin).
+    One pose goes to :func:`_pins_one`.
     """
     n, nq = q.shape
+    if n == 1:
+        return _pins_one(block, q, qd, phi, jac, h)
     n_pins = len(block.ki)
     qe = np.zeros((n, nq + 3))       # a zero "link" for the frame
     qe[:, :nq] = q
@@ -214,6 +231,48 @@ def _pins_bulk(block: PinBlock, q, qd, phi, jac, h) -> int:
         hx, hy = w2 * rx, w2 * ry
         h[:, 0:2 * n_pins:2] = hx[:, n_pins:] - hx[:, :n_pins]
         h[:, 1:2 * n_pins:2] = hy[:, n_pins:] - hy[:, :n_pins]
+    return 2 * n_pins
+
+
+def _pins_one(block: PinBlock, q, qd, phi, jac, h) -> int:
+    """:func:`_pins_bulk` at one pose on plain floats: the same operations in the same order, side
+    by side (each side's R(theta) s, its place x + R s, Phi = r_i - r_j, the theta columns -R s_y
+    and R s_x signed, h = theta_j'^2 R_j s - theta_i'^2 R_i s), so the same bits (math's cos and
+    sin are numpy's on the platforms checked: tests/test_instant_speedups.py). At one pose the
+    arrays' cost per call was most of the pins' time: ``solve`` evaluates them twice."""
+    n_pins = len(block.ki)
+    theta, xs, ys, sxs, sys_ = block.sides
+    qe = q[0].tolist() + [0.0, 0.0, 0.0]   # a zero "link" for the frame
+    cos, sin = math.cos, math.sin
+    rx, ry, px, py = [], [], [], []
+    for t, x, y, sx, sy in zip(theta, xs, ys, sxs, sys_):
+        th = qe[t]
+        c, sn = cos(th), sin(th)
+        u, v = c * sx - sn * sy, sn * sx + c * sy
+        rx.append(u)
+        ry.append(v)
+        px.append(qe[x] + u)
+        py.append(qe[y] + v)
+    row = phi[0]
+    row[0:2 * n_pins:2] = [px[p] - px[p + n_pins] for p in range(n_pins)]
+    row[1:2 * n_pins:2] = [py[p] - py[p + n_pins] for p in range(n_pins)]
+    if jac is not None:
+        jac[0, :2 * n_pins] = block.j0
+        flat = jac.reshape(-1)       # a view: jac is freshly allocated and contiguous
+        moving = block.moving_sides
+        flat[block.flat_x] = [-ry[t] if t < n_pins else ry[t] for t in moving]    # -sign R s_y
+        flat[block.flat_y] = [rx[t] if t < n_pins else -rx[t] for t in moving]    # sign R s_x
+    if h is not None and qd is not None:
+        qe[:-3] = qd[0].tolist()
+        hx, hy = [], []
+        for t, u, v in zip(theta, rx, ry):
+            w = qe[t]
+            w2 = w * w
+            hx.append(w2 * u)
+            hy.append(w2 * v)
+        row = h[0]
+        row[0:2 * n_pins:2] = [hx[p + n_pins] - hx[p] for p in range(n_pins)]
+        row[1:2 * n_pins:2] = [hy[p + n_pins] - hy[p] for p in range(n_pins)]
     return 2 * n_pins
 
 

@@ -19,9 +19,20 @@ rate terms vanish and only values and gradients are computed.
 """
 from __future__ import annotations
 
+import math
+
 import numpy as np
 
 __all__ = ["Jet"]
+
+
+def _cos_sin(v):
+    """cos v and sin v: numpy's for arrays; for one pose's float, math's (the same values as numpy's
+    on the platforms checked, tests/test_instant_speedups.py), which keep the jets' values plain
+    floats: numpy's scalars cost ten times a float in every later operation."""
+    if type(v) is float and math.isfinite(v):
+        return math.cos(v), math.sin(v)
+    return np.cos(v), np.sin(v)
 
 
 def _col(v):
@@ -96,13 +107,17 @@ class Jet:
         return Jet(f, None if self.g is None else self.g * _col(f1), self.vd * f1,
                    self.h * f1 + f2 * (self.vd * self.vd))
 
+    def cos_sin(self) -> tuple["Jet", "Jet"]:
+        """(cos f, sin f), with cos' = -sin f', cos'' = -cos, sin' = cos f', sin'' = -sin (one cos
+        and one sin of the value for both)."""
+        c, s = _cos_sin(self.v)
+        return self._unary(c, -s, -c), self._unary(s, c, -s)
+
     def cos(self):
-        c, s = np.cos(self.v), np.sin(self.v)
-        return self._unary(c, -s, -c)
+        return self.cos_sin()[0]
 
     def sin(self):
-        c, s = np.cos(self.v), np.sin(self.v)
-        return self._unary(s, c, -s)
+        return self.cos_sin()[1]
 
     def sqrt(self):
         r = np.sqrt(self.v)
