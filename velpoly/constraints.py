@@ -182,6 +182,11 @@ class PinBlock:
         """The moving sides' numbers (side 0 of pin p is p, side 1 is p + L), as ``flat_x`` lists them."""
         return np.flatnonzero(self.moving).tolist()
 
+    @functools.cached_property
+    def flat_xy(self) -> np.ndarray:
+        """``flat_x`` then ``flat_y``: every theta column of the pins' rows, for one assignment."""
+        return np.concatenate([self.flat_x, self.flat_y])
+
     @staticmethod
     def build(ki, kj, s, nq: int) -> "PinBlock":
         n_pins = len(ki)
@@ -253,15 +258,12 @@ def _pins_one(block: PinBlock, q, qd, phi, jac, h) -> int:
         ry.append(v)
         px.append(qe[x] + u)
         py.append(qe[y] + v)
-    row = phi[0]
-    row[0:2 * n_pins:2] = [px[p] - px[p + n_pins] for p in range(n_pins)]
-    row[1:2 * n_pins:2] = [py[p] - py[p + n_pins] for p in range(n_pins)]
+    phi[0, :2 * n_pins] = [d for p in range(n_pins) for d in (px[p] - px[p + n_pins], py[p] - py[p + n_pins])]
     if jac is not None:
         jac[0, :2 * n_pins] = block.j0
-        flat = jac.reshape(-1)       # a view: jac is freshly allocated and contiguous
-        moving = block.moving_sides
-        flat[block.flat_x] = [-ry[t] if t < n_pins else ry[t] for t in moving]    # -sign R s_y
-        flat[block.flat_y] = [rx[t] if t < n_pins else -rx[t] for t in moving]    # sign R s_x
+        moving = block.moving_sides   # the theta columns: -sign R s_y in the x rows, sign R s_x in the y rows
+        jac.reshape(-1)[block.flat_xy] = ([-ry[t] if t < n_pins else ry[t] for t in moving]
+                                          + [rx[t] if t < n_pins else -rx[t] for t in moving])
     if h is not None and qd is not None:
         qe[:-3] = qd[0].tolist()
         hx, hy = [], []
@@ -270,9 +272,7 @@ def _pins_one(block: PinBlock, q, qd, phi, jac, h) -> int:
             w2 = w * w
             hx.append(w2 * u)
             hy.append(w2 * v)
-        row = h[0]
-        row[0:2 * n_pins:2] = [hx[p + n_pins] - hx[p] for p in range(n_pins)]
-        row[1:2 * n_pins:2] = [hy[p + n_pins] - hy[p] for p in range(n_pins)]
+        h[0, :2 * n_pins] = [d for p in range(n_pins) for d in (hx[p + n_pins] - hx[p], hy[p + n_pins] - hy[p])]
     return 2 * n_pins
 
 
@@ -395,8 +395,19 @@ class System:
                      driver: bool = True) -> np.ndarray:
         """The Jacobian in unit lengths (lengths divided by the mechanism's size)."""
         row, col = self._scales
-        row = row[:len(row) - (0 if driver else 1)] if rows is None else row[list(rows)]
-        return jac * row[:, None] * col[None, :]
+        if rows is None:
+            row = row[:len(row) - (0 if driver else 1)][:, None]
+        else:   # the rows' scales as a column, made once for each set of rows (the velocities' every pose)
+            key = tuple(rows)
+            row = self._row_scales.get(key)
+            if row is None:
+                row = self._row_scales[key] = row_all = self._scales[0][list(rows)][:, None]
+                row_all.setflags(write=False)
+        return jac * row * col[None, :]
+
+    @functools.cached_property
+    def _row_scales(self) -> dict:
+        return {}
 
     @functools.cached_property
     def _scales(self) -> tuple[np.ndarray, np.ndarray]:

@@ -18,6 +18,7 @@ loses rank (a change point: a singular pose).
 """
 from __future__ import annotations
 
+import math
 from dataclasses import dataclass
 
 import numpy as np
@@ -193,6 +194,8 @@ def _scaled_cond(system: System, a: np.ndarray, rows) -> np.ndarray:
     2-norm value) screens them; poses it cannot clear are measured exactly (SVD).
     """
     s = system.scale_matrix(a, rows)
+    if len(s) == 1:
+        return _cond_one(s)
     if len(s) <= 8:
         return np.linalg.cond(s)
     try:
@@ -205,6 +208,20 @@ def _scaled_cond(system: System, a: np.ndarray, rows) -> np.ndarray:
     if unsure.any():
         cond[unsure] = np.linalg.cond(s[unsure])
     return cond
+
+
+def _cond_one(s: np.ndarray) -> np.ndarray:
+    """``np.linalg.cond(s)`` of one matrix (1, n, n): its largest singular value over its smallest,
+    divided as floats (inf where the smallest is 0 and s holds no NaN, as numpy makes it)."""
+    sv = np.linalg.svd(s, compute_uv=False)[0]
+    big, small = float(sv[0]), float(sv[-1])
+    if small != 0.0:
+        r = big / small
+    else:   # numpy's x / 0: inf (nan for 0 / 0 or nan / 0, then inf where s holds no NaN)
+        r = math.copysign(math.inf, big) if big != 0.0 and big == big else math.nan
+    if r != r and not np.isnan(s).any():
+        r = math.inf
+    return np.array([r])
 
 
 def condition(kin: Kinematics, q) -> np.ndarray:
@@ -225,19 +242,22 @@ def velocities(kin: Kinematics, q, check: bool = True, where: str = "pose", jac=
     q = np.atleast_2d(q)
     if jac is None:
         _, jac, _ = kin.system.evaluate(q)
-    a = jac[:, list(kin.rows)]
-    cond = _scaled_cond(kin.system, a, list(kin.rows))
+    rows = list(kin.rows)
+    a = jac[:, rows]
+    cond = _scaled_cond(kin.system, a, rows)
     bad = ~(cond <= SINGULAR)
-    if check and bad.any():
+    any_bad = bool(bad.any())
+    if check and any_bad:
         i = int(np.argmax(bad))
         raise SingularPoseError(
             f"singular pose: the velocity equations are singular (condition number "
             f"{'inf' if not np.isfinite(cond[i]) else f'{cond[i]:.3g}'})",
             where=where, file=kin.mechanism.source,
-            links=_involved(kin.system, a[i], list(kin.rows), True),
+            links=_involved(kin.system, a[i], rows, True),
             hint="links in line (a toggle or dead centre) or two pins at one place: choose another driver angle")
-    rhs = np.broadcast_to(_rates(kin), a.shape[:2]).copy()
-    if bad.any():
+    rhs = np.empty(a.shape[:2])
+    rhs[:] = _rates(kin)
+    if any_bad:
         a = a.copy()
         a[bad] = np.eye(a.shape[1])
         rhs[bad] = np.nan
@@ -273,7 +293,10 @@ def accelerations(kin: Kinematics, q, qd, jac=None):
     rhs = -h[:, rows]
     drv = kin.mechanism.driver
     rhs[:, -1] += drv.accel if drv.is_slider else drv.alpha
-    good = np.isfinite(rhs).all(axis=1) & np.isfinite(a).all(axis=(1, 2))
+    if len(a) == 1:   # one pose: the same test without the reductions per axis
+        good = np.array([bool(np.isfinite(rhs).all() and np.isfinite(a).all())])
+    else:
+        good = np.isfinite(rhs).all(axis=1) & np.isfinite(a).all(axis=(1, 2))
     if good.all():
         out = np.linalg.solve(a, rhs[..., None])[..., 0]
     else:

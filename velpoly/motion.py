@@ -501,10 +501,9 @@ def _evaluate_one(m: Mechanism, index: dict, q, qd, qdd) -> Motion:
         b = L[lk]
         wx, wy = L[coincident.get((p, lk), lk)].place(*P[p])
         rows.append((wx, wy, *b.vel(wx, wy), *b.acc(wx, wy)))
-    pva = np.array(rows).reshape(len(keys), 3, 1, 2)
-    position = {key: pva[i, 0] for i, (key, _, _) in enumerate(keys)}
-    velocity = {key: pva[i, 1] for i, (key, _, _) in enumerate(keys)}
-    acceleration = {key: pva[i, 2] for i, (key, _, _) in enumerate(keys)}
+    pva = np.array(rows).reshape(len(keys), 3, 1, 2).transpose(1, 0, 2, 3)
+    names = [key for key, _, _ in keys]
+    position, velocity, acceleration = (dict(zip(names, block)) for block in pva)   # (1, 2) views
 
     angle, omega, alpha = _link_angles1(m, index, L, q0)
     sliders = [_relative1(L, P, s, s.block, s.guide, s.point, qdd is not None) for s in m.sliders]
@@ -569,7 +568,8 @@ def _link_angles1(m: Mechanism, index: dict, L: dict, q0: list) -> tuple[dict, d
             a = wrap_deg_float(math.degrees(th))
         rows.append((a, b.om, b.al))
     links = np.array(rows).T.reshape(3, len(rows), 1)
-    angle, omega, alpha = ({lk.name: t[i] for i, lk in enumerate(m.links)} for t in links)
+    names = [lk.name for lk in m.links]
+    angle, omega, alpha = (dict(zip(names, t)) for t in links)   # (1,) views
     return angle, omega, alpha
 
 
