@@ -73,6 +73,12 @@ class Equation:
     timed: bool = False
 
 
+def as_poses(q) -> np.ndarray:
+    """q as poses (N, nq): ``np.atleast_2d(q)``, the very array where q is one (2-D) already, without
+    the call's cost (a one-pose solve passes its arrays through a dozen functions that take poses)."""
+    return q if type(q) is np.ndarray and q.ndim == 2 else np.atleast_2d(q)
+
+
 class Frame:
     """The links' poses at some q as jets: the evaluation context of equations.
 
@@ -84,16 +90,16 @@ class Frame:
 
     def __init__(self, system: "System", q: np.ndarray, qd: np.ndarray | None = None,
                  values_only: bool = False, one_pose: bool = False):
-        q = np.atleast_2d(q)
+        q = as_poses(q)
         n, nq = q.shape
         self.n, self.nq = n, (None if values_only else nq)
         self.values_only = values_only
         self.scalar = one_pose and n == 1
         if self.scalar:   # the pose's coordinates and rates as floats
             self.q = q[0].tolist()
-            self.qd = [0.0] * nq if qd is None else np.atleast_2d(qd)[0].tolist()
+            self.qd = [0.0] * nq if qd is None else as_poses(qd)[0].tolist()
         else:
-            self.q, self.qd = q, (np.zeros_like(q) if qd is None else np.atleast_2d(qd))
+            self.q, self.qd = q, (np.zeros_like(q) if qd is None else as_poses(qd))
         self._index = system.index
         self._cache = {}
 
@@ -334,7 +340,7 @@ class System:
 
         Returns ``(phi, jac, h)`` with shapes (N, m), (N, m, nq), (N, m).
         """
-        q = np.atleast_2d(q)
+        q = as_poses(q)
         n, nq = q.shape
         m_all = len(self.equations) + (1 if driver else 0)
         phi = np.zeros((n, m_all))
@@ -369,12 +375,12 @@ class System:
 
     def _values(self, q, qd, driver: bool):
         """Phi(q) and, with qd, h = q'^T (d2 Phi/dq2) q' (else None); no gradients."""
-        q = np.atleast_2d(q)
+        q = as_poses(q)
         n, nq = q.shape
         m_all = len(self.equations) + (1 if driver else 0)
         phi = np.zeros((n, m_all))
         h = None if qd is None else np.zeros((n, m_all))
-        qd = None if qd is None else np.atleast_2d(qd)
+        qd = None if qd is None else as_poses(qd)
         start = _pins_bulk(self.pin_block, q, qd, phi, None, h) if self.pin_block is not None else 0
         rest = list(self.equations[start:])
         crank = driver and self.crank >= 0

@@ -23,7 +23,7 @@ from dataclasses import dataclass
 
 import numpy as np
 
-from .constraints import System, build_system
+from .constraints import System, as_poses, build_system
 from .errors import InputError, SingularPoseError
 from .model import Mechanism
 from .pose import select_rows
@@ -156,7 +156,7 @@ def _moves(kin: Kinematics) -> bool:
 def involved_links(kin: Kinematics, q) -> tuple[str, ...]:
     """The links that come into line at the pose q (those moving in the near-null direction
     of the velocity equations): what a singular-pose error names."""
-    _, jac, _ = kin.system.evaluate(np.atleast_2d(q)[:1])
+    _, jac, _ = kin.system.evaluate(as_poses(q)[:1])
     return _involved(kin.system, jac[0][list(kin.rows)], list(kin.rows), True)
 
 
@@ -239,7 +239,7 @@ def velocities(kin: Kinematics, q, check: bool = True, where: str = "pose", jac=
     ``cond`` is exact where it exceeds WARN (1e6), an estimate below. ``jac``: the
     Jacobian of :meth:`System.evaluate` at q, if already evaluated.
     """
-    q = np.atleast_2d(q)
+    q = as_poses(q)
     if jac is None:
         _, jac, _ = kin.system.evaluate(q)
     rows = list(kin.rows)
@@ -273,7 +273,12 @@ def _exact_crank(kin: Kinematics, rates: np.ndarray, value: float) -> None:
     the input itself is exact (a driver given as 40 rad/s reads 40, not 39.99999999999999).
     """
     if kin.system.crank >= 0:
-        col = rates[:, 3 * kin.system.crank + 2]
+        j = 3 * kin.system.crank + 2
+        if len(rates) == 1:   # one pose: the same test on its float
+            if math.isfinite(rates[0, j]):
+                rates[0, j] = value
+            return
+        col = rates[:, j]
         col[np.isfinite(col)] = value
 
 
@@ -283,7 +288,7 @@ def accelerations(kin: Kinematics, q, qd, jac=None):
     With ``jac`` (the Jacobian at q, as the velocities used it) only the h-terms are
     evaluated: J q'' = w' - h needs no second Jacobian.
     """
-    q, qd = np.atleast_2d(q), np.atleast_2d(qd)
+    q, qd = as_poses(q), as_poses(qd)
     if jac is None:
         _, jac, h = kin.system.evaluate(q, qd)
     else:

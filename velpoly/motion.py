@@ -20,7 +20,7 @@ from dataclasses import dataclass, replace
 
 import numpy as np
 
-from .constraints import Frame, contact_frame, contact_slip_equation
+from .constraints import Frame, as_poses, contact_frame, contact_slip_equation
 from .model import Mechanism
 from .rigid import arg, coriolis, direction, dot, is_zero, perp, point_acceleration, point_velocity, rate_cross
 from .rigid import relative_acceleration, unit, xy
@@ -239,8 +239,8 @@ def evaluate_motion(m: Mechanism, index: dict, q, qd, qdd=None, walk=None) -> Mo
     velocities and accelerations); the body points and the links' angles and
     rates are then taken from it instead of being rebuilt from q, q', q''.
     """
-    q, qd = np.atleast_2d(q), np.atleast_2d(qd)
-    qdd = None if qdd is None else np.atleast_2d(qdd)
+    q, qd = as_poses(q), as_poses(qd)
+    qdd = None if qdd is None else as_poses(qdd)
     if walk is None and len(q) == 1 and not m.contacts:
         return _evaluate_one(m, index, q, qd, qdd)
     B = _Bodies(m, index, q, qd, qdd) if walk is None else _WalkBodies(walk, m, index, q, qd, qdd)
