@@ -187,6 +187,17 @@ def _rates(kin: Kinematics) -> np.ndarray:
     return w
 
 
+def _row_index(kin: Kinematics) -> np.ndarray:
+    """``kin.rows`` as an index array, made once per Kinematics: ``jac.take(index, axis=1)`` selects
+    the rows as ``jac[:, list(kin.rows)]`` does, without converting the list at every pose."""
+    index = kin.__dict__.get("_row_index")
+    if index is None:
+        index = np.array(kin.rows, dtype=np.intp)
+        index.setflags(write=False)
+        kin.__dict__["_row_index"] = index   # beside the frozen fields, as _rates keeps its own
+    return index
+
+
 def _scaled_cond(system: System, a: np.ndarray, rows) -> np.ndarray:
     """2-norm condition numbers of the batch of matrices a, in unit lengths.
 
@@ -243,7 +254,7 @@ def velocities(kin: Kinematics, q, check: bool = True, where: str = "pose", jac=
     if jac is None:
         _, jac, _ = kin.system.evaluate(q)
     rows = list(kin.rows)
-    a = jac[:, rows]
+    a = jac.take(_row_index(kin), axis=1)
     cond = _scaled_cond(kin.system, a, rows)
     bad = ~(cond <= SINGULAR)
     any_bad = bool(bad.any())
@@ -293,9 +304,9 @@ def accelerations(kin: Kinematics, q, qd, jac=None):
         _, jac, h = kin.system.evaluate(q, qd)
     else:
         h = kin.system.second_terms(q, qd)
-    rows = list(kin.rows)
-    a = jac[:, rows]
-    rhs = -h[:, rows]
+    index = _row_index(kin)
+    a = jac.take(index, axis=1)
+    rhs = -h.take(index, axis=1)
     drv = kin.mechanism.driver
     rhs[:, -1] += drv.accel if drv.is_slider else drv.alpha
     if len(a) == 1:   # one pose: the same test without the reductions per axis
