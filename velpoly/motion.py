@@ -496,12 +496,12 @@ def _evaluate_one(m: Mechanism, index: dict, q, qd, qdd) -> Motion:
     coincident = {(s.point, s.guide): s.block for s in m.sliders}
     coincident.update({(s.pin, s.slot): s.link for s in m.slots})
     keys = point_keys(m)
-    rows = []   # per key: x, y, Vx, Vy, Ax, Ay
+    rows = []   # per key: x, y, Vx, Vy, Ax, Ay, one after another
     for _, p, lk in keys:
         b = L[lk]
         wx, wy = L[coincident.get((p, lk), lk)].place(*P[p])
-        rows.append((wx, wy, *b.vel(wx, wy), *b.acc(wx, wy)))
-    pva = np.array(rows).reshape(len(keys), 3, 1, 2).transpose(1, 0, 2, 3)
+        rows += (wx, wy, *b.vel(wx, wy), *b.acc(wx, wy))
+    pva = np.fromiter(rows, float, len(rows)).reshape(len(keys), 3, 1, 2).transpose(1, 0, 2, 3)
     names = [key for key, _, _ in keys]
     position, velocity, acceleration = (dict(zip(names, block)) for block in pva)   # (1, 2) views
 
@@ -550,7 +550,7 @@ def _link_angles1(m: Mechanism, index: dict, L: dict, q0: list) -> tuple[dict, d
     """:func:`_link_angles` at one pose in plain floats: (angle, omega, alpha), each value a
     (1,) view of one block."""
     P = m.points
-    rows = []   # per link: angle, omega, alpha
+    rows = []   # per link: angle, omega, alpha, one after another
     block_path = {s.block: s for s in m.sliders}
     bases = _reference_angles(m)
     for link in m.links:
@@ -566,8 +566,8 @@ def _link_angles1(m: Mechanism, index: dict, L: dict, q0: list) -> tuple[dict, d
             a = wrap_deg_float(math.degrees(math.atan2(dy, dx)))
         else:
             a = wrap_deg_float(math.degrees(th))
-        rows.append((a, b.om, b.al))
-    links = np.array(rows).T.reshape(3, len(rows), 1)
+        rows += (a, b.om, b.al)
+    links = np.fromiter(rows, float, len(rows)).reshape(-1, 3).T.reshape(3, -1, 1)
     names = [lk.name for lk in m.links]
     angle, omega, alpha = (dict(zip(names, t)) for t in links)   # (1,) views
     return angle, omega, alpha
