@@ -194,3 +194,17 @@ def test_the_condition_number_of_one_matrix_is_numpy_s():
             continue
         got = _cond_one(a)
         assert got.shape == want.shape == (1,) and got.tobytes() == want.tobytes(), a
+
+
+def test_atan2_of_one_pose_s_floats_is_numpy_s():
+    """Jet.atan2 at one pose (float values, as the jets' cos and sin from math leave them) gives the
+    values numpy's scalars gave, and inf or NaN rather than an exception at r = 0 or on overflow."""
+    from velpoly.jet import Jet
+    g = np.array([1.0, 0.0, 2.0])
+    cases = [(0.3, -1.2, 0.7, 0.1), (0.0, 0.0, 1.0, 0.0), (1e200, 1e200, 1.0, 1.0), (-2.0, 0.0, 0.5, -0.5)]
+    with np.errstate(all="ignore"):
+        for xv, yv, xd, yd in cases:
+            floats = Jet.atan2(Jet(yv, g, yd, 0.1), Jet(xv, -g, xd, 0.2), 1.0)
+            scalars = Jet.atan2(Jet(np.float64(yv), g, yd, 0.1), Jet(np.float64(xv), -g, xd, 0.2), 1.0)
+            for a, b in zip((floats.v, floats.g, floats.vd, floats.h), (scalars.v, scalars.g, scalars.vd, scalars.h)):
+                assert np.asarray(a).tobytes() == np.asarray(b).tobytes(), (xv, yv)

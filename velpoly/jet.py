@@ -35,6 +35,12 @@ def _cos_sin(v):
     return np.cos(v), np.sin(v)
 
 
+def _scalar(v):
+    """A float as a numpy scalar (numpy's inf and NaN where a float's division by zero or power would
+    raise); arrays and numpy scalars as they are."""
+    return np.float64(v) if type(v) is float else v
+
+
 def _col(v):
     """v as the factor of a gradient: a column (N, 1) over poses, or one pose's float itself."""
     return v[:, None] if isinstance(v, np.ndarray) else v
@@ -127,13 +133,15 @@ class Jet:
     def atan2(y: "Jet", x: "Jet", ref: float = 0.0) -> "Jet":
         """The angle of the vector (x, y), unwrapped to within pi of ``ref``.
 
-        theta' = (x y' - y x') / r^2.
+        theta' = (x y' - y x') / r^2. One pose's float values are taken as numpy scalars here: r^2 = 0
+        or an overflow then gives inf or NaN as arrays do, not an exception.
         """
-        r2 = x.v ** 2 + y.v ** 2
-        ang = np.arctan2(y.v, x.v)
+        xv, yv = _scalar(x.v), _scalar(y.v)
+        r2 = xv ** 2 + yv ** 2
+        ang = np.arctan2(yv, xv)
         ang = ref + np.mod(ang - ref + np.pi, 2 * np.pi) - np.pi
-        g = None if x.g is None else (_col(x.v) * y.g - _col(y.v) * x.g) / _col(r2)
-        cross_d = x.v * y.vd - y.v * x.vd
+        g = None if x.g is None else (_col(xv) * y.g - _col(yv) * x.g) / _col(r2)
+        cross_d = xv * y.vd - yv * x.vd
         vd = cross_d / r2
-        h = (x.v * y.h - y.v * x.h) / r2 - 2.0 * cross_d * (x.v * x.vd + y.v * y.vd) / r2 ** 2
+        h = (xv * y.h - yv * x.h) / r2 - 2.0 * cross_d * (xv * x.vd + yv * y.vd) / r2 ** 2
         return Jet(ang, g, vd, h)
