@@ -125,3 +125,86 @@ def test_the_json_s_max_error_without_the_polygons_is_theirs_to_the_bit(source):
                 assert d[level] == built and max_error(second, level) == built, (name, angle, level)
                 assert built < 1e-9, (name, level)
             assert first.to_dict() == second.to_dict(), name                # built first, then the JSON
+
+
+def _systems():
+    """Every example's equations, the zoo's (one of each kind and variant) and the generated joints'."""
+    import mechanisms as M
+    from zoo import variants, zoo
+    mechs = [velpoly.load(p) for p in FILES] + [velpoly.load(sp.mech) for sp in zoo(11, len(variants()))]
+    mechs += [velpoly.load(gen(seed, 40.0 + 30 * seed)) for _, gen in sorted(M.ARROW_GENERATORS.items()) for seed in (1, 2)]
+    out = []
+    for m in mechs:
+        try:
+            out.append(prepare(m).system)
+        except velpoly.VelpolyError:
+            continue
+    assert len(out) >= 40
+    return out
+
+
+def test_one_pose_equations_are_the_batch_s_to_the_bit():
+    """evaluate, residual and second_terms at one pose (the pins on plain floats, _pins_one; the jets'
+    values floats, cos and sin from math) give the bytes the batch gives for the same pose."""
+    rng = np.random.default_rng(11)
+    checked = 0
+    for system in _systems():
+        for scale in (1e-3, 0.3, 4.0):
+            q = rng.normal(size=(2, system.nq)) * scale
+            qd = rng.normal(size=(2, system.nq))
+            both = system.evaluate(q, qd), (system.residual(q),), (system.second_terms(q, qd),)
+            for k in range(2):
+                one = system.evaluate(q[k:k + 1], qd[k:k + 1]), (system.residual(q[k:k + 1]),), \
+                    (system.second_terms(q[k:k + 1], qd[k:k + 1]),)
+                for got, want in zip((x for t in one for x in t), (x for t in both for x in t)):
+                    assert got[0].tobytes() == want[k].tobytes(), system.mechanism.title
+                checked += 1
+    assert checked >= 240
+
+
+def test_math_cos_and_sin_are_numpy_s():
+    """The one-pose jets and pins take cos and sin from math, the batch from numpy: the same values here
+    (the JSON would change its last bits on a platform where they differ: this test says so first)."""
+    import math
+    rng = np.random.default_rng(2)
+    x = np.concatenate([rng.uniform(-s, s, 20000) for s in (1e-6, 0.1, 1.0, 3.2, 7.0, 100.0, 1e5)]
+                       + [np.array([0.0, -0.0, math.pi, -math.pi, math.pi / 2, 1e-300, 5e-324])])
+    assert np.cos(x).tolist() == [math.cos(v) for v in x.tolist()]
+    assert np.sin(x).tolist() == [math.sin(v) for v in x.tolist()]
+
+
+def test_the_condition_number_of_one_matrix_is_numpy_s():
+    """_cond_one (one pose: the ratio of singular values divided as floats) gives np.linalg.cond's
+    value, also where the matrix is singular (inf), zero (0 / 0: inf) or holds NaN (NaN)."""
+    from velpoly.kinematics import _cond_one
+    rng = np.random.default_rng(4)
+    cases = [rng.normal(size=(1, n, n)) for n in (1, 2, 5, 15) for _ in range(20)]
+    singular = rng.normal(size=(1, 6, 6))
+    singular[0, 3] = singular[0, 1]
+    cases += [singular, np.zeros((1, 4, 4)), np.eye(3)[None] * 1e-300, np.diag([1e300, 1e-300])[None]]
+    with_nan = rng.normal(size=(1, 3, 3))
+    with_nan[0, 1, 1] = np.nan
+    cases.append(with_nan)
+    for a in cases:
+        try:
+            want = np.linalg.cond(a)
+        except np.linalg.LinAlgError:
+            with pytest.raises(np.linalg.LinAlgError):
+                _cond_one(a)
+            continue
+        got = _cond_one(a)
+        assert got.shape == want.shape == (1,) and got.tobytes() == want.tobytes(), a
+
+
+def test_atan2_of_one_pose_s_floats_is_numpy_s():
+    """Jet.atan2 at one pose (float values, as the jets' cos and sin from math leave them) gives the
+    values numpy's scalars gave, and inf or NaN rather than an exception at r = 0 or on overflow."""
+    from velpoly.jet import Jet
+    g = np.array([1.0, 0.0, 2.0])
+    cases = [(0.3, -1.2, 0.7, 0.1), (0.0, 0.0, 1.0, 0.0), (1e200, 1e200, 1.0, 1.0), (-2.0, 0.0, 0.5, -0.5)]
+    with np.errstate(all="ignore"):
+        for xv, yv, xd, yd in cases:
+            floats = Jet.atan2(Jet(yv, g, yd, 0.1), Jet(xv, -g, xd, 0.2), 1.0)
+            scalars = Jet.atan2(Jet(np.float64(yv), g, yd, 0.1), Jet(np.float64(xv), -g, xd, 0.2), 1.0)
+            for a, b in zip((floats.v, floats.g, floats.vd, floats.h), (scalars.v, scalars.g, scalars.vd, scalars.h)):
+                assert np.asarray(a).tobytes() == np.asarray(b).tobytes(), (xv, yv)

@@ -34,6 +34,7 @@ from __future__ import annotations
 
 import dataclasses
 import functools
+import math
 from dataclasses import dataclass
 from typing import Callable
 
@@ -72,6 +73,12 @@ class Equation:
     timed: bool = False
 
 
+def as_poses(q) -> np.ndarray:
+    """q as poses (N, nq): ``np.atleast_2d(q)``, the very array where q is one (2-D) already, without
+    the call's cost (a one-pose solve passes its arrays through a dozen functions that take poses)."""
+    return q if type(q) is np.ndarray and q.ndim == 2 else np.atleast_2d(q)
+
+
 class Frame:
     """The links' poses at some q as jets: the evaluation context of equations.
 
@@ -83,13 +90,16 @@ class Frame:
 
     def __init__(self, system: "System", q: np.ndarray, qd: np.ndarray | None = None,
                  values_only: bool = False, one_pose: bool = False):
-        q = np.atleast_2d(q)
+        q = as_poses(q)
         n, nq = q.shape
-        qd = np.zeros_like(q) if qd is None else np.atleast_2d(qd)
         self.n, self.nq = n, (None if values_only else nq)
         self.values_only = values_only
         self.scalar = one_pose and n == 1
-        self.q, self.qd = q, qd
+        if self.scalar:   # the pose's coordinates and rates as floats
+            self.q = q[0].tolist()
+            self.qd = [0.0] * nq if qd is None else as_poses(qd)[0].tolist()
+        else:
+            self.q, self.qd = q, (np.zeros_like(q) if qd is None else as_poses(qd))
         self._index = system.index
         self._cache = {}
 
@@ -100,7 +110,7 @@ class Frame:
             if k is None:
                 return None
             x, y, th = (self._coordinate(3 * k + i) for i in range(3))
-            b = (x, y, th.cos(), th.sin(), th)
+            b = (x, y, *th.cos_sin(), th)
             self._cache[link] = b
         return b
 
@@ -110,7 +120,7 @@ class Frame:
             if not self.values_only:
                 g = np.zeros(self.nq)
                 g[i] = 1.0
-            return Jet(float(self.q[0, i]), g, float(self.qd[0, i]), 0.0)
+            return Jet(self.q[i], g, self.qd[i], 0.0)
         return Jet.coordinate(self.q, self.qd, i, self.values_only)
 
     def const(self, c) -> Jet:
@@ -168,6 +178,21 @@ class PinBlock:
     flat_y: np.ndarray
     sign: np.ndarray      # (moving sides,) +1 for side 0, -1 for side 1
 
+    @functools.cached_property
+    def sides(self) -> tuple:
+        """Each side's (theta, x, y columns in the padded q, reference x, y) as lists (:func:`_pins_one`)."""
+        return (self.theta.tolist(), self.x.tolist(), self.y.tolist(), self.sx.tolist(), self.sy.tolist())
+
+    @functools.cached_property
+    def moving_sides(self) -> list:
+        """The moving sides' numbers (side 0 of pin p is p, side 1 is p + L), as ``flat_x`` lists them."""
+        return np.flatnonzero(self.moving).tolist()
+
+    @functools.cached_property
+    def flat_xy(self) -> np.ndarray:
+        """``flat_x`` then ``flat_y``: every theta column of the pins' rows, for one assignment."""
+        return np.concatenate([self.flat_x, self.flat_y])
+
     @staticmethod
     def build(ki, kj, s, nq: int) -> "PinBlock":
         n_pins = len(ki)
@@ -190,8 +215,11 @@ def _pins_bulk(block: PinBlock, q, qd, phi, jac, h) -> int:
 
     dr/dx_k = I, dr/dtheta_k = k x R s, and h = -theta_i'^2 R_i s + theta_j'^2 R_j s.
     ``jac`` and ``h`` (with ``qd``) are filled where given. Returns the number of rows (2 per pin).
+    One pose goes to :func:`_pins_one`.
     """
     n, nq = q.shape
+    if n == 1:
+        return _pins_one(block, q, qd, phi, jac, h)
     n_pins = len(block.ki)
     qe = np.zeros((n, nq + 3))       # a zero "link" for the frame
     qe[:, :nq] = q
@@ -214,6 +242,43 @@ def _pins_bulk(block: PinBlock, q, qd, phi, jac, h) -> int:
         hx, hy = w2 * rx, w2 * ry
         h[:, 0:2 * n_pins:2] = hx[:, n_pins:] - hx[:, :n_pins]
         h[:, 1:2 * n_pins:2] = hy[:, n_pins:] - hy[:, :n_pins]
+    return 2 * n_pins
+
+
+def _pins_one(block: PinBlock, q, qd, phi, jac, h) -> int:
+    """:func:`_pins_bulk` at one pose on plain floats: the same operations in the same order, side
+    by side (each side's R(theta) s, its place x + R s, Phi = r_i - r_j, the theta columns -R s_y
+    and R s_x signed, h = theta_j'^2 R_j s - theta_i'^2 R_i s), so the same bits (math's cos and
+    sin are numpy's on the platforms checked: tests/test_instant_speedups.py). At one pose the
+    arrays' cost per call was most of the pins' time: ``solve`` evaluates them twice."""
+    n_pins = len(block.ki)
+    theta, xs, ys, sxs, sys_ = block.sides
+    qe = q[0].tolist() + [0.0, 0.0, 0.0]   # a zero "link" for the frame
+    cos, sin = math.cos, math.sin
+    rx, ry, px, py = [], [], [], []
+    for t, x, y, sx, sy in zip(theta, xs, ys, sxs, sys_):
+        th = qe[t]
+        c, sn = cos(th), sin(th)
+        u, v = c * sx - sn * sy, sn * sx + c * sy
+        rx.append(u)
+        ry.append(v)
+        px.append(qe[x] + u)
+        py.append(qe[y] + v)
+    phi[0, :2 * n_pins] = [d for p in range(n_pins) for d in (px[p] - px[p + n_pins], py[p] - py[p + n_pins])]
+    if jac is not None:
+        jac[0, :2 * n_pins] = block.j0
+        moving = block.moving_sides   # the theta columns: -sign R s_y in the x rows, sign R s_x in the y rows
+        jac.reshape(-1)[block.flat_xy] = ([-ry[t] if t < n_pins else ry[t] for t in moving]
+                                          + [rx[t] if t < n_pins else -rx[t] for t in moving])
+    if h is not None and qd is not None:
+        qe[:-3] = qd[0].tolist()
+        hx, hy = [], []
+        for t, u, v in zip(theta, rx, ry):
+            w = qe[t]
+            w2 = w * w
+            hx.append(w2 * u)
+            hy.append(w2 * v)
+        h[0, :2 * n_pins] = [d for p in range(n_pins) for d in (hx[p + n_pins] - hx[p], hy[p + n_pins] - hy[p])]
     return 2 * n_pins
 
 
@@ -275,7 +340,7 @@ class System:
 
         Returns ``(phi, jac, h)`` with shapes (N, m), (N, m, nq), (N, m).
         """
-        q = np.atleast_2d(q)
+        q = as_poses(q)
         n, nq = q.shape
         m_all = len(self.equations) + (1 if driver else 0)
         phi = np.zeros((n, m_all))
@@ -310,12 +375,12 @@ class System:
 
     def _values(self, q, qd, driver: bool):
         """Phi(q) and, with qd, h = q'^T (d2 Phi/dq2) q' (else None); no gradients."""
-        q = np.atleast_2d(q)
+        q = as_poses(q)
         n, nq = q.shape
         m_all = len(self.equations) + (1 if driver else 0)
         phi = np.zeros((n, m_all))
         h = None if qd is None else np.zeros((n, m_all))
-        qd = None if qd is None else np.atleast_2d(qd)
+        qd = None if qd is None else as_poses(qd)
         start = _pins_bulk(self.pin_block, q, qd, phi, None, h) if self.pin_block is not None else 0
         rest = list(self.equations[start:])
         crank = driver and self.crank >= 0
@@ -336,8 +401,19 @@ class System:
                      driver: bool = True) -> np.ndarray:
         """The Jacobian in unit lengths (lengths divided by the mechanism's size)."""
         row, col = self._scales
-        row = row[:len(row) - (0 if driver else 1)] if rows is None else row[list(rows)]
-        return jac * row[:, None] * col[None, :]
+        if rows is None:
+            row = row[:len(row) - (0 if driver else 1)][:, None]
+        else:   # the rows' scales as a column, made once for each set of rows (the velocities' every pose)
+            key = tuple(rows)
+            row = self._row_scales.get(key)
+            if row is None:
+                row = self._row_scales[key] = row_all = self._scales[0][list(rows)][:, None]
+                row_all.setflags(write=False)
+        return jac * row * col[None, :]
+
+    @functools.cached_property
+    def _row_scales(self) -> dict:
+        return {}
 
     @functools.cached_property
     def _scales(self) -> tuple[np.ndarray, np.ndarray]:

@@ -19,9 +19,26 @@ rate terms vanish and only values and gradients are computed.
 """
 from __future__ import annotations
 
+import math
+
 import numpy as np
 
 __all__ = ["Jet"]
+
+
+def _cos_sin(v):
+    """cos v and sin v: numpy's for arrays; for one pose's float, math's (the same values as numpy's
+    on the platforms checked, tests/test_instant_speedups.py), which keep the jets' values plain
+    floats: numpy's scalars cost ten times a float in every later operation."""
+    if type(v) is float and math.isfinite(v):
+        return math.cos(v), math.sin(v)
+    return np.cos(v), np.sin(v)
+
+
+def _scalar(v):
+    """A float as a numpy scalar (numpy's inf and NaN where a float's division by zero or power would
+    raise); arrays and numpy scalars as they are."""
+    return np.float64(v) if type(v) is float else v
 
 
 def _col(v):
@@ -96,13 +113,17 @@ class Jet:
         return Jet(f, None if self.g is None else self.g * _col(f1), self.vd * f1,
                    self.h * f1 + f2 * (self.vd * self.vd))
 
+    def cos_sin(self) -> tuple["Jet", "Jet"]:
+        """(cos f, sin f), with cos' = -sin f', cos'' = -cos, sin' = cos f', sin'' = -sin (one cos
+        and one sin of the value for both)."""
+        c, s = _cos_sin(self.v)
+        return self._unary(c, -s, -c), self._unary(s, c, -s)
+
     def cos(self):
-        c, s = np.cos(self.v), np.sin(self.v)
-        return self._unary(c, -s, -c)
+        return self.cos_sin()[0]
 
     def sin(self):
-        c, s = np.cos(self.v), np.sin(self.v)
-        return self._unary(s, c, -s)
+        return self.cos_sin()[1]
 
     def sqrt(self):
         r = np.sqrt(self.v)
@@ -112,13 +133,15 @@ class Jet:
     def atan2(y: "Jet", x: "Jet", ref: float = 0.0) -> "Jet":
         """The angle of the vector (x, y), unwrapped to within pi of ``ref``.
 
-        theta' = (x y' - y x') / r^2.
+        theta' = (x y' - y x') / r^2. One pose's float values are taken as numpy scalars here: r^2 = 0
+        or an overflow then gives inf or NaN as arrays do, not an exception.
         """
-        r2 = x.v ** 2 + y.v ** 2
-        ang = np.arctan2(y.v, x.v)
+        xv, yv = _scalar(x.v), _scalar(y.v)
+        r2 = xv ** 2 + yv ** 2
+        ang = np.arctan2(yv, xv)
         ang = ref + np.mod(ang - ref + np.pi, 2 * np.pi) - np.pi
-        g = None if x.g is None else (_col(x.v) * y.g - _col(y.v) * x.g) / _col(r2)
-        cross_d = x.v * y.vd - y.v * x.vd
+        g = None if x.g is None else (_col(xv) * y.g - _col(yv) * x.g) / _col(r2)
+        cross_d = xv * y.vd - yv * x.vd
         vd = cross_d / r2
-        h = (x.v * y.h - y.v * x.h) / r2 - 2.0 * cross_d * (x.v * x.vd + y.v * y.vd) / r2 ** 2
+        h = (xv * y.h - yv * x.h) / r2 - 2.0 * cross_d * (xv * x.vd + yv * y.vd) / r2 ** 2
         return Jet(ang, g, vd, h)

@@ -18,11 +18,12 @@ loses rank (a change point: a singular pose).
 """
 from __future__ import annotations
 
+import math
 from dataclasses import dataclass
 
 import numpy as np
 
-from .constraints import System, build_system
+from .constraints import System, as_poses, build_system
 from .errors import InputError, SingularPoseError
 from .model import Mechanism
 from .pose import select_rows
@@ -155,7 +156,7 @@ def _moves(kin: Kinematics) -> bool:
 def involved_links(kin: Kinematics, q) -> tuple[str, ...]:
     """The links that come into line at the pose q (those moving in the near-null direction
     of the velocity equations): what a singular-pose error names."""
-    _, jac, _ = kin.system.evaluate(np.atleast_2d(q)[:1])
+    _, jac, _ = kin.system.evaluate(as_poses(q)[:1])
     return _involved(kin.system, jac[0][list(kin.rows)], list(kin.rows), True)
 
 
@@ -186,6 +187,17 @@ def _rates(kin: Kinematics) -> np.ndarray:
     return w
 
 
+def _row_index(kin: Kinematics) -> np.ndarray:
+    """``kin.rows`` as an index array, made once per Kinematics: ``jac.take(index, axis=1)`` selects
+    the rows as ``jac[:, list(kin.rows)]`` does, without converting the list at every pose."""
+    index = kin.__dict__.get("_row_index")
+    if index is None:
+        index = np.array(kin.rows, dtype=np.intp)
+        index.setflags(write=False)
+        kin.__dict__["_row_index"] = index   # beside the frozen fields, as _rates keeps its own
+    return index
+
+
 def _scaled_cond(system: System, a: np.ndarray, rows) -> np.ndarray:
     """2-norm condition numbers of the batch of matrices a, in unit lengths.
 
@@ -193,6 +205,8 @@ def _scaled_cond(system: System, a: np.ndarray, rows) -> np.ndarray:
     2-norm value) screens them; poses it cannot clear are measured exactly (SVD).
     """
     s = system.scale_matrix(a, rows)
+    if len(s) == 1:
+        return _cond_one(s)
     if len(s) <= 8:
         return np.linalg.cond(s)
     try:
@@ -205,6 +219,20 @@ def _scaled_cond(system: System, a: np.ndarray, rows) -> np.ndarray:
     if unsure.any():
         cond[unsure] = np.linalg.cond(s[unsure])
     return cond
+
+
+def _cond_one(s: np.ndarray) -> np.ndarray:
+    """``np.linalg.cond(s)`` of one matrix (1, n, n): its largest singular value over its smallest,
+    divided as floats (inf where the smallest is 0 and s holds no NaN, as numpy makes it)."""
+    sv = np.linalg.svd(s, compute_uv=False)[0]
+    big, small = float(sv[0]), float(sv[-1])
+    if small != 0.0:
+        r = big / small
+    else:   # numpy's x / 0: inf (nan for 0 / 0 or nan / 0, then inf where s holds no NaN)
+        r = math.copysign(math.inf, big) if big != 0.0 and big == big else math.nan
+    if r != r and not np.isnan(s).any():
+        r = math.inf
+    return np.array([r])
 
 
 def condition(kin: Kinematics, q) -> np.ndarray:
@@ -222,22 +250,25 @@ def velocities(kin: Kinematics, q, check: bool = True, where: str = "pose", jac=
     ``cond`` is exact where it exceeds WARN (1e6), an estimate below. ``jac``: the
     Jacobian of :meth:`System.evaluate` at q, if already evaluated.
     """
-    q = np.atleast_2d(q)
+    q = as_poses(q)
     if jac is None:
         _, jac, _ = kin.system.evaluate(q)
-    a = jac[:, list(kin.rows)]
-    cond = _scaled_cond(kin.system, a, list(kin.rows))
+    rows = list(kin.rows)
+    a = jac.take(_row_index(kin), axis=1)
+    cond = _scaled_cond(kin.system, a, rows)
     bad = ~(cond <= SINGULAR)
-    if check and bad.any():
+    any_bad = bool(bad.any())
+    if check and any_bad:
         i = int(np.argmax(bad))
         raise SingularPoseError(
             f"singular pose: the velocity equations are singular (condition number "
             f"{'inf' if not np.isfinite(cond[i]) else f'{cond[i]:.3g}'})",
             where=where, file=kin.mechanism.source,
-            links=_involved(kin.system, a[i], list(kin.rows), True),
+            links=_involved(kin.system, a[i], rows, True),
             hint="links in line (a toggle or dead centre) or two pins at one place: choose another driver angle")
-    rhs = np.broadcast_to(_rates(kin), a.shape[:2]).copy()
-    if bad.any():
+    rhs = np.empty(a.shape[:2])
+    rhs[:] = _rates(kin)
+    if any_bad:
         a = a.copy()
         a[bad] = np.eye(a.shape[1])
         rhs[bad] = np.nan
@@ -253,7 +284,12 @@ def _exact_crank(kin: Kinematics, rates: np.ndarray, value: float) -> None:
     the input itself is exact (a driver given as 40 rad/s reads 40, not 39.99999999999999).
     """
     if kin.system.crank >= 0:
-        col = rates[:, 3 * kin.system.crank + 2]
+        j = 3 * kin.system.crank + 2
+        if len(rates) == 1:   # one pose: the same test on its float
+            if math.isfinite(rates[0, j]):
+                rates[0, j] = value
+            return
+        col = rates[:, j]
         col[np.isfinite(col)] = value
 
 
@@ -263,17 +299,20 @@ def accelerations(kin: Kinematics, q, qd, jac=None):
     With ``jac`` (the Jacobian at q, as the velocities used it) only the h-terms are
     evaluated: J q'' = w' - h needs no second Jacobian.
     """
-    q, qd = np.atleast_2d(q), np.atleast_2d(qd)
+    q, qd = as_poses(q), as_poses(qd)
     if jac is None:
         _, jac, h = kin.system.evaluate(q, qd)
     else:
         h = kin.system.second_terms(q, qd)
-    rows = list(kin.rows)
-    a = jac[:, rows]
-    rhs = -h[:, rows]
+    index = _row_index(kin)
+    a = jac.take(index, axis=1)
+    rhs = -h.take(index, axis=1)
     drv = kin.mechanism.driver
     rhs[:, -1] += drv.accel if drv.is_slider else drv.alpha
-    good = np.isfinite(rhs).all(axis=1) & np.isfinite(a).all(axis=(1, 2))
+    if len(a) == 1:   # one pose: the same test without the reductions per axis
+        good = np.array([bool(np.isfinite(rhs).all() and np.isfinite(a).all())])
+    else:
+        good = np.isfinite(rhs).all(axis=1) & np.isfinite(a).all(axis=(1, 2))
     if good.all():
         out = np.linalg.solve(a, rhs[..., None])[..., 0]
     else:

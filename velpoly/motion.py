@@ -20,7 +20,7 @@ from dataclasses import dataclass, replace
 
 import numpy as np
 
-from .constraints import Frame, contact_frame, contact_slip_equation
+from .constraints import Frame, as_poses, contact_frame, contact_slip_equation
 from .model import Mechanism
 from .rigid import arg, coriolis, direction, dot, is_zero, perp, point_acceleration, point_velocity, rate_cross
 from .rigid import relative_acceleration, unit, xy
@@ -239,8 +239,8 @@ def evaluate_motion(m: Mechanism, index: dict, q, qd, qdd=None, walk=None) -> Mo
     velocities and accelerations); the body points and the links' angles and
     rates are then taken from it instead of being rebuilt from q, q', q''.
     """
-    q, qd = np.atleast_2d(q), np.atleast_2d(qd)
-    qdd = None if qdd is None else np.atleast_2d(qdd)
+    q, qd = as_poses(q), as_poses(qd)
+    qdd = None if qdd is None else as_poses(qdd)
     if walk is None and len(q) == 1 and not m.contacts:
         return _evaluate_one(m, index, q, qd, qdd)
     B = _Bodies(m, index, q, qd, qdd) if walk is None else _WalkBodies(walk, m, index, q, qd, qdd)
@@ -496,15 +496,14 @@ def _evaluate_one(m: Mechanism, index: dict, q, qd, qdd) -> Motion:
     coincident = {(s.point, s.guide): s.block for s in m.sliders}
     coincident.update({(s.pin, s.slot): s.link for s in m.slots})
     keys = point_keys(m)
-    rows = []   # per key: x, y, Vx, Vy, Ax, Ay
+    rows = []   # per key: x, y, Vx, Vy, Ax, Ay, one after another
     for _, p, lk in keys:
         b = L[lk]
         wx, wy = L[coincident.get((p, lk), lk)].place(*P[p])
-        rows.append((wx, wy, *b.vel(wx, wy), *b.acc(wx, wy)))
-    pva = np.array(rows).reshape(len(keys), 3, 1, 2)
-    position = {key: pva[i, 0] for i, (key, _, _) in enumerate(keys)}
-    velocity = {key: pva[i, 1] for i, (key, _, _) in enumerate(keys)}
-    acceleration = {key: pva[i, 2] for i, (key, _, _) in enumerate(keys)}
+        rows += (wx, wy, *b.vel(wx, wy), *b.acc(wx, wy))
+    pva = np.fromiter(rows, float, len(rows)).reshape(len(keys), 3, 1, 2).transpose(1, 0, 2, 3)
+    names = [key for key, _, _ in keys]
+    position, velocity, acceleration = (dict(zip(names, block)) for block in pva)   # (1, 2) views
 
     angle, omega, alpha = _link_angles1(m, index, L, q0)
     sliders = [_relative1(L, P, s, s.block, s.guide, s.point, qdd is not None) for s in m.sliders]
@@ -551,7 +550,7 @@ def _link_angles1(m: Mechanism, index: dict, L: dict, q0: list) -> tuple[dict, d
     """:func:`_link_angles` at one pose in plain floats: (angle, omega, alpha), each value a
     (1,) view of one block."""
     P = m.points
-    rows = []   # per link: angle, omega, alpha
+    rows = []   # per link: angle, omega, alpha, one after another
     block_path = {s.block: s for s in m.sliders}
     bases = _reference_angles(m)
     for link in m.links:
@@ -567,9 +566,10 @@ def _link_angles1(m: Mechanism, index: dict, L: dict, q0: list) -> tuple[dict, d
             a = wrap_deg_float(math.degrees(math.atan2(dy, dx)))
         else:
             a = wrap_deg_float(math.degrees(th))
-        rows.append((a, b.om, b.al))
-    links = np.array(rows).T.reshape(3, len(rows), 1)
-    angle, omega, alpha = ({lk.name: t[i] for i, lk in enumerate(m.links)} for t in links)
+        rows += (a, b.om, b.al)
+    links = np.fromiter(rows, float, len(rows)).reshape(-1, 3).T.reshape(3, -1, 1)
+    names = [lk.name for lk in m.links]
+    angle, omega, alpha = (dict(zip(names, t)) for t in links)   # (1,) views
     return angle, omega, alpha
 
 
