@@ -148,6 +148,15 @@ def test_fd_example_3_6():
     fd_check(velpoly.load(EXAMPLE_3_6), 120.0)
 
 
+# The finite differences' own rounding error grows with the pose's condition number (positions and
+# velocities carry eps * condition, divided by a step of 1e-3 degrees, twice for an acceleration): at
+# 1.3e4-1.8e4 (a crank 0.125 deg from a toggle, a kite 0.03 deg from its change point, found by hypothesis)
+# the differences themselves are off by 2e-6-2e-5 of the scale, and shrinking the step makes it worse. The
+# random mechanisms are checked where the differences are good to 1e-6; poses near toggles and change points
+# have their own tests (test_change_points.py, test_branch.py).
+FD_CONDITION = 1e3
+
+
 def assemblable(d):
     try:
         return velpoly.load(d)
@@ -166,7 +175,7 @@ def test_fd_random_fourbars(a, b, c, d, theta, omega, alpha, branch):
         s = velpoly.solve(m)
     except velpoly.PoseError:
         assume(False)
-    assume(s.condition < 1e5)
+    assume(s.condition < FD_CONDITION)
     fd_check(m, s.driver_angle)
 
 
@@ -178,7 +187,7 @@ def test_fd_random_slider_cranks(r, l, e, theta, omega, alpha, path):
     m = assemblable(slider_crank(r, l, e, theta, omega, alpha, path))
     assume(m is not None)
     s = velpoly.solve(m)
-    assume(s.condition < 1e5)
+    assume(s.condition < FD_CONDITION)
     fd_check(m, s.driver_angle)
     # the block moves along its path: V_B parallel to the path direction
     t = math.radians(path)
