@@ -107,3 +107,31 @@ def test_committed_together_renames_at_the_end_or_removes_all(tmp_path):
     assert a.read_text() == "new a"
     assert sorted(p.name for p in tmp_path.rglob("*")) == ["a.txt", "b.txt", "sub"]
     assert os.listdir(tmp_path / "sub") == ["b.txt"]
+
+
+def test_a_demo_that_cannot_write_one_file_writes_none(tmp_path, capsys):
+    (tmp_path / "sixbar-results.md").mkdir()      # a folder where the demo's Markdown table goes
+    assert main(["demo", "-o", str(tmp_path)]) == 2
+    assert "sixbar-results.md: is a folder" in capsys.readouterr().err
+    assert listing(tmp_path) == ["sixbar-results.md"]
+
+
+def test_a_demo_failing_late_commits_none(tmp_path, capsys, monkeypatch):
+    """The figures and the text table written, the Markdown table failing: none of them stays."""
+    import velpoly.gallery as gallery
+
+    def fast_draw(sol, out, **kw):   # the figures (slow to draw) as small files, written the same way
+        with atomic_path(out) as tmp:
+            tmp.write_text("figure")
+        return [out]
+    real = gallery.comparison_text
+
+    def markdown_fails(sol, fmt):
+        if fmt == "markdown":
+            raise OSError(28, "No space left on device")
+        return real(sol, fmt)
+    monkeypatch.setattr(gallery, "_draw_to_file", lambda: fast_draw)
+    monkeypatch.setattr(gallery, "comparison_text", markdown_fails)
+    old = old_files(tmp_path, ["sixbar.svg"])
+    assert main(["demo", "-o", str(tmp_path)]) != 0
+    assert listing(tmp_path) == ["sixbar.svg"] and (tmp_path / "sixbar.svg").read_text() == old["sixbar.svg"]

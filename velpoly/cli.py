@@ -414,9 +414,12 @@ def _animate_html(args, out: Path) -> int:
 
 
 def cmd_demo(args) -> int:
-    from .gallery import build_demo
+    from .gallery import DEMO_OUTPUT, build_demo
     out = Path(args.output or "out")
-    m, written = build_demo(out, args.style or "textbook")
+    for suffix in (".svg", ".png", "-results.txt", "-results.md"):   # a folder in the way: refused before any work
+        check_output(out / f"{DEMO_OUTPUT}{suffix}")
+    with committed_together():   # the four files all, or none of them
+        m, written = build_demo(out, args.style or "textbook")
     book = f"the book's values ({m.reference.source})" if m.reference.source else "the book's values"
     print(f"{m.title}: the full sheet and the comparison with {book} are in {out}/")
     for p in written:
