@@ -128,3 +128,27 @@ def test_a_scalar_written_as_a_vector_is_exit_2(tmp_path, capsys, key):
     err = capsys.readouterr().err.splitlines()
     assert err[0].startswith(f"error: {f}: reference.values.{key}") and "expected a number, got a list" in err[0]
     assert err[1].startswith("hint: ") and len(err) == 2
+
+
+@pytest.mark.parametrize("seed", range(3))
+def test_a_printed_pole_that_is_at_infinity_is_shown_not_compared(tmp_path, capsys, seed):
+    """Found by the audit: a printed pole (``P_34 = [x, y]``, ``V_P34 = [m, d]``) that is at infinity here
+    (a block on a straight guide) crashed ``velpoly solve`` (exit 1: the printed pair read as a number),
+    and the drawn results table showed its deviation as 0. Now: "at infinity", no deviation."""
+    from velpoly.render.table import _dev
+    rng = np.random.default_rng(seed)
+    d = mechanisms.inverted_slider_crank(r=float(rng.uniform(2, 4)), d=float(rng.uniform(6, 9)),
+                                         theta=float(rng.uniform(20, 160)), omega=float(rng.uniform(-9, 9)))
+    d["reference"] = {"values": {"P_34": [1.0, 2.0], "V_P34": [3.0, 40.0], "A_P34": 5.0, "P_13": [1.0, 1.0]}}
+    f = tmp_path / "m.toml"
+    f.write_text(to_toml(d))
+    assert main(["solve", str(f)]) == 0
+    table = capsys.readouterr().out.split("Reference values")[1].splitlines()
+    for key, printed in (("P_34", "(1, 2)"), ("V_P34", "3 ∠ 40.000°"), ("A_P34", "5")):
+        row = next(line.split("  ") for line in table if line.startswith(key + " "))
+        cells = [c.strip() for c in row if c.strip()]
+        assert cells[1:] == [printed, "at infinity", "-"], cells
+    rows = {r.key: r for r in compare(velpoly.solve(velpoly.load(d)))}
+    assert rows["P_13"].computed is not None and rows["P_13"].deviation > 0
+    for key in ("P_34", "V_P34", "A_P34"):
+        assert rows[key].computed is None and rows[key].deviation is None and _dev(rows[key]) == "-"

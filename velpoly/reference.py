@@ -354,8 +354,8 @@ def _rel(printed, computed):
 
 
 def _row(key, printed, value, note):
-    if value is None:
-        return Row(key, printed, None, None, None, note)
+    if value is None:   # a pole at infinity: the printed vector stays a (magnitude, direction) or (x, y) pair
+        return Row(key, tuple(printed) if isinstance(printed, list) else printed, None, None, None, note)
     if isinstance(value, np.ndarray):
         mag, ang = _polar(value)
         if isinstance(printed, (list, tuple)):
