@@ -20,8 +20,8 @@ from pathlib import Path
 
 from .errors import InputError, VelpolyError, one_line
 # at once, not when a signal comes: a Ctrl-C while a command imports fileio must find it whole
-from .fileio import (atomic_write_text, check_not_input, forget_inputs, interrupted, note_interrupt, protect_input,
-                     raise_if_interrupted)
+from .fileio import (atomic_write_text, check_not_input, check_output, committed_together, forget_inputs,
+                     interrupted, note_interrupt, protect_input, raise_if_interrupted)
 
 __all__ = ["main", "build_parser"]
 
@@ -250,6 +250,9 @@ def cmd_sweep(args) -> int:
     gif_out = _suffixed(getattr(args, "gif", None), (".gif",), "--gif")
     csv_out = Path(args.csv) if getattr(args, "csv", None) else None
     style = getattr(args, "style", "textbook") or "textbook"
+    for out in (plot_out, csv_out, gif_out):   # a folder or the input is refused before any work
+        if out is not None:
+            check_output(out)
     sw, kin = _sweep_cycle(args.file, getattr(args, "step", 1.0), gif_out is not None)
     from .sweeps import stop_note
     m = sw.mechanism
@@ -264,15 +267,16 @@ def cmd_sweep(args) -> int:
             warnings.append(f"warning: {m.source}: link {cen.link} does not turn: its pole with the frame "
                             f"stays at infinity, no centrode")
     written = []
-    if csv_out:
-        from .report import cycle_csv
-        written.append(atomic_write_text(csv_out, cycle_csv(sw, cen)))
-    if plot_out or gif_out:
-        from .render.sweep import plot_cycle, write_gif
-        if plot_out:
-            written.append(plot_cycle(sw, plot_out, points, cen, style, kin))
-        if gif_out:
-            written.append(_sweep_gif(write_gif, sw, gif_out, kin, style, cen))
+    with committed_together():   # the CSV, the plot and the GIF all, or none of them
+        if csv_out:
+            from .report import cycle_csv
+            written.append(atomic_write_text(csv_out, cycle_csv(sw, cen)))
+        if plot_out or gif_out:
+            from .render.sweep import plot_cycle, write_gif
+            if plot_out:
+                written.append(plot_cycle(sw, plot_out, points, cen, style, kin))
+            if gif_out:
+                written.append(_sweep_gif(write_gif, sw, gif_out, kin, style, cen))
     summary = ""
     if not written:
         from .report import summary_text
@@ -422,9 +426,12 @@ def _animate_html(args, out: Path) -> int:
 
 
 def cmd_demo(args) -> int:
-    from .gallery import build_demo
+    from .gallery import DEMO_OUTPUT, build_demo
     out = Path(args.output or "out")
-    m, written = build_demo(out, args.style or "textbook")
+    for suffix in (".svg", ".png", "-results.txt", "-results.md"):   # a folder in the way: refused before any work
+        check_output(out / f"{DEMO_OUTPUT}{suffix}")
+    with committed_together():   # the four files all, or none of them
+        m, written = build_demo(out, args.style or "textbook")
     book = f"the book's values ({m.reference.source})" if m.reference.source else "the book's values"
     print(f"{m.title}: the full sheet and the comparison with {book} are in {out}/")
     for p in written:

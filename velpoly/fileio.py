@@ -32,11 +32,13 @@ from pathlib import Path
 
 from .errors import InputError
 
-__all__ = ["atomic_path", "atomic_write_text", "atomic_write_bytes", "protect_input", "forget_inputs",
+__all__ = ["atomic_path", "atomic_write_text", "atomic_write_bytes", "committed_together", "check_output", "protect_input", "forget_inputs",
            "same_file", "check_not_input", "cannot_write", "note_interrupt", "interrupted", "raise_if_interrupted"]
 
 _INPUTS: dict[tuple[int, int], str] = {}   # (device, inode) of each input file -> its name as given
 _INTERRUPTED: list[bool] = [False]
+# committed_together(): (pid, [(temporary file, target)]) while a group of outputs is being written
+_GROUP: list = [None]
 
 
 def _umask() -> int:
@@ -114,6 +116,28 @@ def _special(target: Path, st) -> bool:
     return os.path.abspath(target).startswith(("/dev/", "/proc/"))
 
 
+def _check_folder(target: Path, folder: Path) -> None:
+    blocker = next((p for p in (folder, *folder.parents) if p.exists()), None)
+    if blocker is not None and not blocker.is_dir():   # a file where the output's folder should be
+        raise InputError(f"cannot write: {str(blocker)!r} is a file, not a folder", file=str(target),
+                         hint="give an output path whose folders are folders")
+
+
+def check_output(target) -> None:
+    """Refuse an output path before any work, as :func:`atomic_path` would when writing it: an input
+    file of this run (:func:`protect_input`), a folder, or a path below a file."""
+    target = Path(target)
+    ident = _identity(target)
+    if ident is not None and ident in _INPUTS:
+        raise InputError(f"the output {str(target)!r} is the input file: an output never replaces its input",
+                         file=_INPUTS[ident], hint="give the output another file name (-o OUT)")
+    if target.is_dir():
+        raise InputError("is a folder: cannot write a file there", file=str(target),
+                         hint="give the output file's name")
+    if not target.exists():
+        _check_folder(target, target.parent if str(target.parent) else Path("."))
+
+
 @contextlib.contextmanager
 def atomic_path(target):
     """Yield the path to write ``target`` through: a temporary path beside it, renamed over it on success.
@@ -127,13 +151,7 @@ def atomic_path(target):
     refused before anything is written.
     """
     target = Path(target)
-    ident = _identity(target)
-    if ident is not None and ident in _INPUTS:
-        raise InputError(f"the output {str(target)!r} is the input file: an output never replaces its input",
-                         file=_INPUTS[ident], hint="give the output another file name (-o OUT)")
-    if target.is_dir():
-        raise InputError("is a folder: cannot write a file there", file=str(target),
-                         hint="give the output file's name")
+    check_output(target)
     try:
         st = os.stat(target)
     except (FileNotFoundError, NotADirectoryError):   # absent (a file where a folder should be: below)
@@ -149,10 +167,7 @@ def atomic_path(target):
     if target.is_symlink():   # replace the file the link names, not the link
         target = Path(os.path.realpath(target))
     folder = target.parent if str(target.parent) else Path(".")
-    blocker = next((p for p in (folder, *folder.parents) if p.exists()), None)
-    if blocker is not None and not blocker.is_dir():   # a file where the output's folder should be
-        raise InputError(f"cannot write: {str(blocker)!r} is a file, not a folder", file=str(target),
-                         hint="give an output path whose folders are folders")
+    _check_folder(target, folder)
     try:
         folder.mkdir(parents=True, exist_ok=True)
         fd, tmp = tempfile.mkstemp(prefix=f".{target.stem}.", suffix=target.suffix + ".part", dir=folder)
@@ -165,6 +180,10 @@ def atomic_path(target):
             raise_if_interrupted()
             mode = (st.st_mode & 0o7777) if st is not None else (0o666 & ~_umask())
             os.chmod(tmp, mode)
+            group = _GROUP[0]
+            if group is not None and group[0] == os.getpid():   # committed with the group's other outputs
+                group[1].append((tmp, target))
+                return
             os.replace(tmp, target)
         except OSError as e:
             raise cannot_write(target, e) from None
@@ -172,6 +191,45 @@ def atomic_path(target):
         with contextlib.suppress(OSError):
             os.unlink(tmp)
         raise
+
+
+@contextlib.contextmanager
+def committed_together():
+    """Every output written through :func:`atomic_path` inside this block is committed together at its
+    end: each stays a temporary file beside its target until the block completes, then all are renamed
+    over their targets. A failure anywhere in the block (an error, Ctrl-C, an output refused as the
+    input) removes them all, so a command that writes several files (a plot, a CSV and a GIF; the frames
+    of ``--steps``) leaves none of them, and every existing output as it was. Nested blocks join the
+    outermost; a FIFO or a device is written straight through as ever. Only this process takes part
+    (a worker process commits its own outputs)."""
+    outer = _GROUP[0]
+    if outer is not None and outer[0] == os.getpid():
+        yield
+        return
+    _GROUP[0] = group = (os.getpid(), [])
+    try:
+        yield
+        raise_if_interrupted()
+    except BaseException:
+        _GROUP[0] = outer
+        for tmp, _ in group[1]:
+            with contextlib.suppress(OSError):
+                os.unlink(tmp)
+        raise
+    _GROUP[0] = outer
+    pending = group[1]
+    try:
+        while pending:
+            tmp, target = pending[0]
+            try:
+                os.replace(tmp, target)
+            except OSError as e:
+                raise cannot_write(target, e) from None
+            pending.pop(0)
+    finally:
+        for tmp, _ in pending:
+            with contextlib.suppress(OSError):
+                os.unlink(tmp)
 
 
 def atomic_write_bytes(target, data: bytes) -> Path:

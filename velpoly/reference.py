@@ -159,6 +159,13 @@ def validate_reference(m, ctx=None) -> None:
                              hint="keys in textbook notation: V_B, A_B, V_BA, V_B3/B4, omega_3, alpha_3, "
                                   "theta_3, R_BA, P_13, V_P24, A^n_BA, A^t_BA, A^c_B3/B4, A^s_B3/B4")
     ref = m.reference
+    for key, v in ref.values.items():   # an angular rate or a link angle is one number, not [magnitude, direction]
+        q = parse_key(m, key)
+        if q.kind in ("omega", "alpha", "theta") and not q.part and isinstance(v, (list, tuple)):
+            raise InputError(f"expected a number, got a list: {key} is a scalar, not a vector",
+                             where=f"reference.values.{key}", file=m.source,
+                             hint=f"{key} = 6.702 (signed: counter-clockwise positive)" if q.kind != "theta"
+                             else f"{key} = 18.584 (degrees)")
     known = value_keys(ref)
     for key in list(ref.note):
         if key in known:
@@ -347,8 +354,8 @@ def _rel(printed, computed):
 
 
 def _row(key, printed, value, note):
-    if value is None:
-        return Row(key, printed, None, None, None, note)
+    if value is None:   # a pole at infinity: the printed vector stays a (magnitude, direction) or (x, y) pair
+        return Row(key, tuple(printed) if isinstance(printed, list) else printed, None, None, None, note)
     if isinstance(value, np.ndarray):
         mag, ang = _polar(value)
         if isinstance(printed, (list, tuple)):

@@ -172,6 +172,18 @@ def _v(a) -> list | None:
     return v if math.isfinite(x) and math.isfinite(y) else None
 
 
+def _choose(ref: float, lo: float, hi: float, hint: str) -> str:
+    """The hint of an angle refused beyond a toggle: the driver angles ``--angle`` reaches. It carries
+    the driver the shorter way round, so of the range ref + [lo, hi] only those within 180 deg of the
+    reference pose; where the range reaches farther, the hint gives that part of it."""
+    a, b = max(lo, -179.99), min(hi, 179.99)
+    if (a, b) == (lo, hi):
+        return hint
+    return (f"choose an angle from {ref + a:g} to {ref + b:g} deg: --angle turns the driver the shorter way "
+            f"round from the reference pose ({ref:g} deg), so the rest of the range, beyond 180 deg from it, is "
+            "reached only by velpoly sweep (or draw the mechanism nearer to that angle)")
+
+
 def solve(m: Mechanism, angle: float | None = None) -> Solution:
     """Solve the mechanism at its reference pose, or with the driver at ``angle`` (degrees).
 
@@ -205,14 +217,14 @@ def solve(m: Mechanism, angle: float | None = None) -> Solution:
                     f"{sl.slot} at its end {r.leaves[1]} at {wrap_deg_float(ref + math.degrees(r.leaves[2])):g} "
                     f"deg; the pin is in the slot from {ref + lo:g} to {ref + hi:g} deg",
                     where="driver.angle", file=m.source, links=(sl.link, sl.slot),
-                    hint="choose an angle in that range (the slot's ends bound the motion)")
+                    hint=_choose(ref, lo, hi, "choose an angle in that range (the slot's ends bound the motion)"))
             if len(r.deltas) == 0:
                 lo, hi = reachable_range(kin)
                 raise AssemblyError(
                     f"cannot assemble at driver angle {target:g} deg: a toggle lies on the way from the "
                     f"reference pose ({ref:g} deg); reachable: {ref + lo:g} to {ref + hi:g} deg",
                     where="driver.angle", file=m.source, links=tuple(kin.system.index),
-                    hint="choose an angle in the reachable range")
+                    hint=_choose(ref, lo, hi, "choose an angle in the reachable range"))
             q = r.q
         angle_now = wrap_deg_float(ref + delta)
     else:

@@ -35,20 +35,20 @@ def load(source, *, name: str | None = None) -> Mechanism:
     if isinstance(source, Mapping):
         file = name or "<dict>"
         data = _plain(source, file)
+        title = name
     elif isinstance(source, os.PathLike) or (isinstance(source, str) and source.strip() and "\n" not in source):
         path = Path(source)
         file = name or str(source)
         text = _read_file(path, source, file)
         data = _parse_toml(text, file)
-        if name is None:
-            name = path.name
+        title = path.name   # the default title is the file's name, however errors call the file
     elif isinstance(source, str):
         return loads(source, name=name)
     else:
         raise ArgumentTypeError(f"cannot load {_a(type(source).__name__)}: give a path, a dict or TOML text",
                                 where="source", file=name or "",
                                 hint="velpoly.load(\"fourbar.toml\"), or velpoly.loads(text) for TOML text")
-    return _load_data(data, file, text, name)
+    return _load_data(data, file, text, title)
 
 
 def _read_file(path: Path, source, file: str) -> str:

@@ -30,7 +30,7 @@ from dataclasses import dataclass, replace
 from pathlib import Path
 
 from ..errors import InputError
-from ..fileio import atomic_path
+from ..fileio import atomic_path, check_output, committed_together
 from .canvas import equation_tex, fit_view, nice_scale, view_scale, wrap_caption
 from .constructions import Constructions, check_sheet as _check_sheet, constructions
 from .displacement import draw_mechanism, equivalent_linkage_note, mark_auxiliary, mechanism_bounds
@@ -787,6 +787,9 @@ def draw_to_file(sol, out, sheet: str = "full", style: str = "textbook", steps: 
     drawing_options(sol.mechanism)   # bad [drawing] keys fail before anything is drawn
     cons = cons if cons is not None else constructions(sol, sheet)
     pictures = frames(sheet, cons, steps)
+    for target in [out] if not steps or fmt == "pdf" else [_numbered(out, i, len(pictures)) for i in
+                                                            range(1, len(pictures) + 1)]:
+        check_output(target)   # an input among the numbered frames is refused before any drawing
     with rc_context(st):
         # the finished construction first: every frame then puts things where it has them
         done = render(sol, sheet, st, cons=cons, frame=pictures[-1])
@@ -815,18 +818,11 @@ def draw_to_file(sol, out, sheet: str = "full", style: str = "textbook", steps: 
     frames_n = len(blobs) - (extra is not None)
     targets = [out] if not steps else [_numbered(out, i, frames_n) for i in range(1, frames_n + 1)]
     targets += [out.with_name(f"{out.stem}-table{out.suffix}")] if extra is not None else []
-    written = []
-    try:
+    with committed_together():   # all frames or none: a refused or failed frame leaves every target as it was
         for target, data in zip(targets, blobs):
             with atomic_path(target) as tmp:
                 tmp.write_bytes(data)
-            written.append(target)
-    except BaseException:
-        for p in written:   # the frames written so far: regular files only (never a FIFO or a device)
-            if p.is_file() and not p.is_symlink():
-                p.unlink(missing_ok=True)
-        raise
-    return written
+    return targets[:len(blobs)]
 
 
 def mechanism_svg(m, style: str = "textbook") -> str:

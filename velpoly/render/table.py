@@ -170,7 +170,9 @@ def _dev(row) -> str:
     if row.angle_error is not None and row.angle_error > 5e-4:
         e = row.angle_error
         parts.append(f"{e:.0f}°" if e >= 10 else f"{e:.2g}°")
-    return (", ".join(parts) or "0") + (f" {NOTED}" if row.note else "")
+    at_infinity = getattr(row, "computed", 0) is None   # a printed pole found at infinity: no deviation
+    shown = "-" if at_infinity else ", ".join(parts) or "0"
+    return shown + (f" {NOTED}" if row.note else "")
 
 
 def _printed(row) -> str:
