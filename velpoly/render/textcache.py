@@ -23,7 +23,7 @@ for the whole process, what each of these requests depends on and what came back
 
 Each is a pure function of its key, so a value found is the value FreeType would give: the pixels, SVG
 and PDF output are the same bytes (tests/test_textcache.py checks the three against matplotlib's own
-renderer on generated texts; /work/wt/golden.sh checks every example's SVG). Mathtext needs none of it:
+renderer on generated texts; benchmarks/golden.sh writes every example's SVG to compare). Mathtext needs none of it:
 its parses are shared already (:func:`velpoly.render.style.share_mathtext`), its glyphs go through the
 glyph cache. The caches are bounded (oldest dropped first) and emptied in a forked child (a font object
 reads its file through an offset shared with the parent: the gallery's workers start empty), as
@@ -110,8 +110,15 @@ def _height_metrics(prop, dpi: float) -> tuple:
     return None, None, None
 
 
+TESTED = ((3, 11),)   # matplotlib releases whose glyph path this module follows (tests/test_textcache.py)
+
+
 def _supported() -> bool:
-    """matplotlib's Agg renderer draws text as this module expects (matplotlib 3.11's glyph-by-glyph path)."""
+    """matplotlib's Agg renderer draws text as this module expects (matplotlib 3.11's glyph-by-glyph path):
+    a release in :data:`TESTED` (another may keep the names and change what they do) with those names."""
+    import matplotlib
+    if tuple(int(p) for p in matplotlib.__version__.split(".")[:2] if p.isdigit()) not in TESTED:
+        return False
     from matplotlib.backends import backend_agg
     from matplotlib.ft2font import FT2Font
     from matplotlib.text import Text
