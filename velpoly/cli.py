@@ -202,13 +202,11 @@ def cmd_solve(args) -> int:
     return 0
 
 
-_PROGRAM = {"run": False}   # main() runs as the velpoly program (not called from Python with arguments)
-
-
-def _lean_matplotlib() -> None:
-    """The velpoly program imports matplotlib without what only an interactive session reads
-    (velpoly.render.lean); velpoly called from Python imports it as it is."""
-    if _PROGRAM["run"]:
+def _lean_matplotlib(args) -> None:
+    """The velpoly program (``args.program``: :func:`main` run without arguments given from Python)
+    imports matplotlib without what only an interactive session reads (velpoly.render.lean); velpoly
+    called from Python imports it as it is."""
+    if args.program:
         from .render.lean import import_matplotlib
         import_matplotlib(freeze=True)
 
@@ -222,7 +220,7 @@ def cmd_draw(args) -> int:
                          hint="end the output's name with .svg, .png or .pdf")
     _, sol = _load_and_solve(args)
     _warn(sol)
-    _lean_matplotlib()
+    _lean_matplotlib(args)
     from .render import draw_to_file
     from .render.sheet import default_sheet
     sheet = args.sheet or default_sheet(sol.mechanism)
@@ -445,7 +443,7 @@ def cmd_gallery(args) -> int:
     from .gallery import build_gallery, check_gallery_folder, gallery_folders
     source, out, option = gallery_folders(args.output, args.source)
     check_gallery_folder(out, option)
-    _lean_matplotlib()
+    _lean_matplotlib(args)
 
     def log(line):
         print(f"error: {line}", file=sys.stderr)
@@ -592,7 +590,6 @@ def _check_outputs(args) -> None:
 def main(argv=None) -> int:
     """Run the ``velpoly`` command; returns the exit status (FORMAT.md section 3)."""
     old_signals = _install_signals()
-    _PROGRAM["run"] = argv is None
     old_hook, sys.unraisablehook = sys.unraisablehook, _unraisable(sys.unraisablehook)
     stdout = sys.stdout
     try:
@@ -640,6 +637,7 @@ def _interruption(e: BaseException | None):
 def _main(argv) -> int:
     parser = build_parser()
     args = parser.parse_args(argv)
+    args.program = argv is None   # the velpoly program itself, not cli.main([...]) from Python
     if not args.command:
         parser.print_help()
         return 2
