@@ -210,6 +210,24 @@ def test_a_ctrl_c_swallowed_in_a_callback_still_stops_the_run(tmp_path, capsys, 
     assert list(tmp_path.iterdir()) == []
 
 
+@pytest.mark.parametrize("how", ["raised", "swallowed"])
+def test_after_an_interrupted_run_python_goes_on_writing(tmp_path, capsys, monkeypatch, how):
+    """``cli.main([...])`` called from Python and interrupted returns 130; the interruption belongs to that
+    run only: the caller's next file written through the API is written (it raised KeyboardInterrupt, a
+    worker of the test suite was stopped by it)."""
+    def command(args):
+        if how == "raised":
+            raise KeyboardInterrupt
+        _InterruptOnCollect()
+        gc.collect()
+        return 0
+    monkeypatch.setitem(velpoly.cli.COMMANDS, "solve", command)
+    assert main(["solve", str(FOURBAR)]) == 130
+    capsys.readouterr()
+    atomic_write_text(tmp_path / "after.txt", "written")
+    assert (tmp_path / "after.txt").read_text() == "written"
+
+
 # -- 8. the Python API: every wrong argument is a VelpolyError that is a TypeError or ValueError ------------
 import numpy as np
 from hypothesis import HealthCheck, given, settings, strategies as st

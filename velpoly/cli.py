@@ -21,7 +21,7 @@ from pathlib import Path
 from .errors import InputError, VelpolyError, one_line
 # at once, not when a signal comes: a Ctrl-C while a command imports fileio must find it whole
 from .fileio import (atomic_write_text, check_not_input, check_output, committed_together, forget_inputs,
-                     interrupted, note_interrupt, protect_input, raise_if_interrupted)
+                     forget_interrupt, interrupted, note_interrupt, protect_input, raise_if_interrupted)
 
 __all__ = ["main", "build_parser"]
 
@@ -610,6 +610,7 @@ def main(argv=None) -> int:
             sys.unraisablehook = lambda u: None
         else:
             sys.unraisablehook = old_hook
+            forget_interrupt()   # the run is over: a caller in Python goes on writing files as before
         for sig, handler in old_signals.items():
             signal.signal(sig, handler)
 

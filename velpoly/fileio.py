@@ -33,7 +33,7 @@ from pathlib import Path
 from .errors import InputError
 
 __all__ = ["atomic_path", "atomic_write_text", "atomic_write_bytes", "committed_together", "check_output", "protect_input", "forget_inputs",
-           "same_file", "check_not_input", "cannot_write", "note_interrupt", "interrupted", "raise_if_interrupted"]
+           "same_file", "check_not_input", "cannot_write", "note_interrupt", "forget_interrupt", "interrupted", "raise_if_interrupted"]
 
 _INPUTS: dict[tuple[int, int], str] = {}   # (device, inode) of each input file -> its name as given
 _INTERRUPTED: list[bool] = [False]
@@ -96,6 +96,11 @@ def cannot_write(target, e: BaseException) -> InputError:
 def note_interrupt() -> None:
     """Record that the run was interrupted (Ctrl-C, SIGTERM): no output is committed after it."""
     _INTERRUPTED[0] = True
+
+
+def forget_interrupt() -> None:
+    """Forget a recorded interruption: the run it stopped is over (its caller has handled it)."""
+    _INTERRUPTED[0] = False
 
 
 def interrupted() -> bool:
