@@ -74,16 +74,22 @@ def _texts(fig) -> list[str]:
 
 
 def test_drawn_names_tables_and_captions(specimens):
+    """Every specimen's labels, results table and step captions; the full sheet drawn for one naming of each
+    variant (numbers for the first and third, words and no units for the second and fourth: each variant's
+    points on links drawn once, both namings drawn twice; all eight until the suite had to fit 2 minutes; the
+    sheet's labels are the polygons' ``labels`` checked on all eight here)."""
     from velpoly.render.sheet import constructions, frames, render_sheet
     from velpoly.render.style import rc_context
     from velpoly.render.table import _parts, draw_results_table, results_table
     import matplotlib.figure
-    for where, mech in specimens:
+    sheets_drawn = 0
+    for k, (where, mech) in enumerate(specimens):
         sol = velpoly.solve(velpoly.load(mech))
         cons = constructions(sol, "full")
+        drawn_sheet = (k // 2 + k) % 2 == 0     # specimens alternate numbers, words: 0, 3, 4, 7
         with rc_context(velpoly.render.style.get_style("textbook")):
-            fig = render_sheet(sol, "full", "textbook", cons=cons)
-            texts = _texts(fig)
+            texts = _texts(render_sheet(sol, "full", "textbook", cons=cons)) if drawn_sheet else []
+            sheets_drawn += drawn_sheet
             for s in texts:
                 _check_text(s, sol, where)
             # each image of a point on a link is labelled with the link as its subscript
@@ -93,11 +99,11 @@ def test_drawn_names_tables_and_captions(specimens):
                 for key, lab in poly.labels.items():
                     p, lk = split_key(key)
                     assert lab == place(p, lk, lower=True, primes=poly.kind == "acceleration"), (where, key, lab)
-                    if lk is not None:
+                    if lk is not None and drawn_sheet:
                         want = name_math(lab)
                         assert any(want in s for s in texts), (where, key, want)
             units = [s for s in texts if "1 cm =" in s]
-            if mech["units"] == "":
+            if mech["units"] == "" and drawn_sheet:
                 assert any("units/s)" in s for s in units) and any("units/s²" in s for s in units), units
             # the results table: every row of a point on a link names it V_P₂ / V_P(cam) and draws the link
             # a subscript of the point's subscript; all rows drawn on a tall axes
@@ -125,6 +131,7 @@ def test_drawn_names_tables_and_captions(specimens):
         # the --steps captions: typeset equations, the links as subscripts
         for fr in frames("full", cons, True):
             _check_text(fr.caption, sol, where + " caption")
+    assert sheets_drawn == len(VARIANTS)
 
 
 def test_solve_report_names_and_directions(specimens):

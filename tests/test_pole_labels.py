@@ -47,13 +47,23 @@ def sixbars(seed: int, count: int):
     return [zoo.specimen(rng, "six-bar", variants[i % len(variants)]) for i in range(count)]
 
 
+# (style, seed, indices of sixbars(seed, 4)): the dense six-bars that had a pole label or a driver's value on a Kennedy
+# line before the lines were obstacles (80ed0ef; measured with its parent's velpoly: textbook watt I and watt II
+# with 2 and 5 such texts, slides watt I, stephenson I and III with 12, 6 and 4). The others of the four a style
+# (textbook stephenson I and III, slides watt II) had none then and were cut when the suite had to fit 2 minutes:
+# every six-bar variant is still drawn, in slides, and test_no_text_on_a_line_or_leader_in_a_crowd draws three more.
+FAILED = {"textbook": (6, (0, 1)), "slides": (5, (0, 2, 3))}
+
+
 @pytest.mark.parametrize("style", ["textbook", "slides"])
 def test_pole_labels_and_driver_values_lie_on_no_kennedy_line(style):
-    """Four dense generated six-bars a style: every pole labelled, the driver's values written, and no such
-    text on a Kennedy line or a leader."""
+    """The dense generated six-bars that had such texts (``FAILED``): every pole labelled, the driver's values
+    written, and no such text on a Kennedy line or a leader."""
     st = get_style(style)
     checked = 0
-    for sp in sixbars(6 if style == "textbook" else 5, 4):   # before: 2 and 3 of them had such texts
+    seed, picked = FAILED[style]
+    specs = sixbars(seed, 4)
+    for sp in (specs[i] for i in picked):
         sol = sp.drawn
         ps = locate_poles(sol)
         with rc_context(st):
@@ -69,7 +79,7 @@ def test_pole_labels_and_driver_values_lie_on_no_kennedy_line(style):
         on = texts_on_lines(ax)
         assert not on, (sp.kind, on)
         checked += sum(1 for g in gids if (g or "").startswith(TEXTS))
-    assert checked >= 4 * 16, checked
+    assert checked >= len(picked) * 16, checked
 
 
 def _poles_drawing(sol, st):

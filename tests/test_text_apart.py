@@ -20,7 +20,13 @@ from velpoly.render.labels import placer
 from velpoly.render.style import get_style, rc_context
 
 KINDS = ("four-bar", "slider-crank", "inverted slider-crank", "slot")
-POLES = {"textbook": (0, 2, 5, 7), "slides": (1, 3, 4, 6)}   # the poles sheet (one of each kind a style), else full
+POLES = {"textbook": (2, 5), "slides": (3, 4)}   # the poles sheet, else full: each kind once a style, a full and a
+# poles sheet of each kind over the two styles
+DRAWN = (2, 3, 4, 5)   # of the eight generated: slides 4 (the double-crank's poles sheet: its omega arc cut by the
+# panel's edge before a1ae8ec) and slides 5 (the offset slider's full sheet: a point name and a block's number on
+# the slider's path before dc44e65) are the sheets that failed; measured with those commits' parents' velpoly, the
+# other twelve sheets of the eight in both styles had no clash, and eight of them were cut when the suite had to
+# fit 2 minutes
 
 
 def outline(t, r) -> Polygon:
@@ -77,23 +83,24 @@ def clashes(fig) -> list:
 @pytest.fixture(scope="module")
 def generated():
     rng = np.random.default_rng(2)
-    return [specimen(rng, KINDS[i % len(KINDS)]) for i in range(8)]
+    return [specimen(rng, KINDS[i % len(KINDS)]) for i in range(max(DRAWN) + 1)]
 
 
 @pytest.mark.parametrize("style", ["textbook", "slides"])
 def test_no_text_on_a_line_or_another_text(generated, style):
-    """Eight generated mechanisms (two of each kind), a full and a poles sheet of each kind: no text meets
-    another, a line or an arrowhead, no driver's arc is cut by its panel's edge. Before, a slider's point
-    name and its block's number lay on the slider's path (its centre line was no obstacle: this test failed
-    on the offset slider-crank's full sheet), and the double-crank's omega arc ran out of its poles panel
-    at the top (slides)."""
+    """Four generated mechanisms (one of each kind) a style, a full and a poles sheet of each kind over the two
+    styles (``DRAWN``): no text meets another, a line or an arrowhead, no driver's arc is cut by its panel's
+    edge. Before, a slider's point name and its block's number lay on the slider's path (its centre line was no
+    obstacle: this test failed on the offset slider-crank's full sheet), and the double-crank's omega arc ran
+    out of its poles panel at the top (slides)."""
     st = get_style(style)
     seen = 0
-    for i, sp in enumerate(generated):
+    for i in DRAWN:
+        sp = generated[i]
         name = "poles" if i in POLES[style] else "full"
         with rc_context(st):
             fig = sheet.render_sheet(sp.drawn, name, st, cons=sheet.constructions(sp.drawn, name))
             got = clashes(fig)
         assert not got, (sp.kind, name, got)
         seen += sum(len(ax.texts) for ax in fig.axes if ax.get_label() != "table")
-    assert seen >= 8 * 10, seen
+    assert seen >= len(DRAWN) * 10, seen
