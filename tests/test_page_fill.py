@@ -186,12 +186,16 @@ def specimens():
 
 def test_pole_labels_by_their_rings_and_leaders_apart(specimens):
     """Generated mechanisms, both styles: each pole label in view is nearer its own ring than any other
-    ring (coincident poles aside), no two leaders cross, no label lies on a Kennedy line."""
+    ring (coincident poles aside), no two leaders cross, no label lies on a Kennedy line. Four of the eight
+    specimens (a crank-rocker and a through-crank slider-crank in textbook, a change-point four-bar and an
+    offset-crank slider-crank in slides); none of the eight failed with the velpoly before this test
+    (64fd5b1's parent), and the other four were cut when the suite had to fit 2 minutes."""
     from matplotlib.backends.backend_agg import FigureCanvasAgg
     from matplotlib.figure import Figure
     from velpoly.poles import locate_poles
     from velpoly.render.kennedy import draw_poles
-    for i, sp in enumerate(specimens):
+    for i in (0, 3, 5, 6):
+        sp = specimens[i]
         st = get_style(STYLES[i % 2])
         with rc_context(st):
             fig = Figure(figsize=(8, 6), dpi=72)
@@ -225,7 +229,12 @@ def test_driver_values_off_the_kennedy_lines():
     from velpoly.render.kennedy import draw_poles
     chosen = [sp for sp in zoo(8, 16) if sp.drawn.mechanism.driver.alpha or sp.drawn.mechanism.driver.is_slider]
     assert len(chosen) >= 8
-    for i, sp in enumerate(chosen[1:9]):
+    # of chosen[1:9], styles alternating: a four-bar with alpha (textbook), the slider-driven slider-crank whose
+    # driver's value lay on a Kennedy line before 2bce3dd (slides; the only one of the eight, measured with its
+    # parent's velpoly), an inverted slider-crank with alpha (textbook) and one driven by its slider (slides); the
+    # other four (two four-bars, two slider-driven slider-cranks) cut when the suite had to fit 2 minutes
+    for i in (0, 5, 6, 7):
+        sp = chosen[1 + i]
         drv = sp.drawn.mechanism.driver
         st = get_style(STYLES[i % 2])
         with rc_context(st):

@@ -10,6 +10,7 @@ styles, for the full and the poles sheets; and on the built-in examples whose sl
 from __future__ import annotations
 
 import copy
+import functools
 
 import numpy as np
 import pytest
@@ -71,27 +72,49 @@ def _book_rows_drawn(sol, name, cons, fig, page):
     return refs, shown, len(t.notes), len(drawn_notes)
 
 
-@pytest.fixture(scope="module")
-def specimens():
+@functools.cache
+def _specimens():
     rng = np.random.default_rng(1706)
     return [zoo.specimen(rng, "six-bar", "watt II"), zoo.specimen(rng, "slider-crank", "offset crank")]
 
 
-CASES = [(0, "slides", "full"), (0, "textbook", "poles"), (1, "textbook", "full"), (1, "slides", "poles")]
+@pytest.fixture(scope="module")
+def specimens():
+    return _specimens()
 
 
-@pytest.mark.parametrize("which,style,name", CASES)
-def test_every_book_row_and_footnote_is_drawn(specimens, which, style, name):
-    """Generated mechanisms with a book's many answers and notes: every row with a reference value and every
-    footnote is drawn, on the sheet or on its table page (the sheet's table, cut, then says so in its last
-    line); the table page's texts stay on its page."""
-    sp = specimens[which]
-    sol = velpoly.solve(velpoly.load(book_reference(sp)))
+@functools.cache
+def _book(which: int):
+    """The specimen ``which`` given book_reference's answers, solved (once a process)."""
+    return velpoly.solve(velpoly.load(book_reference(_specimens()[which])))
+
+
+@functools.cache
+def _drawn(which: int, style: str, name: str):
+    """(solution, constructions, ``sheet.render``'s result) of a book specimen's sheet, drawn once a process for
+    both tests that read it (their xdist group keeps them on one worker). Read only."""
+    sol = _book(which)
     cons = sheet.constructions(sol, name)
     st = get_style(style)
     with rc_context(st):
-        done = sheet.render(sol, name, st, cons=cons)
-        fig = done.figure
+        return sol, cons, sheet.render(sol, name, st, cons=cons)
+
+
+SHARED = pytest.mark.xdist_group("table-page-books")   # the slides sheets both tests below draw, drawn once
+CASES = [(0, "slides", "full"), (0, "textbook", "poles"), (1, "textbook", "full"), (1, "slides", "poles")]
+
+
+@SHARED
+@pytest.mark.parametrize("which,style,name", CASES)
+def test_every_book_row_and_footnote_is_drawn(which, style, name):
+    """Generated mechanisms with a book's many answers and notes: every row with a reference value and every
+    footnote is drawn, on the sheet or on its table page (the sheet's table, cut, then says so in its last
+    line); the table page's texts stay on its page."""
+    sp = _specimens()[which]
+    sol, cons, done = _drawn(which, style, name)
+    st = get_style(style)
+    fig = done.figure
+    with rc_context(st):
         page = sheet.table_page(sol, name, st, cons=cons) if done.table_page else None
     assert not hasattr(fig, "_velpoly_table_page")   # carried by the frozen result, not hung on the figure
     with pytest.raises(AttributeError):
@@ -144,6 +167,7 @@ def test_the_table_page_is_written(tmp_path):
     assert pdf[0].read_bytes().count(b"/Type /Page\n") + pdf[0].read_bytes().count(b"/Type /Page ") == 2
 
 
+@SHARED
 def test_a_sheet_with_a_table_page_draws_larger(specimens):
     """Generated mechanisms with a book's many answers, on slides (full and poles sheets; the textbook page holds
     their tables): where the whole table goes on its
@@ -157,12 +181,10 @@ def test_a_sheet_with_a_table_page_draws_larger(specimens):
     style = "slides"
     st = get_style(style)
     pages = larger = 0
-    for sp in specimens:
-        sol = velpoly.solve(velpoly.load(book_reference(sp)))
+    for which, sp in enumerate(specimens):
         for name in ("full", "poles"):
-            cons = sheet.constructions(sol, name)
+            sol, cons, done = _drawn(which, style, name)
             with rc_context(st):
-                done = sheet.render(sol, name, st, cons=cons)
                 if not done.table_page:
                     continue
                 pages += 1
