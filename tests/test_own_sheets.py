@@ -233,9 +233,13 @@ def _with_reference(sp):
 
 
 def test_rows_with_book_values_come_first_and_notes_are_footnotes(specimens):
+    """Every specimen's table: the book's rows first, one mark a note. Drawn (the sheet, its footnotes, the rows
+    shown) for every second specimen (a four-bar, an inverted slider-crank, a slot, a slider-driven
+    slider-crank; all eight until the suite had to fit 2 minutes: the marks and notes are the table's, checked
+    on all)."""
     from velpoly.render.table import NOTED, draw_results_table, results_table
     with rc_context(get_style("textbook")):
-        for sp in specimens:
+        for i, sp in enumerate(specimens):
             sol = _with_reference(sp)
             cons = sheet.constructions(sol, "full")
             t = results_table(sol, "full", velocity=cons.velocity, acceleration=cons.acceleration, poleset=cons.poles)
@@ -246,6 +250,8 @@ def test_rows_with_book_values_come_first_and_notes_are_footnotes(specimens):
             last = [(row[-1].split() or [""])[-1] for row in t.rows]
             marks = [x for x in last if x in {n[0] for n in t.notes}]
             assert sorted(marks) == sorted(n[0] for n in t.notes) and len(set(marks)) == 2   # one mark each
+            if i % 2:
+                continue
             fig = sheet.render_sheet(sol, "full", "textbook", cons=cons)
             tab = next(ax for ax in fig.axes if ax.get_label() == "table")
             cells = [x.get_text() for x in tab.texts if x.get_gid() is None]
