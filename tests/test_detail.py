@@ -207,6 +207,8 @@ def test_detail_frames_cover_nothing_of_their_panel_on_generated_mechanisms():
     rng = np.random.default_rng(1721)
     drawn, kinds, scales = 0, set(), []
     for sp in zoo.zoo(seed=1721, count=16):
+        if drawn == 6:
+            break
         try:
             sol = velpoly.solve(velpoly.load(_far_point(sp.mech, rng, far=(8.0, 15.0, 30.0))))
         except VelpolyError:
@@ -263,9 +265,13 @@ def test_detail_frames_that_covered_their_panel():
     from frame_checks import frame_clashes
     cases = {(13, "velocity"): 3, (16, "acceleration"): 3, (27, "velocity"): 2, (27, "acceleration"): 0}
     rng = np.random.default_rng(17)
+    wanted = {i for i, _ in cases}
     for i, sp in enumerate(zoo.zoo(seed=1703, count=28)):
+        mech = _far_point(sp.mech, rng)   # (every specimen draws from rng)
+        if i not in wanted:
+            continue                      # (solved only where a case is)
         try:
-            sol = velpoly.solve(velpoly.load(_far_point(sp.mech, rng)))   # (every specimen draws from rng)
+            sol = velpoly.solve(velpoly.load(mech))
         except VelpolyError:
             continue
         for poly in [velocity_polygon(sol)] + ([acceleration_polygon(sol)] if sol.has_accelerations else []):
