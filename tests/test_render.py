@@ -478,29 +478,28 @@ def test_far_pole_arrow_stands_on_its_kennedy_line_at_the_border(stem, key):
     assert f"{pole.position[0]:.4g}".replace("-", "−") in label.get_text()
 
 
+@sheets.on("textbook")
 def test_mechanism_labels_keep_off_the_kennedy_lines():
     """The Kennedy lines are known before the mechanism's labels are placed: no point label and not the
-    driver's value lies across one (Watt six-bar: omega_2 and O_2 used to sit on the lines through P_12)."""
+    driver's value lies across one (Watt six-bar: omega_2 and O_2 used to sit on the lines through P_12). Its
+    poles page (tests/sheets.py, shared with the far-pole test): read only."""
     pytest.importorskip("velpoly.poles")
     from shapely.geometry import LineString
-    from velpoly.poles import locate_poles
-    from velpoly.render.kennedy import draw_poles
-    sol = velpoly.solve(velpoly.load(EXAMPLES / "watt_sixbar.toml"))
-    st = sheet.get_style("textbook")
-    ax = _axes((7.5, 6.9))
-    with rc_context(st):
-        art = draw_poles(sol, ax, poleset=locate_poles(sol))
-    lines = [LineString(np.column_stack(k.get_data())) for k in art["kennedy_lines"]]
+    fig = sheets.page("watt_sixbar", "poles", "textbook")
+    ax = next(a for a in fig.axes if any((ln.get_gid() or "").startswith("kennedy-line-") for ln in a.lines))
+    lines = [LineString(np.column_stack(k.get_data())) for k in ax.lines
+             if (k.get_gid() or "").startswith("kennedy-line-")]
     assert lines
-    r = ax.figure.canvas.get_renderer()
+    r = fig.canvas.get_renderer()
     to_data = ax.transData.inverted()
-    texts = list({id(t): t for t in art.point_labels.values()}.values())
-    texts += [t for t in art["driver"] if t.get_gid() == "driver-label"]
-    for t in texts:
-        bb = t.get_window_extent(r)
-        (x0, y0), (x1, y1) = to_data.transform([[bb.x0, bb.y0], [bb.x1, bb.y1]])
-        b = box(x0, y0, x1, y1)
-        assert not any(ln.intersects(b) for ln in lines), t.get_text()
+    texts = [t for t in ax.texts if (t.get_gid() or "").startswith("label-point-") or t.get_gid() == "driver-label"]
+    assert sum(t.get_gid() == "driver-label" for t in texts) == 1 and len(texts) >= 6
+    with sheets.styled("textbook"):
+        for t in texts:
+            bb = t.get_window_extent(r)
+            (x0, y0), (x1, y1) = to_data.transform([[bb.x0, bb.y0], [bb.x1, bb.y1]])
+            b = box(x0, y0, x1, y1)
+            assert not any(ln.intersects(b) for ln in lines), t.get_text()
 
 
 # -- the results table -----------------------------------------------------------------------------------
@@ -937,21 +936,23 @@ def test_frames_put_everything_where_the_finished_construction_has_it(slide_fram
     assert not moved
 
 
+@sheets.on("textbook")
 def test_poles_at_infinity_are_labelled_arrows_beyond_the_mechanism():
     """Each pole at infinity is an arrow pointing its way, beyond the mechanism (at the border of the
     drawing), labelled 'P_ij ∞'; a finite pole out of reach is labelled with its position, minus signs
-    and all (ex3_4: P_16, P_17, P_67 at infinity, P_45 far away)."""
+    and all (ex3_4: P_16, P_17, P_67 at infinity, P_45 far away). Its poles page (tests/sheets.py, shared
+    with the far-pole test): read only."""
     pytest.importorskip("velpoly.poles")
-    from velpoly.poles import locate_poles
     from velpoly.render.displacement import mechanism_bounds
-    from velpoly.render.kennedy import draw_poles
-    sol = velpoly.solve(velpoly.load(EXAMPLES / "ex3_4_slotted_lever.toml"))
-    ps = locate_poles(sol)
-    ax = _axes((9, 6))
-    art = draw_poles(sol, ax, poleset=ps)
+    sol = sheets.solved("ex3_4_slotted_lever")
+    ps = sheets.constructions("ex3_4_slotted_lever", "poles").poles
+    fig = sheets.page("ex3_4_slotted_lever", "poles", "textbook")
+    ax = next(a for a in fig.axes if any((ln.get_gid() or "").startswith("kennedy-line-") for ln in a.lines))
     x0, y0, x1, y1 = mechanism_bounds(sol)
     inside = box(x0, y0, x1, y1)
-    heads = {h.get_gid()[len("pole-"):]: h for h in art.get("far", []) if hasattr(h, "get_xy") and h.get_gid()}
+    heads = {h.get_gid()[len("pole-"):]: h for h in ax.patches
+             if (h.get_gid() or "").startswith("pole-") and hasattr(h, "get_xy")}
+    labels = {t.get_gid()[len("label-pole-"):]: t for t in ax.texts if (t.get_gid() or "").startswith("label-pole-")}
     at_infinity = [k for k, p in ps.poles.items() if p.position is None and p.direction is not None]
     assert at_infinity and set(at_infinity) <= set(heads)
     vx0, vx1 = ax.get_xlim()
@@ -959,9 +960,13 @@ def test_poles_at_infinity_are_labelled_arrows_beyond_the_mechanism():
     for k, h in heads.items():
         tip = h.get_xy()[0]
         assert not inside.contains(shapely.Point(*tip)) and vx0 < tip[0] < vx1 and vy0 < tip[1] < vy1
-        text = art.labels[k].get_text()
+        text = labels[k].get_text()
         if ps.poles[k].position is None:
             assert text.endswith(r"$\infty$")
+            d = np.radians(ps.poles[k].direction)
+            xy = h.get_xy()
+            w = xy[0] - (xy[1] + xy[3]) / 2
+            assert abs(_cross(w / np.hypot(*w), [np.cos(d), np.sin(d)])) < 1e-9     # pointing its way
         else:
             assert "(" in text and "-" not in text.split("(")[1]
 
