@@ -62,18 +62,19 @@ def _drawn(sol, name, style, cons, monkeypatch):
 
 
 def _cases():
-    """(kind, file, style, sheet): generated four-bars, inverted slider-cranks and a six-bar (tests/zoo.py; three
-    whose tables stand narrowed in the page's corner or in three blocks on textbook pages), a six-bar and a
-    slider-crank given a book's many answers, on slides and on a poles sheet, and a poles slide."""
+    """(kind, file, style, sheet): generated four-bars, inverted slider-cranks and a six-bar (tests/zoo.py; on
+    textbook pages one table in one block where two or three were tried, one narrowed in the page's corner in
+    two blocks), a six-bar and a slider-crank given a book's many answers, on slides and on a poles sheet, and a
+    poles slide in two narrowed blocks. Cut when the suite had to fit 2 minutes: zoo 22 (textbook, two narrowed
+    blocks as zoo 12) and zoo 7's poles slide (two narrowed blocks as zoo 1's, no more blocks to try)."""
     specimens = zoo.zoo(5, 27)
     out = [(specimens[i].kind, specimens[i].mech, style, "full")
-           for i, style in ((0, "textbook"), (12, "textbook"), (22, "textbook"), (5, "slides"), (26, "slides"))]
+           for i, style in ((0, "textbook"), (12, "textbook"), (5, "slides"), (26, "slides"))]
     rng = np.random.default_rng(1717)
     book = [zoo.specimen(rng, "six-bar", "watt II"), zoo.specimen(rng, "slider-crank", "offset crank")]
     return out + [(book[0].kind, book_reference(book[0], notes=2), "slides", "full"),
                   (book[1].kind, book_reference(book[1], notes=2), "textbook", "poles"),
-                  (specimens[1].kind, specimens[1].mech, "slides", "poles"),
-                  (specimens[7].kind, specimens[7].mech, "slides", "poles")]
+                  (specimens[1].kind, specimens[1].mech, "slides", "poles")]
 
 
 def test_blocks_side_by_side_where_they_fit(monkeypatch):
