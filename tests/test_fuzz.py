@@ -22,7 +22,6 @@ import copy
 import json
 import math
 import os
-import subprocess
 import tomllib
 
 import numpy as np
@@ -30,9 +29,8 @@ import pytest
 from hypothesis import HealthCheck, given, note, settings, strategies as st
 
 import velpoly
-from velpoly.cli import main
 from mechanisms import (CAM_FLAT, CAM_ROLLER, EXAMPLE_3_6, SIXBAR_1_4_4, SLOTTED_LEVER, WHEEL_ROLLING, fourbar,
-                        inverted_slider_crank, ranges_by_dyads_only, slider_crank)
+                        in_process, inverted_slider_crank, ranges_by_dyads_only, slider_crank)
 
 SCALE = float(os.environ.get("VELPOLY_FUZZ_SCALE", "1"))   # e.g. 20 for a long hunt; CI runs 1
 EXAMPLES = {k: int(n * SCALE) for k, n in {"valid": 80, "mutated": 150, "corrupted": 200, "random": 150}.items()}
@@ -331,7 +329,7 @@ def test_command_line_sample(tmp_path_factory, d, command):
     args = ["solve", str(f), "--json"]
     if command == "draw":   # a wrong output type is refused before any work
         args = ["draw", str(f), "-o", str(folder / "out.txt")]
-    r = _in_process(args)
+    r = in_process(args)
     assert "Traceback" not in r.stderr
     if command == "draw":
         assert r.returncode == 2 and r.stderr.splitlines()[0].endswith("unknown figure type '.txt'")
@@ -345,18 +343,6 @@ def test_command_line_sample(tmp_path_factory, d, command):
         err = r.stderr.splitlines()
         assert r.stdout == "" and len(err) == 2, r.stderr
         assert err[0].startswith(f"error: {f}: ") and err[1].startswith("hint: ")
-
-
-def _in_process(args):
-    """``velpoly ARGS`` run in this process (``velpoly.cli.main``, what ``python -m velpoly`` runs) with its
-    output captured: the exit code and text a user sees, without a subprocess's second of imports; an exception
-    main let escape fails the test (a process would print its traceback)."""
-    import contextlib
-    import io
-    out, err = io.StringIO(), io.StringIO()
-    with contextlib.redirect_stdout(out), contextlib.redirect_stderr(err):
-        rc = main(args)
-    return subprocess.CompletedProcess(args, rc, out.getvalue(), err.getvalue())
 
 
 def _writable(d) -> bool:
