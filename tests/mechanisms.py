@@ -25,6 +25,21 @@ def ranges_by_dyads_only(monkeypatch) -> None:
         return lo, hi
     monkeypatch.setattr(solution, "reachable_range", ranged)
 
+
+def in_process(args):
+    """``velpoly ARGS`` run in this process (``velpoly.cli.main``, what ``python -m velpoly`` runs) with its
+    output captured, as a ``subprocess.CompletedProcess``: the exit code and text a user sees, without a
+    subprocess's second of imports; an exception main let escape fails the test (a process would print its
+    traceback)."""
+    import contextlib
+    import io
+    import subprocess
+    from velpoly.cli import main
+    out, err = io.StringIO(), io.StringIO()
+    with contextlib.redirect_stdout(out), contextlib.redirect_stderr(err):
+        rc = main([str(a) for a in args])
+    return subprocess.CompletedProcess(args, rc, out.getvalue(), err.getvalue())
+
 def fourbar(a=5.0, b=8.0, c=9.0, d=8.0, theta=40.0, omega=10.0, alpha=0.0, branch="left",
             coupler=None):
     """Crank O2A = a, coupler AB = b, rocker O4B = c, frame O2O4 = d along +x."""

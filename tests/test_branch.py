@@ -407,9 +407,12 @@ def test_rolling_drag_link_solves_at_167_from_the_command_line(capsys, tmp_path)
     capsys.readouterr()
 
 
-@pytest.mark.parametrize("radius", [4.0, 5.0])
-@pytest.mark.parametrize("step", [0.25, 1.0, 2.0, 3.0])
-@pytest.mark.parametrize("direction", [1.0, -1.0])
+# every step in both directions and on both radii, every radius in both directions: each pair of the three
+# (all 16 combinations until the suite had to fit 2 minutes; a sweep by continuation is 0.35 s); step 1 forwards
+# on radius 4 is also test_rolling_drag_link_solves_at_every_integer_angle's sweep
+@pytest.mark.parametrize("radius, step, direction", [
+    (4.0, 0.25, 1.0), (5.0, 0.25, -1.0), (4.0, 1.0, -1.0), (5.0, 1.0, 1.0),
+    (4.0, 2.0, 1.0), (5.0, 2.0, -1.0), (4.0, 3.0, -1.0), (5.0, 3.0, 1.0)])
 def test_rolling_drag_link_sweeps_a_whole_turn_at_any_step(radius, step, direction):
     # the stops used to depend on the step (after 118.5 deg with 0.25, 166 with 2): no toggle at all
     m = velpoly.load(rolling_drag_link(radius))

@@ -98,22 +98,24 @@ def expected(a, b, c, d, ref, target):
     return "ambiguous" if low < AMBIGUOUS else "yes"
 
 
-def tracked(m, a, b, c, d, ref, targets):
-    """The joint B carried to each target by a fine continuation: at every step the intersection of
-    the circles (A, b) and (O4, c) nearer the last one (all targets at once)."""
-    pb = np.array(m.points["B"])
+def tracked(cases, targets):
+    """For each (kind, (a, b, c, d), reference angle, mechanism) of ``cases``, the joint B carried to each
+    target by a fine continuation: at every step the intersection of the circles (A, b) and (O4, c) nearer
+    the last one. Every case and target at once, shape (cases, targets, 2): the loop's cost is its steps'."""
     steps = 900
-    ways = np.array([arc(ref, t, steps)[0] for t in targets])          # (T, steps + 1)
-    cur = np.tile(pb, (len(targets), 1))
-    o4 = np.array([d, 0.0])
+    dims_ = np.array([abcd for _, abcd, _, _ in cases], float)                      # (C, 4)
+    ways = np.array([arc(ref, t, steps)[0] for _, _, ref, _ in cases for t in targets])   # (C * T, steps + 1)
+    a, b, c, d = np.repeat(dims_, len(targets), axis=0).T
+    cur = np.repeat(np.array([m.points["B"] for *_, m in cases], float), len(targets), axis=0)
+    o4 = np.stack([d, np.zeros_like(d)], axis=1)
     with np.errstate(divide="ignore", invalid="ignore"):   # a kite's coincident centres, not asked for
-        return _track(a, b, c, ways, cur, o4, steps)
+        return _track(a, b, c, ways, cur, o4, steps).reshape(len(cases), len(targets), 2)
 
 
 def _track(a, b, c, ways, cur, o4, steps):
     for k in range(1, steps + 1):
         t = np.radians(ways[:, k])
-        pa = a * np.stack([np.cos(t), np.sin(t)], axis=1)
+        pa = a[:, None] * np.stack([np.cos(t), np.sin(t)], axis=1)
         e = o4 - pa
         dist = np.hypot(e[:, 0], e[:, 1])
         e /= dist[:, None]
@@ -156,10 +158,10 @@ def mechanisms(seed: int, kinds=CLASSES):
     return out
 
 
-def check(kind, abcd, ref, m, seen):
+def check(kind, abcd, ref, m, seen, where):
+    """``where``: B tracked to each of ANGLES (``tracked``)."""
     a, b, c, d = abcd
     want = {t: expected(a, b, c, d, ref, t) for t in ANGLES}
-    where = tracked(m, a, b, c, d, ref, ANGLES)
     for t, pb in zip(ANGLES, where):
         if want[t] == "ambiguous":
             continue
@@ -179,7 +181,7 @@ def check(kind, abcd, ref, m, seen):
             w = velpoly.sweep(m, way)
             assert len(w.angles) < len(way) and w.stopped, label
             # the sweep stops at the first of its angles past the singular one
-            margins = np.array([closure_margin(a, b, c, d, x) for x in way])
+            margins = closure_margin(a, b, c, d, way)
             first_bad = int(np.argmax(margins <= TOL)) if (margins <= TOL).any() else None
             if first_bad is not None:
                 assert len(w.angles) == first_bad, label
@@ -188,8 +190,9 @@ def check(kind, abcd, ref, m, seen):
 @pytest.mark.parametrize("seed", [1, 2])
 def test_solve_at_an_angle_follows_the_drawn_branch_and_stops_at_toggles_and_change_points(seed):
     seen = {"yes": 0, "no": 0}
-    for kind, abcd, ref, m in mechanisms(seed):
-        check(kind, abcd, ref, m, seen)
+    cases = mechanisms(seed)
+    for case, where in zip(cases, tracked(cases, ANGLES)):
+        check(*case, seen, where)
     assert seen["yes"] > 60 and seen["no"] > 60, seen
 
 
@@ -204,9 +207,9 @@ def test_the_continuation_agrees_where_no_dyad_plan_serves(monkeypatch):
     seen = {"yes": 0, "no": 0}
     kinds = ("double-rocker", "non-grashof", "change-point", "parallelogram", "parallelogram-crossed",
              "kite-frame", "kite-coupler")
-    for kind, abcd, ref, m in mechanisms(7, kinds):
+    cases = mechanisms(7, kinds)
+    for (kind, abcd, ref, m), where in zip(cases, tracked(cases, angles)):
         a, b, c, d = abcd
-        where = tracked(m, a, b, c, d, ref, angles)
         for t, pb in zip(angles, where):
             want = expected(a, b, c, d, ref, t)
             if want == "ambiguous":

@@ -30,7 +30,7 @@ from velpoly.html import _split, cycle_solutions, page, pose_values, sheet_data
 from velpoly.names import key_text
 from velpoly.polygons import acceleration_polygon, velocity_polygon
 
-from mechanisms import SIXBAR_1_4_4, fourbar, slider_crank
+from mechanisms import SIXBAR_1_4_4, fourbar, in_process, slider_crank
 
 ROOT = Path(__file__).resolve().parent.parent
 GALLERY = ROOT / "velpoly" / "examples"   # the gallery's mechanism files (tests/paths.py)
@@ -201,8 +201,7 @@ ON_PAGE = pytest.mark.xdist_group("html-page")
 @pytest.fixture(scope="module")
 def sixbar_page(tmp_path_factory):
     out = tmp_path_factory.mktemp("html") / "sixbar.html"
-    r = subprocess.run([sys.executable, "-m", "velpoly", "html", str(SIXBAR), "-o", str(out)],
-                       capture_output=True, text=True, timeout=300)
+    r = in_process(["html", SIXBAR, "-o", out])   # in this process: test_wheel runs `velpoly html` as a program
     assert r.returncode == 0, r.stderr
     assert r.stdout.strip() == str(out)
     return out

@@ -358,8 +358,10 @@ def rolling_sweep(omega: float):
     return velpoly.sweep(rolling, three_turns(omega))
 
 
+# each sign of the slip and of the driver's rate, a small and a large slip (60 and 10 too until the suite had to
+# fit 2 minutes: three turns by continuation are a second)
 @pytest.mark.xdist_group("joints-rolling-sweeps")   # one worker: rolling_sweep computed once a rate
-@pytest.mark.parametrize("slip, omega", [(6.0, 10.0), (60.0, 10.0), (-60.0, 10.0), (60.0, -10.0)])
+@pytest.mark.parametrize("slip, omega", [(6.0, 10.0), (-60.0, 10.0), (60.0, -10.0)])
 def test_prescribed_slip_sweeps_with_the_driver_at_a_constant_rate(slip, omega):
     m = velpoly.load(slipping_cam(slip, omega))
     turns = three_turns(omega)

@@ -7,6 +7,7 @@ from __future__ import annotations
 
 import copy
 import dataclasses
+import functools
 import pickle
 from pathlib import Path
 
@@ -23,11 +24,22 @@ import zoo
 from test_plan_cache import TRIAD, _plain
 
 EXAMPLES = sorted((Path(velpoly.__file__).parent / "examples").glob("*.toml"))
-_RNG = np.random.default_rng(20261127)
-ZOO = [zoo.specimen(_RNG, kind, variant).mech for kind, variant in zoo.variants()]
+VARIANTS = zoo.variants()
+
+
+@functools.cache
+def zoo_specimens() -> list:
+    """A specimen of every (kind, variant) of the zoo, in ``VARIANTS``' order: made when a test first needs them,
+    not at collection, which every xdist worker repeats (half a second)."""
+    rng = np.random.default_rng(20261127)
+    return [zoo.specimen(rng, kind, variant).mech for kind, variant in VARIANTS]
+
+
 GENERATED = ([mechanisms.block_on_driving_guide(2), mechanisms.pin_in_slot(2, driver="slot", circular=True),
               mechanisms.sliding_cam(2, follower="flat"), mechanisms.sliding_on_frame(2, surface="curved"), TRIAD])
-CASES = ZOO + GENERATED + EXAMPLES
+# a number: the zoo's specimen of that variant (made by one worker: their xdist group)
+CASES = [pytest.param(i, marks=pytest.mark.xdist_group("lazy-steps-zoo"), id=f"{kind}-{variant}")
+         for i, (kind, variant) in enumerate(VARIANTS)] + GENERATED + EXAMPLES
 
 
 def _eager(sol) -> list:
@@ -46,6 +58,8 @@ def _texts(steps) -> list:
 
 @pytest.mark.parametrize("case", CASES, ids=lambda c: c.stem if isinstance(c, Path) else None)
 def test_texts_read_late_are_those_written_at_once(case):
+    if isinstance(case, int):
+        case = zoo_specimens()[case]
     try:
         sol = velpoly.solve(velpoly.load(case))
         lazy = [velocity_polygon(sol).steps] + ([acceleration_polygon(sol).steps] if sol.has_accelerations else [])

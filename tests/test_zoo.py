@@ -292,14 +292,17 @@ accel = 0.1
         assert "a slider driver has no angle" in capsys.readouterr().err
 
 
-RENDER = {"inverted slider-crank offset both slider": "full", "pin in a slot circular six-bar": "poles",
-          "contact cam roller follower": "poles", "six-bar quick-return slider": "full"}
+# (four until the suite had to fit 2 minutes, a sheet is a second: a cam with a roller follower and a quick-return
+# six-bar draw every panel of their full sheets as the gallery's cam_roller_follower and crank_shaper in
+# test_render_gallery; a slider driver's full sheet stays here, the inverted slider-crank's)
+RENDER = {"inverted slider-crank offset both slider": "full", "pin in a slot circular six-bar": "poles"}
 
 
 @pytest.mark.parametrize("kind", RENDER)
 def test_zoo_sheets_draw(kind, tmp_path):
     """The full or the poles sheet of a few specimens draws (SVG, no error, a real drawing): each sheet
-    on two kinds (every gallery file draws its full sheet and some their poles sheet: test_render_gallery)."""
+    on one kind the gallery lacks (every gallery file draws its full sheet and some their poles sheet:
+    test_render_gallery)."""
     from velpoly.render import draw_to_file
     sp = next(s for s in specimens() if s.kind.endswith(kind))
     sol = velpoly.solve(velpoly.load(sp.mech))
@@ -322,7 +325,9 @@ def test_auxiliary_point_reached_through_a_slip_is_true():
     rng = np.random.default_rng(SEED + 13)
     variants = [v for v in zoo.SIXBARS if v.startswith("floating guide")]
     reversed_seen = ic_seen = solved = 0
-    for k in range(20 * len(variants)):   # (about 1 s: the slider driven ones reach S4 through the slip)
+    # ten of each variant (twenty until the suite had to fit 2 minutes; about 1 s: the slider driven ones reach
+    # S4 through the slip): 39 poses, 15 reversed slips or Coriolis terms, 5 instant-centre steps
+    for k in range(10 * len(variants)):
         sp = zoo.specimen(rng, "six-bar", variants[k % len(variants)])
         m = sp.drawn.mechanism
         ref = driver_reference_angle(m)
@@ -345,4 +350,4 @@ def test_auxiliary_point_reached_through_a_slip_is_true():
                         if v.kind in ("slip", "coriolis") and tuple(v.of[1:3] if v.kind == "slip" else v.of[2:4]) == \
                                 ("A@4", "A@3"):
                             reversed_seen += 1   # A4 relative to A3: a subtracted term drawn forwards
-    assert solved >= 70 and reversed_seen >= 15 and ic_seen >= 5, (solved, reversed_seen, ic_seen)
+    assert solved >= 35 and reversed_seen >= 10 and ic_seen >= 3, (solved, reversed_seen, ic_seen)
