@@ -2,10 +2,10 @@
 
 A crowd of poles has labels with no free place near their rings: each goes, one at a time, to the place that
 covers least, and its leader may cross a leader drawn before it. Two labels whose leaders cross are then
-exchanged where that uncrosses them (``LabelPlacer.untangle``), and a label in a crossing is placed anew, the
-others known (``LabelPlacer.reroute``). Checked at the data level: the leaders' segments (Line2D data) against
-each other and against every label's box, on a made-up scene and on dense generated six-bars (slides) that had
-crossing leaders before; no label goes onto a Kennedy line or a leader for it."""
+exchanged where that leaves fewer crossings (``LabelPlacer.untangle``). Checked at the data level: the
+leaders' segments (Line2D data) against each other and against every label's box, on a made-up scene and on
+dense generated six-bars (slides) that had crossing leaders before; no label goes onto a Kennedy line or a
+leader for it."""
 from __future__ import annotations
 
 import itertools

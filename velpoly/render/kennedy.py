@@ -17,7 +17,6 @@ in the order of their discovery.
 """
 from __future__ import annotations
 
-import functools
 import math
 
 import numpy as np
@@ -154,26 +153,18 @@ def draw_poles(sol, ax=None, *, style="textbook", options=None, poleset=None, up
         art.point_labels = mech.labels
     _draw_kennedy_lines(ax, klines, st, art)
     _draw_pole_marks(sol, ax, shown, st, art)
-    redo = _label_poles(sol, ax, ps, shown, pole_lines, st, art)
-    _untangle(pl, art, redo)
+    _label_poles(sol, ax, ps, shown, pole_lines, st, art)
+    _untangle(pl, art)
     _off_the_leaders(pl, art)
     return art
 
 
-def _untangle(pl, art, redo: dict) -> None:
+def _untangle(pl, art) -> None:
     """Leaders that cross (a crowd's last-resort places, taken one at a time) untangled: two pole labels'
-    places exchanged where that uncrosses them, then each pole label in a crossing placed anew, the others now
-    known, where that leaves fewer crossings (:meth:`LabelPlacer.untangle`, :meth:`LabelPlacer.reroute`)."""
+    places exchanged where that leaves fewer crossings (:meth:`LabelPlacer.untangle`)."""
     rings = list(art.rings.values())
     pl.untangle(list(art.labels.values()),
                 {id(art.labels[k]): _nearer_own(g, rings) for k, g in art.rings.items() if k in art.labels})
-    redo = {id(t): redo[k] for k, t in art.labels.items() if k in redo}
-    for old, new in pl.reroute(redo).items():
-        for k, t in list(art.labels.items()):
-            if t is old:
-                art.labels[k] = new
-        for role in art.values():
-            role[:] = [new if a is old else a for a in role]
 
 
 def _off_the_leaders(pl, art) -> None:
@@ -320,10 +311,9 @@ def _infinity_arrow_tip(pl, content, c, d, pc: float, far) -> np.ndarray:
     return border_point(content, c, d, 0.2 * pc)
 
 
-def _label_poles(sol, ax, ps, shown, pole_lines, st, art) -> dict:
+def _label_poles(sol, ax, ps, shown, pole_lines, st, art) -> None:
     """Each pole's label: by its ring (nearer it than any other ring), or by the arrow at the border that
-    points to a pole at infinity or out of view. Return {pole key: how its label is placed again} (a pole in
-    view)."""
+    points to a pole at infinity or out of view."""
     pl = placer(ax)
     pc, pp = per_cm(ax), per_point(ax)
     view = view_box(ax)
@@ -336,16 +326,13 @@ def _label_poles(sol, ax, ps, shown, pole_lines, st, art) -> dict:
     colour = _pole_colour(st)
     kw = dict(fontsize=st.font_size * 0.9, color=colour, zorder=7)
     far = []   # the arrows drawn to poles out of view (another such arrow keeps off them)
-    redo = {}   # pole key -> how its label (of a pole in view) is placed again (:func:`_untangle`)
     for p in shown:
         if p.position is None and p.direction is None:
             continue   # undefined: the links move alike (listed in the table)
         label = pole_label(p.links)
         if _in_view(ax, p):   # in view: where it is
-            args = (pl, np.asarray(p.position, float), label)
-            where = dict(prefer=-45.0, gid=f"label-pole-{p.key}", accept=_nearer_own(art.rings[p.key], rings), **kw)
-            t = _place_free(*args, **where)
-            redo[p.key] = functools.partial(_place_free, *args, **where)
+            t = _place_free(pl, np.asarray(p.position, float), label, prefer=-45.0, gid=f"label-pole-{p.key}",
+                            accept=_nearer_own(art.rings[p.key], rings), **kw)
         else:
             if p.position is None:
                 d = np.array([math.cos(math.radians(p.direction)), math.sin(math.radians(p.direction))])
@@ -365,7 +352,6 @@ def _label_poles(sol, ax, ps, shown, pole_lines, st, art) -> dict:
                             **kw)
         art.add("labels", t)
         art.labels[p.key] = t
-    return redo
 
 
 def draw_kennedy_circle(sol, ax=None, *, style="textbook", options=None, poleset=None,

@@ -406,7 +406,8 @@ class LabelPlacer:
     def untangle(self, texts, accept: dict | None = None) -> int:
         """Swap the places of two of ``texts`` (labels this placer put down with :meth:`place`) whose leaders
         cross, where the swap leaves fewer crossings (leader on leader, leader on label) and puts neither box on
-        a label or on more hard obstacles, lines and outlines than before, each box in view; repeated while one
+        a label or on more hard obstacles, lines and outlines than it met where it stood, each box in view (the two
+        labels in a crossing first, then one in a crossing with any other of ``texts``); repeated while one
         helps, or leaves as many and shortens the two leaders together (so that the next swap may help). Two
         leaders from anchors a, b to boxes A, B that cross do not cross as a-B and b-A (the swap shortens them
         together): a crowd's last-resort places, taken one at a time, end crossed where the same places,
@@ -417,62 +418,15 @@ class LabelPlacer:
         swaps = 0
         for _ in range(4 * len(mine)):
             crossings = self._crossings()
-            pairs = sorted({tuple(sorted((i, j))) for i, j, _ in crossings
-                            if id(self.labels[i].text) in mine and id(self.labels[j].text) in mine and
-                            self.labels[i].anchor is not None and self.labels[j].anchor is not None})
+            ours = [k for k, p in enumerate(self.labels) if id(p.text) in mine and p.anchor is not None]
+            crossed = [k for k in ours if any(k in c[:2] for c in crossings)]
+            # the two in a crossing first, then one in a crossing with any other
+            pairs = sorted({tuple(sorted((i, j))) for i, j, _ in crossings if i in ours and j in ours})
+            pairs += [(i, k) for i in crossed for k in ours if k != i and tuple(sorted((i, k))) not in pairs]
             if not any(self._swap(i, j, _tally(crossings), accept) for i, j in pairs):
                 break
             swaps += 1
         return swaps
-
-    def reroute(self, redo: dict) -> dict:
-        """Place anew, one at a time, the labels in a crossing (a leader across a label or across another
-        leader) that ``redo`` can place (id(text) -> a call that places that label again and returns its Text),
-        the others now in the scene: kept where that leaves fewer crossings (no more leaders across labels) and
-        the label found a free place (or had none before). Repeated while one helps. Return {old Text: new
-        Text} of those kept."""
-        moved = {}
-        for _ in range(2 * len(redo)):
-            crossings = self._crossings()
-            before = _tally(crossings)
-            if before == (0, 0):
-                break
-            tried = []
-            for i, j, _ in crossings:
-                tried += [self.labels[k].text for k in (i, j) if id(self.labels[k].text) in redo and
-                          all(self.labels[k].text is not t for t in tried)]
-            for t in tried:
-                k = next(n for n, p in enumerate(self.labels) if p.text is t)
-                old = self.labels.pop(k)
-                was_bad = any(x is t for x in self.overlapping)
-                for a in (t, old.leader):
-                    if a is not None:
-                        a.set_visible(False)
-                kept = None
-                with self.trial():
-                    n = len(self.overlapping)
-                    new = redo[id(t)]()
-                    after = _tally(self._crossings())
-                    if (len(self.overlapping) == n or was_bad) and after[0] <= before[0] and after < before:
-                        self.keep = True
-                        kept = new
-                if kept is None:
-                    self.labels.insert(k, old)
-                    for a in (t, old.leader):
-                        if a is not None:
-                            a.set_visible(True)
-                    continue
-                for a in (t, old.leader):
-                    if a is not None:
-                        a.remove()
-                self._overlapping = [x for x in self.overlapping if x is not t]
-                redo[id(kept)] = redo.pop(id(t))
-                moved = {o: (kept if n is t else n) for o, n in moved.items()}
-                moved[t] = kept
-                break
-            else:
-                break
-        return moved
 
     def _leader_line(self, anchor, b):
         """The leader from ``anchor`` to box ``b`` as :meth:`_put` draws it (its first 1.5 pt left open), or None
@@ -503,6 +457,8 @@ class LabelPlacer:
         """Exchange the places of labels i and j where :meth:`untangle` says it helps; whether it did."""
         from matplotlib.lines import Line2D
         a, b = self.labels[i], self.labels[j]
+        if a.text.get_fontsize() != b.text.get_fontsize():
+            return False   # places, not sizes, are exchanged: a label set smaller keeps its own
         view = view_box(self.ax)
         others = [p.box for k, p in enumerate(self.labels) if k not in (i, j)]
         hard = self._hard + [p.leader_geom for k, p in enumerate(self.labels)
@@ -520,8 +476,8 @@ class LabelPlacer:
         def cost(boxes):
             return (sum(sum(1 for g in hard if g.intersects(x)) for x in boxes),
                     sum(self.soft_hits(x) for x in boxes))
-        if any(n > o for n, o in zip(cost((na, nb)), cost((a.box, b.box)))):
-            return False
+        if any(n > o for new, old in ((na, a.box), (nb, b.box)) for n, o in zip(cost((new,)), cost((old,)))):
+            return False   # neither box on more marks or lines than where it stood
         oks = [accept.get(id(p.text), lambda x: True) for p in (a, b)]
         if sum(f(x) for f, x in zip(oks, (na, nb))) < sum(f(x) for f, x in zip(oks, (a.box, b.box))):
             return False
