@@ -154,8 +154,17 @@ def draw_poles(sol, ax=None, *, style="textbook", options=None, poleset=None, up
     _draw_kennedy_lines(ax, klines, st, art)
     _draw_pole_marks(sol, ax, shown, st, art)
     _label_poles(sol, ax, ps, shown, pole_lines, st, art)
+    _untangle(pl, art)
     _off_the_leaders(pl, art)
     return art
+
+
+def _untangle(pl, art) -> None:
+    """Leaders that cross (a crowd's last-resort places, taken one at a time) untangled: two pole labels'
+    places exchanged where that leaves fewer crossings (:meth:`LabelPlacer.untangle`)."""
+    rings = list(art.rings.values())
+    pl.untangle(list(art.labels.values()),
+                {id(art.labels[k]): _nearer_own(g, rings) for k, g in art.rings.items() if k in art.labels})
 
 
 def _off_the_leaders(pl, art) -> None:

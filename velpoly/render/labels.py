@@ -39,14 +39,16 @@ LEADER_MOST = 0   # the most lines and outlines a far label's leader (see LabelP
 class Placed:
     """One label the placer put down: its ``text`` (a matplotlib Text), its ``box`` (shapely, data
     coordinates, with the margin it keeps), its ``leader`` (the Line2D drawn from its anchor, or None) with
-    ``leader_geom`` (that line as the obstacle later labels keep off), and ``again``: how its drawing places
-    it anew (a driver's value a later leader crosses), or None."""
+    ``leader_geom`` (that line as the obstacle later labels keep off), ``again``: how its drawing places
+    it anew (a driver's value a later leader crosses), or None, and the ``anchor`` it labels (placed by
+    :meth:`LabelPlacer.place`; else None)."""
 
     text: Any
     box: Any
     leader: Any = None
     leader_geom: Any = None
     again: Callable | None = None
+    anchor: Any = None
 
 
 class LabelPlacer:
@@ -313,7 +315,7 @@ class LabelPlacer:
             self.ax.add_line(ln)
             geom = LineString([tuple(start), tuple(edge)]).buffer(0.4 * pp)   # later labels keep off it
         if obstacle:
-            self.labels.append(Placed(t, b, ln, geom, again))
+            self.labels.append(Placed(t, b, ln, geom, again, np.asarray(anchor, float)))
 
     def place_at(self, centres, s: str, *, gid: str | None = None, pad: float = 1.0, avoid=(), soft: bool = False,
                  **text_kw):
@@ -401,6 +403,114 @@ class LabelPlacer:
         t.remove()
         return None
 
+    def untangle(self, texts, accept: dict | None = None) -> int:
+        """Swap the places of two of ``texts`` (labels this placer put down with :meth:`place`) whose leaders
+        cross, where the swap leaves fewer crossings (leader on leader, leader on label) and puts neither box on
+        a label or on more hard obstacles, lines and outlines than it met where it stood, each box in view (the two
+        labels in a crossing first, then one in a crossing with any other of ``texts``); repeated while one
+        helps, or leaves as many and shortens the two leaders together (so that the next swap may help). Two
+        leaders from anchors a, b to boxes A, B that cross do not cross as a-B and b-A (the swap shortens them
+        together): a crowd's last-resort places, taken one at a time, end crossed where the same places,
+        exchanged, are not. ``accept``: id(text) -> the test its box passed where it could (a
+        pole's label nearer its own ring), kept by as many boxes as before. Return the swaps made."""
+        mine = {id(t) for t in texts}
+        accept = accept or {}
+        swaps = 0
+        for _ in range(4 * len(mine)):
+            crossings = self._crossings()
+            ours = [k for k, p in enumerate(self.labels) if id(p.text) in mine and p.anchor is not None]
+            crossed = [k for k in ours if any(k in c[:2] for c in crossings)]
+            # the two in a crossing first, then one in a crossing with any other
+            pairs = sorted({tuple(sorted((i, j))) for i, j, _ in crossings if i in ours and j in ours})
+            pairs += [(i, k) for i in crossed for k in ours if k != i and tuple(sorted((i, k))) not in pairs]
+            if not any(self._swap(i, j, _tally(crossings), accept) for i, j in pairs):
+                break
+            swaps += 1
+        return swaps
+
+    def _leader_line(self, anchor, b):
+        """The leader from ``anchor`` to box ``b`` as :meth:`_put` draws it (its first 1.5 pt left open), or None
+        where the box stands near enough not to need one."""
+        pp = per_point(self.ax)
+        if b.distance(Point(*anchor)) < 8.0 * pp:
+            return None
+        edge = _toward(b, anchor)
+        start = anchor + (edge - anchor) * (1.5 * pp / max(np.hypot(*(edge - anchor)), 1e-300))
+        return LineString([tuple(start), tuple(edge)])
+
+    def _crossings(self, labels=None) -> list:
+        """(i, j) of every leader of label i that crosses the leader or the box of label j (see :func:`_tally`)."""
+        labels = self.labels if labels is None else labels
+        lines = [None if p.leader is None else LineString(np.column_stack(p.leader.get_data())) for p in labels]
+        out = []
+        for i, ln in enumerate(lines):
+            if ln is None:
+                continue
+            for j, q in enumerate(labels):
+                if j != i and q.box.intersects(ln):
+                    out.append((i, j, "box"))
+                elif j > i and lines[j] is not None and lines[j].intersects(ln):
+                    out.append((i, j, "leader"))
+        return out
+
+    def _swap(self, i: int, j: int, before: tuple, accept: dict) -> bool:
+        """Exchange the places of labels i and j where :meth:`untangle` says it helps; whether it did."""
+        from matplotlib.lines import Line2D
+        a, b = self.labels[i], self.labels[j]
+        if a.text.get_fontsize() != b.text.get_fontsize():
+            return False   # places, not sizes, are exchanged: a label set smaller keeps its own
+        view = view_box(self.ax)
+        others = [p.box for k, p in enumerate(self.labels) if k not in (i, j)]
+        hard = self._hard + [p.leader_geom for k, p in enumerate(self.labels)
+                             if k not in (i, j) and p.leader_geom is not None]
+
+        def moved(p, q):
+            (x0, y0, x1, y1), (u0, v0, u1, v1) = p.box.bounds, q.box.bounds
+            cx, cy = (u0 + u1) / 2, (v0 + v1) / 2
+            return box(cx - (x1 - x0) / 2, cy - (y1 - y0) / 2, cx + (x1 - x0) / 2, cy + (y1 - y0) / 2)
+        na, nb = moved(a, b), moved(b, a)
+        if na.intersects(nb) or not (view.contains(na) and view.contains(nb)) or \
+                any(g.intersects(na) or g.intersects(nb) for g in others):
+            return False
+
+        def cost(boxes):
+            return (sum(sum(1 for g in hard if g.intersects(x)) for x in boxes),
+                    sum(self.soft_hits(x) for x in boxes))
+        if any(n > o for new, old in ((na, a.box), (nb, b.box)) for n, o in zip(cost((new,)), cost((old,)))):
+            return False   # neither box on more marks or lines than where it stood
+        oks = [accept.get(id(p.text), lambda x: True) for p in (a, b)]
+        if sum(f(x) for f, x in zip(oks, (na, nb))) < sum(f(x) for f, x in zip(oks, (a.box, b.box))):
+            return False
+        la, lb = self._leader_line(a.anchor, na), self._leader_line(b.anchor, nb)
+        pp = per_point(self.ax)
+
+        def trial(p, nbox, line):
+            ln = None
+            if line is not None:
+                ln = Line2D(*np.asarray(line.coords).T, lw=0.4, color=p.text.get_color(), zorder=p.text.get_zorder(),
+                            gid=(p.text.get_gid() + "-leader") if p.text.get_gid() else None)
+            return Placed(p.text, nbox, ln, None if line is None else line.buffer(0.4 * pp), p.again, p.anchor)
+        new = list(self.labels)
+        new[i], new[j] = trial(a, na, la), trial(b, nb, lb)
+        after = _tally(self._crossings(new))
+        if after > before or after[0] > before[0] or (after == before and _reach(la, lb) >= _reach(
+                *(None if p.leader is None else LineString(np.column_stack(p.leader.get_data()))
+                  for p in (a, b))) - 1e-9 * pp):
+            return False
+        for old, p in ((a, new[i]), (b, new[j])):
+            if old.leader is not None:
+                old.leader.remove()
+            if p.leader is not None:
+                self.ax.add_line(p.leader)
+            x0, y0, x1, y1 = p.box.bounds
+            c = ((x0 + x1) / 2, (y0 + y1) / 2)
+            p.text.set_position(c)
+            gid = p.text.get_gid()
+            if gid and gid in self.placed:
+                self.placed[gid] = ("place", c, 9.0 if p.leader is not None else 0.0)
+        self.labels[i], self.labels[j] = new[i], new[j]
+        return True
+
     @property
     def overlapping(self) -> list:
         if not hasattr(self, "_overlapping"):
@@ -439,6 +549,17 @@ class _Scene:
         if not len(self.soft):
             return 0
         return int(np.count_nonzero(shapely.intersects(self.soft, line) & ~self.at_anchor))
+
+
+def _tally(crossings) -> tuple[int, int]:
+    """(leaders across a label, leaders across a leader) of :meth:`LabelPlacer._crossings`: a label struck
+    through is the worse."""
+    return (sum(1 for c in crossings if c[2] == "box"), sum(1 for c in crossings if c[2] == "leader"))
+
+
+def _reach(*lines) -> float:
+    """The leaders' length together (None: no leader)."""
+    return sum(ln.length for ln in lines if ln is not None)
 
 
 def _box(c, w: float, h: float):
