@@ -37,8 +37,6 @@ __all__ = ["draw_mechanism", "away_from", "neighbours", "mechanism_bounds", "sha
 PLATE_FILL = "0.9"      # a plate's fill where links are white (textbook): light, so that it reads as one body
 SMALLER = (0.85, 0.72)   # a text with no free place off the lines at its size: these fractions of it tried
 NUMBER_RADIUS = 0.8     # slides: a link number's circle at most this many bar widths in radius
-GROUND_CLEAR = 0.15     # cm: a driver's value keeps this far from hatched ground where a place allows, and its arcs
-#                         cross none (omega's value crowded the ground of a swinging block's pivot)
 
 
 def shape_patch(geom, **kw):
@@ -212,7 +210,6 @@ class _Drawing:
         self.slots: list = []            # (link, slot geometry) drawn white over bodies
         self.slotted: set = set()        # links with a slot or a moving guide's slotted bar
         self.hatches: list = []          # ground to draw once the bodies are known
-        self.grounds: list = []          # the hatched strips drawn (shapely): the driver's arcs and values keep off
         self.geoms: dict = {}            # link -> its body as drawn
         self.slot_cuts: dict = {}        # slot index -> (link, centre line, cut) of a moving link's slot
 
@@ -291,7 +288,6 @@ class _Drawing:
             self.art.add(role, lc)
             # the hatched strip itself (the strokes lie on one side of the line), with a little margin
             self.pl.add_obstacle(strip.difference(keep).buffer(0.05 * self.pc), hard=False)
-            self.grounds.append(strip.difference(keep))
 
     def pin(self, p, gid=None, radius=None):
         r = (radius or self.st.pin_radius) * self.pc
@@ -911,19 +907,11 @@ class _Drawing:
         for f in (1.0,) + SMALLER:
             with self.pl.trial():
                 n = len(self.pl.overlapping)
-                t = self.pl.place(at, text, fontsize=fontsize * f, clear=True, again=again, accept=self.off_ground(),
-                                  **kw)
+                t = self.pl.place(at, text, fontsize=fontsize * f, clear=True, again=again, **kw)
                 self.pl.keep = len(self.pl.overlapping) == n and not self.pl.soft_hits(self.pl.box_of(t, pad=0.0))
                 if self.pl.keep:
                     return t
-        return self.pl.place(at, text, fontsize=fontsize, clear=True, again=again, accept=self.off_ground(), **kw)
-
-    def off_ground(self):
-        """A test of a driver's value's box: :data:`GROUND_CLEAR` from every hatched strip (None: no ground)."""
-        if not self.grounds:
-            return None
-        grounds, clear = list(self.grounds), GROUND_CLEAR * self.pc
-        return lambda b: all(b.distance(g) >= clear for g in grounds)
+        return self.pl.place(at, text, fontsize=fontsize, clear=True, again=again, **kw)
 
     def _plan_score(self, p, plan, texts, label_kw) -> tuple:
         """How a plan reads, lower is better: its arcs cross no other link, block or label and stay in view (an
@@ -931,7 +919,7 @@ class _Drawing:
         obstacle) and are placed, close to their arcs; then the wider gaps."""
         drv = self.m.driver
         others = [g for lk, g in self.geoms.items() if lk != drv.link]
-        others += [g for lk, g in self.block_geom.items() if lk != drv.link] + list(self.pl.boxes) + self.grounds
+        others += [g for lk, g in self.block_geom.items() if lk != drv.link] + list(self.pl.boxes)
         view = view_box(self.ax)
         arcs = [LineString(self._arc_points(p, place.rad, place.mid, place.span, 1.0 if value >= 0 else -1.0))
                 for place, value in zip(plan, (drv.omega, drv.alpha)) if place is not None]
