@@ -65,3 +65,79 @@ def test_a_png_written_by_velpoly_decodes_to_its_pixels_with_pillow_s_metadata()
         assert im.mode == theirs.mode and im.info == theirs.info   # dpi and every text, as Pillow writes them
         seen.add((opaque, bool(text)))
     assert len(seen) == 4
+
+
+# -- the results table's drawn width, measured without drawing it (velpoly.render.table.drawn_extent) -------
+
+def _drawn_there(lay, fig):
+    """What velpoly did before: the measured table drawn in a scratch axes at its room, the axes' left and its
+    rightmost text's or rule's right edge (pixels), the axes taken away."""
+    from velpoly.render.canvas import renderer_of
+    from velpoly.render.table import draw_results_table
+    tax = draw_results_table(None, fig.add_axes(lay.rect, label="table"), layout=lay).ax
+    r = renderer_of(fig)
+    x0 = tax.get_window_extent(r).x0
+    right = max((a.get_window_extent(r).x1 for a in (*tax.texts, *tax.lines)), default=x0)
+    fig.delaxes(tax)
+    return x0, right
+
+
+def _generated_table(rng):
+    """A Table of generated cells: rich quantities (subscripts, a link's subscript of a subscript), numbers,
+    units, vectors, long and empty cells, marks of footnotes."""
+    from velpoly.tables import Table
+    names = ["$V_{B}$", "$\\omega_{3}$", "$A_{C_{4}}$", "$V_{P₂}$", "$\\alpha_{12}$", "|$V_{BA}$|", "$R_{B/C}$", "x"]
+    marks = ["", "", "†", "‡"]
+
+    def number():
+        return f"{rng.normal() * 10.0 ** int(rng.integers(-3, 6)):.{int(rng.integers(1, 7))}g}"
+    header = ("quantity", "graphical", "analytic", "unit", "reference")[:int(rng.integers(3, 6))]
+    rows = []
+    for _ in range(int(rng.integers(3, 30))):
+        cells = [str(rng.choice(names)), number(), f"{number()} ∠ {rng.uniform(0, 360):.1f}°", "mm/s²",
+                 f"{number()} {rng.choice(marks)}".strip()][:len(header)]
+        if rng.random() < 0.2:
+            cells[int(rng.integers(1, len(cells)))] = "" if rng.random() < 0.5 else "a long cell " * 4
+        rows.append(tuple(cells))
+    notes = tuple((m, "omega_3", "the book's value " * int(rng.integers(1, 12))) for m in ("†", "‡"))
+    title = "Results " + "of a long source " * int(rng.integers(0, 8))
+    return Table(title, header, tuple(rows), notes)
+
+
+@pytest.mark.parametrize("style", ["textbook", "slides"])
+def test_a_table_s_drawn_width_is_measured_as_drawn_to_the_bit(style):
+    """The table in the page's corner is as wide as its drawn blocks, title and footnotes: drawn_extent (probe
+    texts, no axes) gives the left and right edges the table drawn in an axes at its room gives, to the bit, on
+    generated mechanisms' tables and generated tables, in rooms roomy, short (rows cut), narrow (type shrunk,
+    title and footnotes wrapped) and moved (as the sheet's layout moves a table)."""
+    import zoo
+    from matplotlib.backends.backend_agg import FigureCanvasAgg
+    from matplotlib.figure import Figure
+    import velpoly
+    from velpoly.render.sheet import constructions
+    from velpoly.render.style import get_style, rc_context
+    from velpoly.render.table import drawn_extent, measure_results_table
+    st = get_style(style)
+    rng = np.random.default_rng(20 if style == "textbook" else 21)
+    kinds = ["four-bar", "six-bar", "slot", "contact"] if style == "textbook" else ["six-bar"]
+    rects = [(0.0106, 0.0107, 0.9788, 0.4), (0.02, 0.5, 0.97, 0.13), (0.6, 0.1, 0.25, 0.5)]
+    cases = 0
+    with rc_context(st):
+        fig = Figure(figsize=st.figsize, dpi=72)
+        FigureCanvasAgg(fig)
+        specimens = [zoo.specimen(rng, k).drawn for k in kinds]
+        for i, sol in enumerate(specimens + [None] * (2 if style == "textbook" else 1)):
+            if sol is None:   # a generated table (beside the first specimen's mechanism: its names)
+                sol, kw = specimens[0], {"table": _generated_table(rng)}
+            else:
+                cons = constructions(sol, "full")
+                kw = dict(velocity=cons.velocity, acceleration=cons.acceleration, poleset=cons.poles)
+            for j, rect in enumerate(rects[i % 2::2] if style == "slides" else rects):
+                lay = measure_results_table(sol, (fig, rect), sheet="full", style=st, **kw)
+                if (i + j) % 2:   # moved, as the sheet's layout moves a table
+                    x, y, w, h = lay.rect
+                    lay.set_position((x + rng.uniform(-0.01, 0.01), y + rng.uniform(0.0, 0.3), w, h))
+                assert drawn_extent(lay, fig) == _drawn_there(lay, fig), (i, rect, lay.rect)
+                assert not fig.axes
+                cases += 1
+    assert cases >= 3
