@@ -141,3 +141,70 @@ def test_a_table_s_drawn_width_is_measured_as_drawn_to_the_bit(style):
                 assert not fig.axes
                 cases += 1
     assert cases >= 3
+
+
+# -- mathtext parsed without pyparsing's memo where the text is shallow (velpoly.render.style._unmemoised) ---
+
+def _math_text(rng) -> str:
+    """A generated label as velpoly writes them: plain words and $...$ with symbols, Greek letters, products,
+    thin spaces, subscripts and superscripts, groups two deep (a subscript's own subscript)."""
+    def atom():
+        return str(rng.choice(["V", "A", "O", "B", "x", "2", "n", "t", "\\omega ", "\\alpha ", "\\theta ", "P"]))
+
+    def script(depth):
+        body = "".join(atom() for _ in range(int(rng.integers(1, 3))))
+        if depth < 2 and rng.random() < 0.5:
+            body += "_{" + script(depth + 1) + "}"
+        return body
+
+    def math():
+        out = atom() + str(rng.choice(["_", "^"])) + "{" + script(1) + "}"
+        for _ in range(int(rng.integers(0, 3))):
+            out += str(rng.choice([" = ", "\\,", " \\times ", "/", " + "])) + atom()
+            if rng.random() < 0.5:
+                out += "_{" + script(1) + "}"
+        return "$" + out + "$"
+    words = ["normal component", "= 20 rad/s ccw", "misprint: 200/115 for", "(", "):", "follows from", "†"]
+    return " ".join(str(rng.choice(words)) if rng.random() < 0.4 else math() for _ in range(int(rng.integers(1, 4))))
+
+
+def test_a_shallow_label_parsed_without_the_memo_is_the_parse_with_it():
+    """matplotlib parses mathtext with pyparsing's packrat memo on; velpoly parses its shallow labels without it
+    (faster). On generated labels, both outputs (raster for Agg, vector for SVG and PDF), both styles' fonts, two
+    dpi and type sizes: the very same parse (metrics, bitmap, glyphs and rules); a deep or foreign text keeps
+    the memo."""
+    import inspect
+    from matplotlib.font_manager import FontProperties
+    from matplotlib.mathtext import MathTextParser
+    from pyparsing import ParserElement
+    from velpoly.render.style import _SHALLOW, _unmemoised, get_style, rc_context, share_mathtext
+    share_mathtext()
+    raw = inspect.unwrap(MathTextParser._parse_cached)   # matplotlib's parse, under its caches and velpoly's
+    memo = ParserElement.__dict__["_parse"]
+    assert memo is not ParserElement._parseNoCache   # (matplotlib turned it on)
+
+    def parsed(out, s, dpi, prop):
+        p = MathTextParser("agg" if out == "raster" else "path")
+        from matplotlib.ft2font import LoadFlags
+        r = raw(p, s, dpi, prop, True, LoadFlags.FORCE_AUTOHINT if out == "raster" else LoadFlags.NO_HINTING)
+        if out == "raster":
+            return r.ox, r.oy, r.width, r.height, r.depth, np.asarray(r.image).tobytes()
+        return r.width, r.height, r.depth, [(g[0].fname, *g[1:]) for g in r.glyphs], r.rects
+    rng = np.random.default_rng(2026)
+    for k in range(16):
+        s = _math_text(rng)
+        assert _SHALLOW.fullmatch(s), s
+        st = get_style(("textbook", "slides")[k % 2])
+        with rc_context(st):
+            prop = FontProperties(family=st.font_family, size=float(rng.choice([st.small_size, st.font_size, 7.3])))
+            out, dpi = ("raster", "vector")[k // 2 % 2], (72, 200)[k // 4 % 2]
+            with_memo = parsed(out, s, dpi, prop)
+            with _unmemoised(s):
+                assert ParserElement.__dict__["_parse"] is ParserElement._parseNoCache
+                without = parsed(out, s, dpi, prop)
+            assert ParserElement.__dict__["_parse"] is memo
+            assert without == with_memo, s
+    for deep in ["${{{x}}}$", r"$\frac{a}{b}$", r"$\left(x\right)$", r"${\sqrt{x}}$", r"$\omegax$"]:
+        assert not _SHALLOW.fullmatch(deep)
+        with _unmemoised(deep):
+            assert ParserElement.__dict__["_parse"] is memo
