@@ -3,6 +3,10 @@
 * velpoly.render.pngfile writes the PNG itself (unfiltered rows, zlib): the file decodes to the pixels it
   was given and carries the dpi and text Pillow's writer gives, on generated images (opaque and not,
   odd sizes, noise and drawings) and metadata (Latin-1 and not).
+* velpoly.render.table.drawn_extent measures where a table drawn in its room ends without drawing it: the
+  same bits as the table drawn in a scratch axes, on generated mechanisms' and generated tables.
+* velpoly.render.style._unmemoised parses a shallow label without pyparsing's memo: the same parse as
+  with it, on generated labels.
 """
 from __future__ import annotations
 
