@@ -11,8 +11,8 @@ a minute or more on a busy machine), wall time and the CPU time of the process a
 * one process: the same build in one process, one example after another
   (``build_gallery(..., jobs=1)``); the output must be the same bytes as the command's;
 * before:      the command of the velpoly of ``--before`` (default: the commit before issue 20's
-  work), exported from git; its PNGs compared pixel for pixel (velpoly now writes them as RGB at
-  zlib level 1: other bytes); a difference (after figure work, on purpose) is said in a note.
+  work), exported from git; its PNGs compared pixel for pixel (velpoly now writes them itself, as RGB,
+  rows unfiltered: other bytes); a difference (after figure work, on purpose) is said in a note.
 
 ``--animations`` builds the repository's whole gallery instead (``velpoly gallery -o OUT``: the
 sheets and one animated GIF a mechanism family, seven more tasks of 1-3 s each).

@@ -16,7 +16,7 @@ best of ``--repeats`` sheets each:
   finds all of them, a fresh one those its texts share with the sheets before).
 
 Both PNGs are decoded and compared first: the same pixels (the files differ: velpoly now writes an
-opaque sheet as RGB at zlib level 1), or a note says they differ (figure work changes sheets on
+opaque sheet as RGB, its rows unfiltered, velpoly/render/pngfile.py), or a note says they differ (figure work changes sheets on
 purpose; before / now then times two different drawings). Then, in this process, the parts of the time: the figure built
 (``render_sheet``: layout, text measured at 72 dpi), the Agg canvas drawn at 200 dpi, and the PNG
 encoded, by matplotlib's writer and by velpoly's (velpoly/render/pngfile.py).

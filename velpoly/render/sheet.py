@@ -502,15 +502,10 @@ def _cover(spans, bands) -> float:
 
 def _drawn_width(tab, planner) -> float:
     """The width (cm) the measured table ``tab``'s blocks, title and footnotes take in its room, from its left
-    edge (drawn once in a scratch axes, then taken away)."""
-    from .canvas import renderer_of
-    fig = planner.fig
-    tax = _draw_table(planner.sol, fig, planner.sheet, planner.st, tab).ax
-    r = renderer_of(fig)
-    x0 = tax.get_window_extent(r).x0
-    right = max((a.get_window_extent(r).x1 for a in (*tax.texts, *tax.lines)), default=x0)
-    fig.delaxes(tax)
-    return (right - x0) / fig.dpi * 2.54
+    edge, as drawn there (:func:`velpoly.render.table.drawn_extent`: measured, not drawn)."""
+    from .table import drawn_extent
+    left, right = drawn_extent(tab, planner.fig)
+    return (right - left) / planner.fig.dpi * 2.54
 
 
 def _move(tax, planner, top: float, left: float | None = None) -> None:

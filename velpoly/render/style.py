@@ -11,6 +11,7 @@ from __future__ import annotations
 
 import contextlib
 import os
+import re
 from dataclasses import dataclass
 
 from ..errors import InputError
@@ -174,7 +175,8 @@ def share_mathtext() -> bool:
         key = (self._output_type, s, dpi, prop, antialiased, load_glyph_flags, tuple(str(rc[k]) for k in keys))
         got = store.get(key)
         if got is None:
-            got = store[key] = cached(self, s, dpi, prop, antialiased, load_glyph_flags)
+            with _unmemoised(s):
+                got = store[key] = cached(self, s, dpi, prop, antialiased, load_glyph_flags)
             if len(store) > MATHTEXT_SHARED:
                 store.popitem(last=False)
         else:
@@ -192,6 +194,32 @@ def share_mathtext() -> bool:
         os.register_at_fork(after_in_child=store.clear)
         os.register_at_fork(after_in_child=cached.cache_clear)   # matplotlib's own, which ours fills too
     return True
+
+
+_ATOM = r"(?:[^{}\\]|\\(?:(?:omega|alpha|theta|times|mathrm)(?![A-Za-z])|[,;:! ]))"   # a character, or a command
+# that a velpoly label uses (a symbol, a space)
+_SHALLOW = re.compile(rf"(?:{_ATOM}|\{{(?:{_ATOM}|\{{{_ATOM}*\}})*\}})*")   # (braces at most two deep)
+
+
+@contextlib.contextmanager
+def _unmemoised(s: str):
+    """Parse ``s`` without pyparsing's packrat memo where it is shallow (:data:`_SHALLOW`: braces at most two deep,
+    no command but the symbols and spaces velpoly's labels use): matplotlib turns the memo on for its mathtext
+    grammar, where it keeps nested groups (``{{{{x}}}}``, ``\\frac`` in ``\\frac``) from being parsed again and
+    again, but on a label such as ``$V_{B_{3}}$`` its bookkeeping costs more than it saves (pyparsing 3.3: a
+    third of the parse). A memo gives what parsing again gives: the same parse (tests/test_sheet_speedups.py
+    compares both on generated texts). Where pyparsing is not as expected, or ``s`` is not shallow, nothing
+    changes."""
+    from pyparsing import ParserElement
+    memo, plain = ParserElement.__dict__.get("_parse"), getattr(ParserElement, "_parseNoCache", None)
+    if memo is None or plain is None or memo is plain or not _SHALLOW.fullmatch(s):
+        yield
+        return
+    ParserElement._parse = plain
+    try:
+        yield
+    finally:
+        ParserElement._parse = memo
 
 
 def preload() -> None:

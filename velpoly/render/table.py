@@ -755,36 +755,75 @@ def cuts_the_book(lay: TableLayout) -> bool:
     return lay.shown < refs or len(lay.notes) < len(t.notes) or lay.overflows
 
 
-def _paint(lay: TableLayout, ax, st) -> Artists:
-    """Draw the measured table ``lay`` in ``ax`` (made at its room); return the Artists."""
-    from matplotlib.lines import Line2D
-    _box(ax)
+def _texts(lay: TableLayout):
+    """The measured table's texts as :func:`_paint` draws them, the title first: (role, x, y, text, keywords of
+    ``ax.text``, whether x and y are in the axes' box (``transform=ax.transAxes``) rather than its data (0-1
+    limits: the same place))."""
+    yield "title", 0, 1, lay.title, dict(fontsize=lay.title_size, va="top", ha="left", style="italic",
+                                         gid="results-table"), False
     width_pt, height_pt = lay.width_pt, lay.height_pt
-    art = Artists(ax)
-    art.add("title", ax.text(0, 1, lay.title, fontsize=lay.title_size, va="top", ha="left", style="italic",
-                             gid="results-table"))
     small = lay.widths_of.st.small_size
-    cells = iter(lay.cells)
-    for x0, y, lw, total in lay.rules:
-        ln = Line2D([x0 / width_pt, (x0 + total) / width_pt], [y / height_pt] * 2, lw=lw, color=st.ink,
-                    transform=ax.transAxes)
-        ax.add_line(ln)
-        art.add("rules", ln)
-    for x, y, text, size, style in cells:
+    for x, y, text, size, style in lay.cells:
         # a quantity's subscripts set as smaller, lowered texts (no mathtext: fast)
         parts = _parts(text)
         ws = lay.widths_of.at.get(text) or [0.0] * len(parts)
         for (piece, scale, dy, st_), w in zip(parts, ws):
             if piece:
-                art.add("cells", ax.text(x / width_pt, (y + 0.3 * size + dy * size) / height_pt, piece,
-                                         fontsize=size * scale, fontstyle=style or st_, va="baseline",
-                                         ha="left", transform=ax.transAxes))
+                yield "cells", x / width_pt, (y + 0.3 * size + dy * size) / height_pt, piece, \
+                    dict(fontsize=size * scale, fontstyle=style or st_, va="baseline", ha="left"), True
             x += w * size / small
     for y, line, size, gid in lay.footnotes:
-        art.add("footnotes", ax.text(0, y / height_pt, line, fontsize=size, va="baseline", ha="left", gid=gid))
+        yield "footnotes", 0, y / height_pt, line, dict(fontsize=size, va="baseline", ha="left", gid=gid), False
+
+
+def _rules(lay: TableLayout):
+    """The measured table's rules as :func:`_paint` draws them: (x data, y data, line width), in the axes' box."""
+    width_pt, height_pt = lay.width_pt, lay.height_pt
+    for x0, y, lw, total in lay.rules:
+        yield [x0 / width_pt, (x0 + total) / width_pt], [y / height_pt] * 2, lw
+
+
+def _paint(lay: TableLayout, ax, st) -> Artists:
+    """Draw the measured table ``lay`` in ``ax`` (made at its room); return the Artists."""
+    from matplotlib.lines import Line2D
+    _box(ax)
+    art = Artists(ax)
+    texts = _texts(lay)
+    for role, x, y, text, kw, boxed in texts:   # the title, then the rules, then the cells and footnotes
+        art.add(role, ax.text(x, y, text, **kw, **({"transform": ax.transAxes} if boxed else {})))
+        if role == "title":
+            for xs, ys, lw in _rules(lay):
+                ln = Line2D(xs, ys, lw=lw, color=st.ink, transform=ax.transAxes)
+                ax.add_line(ln)
+                art.add("rules", ln)
     art.table, art.notes, art.shown, art.size, art.blocks = lay.table, lay.notes, lay.shown, lay.size, lay.blocks
     art.used, art.whole = lay.used, lay.whole
     return art
+
+
+def drawn_extent(lay: TableLayout, fig) -> tuple[float, float]:
+    """(left, right): the pixels of ``fig`` (at its dpi) where an axes made at the measured table's room
+    (``lay.rect``) starts and where the rightmost of the texts and rules :func:`_paint` would draw in it ends, to
+    the bit, without an axes or an artist: each text's extent taken by one probe text given its properties in
+    turn, in the room's coordinates (:class:`_Room`: its transform is the axes' box's, and the axes' data at
+    0-1 limits is the same transform)."""
+    from matplotlib.cbook import normalize_kwargs
+    from matplotlib.text import Text
+    room = _Room(fig, lay.rect)
+    probe = Text(0, 0, "", verticalalignment="baseline", horizontalalignment="left", transform=room.trans,
+                 clip_on=False)
+    probe.set_figure(fig)
+    fresh = {"fontstyle": probe.get_fontstyle(), "fontsize": probe.get_fontsize(),
+             "verticalalignment": "baseline", "horizontalalignment": "left"}   # (as ax.text makes a text)
+    ends = []
+    for _, x, y, text, kw, _ in _texts(lay):
+        kw = normalize_kwargs({k: v for k, v in kw.items() if k != "gid"}, Text)
+        probe.update({**fresh, **kw, "text": text, "position": (x, y)})
+        ends.append(probe.get_window_extent(room.renderer).x1)
+    for xs, ys, _ in _rules(lay):
+        ends.append(room.trans.transform(np.column_stack([xs, ys]))[:, 0].max())
+    left = room.bbox.x0
+    return left, max(ends, default=left)
 
 
 def draw_results_table(sol, ax=None, *, sheet: str = "full", style="textbook", velocity=None,
