@@ -13,7 +13,7 @@ import numpy as np
 from .kinematics import Kinematics
 from .model import Mechanism
 from .motion import wrap_deg_float
-from .pose import reassemble
+from .pose import Knots, reassemble
 
 __all__ = ["driver_reference_angle", "reachable_range", "reachable_text", "driver_label"]
 
@@ -61,11 +61,13 @@ def _same(a: Mechanism, b: Mechanism) -> bool:
 
 
 def _reachable_range(kin: Kinematics, limit: float, step: float, resolution: float) -> tuple[float, float]:
-    """:func:`reachable_range`, computed."""
+    """:func:`reachable_range`, computed. The second continuation of a direction follows the
+    first's knots (kept in a :class:`velpoly.pose.Knots`): the same steps, not made again."""
     out = []
     for sign in (1.0, -1.0):
         coarse = np.arange(step, limit + step / 2, step)
-        r = reassemble(kin.system, list(kin.rows), np.radians(coarse) * sign)
+        knots = Knots()
+        r = reassemble(kin.system, list(kin.rows), np.radians(coarse) * sign, knots=knots)
         if r.leaves is not None:    # a pin leaves its slot: that end is known to 1e-8 deg
             out.append(round(float(np.degrees(r.leaves[2])), 6))
             continue
@@ -73,7 +75,7 @@ def _reachable_range(kin: Kinematics, limit: float, step: float, resolution: flo
         if last < limit:
             fine = np.arange(last + resolution, min(last + step, limit) + resolution / 2, resolution)
             path = np.concatenate([coarse[coarse <= last + 1e-9], fine])
-            r = reassemble(kin.system, list(kin.rows), np.radians(path) * sign)
+            r = reassemble(kin.system, list(kin.rows), np.radians(path) * sign, knots=knots)
             last = float(np.degrees(abs(r.deltas[-1]))) if len(r.deltas) else 0.0
         out.append(sign * round(last / resolution) * resolution)
     return out[1], out[0]

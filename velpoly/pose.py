@@ -191,7 +191,8 @@ def _cond(system, rows, jac):
     return np.linalg.cond(system.scale_matrix(jac, rows))
 
 
-def reassemble(system: System, rows: list[int], deltas, coarse: float | None = None) -> Reassembly:
+def reassemble(system: System, rows: list[int], deltas, coarse: float | None = None,
+               knots: "Knots | None" = None) -> Reassembly:
     """Carry the mechanism from the reference pose through the driver positions ``deltas``.
 
     ``deltas`` are driver displacements from the reference pose (radians for
@@ -205,6 +206,9 @@ def reassemble(system: System, rows: list[int], deltas, coarse: float | None = N
     either, not merely one the batched correction missed; or, for a pin in
     a slot with ``ends``, before the first position past the one where the
     pin reaches an end (``stopped`` is then "slot" and ``leaves`` says where).
+
+    ``knots`` (a :class:`Knots`, optional) keeps the continuation's knots for the next call with
+    the same system, rows and ``coarse``: a knot step it has made (or seen fail) is not made again.
     """
     system = system.positions   # a prescribed slip in positions, or InputError (no position equation)
     deltas = np.asarray(deltas, float).ravel()
@@ -212,17 +216,61 @@ def reassemble(system: System, rows: list[int], deltas, coarse: float | None = N
     if fast is not None:
         return fast
     ends = [i for i, s in enumerate(system.mechanism.slots) if s.ends]
-    r, kd, kq, attach, sign = _continue(system, rows, deltas, coarse)
+    r, kd, kq, attach, sign = _continue(system, rows, deltas, coarse, knots)
     return _within_slots(system, rows, r, ends, kd, kq, attach, sign) if ends else r
 
 
-def _continue(system, rows, deltas, coarse):
+class Knots:
+    """The knots of a continuation (:func:`_continue`), kept for the next one on the same system.
+
+    Knot k + 1 is :func:`_step` from knot k to a driver position; the step is a function of
+    its inputs alone, so a later continuation that asks the same step from the same knot (the
+    same driver positions, bit for bit) gets the answer kept here, as it would compute it: the
+    pose and Jacobian, or None for a step that failed (a toggle). :func:`velpoly.driver.reachable_range`
+    walks each direction twice, the second time along the first's knots to the last pose before
+    the toggle.
+    """
+
+    def __init__(self):
+        self.key = None
+        self.d: list[float] = []       # the knots' driver positions, from 0.0
+        self.made: list = []           # (q, jac) at each knot after the first
+        self.failed: set = set()       # (knot, target) steps that failed
+
+    def start(self, system, rows, coarse) -> None:
+        """Use these knots for a continuation of ``system`` on ``rows`` with steps of ``coarse``
+        (forgetting them if they were another's)."""
+        key = (system, tuple(rows), coarse)
+        if self.key is None or self.key[0] is not system or self.key[1:] != key[1:]:
+            self.key, self.d, self.made, self.failed = key, [0.0], [], set()
+
+    def step(self, system, rows, q, jac, k: int, target: float, sign):
+        """:func:`_step` from knot ``k`` (pose ``q``, Jacobian ``jac``) to ``target``, kept."""
+        if k + 1 < len(self.d) and self.d[k + 1] == target:
+            return self.made[k]
+        if (k, target) in self.failed:
+            return None
+        nxt = _step(system, rows, q, jac, self.d[k], target, sign)
+        del self.d[k + 1:], self.made[k:]
+        self.failed = {f for f in self.failed if f[0] <= k}
+        if nxt is None:
+            self.failed.add((k, target))
+        else:
+            self.d.append(target)
+            self.made.append(nxt)
+        return nxt
+
+
+def _continue(system, rows, deltas, coarse, knots: Knots | None = None):
     """:func:`reassemble` by continuation; also returns the knots (driver positions and poses),
     the knot each reached position was continued from, and the determinant's sign."""
     n = len(deltas)
     nq = system.nq
     if coarse is None:
         coarse = coarse_step(system)
+    if knots is None:
+        knots = Knots()
+    knots.start(system, rows, coarse)
     # 1. knots: a sequential continuation, never stepping farther than `coarse`;
     #    every requested position is attached to the knot before it.
     knot_d, knot_q = [0.0], [np.zeros(nq)]
@@ -238,7 +286,7 @@ def _continue(system, rows, deltas, coarse):
             start = knot_d[-1]
             k = int(np.floor(abs(d - start) / coarse))   # whole steps of `coarse` towards d
             for target in start + np.sign(d - start) * coarse * np.arange(1, k + 1):
-                nxt = _step(system, rows, q, jac, knot_d[-1], target, sign)
+                nxt = knots.step(system, rows, q, jac, len(knot_d) - 1, float(target), sign)
                 if nxt is None:
                     stopped = "toggle"
                     break

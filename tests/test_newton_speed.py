@@ -1,0 +1,123 @@
+"""The reachable range's second continuation of a direction follows the first's knots
+(``velpoly.pose.Knots``) instead of stepping them again: the answers must be those of the
+algorithm before it, bit for bit.
+
+``_reference_range`` is the former ``velpoly.driver._reachable_range``: each reassembly from
+scratch (``reassemble`` without ``knots`` steps every knot itself, as the code before it did).
+Every reassembly the new code makes is compared with the reference's, in order: the same driver
+positions and poses (exact equality of floats), the same stop and the same slot end; and the
+ranges are equal. The mechanisms are generated (seeded zoo specimens of every continuation kind:
+a contact, a slot, an inverted slider-crank, a six-bar, each past a toggle both ways or leaving
+its slot) and the rolling-contact example (its range as the former code gave it).
+"""
+from __future__ import annotations
+
+from pathlib import Path
+
+import numpy as np
+import pytest
+
+import velpoly
+from velpoly import driver, pose
+from velpoly.kinematics import prepare
+
+from zoo import specimen
+
+EXAMPLES = Path(velpoly.__file__).parent / "examples"
+
+
+def _reference_range(kin, limit=360.0, step=1.0, resolution=0.01):
+    """velpoly.driver._reachable_range as it was before the knots were kept (eb22ca2)."""
+    out = []
+    for sign in (1.0, -1.0):
+        coarse = np.arange(step, limit + step / 2, step)
+        r = pose.reassemble(kin.system, list(kin.rows), np.radians(coarse) * sign)
+        if r.leaves is not None:
+            out.append(round(float(np.degrees(r.leaves[2])), 6))
+            continue
+        last = float(np.degrees(abs(r.deltas[-1]))) if len(r.deltas) else 0.0
+        if last < limit:
+            fine = np.arange(last + resolution, min(last + step, limit) + resolution / 2, resolution)
+            path = np.concatenate([coarse[coarse <= last + 1e-9], fine])
+            r = pose.reassemble(kin.system, list(kin.rows), np.radians(path) * sign)
+            last = float(np.degrees(abs(r.deltas[-1]))) if len(r.deltas) else 0.0
+        out.append(sign * round(last / resolution) * resolution)
+    return out[1], out[0]
+
+
+def _recorded(monkeypatch, run, kin):
+    """(range, every Reassembly the run made, in order, how many knot steps and how many
+    evaluations of the equations it took)."""
+    made, steps, evals = [], [], []
+    real_reassemble, real_step = pose.reassemble, pose._step
+    system = kin.system.positions
+    real_evaluate = type(system).evaluate
+
+    def evaluate(self, *a, **k):
+        evals.append(self is system)
+        return real_evaluate(self, *a, **k)
+
+    def reassemble(*a, **k):
+        made.append(real_reassemble(*a, **k))
+        return made[-1]
+
+    def step(*a):
+        steps.append(1)
+        return real_step(*a)
+    monkeypatch.setattr(driver, "reassemble", reassemble)
+    monkeypatch.setattr(pose, "reassemble", reassemble)
+    monkeypatch.setattr(pose, "_step", step)
+    monkeypatch.setattr(type(system), "evaluate", evaluate)
+    try:
+        found = run(kin, 360.0, 1.0, 0.01)
+    finally:
+        monkeypatch.undo()
+    return found, made, len(steps), sum(evals)
+
+
+def _same_reassembly(a, b):
+    assert np.array_equal(a.deltas, b.deltas) and np.array_equal(a.q, b.q)
+    assert (a.stopped, a.continued) == (b.stopped, b.continued)
+    assert (a.leaves is None) == (b.leaves is None)
+    if a.leaves is not None:
+        assert a.leaves[:2] == b.leaves[:2] and a.leaves[2] == b.leaves[2]
+
+
+# specimens of the zoo (kind, variant, seed) reached by continuation and stopped both ways within
+# a turn (a toggle, or a pin reaching its slot's end), cheap enough (a few tenths of a second)
+SPECIMENS = [("contact", "wheel on ground", 1), ("slot", "straight through", 0),
+             ("inverted slider-crank", "through both crank", 0), ("six-bar", "stephenson III by its binary", 1)]
+
+
+@pytest.mark.parametrize("kind, variant, seed", SPECIMENS)
+def test_kept_knots_give_the_former_ranges_and_poses_bit_for_bit(monkeypatch, kind, variant, seed):
+    kin = prepare(velpoly.load(specimen(np.random.default_rng(seed), kind, variant).mech))
+    assert pose.plan_for(kin.system.positions) is None      # continuation, not the dyads' closed form
+    old, old_made, old_steps, old_evals = _recorded(monkeypatch, _reference_range, kin)
+    new, new_made, new_steps, new_evals = _recorded(monkeypatch, driver._reachable_range, kin)
+    assert new == old and -360.0 < old[0] <= 0.0 <= old[1] < 360.0, (old, new)
+    assert len(new_made) == len(old_made)
+    for a, b in zip(new_made, old_made):
+        _same_reassembly(a, b)
+    assert new_steps < old_steps      # the second walk's knots were not stepped again
+    assert new_evals < old_evals
+
+
+def test_rolling_contact_example_keeps_its_range():
+    """fig3_15a (a wheel rolling: continuation with jets) reaches what the former code found."""
+    kin = prepare(velpoly.load(EXAMPLES / "fig3_15a_rolling.toml"))
+    assert driver._reachable_range(kin, 360.0, 1.0, 0.01) == (-61.0, 150.94)
+
+
+def test_knots_are_forgotten_for_another_continuation():
+    """A Knots kept for one system, rows or step is not used for another."""
+    kin = prepare(velpoly.load(specimen(np.random.default_rng(1), "contact", "wheel on ground").mech))
+    system, rows = kin.system.positions, list(kin.rows)
+    knots = pose.Knots()
+    coarse = np.radians(np.arange(1.0, 31.0))
+    first = pose.reassemble(kin.system, rows, coarse, knots=knots)
+    assert len(knots.d) > 1 and knots.key[0] is system
+    other = pose.reassemble(kin.system, rows, coarse, coarse=np.radians(5.0), knots=knots)
+    assert knots.key[2] == np.radians(5.0)
+    _same_reassembly(other, pose.reassemble(kin.system, rows, coarse, coarse=np.radians(5.0)))
+    _same_reassembly(first, pose.reassemble(kin.system, rows, coarse))
