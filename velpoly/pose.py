@@ -261,25 +261,23 @@ class Knots:
         return nxt
 
 
-def _continue(system, rows, deltas, coarse, knots: Knots | None = None):
-    """:func:`reassemble` by continuation; also returns the knots (driver positions and poses),
-    the knot each reached position was continued from, and the determinant's sign."""
-    n = len(deltas)
-    nq = system.nq
+def _walk_knots(system, rows, deltas, coarse, knots: Knots | None):
+    """Step 1 of :func:`_continue`: the knots, a sequential continuation never stepping farther than
+    ``coarse`` (default :func:`coarse_step`), every requested position attached to the knot before it.
+    Returns (knot positions, knot poses, attach, how many positions are reached, stopped, the sign of
+    the drawn pose's Jacobian determinant)."""
+    n, nq = len(deltas), system.nq
     if coarse is None:
         coarse = coarse_step(system)
     if knots is None:
         knots = Knots()
     knots.start(system, rows, coarse)
-    # 1. knots: a sequential continuation, never stepping farther than `coarse`;
-    #    every requested position is attached to the knot before it.
     knot_d, knot_q = [0.0], [np.zeros(nq)]
     jac = system.evaluate(np.zeros((1, nq)))[1][:, rows]
     # the drawn branch keeps the sign of the Jacobian's determinant: it changes only through a
     # singular pose, as at a change point, where Newton would carry on along the other branch
     sign = _orientation(jac)[0]
     attach = np.empty(n, int)
-    stopped = ""
     q = np.zeros((1, nq))
     for idx, d in enumerate(deltas):
         if abs(d - knot_d[-1]) > coarse:
@@ -288,15 +286,19 @@ def _continue(system, rows, deltas, coarse, knots: Knots | None = None):
             for target in start + np.sign(d - start) * coarse * np.arange(1, k + 1):
                 nxt = knots.step(system, rows, q, jac, len(knot_d) - 1, float(target), sign)
                 if nxt is None:
-                    stopped = "toggle"
-                    break
+                    return knot_d, knot_q, attach, idx, "toggle", sign
                 q, jac = nxt
                 knot_d.append(float(target))
                 knot_q.append(q[0].copy())
-            if stopped:
-                n = idx
-                break
         attach[idx] = len(knot_d) - 1
+    return knot_d, knot_q, attach, n, "", sign
+
+
+def _continue(system, rows, deltas, coarse, knots: Knots | None = None):
+    """:func:`reassemble` by continuation; also returns the knots (driver positions and poses),
+    the knot each reached position was continued from, and the determinant's sign."""
+    nq = system.nq
+    knot_d, knot_q, attach, n, stopped, sign = _walk_knots(system, rows, deltas, coarse, knots)
     deltas, attach = deltas[:n], attach[:n]
     kd, kq = np.array(knot_d), np.array(knot_q)
     if n == 0:
