@@ -41,7 +41,7 @@ from typing import Callable
 import numpy as np
 
 from .errors import InputError
-from .jet import Jet
+from .jet import Grad, Jet
 from .model import Mechanism
 from .rigid import direction as _unit, dot as _dot
 
@@ -89,12 +89,13 @@ class Frame:
     """
 
     def __init__(self, system: "System", q: np.ndarray, qd: np.ndarray | None = None,
-                 values_only: bool = False, one_pose: bool = False):
+                 values_only: bool = False, one_pose: bool = False, dense: bool = False):
         q = as_poses(q)
         n, nq = q.shape
         self.n, self.nq = n, (None if values_only else nq)
         self.values_only = values_only
         self.scalar = one_pose and n == 1
+        self.sparse = self.scalar and not dense   # one pose's gradients as Grad (the same bits as arrays)
         if self.scalar:   # the pose's coordinates and rates as floats
             self.q = q[0].tolist()
             self.qd = [0.0] * nq if qd is None else as_poses(qd)[0].tolist()
@@ -102,6 +103,7 @@ class Frame:
             self.q, self.qd = q, (np.zeros_like(q) if qd is None else as_poses(qd))
         self._index = system.index
         self._cache = {}
+        self._points = {}
 
     def _body(self, link: str):
         b = self._cache.get(link)
@@ -117,7 +119,9 @@ class Frame:
     def _coordinate(self, i: int) -> Jet:
         if self.scalar:
             g = None
-            if not self.values_only:
+            if self.sparse and not self.values_only:
+                g = Grad({i: 1.0}, 0.0, self.nq)
+            elif not self.values_only:
                 g = np.zeros(self.nq)
                 g[i] = 1.0
             return Jet(self.q[i], g, self.qd[i], 0.0)
@@ -125,7 +129,8 @@ class Frame:
 
     def const(self, c) -> Jet:
         if self.scalar:
-            return Jet(float(c), None if self.values_only else np.zeros(self.nq), 0.0, 0.0)
+            g = None if self.values_only else Grad({}, 0.0, self.nq) if self.sparse else np.zeros(self.nq)
+            return Jet(float(c), g, 0.0, 0.0)
         return Jet.const(c, self.n, self.nq)
 
     def theta(self, link: str) -> Jet:
@@ -142,6 +147,12 @@ class Frame:
         if b is None:  # the frame
             return sx, sy
         x, y, c, s_, _ = b
+        if self.sparse:   # one pose: the same operations fused, kept for the frame's other equations
+            key = (link, sx, sy)
+            p = self._points.get(key)
+            if p is None:
+                p = self._points[key] = (Jet.rotated(x, c, sx, s_, sy, False), Jet.rotated(y, s_, sx, c, sy, True))
+            return p
         return x + c * sx - s_ * sy, y + s_ * sx + c * sy
 
     def direction(self, link: str, d) -> tuple[Jet, Jet]:
@@ -151,6 +162,8 @@ class Frame:
         if b is None:  # the frame: constants
             return dx, dy
         _, _, c, s_, _ = b
+        if self.sparse:
+            return Jet.rotated(None, c, dx, s_, dy, False), Jet.rotated(None, s_, dx, c, dy, True)
         return c * dx - s_ * dy, s_ * dx + c * dy
 
 
@@ -357,7 +370,8 @@ class System:
             f = Frame(self, q, qd, one_pose=True)
             for i, e in enumerate(rest, start=start):
                 j = e.fn(f)
-                phi[:, i], jac[:, i], h[:, i] = j.v, j.g, j.h
+                g = j.g
+                phi[:, i], jac[:, i], h[:, i] = j.v, (g.dense() if type(g) is Grad else g), j.h
         if crank:
             k = self.crank
             phi[:, -1] = q[:, 3 * k + 2]

@@ -126,7 +126,7 @@ class Reassembly:
         self.leaves = leaves         # (slot index, end point, driver position) where a pin leaves its slot
 
 
-def _newton(system: System, rows, q, targets, iters=30, tol=1e-12):
+def _newton(system: System, rows, q, targets, iters=30):
     """Batched Newton on the selected rows plus the driver row.
 
     Iterates until the correction is at rounding level (at least once, so a
@@ -138,6 +138,13 @@ def _newton(system: System, rows, q, targets, iters=30, tol=1e-12):
     digits). Steps are limited so that Newton cannot jump to another branch.
     Returns (q, converged mask).
     """
+    if len(q) == 1:
+        return _newton_one(system, rows, q, float(targets[0]), iters)
+    return _newton_batch(system, rows, q, targets, iters)
+
+
+def _newton_batch(system: System, rows, q, targets, iters=30):
+    """:func:`_newton` for a batch of poses, each converged pose left out of the next iterations."""
     q = q.copy()
     L = max(system.size, 1e-300)
     active = np.ones(len(q), bool)
@@ -164,6 +171,36 @@ def _newton(system: System, rows, q, targets, iters=30, tol=1e-12):
     phi = phi[:, rows]
     phi[:, -1] -= targets
     ok = np.all(np.isfinite(phi), axis=1) & (np.abs(phi).max(axis=1) <= 1e-9 * L)
+    return q, ok, jac[:, rows]
+
+
+def _newton_one(system, rows, q, target: float, iters: int):
+    """:func:`_newton` for one pose (a knot step's): :func:`_newton_batch`'s operations on the same
+    values, without the batch's masks; the correction's size in unit lengths divides by (L, L, 1, ...) (the system's
+    column scales; 1.0 an exact identity), as :func:`_scaled` divides the lengths' columns."""
+    q = q.copy()
+    unit = system._scales[1]
+    last = math.inf
+    for _ in range(iters):
+        phi, jac, _ = system.evaluate(q)
+        phi = phi[:, rows]
+        jac = jac[:, rows]
+        phi[:, -1] -= target
+        try:
+            dq = np.linalg.solve(jac, -phi[..., None])[..., 0]
+        except np.linalg.LinAlgError:
+            dq = _solve_or_nan(jac[0], -phi[0])[None, :]
+        size = float(np.abs(dq[0] / unit).max(initial=0.0))
+        if size > 0.5:
+            dq = dq * (0.5 / max(size, 1e-300))
+        q += dq
+        if size <= 1e-14 or (size <= 1e-10 and size >= last):
+            break
+        last = size
+    phi, jac, _ = system.evaluate(q)
+    phi = phi[:, rows]
+    phi[:, -1] -= target
+    ok = np.all(np.isfinite(phi), axis=1) & (np.abs(phi).max(axis=1) <= 1e-9 * max(system.size, 1e-300))
     return q, ok, jac[:, rows]
 
 
