@@ -149,3 +149,17 @@ def test_grad_holds_the_dense_columns():
                  ((a * -1.0) + (b * -1.0), (da * -1.0) + (db * -1.0))]
     for x, y in pairs:
         assert _same(x.dense(), y)
+
+
+def test_solve_is_numpys():
+    """pose._solve (LAPACK's gesv through numpy's gufunc, without the wrapper) gives np.linalg.solve's
+    bits, and its LinAlgError for a singular matrix."""
+    rng = np.random.default_rng(5)
+    for n, k, count in ((3, 1, 1), (9, 1, 1), (12, 1, 40), (6, 2, 3)):
+        a, b = rng.normal(size=(count, n, n)), rng.normal(size=(count, n, k))
+        a[0, 0] *= 1e12
+        assert _same(pose._solve(a, b), np.linalg.solve(a, b))
+    singular = np.ones((1, 3, 3))
+    for solve in (pose._solve, np.linalg.solve):
+        with pytest.raises(np.linalg.LinAlgError):
+            solve(singular, np.ones((1, 3, 1)))

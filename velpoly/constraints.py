@@ -368,10 +368,14 @@ class System:
             rest.append(self.driver)
         if rest:
             f = Frame(self, q, qd, one_pose=True)
+            rows = jac[0] if f.sparse else None
             for i, e in enumerate(rest, start=start):
                 j = e.fn(f)
-                g = j.g
-                phi[:, i], jac[:, i], h[:, i] = j.v, (g.dense() if type(g) is Grad else g), j.h
+                phi[:, i], h[:, i] = j.v, j.h
+                if type(j.g) is Grad:
+                    j.g.into(rows[i])
+                else:
+                    jac[:, i] = j.g
         if crank:
             k = self.crank
             phi[:, -1] = q[:, 3 * k + 2]

@@ -70,10 +70,16 @@ class Grad:
 
     def dense(self) -> np.ndarray:
         """The gradient as an array (nq,)."""
-        g = np.full(self.n, self.z)
+        return self.into(np.zeros(self.n))
+
+    def into(self, row: np.ndarray) -> np.ndarray:
+        """Write the gradient into ``row`` (nq,), which holds zeros (0.0, not -0.0)."""
+        z = self.z
+        if not (z == 0.0 and math.copysign(1.0, z) > 0.0):   # -0.0 or NaN in the other columns
+            row.fill(z)
         for k, v in self.d.items():
-            g[k] = v
-        return g
+            row[k] = v
+        return row
 
     def __add__(self, o):
         if type(o) is not Grad:

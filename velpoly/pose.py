@@ -181,16 +181,20 @@ def _newton_one(system, rows, q, target: float, iters: int):
     q = q.copy()
     unit = system._scales[1]
     last = math.inf
+    every = None       # rows selecting every equation: the evaluation's own (fresh) arrays serve
     for _ in range(iters):
         phi, jac, _ = system.evaluate(q)
-        phi = phi[:, rows]
-        jac = jac[:, rows]
-        phi[:, -1] -= target
+        if every is None:
+            every = list(rows) == list(range(phi.shape[1]))
+        if not every:
+            phi = phi[:, rows]
+            jac = jac[:, rows]
+        phi[0, -1] -= target
         try:
-            dq = np.linalg.solve(jac, -phi[..., None])[..., 0]
+            dq = _solve(jac, -phi[..., None])[..., 0]
         except np.linalg.LinAlgError:
             dq = _solve_or_nan(jac[0], -phi[0])[None, :]
-        size = float(np.abs(dq[0] / unit).max(initial=0.0))
+        size = float(np.abs(dq[0] / unit).max())
         if size > 0.5:
             dq = dq * (0.5 / max(size, 1e-300))
         q += dq
@@ -198,10 +202,32 @@ def _newton_one(system, rows, q, target: float, iters: int):
             break
         last = size
     phi, jac, _ = system.evaluate(q)
-    phi = phi[:, rows]
-    phi[:, -1] -= target
+    if not every:
+        phi = phi[:, rows]
+        jac = jac[:, rows]
+    phi[0, -1] -= target
     ok = np.all(np.isfinite(phi), axis=1) & (np.abs(phi).max(axis=1) <= 1e-9 * max(system.size, 1e-300))
-    return q, ok, jac[:, rows]
+    return q, ok, jac
+
+
+try:   # the gufunc np.linalg.solve calls (LAPACK's gesv), without its checks of the arguments
+    from numpy.linalg import _umath_linalg
+    _GESV = _umath_linalg.solve
+except (ImportError, AttributeError):    # pragma: no cover - another numpy
+    _GESV = None
+
+
+def _singular(err, flag):
+    raise np.linalg.LinAlgError("Singular matrix")
+
+
+def _solve(a: np.ndarray, b: np.ndarray) -> np.ndarray:
+    """``np.linalg.solve(a, b)`` for float64 stacks (N, n, n) and (N, n, k): the same gufunc on the
+    same arrays (the same bits), without the wrapper's checks and conversions."""
+    if _GESV is None or a.dtype != np.float64 or b.dtype != np.float64 or a.shape[-1] != a.shape[-2]:
+        return np.linalg.solve(a, b)
+    with np.errstate(call=_singular, invalid="call", over="ignore", divide="ignore", under="ignore"):
+        return _GESV(a, b, signature="dd->d")
 
 
 def _velocity(system, rows, q, jac=None):
@@ -211,7 +237,7 @@ def _velocity(system, rows, q, jac=None):
     rhs = np.zeros(jac.shape[:2])
     rhs[:, -1] = 1.0
     try:
-        return np.linalg.solve(jac, rhs[..., None])[..., 0]
+        return _solve(jac, rhs[..., None])[..., 0]
     except np.linalg.LinAlgError:   # a singular pose among them: no tangent there (NaN)
         return np.stack([_solve_or_nan(j, r) for j, r in zip(jac, rhs)])
 
