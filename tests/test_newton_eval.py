@@ -163,3 +163,16 @@ def test_solve_is_numpys():
     for solve in (pose._solve, np.linalg.solve):
         with pytest.raises(np.linalg.LinAlgError):
             solve(singular, np.ones((1, 3, 1)))
+
+
+def test_scaled_divides_the_lengths_alone():
+    """pose._scaled (one division by the column scales L, L, 1) gives the lengths' columns divided
+    by L and the angles' as they are, to the byte (-0.0, infinities)."""
+    system = _all()[0][1].system
+    dq = np.random.default_rng(3).normal(size=(5, system.nq)) * 10.0
+    dq[0, :3] = [-0.0, np.inf, -np.inf]
+    dq[1, 2::3] = -0.0
+    old = dq.copy()
+    old[:, 0::3] /= system.size
+    old[:, 1::3] /= system.size
+    assert _same(pose._scaled(system, dq), old) and not np.shares_memory(pose._scaled(system, dq), dq)

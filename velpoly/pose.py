@@ -744,11 +744,9 @@ def check_closed_form(system: System, rows, q, deltas) -> bool:
 
 
 def _scaled(system, dq):
-    """Coordinates in unit lengths (lengths divided by the mechanism's size)."""
-    dq = np.array(dq, float, copy=True)
-    dq[:, 0::3] /= system.size
-    dq[:, 1::3] /= system.size
-    return dq
+    """Coordinates in unit lengths (lengths divided by the mechanism's size; angles by 1.0, exactly
+    themselves: the system's column scales)."""
+    return np.asarray(dq, float) / system._scales[1]
 
 
 def _drift(system, dq):
