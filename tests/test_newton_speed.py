@@ -3,8 +3,8 @@
 algorithm before it, bit for bit.
 
 ``_reference_range`` is the former ``velpoly.driver._reachable_range``: each reassembly from
-scratch (``reassemble`` without ``knots`` steps every knot itself, as the code before it did).
-Every reassembly the new code makes is compared with the reference's, in order: the same driver
+scratch (``reassemble`` given a fresh ``Knots`` steps every knot itself, as the code before it did;
+given none, it keeps them by mechanism equality from one call to the next). Every reassembly the new code makes is compared with the reference's, in order: the same driver
 positions and poses (exact equality of floats), the same stop and the same slot end; and the
 ranges are equal. The mechanisms are generated (seeded zoo specimens of every continuation kind:
 a contact, a slot, an inverted slider-crank, a six-bar, each past a toggle both ways or leaving
@@ -27,11 +27,12 @@ EXAMPLES = Path(velpoly.__file__).parent / "examples"
 
 
 def _reference_range(kin, limit=360.0, step=1.0, resolution=0.01):
-    """velpoly.driver._reachable_range as it was before the knots were kept (eb22ca2)."""
+    """velpoly.driver._reachable_range as it was before the knots were kept (eb22ca2): each
+    continuation with knots of its own (a fresh ``Knots``: none kept from another call)."""
     out = []
     for sign in (1.0, -1.0):
         coarse = np.arange(step, limit + step / 2, step)
-        r = pose.reassemble(kin.system, list(kin.rows), np.radians(coarse) * sign)
+        r = pose.reassemble(kin.system, list(kin.rows), np.radians(coarse) * sign, knots=pose.Knots())
         if r.leaves is not None:
             out.append(round(float(np.degrees(r.leaves[2])), 6))
             continue
@@ -39,7 +40,7 @@ def _reference_range(kin, limit=360.0, step=1.0, resolution=0.01):
         if last < limit:
             fine = np.arange(last + resolution, min(last + step, limit) + resolution / 2, resolution)
             path = np.concatenate([coarse[coarse <= last + 1e-9], fine])
-            r = pose.reassemble(kin.system, list(kin.rows), np.radians(path) * sign)
+            r = pose.reassemble(kin.system, list(kin.rows), np.radians(path) * sign, knots=pose.Knots())
             last = float(np.degrees(abs(r.deltas[-1]))) if len(r.deltas) else 0.0
         out.append(sign * round(last / resolution) * resolution)
     return out[1], out[0]
@@ -121,3 +122,28 @@ def test_knots_are_forgotten_for_another_continuation():
     assert knots.key[2] == np.radians(5.0)
     _same_reassembly(other, pose.reassemble(kin.system, rows, coarse, coarse=np.radians(5.0)))
     _same_reassembly(first, pose.reassemble(kin.system, rows, coarse))
+
+
+def test_knots_kept_from_call_to_call_give_the_fresh_poses(monkeypatch):
+    """``reassemble`` without ``knots`` (``solve`` at an angle) keeps them by mechanism equality, one
+    way from the drawn pose and the other: a mechanism loaded again and solved at angle after angle,
+    both ways and past its toggle, gets the poses and stops of fresh continuations, bit for bit, in
+    fewer knot steps."""
+    sp = specimen(np.random.default_rng(0), "inverted slider-crank", "through both crank")
+    angles = [40.0, -30.0, 150.0, 100.0, 60.0, -90.0, -150.0]
+    steps, real_step = [], pose._step
+    monkeypatch.setattr(pose, "_step", lambda *a: steps.append(1) or real_step(*a))
+    made, kins = [], [prepare(velpoly.load(sp.mech)) for _ in range(2)]   # equal mechanisms, not the same
+    for fresh in (False, True):
+        del steps[:]
+        for i, t in enumerate(angles):
+            kin = kins[i % 2]
+            made.append(pose.reassemble(kin.system, list(kin.rows), [np.radians(t)],
+                                        knots=pose.Knots() if fresh else None))
+        made.append(len(steps))
+    kept, fresh = made[:len(angles) + 1], made[len(angles) + 1:]
+    for a, b in zip(kept[:-1], fresh[:-1]):
+        _same_reassembly(a, b)
+    reached = [len(r.deltas) for r in fresh[:-1]]
+    assert reached == [1, 1, 0, 1, 1, 1, 1]      # 150 deg is past a toggle
+    assert kept[-1] < 0.6 * fresh[-1]          # each way walked once (51 knot steps, 100 fresh)

@@ -13,7 +13,7 @@ import numpy as np
 from .kinematics import Kinematics
 from .model import Mechanism
 from .motion import wrap_deg_float
-from .pose import Knots, reassemble
+from .pose import Knots, reassemble, same_mechanism
 
 __all__ = ["driver_reference_angle", "reachable_range", "reachable_text", "driver_label"]
 
@@ -44,20 +44,12 @@ def reachable_range(kin: Kinematics, limit: float = 360.0, step: float = 1.0,
     it each ask) gets its range without the continuation again (a second or more past a toggle)."""
     m, args = kin.system.mechanism, (tuple(kin.rows), limit, step, resolution)
     for known, known_args, found in reversed(_RANGES):
-        if known_args == args and _same(known, m):
+        if known_args == args and same_mechanism(known, m):
             return found
     found = _reachable_range(kin, limit, step, resolution)
     _RANGES.append((m, args, found))
     del _RANGES[:-16]
     return found
-
-
-def _same(a: Mechanism, b: Mechanism) -> bool:
-    """Whether two mechanisms are equal (frozen dataclasses of tuples, mappings and floats)."""
-    try:
-        return a is b or bool(a == b)
-    except (TypeError, ValueError):   # a field that does not compare (an array): not known equal
-        return False
 
 
 def _reachable_range(kin: Kinematics, limit: float, step: float, resolution: float) -> tuple[float, float]:

@@ -22,7 +22,7 @@ from .constraints import System
 from .dyads import assemble, dyad_plan, walk
 
 __all__ = ["circle_circle", "coarse_step", "circle_line", "Reassembly", "reassemble", "select_rows", "check_closed_form",
-           "walked_reach", "slot_travel", "TOUCH"]
+           "walked_reach", "slot_travel", "same_mechanism", "TOUCH"]
 
 
 # -- compass and ruler ----------------------------------------------------------
@@ -272,15 +272,48 @@ def reassemble(system: System, rows: list[int], deltas, coarse: float | None = N
 
     ``knots`` (a :class:`Knots`, optional) keeps the continuation's knots for the next call with
     the same system, rows and ``coarse``: a knot step it has made (or seen fail) is not made again.
+    Without it, the knots of the last few continuations are kept by mechanism equality, one
+    :class:`Knots` for each way from the drawn pose (:func:`_kept_knots`): solving an equal mechanism
+    at angle after angle walks the way to each from the drawn pose once, not again for every angle.
     """
     system = system.positions   # a prescribed slip in positions, or InputError (no position equation)
     deltas = np.asarray(deltas, float).ravel()
     fast = _closed_form(system, rows, deltas)
     if fast is not None:
         return fast
+    if knots is None and len(deltas):
+        knots = _kept_knots(system, rows, coarse_step(system) if coarse is None else coarse, deltas[0])
     ends = [i for i, s in enumerate(system.mechanism.slots) if s.ends]
     r, kd, kq, attach, sign = _continue(system, rows, deltas, coarse, knots)
     return _within_slots(system, rows, r, ends, kd, kq, attach, sign) if ends else r
+
+
+def same_mechanism(a, b) -> bool:
+    """Whether two mechanisms are equal (frozen dataclasses of tuples, mappings and floats): their
+    equations are then the same and a continuation of one is that of the other, bit for bit."""
+    try:
+        return a is b or bool(a == b)
+    except (TypeError, ValueError):   # a field that does not compare (an array): not known equal
+        return False
+
+
+_KEPT: list = []    # (mechanism, (rows, coarse, way), Knots) of the last continuations, newest last
+
+
+def _kept_knots(system, rows, coarse: float, first: float) -> "Knots":
+    """The kept :class:`Knots` of an equal mechanism's continuation on the same rows with the same
+    ``coarse`` step the same way (the sign of the ``first`` driver position), or a new one."""
+    key = (tuple(rows), float(coarse), first < 0.0)
+    m = system.mechanism
+    for i in range(len(_KEPT) - 1, -1, -1):
+        known, known_key, knots = _KEPT[i]
+        if known_key == key and same_mechanism(known, m):
+            _KEPT.append(_KEPT.pop(i))
+            return knots
+    knots = Knots()
+    _KEPT.append((m, key, knots))
+    del _KEPT[:-8]
+    return knots
 
 
 class Knots:
@@ -304,7 +337,8 @@ class Knots:
         """Use these knots for a continuation of ``system`` on ``rows`` with steps of ``coarse``
         (forgetting them if they were another's)."""
         key = (system, tuple(rows), coarse)
-        if self.key is None or self.key[0] is not system or self.key[1:] != key[1:]:
+        if self.key is None or self.key[1:] != key[1:] or not (
+                self.key[0] is system or same_mechanism(self.key[0].mechanism, system.mechanism)):
             self.key, self.d, self.made, self.failed = key, [0.0], [], set()
 
     def step(self, system, rows, q, jac, k: int, target: float, sign):
