@@ -385,7 +385,8 @@ def rolling_drag_link(radius: float = 4.0) -> str:
 def test_rolling_drag_link_solves_at_every_integer_angle():
     # the batched correction of a pose 5 deg past its knot missed (167 deg exited 3, "reachable: -197 to
     # 118"): such a pose is retried step by step from the nearest converged pose before it is a toggle.
-    # Every integer angle sweeps; solve (a walk from the drawn pose each time, 75 ms) is checked at every
+    # Every integer angle sweeps; solve (a walk from the drawn pose each time, its knots kept from the one
+    # before by pose._kept_knots, a batched correction and the velocities anew) is checked at every
     # 17th degree from a seeded offset and at the angles that failed, which keeps the suite fast
     m = velpoly.load(rolling_drag_link())
     w = velpoly.sweep(m, np.arange(0.0, 360.0, 1.0))
