@@ -41,7 +41,7 @@ from typing import Callable
 import numpy as np
 
 from .errors import InputError
-from .jet import Grad, Jet
+from .jet import Grad, Jet, _cos_sin
 from .model import Mechanism
 from .rigid import direction as _unit, dot as _dot
 
@@ -111,10 +111,26 @@ class Frame:
             k = self._index.get(link)
             if k is None:
                 return None
-            x, y, th = (self._coordinate(3 * k + i) for i in range(3))
-            b = (x, y, *th.cos_sin(), th)
+            if self.sparse and not self.values_only:
+                b = self._sparse_body(3 * k)
+            else:
+                x, y, th = (self._coordinate(3 * k + i) for i in range(3))
+                b = (x, y, *th.cos_sin(), th)
             self._cache[link] = b
         return b
+
+    def _sparse_body(self, i: int) -> tuple:
+        """One pose's (x, y, cos, sin, theta) jets of the link with coordinates i, i + 1, i + 2, made
+        at once: :meth:`_coordinate`'s jets and :meth:`Jet.cos_sin`'s products (``Jet._unary``: the
+        gradient times f', the rate times f', h f' + f'' rate^2 with h = 0), the same operations."""
+        q, qd, n, t = self.q, self.qd, self.nq, i + 2
+        v, w = q[t], qd[t]
+        c, s = _cos_sin(v)
+        ms, mc, ww = -s, -c, w * w
+        return (Jet(q[i], Grad({i: 1.0}, 0.0, n), qd[i], 0.0), Jet(q[i + 1], Grad({i + 1: 1.0}, 0.0, n), qd[i + 1], 0.0),
+                Jet(c, Grad({t: 1.0 * ms}, 0.0 * ms, n), w * ms, 0.0 * ms + mc * ww),
+                Jet(s, Grad({t: 1.0 * c}, 0.0 * c, n), w * c, 0.0 * c + ms * ww),
+                Jet(v, Grad({t: 1.0}, 0.0, n), w, 0.0))
 
     def _coordinate(self, i: int) -> Jet:
         if self.scalar:
