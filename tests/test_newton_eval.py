@@ -151,20 +151,6 @@ def test_grad_holds_the_dense_columns():
         assert _same(x.dense(), y)
 
 
-def test_solve_is_numpys():
-    """pose._solve (LAPACK's gesv through numpy's gufunc, without the wrapper) gives np.linalg.solve's
-    bits, and its LinAlgError for a singular matrix."""
-    rng = np.random.default_rng(5)
-    for n, k, count in ((3, 1, 1), (9, 1, 1), (12, 1, 40), (6, 2, 3)):
-        a, b = rng.normal(size=(count, n, n)), rng.normal(size=(count, n, k))
-        a[0, 0] *= 1e12
-        assert _same(pose._solve(a, b), np.linalg.solve(a, b))
-    singular = np.ones((1, 3, 3))
-    for solve in (pose._solve, np.linalg.solve):
-        with pytest.raises(np.linalg.LinAlgError):
-            solve(singular, np.ones((1, 3, 1)))
-
-
 def test_scaled_divides_the_lengths_alone():
     """pose._scaled (one division by the column scales L, L, 1) gives the lengths' columns divided
     by L and the angles' as they are, to the byte (-0.0, infinities)."""

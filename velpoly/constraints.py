@@ -41,7 +41,7 @@ from typing import Callable
 import numpy as np
 
 from .errors import InputError
-from .jet import Grad, Jet, _cos_sin
+from .jet import Grad, Jet, cos_sin_value
 from .model import Mechanism
 from .rigid import direction as _unit, dot as _dot
 
@@ -125,7 +125,7 @@ class Frame:
         gradient times f', the rate times f', h f' + f'' rate^2 with h = 0), the same operations."""
         q, qd, n, t = self.q, self.qd, self.nq, i + 2
         v, w = q[t], qd[t]
-        c, s = _cos_sin(v)
+        c, s = cos_sin_value(v)
         ms, mc, ww = -s, -c, w * w
         return (Jet(q[i], Grad({i: 1.0}, 0.0, n), qd[i], 0.0), Jet(q[i + 1], Grad({i + 1: 1.0}, 0.0, n), qd[i + 1], 0.0),
                 Jet(c, Grad({t: 1.0 * ms}, 0.0 * ms, n), w * ms, 0.0 * ms + mc * ww),
@@ -445,6 +445,12 @@ class System:
                 row_all.setflags(write=False)
         return jac * row * col[None, :]
 
+    @property
+    def column_scales(self) -> np.ndarray:
+        """Each coordinate's unit (read-only): the mechanism's size L for a link's x and y, 1.0 for its
+        angle; dividing by it divides the lengths by L and leaves the angles exactly as they are."""
+        return self._scales[1]
+
     @functools.cached_property
     def _row_scales(self) -> dict:
         return {}
@@ -457,6 +463,7 @@ class System:
         col[0::3] = L
         col[1::3] = L
         row = np.array([1.0 / L if e.dim == 1 else 1.0 for e in self.equations + (self.driver,)])
+        col.setflags(write=False)
         return row, col
 
 

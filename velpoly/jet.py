@@ -23,10 +23,10 @@ import math
 
 import numpy as np
 
-__all__ = ["Jet", "Grad"]
+__all__ = ["Jet", "Grad", "cos_sin_value"]
 
 
-def _cos_sin(v):
+def cos_sin_value(v):
     """cos v and sin v: numpy's for arrays; for one pose's float, math's (the same values as numpy's
     on the platforms checked, tests/test_instant_speedups.py), which keep the jets' values plain
     floats: numpy's scalars cost ten times a float in every later operation."""
@@ -249,7 +249,7 @@ class Jet:
     def cos_sin(self) -> tuple["Jet", "Jet"]:
         """(cos f, sin f), with cos' = -sin f', cos'' = -cos, sin' = cos f', sin'' = -sin (one cos
         and one sin of the value for both)."""
-        c, s = _cos_sin(self.v)
+        c, s = cos_sin_value(self.v)
         return self._unary(c, -s, -c), self._unary(s, c, -s)
 
     def cos(self):

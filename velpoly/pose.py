@@ -179,7 +179,7 @@ def _newton_one(system, rows, q, target: float, iters: int):
     values, without the batch's masks; the correction's size in unit lengths divides by (L, L, 1, ...) (the system's
     column scales; 1.0 an exact identity), as :func:`_scaled` divides the lengths' columns."""
     q = q.copy()
-    unit = system._scales[1]
+    unit = system.column_scales
     last = math.inf
     every = None       # rows selecting every equation: the evaluation's own (fresh) arrays serve
     for _ in range(iters):
@@ -191,7 +191,7 @@ def _newton_one(system, rows, q, target: float, iters: int):
             jac = jac[:, rows]
         phi[0, -1] -= target
         try:
-            dq = _solve(jac, -phi[..., None])[..., 0]
+            dq = np.linalg.solve(jac, -phi[..., None])[..., 0]
         except np.linalg.LinAlgError:
             dq = _solve_or_nan(jac[0], -phi[0])[None, :]
         size = float(np.abs(dq[0] / unit).max())
@@ -210,26 +210,6 @@ def _newton_one(system, rows, q, target: float, iters: int):
     return q, ok, jac
 
 
-try:   # the gufunc np.linalg.solve calls (LAPACK's gesv), without its checks of the arguments
-    from numpy.linalg import _umath_linalg
-    _GESV = _umath_linalg.solve
-except (ImportError, AttributeError):    # pragma: no cover - another numpy
-    _GESV = None
-
-
-def _singular(err, flag):
-    raise np.linalg.LinAlgError("Singular matrix")
-
-
-def _solve(a: np.ndarray, b: np.ndarray) -> np.ndarray:
-    """``np.linalg.solve(a, b)`` for float64 stacks (N, n, n) and (N, n, k): the same gufunc on the
-    same arrays (the same bits), without the wrapper's checks and conversions."""
-    if _GESV is None or a.dtype != np.float64 or b.dtype != np.float64 or a.shape[-1] != a.shape[-2]:
-        return np.linalg.solve(a, b)
-    with np.errstate(call=_singular, invalid="call", over="ignore", divide="ignore", under="ignore"):
-        return _GESV(a, b, signature="dd->d")
-
-
 def _velocity(system, rows, q, jac=None):
     """q' per unit driver rate at the poses q (the continuation's tangent)."""
     if jac is None:
@@ -237,7 +217,7 @@ def _velocity(system, rows, q, jac=None):
     rhs = np.zeros(jac.shape[:2])
     rhs[:, -1] = 1.0
     try:
-        return _solve(jac, rhs[..., None])[..., 0]
+        return np.linalg.solve(jac, rhs[..., None])[..., 0]
     except np.linalg.LinAlgError:   # a singular pose among them: no tangent there (NaN)
         return np.stack([_solve_or_nan(j, r) for j, r in zip(jac, rhs)])
 
@@ -780,7 +760,7 @@ def check_closed_form(system: System, rows, q, deltas) -> bool:
 def _scaled(system, dq):
     """Coordinates in unit lengths (lengths divided by the mechanism's size; angles by 1.0, exactly
     themselves: the system's column scales)."""
-    return np.asarray(dq, float) / system._scales[1]
+    return np.asarray(dq, float) / system.column_scales
 
 
 def _drift(system, dq):
