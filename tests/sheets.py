@@ -30,9 +30,21 @@ def on(style: str):
 
 
 @functools.cache
+def loaded(stem: str):
+    """The example ``stem``'s mechanism (loaded once; cheap enough for collection, unlike ``solved``)."""
+    return velpoly.load(example(stem))
+
+
+def own_sheet(stem: str) -> str:
+    """The sheet ``velpoly draw`` and the gallery draw for the example ``stem``."""
+    from velpoly.render import sheet
+    return sheet.default_sheet(loaded(stem))
+
+
+@functools.cache
 def solved(stem: str):
     """``velpoly.solve`` of the example ``stem`` at its file's pose (loaded and solved once)."""
-    return velpoly.solve(velpoly.load(example(stem)))
+    return velpoly.solve(loaded(stem))
 
 
 @functools.cache
