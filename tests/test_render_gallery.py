@@ -14,7 +14,7 @@ by tests/sheets.py (other tests look at the same pages: a page only one test nee
 and drawn through, every text laid out: it has its sheet's panels and table, no two labels overlap,
 captions state their panels' scales. (Until issue 19 item 7 every second file drew a sheet of the
 rotation and four files both styles: 32 pages here, 43 drawn in a run with the other tests' own; now 29
-and 36, each file still drawn and checked in one style.)
+and 34, each file still drawn and checked in one style.)
 A file whose contacts are given by their normals only has no acceleration sheet (an InputError saying
 that centres of curvature are needed, FORMAT.md section 5); its full sheet shows velocities only.
 """
