@@ -30,9 +30,27 @@ def on(style: str):
 
 
 @functools.cache
+def loaded(stem: str):
+    """The example ``stem``'s mechanism (loaded once; cheap enough for collection, unlike ``solved``)."""
+    return velpoly.load(example(stem))
+
+
+def own_sheet(stem: str) -> str:
+    """The sheet ``velpoly draw`` and the gallery draw for the example ``stem`` (``full`` for a file that does not
+    load: asked for at collection, where an error would take every test of the module with it; the file's page
+    test then fails on loading it)."""
+    from velpoly.errors import VelpolyError
+    from velpoly.render import sheet
+    try:
+        return sheet.default_sheet(loaded(stem))
+    except VelpolyError:
+        return "full"
+
+
+@functools.cache
 def solved(stem: str):
     """``velpoly.solve`` of the example ``stem`` at its file's pose (loaded and solved once)."""
-    return velpoly.solve(velpoly.load(example(stem)))
+    return velpoly.solve(loaded(stem))
 
 
 @functools.cache

@@ -15,10 +15,9 @@ from matplotlib.backends.backend_agg import FigureCanvasAgg
 from matplotlib.figure import Figure
 from shapely.geometry import LineString
 
-from test_pole_labels import _poles_drawing, sixbars, texts_on_lines
+from test_pole_labels import DENSE, dense_drawing, dense_sixbars, texts_on_lines
 from velpoly.render.canvas import box
 from velpoly.render.labels import placer
-from velpoly.render.style import get_style
 
 # of sixbars(5, 36) on slides: leaders crossed in these before (eb22ca2: 18 of the 36), in none of them now
 UNCROSSED = (3, 14, 33, 35)
@@ -75,14 +74,14 @@ def crossings_of(pl) -> list:
     return [c for c in pl._crossings() if c[2] == "leader"]
 
 
+@DENSE
 def test_crowded_six_bars_leaders_apart():
     """Dense generated six-bars whose pole labels' leaders crossed (a leader across another leader or across a
     label): now none crosses, no pole label or driver's value lies on a Kennedy line or a leader, and every pole
     still has its label."""
-    st = get_style("slides")
-    specs = sixbars(5, max(UNCROSSED) + 1)
+    specs = dense_sixbars(5)   # six-bar 3's drawing is test_pole_labels' too: drawn once (their xdist group)
     for i in UNCROSSED:
-        ax, art = _poles_drawing(specs[i].drawn, st)
+        ax, art = dense_drawing(5, i, "slides")
         assert not crossings(ax), (i, specs[i].kind, crossings(ax))
         assert not texts_on_lines(ax), (i, texts_on_lines(ax))
         gids = {t.get_gid() for t in ax.texts}

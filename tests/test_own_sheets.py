@@ -355,14 +355,15 @@ def test_merge_series_keeps_curves_that_only_touch():
     assert merge_series([("z", 0 * x), ("y", 0 * x)]) == ([], ["z", "y"])   # a panel of zeros: a note only
 
 
-@pytest.mark.parametrize("stem", ["ex3_4_slotted_lever", "ex3_10_rolling_contact", "fig3_15b_sliding"])
-@sheets.on("textbook")
-def test_a_promised_footnote_is_on_the_sheet(stem):
+@pytest.mark.parametrize("stem,style", [pytest.param(stem, style, marks=sheets.on(style)) for stem, style in (
+    ("ex3_4_slotted_lever", "textbook"), ("ex3_10_rolling_contact", "textbook"), ("fig3_15b_sliding", "slides"))])
+def test_a_promised_footnote_is_on_the_sheet(stem, style):
     """The rows a [reference] note explains lead the book's rows, so a table cut to its room keeps them
     and their footnotes; the title announces a footnote only when one is drawn (Ex. 3.4's full sheet
     promised a † whose row was among the rows cut). The sheet is the shared gallery page (tests/sheets.py:
-    the first two are drawn for test_render_gallery anyway); the table is drawn again on a page of its own
-    of the same size, in the sheet's table's place."""
+    each is drawn for test_render_gallery anyway; Fig. 3.15b's in slides, its gallery style, since issue 19
+    item 7: a textbook page of its own cost a draw); the table is drawn again on a page of its own of the
+    same size, in the sheet's table's place."""
     from matplotlib.backends.backend_agg import FigureCanvasAgg
     from matplotlib.figure import Figure
     from velpoly.render.table import NOTED, draw_results_table, results_table
@@ -372,13 +373,13 @@ def test_a_promised_footnote_is_on_the_sheet(stem):
     ref = t.header.index("reference")
     kinds = [(bool(row[ref]), (row[-1].split() or [""])[-1] in marks) for row in t.rows]
     assert any(k[1] for k in kinds) and kinds == sorted(kinds, key=lambda k: (not k[0], not k[1]))
-    fig = sheets.page(stem, "full", "textbook")     # read only
+    fig = sheets.page(stem, "full", style)     # read only
     tab = next(ax for ax in fig.axes if ax.get_label() == "table")
     probe = Figure(figsize=fig.get_size_inches(), dpi=fig.dpi)
     FigureCanvasAgg(probe)
-    with sheets.styled("textbook"):
+    with sheets.styled(style):
         art = draw_results_table(sol, probe.add_axes(tab.get_position().bounds, label="probe"), sheet="full",
-                                 style="textbook", velocity=cons.velocity, acceleration=cons.acceleration,
+                                 style=style, velocity=cons.velocity, acceleration=cons.acceleration,
                                  poleset=cons.poles)
     promised = f"{NOTED} the book's value is explained in a footnote" in " ".join(art["title"][0].get_text().split())
     assert promised == bool(art.notes) and art.notes, (stem, art.shown)

@@ -7,6 +7,8 @@ pole label's and driver value's text box on the canvas against every Kennedy lin
 other labels' leaders)."""
 from __future__ import annotations
 
+import functools
+
 import numpy as np
 import pytest
 from matplotlib.backends.backend_agg import FigureCanvasAgg
@@ -47,6 +49,25 @@ def sixbars(seed: int, count: int):
     return [zoo.specimen(rng, "six-bar", variants[i % len(variants)]) for i in range(count)]
 
 
+# the dense six-bars' poles drawings that this file and test_fig17_leaders read (seed 5's slide of six-bar 3 in
+# both): one worker draws each once (issue 19 item 7; a drawing is 1.5-3 s, the label placer's)
+DENSE = pytest.mark.xdist_group("dense-sixbars")
+MOST = {5: 36, 6: 4}   # the six-bars of each seed these tests draw (a seed's first ones are the same whatever the count)
+
+
+@functools.cache
+def dense_sixbars(seed: int) -> tuple:
+    """``sixbars(seed, MOST[seed])``, generated once per process."""
+    return tuple(sixbars(seed, MOST[seed]))
+
+
+@functools.cache
+def dense_drawing(seed: int, index: int, style: str):
+    """The poles drawing (ax, art) of six-bar ``index`` of ``dense_sixbars(seed)`` in ``style``, drawn once per
+    process (``_poles_drawing``). Read only."""
+    return _poles_drawing(dense_sixbars(seed)[index].drawn, get_style(style))
+
+
 # (style, seed, indices of sixbars(seed, 4)): the dense six-bars that had a pole label or a driver's value on a Kennedy
 # line before the lines were obstacles (80ed0ef; measured with its parent's velpoly: textbook watt I and watt II
 # with 2 and 5 such texts, slides watt I, stephenson I and III with 12, 6 and 4). The others of the four a style
@@ -55,22 +76,18 @@ def sixbars(seed: int, count: int):
 FAILED = {"textbook": (6, (0, 1)), "slides": (5, (0, 2, 3))}
 
 
+@DENSE
 @pytest.mark.parametrize("style", ["textbook", "slides"])
 def test_pole_labels_and_driver_values_lie_on_no_kennedy_line(style):
     """The dense generated six-bars that had such texts (``FAILED``): every pole labelled, the driver's values
     written, and no such text on a Kennedy line or a leader."""
-    st = get_style(style)
     checked = 0
     seed, picked = FAILED[style]
-    specs = sixbars(seed, 4)
-    for sp in (specs[i] for i in picked):
+    specs = dense_sixbars(seed)
+    for i, sp in ((i, specs[i]) for i in picked):
         sol = sp.drawn
         ps = locate_poles(sol)
-        with rc_context(st):
-            fig = Figure(figsize=(7.5, 7.0), dpi=72)
-            FigureCanvasAgg(fig)
-            ax = fig.add_axes((0.02, 0.02, 0.96, 0.96))
-            art = draw_poles(sol, ax, style=st, poleset=ps)
+        ax, art = dense_drawing(seed, i, style)
         gids = {t.get_gid() for t in ax.texts}
         assert "driver-label" in gids, sp.kind
         assert {f"label-pole-{k}" for k, p in ps.poles.items() if p.position is not None or p.direction is not None} \
@@ -83,6 +100,7 @@ def test_pole_labels_and_driver_values_lie_on_no_kennedy_line(style):
 
 
 def _poles_drawing(sol, st):
+    """A poles drawing of ``sol`` in the style ``st`` on a page of its own: (its axes, draw_poles' artists)."""
     with rc_context(st):
         fig = Figure(figsize=(7.5, 7.0), dpi=72)
         FigureCanvasAgg(fig)
@@ -94,6 +112,7 @@ def _poles_drawing(sol, st):
 CROWDS = (7, 23, 26)   # of sixbars(5, 36) on slides: the crowds of each kind (6 and 22 had a driver's value on a line)
 
 
+@DENSE
 def test_no_text_on_a_line_or_leader_in_a_crowd():
     """Slides, the dense six-bars of seed 5 that had a pole label or a driver's value on a Kennedy line or under
     a leader (before: 4 of the 36 of sixbars(5, 36), then 2 pole labels and 1 driver's value; now 0 of 36): an
@@ -102,11 +121,10 @@ def test_no_text_on_a_line_or_leader_in_a_crowd():
     crowd), a driver's value under a later leader (placed again clear of it). No pole label and no driver's
     value meets a Kennedy line or another text's leader; each arrow to a pole at infinity points its pole's
     way, clear of every label."""
-    st = get_style("slides")
-    specs = sixbars(5, max(CROWDS) + 1)
+    specs = dense_sixbars(5)
     for i in CROWDS:
         sol = specs[i].drawn
-        ax, art = _poles_drawing(sol, st)
+        ax, art = dense_drawing(5, i, "slides")
         values = [t for t in ax.texts if (t.get_gid() or "").startswith("driver-label") and t.get_text()]
         assert values, specs[i].kind
         assert not texts_on_lines(ax), (i, specs[i].kind, texts_on_lines(ax))

@@ -23,7 +23,7 @@ from velpoly.errors import InputError
 from velpoly.render.displacement import draw_mechanism
 
 import mechanisms as M
-from paths import GALLERY_FILES, example
+from paths import GALLERY_FILES
 
 GALLERY = [str(p) for p in GALLERY_FILES]
 # each (driver, slot shape) at three of the six poses: straight slots driven by the pin and circular ones by the
@@ -135,23 +135,19 @@ def test_slot_between_its_ends(seed, angle):
     _check_slot(sol, art, tol, ends=("S1", "S2"))
 
 
-def test_slotted_lever_slot_stops_short_of_its_pivot():
-    """Example 3.4: the lever's slot runs along C -> A; its cut stops before the pivot C."""
-    sol = velpoly.solve(velpoly.load(str(example("ex3_4_slotted_lever"))))
-    art, tol = _drawn(sol)
-    _check_slot(sol, art, tol)
-    (link, line, cut), = art.slot_cuts.values()
-    c = Point(*sol.place("3", "C"))
-    assert cut.distance(c) > 0
-
-
 @pytest.mark.parametrize("path", GALLERY, ids=os.path.basename)
 def test_gallery_ground_crosses_no_moving_link(path):
+    """Every gallery file: the ground's hatching crosses no moving link; a slot is cut in its link. Example 3.4
+    (its own test until issue 19 item 7, which drew it a second time): the lever's slot runs along C -> A and
+    its cut stops before the pivot C."""
     sol = velpoly.solve(velpoly.load(path))
     art, tol = _drawn(sol)
     assert _check_ground(art, tol) >= 1
     if sol.mechanism.slots:
         _check_slot(sol, art, tol)
+    if os.path.basename(path) == "ex3_4_slotted_lever.toml":
+        (link, line, cut), = art.slot_cuts.values()
+        assert cut.distance(Point(*sol.place("3", "C"))) > 0
 
 
 @pytest.mark.parametrize("seed,angle,follower", [(0, 20.0, "curved"), (1, 200.0, "curved"), (2, 110.0, "flat"),
