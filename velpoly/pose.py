@@ -786,6 +786,13 @@ def _orientation(jac) -> np.ndarray:
         return np.linalg.slogdet(jac)[0]
 
 
+# _smooth's floor (unit lengths): Newton stops once its correction stalls below 1e-10, so a step of no
+# length (a requested position equal to its knot but for rounding: 96.00000000000001 deg from the knot
+# at 16 x 6 deg) has a chord of that noise, which 0.1 of itself cannot bound; a real step's chord is
+# at least the halving's 1e-6 rad, far above it
+SMOOTH_FLOOR = 1e-9
+
+
 def _smooth(system, chord, t0, t1) -> np.ndarray:
     """Whether each step's chord q1 - q0 agrees with the trapezoid of its end tangents h q'(0), h q'(1)
     to a tenth of its length: true on a smooth branch for steps short against its curvature, false
@@ -793,7 +800,7 @@ def _smooth(system, chord, t0, t1) -> np.ndarray:
     on the other branch of a change point)."""
     c = _scaled(system, chord)
     err = np.abs(c - 0.5 * _scaled(system, t0 + t1)).max(axis=1)
-    return err <= 0.1 * np.abs(c).max(axis=1) + 1e-12     # NaN (a singular tangent): False
+    return err <= 0.1 * np.abs(c).max(axis=1) + SMOOTH_FLOOR     # NaN (a singular tangent): False
 
 
 def _step(system, rows, q, jac, d0, d1, sign):
