@@ -32,6 +32,9 @@ from .style import get_style
 __all__ = ["draw_poles", "draw_kennedy_circle", "pole_label", "shown_poles", "REACH", "KENNEDY_Z"]
 
 NUMBER_SPOTS = (0.3, 0.7, 0.5, 0.4, 0.6, 0.22, 0.78, 0.35, 0.65, 0.45, 0.55)  # along a chord, tried in turn
+# then, where none of those is clear of the other chords (a crowd of seven links), every 2 % of the chord from
+# its middle out to an eighth of it from either end (the chords meet at the links' points)
+FINE_SPOTS = tuple(sorted((round(0.12 + 0.02 * i, 2) for i in range(39)), key=lambda f: (abs(f - 0.5), f)))
 KENNEDY_Z = 3.6   # Kennedy and constraint lines: above every body (links 2, ground 2.9, blocks 3.2), below points 4
 REACH = 2.5   # the view holds the finite poles within REACH mechanism sizes of the mechanism
 
@@ -443,16 +446,61 @@ def _draw_chords(ax, kc, ps, st, upto, art) -> list:
 
 def _number_chords(pl, kc, numbered, st, art) -> None:
     """Each found chord's number on its own chord where it meets no other chord (so never at a crossing: on
-    a four-bar the two diagonals cross at the centre), no other number and no link label."""
+    a four-bar the two diagonals cross at the centre), no other number and no link label: at its size, else
+    smaller (:data:`SMALLER`). A number with no such place on its chord (a crowd of chords in a small circle)
+    goes beside the circle's crowd with a leader to its chord, off every chord, the circle and every label
+    (:func:`_number_off_chords`); only where none is free does it sit on its chord clear of the labels."""
     segs = {ch.key: segment(kc.points[ch.links[0]], kc.points[ch.links[1]]) for ch in kc.chords}
+    fractions = NUMBER_SPOTS + tuple(f for f in FINE_SPOTS if f not in NUMBER_SPOTS)
+    left = []
     for ch, a, b, colour in sorted(numbered, key=lambda x: x[0].order):
-        spots = [a + (b - a) * f for f in NUMBER_SPOTS]
-        kw = dict(fontsize=st.small_size, color=colour, zorder=6,
-                  bbox=dict(boxstyle="circle,pad=0.15", facecolor=st.paper, edgecolor=colour, lw=st.thin_lw))
+        spots = [a + (b - a) * f for f in fractions]
         others = [g for k, g in segs.items() if k != ch.key]
-        t = pl.place_at(spots, str(ch.order), gid=f"chord-number-{ch.key}", pad=3.0, avoid=others, **kw)
-        if t is None:   # crowded: no spot clear of every chord, then clear of the labels at least
-            t = pl.place_at(spots, str(ch.order), gid=f"chord-number-{ch.key}", pad=3.0, **kw)
-        if t is None:
-            t = pl.place(spots[0], str(ch.order), gid=f"chord-number-{ch.key}", pad=3.0, **kw)
+        for f in (1.0,) + SMALLER:
+            t = pl.place_at(spots, str(ch.order), gid=f"chord-number-{ch.key}", pad=3.0, avoid=others,
+                            **_number_style(st, colour, f))
+            if t is not None:
+                art.add("numbers", t)
+                break
+        else:
+            left.append((ch, spots, colour))
+    if left:
+        _number_off_chords(pl, kc, segs, left, st, art)
+
+
+def _number_style(st, colour, f: float = 1.0) -> dict:
+    """A chord number's text: small, in a circle the colour of its chord (``f``: of its size)."""
+    return dict(fontsize=st.small_size * f, color=colour, zorder=6,
+                bbox=dict(boxstyle="circle,pad=0.15", facecolor=st.paper, edgecolor=colour, lw=st.thin_lw))
+
+
+def _number_off_chords(pl, kc, segs, left, st, art) -> None:
+    """The chord numbers with no free place on their chords: each chord, the circle's rim and the links'
+    points an obstacle, each such number placed by the placer (:meth:`LabelPlacer.place`) with a leader from
+    the spot of its chord nearest the rim that is 5 pt from every other chord (else the spot farthest from
+    them), so that its leader is short and its end on no other chord; with no free place, on its chord clear
+    of the labels."""
+    from matplotlib.patches import Circle
+    for g in segs.values():   # no number on a chord (hard); a leader crosses as few as it can (soft)
+        pl.add_obstacle(g)
+        pl.add_obstacle(g, hard=False)
+    rim = next((p for p in pl.ax.patches if isinstance(p, Circle) and p.get_gid() == "kennedy-circle"), None)
+    if rim is not None:
+        pl.add_obstacle(Point(*rim.center).buffer(rim.radius).exterior)
+    pp = per_point(pl.ax)
+    for ch, spots, colour in left:
+        others = [g for k, g in segs.items() if k != ch.key]
+        apart = [min(g.distance(Point(*q)) for g in others) for q in spots]
+        clear = [q for q, d in zip(spots, apart) if d >= 5.0 * pp]   # a leader's end no one reads as another's
+        anchor = max(clear, key=lambda q: float(np.hypot(*q))) if clear else spots[int(np.argmax(apart))]
+        gid = f"chord-number-{ch.key}"
+        with pl.trial():
+            n = len(pl.overlapping)
+            t = pl.place(anchor, str(ch.order), gid=gid, pad=3.0, reach=True,
+                         prefer=math.degrees(math.atan2(anchor[1], anchor[0])), **_number_style(st, colour))
+            pl.keep = len(pl.overlapping) == n
+        if pl.of(t) is None:   # no free place: the trial took it off again
+            t = pl.place_at(spots, str(ch.order), gid=gid, pad=3.0, **_number_style(st, colour))
+            if t is None:
+                t = pl.place(spots[0], str(ch.order), gid=gid, pad=3.0, **_number_style(st, colour))
         art.add("numbers", t)
