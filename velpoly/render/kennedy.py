@@ -476,7 +476,8 @@ def _number_style(st, colour, f: float = 1.0) -> dict:
 
 def _number_off_chords(pl, kc, segs, left, st, art) -> None:
     """The chord numbers with no free place on their chords: each chord, the circle's rim and the links'
-    points an obstacle, each such number placed by the placer (:meth:`LabelPlacer.place`) with a leader from
+    points an obstacle, each such number placed by the placer (:meth:`LabelPlacer.place`; at its size, else
+    smaller) with a leader from
     the spot of its chord nearest the rim that is 5 pt from every other chord (else the spot farthest from
     them), so that its leader is short and its end on no other chord; with no free place, on its chord clear
     of the labels."""
@@ -494,11 +495,14 @@ def _number_off_chords(pl, kc, segs, left, st, art) -> None:
         clear = [q for q, d in zip(spots, apart) if d >= 5.0 * pp]   # a leader's end no one reads as another's
         anchor = max(clear, key=lambda q: float(np.hypot(*q))) if clear else spots[int(np.argmax(apart))]
         gid = f"chord-number-{ch.key}"
-        with pl.trial():
-            n = len(pl.overlapping)
-            t = pl.place(anchor, str(ch.order), gid=gid, pad=3.0, reach=True,
-                         prefer=math.degrees(math.atan2(anchor[1], anchor[0])), **_number_style(st, colour))
-            pl.keep = len(pl.overlapping) == n
+        for f in (1.0,) + SMALLER:
+            with pl.trial():
+                n = len(pl.overlapping)
+                t = pl.place(anchor, str(ch.order), gid=gid, pad=3.0, reach=True,
+                             prefer=math.degrees(math.atan2(anchor[1], anchor[0])), **_number_style(st, colour, f))
+                pl.keep = len(pl.overlapping) == n
+            if pl.of(t) is not None:
+                break
         if pl.of(t) is None:   # no free place: the trial took it off again
             t = pl.place_at(spots, str(ch.order), gid=gid, pad=3.0, **_number_style(st, colour))
             if t is None:

@@ -1,0 +1,118 @@
+"""Kennedy-circle chord numbers on no other chord and on no other text (issue 17, item 4: "text never on lines").
+
+A found chord's number belongs on its own chord, clear of every other chord (a number at a crossing, or sitting
+on a second chord, reads as the other pole's); with 6 or 7 links the 15 or 21 chords of a small circle leave
+little room: the number goes along its chord to a free stretch, or smaller, or beside the circle at the end of
+a leader from its chord (render/kennedy.py ``_number_chords``). Checked at the data level, after
+``draw_without_rendering``: every chord number's window extent (shrunk by a pixel) against every other
+chord as drawn (Line2D on the canvas), every other text (the other numbers, the links' labels) and the rim;
+a number off its chord has a leader whose end lies on its own chord. Drawn at the sizes and scales of the
+gallery's poles sheets (Example 3.4 in both styles, Problem 1.4.4 and the Stephenson six-bar on slides: 29
+numbers on another chord on 4a82552) and on generated six-bars, slotted six-bars and eight-bars (seeded)."""
+from __future__ import annotations
+
+import functools
+
+import numpy as np
+import pytest
+from matplotlib.backends.backend_agg import FigureCanvasAgg
+from matplotlib.figure import Figure
+from shapely.geometry import LineString, Point, box
+
+import velpoly
+import zoo
+from paths import example
+from velpoly.poles import locate_poles
+from velpoly.render.canvas import fit_view, renderer_of
+from velpoly.render.kennedy import draw_kennedy_circle
+from velpoly.render.labels import placer
+from velpoly.render.style import get_style, rc_context
+
+CM = 1 / 2.54
+# (example, style, the Kennedy panel's side in cm, its scale in units per cm) as the poles sheet draws them
+# (4a82552): numbers on another chord there 2, 12, 6 and 9
+GALLERY = (("ex3_4_slotted_lever", "textbook", 6.66, 0.5), ("ex3_4_slotted_lever", "slides", 5.72, 0.6),
+           ("problem_1_4_4_sixbar", "slides", 5.69, 0.6), ("stephenson_sixbar", "slides", 4.31, 0.8))
+# generated: (kind, variant), the six-bars drawn in a panel as small as the Stephenson six-bar's on slides; the
+# eight-bar's 28 chords as on a textbook page, and on slides at the Kennedy panel's most (8 cm: its 20 numbers in
+# a 5.7 cm slides panel find no free place, 14 sit on other chords)
+GENERATED = (("six-bar", "watt I"), ("six-bar", "stephenson III"), ("slot", "straight six-bar"),
+             ("six-bar", "watt II"), ("eight-bar", "watt II + dyad"))
+PANEL = {"six-bar": {"textbook": (4.31, 0.8), "slides": (4.31, 0.8)},
+         "eight-bar": {"textbook": (5.72, 0.6), "slides": (8.0, 0.4)}}
+
+
+def circle(sol, style: str, side: float, scale: float):
+    """The Kennedy circle of ``sol`` drawn in a ``side`` cm square panel at ``scale`` (as on a sheet)."""
+    st = get_style(style)
+    with rc_context(st):
+        fig = Figure(figsize=(side * CM, side * CM), dpi=72)
+        FigureCanvasAgg(fig)
+        ax = fig.add_axes((0, 0, 1, 1))
+        fit_view(ax, (-1.3, -1.3, 1.3, 1.3), scale=scale)
+        ax.set_axis_off()
+        art = draw_kennedy_circle(sol, ax, style=st, poleset=locate_poles(sol))
+        fig.draw_without_rendering()
+    return ax, art
+
+
+def number_clashes(ax) -> list:
+    """(number's gid, what it meets) of every chord number whose box (shrunk by a pixel) meets another chord, the
+    circle's rim, another text or another number's leader; and each number off its chord whose leader does not
+    end on its own chord."""
+    r = renderer_of(ax.figure)
+    pl = placer(ax)
+    chords = {ln.get_gid(): LineString(ax.transData.transform(np.column_stack(ln.get_data())))
+              for ln in ax.lines if (ln.get_gid() or "").startswith("chord-")}
+    leaders = {ln.get_gid(): LineString(ax.transData.transform(np.column_stack(ln.get_data())))
+               for ln in ax.lines if (ln.get_gid() or "").endswith("-leader")}
+    rim = next(p for p in ax.patches if p.get_gid() == "kennedy-circle")
+    c = ax.transData.transform([rim.center, (rim.center[0] + rim.radius, rim.center[1])])
+    ring = Point(*c[0]).buffer(float(np.hypot(*(c[1] - c[0]))), quad_segs=64).exterior
+    texts = [(t.get_gid(), box(*t.get_window_extent(r).extents).buffer(-1.0)) for t in ax.texts if t.get_text()]
+    out = []
+    for gid, b in texts:
+        if not (gid or "").startswith("chord-number-"):
+            continue
+        own = gid.replace("chord-number-", "chord-")
+        out += [(gid, k) for k, g in chords.items() if k != own and g.intersects(b)]
+        out += [(gid, k) for k, g in texts if k != gid and g.intersects(b)]
+        out += [(gid, k) for k, g in leaders.items() if k != gid + "-leader" and g.intersects(b)]
+        if ring.intersects(b) and not chords[own].intersects(b):
+            out.append((gid, "kennedy-circle"))
+        if gid + "-leader" in leaders and chords[own].distance(Point(leaders[gid + "-leader"].coords[0])) > 2.0:
+            out.append((gid, "leader off its chord"))
+        if gid + "-leader" not in leaders and not chords[own].intersects(b):
+            out.append((gid, "neither on its chord nor led to it"))
+    assert pl.labels, "nothing placed"
+    return out
+
+
+@functools.cache
+def generated():
+    rng = np.random.default_rng(17)
+    return [zoo.specimen(rng, kind, variant) for kind, variant in GENERATED]
+
+
+@pytest.mark.parametrize("stem,style,side,scale", GALLERY)
+def test_gallery_chord_numbers_clear(stem, style, side, scale):
+    """The gallery's crowded circles, as their poles sheets draw them: every found chord numbered, no number on
+    another chord, text or leader."""
+    sol = velpoly.solve(velpoly.load(example(stem)))
+    ax, art = circle(sol, style, side, scale)
+    found = [p for p in locate_poles(sol).poles.values() if p.order > 0]
+    assert len(art["numbers"]) == len(found) >= 8
+    assert sorted(int(t.get_text()) for t in art["numbers"]) == sorted(p.order for p in found)
+    assert not number_clashes(ax), number_clashes(ax)
+
+
+@pytest.mark.parametrize("style", ["textbook", "slides"])
+def test_generated_chord_numbers_clear(style):
+    """Generated six-bars and a slotted six-bar (seeded) in a panel as small as the Stephenson six-bar's on
+    slides (4.3 cm), an eight-bar (``PANEL``): no chord number on another chord, text or leader."""
+    seen = 0
+    for sp in generated():
+        ax, art = circle(sp.drawn, style, *PANEL["eight-bar" if sp.kind.startswith("eight") else "six-bar"][style])
+        assert not number_clashes(ax), (sp.kind, number_clashes(ax))
+        seen += len(art["numbers"])
+    assert seen >= 5 * 8, seen
