@@ -116,3 +116,22 @@ def test_generated_chord_numbers_clear(style):
         assert not number_clashes(ax), (sp.kind, number_clashes(ax))
         seen += len(art["numbers"])
     assert seen >= 5 * 8, seen
+
+
+def test_origin_label_off_the_vectors_of_a_flat_polygon():
+    """The origin's label of an acceleration polygon crushed flat (a generated inverted slider-crank with a
+    curved slider, slides: on 4a82552 its label lay on the tangential component's shaft, every place off the
+    lines near the origin reached only across one): now on no line, text or arrowhead, smaller where only that
+    finds a place (``Drawing._origin_label``); the sheet has no other clash either."""
+    from test_text_apart import KINDS, clashes
+    from velpoly.render import sheet
+    rng = np.random.default_rng(2)
+    sp = [zoo.specimen(rng, KINDS[i % len(KINDS)]) for i in range(11)][10]
+    st = get_style("slides")
+    with rc_context(st):
+        fig = sheet.render_sheet(sp.drawn, "full", st, cons=sheet.constructions(sp.drawn, "full"))
+        fig.draw_without_rendering()
+        got = clashes(fig)
+    origin = [t for ax in fig.axes for t in ax.texts if (t.get_gid() or "").startswith("label-acceleration-origin+")]
+    assert len(origin) == 1 and origin[0].get_text().startswith("$O_"), sp.kind
+    assert not got, (sp.kind, got)
