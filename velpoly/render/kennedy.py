@@ -284,14 +284,57 @@ def _place_free(pl, anchor, text, *, fontsize: float, **kw):
     label, leader and mark), smaller (:data:`SMALLER`) if only that finds one, else at the end of a longer
     leader (:data:`~velpoly.render.labels.REACH_RINGS`, at its size, else smaller), else at its size where it
     covers least (a crowd of poles)."""
-    for reach, f in [(reach, f) for reach in (False, True) for f in (1.0,) + SMALLER]:
+    tries = [(reach, f) for reach in (False, True) for f in (1.0,) + SMALLER]
+    for reach, f in tries:
         with pl.trial():
             n = len(pl.overlapping)
             t = pl.place(anchor, text, fontsize=fontsize * f, reach=reach, **kw)
             pl.keep = len(pl.overlapping) == n
-            if pl.keep:
-                return t
+        if pl.of(t) is not None:
+            return t if not _on_lines(pl, t) else _off_drawn_lines(pl, t, anchor, text, fontsize, tries, reach, f, kw)
     return pl.place(anchor, text, fontsize=fontsize, **kw)
+
+
+def _drawn_lines(ax) -> list:
+    """Every line drawn on ``ax`` (Line2D, in data coordinates, each run between gaps), leaders excepted."""
+    out = []
+    for ln in ax.lines:
+        if (ln.get_gid() or "").endswith("-leader") or not ln.get_visible():
+            continue
+        xy = np.asarray(ln.get_xydata(), float)
+        ok = np.all(np.isfinite(xy), axis=1)
+        for run in np.split(xy, np.flatnonzero(~ok)):
+            run = run[np.all(np.isfinite(run), axis=1)]
+            if len(run) >= 2:
+                out.append(LineString(run))
+    return out
+
+
+def _on_lines(pl, t, lines=None) -> bool:
+    """Whether the Text's box (as placed, no margin) meets a line drawn (:func:`_drawn_lines`)."""
+    b = pl.box_of(t, pad=0.0)
+    return any(g.intersects(b) for g in (_drawn_lines(pl.ax) if lines is None else lines))
+
+
+def _off_drawn_lines(pl, t, anchor, text, fontsize: float, tries, reach0: bool, f0: float, kw):
+    """A pole's label whose free place lies on a drawn line (a slider's path: a soft obstacle, which the
+    search weighs against a leader across a Kennedy line) placed again where its box meets no drawn line: the
+    same tries (nearer, farther, smaller), each box tested (``accept``) off the lines; where none is free, where
+    it was."""
+    lines = _drawn_lines(pl.ax)
+    pl.remove(t)
+    accept = kw.pop("accept", None)
+
+    def off(b) -> bool:
+        return (accept is None or accept(b)) and not any(g.intersects(b) for g in lines)
+    for reach, f in tries:
+        with pl.trial():
+            n = len(pl.overlapping)
+            t = pl.place(anchor, text, fontsize=fontsize * f, reach=reach, accept=off, **kw)
+            pl.keep = len(pl.overlapping) == n and not _on_lines(pl, t, lines)
+        if pl.of(t) is not None:
+            return t
+    return pl.place(anchor, text, fontsize=fontsize * f0, reach=reach0, accept=accept, **kw)
 
 
 INFINITY_SHIFTS = (0.0,) + tuple(x for k in range(1, 16) for x in (0.4 * k, -0.4 * k))   # cm, across its way
