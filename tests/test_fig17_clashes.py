@@ -36,8 +36,8 @@ GALLERY = (("ex3_4_slotted_lever", "textbook", 6.66, 0.5), ("ex3_4_slotted_lever
 # generated: (kind, variant), the six-bars drawn in a panel as small as the Stephenson six-bar's on slides; the
 # eight-bar's 28 chords as on a textbook page, and on slides at the Kennedy panel's most (8 cm: its 20 numbers in
 # a 5.7 cm slides panel find no free place, 14 sit on other chords)
-GENERATED = (("six-bar", "watt I"), ("six-bar", "stephenson III"), ("slot", "straight six-bar"),
-             ("six-bar", "watt II"), ("eight-bar", "watt II + dyad"))
+GENERATED = (("six-bar", "watt I"), ("eight-bar", "watt II + dyad"), ("six-bar", "stephenson III"),
+             ("slot", "straight six-bar"), ("six-bar", "watt II"))
 PANEL = {"six-bar": {"textbook": (4.31, 0.8), "slides": (4.31, 0.8)},
          "eight-bar": {"textbook": (5.72, 0.6), "slides": (8.0, 0.4)}}
 
@@ -109,13 +109,14 @@ def test_gallery_chord_numbers_clear(stem, style, side, scale):
 @pytest.mark.parametrize("style", ["textbook", "slides"])
 def test_generated_chord_numbers_clear(style):
     """Generated six-bars and a slotted six-bar (seeded) in a panel as small as the Stephenson six-bar's on
-    slides (4.3 cm), an eight-bar (``PANEL``): no chord number on another chord, text or leader."""
+    slides (4.3 cm), an eight-bar (``PANEL``): no chord number on another chord, text or leader. On 4a82552 the
+    Watt I six-bar failed in both styles; textbook draws it and the eight-bar only."""
     seen = 0
-    for sp in generated():
+    for sp in generated()[:None if style == "slides" else 2]:   # textbook: Watt I (failed on 4a82552), the eight-bar
         ax, art = circle(sp.drawn, style, *PANEL["eight-bar" if sp.kind.startswith("eight") else "six-bar"][style])
         assert not number_clashes(ax), (sp.kind, number_clashes(ax))
         seen += len(art["numbers"])
-    assert seen >= 5 * 8, seen
+    assert seen >= (5 if style == "slides" else 2) * 8, seen
 
 
 def test_origin_label_off_the_vectors_of_a_flat_polygon():
@@ -135,3 +136,64 @@ def test_origin_label_off_the_vectors_of_a_flat_polygon():
     origin = [t for ax in fig.axes for t in ax.texts if (t.get_gid() or "").startswith("label-acceleration-origin+")]
     assert len(origin) == 1 and origin[0].get_text().startswith("$O_"), sp.kind
     assert not got, (sp.kind, got)
+
+
+def _ground_of(art) -> list:
+    """Every hatch stroke (ground, guides, contacts) and ground pedestal as drawn, on the canvas (pixels)."""
+    from shapely.geometry import Polygon
+    out = []
+    for role in ("ground", "guides", "contacts"):
+        for a in art.get(role, []):
+            if hasattr(a, "get_segments"):
+                out += [LineString(a.get_transform().transform(s)) for s in a.get_segments() if len(s) >= 2]
+            elif hasattr(a, "get_path") and len(a.get_path().vertices) >= 4:
+                out.append(Polygon(a.get_transform().transform(a.get_path().vertices)).buffer(0))
+    return out
+
+
+# of seed 4's specimens cycling GROUND_KINDS (slides): omega's value 2.8 and 2.5 px (72 dpi) from the ground on
+# 4a82552; over the 34 such specimens in both styles (68 space diagrams) 8 had a driver's value within GROUND_CLEAR
+# of the ground or an arc across it, now 2 (two arcs across it no layout keeps off, unchanged)
+GROUND_KINDS = ("inverted slider-crank", "four-bar", "slot", "slider-crank")
+CROWDED = (13, 23)
+
+
+def test_driver_values_clear_of_the_ground():
+    """A driver's value that crowds hatched ground (a swinging block's or a crank's pivot) is nudged straight off
+    it to GROUND_CLEAR where that place is free (``_Drawing.off_ground``), with its leader drawn again; nothing
+    else is placed anew. Each value's box on the canvas against every hatch stroke and pedestal as drawn; its
+    leader, if any, still runs from its arc to its box."""
+    from velpoly.render.displacement import GROUND_CLEAR, draw_mechanism
+    rng = np.random.default_rng(4)
+    specs = [zoo.specimen(rng, GROUND_KINDS[i % len(GROUND_KINDS)]) for i in range(max(CROWDED) + 1)]
+    st = get_style("slides")
+    for i in CROWDED:
+        with rc_context(st):
+            fig = Figure(figsize=(6, 5), dpi=72)
+            FigureCanvasAgg(fig)
+            ax = fig.add_axes((0.02, 0.02, 0.96, 0.96))
+            art = draw_mechanism(specs[i].drawn, ax, style=st)
+        r = renderer_of(fig)
+        ground = _ground_of(art)
+        values = [t for t in ax.texts if (t.get_gid() or "").startswith("driver-label") and t.get_text()]
+        assert ground and values, specs[i].kind
+        for t in values:
+            b = box(*t.get_window_extent(r).extents)
+            near = min(b.distance(g) for g in ground)
+            assert near >= GROUND_CLEAR * 72 / 2.54 - 0.5, (i, specs[i].kind, t.get_gid(), round(near, 2))
+            own = placer(ax).of(t)
+            if own.leader is not None:   # its leader ends on its box, as drawn anew
+                end = ax.transData.transform(np.column_stack(own.leader.get_data())[-1])
+                assert b.buffer(1.5).contains(Point(*end)), (i, t.get_gid())
+                assert own.leader_geom.contains(Point(*np.column_stack(own.leader.get_data())[-1]))
+
+
+def test_no_pole_label_pushed_onto_a_line():
+    """The dense generated six-bar whose pole label P46 a driver's value kept off the ground pushed onto three
+    Kennedy lines (d6e98a1, reverted: the value moved, the point labels after it, P46 found no free place):
+    the nudge moves nothing else, and no pole label or driver's value meets a Kennedy line or a leader (over
+    the 36 of ``sixbars(5, 36)`` on slides: 0, leaders crossing in 14 as on 4a82552)."""
+    from test_pole_labels import _poles_drawing, sixbars, texts_on_lines
+    ax, art = _poles_drawing(sixbars(5, 31)[30].drawn, get_style("slides"))
+    assert "4-6" in art.labels
+    assert not texts_on_lines(ax), texts_on_lines(ax)
