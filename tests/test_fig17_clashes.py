@@ -36,8 +36,7 @@ GALLERY = (("ex3_4_slotted_lever", "textbook", 6.66, 0.5), ("ex3_4_slotted_lever
 # generated: (kind, variant), the six-bars drawn in a panel as small as the Stephenson six-bar's on slides; the
 # eight-bar's 28 chords as on a textbook page, and on slides at the Kennedy panel's most (8 cm: its 20 numbers in
 # a 5.7 cm slides panel find no free place, 14 sit on other chords)
-GENERATED = (("six-bar", "watt I"), ("eight-bar", "watt II + dyad"), ("six-bar", "stephenson III"),
-             ("slot", "straight six-bar"), ("six-bar", "watt II"))
+GENERATED = (("six-bar", "watt I"), ("eight-bar", "watt II + dyad"), ("slot", "straight six-bar"))
 PANEL = {"six-bar": {"textbook": (4.31, 0.8), "slides": (4.31, 0.8)},
          "eight-bar": {"textbook": (5.72, 0.6), "slides": (8.0, 0.4)}}
 
@@ -108,15 +107,16 @@ def test_gallery_chord_numbers_clear(stem, style, side, scale):
 
 @pytest.mark.parametrize("style", ["textbook", "slides"])
 def test_generated_chord_numbers_clear(style):
-    """Generated six-bars and a slotted six-bar (seeded) in a panel as small as the Stephenson six-bar's on
+    """A generated six-bar and a slotted six-bar (seeded) in a panel as small as the Stephenson six-bar's on
     slides (4.3 cm), an eight-bar (``PANEL``): no chord number on another chord, text or leader. On 4a82552 the
-    Watt I six-bar failed in both styles; textbook draws it and the eight-bar only."""
+    Watt I six-bar failed in both styles (textbook draws it only); the eight-bar and the slotted six-bar on
+    slides."""
     seen = 0
-    for sp in generated()[:None if style == "slides" else 2]:   # textbook: Watt I (failed on 4a82552), the eight-bar
+    for sp in generated()[:None if style == "slides" else 1]:   # textbook: Watt I (failed on 4a82552)
         ax, art = circle(sp.drawn, style, *PANEL["eight-bar" if sp.kind.startswith("eight") else "six-bar"][style])
         assert not number_clashes(ax), (sp.kind, number_clashes(ax))
         seen += len(art["numbers"])
-    assert seen >= (5 if style == "slides" else 2) * 8, seen
+    assert seen >= (3 if style == "slides" else 1) * 8, seen
 
 
 def test_origin_label_off_the_vectors_of_a_flat_polygon():
@@ -151,11 +151,11 @@ def _ground_of(art) -> list:
     return out
 
 
-# of seed 4's specimens cycling GROUND_KINDS (slides): omega's value 2.8 and 2.5 px (72 dpi) from the ground on
+# of seed 4's specimens cycling GROUND_KINDS (slides): omega's value 2.8 px (72 dpi) from the ground (23: 2.5 px) on
 # 4a82552; over the 34 such specimens in both styles (68 space diagrams) 8 had a driver's value within GROUND_CLEAR
 # of the ground or an arc across it, now 2 (two arcs across it no layout keeps off, unchanged)
 GROUND_KINDS = ("inverted slider-crank", "four-bar", "slot", "slider-crank")
-CROWDED = (13, 23)
+CROWDED = (13,)   # (23 too; cut for the suite's time)
 
 
 def test_driver_values_clear_of_the_ground():
@@ -188,12 +188,22 @@ def test_driver_values_clear_of_the_ground():
                 assert own.leader_geom.contains(Point(*np.column_stack(own.leader.get_data())[-1]))
 
 
-def test_no_pole_label_pushed_onto_a_line():
-    """The dense generated six-bar whose pole label P46 a driver's value kept off the ground pushed onto three
-    Kennedy lines (d6e98a1, reverted: the value moved, the point labels after it, P46 found no free place):
-    the nudge moves nothing else, and no pole label or driver's value meets a Kennedy line or a leader (over
-    the 36 of ``sixbars(5, 36)`` on slides: 0, leaders crossing in 14 as on 4a82552)."""
+def test_pole_labels_on_no_drawn_line():
+    """Dense generated six-bars (``sixbars(5, 31)``, slides): the quick-return six-bar (29) whose pole label P56
+    sat on the ram's path on 4a82552 (its free place, off every Kennedy line, on a soft obstacle: Example 3.4's
+    P35 on block E's path on slides was such a label) now has it off every drawn line
+    (``kennedy._off_drawn_lines``); and the six-bar (30) whose P46 a driver's value kept off the ground pushed
+    onto three Kennedy lines (d6e98a1, reverted: the value moved, the point labels after it, P46 found no free
+    place) has no pole label or driver's value on a Kennedy line or a leader: the nudge moves nothing else
+    (over the 36 of ``sixbars(5, 36)``: 0, leaders crossing in 14, as on 4a82552)."""
     from test_pole_labels import _poles_drawing, sixbars, texts_on_lines
-    ax, art = _poles_drawing(sixbars(5, 31)[30].drawn, get_style("slides"))
+    from test_text_apart import clashes
+    specs = sixbars(5, 31)
+    ax, art = _poles_drawing(specs[29].drawn, get_style("slides"))
+    ax.set_label("poles")
+    ax.figure.draw_without_rendering()
+    assert "5-6" in art.labels
+    assert not [c for c in clashes(ax.figure) if c[2].startswith("label-pole-")], clashes(ax.figure)
+    ax, art = _poles_drawing(specs[30].drawn, get_style("slides"))
     assert "4-6" in art.labels
     assert not texts_on_lines(ax), texts_on_lines(ax)
