@@ -492,7 +492,7 @@ def _number_chords(pl, kc, numbered, st, art) -> None:
     a four-bar the two diagonals cross at the centre), no other number and no link label: at its size, else
     smaller (:data:`SMALLER`). A number with no such place on its chord (a crowd of chords in a small circle)
     goes beside the circle's crowd with a leader to its chord, off every chord, the circle and every label
-    (:func:`_number_off_chords`); only where none is free does it sit on its chord clear of the labels."""
+    (:func:`_number_off_chords`); only where none is free does it go where it covers least."""
     segs = {ch.key: segment(kc.points[ch.links[0]], kc.points[ch.links[1]]) for ch in kc.chords}
     fractions = NUMBER_SPOTS + tuple(f for f in FINE_SPOTS if f not in NUMBER_SPOTS)
     left = []
@@ -518,12 +518,11 @@ def _number_style(st, colour, f: float = 1.0) -> dict:
 
 
 def _number_off_chords(pl, kc, segs, left, st, art) -> None:
-    """The chord numbers with no free place on their chords: each chord, the circle's rim and the links'
-    points an obstacle, each such number placed by the placer (:meth:`LabelPlacer.place`; at its size, else
-    smaller) with a leader from
-    the spot of its chord nearest the rim that is 5 pt from every other chord (else the spot farthest from
-    them), so that its leader is short and its end on no other chord; with no free place, on its chord clear
-    of the labels."""
+    """The chord numbers with no free place on their chords: each chord and the circle's rim an obstacle, each
+    such number placed by the placer (:meth:`LabelPlacer.place`; at its size, else smaller) with a leader
+    from the spot of its chord nearest the rim that is 5 pt from every other chord (else the spot farthest
+    from them), so that its leader is short and its end on no other chord; with no free place, where it
+    covers least off the other chords (:func:`_least_on_chords`)."""
     from matplotlib.patches import Circle
     for g in segs.values():   # no number on a chord (hard); a leader crosses as few as it can (soft)
         pl.add_obstacle(g)
@@ -546,8 +545,20 @@ def _number_off_chords(pl, kc, segs, left, st, art) -> None:
                 pl.keep = len(pl.overlapping) == n
             if pl.of(t) is not None:
                 break
-        if pl.of(t) is None:   # no free place: the trial took it off again
-            t = pl.place_at(spots, str(ch.order), gid=gid, pad=3.0, **_number_style(st, colour))
-            if t is None:
-                t = pl.place(spots[0], str(ch.order), gid=gid, pad=3.0, **_number_style(st, colour))
+        if pl.of(t) is None:   # no free place (the trial took it off again): where it covers least
+            t = _least_on_chords(pl, [anchor, spots[0]], str(ch.order), gid, others, _number_style(st, colour))
         art.add("numbers", t)
+
+
+def _least_on_chords(pl, anchors, s: str, gid: str, others, kw):
+    """A chord number with no free place: where it covers least (:meth:`LabelPlacer.place`'s last resort) from
+    each anchor in turn, at its size, else smaller: the first whose box meets no other chord; else from the
+    first anchor at its size."""
+    for at in anchors:
+        for f in (1.0,) + SMALLER:
+            with pl.trial():
+                t = pl.place(at, s, gid=gid, pad=3.0, **{**kw, "fontsize": kw["fontsize"] * f})
+                pl.keep = not any(g.intersects(pl.box_of(t, pad=0.0)) for g in others)
+            if pl.of(t) is not None:
+                return t
+    return pl.place(anchors[0], s, gid=gid, pad=3.0, **kw)
