@@ -14,12 +14,14 @@ another driver angle draws the re-assembled pose.
 from __future__ import annotations
 
 import math
+from dataclasses import replace
 from typing import NamedTuple
 
 import numpy as np
 from shapely.geometry import LineString, MultiPoint, Point
 from shapely.geometry import Polygon as SPolygon
-from shapely.ops import unary_union
+from shapely.affinity import translate
+from shapely.ops import nearest_points, unary_union
 
 from ..rigid import direction as _unit, perp as _perp
 from ..names import key_text, link_math, upper_name
@@ -37,6 +39,8 @@ __all__ = ["draw_mechanism", "away_from", "neighbours", "mechanism_bounds", "sha
 PLATE_FILL = "0.9"      # a plate's fill where links are white (textbook): light, so that it reads as one body
 SMALLER = (0.85, 0.72)   # a text with no free place off the lines at its size: these fractions of it tried
 NUMBER_RADIUS = 0.8     # slides: a link number's circle at most this many bar widths in radius
+GROUND_CLEAR = 0.15     # cm: a driver's value is nudged this far from hatched ground it crowds, where that is free
+#                         (omega's value crowded the ground of a swinging block's pivot)
 
 
 def shape_patch(geom, **kw):
@@ -210,6 +214,7 @@ class _Drawing:
         self.slots: list = []            # (link, slot geometry) drawn white over bodies
         self.slotted: set = set()        # links with a slot or a moving guide's slotted bar
         self.hatches: list = []          # ground to draw once the bodies are known
+        self.grounds: list = []          # the hatched strips drawn (shapely): the driver's values keep off
         self.geoms: dict = {}            # link -> its body as drawn
         self.slot_cuts: dict = {}        # slot index -> (link, centre line, cut) of a moving link's slot
 
@@ -288,6 +293,7 @@ class _Drawing:
             self.art.add(role, lc)
             # the hatched strip itself (the strokes lie on one side of the line), with a little margin
             self.pl.add_obstacle(strip.difference(keep).buffer(0.05 * self.pc), hard=False)
+            self.grounds.append(strip.difference(keep))
 
     def pin(self, p, gid=None, radius=None):
         r = (radius or self.st.pin_radius) * self.pc
@@ -909,9 +915,52 @@ class _Drawing:
                 n = len(self.pl.overlapping)
                 t = self.pl.place(at, text, fontsize=fontsize * f, clear=True, again=again, **kw)
                 self.pl.keep = len(self.pl.overlapping) == n and not self.pl.soft_hits(self.pl.box_of(t, pad=0.0))
-                if self.pl.keep:
-                    return t
-        return self.pl.place(at, text, fontsize=fontsize, clear=True, again=again, **kw)
+            if self.pl.of(t) is not None:
+                return self.off_ground(t)
+        return self.off_ground(self.pl.place(at, text, fontsize=fontsize, clear=True, again=again, **kw))
+
+    def off_ground(self, t):
+        """A driver's value that crowds hatched ground nudged straight away from it to :data:`GROUND_CLEAR`
+        (its leader, if any, drawn again to the new box from the same start), where that box is in view, free,
+        on no more lines than before and clear of all ground, and its leader crosses no other label or leader:
+        nothing else moves (no other label is placed anew); else left where it is. Returns ``t``."""
+        own = self.pl.of(t)
+        if own is None or not self.grounds:
+            return t
+        b, clear = self.pl.box_of(t, pad=0.0), GROUND_CLEAR * self.pc
+        near = min(self.grounds, key=b.distance)
+        gap = b.distance(near)
+        if gap >= clear:
+            return t
+        pb, pg = nearest_points(b, near)
+        u = np.array([pb.x - pg.x, pb.y - pg.y])
+        if float(np.hypot(*u)) < 1e-12 * self.pc:   # on the ground: away from its middle
+            u = np.array(b.centroid.coords[0]) - np.array(near.centroid.coords[0])
+        u = u / max(float(np.hypot(*u)), 1e-300) * (clear - gap + 0.02 * self.pc)
+        nb, moved = translate(own.box, *u), translate(b, *u)
+        others = [q.box for q in self.pl.labels if q is not own] + [g for g in self.pl.hard if g is not own.leader_geom]
+        if (not view_box(self.ax).contains(nb) or any(g.intersects(nb) for g in others) or
+                self.pl.soft_hits(nb) > self.pl.soft_hits(own.box) or
+                any(moved.distance(g) < clear for g in self.grounds)):
+            return t
+        geom = None
+        if own.leader is not None:
+            start = np.column_stack(own.leader.get_data())[0]
+            q = nearest_points(nb.exterior, Point(*own.anchor))[0]
+            line = LineString([tuple(start), (q.x, q.y)])
+            crossed = [p.box for p in self.pl.labels if p is not own] + \
+                [p.leader_geom for p in self.pl.labels if p is not own and p.leader_geom is not None]
+            if any(g.intersects(line) for g in crossed):
+                return t
+            own.leader.set_data([start[0], q.x], [start[1], q.y])
+            geom = line.buffer(0.4 * self.pp)
+        x, y = t.get_position()
+        t.set_position((x + u[0], y + u[1]))
+        self.pl.labels[self.pl.labels.index(own)] = replace(own, box=nb, leader_geom=geom)
+        gid = t.get_gid()
+        if gid in self.pl.placed and self.pl.placed[gid][0] == "place":
+            self.pl.placed[gid] = ("place", (x + u[0], y + u[1])) + tuple(self.pl.placed[gid][2:])
+        return t
 
     def _plan_score(self, p, plan, texts, label_kw) -> tuple:
         """How a plan reads, lower is better: its arcs cross no other link, block or label and stay in view (an

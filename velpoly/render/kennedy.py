@@ -32,6 +32,9 @@ from .style import get_style
 __all__ = ["draw_poles", "draw_kennedy_circle", "pole_label", "shown_poles", "REACH", "KENNEDY_Z"]
 
 NUMBER_SPOTS = (0.3, 0.7, 0.5, 0.4, 0.6, 0.22, 0.78, 0.35, 0.65, 0.45, 0.55)  # along a chord, tried in turn
+# then, where none of those is clear of the other chords (a crowd of seven links), every 2 % of the chord from
+# its middle out to an eighth of it from either end (the chords meet at the links' points)
+FINE_SPOTS = tuple(sorted((round(0.12 + 0.02 * i, 2) for i in range(39)), key=lambda f: (abs(f - 0.5), f)))
 KENNEDY_Z = 3.6   # Kennedy and constraint lines: above every body (links 2, ground 2.9, blocks 3.2), below points 4
 REACH = 2.5   # the view holds the finite poles within REACH mechanism sizes of the mechanism
 
@@ -281,14 +284,57 @@ def _place_free(pl, anchor, text, *, fontsize: float, **kw):
     label, leader and mark), smaller (:data:`SMALLER`) if only that finds one, else at the end of a longer
     leader (:data:`~velpoly.render.labels.REACH_RINGS`, at its size, else smaller), else at its size where it
     covers least (a crowd of poles)."""
-    for reach, f in [(reach, f) for reach in (False, True) for f in (1.0,) + SMALLER]:
+    tries = [(reach, f) for reach in (False, True) for f in (1.0,) + SMALLER]
+    for reach, f in tries:
         with pl.trial():
             n = len(pl.overlapping)
             t = pl.place(anchor, text, fontsize=fontsize * f, reach=reach, **kw)
             pl.keep = len(pl.overlapping) == n
-            if pl.keep:
-                return t
+        if pl.of(t) is not None:
+            return t if not _on_lines(pl, t) else _off_drawn_lines(pl, t, anchor, text, fontsize, tries, reach, f, kw)
     return pl.place(anchor, text, fontsize=fontsize, **kw)
+
+
+def _drawn_lines(ax) -> list:
+    """Every line drawn on ``ax`` (Line2D, in data coordinates, each run between gaps), leaders excepted."""
+    out = []
+    for ln in ax.lines:
+        if (ln.get_gid() or "").endswith("-leader") or not ln.get_visible():
+            continue
+        xy = np.asarray(ln.get_xydata(), float)
+        ok = np.all(np.isfinite(xy), axis=1)
+        for run in np.split(xy, np.flatnonzero(~ok)):
+            run = run[np.all(np.isfinite(run), axis=1)]
+            if len(run) >= 2:
+                out.append(LineString(run))
+    return out
+
+
+def _on_lines(pl, t, lines=None) -> bool:
+    """Whether the Text's box (as placed, no margin) meets a line drawn (:func:`_drawn_lines`)."""
+    b = pl.box_of(t, pad=0.0)
+    return any(g.intersects(b) for g in (_drawn_lines(pl.ax) if lines is None else lines))
+
+
+def _off_drawn_lines(pl, t, anchor, text, fontsize: float, tries, reach0: bool, f0: float, kw):
+    """A pole's label whose free place lies on a drawn line (a slider's path: a soft obstacle, which the
+    search weighs against a leader across a Kennedy line) placed again where its box meets no drawn line: the
+    same tries (nearer, farther, smaller), each box tested (``accept``) off the lines; where none is free, where
+    it was."""
+    lines = _drawn_lines(pl.ax)
+    pl.remove(t)
+    accept = kw.pop("accept", None)
+
+    def off(b) -> bool:
+        return (accept is None or accept(b)) and not any(g.intersects(b) for g in lines)
+    for reach, f in tries:
+        with pl.trial():
+            n = len(pl.overlapping)
+            t = pl.place(anchor, text, fontsize=fontsize * f, reach=reach, accept=off, **kw)
+            pl.keep = len(pl.overlapping) == n and not _on_lines(pl, t, lines)
+        if pl.of(t) is not None:
+            return t
+    return pl.place(anchor, text, fontsize=fontsize * f0, reach=reach0, accept=accept, **kw)
 
 
 INFINITY_SHIFTS = (0.0,) + tuple(x for k in range(1, 16) for x in (0.4 * k, -0.4 * k))   # cm, across its way
@@ -443,16 +489,76 @@ def _draw_chords(ax, kc, ps, st, upto, art) -> list:
 
 def _number_chords(pl, kc, numbered, st, art) -> None:
     """Each found chord's number on its own chord where it meets no other chord (so never at a crossing: on
-    a four-bar the two diagonals cross at the centre), no other number and no link label."""
+    a four-bar the two diagonals cross at the centre), no other number and no link label: at its size, else
+    smaller (:data:`SMALLER`). A number with no such place on its chord (a crowd of chords in a small circle)
+    goes beside the circle's crowd with a leader to its chord, off every chord, the circle and every label
+    (:func:`_number_off_chords`); only where none is free does it go where it covers least."""
     segs = {ch.key: segment(kc.points[ch.links[0]], kc.points[ch.links[1]]) for ch in kc.chords}
+    fractions = NUMBER_SPOTS + tuple(f for f in FINE_SPOTS if f not in NUMBER_SPOTS)
+    left = []
     for ch, a, b, colour in sorted(numbered, key=lambda x: x[0].order):
-        spots = [a + (b - a) * f for f in NUMBER_SPOTS]
-        kw = dict(fontsize=st.small_size, color=colour, zorder=6,
-                  bbox=dict(boxstyle="circle,pad=0.15", facecolor=st.paper, edgecolor=colour, lw=st.thin_lw))
+        spots = [a + (b - a) * f for f in fractions]
         others = [g for k, g in segs.items() if k != ch.key]
-        t = pl.place_at(spots, str(ch.order), gid=f"chord-number-{ch.key}", pad=3.0, avoid=others, **kw)
-        if t is None:   # crowded: no spot clear of every chord, then clear of the labels at least
-            t = pl.place_at(spots, str(ch.order), gid=f"chord-number-{ch.key}", pad=3.0, **kw)
-        if t is None:
-            t = pl.place(spots[0], str(ch.order), gid=f"chord-number-{ch.key}", pad=3.0, **kw)
+        for f in (1.0,) + SMALLER:
+            t = pl.place_at(spots, str(ch.order), gid=f"chord-number-{ch.key}", pad=3.0, avoid=others,
+                            **_number_style(st, colour, f))
+            if t is not None:
+                art.add("numbers", t)
+                break
+        else:
+            left.append((ch, spots, colour))
+    if left:
+        _number_off_chords(pl, kc, segs, left, st, art)
+
+
+def _number_style(st, colour, f: float = 1.0) -> dict:
+    """A chord number's text: small, in a circle the colour of its chord (``f``: of its size)."""
+    return dict(fontsize=st.small_size * f, color=colour, zorder=6,
+                bbox=dict(boxstyle="circle,pad=0.15", facecolor=st.paper, edgecolor=colour, lw=st.thin_lw))
+
+
+def _number_off_chords(pl, kc, segs, left, st, art) -> None:
+    """The chord numbers with no free place on their chords: each chord and the circle's rim an obstacle, each
+    such number placed by the placer (:meth:`LabelPlacer.place`; at its size, else smaller) with a leader
+    from the spot of its chord nearest the rim that is 5 pt from every other chord (else the spot farthest
+    from them), so that its leader is short and its end on no other chord; with no free place, where it
+    covers least off the other chords (:func:`_least_on_chords`)."""
+    from matplotlib.patches import Circle
+    for g in segs.values():   # no number on a chord (hard); a leader crosses as few as it can (soft)
+        pl.add_obstacle(g)
+        pl.add_obstacle(g, hard=False)
+    rim = next((p for p in pl.ax.patches if isinstance(p, Circle) and p.get_gid() == "kennedy-circle"), None)
+    if rim is not None:
+        pl.add_obstacle(Point(*rim.center).buffer(rim.radius).exterior)
+    pp = per_point(pl.ax)
+    for ch, spots, colour in left:
+        others = [g for k, g in segs.items() if k != ch.key]
+        apart = [min(g.distance(Point(*q)) for g in others) for q in spots]
+        clear = [q for q, d in zip(spots, apart) if d >= 5.0 * pp]   # a leader's end no one reads as another's
+        anchor = max(clear, key=lambda q: float(np.hypot(*q))) if clear else spots[int(np.argmax(apart))]
+        gid = f"chord-number-{ch.key}"
+        for f in (1.0,) + SMALLER:
+            with pl.trial():
+                n = len(pl.overlapping)
+                t = pl.place(anchor, str(ch.order), gid=gid, pad=3.0, reach=True,
+                             prefer=math.degrees(math.atan2(anchor[1], anchor[0])), **_number_style(st, colour, f))
+                pl.keep = len(pl.overlapping) == n
+            if pl.of(t) is not None:
+                break
+        if pl.of(t) is None:   # no free place (the trial took it off again): where it covers least
+            t = _least_on_chords(pl, [anchor, spots[0]], str(ch.order), gid, others, _number_style(st, colour))
         art.add("numbers", t)
+
+
+def _least_on_chords(pl, anchors, s: str, gid: str, others, kw):
+    """A chord number with no free place: where it covers least (:meth:`LabelPlacer.place`'s last resort) from
+    each anchor in turn, at its size, else smaller: the first whose box meets no other chord; else from the
+    first anchor at its size."""
+    for at in anchors:
+        for f in (1.0,) + SMALLER:
+            with pl.trial():
+                t = pl.place(at, s, gid=gid, pad=3.0, **{**kw, "fontsize": kw["fontsize"] * f})
+                pl.keep = not any(g.intersects(pl.box_of(t, pad=0.0)) for g in others)
+            if pl.of(t) is not None:
+                return t
+    return pl.place(anchors[0], s, gid=gid, pad=3.0, **kw)

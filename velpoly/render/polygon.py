@@ -245,12 +245,29 @@ class _PolygonDrawing:
             if within is not None and not within.contains(Point(*p)):
                 continue
             prefer, near = self._label_side(p, np.array([cx, cy]), groups)
-            t = self.pl.place(p, _label_text(self.polygon, self.names, g, gi == 0), prefer=prefer,
-                              fontsize=self.st.font_size, zorder=7, fontstyle="italic", within=70.0 if near else None,
-                              clear=True, gid=f"{gid_prefix}-{self.polygon.kind}-" + ("origin+" if gi == 0 else "") + "+".join(g))
+            kw = dict(prefer=prefer, zorder=7, fontstyle="italic", within=70.0 if near else None, clear=True,
+                      gid=f"{gid_prefix}-{self.polygon.kind}-" + ("origin+" if gi == 0 else "") + "+".join(g))
+            text = _label_text(self.polygon, self.names, g, gi == 0)
+            t = self._origin_label(p, text, kw) if gi == 0 else None
+            if t is None:
+                t = self.pl.place(p, text, fontsize=self.st.font_size, **kw)
             self.art.add("labels", t)
             for k in g:
                 self.art.labels[k] = t
+
+    def _origin_label(self, p, text, kw):
+        """The origin's label at its size, else smaller (:data:`~velpoly.render.displacement.SMALLER`), where
+        its box lies on no line (a polygon crushed flat: every place near the origin is on a vector's shaft);
+        None where none is (then placed as any image's label)."""
+        from .displacement import SMALLER
+        for f in (1.0,) + SMALLER:
+            with self.pl.trial():
+                n = len(self.pl.overlapping)
+                t = self.pl.place(p, text, fontsize=self.st.font_size * f, **kw)
+                self.pl.keep = len(self.pl.overlapping) == n and not self.pl.soft_hits(self.pl.box_of(t, pad=0.0))
+            if self.pl.of(t) is not None:
+                return t
+        return None
 
     def _label_side(self, p, centre, groups):
         """The preferred direction of an image's label (away from the polygon's centre, or from an image
