@@ -193,6 +193,7 @@ def test_driver_values_clear_of_the_ground():
                 assert own.leader_geom.contains(Point(*np.column_stack(own.leader.get_data())[-1]))
 
 
+@pytest.mark.xdist_group("dense-sixbars")     # test_pole_labels' seed-5 six-bars, generated once a worker
 def test_pole_labels_on_no_drawn_line():
     """Dense generated six-bars (``sixbars(5, 31)``, slides): the quick-return six-bar (29) whose pole label P56
     sat on the ram's path on 4a82552 (its free place, off every Kennedy line, on a soft obstacle: Example 3.4's
@@ -201,14 +202,14 @@ def test_pole_labels_on_no_drawn_line():
     onto three Kennedy lines (d6e98a1, reverted: the value moved, the point labels after it, P46 found no free
     place) has no pole label or driver's value on a Kennedy line or a leader: the nudge moves nothing else
     (over the 36 of ``sixbars(5, 36)``: 0, leaders crossing in 14, as on 4a82552)."""
-    from test_pole_labels import _poles_drawing, sixbars, texts_on_lines
+    from test_pole_labels import _poles_drawing, dense_drawing, dense_sixbars, texts_on_lines
     from test_text_apart import clashes
-    specs = sixbars(5, 31)
+    specs = dense_sixbars(5)   # sixbars(5, 36): its first 31 are sixbars(5, 31)
     ax, art = _poles_drawing(specs[29].drawn, get_style("slides"))
     ax.set_label("poles")
     ax.figure.draw_without_rendering()
     assert "5-6" in art.labels
     assert not [c for c in clashes(ax.figure) if c[2].startswith("label-pole-")], clashes(ax.figure)
-    ax, art = _poles_drawing(specs[30].drawn, get_style("slides"))
+    ax, art = dense_drawing(5, 30, "slides")   # read only (test_pole_labels may have drawn it)
     assert "4-6" in art.labels
     assert not texts_on_lines(ax), texts_on_lines(ax)
