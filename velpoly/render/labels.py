@@ -139,18 +139,19 @@ class LabelPlacer:
             self.keep = False
 
     # -- measuring ---------------------------------------------------------------------
-    def box_of(self, text, pad: float = 1.0):
-        """The Text's box in data coordinates, grown by ``pad`` points (a rotated text: its outline)."""
+    def box_of(self, text, pad: float = 1.0, pp: float | None = None):
+        """The Text's box in data coordinates, grown by ``pad`` points (a rotated text: its outline; ``pp``: the
+        axes' :func:`per_point`, where known)."""
         bb = text.get_window_extent(self.renderer)
         inv = self.ax.transData.inverted()
         (x0, y0), (x1, y1) = inv.transform([[bb.x0, bb.y0], [bb.x1, bb.y1]])
-        p = pad * per_point(self.ax)
+        p = pad * (per_point(self.ax) if pp is None else pp)
         return box(min(x0, x1) - p, min(y0, y1) - p, max(x0, x1) + p, max(y0, y1) + p)
 
-    def text_size(self, text, pad: float = 1.0) -> tuple[float, float]:
+    def text_size(self, text, pad: float = 1.0, pp: float | None = None) -> tuple[float, float]:
         rot = text.get_rotation()
         text.set_rotation(0)
-        b = self.box_of(text, pad)
+        b = self.box_of(text, pad, pp)
         text.set_rotation(rot)
         x0, y0, x1, y1 = b.bounds
         return x1 - x0, y1 - y0
@@ -194,10 +195,11 @@ class LabelPlacer:
         t = self.ax.text(anchor[0], anchor[1], s, ha="center", va="center", **text_kw)
         if gid:
             t.set_gid(gid)
-        w, h = self.text_size(t, pad)
+        pp = per_point(self.ax)   # (the axes' scale: placing a text changes neither its limits nor its size)
+        w, h = self.text_size(t, pad, pp)
         best = self._pinned(gid, w, h)
         if best is None:
-            scene = _Scene(self, anchor)
+            scene = _Scene(self, anchor, pp)
             best = self._search(anchor, w, h, prefer, gap, leader, within, accept, clear, reach, scene)
             if accept is not None and (best is None or best[0] != (0, 0)):   # a line under it is worse
                 anywhere = self._search(anchor, w, h, prefer, gap, leader, within, None, clear, reach, scene)
@@ -210,7 +212,7 @@ class LabelPlacer:
         if best is None:
             best = self._least_bad(anchor, w, h, prefer, gap, leader)
             self.overlapping.append(t)
-        self._put(t, anchor, best, gid, leader, obstacle, again)
+        self._put(t, anchor, best, gid, leader, obstacle, again, pp)
         return t
 
     def _pinned(self, gid, w: float, h: float):
@@ -229,7 +231,7 @@ class LabelPlacer:
         every line, whose leader crosses at most one line or outline); ``reach``: the farthest rings too
         while nothing nearer is free. A ring's candidates are tested together (:class:`_Scene`: the same
         answers as testing each box with shapely, in the same order)."""
-        scene = _Scene(self, anchor) if scene is None else scene
+        scene = _Scene(self, anchor, per_point(self.ax)) if scene is None else scene
         rings = (gap,) + tuple(r for r in RINGS if r > gap)
         best = None
         for ring_i, ring in enumerate(rings + FAR_RINGS + (REACH_RINGS if reach and leader else ())):
@@ -298,7 +300,7 @@ class LabelPlacer:
             best = (math.inf, first.centres[0].copy(), first.geom(0), gap)
         return best
 
-    def _put(self, t, anchor, best, gid, leader: bool, obstacle: bool, again) -> None:
+    def _put(self, t, anchor, best, gid, leader: bool, obstacle: bool, again, pp: float) -> None:
         """Move the text to the place chosen, with its leader where it stands far from its anchor; keep its
         :class:`Placed` (a label that is an obstacle to the later ones)."""
         _, c, b, ring = best
@@ -308,7 +310,6 @@ class LabelPlacer:
         ln = geom = None
         if leader and ring >= 9.0:
             from matplotlib.lines import Line2D
-            pp = per_point(self.ax)
             edge = _toward(b, anchor)
             start = anchor + (edge - anchor) * (1.5 * pp / max(np.hypot(*(edge - anchor)), 1e-300))
             ln = Line2D([start[0], edge[0]], [start[1], edge[1]], lw=0.4, color=t.get_color(),
@@ -558,8 +559,8 @@ class _Scene:
     candidate against every obstacle: the very predicate :meth:`LabelPlacer.free` and the others ask of each
     pair, without a Python call per candidate)."""
 
-    def __init__(self, pl: LabelPlacer, anchor):
-        self.pp = per_point(pl.ax)
+    def __init__(self, pl: LabelPlacer, anchor, pp: float):
+        self.pp = pp
         self.anchor = np.asarray(anchor, float)
         self.view = view_box(pl.ax)
         self.taken = np.array(pl.boxes + pl.hard, dtype=object)[None, :]        # what a label's box must not meet
