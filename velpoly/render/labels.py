@@ -523,7 +523,8 @@ class LabelPlacer:
 class _Ring:
     """The candidate boxes ``reach`` (data units) from the anchor in ``k`` directions (those ``within`` of
     ``prefer``), in :func:`_directions`' order: their centres, bounds and (made when asked) shapely boxes,
-    each the very box :func:`_box` makes on the centre :meth:`LabelPlacer._candidates` gives."""
+    each the very box :func:`_box` makes on the centre ``anchor + u * (reach + half_extent(w, h, u))`` (the
+    numbers of the candidates made one at a time before: tests/test_placer_speed.py)."""
 
     def __init__(self, anchor, w: float, h: float, prefer, reach: float, k: int, within=None):
         u, a, b, has_a, has_b = _units(prefer, k, within, w, h)
@@ -563,6 +564,7 @@ class _Scene:
         self.pp = pp
         self.anchor = np.asarray(anchor, float)
         self.view = view_box(pl.ax)
+        self.view_bounds = np.array(self.view.bounds, float)
         self.taken = np.array(pl.boxes + pl.hard, dtype=object)[None, :]        # what a label's box must not meet
         self.soft = np.array(pl.soft, dtype=object)[None, :]
         self.crossed = np.array(pl.boxes + pl.leaders, dtype=object)[None, :]    # what a leader must not cross
@@ -570,10 +572,24 @@ class _Scene:
         self.at_anchor = (shapely.intersects(self.soft[0], Point(*anchor).buffer(2.0 * self.pp))
                           if self.soft.size else None)
 
+    def in_view(self, cands: _Ring) -> np.ndarray:
+        """Which candidates the view contains (``view.contains(b)``): a box of some width and height in a box is
+        contained exactly where its bounds lie within the view's, edges included; shapely is asked where either
+        is not such a box (no width, or not finite)."""
+        v, bd = self.view_bounds, cands.bounds
+        proper = _proper(bd)
+        if _proper(v[None, :])[0]:
+            inside = proper & (v[0] <= bd[:, 0]) & (bd[:, 2] <= v[2]) & (v[1] <= bd[:, 1]) & (bd[:, 3] <= v[3])
+        else:
+            inside, proper = np.zeros(len(bd), bool), np.zeros(len(bd), bool)
+        if not proper.all():
+            inside[~proper] = shapely.contains(self.view, cands.geoms[~proper])
+        return inside
+
     def free(self, cands: _Ring) -> np.ndarray:
         """The indices of the candidates in view that meet no placed label and no hard obstacle
         (:meth:`LabelPlacer.free`), in order."""
-        idx = np.flatnonzero(shapely.contains(self.view, cands.geoms))
+        idx = np.flatnonzero(self.in_view(cands))
         if len(idx) and self.taken.size:
             idx = idx[~shapely.intersects(self.taken, cands.geoms[idx][:, None]).any(axis=1)]
         return idx
@@ -596,9 +612,17 @@ class _Scene:
         return crosses, (shapely.intersects(self.soft, lines) & ~self.at_anchor[None, :]).sum(axis=1)
 
 
-@functools.lru_cache(maxsize=4096)
 def _unit_rows(prefer, k: int, within):
-    """The unit vectors of :meth:`LabelPlacer._candidates`' directions, as it computes them (read only)."""
+    """The unit vectors of :func:`_directions` within ``within`` of ``prefer`` (read only), as the candidates
+    were made one at a time: kept per (prefer, k, within) and their types (a numpy float's arithmetic is its
+    own), else (unhashable) made anew."""
+    try:
+        return _unit_rows_kept(prefer, k, within)
+    except TypeError:
+        return _unit_rows_made(prefer, k, within)
+
+
+def _unit_rows_made(prefer, k: int, within):
     rows = []
     for ang in _directions(prefer, k):
         if within is not None and abs((ang - (prefer or 45.0) + 180.0) % 360.0 - 180.0) > within + 1e-9:
@@ -609,6 +633,9 @@ def _unit_rows(prefer, k: int, within):
     return u
 
 
+_unit_rows_kept = functools.lru_cache(maxsize=4096, typed=True)(_unit_rows_made)
+
+
 def _units(prefer, k: int, within, w: float, h: float):
     """The directions' unit vectors and :func:`half_extent`'s two distances along each (which exist)."""
     u = _unit_rows(prefer, k, within)
@@ -616,6 +643,11 @@ def _units(prefer, k: int, within, w: float, h: float):
     has_a, has_b = ux > 1e-12, uy > 1e-12
     with np.errstate(divide="ignore", invalid="ignore"):
         return u, (w / 2) / ux, (h / 2) / uy, has_a, has_b
+
+
+def _proper(bounds: np.ndarray) -> np.ndarray:
+    """Which rows of bounds (x0, y0, x1, y1) are a box's of some width and height, finite."""
+    return np.isfinite(bounds).all(axis=1) & (bounds[:, 0] < bounds[:, 2]) & (bounds[:, 1] < bounds[:, 3])
 
 
 def _leaders(boxes: np.ndarray, anchor) -> np.ndarray:
