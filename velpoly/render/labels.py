@@ -300,9 +300,10 @@ class LabelPlacer:
             best = (math.inf, first.centres[0].copy(), first.geom(0), gap)
         return best
 
-    def _put(self, t, anchor, best, gid, leader: bool, obstacle: bool, again, pp: float) -> None:
+    def _put(self, t, anchor, best, gid, leader: bool, obstacle: bool, again, pp: float | None = None) -> None:
         """Move the text to the place chosen, with its leader where it stands far from its anchor; keep its
-        :class:`Placed` (a label that is an obstacle to the later ones)."""
+        :class:`Placed` (a label that is an obstacle to the later ones; ``pp``: the axes' :func:`per_point`,
+        where known)."""
         _, c, b, ring = best
         t.set_position((float(c[0]), float(c[1])))
         if gid:
@@ -310,6 +311,7 @@ class LabelPlacer:
         ln = geom = None
         if leader and ring >= 9.0:
             from matplotlib.lines import Line2D
+            pp = per_point(self.ax) if pp is None else pp
             edge = _toward(b, anchor)
             start = anchor + (edge - anchor) * (1.5 * pp / max(np.hypot(*(edge - anchor)), 1e-300))
             ln = Line2D([start[0], edge[0]], [start[1], edge[1]], lw=0.4, color=t.get_color(),
