@@ -204,7 +204,7 @@ def test_ring_predicates_are_shapely_per_box_on_touching_and_degenerate_geometry
         w, h = (float(x) for x in rng.integers(1, 4, 2))
         for ring_units in (0.0, 1.0, 2.0, 3.5):
             cands = L._Ring(anchor, w, h, float(rng.choice([0.0, 90.0, 45.0])), ring_units, 8)
-            free = scene.free(cands)
+            free = scene.free(cands, np.arange(len(cands)))
             view = view_box(ax)
             want = [i for i in range(len(cands)) if view.contains(cands.geom(i)) and not count(pl.boxes + pl.hard,
                                                                                                cands.geom(i))]

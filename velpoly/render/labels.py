@@ -242,30 +242,32 @@ class LabelPlacer:
                 break
             k = 48 if ring in REACH_RINGS else 24 if far else 16 if ring_i >= 2 else 8
             cands = _Ring(anchor, w, h, prefer, ring * scene.pp, k, within)
-            free = scene.free(cands)
-            if not len(free):
-                continue
-            soft = scene.soft_hits(cands, free)
-            lines = leader and ring >= 9.0
-            if lines:
-                crosses, line_hits = scene.leader_tests(cands, free)
-            for n, i in enumerate(free):
-                b = cands.geom(i)
-                if accept is not None and not accept(b):
+            # the first ring's preferred place alone first (where most labels go), then the rest together
+            for part in np.split(np.arange(len(cands)), [1] if ring_i == 0 else []):
+                free = scene.free(cands, part)
+                if not len(free):
                     continue
-                hits = (int(soft[n]), 0)   # lines under the box first, then lines its leader crosses
-                if seeking and hits[0]:
-                    continue
+                soft = scene.soft_hits(cands, free)
+                lines = leader and ring >= 9.0
                 if lines:
-                    if crosses[n]:
+                    crosses, line_hits = scene.leader_tests(cands, free)
+                for n, i in enumerate(free):
+                    b = cands.geom(i)
+                    if accept is not None and not accept(b):
                         continue
-                    hits = (hits[0], int(line_hits[n]))
-                    if seeking and hits[1] > LEADER_MOST:
+                    hits = (int(soft[n]), 0)   # lines under the box first, then lines its leader crosses
+                    if seeking and hits[0]:
                         continue
-                if best is None or hits < best[0]:
-                    best = (hits, cands.centres[i].copy(), b, ring)
-                if hits == (0, 0):
-                    return best
+                    if lines:
+                        if crosses[n]:
+                            continue
+                        hits = (hits[0], int(line_hits[n]))
+                        if seeking and hits[1] > LEADER_MOST:
+                            continue
+                    if best is None or hits < best[0]:
+                        best = (hits, cands.centres[i].copy(), b, ring)
+                    if hits == (0, 0):
+                        return best
         return best
 
     def _least_bad(self, anchor, w: float, h: float, prefer, gap: float, leader: bool):
@@ -588,10 +590,10 @@ class _Scene:
             inside[~proper] = shapely.contains(self.view, cands.geoms[~proper])
         return inside
 
-    def free(self, cands: _Ring) -> np.ndarray:
-        """The indices of the candidates in view that meet no placed label and no hard obstacle
+    def free(self, cands: _Ring, idx: np.ndarray) -> np.ndarray:
+        """The indices of the candidates (of ``idx``) in view that meet no placed label and no hard obstacle
         (:meth:`LabelPlacer.free`), in order."""
-        idx = np.flatnonzero(self.in_view(cands))
+        idx = idx[self.in_view(cands)[idx]]
         if len(idx) and self.taken.size:
             idx = idx[~shapely.intersects(self.taken, cands.geoms[idx][:, None]).any(axis=1)]
         return idx
