@@ -269,11 +269,12 @@ def _draw_pole_marks(sol, ax, shown, st, art) -> None:
 
 def _nearer_own(own, rings):
     """A test of a label's box: nearer its own ring than any other ring (a pole's label by its pole)."""
-    others = [g for g in rings if not g.equals(own)]
+    import shapely
+    others = np.array([g for g in rings if not g.equals(own)], dtype=object)
 
     def accept(b) -> bool:
         d = b.distance(own)
-        return all(d < b.distance(g) for g in others)
+        return bool(np.all(d < shapely.distance(b, others)))   # (b.distance(g) of every other ring, in one call)
     return accept
 
 

@@ -13,6 +13,7 @@ the same placement.
 """
 from __future__ import annotations
 
+import functools
 import math
 from contextlib import contextmanager
 from dataclasses import dataclass
@@ -138,18 +139,19 @@ class LabelPlacer:
             self.keep = False
 
     # -- measuring ---------------------------------------------------------------------
-    def box_of(self, text, pad: float = 1.0):
-        """The Text's box in data coordinates, grown by ``pad`` points (a rotated text: its outline)."""
+    def box_of(self, text, pad: float = 1.0, pp: float | None = None):
+        """The Text's box in data coordinates, grown by ``pad`` points (a rotated text: its outline; ``pp``: the
+        axes' :func:`per_point`, where known)."""
         bb = text.get_window_extent(self.renderer)
         inv = self.ax.transData.inverted()
         (x0, y0), (x1, y1) = inv.transform([[bb.x0, bb.y0], [bb.x1, bb.y1]])
-        p = pad * per_point(self.ax)
+        p = pad * (per_point(self.ax) if pp is None else pp)
         return box(min(x0, x1) - p, min(y0, y1) - p, max(x0, x1) + p, max(y0, y1) + p)
 
-    def text_size(self, text, pad: float = 1.0) -> tuple[float, float]:
+    def text_size(self, text, pad: float = 1.0, pp: float | None = None) -> tuple[float, float]:
         rot = text.get_rotation()
         text.set_rotation(0)
-        b = self.box_of(text, pad)
+        b = self.box_of(text, pad, pp)
         text.set_rotation(rot)
         x0, y0, x1, y1 = b.bounds
         return x1 - x0, y1 - y0
@@ -193,12 +195,14 @@ class LabelPlacer:
         t = self.ax.text(anchor[0], anchor[1], s, ha="center", va="center", **text_kw)
         if gid:
             t.set_gid(gid)
-        w, h = self.text_size(t, pad)
+        pp = per_point(self.ax)   # (the axes' scale: placing a text changes neither its limits nor its size)
+        w, h = self.text_size(t, pad, pp)
         best = self._pinned(gid, w, h)
         if best is None:
-            best = self._search(anchor, w, h, prefer, gap, leader, within, accept, clear, reach)
+            scene = _Scene(self, anchor, pp)
+            best = self._search(anchor, w, h, prefer, gap, leader, within, accept, clear, reach, scene)
             if accept is not None and (best is None or best[0] != (0, 0)):   # a line under it is worse
-                anywhere = self._search(anchor, w, h, prefer, gap, leader, within, None, clear, reach)
+                anywhere = self._search(anchor, w, h, prefer, gap, leader, within, None, clear, reach, scene)
                 if anywhere is not None and (best is None or anywhere[0] < best[0]):
                     best = anywhere
         if best is None and within is not None:   # nothing free on that side: any side
@@ -208,7 +212,7 @@ class LabelPlacer:
         if best is None:
             best = self._least_bad(anchor, w, h, prefer, gap, leader)
             self.overlapping.append(t)
-        self._put(t, anchor, best, gid, leader, obstacle, again)
+        self._put(t, anchor, best, gid, leader, obstacle, again, pp)
         return t
 
     def _pinned(self, gid, w: float, h: float):
@@ -220,33 +224,14 @@ class LabelPlacer:
         b = _box(c, w, h)
         return (0, c, b, pin[2]) if view_box(self.ax).contains(b) and self.free(b) else None
 
-    def _candidates(self, anchor, w: float, h: float, prefer, ring: float, k: int, within=None, pp=None):
-        """(centre, box) of the candidate boxes ``ring`` points from the anchor in ``k`` directions (``pp``: the
-        axes' :func:`per_point`, where known)."""
-        pp = per_point(self.ax) if pp is None else pp
-        for ang in _directions(prefer, k):
-            if within is not None and abs((ang - (prefer or 45.0) + 180.0) % 360.0 - 180.0) > within + 1e-9:
-                continue
-            u = np.array([math.cos(math.radians(ang)), math.sin(math.radians(ang))])
-            c = anchor + u * (ring * pp + half_extent(w, h, u))   # the box's near side ``ring`` from the anchor
-            yield c, _box(c, w, h)
-
-    def _leader_crosses(self, anchor, b, labels_only: bool = False) -> int:
-        """How many labels (and leaders) the leader from ``anchor`` to box ``b`` would cross."""
-        line = LineString([tuple(anchor), tuple(_toward(b, anchor))])
-        others = self.boxes + ([] if labels_only else self.leaders)
-        if not others:
-            return 0
-        return int(np.count_nonzero(shapely.intersects(np.array(others, dtype=object), line)))
-
     def _search(self, anchor, w: float, h: float, prefer, gap: float, leader: bool, within, accept,
-                clear: bool = False, reach: bool = False):
+                clear: bool = False, reach: bool = False, scene=None):
         """The first free candidate, ring after ring, crossing the fewest soft obstacles (None if none is free);
         ``clear``: the far rings too while every free candidate nearer lies on a line (a place there off
         every line, whose leader crosses at most one line or outline); ``reach``: the farthest rings too
-        while nothing nearer is free."""
-        view = view_box(self.ax)
-        scene = _Scene(self, anchor)
+        while nothing nearer is free. A ring's candidates are tested together (:class:`_Scene`: the same
+        answers as testing each box with shapely, in the same order)."""
+        scene = _Scene(self, anchor, per_point(self.ax)) if scene is None else scene
         rings = (gap,) + tuple(r for r in RINGS if r > gap)
         best = None
         for ring_i, ring in enumerate(rings + FAR_RINGS + (REACH_RINGS if reach and leader else ())):
@@ -256,50 +241,71 @@ class LabelPlacer:
             if seeking and not (clear and leader and best[0][0] > 0):
                 break
             k = 48 if ring in REACH_RINGS else 24 if far else 16 if ring_i >= 2 else 8
-            for c, b in self._candidates(anchor, w, h, prefer, ring, k, within, scene.pp):
-                if not view.contains(b) or not scene.free(b) or (accept is not None and not accept(b)):
+            cands = _Ring(anchor, w, h, prefer, ring * scene.pp, k, within)
+            # the first ring's preferred place alone first (where most labels go), then the rest together
+            for part in np.split(np.arange(len(cands)), [1] if ring_i == 0 else []):
+                free = scene.free(cands, part)
+                if not len(free):
                     continue
-                hits = (scene.soft_hits(b), 0)   # lines under the box first, then lines its leader crosses
-                if seeking and hits[0]:
-                    continue
-                if leader and ring >= 9.0:
-                    line = LineString([tuple(anchor), tuple(_toward(b, anchor))])
-                    if scene.leader_crosses(line):
+                soft = scene.soft_hits(cands, free)
+                lines = leader and ring >= 9.0
+                if lines:
+                    crosses, line_hits = scene.leader_tests(cands, free)
+                for n, i in enumerate(free):
+                    b = cands.geom(i)
+                    if accept is not None and not accept(b):
                         continue
-                    hits = (hits[0], scene.leader_hits(line))
-                    if seeking and hits[1] > LEADER_MOST:
+                    hits = (int(soft[n]), 0)   # lines under the box first, then lines its leader crosses
+                    if seeking and hits[0]:
                         continue
-                if best is None or hits < best[0]:
-                    best = (hits, c, b, ring)
-                if hits == (0, 0):
-                    return best
+                    if lines:
+                        if crosses[n]:
+                            continue
+                        hits = (hits[0], int(line_hits[n]))
+                        if seeking and hits[1] > LEADER_MOST:
+                            continue
+                    if best is None or hits < best[0]:
+                        best = (hits, cands.centres[i].copy(), b, ring)
+                    if hits == (0, 0):
+                        return best
         return best
 
     def _least_bad(self, anchor, w: float, h: float, prefer, gap: float, leader: bool):
         """Nothing free: the place clear of every label (and of their leaders) covering the fewest arrowheads
         and pins, then lines; else the first ring's preferred spot."""
-        view = view_box(self.ax)
-        hard = np.array(self.hard, dtype=object)
-        boxes = np.array(self.boxes + self.leaders, dtype=object)   # what its box must keep off
+        pp, view = per_point(self.ax), view_box(self.ax)
+        hard = np.array(self.hard, dtype=object)[None, :]
+        keep_off = np.array(self.boxes + self.leaders, dtype=object)[None, :]   # what its box must keep off
+        labels = np.array(self.boxes, dtype=object)[None, :]   # what its leader had best not cross
+        soft = np.array(self.soft, dtype=object)[None, :]
         best = None
         # (the far rings in finer steps too: a leader that crosses a label, the worst, is rarely the only way)
         for ring in sorted({gap, *(r for r in RINGS if r > gap), *FAR_RINGS, 135.0}):
-            for c, b in self._candidates(anchor, w, h, prefer, ring, 24 if ring in FAR_RINGS else 16):
-                if not view.contains(b) or (len(boxes) and bool(np.any(shapely.intersects(boxes, b)))):
-                    continue
-                crossed = self._leader_crosses(anchor, b, labels_only=True) if leader and ring >= 9.0 else 0
-                score = (crossed, int(np.count_nonzero(shapely.intersects(hard, b))) if len(hard) else 0,
-                         self.soft_hits(b))
+            cands = _Ring(anchor, w, h, prefer, ring * pp, 24 if ring in FAR_RINGS else 16)
+            ok = shapely.contains(view, cands.geoms)
+            if keep_off.size:
+                ok &= ~shapely.intersects(keep_off, cands.geoms[:, None]).any(axis=1)
+            idx = np.flatnonzero(ok)
+            if not len(idx):
+                continue
+            g = cands.geoms[idx][:, None]
+            crossed = (shapely.intersects(labels, _leaders(cands.geoms[idx], anchor)[:, None]).sum(axis=1)
+                       if leader and ring >= 9.0 and labels.size else np.zeros(len(idx), int))
+            on_hard = shapely.intersects(hard, g).sum(axis=1) if hard.size else np.zeros(len(idx), int)
+            on_soft = shapely.intersects(soft, g).sum(axis=1) if soft.size else np.zeros(len(idx), int)
+            for n, i in enumerate(idx):
+                score = (int(crossed[n]), int(on_hard[n]), int(on_soft[n]))
                 if best is None or score < best[0]:
-                    best = (score, c, b, ring)
+                    best = (score, cands.centres[i].copy(), cands.geom(i), ring)
         if best is None:
-            c, b = next(self._candidates(anchor, w, h, prefer, gap, 1))
-            best = (math.inf, c, b, gap)
+            first = _Ring(anchor, w, h, prefer, gap * pp, 1)
+            best = (math.inf, first.centres[0].copy(), first.geom(0), gap)
         return best
 
-    def _put(self, t, anchor, best, gid, leader: bool, obstacle: bool, again) -> None:
+    def _put(self, t, anchor, best, gid, leader: bool, obstacle: bool, again, pp: float | None = None) -> None:
         """Move the text to the place chosen, with its leader where it stands far from its anchor; keep its
-        :class:`Placed` (a label that is an obstacle to the later ones)."""
+        :class:`Placed` (a label that is an obstacle to the later ones; ``pp``: the axes' :func:`per_point`,
+        where known)."""
         _, c, b, ring = best
         t.set_position((float(c[0]), float(c[1])))
         if gid:
@@ -307,7 +313,7 @@ class LabelPlacer:
         ln = geom = None
         if leader and ring >= 9.0:
             from matplotlib.lines import Line2D
-            pp = per_point(self.ax)
+            pp = per_point(self.ax) if pp is None else pp
             edge = _toward(b, anchor)
             start = anchor + (edge - anchor) * (1.5 * pp / max(np.hypot(*(edge - anchor)), 1e-300))
             ln = Line2D([start[0], edge[0]], [start[1], edge[1]], lw=0.4, color=t.get_color(),
@@ -518,37 +524,150 @@ class LabelPlacer:
         return self._overlapping
 
 
+class _Ring:
+    """The candidate boxes ``reach`` (data units) from the anchor in ``k`` directions (those ``within`` of
+    ``prefer``), in :func:`_directions`' order: their centres, bounds and (made when asked) shapely boxes,
+    each the very box :func:`_box` makes on the centre ``anchor + u * (reach + half_extent(w, h, u))`` (the
+    numbers of the candidates made one at a time before: tests/test_placer_speed.py)."""
+
+    def __init__(self, anchor, w: float, h: float, prefer, reach: float, k: int, within=None):
+        u, a, b, has_a, has_b = _units(prefer, k, within, w, h)
+        # half_extent(w, h, u), as min() of its list picks: the second where it is smaller
+        with np.errstate(divide="ignore", invalid="ignore"):
+            he = np.where(has_a & has_b, np.where(b < a, b, a), np.where(has_a, a, b))
+        self.centres = anchor[None, :] + u * (reach + he)[:, None]
+        cx, cy = self.centres[:, 0], self.centres[:, 1]
+        self.bounds = np.column_stack([cx - w / 2, cy - h / 2, cx + w / 2, cy + h / 2])
+        self._geoms = None
+
+    def __len__(self) -> int:
+        return len(self.centres)
+
+    @property
+    def geoms(self) -> np.ndarray:
+        if self._geoms is None:
+            x0, y0, x1, y1 = self.bounds.T
+            g = shapely.box(x0, y0, x1, y1)
+            for i in np.flatnonzero(shapely.is_missing(g)):   # a NaN corner: the box canvas.box makes
+                g[i] = box(*self.bounds[i])
+            self._geoms = g
+        return self._geoms
+
+    def geom(self, i: int):
+        return self.geoms[i]
+
+
 class _Scene:
     """What one label's search tests its candidates against, gathered once: nothing is placed while it
     searches (the placed labels and hard obstacles, the soft ones, the leaders, the lines through the
-    anchor, the axes' scale)."""
+    anchor, the view, the axes' scale). A ring's candidates are tested in one shapely call per test (every
+    candidate against every obstacle: the very predicate :meth:`LabelPlacer.free` and the others ask of each
+    pair, without a Python call per candidate)."""
 
-    def __init__(self, pl: LabelPlacer, anchor):
-        self.pp = per_point(pl.ax)
-        self.taken = np.array(pl.boxes + pl.hard, dtype=object)        # what a label's box must not meet
-        self.soft = np.array(pl.soft, dtype=object)
-        self.crossed = np.array(pl.boxes + pl.leaders, dtype=object)    # what a leader must not cross
+    def __init__(self, pl: LabelPlacer, anchor, pp: float):
+        self.pp = pp
+        self.anchor = np.asarray(anchor, float)
+        self.view = view_box(pl.ax)
+        self.view_bounds = np.array(self.view.bounds, float)
+        self.taken = np.array(pl.boxes + pl.hard, dtype=object)[None, :]        # what a label's box must not meet
+        self.soft = np.array(pl.soft, dtype=object)[None, :]
+        self.crossed = np.array(pl.boxes + pl.leaders, dtype=object)[None, :]    # what a leader must not cross
         # the lines and outlines at the anchor itself: a leader leaving it does not count them
-        self.at_anchor = (shapely.intersects(self.soft, Point(*anchor).buffer(2.0 * self.pp)) if len(self.soft)
-                          else None)
+        self.at_anchor = (shapely.intersects(self.soft[0], Point(*anchor).buffer(2.0 * self.pp))
+                          if self.soft.size else None)
 
-    def free(self, geom) -> bool:
-        """:meth:`LabelPlacer.free`."""
-        return not len(self.taken) or not bool(np.any(shapely.intersects(self.taken, geom)))
+    def in_view(self, cands: _Ring) -> np.ndarray:
+        """Which candidates the view contains (``view.contains(b)``): a box of some width and height in a box is
+        contained exactly where its bounds lie within the view's, edges included; shapely is asked where either
+        is not such a box (no width, or not finite)."""
+        v, bd = self.view_bounds, cands.bounds
+        proper = _proper(bd)
+        if _proper(v[None, :])[0]:
+            inside = proper & (v[0] <= bd[:, 0]) & (bd[:, 2] <= v[2]) & (v[1] <= bd[:, 1]) & (bd[:, 3] <= v[3])
+        else:
+            inside, proper = np.zeros(len(bd), bool), np.zeros(len(bd), bool)
+        if not proper.all():
+            inside[~proper] = shapely.contains(self.view, cands.geoms[~proper])
+        return inside
 
-    def soft_hits(self, geom) -> int:
-        """:meth:`LabelPlacer.soft_hits`."""
-        return int(np.count_nonzero(shapely.intersects(self.soft, geom))) if len(self.soft) else 0
+    def free(self, cands: _Ring, idx: np.ndarray) -> np.ndarray:
+        """The indices of the candidates (of ``idx``) in view that meet no placed label and no hard obstacle
+        (:meth:`LabelPlacer.free`), in order."""
+        idx = idx[self.in_view(cands)[idx]]
+        if len(idx) and self.taken.size:
+            idx = idx[~shapely.intersects(self.taken, cands.geoms[idx][:, None]).any(axis=1)]
+        return idx
 
-    def leader_crosses(self, line) -> int:
-        """How many labels and leaders the leader ``line`` would cross."""
-        return int(np.count_nonzero(shapely.intersects(self.crossed, line))) if len(self.crossed) else 0
+    def soft_hits(self, cands: _Ring, idx) -> np.ndarray:
+        """How many soft obstacles each of the candidates ``idx`` meets (:meth:`LabelPlacer.soft_hits`)."""
+        if not self.soft.size:
+            return np.zeros(len(idx), int)
+        return shapely.intersects(self.soft, cands.geoms[idx][:, None]).sum(axis=1)
 
-    def leader_hits(self, line) -> int:
-        """How many lines and outlines the leader ``line`` would cross, besides those at its anchor."""
-        if not len(self.soft):
-            return 0
-        return int(np.count_nonzero(shapely.intersects(self.soft, line) & ~self.at_anchor))
+    def leader_tests(self, cands: _Ring, idx) -> tuple[np.ndarray, np.ndarray]:
+        """For the candidates ``idx``, the leader from the anchor to the nearest point of each box's outline
+        (:func:`_toward`): whether it crosses a label or leader, and how many lines and outlines it crosses
+        besides those at its anchor."""
+        lines = _leaders(cands.geoms[idx], self.anchor)[:, None]
+        crosses = (shapely.intersects(self.crossed, lines).any(axis=1) if self.crossed.size
+                   else np.zeros(len(idx), bool))
+        if not self.soft.size:
+            return crosses, np.zeros(len(idx), int)
+        return crosses, (shapely.intersects(self.soft, lines) & ~self.at_anchor[None, :]).sum(axis=1)
+
+
+def _unit_rows(prefer, k: int, within):
+    """The unit vectors of :func:`_directions` within ``within`` of ``prefer`` (read only), as the candidates
+    were made one at a time: kept per (prefer, k, within) and their types (a numpy float's arithmetic is its
+    own), else (unhashable) made anew."""
+    try:
+        return _unit_rows_kept(prefer, k, within)
+    except TypeError:
+        return _unit_rows_made(prefer, k, within)
+
+
+def _unit_rows_made(prefer, k: int, within):
+    rows = []
+    for ang in _directions(prefer, k):
+        if within is not None and abs((ang - (prefer or 45.0) + 180.0) % 360.0 - 180.0) > within + 1e-9:
+            continue
+        rows.append((math.cos(math.radians(ang)), math.sin(math.radians(ang))))
+    u = np.array(rows, float).reshape(-1, 2)
+    u.setflags(write=False)
+    return u
+
+
+_unit_rows_kept = functools.lru_cache(maxsize=4096, typed=True)(_unit_rows_made)
+
+
+def _units(prefer, k: int, within, w: float, h: float):
+    """The directions' unit vectors and :func:`half_extent`'s two distances along each (which exist)."""
+    u = _unit_rows(prefer, k, within)
+    ux, uy = np.abs(u[:, 0]), np.abs(u[:, 1])
+    has_a, has_b = ux > 1e-12, uy > 1e-12
+    with np.errstate(divide="ignore", invalid="ignore"):
+        return u, (w / 2) / ux, (h / 2) / uy, has_a, has_b
+
+
+def _proper(bounds: np.ndarray) -> np.ndarray:
+    """Which rows of bounds (x0, y0, x1, y1) are a box's of some width and height, finite."""
+    return np.isfinite(bounds).all(axis=1) & (bounds[:, 0] < bounds[:, 2]) & (bounds[:, 1] < bounds[:, 3])
+
+
+def _leaders(boxes: np.ndarray, anchor) -> np.ndarray:
+    """The leaders (shapely segments) from ``anchor`` to the nearest point of each box's outline, as
+    ``LineString([tuple(anchor), tuple(_toward(b, anchor))])`` makes each."""
+    anchor = np.asarray(anchor, float)
+    ends = _towards(boxes, anchor)
+    return shapely.linestrings(np.stack([np.broadcast_to(anchor, ends.shape), ends], axis=1))
+
+
+def _towards(boxes: np.ndarray, p) -> np.ndarray:
+    """:func:`_toward` of each box (one shapely call for them all): (n, 2)."""
+    if not len(boxes):
+        return np.empty((0, 2))
+    lines = shapely.shortest_line(shapely.get_exterior_ring(boxes), shapely.points(float(p[0]), float(p[1])))
+    return shapely.get_coordinates(lines).reshape(len(boxes), 2, 2)[:, 0, :]
 
 
 def _tally(crossings) -> tuple[int, int]:
