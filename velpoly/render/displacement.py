@@ -14,7 +14,6 @@ another driver angle draws the re-assembled pose.
 from __future__ import annotations
 
 import math
-from dataclasses import replace
 from typing import NamedTuple
 
 import numpy as np
@@ -954,12 +953,7 @@ class _Drawing:
                 return t
             own.leader.set_data([start[0], q.x], [start[1], q.y])
             geom = line.buffer(0.4 * self.pp)
-        x, y = t.get_position()
-        t.set_position((x + u[0], y + u[1]))
-        self.pl.labels[self.pl.labels.index(own)] = replace(own, box=nb, leader_geom=geom)
-        gid = t.get_gid()
-        if gid in self.pl.placed and self.pl.placed[gid][0] == "place":
-            self.pl.placed[gid] = ("place", (x + u[0], y + u[1])) + tuple(self.pl.placed[gid][2:])
+        self.pl.move(t, u, nb, geom)
         return t
 
     def _plan_score(self, p, plan, texts, label_kw) -> tuple:

@@ -16,7 +16,7 @@ from __future__ import annotations
 import functools
 import math
 from contextlib import contextmanager
-from dataclasses import dataclass
+from dataclasses import dataclass, replace
 from typing import Any, Callable
 
 import numpy as np
@@ -107,6 +107,18 @@ class LabelPlacer:
         """Register an already drawn Text as a placed label (its box: measured if not given)."""
         self.labels.append(Placed(text, self.box_of(text) if box is None else box))
         return self.labels[-1]
+
+    def move(self, text, by, box, leader_geom=None) -> None:
+        """Move the placed ``text`` by ``by`` (data units) to ``box`` (its new box, margin kept), its leader now
+        ``leader_geom`` (the leader line as an obstacle; None: it has none), and remember where it went."""
+        own = self.of(text)
+        x, y = text.get_position()
+        at = (x + by[0], y + by[1])
+        text.set_position(at)
+        self.labels[self.labels.index(own)] = replace(own, box=box, leader_geom=leader_geom)
+        gid = text.get_gid()
+        if gid in self.placed and self.placed[gid][0] == "place":
+            self.placed[gid] = ("place", at) + tuple(self.placed[gid][2:])
 
     def remove(self, text) -> None:
         """Take a placed label off the axes with its box and its leader (no longer an obstacle), so that it
