@@ -741,12 +741,13 @@ class _Drawing:
                 spots = [a + (b - a) * f + side * n * off for f in (0.5, 0.38, 0.62, 0.27, 0.73)
                          for side in (1, -1)]
                 if np.hypot(*(b - a)) > 2 * off:
-                    t = self.pl.place_at(spots, literal(lk), gid=f"link-number-{lk}", pad=pad, soft=True, **kw)
+                    t = self.pl.place_at(spots, literal(lk), gid=f"link-number-{lk}", pad=pad, soft=True,
+                                         anchor=anchor, **kw)
                     if t is None:   # nothing clear of every line beside it: near it off every line, if anywhere
                         t = self._off_the_lines(anchor, literal(lk), prefer=prefer, gap=2.0, gid=f"link-number-{lk}",
                                                 pad=pad, **kw)
                     if t is None:   # else clear of marks and labels beside it
-                        t = self.pl.place_at(spots, literal(lk), gid=f"link-number-{lk}", pad=pad, **kw)
+                        t = self.pl.place_at(spots, literal(lk), gid=f"link-number-{lk}", pad=pad, anchor=anchor, **kw)
             if t is None:
                 t = self.pl.place(anchor, literal(lk), prefer=prefer, gap=2.0, gid=f"link-number-{lk}", pad=pad, **kw)
             self.art.add("link_numbers", t)
@@ -766,7 +767,7 @@ class _Drawing:
             if near is not None:
                 return near
             t = self.ax.text(*anchor, literal(lk), ha="center", va="center", gid=gid, **kw)
-        self.pl.add_box(t, b)
+        self.pl.add_box(t, b, anchor=anchor)
         return t
 
     def _off_the_lines(self, anchor, text, **kw):

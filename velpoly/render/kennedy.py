@@ -292,7 +292,7 @@ def _place_free(pl, anchor, text, *, fontsize: float, **kw):
             t = pl.place(anchor, text, fontsize=fontsize * f, reach=reach, **kw)
             pl.keep = len(pl.overlapping) == n
         if pl.of(t) is not None:
-            return t if not _on_lines(pl, t) else _off_drawn_lines(pl, t, anchor, text, fontsize, tries, reach, f, kw)
+            return t if pl.at_pin(t) or not _on_lines(pl, t) else _off_drawn_lines(pl, t, anchor, text, fontsize, tries, reach, f, kw)
     return pl.place(anchor, text, fontsize=fontsize, **kw)
 
 

@@ -103,9 +103,11 @@ class LabelPlacer:
             return
         (self._hard if hard else self.soft).append(geom)
 
-    def add_box(self, text, box=None) -> Placed:
-        """Register an already drawn Text as a placed label (its box: measured if not given)."""
-        self.labels.append(Placed(text, self.box_of(text) if box is None else box))
+    def add_box(self, text, box=None, anchor=None) -> Placed:
+        """Register an already drawn Text as a placed label (its box: measured if not given; ``anchor``: what it
+        labels, where a step frame may move it to its pin with a leader, :meth:`settle`)."""
+        self.labels.append(Placed(text, self.box_of(text) if box is None else box,
+                                  anchor=None if anchor is None else np.asarray(anchor, float)))
         return self.labels[-1]
 
     def move(self, text, by, box, leader_geom=None) -> None:
@@ -209,7 +211,7 @@ class LabelPlacer:
             t.set_gid(gid)
         pp = per_point(self.ax)   # (the axes' scale: placing a text changes neither its limits nor its size)
         w, h = self.text_size(t, pad, pp)
-        best = self._pinned(gid, w, h)
+        best = self._pinned(gid, t, w, h, pad, pp)
         if best is None:
             scene = _Scene(self, anchor, pp)
             best = self._search(anchor, w, h, prefer, gap, leader, within, accept, clear, reach, scene)
@@ -227,14 +229,115 @@ class LabelPlacer:
         self._put(t, anchor, best, gid, leader, obstacle, again, pp)
         return t
 
-    def _pinned(self, gid, w: float, h: float):
-        """Where the finished construction put this label, if it is free here too."""
+    def _pinned(self, gid, t, w: float, h: float, pad: float = 1.0, pp: float | None = None):
+        """Where the finished construction put this label, at the size it has there, if that box is free here
+        too (the Text then set to that size; else left as it was)."""
         pin = self.pins.get(gid) if gid else None
         if pin is None or pin[0] != "place":
             return None
         c = np.asarray(pin[1], float)
+        size = t.get_fontsize()
+        if len(pin) > 3 and pin[3] != size:   # set smaller there: measured at that size
+            t.set_fontsize(pin[3])
+            w, h = self.text_size(t, pad, pp)
         b = _box(c, w, h)
-        return (0, c, b, pin[2]) if view_box(self.ax).contains(b) and self.free(b) else None
+        if view_box(self.ax).contains(b) and self.free(b):
+            return (0, c, b, pin[2])
+        t.set_fontsize(size)
+        return None
+
+    def at_pin(self, t) -> bool:
+        """Whether the Text stands where, and at the size, its pin (the finished construction) has it."""
+        pin = self.pins.get(t.get_gid())
+        if pin is None or pin[0] not in ("place", "at"):
+            return False
+        return (tuple(map(float, t.get_position())) == tuple(map(float, pin[1]))
+                and (len(pin) < 4 or pin[3] == t.get_fontsize()))
+
+    def settle(self) -> int:
+        """A step frame's labels put at their pins: the labels placed elsewhere (each pinned box was taken when
+        it was placed: by a label, leader or value that stands elsewhere in this frame, maybe by one another in
+        a ring) lifted together, and each moved to the place and size the finished construction gives it where
+        that box is free (in view, of the hard obstacles and of every label and leader that stays, its leader
+        crossing no label); one whose box is not free stays where it is, and a label it would meet there keeps
+        its place too. Repeated while one moves. Return the labels moved."""
+        view, pp = view_box(self.ax), per_point(self.ax)
+        moved = 0
+        for _ in range(len(self.labels) + 1):
+            lifted = [p for p in self.labels if self._movable(p)]
+            kept = [p for p in self.labels if not any(p is q for q in lifted)]
+            taken = [q.box for q in kept] + self._hard + [q.leader_geom for q in kept if q.leader_geom is not None]
+            astray = [q.box for q in kept if not self.at_pin(q.text)]   # (a leader at its pin crosses what
+            goals = {}   # stands at its pin here as it does in the finished construction)
+            for p in lifted:   # the lifted ones' pinned boxes free of what stays, in the order they were placed
+                goal = self._goal(p, pp)
+                b, line = goal[0], goal[1]
+                if not view.contains(b) or any(g.intersects(b) for g in taken) or (
+                        line is not None and any(g.intersects(line) for g in astray)):
+                    continue
+                if any(b.intersects(g[0]) for g in goals.values()):
+                    continue
+                goals[id(p)] = goal
+            while True:   # one that stays where it is keeps its place: a goal it meets is given up
+                stay = [p for p in lifted if id(p) not in goals]
+                clash = [k for k, g in goals.items()
+                         if any(_meet(g[0], g[1], q.box, q.leader_geom) for q in stay)]
+                if not clash:
+                    break
+                del goals[clash[0]]
+            if not goals:
+                break
+            for p in [p for p in lifted if id(p) in goals]:
+                self._to_pin(p, goals[id(p)], pp)
+                moved += 1
+        return moved
+
+    def _movable(self, p) -> bool:
+        """Whether placed label ``p`` has a pin it does not stand at (a place, with its anchor known, or a mark
+        on something)."""
+        pin = self.pins.get(p.text.get_gid())
+        return (pin is not None and pin[0] in ("place", "at") and not (pin[0] == "place" and p.anchor is None)
+                and not self.at_pin(p.text))
+
+    def _goal(self, p, pp: float) -> tuple:
+        """Placed label ``p``'s box at its pin, at the pinned size, with its margin (``(box, leader line or None,
+        size)``)."""
+        t = p.text
+        pin = self.pins[t.get_gid()]
+        size = t.get_fontsize()
+        x0, y0, x1, y1 = p.box.bounds
+        w0, h0 = self.text_size(t, 0.0, pp)
+        if len(pin) > 3:
+            t.set_fontsize(pin[3])
+        w, h = self.text_size(t, 0.0, pp)
+        t.set_fontsize(size)
+        b = _box(np.asarray(pin[1], float), w + (x1 - x0) - w0, h + (y1 - y0) - h0)
+        line = None
+        if pin[0] == "place" and pin[2] >= 9.0:   # far from its anchor: a leader, as _put draws it
+            a = np.asarray(p.anchor, float)
+            edge = _toward(b, a)
+            start = a + (edge - a) * (1.5 * pp / max(np.hypot(*(edge - a)), 1e-300))
+            line = LineString([tuple(start), tuple(edge)])
+        return b, line, pin[3] if len(pin) > 3 else size
+
+    def _to_pin(self, p, goal, pp: float) -> None:
+        """Move placed label ``p`` to its pin (``goal``: :meth:`_goal`'s), its leader drawn anew."""
+        from matplotlib.lines import Line2D
+        t = p.text
+        b, line, size = goal
+        if p.leader is not None:
+            p.leader.remove()
+        ln = geom = None
+        if line is not None:
+            ln = Line2D(*np.asarray(line.coords).T, lw=0.4, color=t.get_color(), zorder=t.get_zorder(),
+                        gid=t.get_gid() + "-leader")
+            self.ax.add_line(ln)
+            geom = line.buffer(0.4 * pp)
+        pin = self.pins[t.get_gid()]
+        t.set_fontsize(size)
+        t.set_position((float(pin[1][0]), float(pin[1][1])))
+        self.labels[self.labels.index(p)] = replace(p, box=b, leader=ln, leader_geom=geom)
+        self.placed[t.get_gid()] = pin
 
     def _search(self, anchor, w: float, h: float, prefer, gap: float, leader: bool, within, accept,
                 clear: bool = False, reach: bool = False, scene=None):
@@ -321,7 +424,7 @@ class LabelPlacer:
         _, c, b, ring = best
         t.set_position((float(c[0]), float(c[1])))
         if gid:
-            self.placed[gid] = ("place", (float(c[0]), float(c[1])), ring)
+            self.placed[gid] = ("place", (float(c[0]), float(c[1])), ring, t.get_fontsize())
         ln = geom = None
         if leader and ring >= 9.0:
             from matplotlib.lines import Line2D
@@ -336,13 +439,13 @@ class LabelPlacer:
             self.labels.append(Placed(t, b, ln, geom, again, np.asarray(anchor, float)))
 
     def place_at(self, centres, s: str, *, gid: str | None = None, pad: float = 1.0, avoid=(), soft: bool = False,
-                 **text_kw):
+                 anchor=None, **text_kw):
         """Draw ``s`` centred on the first of ``centres`` where it is free; None if none is.
 
         For a mark that belongs *on* something (a number on a chord). ``avoid``:
         further geometries (data coordinates) the box must not meet, for this
         text only (the other chords, for a chord's number); ``soft``: the box must
-        meet no soft obstacle either.
+        meet no soft obstacle either. ``anchor``: what it marks (kept in its :class:`Placed`, see :meth:`add_box`).
         """
         ax = self.ax
         c0 = np.asarray(centres[0], float)
@@ -361,7 +464,7 @@ class LabelPlacer:
                 t.set_position((float(c[0]), float(c[1])))
                 if gid:
                     self.placed[gid] = ("at", (float(c[0]), float(c[1])))
-                self.labels.append(Placed(t, b))
+                self.labels.append(Placed(t, b, anchor=None if anchor is None else np.asarray(anchor, float)))
                 return t
         t.remove()
         return None
@@ -525,7 +628,7 @@ class LabelPlacer:
             p.text.set_position(c)
             gid = p.text.get_gid()
             if gid and gid in self.placed:
-                self.placed[gid] = ("place", c, 9.0 if p.leader is not None else 0.0)
+                self.placed[gid] = ("place", c, 9.0 if p.leader is not None else 0.0, p.text.get_fontsize())
         self.labels[i], self.labels[j] = new[i], new[j]
         return True
 
@@ -686,6 +789,12 @@ def _tally(crossings) -> tuple[int, int]:
     """(leaders across a label, leaders across a leader) of :meth:`LabelPlacer._crossings`: a label struck
     through is the worse."""
     return (sum(1 for c in crossings if c[2] == "box"), sum(1 for c in crossings if c[2] == "leader"))
+
+
+def _meet(box_a, line_a, box_b, line_b) -> bool:
+    """Whether two labels meet: box on box, or a leader (line or buffered geometry, None: none) on the other's box."""
+    return (box_a.intersects(box_b) or (line_a is not None and line_a.intersects(box_b))
+            or (line_b is not None and line_b.intersects(box_a)))
 
 
 def _reach(*lines) -> float:

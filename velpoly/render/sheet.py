@@ -719,6 +719,9 @@ def render(sol, sheet: str = "full", style="textbook", *, cons: Constructions | 
     for name, ax in axes.items():
         placer(ax).pins = pins.get(name, {})
     captions = _draw_panels(sol, axes, st, opts, cons, sheet, frame, plan, pins)
+    if pins:   # a step frame: every label whose finished place (and size) is free here goes there
+        for ax in axes.values():
+            placer(ax).settle()
     _draw_captions(fig, st, m, axes, captions)
     fig._velpoly_pins = {name: dict(placer(ax).placed) for name, ax in axes.items()}
     return Rendered(fig, own_page)
