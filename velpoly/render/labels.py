@@ -266,13 +266,15 @@ class LabelPlacer:
         for _ in range(len(self.labels) + 1):
             lifted = [p for p in self.labels if self._movable(p)]
             kept = [p for p in self.labels if not any(p is q for q in lifted)]
-            taken = [q.box for q in kept] + self._hard + [q.leader_geom for q in kept if q.leader_geom is not None]
+            labels = [q.box for q in kept] + [q.leader_geom for q in kept if q.leader_geom is not None]
+            crowded = self.pins.get("_crowded", ("crowded", frozenset()))[1]
             astray = [q.box for q in kept if not self.at_pin(q.text)]   # (a leader at its pin crosses what
             goals = {}   # stands at its pin here as it does in the finished construction)
             for p in lifted:   # the lifted ones' pinned boxes free of what stays, in the order they were placed
                 goal = self._goal(p, pp)
                 b, line = goal[0], goal[1]
-                if not view.contains(b) or any(g.intersects(b) for g in taken) or (
+                hard = [] if p.text.get_gid() in crowded else self._hard   # on a line there too: here as well
+                if not view.contains(b) or any(g.intersects(b) for g in labels + hard) or (
                         line is not None and any(g.intersects(line) for g in astray)):
                     continue
                 if any(b.intersects(g[0]) for g in goals.values()):
@@ -291,6 +293,15 @@ class LabelPlacer:
                 self._to_pin(p, goals[id(p)], pp)
                 moved += 1
         return moved
+
+    def crowded(self) -> frozenset:
+        """The gids of the placed labels whose boxes meet a hard obstacle (a crowd's last-resort places): a step
+        frame puts them at their pins where no label is, whatever line runs there (:meth:`settle`)."""
+        hard = np.array(self._hard, dtype=object)
+        if not hard.size:
+            return frozenset()
+        return frozenset(p.text.get_gid() for p in self.labels
+                         if p.text.get_gid() and shapely.intersects(hard, p.box).any())
 
     def _movable(self, p) -> bool:
         """Whether placed label ``p`` has a pin it does not stand at (a place, with its anchor known, or a mark

@@ -724,6 +724,9 @@ def render(sol, sheet: str = "full", style="textbook", *, cons: Constructions | 
             placer(ax).settle()
     _draw_captions(fig, st, m, axes, captions)
     fig._velpoly_pins = {name: dict(placer(ax).placed) for name, ax in axes.items()}
+    if not pins:   # the finished construction: which labels stand on lines there (they may in a frame too)
+        for name, ax in axes.items():
+            fig._velpoly_pins[name]["_crowded"] = ("crowded", placer(ax).crowded())
     return Rendered(fig, own_page)
 
 
