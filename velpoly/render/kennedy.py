@@ -384,7 +384,9 @@ def _label_poles(sol, ax, ps, shown, pole_lines, st, art) -> None:
             if p.position is None:
                 d = np.array([math.cos(math.radians(p.direction)), math.sin(math.radians(p.direction))])
                 text = label + r" $\infty$"
-                tip = _infinity_arrow_tip(pl, content, c, d, pc, far)
+                pin = pl.pins.get(f"pole-{p.key}")   # a step frame: where the finished construction has it
+                tip = np.asarray(pin[1], float) if pin is not None else _infinity_arrow_tip(pl, content, c, d, pc, far)
+                pl.placed[f"pole-{p.key}"] = ("arrow", (float(tip[0]), float(tip[1])))
             else:
                 text = label + f" ({p.position[0]:.4g}, {p.position[1]:.4g})".replace("-", "−")
                 tip, d = far_pole_arrow(view, p.position, pole_lines.get(p.key, ()), c, 0.2 * pc)
