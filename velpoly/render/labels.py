@@ -266,15 +266,19 @@ class LabelPlacer:
         for _ in range(len(self.labels) + 1):
             lifted = [p for p in self.labels if self._movable(p)]
             kept = [p for p in self.labels if not any(p is q for q in lifted)]
-            labels = [q.box for q in kept] + [q.leader_geom for q in kept if q.leader_geom is not None]
+            boxes = [q.box for q in kept]
+            leaders = [q.leader_geom for q in kept if q.leader_geom is not None]
             crowded = self.pins.get("_crowded", ("crowded", frozenset()))[1]
-            astray = [q.box for q in kept if not self.at_pin(q.text)]   # (a leader at its pin crosses what
-            goals = {}   # stands at its pin here as it does in the finished construction)
+            strays = [q for q in kept if not self.at_pin(q.text)]   # (a leader at its pin crosses what stands
+            astray = [q.box for q in strays]                        # at its pin here as in the finished one)
+            goals = {}
             for p in lifted:   # the lifted ones' pinned boxes free of what stays, in the order they were placed
                 goal = self._goal(p, pp)
                 b, line = goal[0], goal[1]
-                hard = [] if p.text.get_gid() in crowded else self._hard   # on a line there too: here as well
-                if not view.contains(b) or any(g.intersects(b) for g in labels + hard) or (
+                # on a line or a leader there too: here as well (off the leaders of labels off their pins)
+                hard = (self._hard + leaders if p.text.get_gid() not in crowded else
+                        [q.leader_geom for q in strays if q.leader_geom is not None])
+                if not view.contains(b) or any(g.intersects(b) for g in boxes + hard) or (
                         line is not None and any(g.intersects(line) for g in astray)):
                     continue
                 if any(b.intersects(g[0]) for g in goals.values()):
@@ -295,13 +299,16 @@ class LabelPlacer:
         return moved
 
     def crowded(self) -> frozenset:
-        """The gids of the placed labels whose boxes meet a hard obstacle (a crowd's last-resort places): a step
-        frame puts them at their pins where no label is, whatever line runs there (:meth:`settle`)."""
-        hard = np.array(self._hard, dtype=object)
-        if not hard.size:
-            return frozenset()
-        return frozenset(p.text.get_gid() for p in self.labels
-                         if p.text.get_gid() and shapely.intersects(hard, p.box).any())
+        """The gids of the placed labels whose boxes meet a hard obstacle or another label's leader (a crowd's
+        last-resort places): a step frame puts them at their pins where no label is, whatever line or leader
+        (of a label at its pin) runs there (:meth:`settle`)."""
+        out = set()
+        for p in self.labels:
+            hard = np.array(self._hard + [q.leader_geom for q in self.labels
+                                          if q is not p and q.leader_geom is not None], dtype=object)
+            if p.text.get_gid() and hard.size and shapely.intersects(hard, p.box).any():
+                out.add(p.text.get_gid())
+        return frozenset(out)
 
     def _movable(self, p) -> bool:
         """Whether placed label ``p`` has a pin it does not stand at (a place, with its anchor known, or a mark
