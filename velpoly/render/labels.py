@@ -332,25 +332,16 @@ class LabelPlacer:
         b = _box(np.asarray(pin[1], float), w + (x1 - x0) - w0, h + (y1 - y0) - h0)
         line = None
         if pin[0] == "place" and pin[2] >= 9.0:   # far from its anchor: a leader, as _put draws it
-            a = np.asarray(p.anchor, float)
-            edge = _toward(b, a)
-            start = a + (edge - a) * (1.5 * pp / max(np.hypot(*(edge - a)), 1e-300))
-            line = LineString([tuple(start), tuple(edge)])
+            line = _leader_segment(np.asarray(p.anchor, float), b, pp)
         return b, line, pin[3] if len(pin) > 3 else size
 
     def _to_pin(self, p, goal, pp: float) -> None:
         """Move placed label ``p`` to its pin (``goal``: :meth:`_goal`'s), its leader drawn anew."""
-        from matplotlib.lines import Line2D
         t = p.text
         b, line, size = goal
         if p.leader is not None:
             p.leader.remove()
-        ln = geom = None
-        if line is not None:
-            ln = Line2D(*np.asarray(line.coords).T, lw=0.4, color=t.get_color(), zorder=t.get_zorder(),
-                        gid=t.get_gid() + "-leader")
-            self.ax.add_line(ln)
-            geom = line.buffer(0.4 * pp)
+        ln, geom = (None, None) if line is None else self._draw_leader(t, line, t.get_gid(), pp)
         pin = self.pins[t.get_gid()]
         t.set_fontsize(size)
         t.set_position((float(pin[1][0]), float(pin[1][1])))
@@ -445,16 +436,20 @@ class LabelPlacer:
             self.placed[gid] = ("place", (float(c[0]), float(c[1])), ring, t.get_fontsize())
         ln = geom = None
         if leader and ring >= 9.0:
-            from matplotlib.lines import Line2D
             pp = per_point(self.ax) if pp is None else pp
-            edge = _toward(b, anchor)
-            start = anchor + (edge - anchor) * (1.5 * pp / max(np.hypot(*(edge - anchor)), 1e-300))
-            ln = Line2D([start[0], edge[0]], [start[1], edge[1]], lw=0.4, color=t.get_color(),
-                        zorder=t.get_zorder(), gid=(gid + "-leader") if gid else None)
-            self.ax.add_line(ln)
-            geom = LineString([tuple(start), tuple(edge)]).buffer(0.4 * pp)   # later labels keep off it
+            ln, geom = self._draw_leader(t, _leader_segment(anchor, b, pp), gid, pp)
         if obstacle:
             self.labels.append(Placed(t, b, ln, geom, again, np.asarray(anchor, float)))
+
+    def _draw_leader(self, t, line, gid, pp: float):
+        """The leader ``line`` (:func:`_leader_segment`) drawn for Text ``t`` in its colour, and its obstacle
+        (the line grown by 0.4 pt: later labels keep off it): ``(Line2D, geometry)``."""
+        from matplotlib.lines import Line2D
+        (x0, y0), (x1, y1) = line.coords
+        ln = Line2D([x0, x1], [y0, y1], lw=0.4, color=t.get_color(), zorder=t.get_zorder(),
+                    gid=(gid + "-leader") if gid else None)
+        self.ax.add_line(ln)
+        return ln, line.buffer(0.4 * pp)
 
     def place_at(self, centres, s: str, *, gid: str | None = None, pad: float = 1.0, avoid=(), soft: bool = False,
                  anchor=None, **text_kw):
@@ -573,9 +568,7 @@ class LabelPlacer:
         pp = per_point(self.ax)
         if b.distance(Point(*anchor)) < 8.0 * pp:
             return None
-        edge = _toward(b, anchor)
-        start = anchor + (edge - anchor) * (1.5 * pp / max(np.hypot(*(edge - anchor)), 1e-300))
-        return LineString([tuple(start), tuple(edge)])
+        return _leader_segment(anchor, b, pp)
 
     def _crossings(self, labels=None) -> list:
         """(i, j) of every leader of label i that crosses the leader or the box of label j (see :func:`_tally`)."""
@@ -807,6 +800,13 @@ def _tally(crossings) -> tuple[int, int]:
     """(leaders across a label, leaders across a leader) of :meth:`LabelPlacer._crossings`: a label struck
     through is the worse."""
     return (sum(1 for c in crossings if c[2] == "box"), sum(1 for c in crossings if c[2] == "leader"))
+
+
+def _leader_segment(anchor, b, pp: float) -> LineString:
+    """A leader from ``anchor`` to the nearest point of box ``b``'s outline, its first 1.5 pt left open."""
+    edge = _toward(b, anchor)
+    start = anchor + (edge - anchor) * (1.5 * pp / max(np.hypot(*(edge - anchor)), 1e-300))
+    return LineString([tuple(start), tuple(edge)])
 
 
 def _meet(box_a, line_a, box_b, line_b) -> bool:
