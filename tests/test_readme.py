@@ -1,13 +1,12 @@
 """The README's walkthroughs work as written (issue 18, item 9): each TOML file in it loads and solves,
 the numbers quoted in the prose are what velpoly prints, and the Python snippets run."""
 import re
-import subprocess
-import sys
 
 import pytest
 
 import velpoly
 from paths import ROOT
+from velpoly.cli import main
 
 README = (ROOT / "README.md").read_text(encoding="utf-8")
 
@@ -26,15 +25,19 @@ def files(tmp_path_factory):
     return tmp
 
 
-def _solve(path, *args):
-    r = subprocess.run([sys.executable, "-m", "velpoly", "solve", str(path), *args], capture_output=True,
-                       text=True, timeout=120)
-    assert r.returncode == 0 and r.stderr == "", r.stderr
-    return r.stdout
+def _solve(capsys, path, *args):
+    """What ``velpoly solve PATH ARGS`` prints, run in this process (``velpoly.cli.main``, what the command
+    runs: the same text without a subprocess's second of imports; the command's exit status as the shell sees
+    it is test_cli's test_solve_exit_0)."""
+    capsys.readouterr()
+    rc = main(["solve", str(path), *args])
+    out, err = capsys.readouterr()
+    assert rc == 0 and err == "", err
+    return out
 
 
-def test_the_four_bar_tutorial(files):
-    out = _solve(files / "ex36.toml")
+def test_the_four_bar_tutorial(files, capsys):
+    out = _solve(capsys, files / "ex36.toml")
     # "ω3 = 6.7018 (book 6.702), V_B = 602.121∠149.213° (book 602.137∠149.213°)"
     assert re.search(r"^omega_3 +6\.702 +6\.7018 ", out, flags=re.M)
     assert re.search(r"^V_B +602\.137 ∠ 149\.213° +602\.121 ∠ 149\.213° ", out, flags=re.M)
@@ -42,8 +45,8 @@ def test_the_four_bar_tutorial(files):
     assert compass.splitlines()[3].startswith("B ") and compass.splitlines()[3].rstrip().endswith('side = "right"')
 
 
-def test_the_slotted_lever_tutorial_prints_what_the_readme_shows(files):
-    out = _solve(files / "lever.toml")
+def test_the_slotted_lever_tutorial_prints_what_the_readme_shows(files, capsys):
+    out = _solve(capsys, files / "lever.toml")
     shown = next(b for b in blocks("text") if "A^c_A3/A4" in b).strip().splitlines()
     printed = out.split("Reference values", 1)[1].splitlines()
     assert [line.split() for line in shown] == [line.split() for line in printed[1:2] + printed[3:3 + len(shown) - 1]]
