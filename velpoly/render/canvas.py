@@ -139,10 +139,39 @@ def view_scale(ax) -> float | None:
 
 
 def per_point(ax) -> float:
-    """Data units per typographic point (1/72 inch) on the axes, at its current limits."""
+    """Data units per typographic point (1/72 inch) on the axes, at its current limits.
+
+    ``|x1 - x0| / w * (2.54 / 72)``, w the axes' width in cm of paper after its aspect is applied
+    (``get_position`` applies it: a millisecond, and label placement asks thousands of times on one drawing).
+    The value is kept on the axes with what it was computed from (:func:`_aspect_key`: the limits, scales,
+    positions, aspect, adjustable, anchor and box aspect, the figure's size in inches and pixels): where all
+    of these are as they were after the last computation, applying the aspect again changes nothing (it
+    depends on the original position, never on the active one it sets) and the same numbers give the same
+    value, so it is returned as it is."""
+    key = _aspect_key(ax)
+    kept = getattr(ax, "_velpoly_per_point", None)
+    if key is not None and kept is not None and kept[0] == key:
+        return kept[1]
     x0, x1 = ax.get_xlim()
     wcm, _ = axes_cm(ax)
-    return abs(x1 - x0) / wcm * (2.54 / 72.0)
+    value = abs(x1 - x0) / wcm * (2.54 / 72.0)
+    key = _aspect_key(ax)   # as applied
+    if key is not None:
+        ax._velpoly_per_point = (key, value)
+    return value
+
+
+def _aspect_key(ax):
+    """What the axes' applied position and :func:`per_point` depend on, or None where matplotlib's aspect
+    handling may change the limits or depend on more (a locator, twinned axes, ``adjustable='datalim'``)."""
+    aspect, adjustable = getattr(ax, "_aspect", None), getattr(ax, "_adjustable", None)
+    if ax.get_axes_locator() is not None or ax in ax._twinned_axes or not (
+            adjustable == "box" or (aspect == "auto" and ax._box_aspect is None)):
+        return None
+    fig = ax.figure
+    return (ax.get_xlim(), ax.get_ylim(), ax.xaxis.get_scale(), ax.yaxis.get_scale(),
+            ax._originalPosition.bounds, ax._position.bounds, aspect, adjustable, ax._anchor, ax._box_aspect,
+            tuple(fig.get_size_inches()), fig.bbox.bounds, fig.transSubfigure.get_matrix().tobytes())
 
 
 def per_cm(ax) -> float:
