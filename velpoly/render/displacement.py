@@ -541,6 +541,7 @@ class _Drawing:
                             color=st.ink, linestyle=ls, zorder=2.9)
                 self.ax.add_line(ln)
                 self.art.add("contacts", ln)
+                self.pl.add_obstacle(LineString([tuple(a), tuple(b)]), hard=False)   # labels rather off them
             return
         for j, (lk, cn) in enumerate(zip(c.links, c.centres)):
             if self.m.link(lk).frame:   # the frame's profile: a hatched surface (flat) or arc

@@ -224,7 +224,7 @@ class LabelPlacer:
             return self.place(anchor, s, prefer=prefer, gap=gap, leader=leader, gid=gid, obstacle=obstacle, pad=pad,
                               clear=clear, reach=reach, again=again, **text_kw)
         if best is None:
-            best = self._least_bad(anchor, w, h, prefer, gap, leader)
+            best = self._least_bad(anchor, w, h, prefer, gap, leader, reach)
             self.overlapping.append(t)
         self._put(t, anchor, best, gid, leader, obstacle, again, pp)
         return t
@@ -394,9 +394,10 @@ class LabelPlacer:
                         return best
         return best
 
-    def _least_bad(self, anchor, w: float, h: float, prefer, gap: float, leader: bool):
+    def _least_bad(self, anchor, w: float, h: float, prefer, gap: float, leader: bool, reach: bool = False):
         """Nothing free: the place clear of every label (and of their leaders) covering the fewest arrowheads
-        and pins, then lines; else the first ring's preferred spot."""
+        and pins, then lines (``reach``: out to :data:`REACH_RINGS` too, where only such a place covers less);
+        else the first ring's preferred spot."""
         pp, view = per_point(self.ax), view_box(self.ax)
         hard = np.array(self.hard, dtype=object)[None, :]
         keep_off = np.array(self.boxes + self.leaders, dtype=object)[None, :]   # what its box must keep off
@@ -404,8 +405,11 @@ class LabelPlacer:
         soft = np.array(self.soft, dtype=object)[None, :]
         best = None
         # (the far rings in finer steps too: a leader that crosses a label, the worst, is rarely the only way)
-        for ring in sorted({gap, *(r for r in RINGS if r > gap), *FAR_RINGS, 135.0}):
-            cands = _Ring(anchor, w, h, prefer, ring * pp, 24 if ring in FAR_RINGS else 16)
+        far = REACH_RINGS if reach and leader else ()
+        for ring in sorted({gap, *(r for r in RINGS if r > gap), *FAR_RINGS, 135.0, *far}):
+            if ring in far and best is not None and best[0][1] == 0:
+                break   # farther only while every place nearer covers a mark or a line the label must keep off
+            cands = _Ring(anchor, w, h, prefer, ring * pp, 48 if ring in far else 24 if ring in FAR_RINGS else 16)
             ok = shapely.contains(view, cands.geoms)
             if keep_off.size:
                 ok &= ~shapely.intersects(keep_off, cands.geoms[:, None]).any(axis=1)
