@@ -27,6 +27,7 @@ import shapely
 from shapely import STRtree
 from shapely.geometry import LineString, Point, box
 
+import sheets
 from velpoly.render import kennedy
 from velpoly.render.canvas import fit_view, view_box
 from velpoly.render.displacement import SMALLER
@@ -164,3 +165,30 @@ def test_contact_normal_and_tangent_are_lines_labels_keep_off():
             on = [(t.get_text(), k) for t in ax.texts if t.get_text().strip()
                   for k, g in enumerate(contact) if g.intersects(_data_box(ax, t))]
             assert not on, (seed, style, on)
+
+
+@sheets.on("slides")
+def test_gallery_scale_bars_numbers_off_the_lines():
+    """The cam with a roller follower's own sheet on slides (tests/sheets.py: drawn once, shared with
+    test_render_gallery): no scale bar's number meets a line of its panel (Line2D as drawn; before, its
+    acceleration polygon's "20000 mm/s²" sat on three vectors), and the acceleration polygon, which has a detail,
+    is drawn at the scale where the bar's room is free (``detail.make_room``: 1 cm = 20000 mm/s², not 15000)."""
+    from velpoly.render.canvas import per_cm
+    fig = sheets.page("cam_roller_follower", "full", "slides")
+    with sheets.styled("slides"):
+        r = fig.canvas.get_renderer()
+        for ax in fig.axes:
+            lines = []
+            for ln in ax.lines:
+                xy = ax.transData.transform(ln.get_xydata())
+                xy = xy[np.all(np.isfinite(xy), axis=1)]
+                if len(xy) >= 2:
+                    lines.append(LineString(xy))
+            for t in ax.texts:
+                if (t.get_gid() or "").startswith("scale-bar"):
+                    bb = t.get_window_extent(r)
+                    b = box(bb.x0 + 1, bb.y0 + 1, bb.x1 - 1, bb.y1 - 1)
+                    assert not any(g.intersects(b) for g in lines), (ax.get_label(), t.get_text())
+        acc = next(ax for ax in fig.axes if ax.get_label() == "acceleration")
+        assert any(p.get_gid() == "detail-frame" for p in acc.patches)
+        assert per_cm(acc) == 20000

@@ -129,9 +129,10 @@ def _bar_corner(ax, corners, room, gid: str, parts=None):
             best = (hits, c)
         if hits == 0:
             break
-    if best[0] and parts is not None and len(corners) > 1 and len(geoms):
-        best = (0, _least_on_texts(ax, corners + _grid(ax, room), parts(), geoms, weights))
-    pl.placed[gid] = ("bar", (float(best[1][0]), float(best[1][1])))
+    free = best[0] == 0   # its room free (a detail's make_room makes the scale coarser until it is)
+    if not free and parts is not None and len(corners) > 1 and len(geoms):
+        best = (best[0], _least_on_texts(ax, corners + _grid(ax, room), parts(), geoms, weights))
+    pl.placed[gid] = ("bar", (float(best[1][0]), float(best[1][1])), free)
     return best[1]
 
 
