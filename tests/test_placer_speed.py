@@ -79,11 +79,15 @@ def ref_search(pl, anchor, w, h, prefer, gap, leader, within, accept, clear=Fals
     return best
 
 
-def ref_least_bad(pl, anchor, w, h, prefer, gap, leader):
+def ref_least_bad(pl, anchor, w, h, prefer, gap, leader, reach=False):
     view, pp = view_box(pl.ax), per_point(pl.ax)
     best = None
-    for ring in sorted({gap, *(r for r in L.RINGS if r > gap), *L.FAR_RINGS, 135.0}):
-        for c, b in ref_candidates(anchor, w, h, prefer, ring, 24 if ring in L.FAR_RINGS else 16, None, pp):
+    far = L.REACH_RINGS if reach and leader else ()
+    for ring in sorted({gap, *(r for r in L.RINGS if r > gap), *L.FAR_RINGS, 135.0, *far}):
+        if ring in far and best is not None and best[0][1] == 0:
+            break
+        k = 48 if ring in far else 24 if ring in L.FAR_RINGS else 16
+        for c, b in ref_candidates(anchor, w, h, prefer, ring, k, None, pp):
             if not view.contains(b) or count(pl.boxes + pl.leaders, b):
                 continue
             line = LineString([tuple(anchor), tuple(ref_toward(b, anchor))])
@@ -238,9 +242,9 @@ def compared(monkeypatch):
         seen["kept"] += new is not None and new[3] >= 9.0
         return new
 
-    def checked_least_bad(self, anchor, w, h, prefer, gap, leader):
-        old = ref_least_bad(self, anchor, w, h, prefer, gap, leader)
-        new = least_bad(self, anchor, w, h, prefer, gap, leader)
+    def checked_least_bad(self, anchor, w, h, prefer, gap, leader, reach=False):
+        old = ref_least_bad(self, anchor, w, h, prefer, gap, leader, reach)
+        new = least_bad(self, anchor, w, h, prefer, gap, leader, reach)
         assert same(new, old), (anchor, prefer, new, old)
         seen["least_bad"] += 1
         return new

@@ -241,10 +241,13 @@ def _zoom(ax, lims, centre, k: float) -> None:
     ax.set_ylim(cy + (y0 - cy) * k, cy + (y1 - cy) * k)
 
 
-def _bar_on(art, frame) -> int:
-    """1 if the panel's scale bar (drawn last) found its place only on the detail's frame."""
+def _bar_on(art, frame, pl=None) -> int:
+    """1 if the panel's scale bar (drawn last) found its place only on the detail's frame, or found no place
+    with its room free (``pl``: the panel's placer; ``placed["scale-bar"]``)."""
     bar = art.get("scale_bar", [])
-    return int(bool(bar) and box(*bar[0].get_bbox().get_points().ravel()).intersects(frame))
+    pin = pl.placed.get("scale-bar") if pl is not None else None
+    return int(bool(bar) and (box(*bar[0].get_bbox().get_points().ravel()).intersects(frame) or
+                              (pin is not None and len(pin) > 2 and not pin[2])))
 
 
 def make_room(polygon, ax, draw, fixed: bool = False) -> None:
@@ -269,7 +272,7 @@ def make_room(polygon, ax, draw, fixed: bool = False) -> None:
         ax._velpoly_scale = s
         with pl.trial():
             art = draw()
-            hits = None if art.detail is None else art.detail.hits + _bar_on(art, art.detail.frame)
+            hits = None if art.detail is None else art.detail.hits + _bar_on(art, art.detail.frame, pl)
         if hits is not None and (best is None or hits < best[0]):
             best = (hits, s)
         if hits == 0:

@@ -541,6 +541,7 @@ class _Drawing:
                             color=st.ink, linestyle=ls, zorder=2.9)
                 self.ax.add_line(ln)
                 self.art.add("contacts", ln)
+                self.pl.add_obstacle(LineString([tuple(a), tuple(b)]), hard=False)   # labels rather off them
             return
         for j, (lk, cn) in enumerate(zip(c.links, c.centres)):
             if self.m.link(lk).frame:   # the frame's profile: a hatched surface (flat) or arc
@@ -1020,7 +1021,13 @@ class _Drawing:
                  rf"$\alpha_{{{lk}}}$ = {abs(drv.alpha):.4g} rad/s² {'ccw' if drv.alpha > 0 else 'cw'}")
         label_kw = dict(fontsize=st.small_size * 1.15, zorder=7)
         plans = self._driver_plans(self._driver_gaps(pivot, p, ground_dir), 0.8 * self.pc)
-        best = min(plans, key=lambda plan: self._plan_score(p, plan, texts, label_kw))
+        pin = self.pl.pins.get("driver-plan")   # a step frame: the finished construction's layout (scored here, with
+        if pin is not None and pin[0] == "plan" and pin[1] < len(plans):   # its values at their pins, another may win)
+            k = pin[1]
+        else:
+            k = min(range(len(plans)), key=lambda i: self._plan_score(p, plans[i], texts, label_kw))
+        self.pl.placed["driver-plan"] = ("plan", k)
+        best = plans[k]
         arts, labels = self._draw_driver(p, best, texts, label_kw)
         self.art.add("driver", *arts, *labels)
 

@@ -293,7 +293,32 @@ def _place_free(pl, anchor, text, *, fontsize: float, **kw):
             pl.keep = len(pl.overlapping) == n
         if pl.of(t) is not None:
             return t if pl.at_pin(t) or not _on_lines(pl, t) else _off_drawn_lines(pl, t, anchor, text, fontsize, tries, reach, f, kw)
-    return pl.place(anchor, text, fontsize=fontsize, **kw)
+    return _least_covering(pl, anchor, text, fontsize, kw)
+
+
+def _least_covering(pl, anchor, text, fontsize: float, kw):
+    """A crowd's last resort (no free place at any size or reach): where it covers least, at the size (its own,
+    else :data:`SMALLER`) whose place there meets the fewest hard obstacles (Kennedy lines, marks, leaders): the
+    place covering least at its own size may lie on a Kennedy line where a smaller box's lies on none (Example
+    3.4's P26 on slides). A step frame's label stands at its pin (:meth:`LabelPlacer.place` tries it first)."""
+    best = None
+    for f in (1.0,) + SMALLER:
+        with pl.trial():
+            t = pl.place(anchor, text, fontsize=fontsize * f, reach=True, **kw)
+            hits = 0 if pl.at_pin(t) else _hard_hits(pl, pl.of(t))
+        if best is None or hits < best[0]:
+            best = (hits, f)
+        if hits == 0:
+            break
+    return pl.place(anchor, text, fontsize=fontsize * best[1], reach=True, **kw)
+
+
+def _hard_hits(pl, own) -> int:
+    """How many hard obstacles (and other labels' leaders) the placed label ``own``'s box meets."""
+    import shapely
+    hard = np.array(pl._hard + [q.leader_geom for q in pl.labels if q is not own and q.leader_geom is not None],
+                    dtype=object)
+    return int(shapely.intersects(hard, own.box).sum()) if hard.size else 0
 
 
 def _drawn_lines(ax) -> list:

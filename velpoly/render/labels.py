@@ -41,8 +41,9 @@ class Placed:
     """One label the placer put down: its ``text`` (a matplotlib Text), its ``box`` (shapely, data
     coordinates, with the margin it keeps), its ``leader`` (the Line2D drawn from its anchor, or None) with
     ``leader_geom`` (that line as the obstacle later labels keep off), ``again``: how its drawing places
-    it anew (a driver's value a later leader crosses), or None, and the ``anchor`` it labels (placed by
-    :meth:`LabelPlacer.place`; else None)."""
+    it anew (a driver's value a later leader crosses), or None, the ``anchor`` it labels (placed by
+    :meth:`LabelPlacer.place`; else None) and, for a text along a line, ``apart``: its box grown by the em the
+    other such texts keep from it (in :attr:`LabelPlacer.along`)."""
 
     text: Any
     box: Any
@@ -50,6 +51,7 @@ class Placed:
     leader_geom: Any = None
     again: Callable | None = None
     anchor: Any = None
+    apart: Any = None
 
 
 class LabelPlacer:
@@ -224,7 +226,7 @@ class LabelPlacer:
             return self.place(anchor, s, prefer=prefer, gap=gap, leader=leader, gid=gid, obstacle=obstacle, pad=pad,
                               clear=clear, reach=reach, again=again, **text_kw)
         if best is None:
-            best = self._least_bad(anchor, w, h, prefer, gap, leader)
+            best = self._least_bad(anchor, w, h, prefer, gap, leader, reach)
             self.overlapping.append(t)
         self._put(t, anchor, best, gid, leader, obstacle, again, pp)
         return t
@@ -249,9 +251,9 @@ class LabelPlacer:
     def at_pin(self, t) -> bool:
         """Whether the Text stands where, and at the size, its pin (the finished construction) has it."""
         pin = self.pins.get(t.get_gid())
-        if pin is None or pin[0] not in ("place", "at"):
+        if pin is None or pin[0] not in ("place", "at", "along"):
             return False
-        return (tuple(map(float, t.get_position())) == tuple(map(float, pin[1]))
+        return (tuple(map(float, t.get_position())) == tuple(map(float, _pinned_at(pin)))
                 and (len(pin) < 4 or pin[3] == t.get_fontsize()))
 
     def settle(self) -> int:
@@ -278,7 +280,8 @@ class LabelPlacer:
                 # on a line or a leader there too: here as well (off the leaders of labels off their pins)
                 hard = (self._hard + leaders if p.text.get_gid() not in crowded else
                         [q.leader_geom for q in strays if q.leader_geom is not None])
-                if not view.contains(b) or any(g.intersects(b) for g in boxes + hard) or (
+                apart = [q.apart for q in kept if q.apart is not None] if p.apart is not None else []
+                if not view.contains(b) or any(g.intersects(b) for g in boxes + hard + apart) or (
                         line is not None and any(g.intersects(line) for g in astray)):
                     continue
                 if any(b.intersects(g[0]) for g in goals.values()):
@@ -314,8 +317,8 @@ class LabelPlacer:
         """Whether placed label ``p`` has a pin it does not stand at (a place, with its anchor known, or a mark
         on something)."""
         pin = self.pins.get(p.text.get_gid())
-        return (pin is not None and pin[0] in ("place", "at") and not (pin[0] == "place" and p.anchor is None)
-                and not self.at_pin(p.text))
+        return (pin is not None and pin[0] in ("place", "at", "along") and not (pin[0] == "place" and p.anchor is None)
+                and not (pin[0] == "along" and (len(pin) < 3 or p.apart is None)) and not self.at_pin(p.text))
 
     def _goal(self, p, pp: float) -> tuple:
         """Placed label ``p``'s box at its pin, at the pinned size, with its margin (``(box, leader line or None,
@@ -323,6 +326,9 @@ class LabelPlacer:
         t = p.text
         pin = self.pins[t.get_gid()]
         size = t.get_fontsize()
+        if pin[0] == "along":   # on the same line, at another place along it: the same (rotated) box moved there
+            (x, y), (u, v) = t.get_position(), pin[2]
+            return affinity.translate(p.box, float(u) - x, float(v) - y), None, size
         x0, y0, x1, y1 = p.box.bounds
         w0, h0 = self.text_size(t, 0.0, pp)
         if len(pin) > 3:
@@ -343,9 +349,15 @@ class LabelPlacer:
             p.leader.remove()
         ln, geom = (None, None) if line is None else self._draw_leader(t, line, t.get_gid(), pp)
         pin = self.pins[t.get_gid()]
+        at = _pinned_at(pin)
         t.set_fontsize(size)
-        t.set_position((float(pin[1][0]), float(pin[1][1])))
-        self.labels[self.labels.index(p)] = replace(p, box=b, leader=ln, leader_geom=geom)
+        t.set_position((float(at[0]), float(at[1])))
+        apart = p.apart
+        if apart is not None:   # a text along a line: the em the others keep from it moves with it
+            (ox0, oy0, _, _), (nx0, ny0, _, _) = p.box.bounds, b.bounds
+            apart = affinity.translate(p.apart, nx0 - ox0, ny0 - oy0)
+            self.along[next(i for i, g in enumerate(self.along) if g is p.apart)] = apart
+        self.labels[self.labels.index(p)] = replace(p, box=b, leader=ln, leader_geom=geom, apart=apart)
         self.placed[t.get_gid()] = pin
 
     def _search(self, anchor, w: float, h: float, prefer, gap: float, leader: bool, within, accept,
@@ -394,9 +406,10 @@ class LabelPlacer:
                         return best
         return best
 
-    def _least_bad(self, anchor, w: float, h: float, prefer, gap: float, leader: bool):
+    def _least_bad(self, anchor, w: float, h: float, prefer, gap: float, leader: bool, reach: bool = False):
         """Nothing free: the place clear of every label (and of their leaders) covering the fewest arrowheads
-        and pins, then lines; else the first ring's preferred spot."""
+        and pins, then lines (``reach``: out to :data:`REACH_RINGS` too, where only such a place covers less);
+        else the first ring's preferred spot."""
         pp, view = per_point(self.ax), view_box(self.ax)
         hard = np.array(self.hard, dtype=object)[None, :]
         keep_off = np.array(self.boxes + self.leaders, dtype=object)[None, :]   # what its box must keep off
@@ -404,8 +417,11 @@ class LabelPlacer:
         soft = np.array(self.soft, dtype=object)[None, :]
         best = None
         # (the far rings in finer steps too: a leader that crosses a label, the worst, is rarely the only way)
-        for ring in sorted({gap, *(r for r in RINGS if r > gap), *FAR_RINGS, 135.0}):
-            cands = _Ring(anchor, w, h, prefer, ring * pp, 24 if ring in FAR_RINGS else 16)
+        far = REACH_RINGS if reach and leader else ()
+        for ring in sorted({gap, *(r for r in RINGS if r > gap), *FAR_RINGS, 135.0, *far}):
+            if ring in far and best is not None and best[0][1] == 0:
+                break   # farther only while every place nearer covers a mark or a line the label must keep off
+            cands = _Ring(anchor, w, h, prefer, ring * pp, 48 if ring in far else 24 if ring in FAR_RINGS else 16)
             ok = shapely.contains(view, cands.geoms)
             if keep_off.size:
                 ok &= ~shapely.intersects(keep_off, cands.geoms[:, None]).any(axis=1)
@@ -519,6 +535,8 @@ class LabelPlacer:
         tries = [(f, side) for f in (0.78, 0.62, 0.46, 0.3, 0.7, 0.54, 0.38, 0.22) for side in (1, -1)]
         if pin is not None and pin[0] == "along":
             tries.insert(0, pin[1])
+        # a step frame: the places the finished construction gives the other texts along lines are theirs
+        reserved = [q[3] for g, q in self.pins.items() if g != gid and q[0] == "along" and len(q) > 3]
         for frac, side in tries:
             c = p0 + u * (frac * length) + n * side * (offset * pp + h / 2)
             b = affinity.rotate(box(c[0] - w / 2, c[1] - h / 2, c[0] + w / 2, c[1] + h / 2), ang,
@@ -527,12 +545,12 @@ class LabelPlacer:
             big = affinity.rotate(box(c[0] - w / 2 - grow, c[1] - h / 2, c[0] + w / 2 + grow, c[1] + h / 2), ang,
                                   origin=(c[0], c[1]))
             if view.contains(b) and self.free(b, soft=True) and (grow == 0 or self.free(big)) and \
-                    not any(g.intersects(b) for g in self.along):
+                    not any(g.intersects(b) for g in self.along + reserved):
                 t.set_position((float(c[0]), float(c[1])))
-                if gid:
-                    self.placed[gid] = ("along", (frac, side))
-                self.labels.append(Placed(t, b))
                 self.along.append(b.buffer(ALONG_APART * t.get_fontsize() * pp))
+                if gid:
+                    self.placed[gid] = ("along", (frac, side), (float(c[0]), float(c[1])), self.along[-1])
+                self.labels.append(Placed(t, b, apart=self.along[-1]))
                 return t
         t.remove()
         return None
@@ -807,6 +825,12 @@ def _leader_segment(anchor, b, pp: float) -> LineString:
     edge = _toward(b, anchor)
     start = anchor + (edge - anchor) * (1.5 * pp / max(np.hypot(*(edge - anchor)), 1e-300))
     return LineString([tuple(start), tuple(edge)])
+
+
+def _pinned_at(pin) -> tuple:
+    """Where a pin (:attr:`LabelPlacer.pins`) puts its text's position: a place's or a mark's point, a text along
+    a line's centre there."""
+    return pin[2] if pin[0] == "along" else pin[1]
 
 
 def _meet(box_a, line_a, box_b, line_b) -> bool:

@@ -52,19 +52,24 @@ def scale_bar(ax, style, units: str, power: int, *, target_cm: float = 2.5, gid:
     beside = length < (w0 + w1) / 2 + 3.0 * pp
     right = length + 3.0 * pp + w1 + 0.1 * pc if beside else max(length + 0.2 * pc, length + w1 / 2 + 0.1 * pc)
     room = (right, h + style.small_size * pp * 1.6)   # the bar's and its labels' extent from its corner
-    bx, by = _bar_corner(ax, _corners(ax, room), room, gid)
-    out = _bar_patches(ax, style, bx, by, length, h, gid)
-    t0.remove()
-    t0.set_position((bx, by + h + 1.5 * pp))
-    ax.add_artist(t0)   # after the bar: the bar, "0", the end label, in this order
-    t1.remove()
     t1.set_gid(f"{gid}-end")
     if beside:
-        t1.set_position((bx + length + 3.0 * pp, by + h / 2))
         t1.set_horizontalalignment("left")
         t1.set_verticalalignment("center")
-    else:
-        t1.set_position((bx + length, by + h + 1.5 * pp))
+
+    def put(bx, by):   # "0" over the bar's start, the end label over its end or beside it
+        t0.set_position((bx, by + h + 1.5 * pp))
+        t1.set_position((bx + length + 3.0 * pp, by + h / 2) if beside else (bx + length, by + h + 1.5 * pp))
+
+    def parts():   # the bar's and its labels' boxes from its corner (where no room is free: the texts off the lines)
+        put(0.0, 0.0)
+        return [(0.0, 0.0, length, h)] + [placer(ax).box_of(t, 0.0).bounds for t in (t0, t1)]
+    bx, by = _bar_corner(ax, _corners(ax, room), room, gid, parts)
+    out = _bar_patches(ax, style, bx, by, length, h, gid)
+    put(bx, by)
+    t0.remove()
+    ax.add_artist(t0)   # after the bar: the bar, "0", the end label, in this order
+    t1.remove()
     ax.add_artist(t1)
     out += [t0, t1]
     pl = placer(ax)
@@ -102,10 +107,12 @@ def _others(ax) -> list:
     return out
 
 
-def _bar_corner(ax, corners, room, gid: str):
+def _bar_corner(ax, corners, room, gid: str, parts=None):
     """The first corner whose room (bar, labels) is free of everything drawn and of the other panels' bars;
-    else the one crossing the fewest lines and no label, legend or arrowhead if it can. A step frame: where
-    the finished construction has it."""
+    else, of those corners and a grid over the view (:func:`_grid`), the one whose labels meet the fewest lines,
+    labels, marks and other bars, then whose bar meets the fewest (a number on a vector's shaft reads as the
+    vector's; a bar across it does not; ``parts()``: the bar's box from the corner, then its labels'). A step
+    frame: where the finished construction has it."""
     pc = per_cm(ax)
     pl = placer(ax)
     others = _others(ax)
@@ -122,8 +129,35 @@ def _bar_corner(ax, corners, room, gid: str):
             best = (hits, c)
         if hits == 0:
             break
-    pl.placed[gid] = ("bar", (float(best[1][0]), float(best[1][1])))
+    free = best[0] == 0   # its room free (a detail's make_room makes the scale coarser until it is)
+    if not free and parts is not None and len(corners) > 1 and len(geoms):
+        best = (best[0], _least_on_texts(ax, corners + _grid(ax, room), parts(), geoms, weights))
+    pl.placed[gid] = ("bar", (float(best[1][0]), float(best[1][1])), free)
     return best[1]
+
+
+def _grid(ax, room) -> list:
+    """Corners every 1 mm over the view, 0.35 cm in from its edges, the room kept inside."""
+    pc = per_cm(ax)
+    x0, y0, x1, y1 = view_box(ax).bounds
+    m = 0.35 * pc
+    xs = np.arange(x0 + m, x1 - m - room[0] + 1e-9 * pc, 0.1 * pc)
+    ys = np.arange(y0 + m, y1 - m - room[1] + 1e-9 * pc, 0.1 * pc)
+    return [(float(x), float(y)) for y in ys for x in xs]
+
+
+def _least_on_texts(ax, corners, parts, geoms, weights):
+    """Of ``corners``, the first whose parts' boxes (1 pt grown) meet least (weighted, ``weights`` of
+    ``geoms``): the labels' first, then the bar's."""
+    pp = per_point(ax)
+    tree = shapely.STRtree(geoms)
+    xy = np.asarray(corners, float)
+    score = np.zeros((len(xy), 2))
+    for k, (a, b, c, d) in enumerate(parts):
+        boxes = shapely.box(xy[:, 0] + a - pp, xy[:, 1] + b - pp, xy[:, 0] + c + pp, xy[:, 1] + d + pp)
+        which, hit = tree.query(boxes, predicate="intersects")
+        np.add.at(score[:, 0 if k else 1], which, weights[hit])
+    return tuple(xy[np.lexsort((score[:, 1], score[:, 0]))[0]])
 
 
 def _bar_patches(ax, style, bx: float, by: float, length: float, h: float, gid: str) -> list:
