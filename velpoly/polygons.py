@@ -254,7 +254,7 @@ class _Shape:
         self.fixed = dict(m=m, frame=m.frame.name, links=m.link_names, moving=tuple(k.name for k in m.moving_links),
                           size=sol.kinematics.system.size,   # m.size, computed once for the system
                           tol=1e-9 * sol.kinematics.system.size, key={}, own={lk: [] for lk in m.link_names},
-                          rate_eq=[])
+                          rate_eq=[], _named={})   # _named: a place's name (or a term's) as the mechanism names it
         self.frame, key, own = m.frame.name, self.fixed["key"], self.fixed["own"]
         self.places, seen = [], set()   # (key, point): each point's position, read from its first key
         for k, p, lk in point_keys(m):   # one key P for every carrier, or P@link for each
@@ -386,10 +386,13 @@ class _Geo:
 
     def name(self, place) -> str:
         """Textbook name: B for a point key B, B4 for link 4's point at B, S3 for an auxiliary point."""
-        if place in self.names:
-            return self.names[place]
-        lk, n = place
-        return n if self.key.get((n, lk)) == n else named(n, lk)
+        got = self.names.get(place)   # an auxiliary point's: the pose's
+        if got is None:
+            got = self._named.get(place)   # the mechanism's, made once
+            if got is None:
+                lk, n = place
+                got = self._named[place] = n if self.key.get((n, lk)) == n else named(n, lk)
+        return got
 
     def aux_key(self, place) -> str:
         lk, n = place
@@ -450,10 +453,15 @@ class CentripetalTerm:
         r = g.zpos[self.w] - g.zpos[self.q]
         if not run.record:   # a replay for its images alone (max_error): the value, no names
             return [KnownVector("normal", "", normal_acceleration(om, r), (), 1, _UNNAMED)]
-        nw, nq = g.name((self.link, self.w)), g.name((self.link, self.q))
-        kw, kq = g.qkey((self.link, self.w)), g.qkey((self.link, self.q))
-        return [KnownVector("normal", f"A^n_{nw}{nq}", normal_acceleration(om, r), ("normal", self.link, kw, kq), 1,
-                            (f"A^n_{nq}{nw}", ("normal", self.link, kq, kw)))]
+        names = None if g.names else g._named.get(self)   # the mechanism's names, made once (where no
+        if names is None:                                     # auxiliary point is named at this pose)
+            nw, nq = g.name((self.link, self.w)), g.name((self.link, self.q))
+            kw, kq = g.qkey((self.link, self.w)), g.qkey((self.link, self.q))
+            names = f"A^n_{nw}{nq}", ("normal", self.link, kw, kq), (f"A^n_{nq}{nw}", ("normal", self.link, kq, kw))
+            if not g.names:
+                g._named[self] = names
+        label, of, reverse = names
+        return [KnownVector("normal", label, normal_acceleration(om, r), of, 1, reverse)]
 
 
 @dataclass(frozen=True)
@@ -2052,8 +2060,8 @@ def _assemble(c: _Construction, sol, level: str, vel, eager: bool = False) -> tu
     rows = iter(_rows(zs))   # in the order of zs: each step's arrows and lines, the images, the auxiliary images
     steps = []
     for st, fields, vectors, lines in drawn:
-        fields["vectors"] = tuple(Vector(next(rows), next(rows), *v[2:]) for v in vectors)
-        fields["lines"] = tuple(ConstructionLine(next(rows), next(rows), *ln[2:]) for ln in lines)
+        fields["vectors"] = tuple([Vector(next(rows), next(rows), *v[2:]) for v in vectors])
+        fields["lines"] = tuple([ConstructionLine(next(rows), next(rows), *ln[2:]) for ln in lines])
         steps.append(Step._written(st, run, **fields))
     images = {key: next(rows) for key in zimages}
     labels = {key: run.label((lk, p)) for key, p, lk in keys}
