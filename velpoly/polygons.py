@@ -77,7 +77,7 @@ from .errors import ConstructionError, InputError, SingularPoseError
 from .frozen import quick_init
 from .kinematics import SINGULAR
 from .motion import point_keys
-from .rigid import coriolis as coriolis_term, dot as _dot, normal_acceleration, perp, rate_cross, xy as _xy
+from .rigid import coriolis as coriolis_term, dot as _dot, normal_acceleration, perp, rate_cross
 from .names import lower_name, point_text, relative
 from .names import place as named
 
