@@ -180,7 +180,7 @@ def test_the_output_rule_sees_prints_and_not_doctests(code, hits):
 # is in its package's layer. Every module is named (test_every_module_is_in_a_layer_and_in_the_docs).
 LAYERS = (
     ("kernel", ("errors", "names", "model", "loader", "geometry", "rigid", "jet", "constraints", "dyads", "pose",
-                "kinematics", "motion", "driver", "solution", "sweeps", "centrodes", "arguments", "fileio")),
+                "kinematics", "motion", "driver", "solution", "sweeps", "centrodes", "arguments", "fileio", "frozen")),
     ("constructions", ("polygons", "poles", "reference")),
     ("comparison and tables", ("tables", "compare", "report")),
     ("figures", ("render", "html")),

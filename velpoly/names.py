@@ -39,6 +39,7 @@ Nothing here imports matplotlib.
 """
 from __future__ import annotations
 
+import functools
 import math
 import re
 
@@ -98,6 +99,7 @@ def link_of(sub: str) -> str:
 NAME = re.compile(r"([A-Za-z]+)([0-9]*)([₀-₉]+|\([^()]*\))?('*)")   # one name as plain text: P, O2, P₂, p(cam)'
 
 
+@functools.lru_cache(maxsize=4096)   # a mechanism's few names, asked for every arrow of every polygon
 def lower_name(name: str) -> str:
     """An image's name from a point's text name: the point lower-cased, the link's subscript as it is
     (``S(Cam)`` -> s(Cam))."""

@@ -75,6 +75,7 @@ from dataclasses import dataclass, field
 
 import numpy as np
 
+from .frozen import quick_init
 from .geometry import from_polar, ideal, join
 from .motion import point_keys
 from .rigid import point_velocity
@@ -95,6 +96,7 @@ _UNKNOWN, _KNOWN, _UNDEFINED = 0, 1, 2
 
 
 # -- the data contract (docs/internals.md) ------------------------------------------------------
+@quick_init
 @dataclass(frozen=True)
 class PoleLine:
     """A line drawn to locate a pole.
@@ -115,6 +117,7 @@ class PoleLine:
     marks: tuple = ()
 
 
+@quick_init
 @dataclass(frozen=True)
 class Pole:
     """The instant centre P_ij of links ``links = (i, j)``, i before j in file order.

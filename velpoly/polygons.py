@@ -74,9 +74,10 @@ import numpy as np
 
 from . import geometry as G
 from .errors import ConstructionError, InputError, SingularPoseError
+from .frozen import quick_init
 from .kinematics import SINGULAR
 from .motion import point_keys
-from .rigid import coriolis as coriolis_term, dot as _dot, normal_acceleration, perp, rate_cross, xy as _xy
+from .rigid import coriolis as coriolis_term, dot as _dot, normal_acceleration, perp, rate_cross
 from .names import lower_name, point_text, relative
 from .names import place as named
 
@@ -90,6 +91,7 @@ SINE_LIMIT = 1.0 / SINGULAR   # |sin| between two construction lines below which
 
 
 # -- the contract with the renderer (docs/internals.md) ----------------------------------------------
+@quick_init
 @dataclass(frozen=True)
 class ConstructionLine:
     """A line of the construction: through ``base`` (polygon coordinates) along ``direction``."""
@@ -100,6 +102,7 @@ class ConstructionLine:
     reason: str
 
 
+@quick_init
 @dataclass(frozen=True)
 class Vector:
     """An arrow of the polygon, from ``tail`` to ``head``, in its own true sense.
@@ -185,6 +188,7 @@ class Step:
         self.__dict__.update(state)
 
 
+@quick_init
 @dataclass(frozen=True)
 class AuxiliaryPoint:
     """A point of a link used by the construction that is not one of the file's point keys."""
@@ -250,7 +254,7 @@ class _Shape:
         self.fixed = dict(m=m, frame=m.frame.name, links=m.link_names, moving=tuple(k.name for k in m.moving_links),
                           size=sol.kinematics.system.size,   # m.size, computed once for the system
                           tol=1e-9 * sol.kinematics.system.size, key={}, own={lk: [] for lk in m.link_names},
-                          rate_eq=[])
+                          rate_eq=[], _named={})   # _named: a place's name (or a term's) as the mechanism names it
         self.frame, key, own = m.frame.name, self.fixed["key"], self.fixed["own"]
         self.places, seen = [], set()   # (key, point): each point's position, read from its first key
         for k, p, lk in point_keys(m):   # one key P for every carrier, or P@link for each
@@ -382,10 +386,13 @@ class _Geo:
 
     def name(self, place) -> str:
         """Textbook name: B for a point key B, B4 for link 4's point at B, S3 for an auxiliary point."""
-        if place in self.names:
-            return self.names[place]
-        lk, n = place
-        return n if self.key.get((n, lk)) == n else named(n, lk)
+        got = self.names.get(place)   # an auxiliary point's: the pose's
+        if got is None:
+            got = self._named.get(place)   # the mechanism's, made once
+            if got is None:
+                lk, n = place
+                got = self._named[place] = n if self.key.get((n, lk)) == n else named(n, lk)
+        return got
 
     def aux_key(self, place) -> str:
         lk, n = place
@@ -402,6 +409,7 @@ class _Geo:
 # -- the plan (structure only, the same at both levels) ----------------------------------------------
 # What a construction line is made of: its base image, the known vectors chained on it (terms), and
 # the one unknown component it leaves, along its direction.
+@quick_init
 @dataclass(frozen=True)
 class KnownVector:
     """A known vector of a chain, in its true sense: ``value`` is what ``label`` names.
@@ -445,10 +453,15 @@ class CentripetalTerm:
         r = g.zpos[self.w] - g.zpos[self.q]
         if not run.record:   # a replay for its images alone (max_error): the value, no names
             return [KnownVector("normal", "", normal_acceleration(om, r), (), 1, _UNNAMED)]
-        nw, nq = g.name((self.link, self.w)), g.name((self.link, self.q))
-        kw, kq = g.qkey((self.link, self.w)), g.qkey((self.link, self.q))
-        return [KnownVector("normal", f"A^n_{nw}{nq}", normal_acceleration(om, r), ("normal", self.link, kw, kq), 1,
-                            (f"A^n_{nq}{nw}", ("normal", self.link, kq, kw)))]
+        names = None if g.names else g._named.get(self)   # the mechanism's names, made once (where no
+        if names is None:                                     # auxiliary point is named at this pose)
+            nw, nq = g.name((self.link, self.w)), g.name((self.link, self.q))
+            kw, kq = g.qkey((self.link, self.w)), g.qkey((self.link, self.q))
+            names = f"A^n_{nw}{nq}", ("normal", self.link, kw, kq), (f"A^n_{nq}{nw}", ("normal", self.link, kq, kw))
+            if not g.names:
+                g._named[self] = names
+        label, of, reverse = names
+        return [KnownVector("normal", label, normal_acceleration(om, r), of, 1, reverse)]
 
 
 @dataclass(frozen=True)
@@ -1244,9 +1257,14 @@ class _Run:
         """The label of a line's base image: the origin for points that do not move."""
         return self.origin if self.g.grounded(place) else self.label(place)
 
+    # A recording run keeps its arrows and lines with their points as x + iy: :func:`_assemble` makes
+    # every 2-vector of the polygon in one array (a numpy call per 2-vector was a tenth of the polygons)
     def _vec(self, tail, head, kind, label, of=()):
         if self.record:
-            self.vectors.append(Vector(_xy(tail), _xy(head), kind, label, of))
+            self.vectors.append((tail, head, kind, label, of))
+
+    def _line(self, base, direction, base_label, reason):
+        self.lines.append((base, direction, base_label, reason))
 
     # known terms -----------------------------------------------------------------------------------
     def terms(self, terms) -> list[KnownVector]:
@@ -1427,7 +1445,7 @@ class _Run:
             self._draw(parts)
             if self.record:
                 label = _sum([self.base_label(ln.base)] + self.term_labels(ln.terms))
-                self.lines.append(ConstructionLine(_xy(tip), ln.direction(self.g), label, ln.reason))
+                self._line(tip, ln.zdir(self.g), label, ln.reason)
         x, _, _ = self._intersect(tips[0], dirs[0], tips[1], dirs[1])
         if x is None:   # the planner checked the directions; only a degenerate pose gets here
             raise SingularPoseError(f"parallel construction lines for {self.g.name(target)}",
@@ -1492,13 +1510,10 @@ class _Run:
         self._set(seed, found)
         if record:
             self._draw(parts)
-            self.lines.append(ConstructionLine(_xy(z[0]), _xy(locus / abs(locus)), self.origin,
-                                               f"locus of {self.X}_{w}{q} over the trial values"))
-            self.lines.append(ConstructionLine(_xy(target), _xy(1j * r / rn), self.origin,
-                                               f"perpendicular to {q}{w}: link {lk} is rigid"))
-            self.lines.append(ConstructionLine(_xy(tip), line.direction(self.g),
-                                               _sum([self.base_label(line.base)] + self.term_labels(line.terms)),
-                                               line.reason + " (the trial image's line)"))
+            self._line(z[0], locus / abs(locus), self.origin, f"locus of {self.X}_{w}{q} over the trial values")
+            self._line(target, 1j * r / rn, self.origin, f"perpendicular to {q}{w}: link {lk} is rigid")
+            self._line(tip, line.zdir(self.g), _sum([self.base_label(line.base)] + self.term_labels(line.terms)),
+                       line.reason + " (the trial image's line)")
             self.vectors.append(self.unknown_vector(line, tip, found))
         for o in sub:
             o.apply(self)
@@ -1532,8 +1547,9 @@ class _Run:
         lab, sign, _, _ = self.unknown(ln)
         return ("-" if sign < 0 else "") + lab
 
-    def unknown_vector(self, ln: _Line, tip, x) -> Vector:
-        """The arrow of the line's unknown, between the tip of its known chain and the image x found.
+    def unknown_vector(self, ln: _Line, tip, x) -> tuple:
+        """The arrow of the line's unknown, between the tip of its known chain and the image x found,
+        as :meth:`_vec` records it: ``(tail, head, kind, label, of)``.
 
         True sense: from the tip to x where the line adds it, from x to the tip where it subtracts it;
         on a line that also adds terms (:meth:`mixed`) a subtracted slip is drawn from the tip to x
@@ -1545,7 +1561,7 @@ class _Run:
             a, b = lab[2:].split("/")
             lab, sign, of = f"{self.X}_{b}/{a}", 1, ("slip", kb, ka, guide, kk)
         t0, t1 = (tip, x) if sign > 0 else (x, tip)
-        return Vector(_xy(t0), _xy(t1), kind, lab, of)
+        return (t0, t1, kind, lab, of)
 
     def run(self, steps):
         for st in steps:
@@ -2023,7 +2039,7 @@ def _level(c: _Construction, sol, level) -> tuple[Polygon, _Run]:
 def _assemble(c: _Construction, sol, level: str, vel, eager: bool = False) -> tuple[Polygon, _Run]:
     geo, m = c.geo, sol.mechanism
     run = _Run(geo, level, vel, record=True)
-    steps = []
+    drawn = []   # each step's fields and its arrows and lines as the run records them (points as x + iy)
     for i, st in enumerate(c.plan):
         run.lines, run.vectors = [], []
         for op in st.ops:
@@ -2031,23 +2047,38 @@ def _assemble(c: _Construction, sol, level: str, vel, eager: bool = False) -> tu
         for p in st.found:   # absolute vectors of the images located
             if not geo.grounded(p):
                 run._vec(0j, run.image(p), "absolute", f"{run.X}_{geo.name(p)}", ("point", geo.qkey(p)))
-        step = Step._written(st, run, index=i, kind=st.kind_at(run), lines=tuple(run.lines), found=c.found[i],
-                             vectors=tuple(run.vectors), omegas={lk: float(run.rate[lk]) for lk in st.omegas},
-                             sine=float(st.sine_at(run)), auxiliary=c.aux[i], link=st.link)
+        fields = dict(index=i, kind=st.kind_at(run), found=c.found[i], omegas={lk: float(run.rate[lk]) for lk in st.omegas},
+                      sine=float(st.sine_at(run)), auxiliary=c.aux[i], link=st.link)
         if eager:   # the texts written at once, as the step is drawn (tests: the same as when read later)
-            step.equation, step.caption
-        steps.append(step)
-    images, labels, zimages = {}, {}, {}
-    for key, p, lk in point_keys(m):
-        zimages[key] = run.image((lk, p))
-        images[key] = _xy(zimages[key])
-        labels[key] = run.label((lk, p))
-    auxiliary = {k: AuxiliaryPoint(k, q[0], geo.pos[q[1]].copy(), _xy(run.image(q)), run.label(q))
+            fields.update(equation=st.equation(run), caption=st.caption(run))
+        drawn.append((st, fields, run.vectors, run.lines))
+    keys = point_keys(m)
+    zimages = {key: run.image((lk, p)) for key, p, lk in keys}
+    zs = [z for _, _, vectors, lines in drawn for arrow in vectors + lines for z in arrow[:2]]
+    zs += zimages.values()
+    zs += [run.image(q) for q in c.aux_places.values()]
+    rows = iter(_rows(zs))   # in the order of zs: each step's arrows and lines, the images, the auxiliary images
+    steps = []
+    for st, fields, vectors, lines in drawn:
+        fields["vectors"] = tuple([Vector(next(rows), next(rows), *v[2:]) for v in vectors])
+        fields["lines"] = tuple([ConstructionLine(next(rows), next(rows), *ln[2:]) for ln in lines])
+        steps.append(Step._written(st, run, **fields))
+    images = {key: next(rows) for key in zimages}
+    labels = {key: run.label((lk, p)) for key, p, lk in keys}
+    auxiliary = {k: AuxiliaryPoint(k, q[0], geo.pos[q[1]].copy(), next(rows), run.label(q))
                  for k, q in c.aux_places.items()}
     link_images = dict(c.link_images)
     rates = {lk: float(run.rate[lk]) for lk in geo.links}
     return Polygon(level, run.origin, images, labels, tuple(steps), link_images, rates,
                    _max_error(sol, level, zimages), auxiliary, _figure_scale(images, auxiliary)), run
+
+
+def _rows(zs) -> list:
+    """The points x + iy as the contract's 2-vectors (2,), in order: the rows of one (n, 2) array, the
+    same floats as :func:`velpoly.rigid.xy` of each."""
+    if not zs:
+        return []
+    return list(np.array(zs, complex).view(np.float64).reshape(len(zs), 2))
 
 
 def _max_error(sol, level: str, zimages: dict) -> float:
