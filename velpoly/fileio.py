@@ -205,11 +205,19 @@ def committed_together():
     over their targets. A failure anywhere in the block (an error, Ctrl-C, an output refused as the
     input) removes them all, so a command that writes several files (a plot, a CSV and a GIF; the frames
     of ``--steps``) leaves none of them, and every existing output as it was. Nested blocks join the
-    outermost; a FIFO or a device is written straight through as ever. Only this process takes part
-    (a worker process commits its own outputs)."""
+    outermost: what a nested block wrote is committed with the outermost, but a failure inside it drops
+    only its own outputs (the gallery leaves out an example that failed and builds the others); a FIFO or
+    a device is written straight through as ever. Only this process takes part (a worker process commits
+    its own outputs)."""
     outer = _GROUP[0]
     if outer is not None and outer[0] == os.getpid():
-        yield
+        mine = len(outer[1])   # the outputs written before this block: not its own
+        try:
+            yield
+        except BaseException:
+            _drop(outer[1][mine:])
+            del outer[1][mine:]
+            raise
         return
     _GROUP[0] = group = (os.getpid(), [])
     try:
@@ -217,9 +225,7 @@ def committed_together():
         raise_if_interrupted()
     except BaseException:
         _GROUP[0] = outer
-        for tmp, _ in group[1]:
-            with contextlib.suppress(OSError):
-                os.unlink(tmp)
+        _drop(group[1])
         raise
     _GROUP[0] = outer
     pending = group[1]
@@ -232,9 +238,14 @@ def committed_together():
                 raise cannot_write(target, e) from None
             pending.pop(0)
     finally:
-        for tmp, _ in pending:
-            with contextlib.suppress(OSError):
-                os.unlink(tmp)
+        _drop(pending)
+
+
+def _drop(pending) -> None:
+    """The temporary files of ``[(temporary file, target)]`` removed; their targets are left as they were."""
+    for tmp, _ in pending:
+        with contextlib.suppress(OSError):
+            os.unlink(tmp)
 
 
 def atomic_write_bytes(target, data: bytes) -> Path:

@@ -13,13 +13,14 @@ the render module.
 """
 from __future__ import annotations
 
+import contextlib
 import re
 import shutil
 from dataclasses import dataclass
 from pathlib import Path
 
 from .errors import InputError, VelpolyError
-from .fileio import atomic_write_bytes, atomic_write_text, raise_if_interrupted
+from .fileio import atomic_write_bytes, atomic_write_text, committed_together, raise_if_interrupted
 from .compare import comparison
 from .report import Table, fmt, render_table
 
@@ -282,14 +283,34 @@ def build_gallery(source=None, out=None, style: str = "textbook", draw=None, log
     this process may use), each into memory; this process writes every file, in the order a build
     one example after another writes them, so the output is the same. A ``draw`` given runs in this
     process, one example after another.
+
+    The build is whole or nothing: every file stays a temporary file beside its target until the README
+    is written, then all are renamed over their targets (:func:`~velpoly.fileio.committed_together`).
+    Ctrl-C or an error that stops the build leaves ``out`` as it was (a folder it made removed again);
+    a failing example leaves none of its own files.
     """
     source = Path(source) if source is not None else EXAMPLES
     out = Path(out) if out is not None else source
     if copy is None:   # the built-in examples drawn anywhere but their own checkout's gallery
         copy = source.resolve() == EXAMPLES and out.resolve() not in (EXAMPLES, EXAMPLES.parent.parent / "gallery")
     files = _gallery_files(source, names)
-    here, pool, extra = draw is not None, None, ""   # a given draw runs here, in order
+    here = draw is not None   # a given draw runs here, in order
     draw = draw or _draw_to_file()
+    made = [f for f in (out, out / "figures") if not f.exists()]   # removed again if the build stops
+    try:
+        with committed_together():
+            return _build(files, here, jobs, out, style, copy, draw, log, animations, names, source)
+    except BaseException:
+        for folder in reversed(made):
+            with contextlib.suppress(OSError):
+                folder.rmdir()   # only where it is still empty
+        raise
+
+
+def _build(files, here: bool, jobs, out: Path, style: str, copy: bool, draw, log, animations: bool, names,
+           source: Path) -> GalleryResult:
+    """:func:`build_gallery`'s work, inside its group of outputs committed together."""
+    pool, extra = None, ""
     try:
         pool = None if here else _pool(len(files), jobs)
         written, built, failed, sections = _build_examples(files, pool, out, style, copy, draw, log)
@@ -325,7 +346,8 @@ def _build_examples(files, pool, out: Path, style: str, copy: bool, draw, log) -
             results[i] = pool.submit(_example_in_worker, files[i], out, style, copy)
     for path, result in zip(files, results):
         try:
-            done, line = _example_result(path, result, out, style, copy, draw)
+            with committed_together():   # a failing example's files are dropped, the others' kept
+                done, line = _example_result(path, result, out, style, copy, draw)
         except Exception as e:  # one example's failure must not stop the others
             raise_if_interrupted()   # unless it is Ctrl-C's aftermath: then nothing more is built
             done, line = None, _error_line(e, path)
