@@ -515,12 +515,16 @@ def _on_signal(signum, frame):
 
 
 def _unraisable(hook):
-    """``sys.unraisablehook`` that records a Ctrl-C Python had to swallow (in a callback or ``__del__``)."""
+    """``sys.unraisablehook`` that records a Ctrl-C Python had to swallow (in a callback or ``__del__``),
+    and, once the run is interrupted, stays silent: an object a library was building when Ctrl-C came
+    (pyparsing's ``Forward`` while matplotlib imports) fails in its ``__del__`` when the interrupted
+    frames are freed, which is no news to the user after ``error: interrupted``."""
     def unraisable(u):
         if isinstance(u.exc_value, (KeyboardInterrupt, Terminated)):
             note_interrupt()
             return
-        hook(u)
+        if not interrupted():
+            hook(u)
     return unraisable
 
 
