@@ -449,15 +449,33 @@ def _legend_sizes(ax, pl, make, st) -> list:
     """(size, columns, width, height in data units) of the legend's variants (:data:`LEGEND_VARIANTS`): the full
     legend, smaller, in two columns, both; then narrow (:data:`NARROW`: each entry in two lines, a tall legend
     beside a polygon in a wide, low panel, as a slide's is: Example 3.3's five kinds), at both sizes."""
-    inv = ax.transData.inverted()
-    sizes = []
-    for f, ncol in LEGEND_VARIANTS:
-        size = st.small_size * f
-        leg = make(size, ncol)
-        bb = leg.get_window_extent(pl.renderer)
-        (x0, y0), (x1, y1) = inv.transform([[bb.x0, bb.y0], [bb.x1, bb.y1]])
-        sizes.append((size, ncol, abs(x1 - x0), abs(y1 - y0)))
-    return sizes
+    return list(_Variants(ax, pl, make, st))
+
+
+class _Variants:
+    """:func:`_legend_sizes`, each variant measured when it is first asked for (iterating measures them in
+    order, as far as the caller reads): a legend is measured by making it (``make``, a Legend of the axes,
+    which replaces the one made before), and the first variant often has a free corner, where
+    :func:`_legend_spot` reads no other. A variant's size is that of its legend alone, whichever were made
+    before it, so the sizes read are :func:`_legend_sizes`'s (tests/test_drawspeed.py)."""
+
+    def __init__(self, ax, pl, make, st):
+        self.inv = ax.transData.inverted()   # (as _legend_sizes takes it: before any variant is made)
+        self.pl, self.make, self.st = pl, make, st
+        self.sizes: list = []
+
+    def __iter__(self):
+        for i in range(len(LEGEND_VARIANTS)):
+            yield self[i]
+
+    def __getitem__(self, i: int) -> tuple:
+        while len(self.sizes) <= i:
+            f, ncol = LEGEND_VARIANTS[len(self.sizes)]
+            size = self.st.small_size * f
+            bb = self.make(size, ncol).get_window_extent(self.pl.renderer)
+            (x0, y0), (x1, y1) = self.inv.transform([[bb.x0, bb.y0], [bb.x1, bb.y1]])
+            self.sizes.append((size, ncol, abs(x1 - x0), abs(y1 - y0)))
+        return self.sizes[i]
 
 
 def _legend_spot(ax, sizes, hits_of):
@@ -502,7 +520,7 @@ def _legend(ax, st, kinds) -> list:
                          handlelength={1: 3.2, 2: 2.4, NARROW: 2.0}[ncol], borderaxespad=0.0, columnspacing=1.0,
                          bbox_to_anchor=at, bbox_transform=transform)
 
-    sizes = _legend_sizes(ax, pl, make, st)   # measured once a variant
+    sizes = _Variants(ax, pl, make, st)   # each variant measured once, where it is read
     hits_of = hit_counter(pl)
     pin = pl.pins.get("legend")
     if pin is not None:       # a step frame: where the finished construction has it
@@ -513,9 +531,12 @@ def _legend(ax, st, kinds) -> list:
     else:
         best = _legend_spot(ax, sizes, hits_of)
     hits, (size, ncol), b = best
+    # the variants' sizes in cm, where the legend finds no free place (the sheet then keeps a strip for one of
+    # them: velpoly.render.sheet); measured before the legend drawn is made (a variant made replaces it)
+    paper = [(w / per_cm(ax), h / per_cm(ax)) for _, _, w, h in sizes] if hits else None
     leg = make(size, ncol, at=(b.bounds[0], b.bounds[1]), loc="lower left", transform=ax.transData)
     leg._velpoly_hits = hits
-    leg._velpoly_paper = [(w / per_cm(ax), h / per_cm(ax)) for _, _, w, h in sizes]   # the variants' sizes in cm
+    leg._velpoly_paper = paper
     pl.placed["legend"] = ("legend", size, ncol, (float(b.bounds[0]), float(b.bounds[1])), tuple(kinds))
     pl.add_box(leg, b)
     return [leg]

@@ -42,7 +42,7 @@ from .polygon import draw_polygon, legend_room, polygon_bounds
 from .scalebar import scale_text
 from .style import get_style, rc_context
 from ..reference import at_file_pose
-from .textcache import new_canvas
+from .textcache import add_axes, new_canvas, share_rectangle_transforms
 from .table import cuts_the_book, draw_results_table, given_table, measure_results_table
 
 __all__ = ["SHEETS", "fit_width", "wrap_caption", "Constructions", "constructions", "render_sheet", "render", "Rendered",
@@ -530,7 +530,7 @@ def _measure_table(sol, fig, rect, sheet: str, st, cons: Constructions, table=No
 
 def _draw_table(sol, fig, sheet: str, st, layout):
     """The table measured (:func:`_measure_table`) drawn in an axes made at its room."""
-    art = draw_results_table(sol, fig.add_axes(layout.rect, label="table"), style=st, layout=layout)
+    art = draw_results_table(sol, add_axes(fig, layout.rect, label="table"), style=st, layout=layout)
     if sheet == "displacement":
         for t in art.get("title"):
             t.set_gid("data-table")
@@ -606,6 +606,7 @@ def _draw_polygon_panel(sol, ax, st, opts, poly, upto, scale, power: int, pinned
             bounds, room = legend_room(ax, bounds, leg[0]._velpoly_paper, 0.08, label=st.font_size)
         pos = ax.get_position(original=True)
         ax.cla()   # (its limits then square: the box must not shrink to them, as an equal aspect would)
+        share_rectangle_transforms(ax)   # (cla made a new background Rectangle)
         ax.set_aspect("auto")
         ax.set_position(pos)
         del ax._velpoly_placer
@@ -714,7 +715,7 @@ def render(sol, sheet: str = "full", style="textbook", *, cons: Constructions | 
         plan.table.see_table_page()
     if plan.table is not None and frame.table:   # a step before the last: the answers not yet given
         _draw_table(sol, fig, sheet, st, plan.table)
-    axes = {name: fig.add_axes(rect, label=name) for name, rect in plan.rects.items()}
+    axes = {name: add_axes(fig, rect, label=name) for name, rect in plan.rects.items()}
     pins = pins or {}
     for name, ax in axes.items():
         placer(ax).pins = pins.get(name, {})
@@ -839,7 +840,7 @@ def mechanism_svg(m, style: str = "textbook") -> str:
     with rc_context(st):
         fig = Figure(figsize=(w, h), dpi=72)
         new_canvas(fig)
-        ax = fig.add_axes((0, 0, 1, 1))
+        ax = add_axes(fig, (0, 0, 1, 1))
         fit_view(ax, (x0, y0, x1, y1), scale=drawing_options(m).scale, margin=0.1)
         ax.set_axis_off()
         draw_mechanism(sol, ax, style=st)

@@ -423,6 +423,8 @@ def _where(pos, direction) -> str:
 
 
 _WIDTHS: dict = {}   # measured widths of the table's texts (points), by font, size and text: they never change
+_LAYOUTS: dict = {}  # the layout boxes of a table's texts (pixels, at their origin): _Room.extent's
+LAYOUTS_KEPT = 20000
 
 
 def _box(ax) -> tuple[float, float]:
@@ -454,14 +456,35 @@ class _Room:
             self.bbox = TransformedBbox(pos, fig.transSubfigure)
             self.trans = BboxTransformTo(self.bbox)
         self.renderer = renderer_of(fig)
+        self.settings = None   # what a text's layout depends on besides the text (:meth:`extent`), once asked
 
     def extent(self, x: float, y: float, s: str, **kw):
-        """The window extent (pixels) of the text ``s`` at (x, y) as ``ax.text(x, y, s, **kw)`` draws it."""
+        """The window extent (pixels) of the text ``s`` at (x, y) as ``ax.text(x, y, s, **kw)`` draws it.
+
+        ``Text.get_window_extent`` is the text's layout box (``Text._get_layout``: its lines measured and
+        aligned at the origin), a function of the text and its properties, the settings in force, the dpi and
+        the renderer, translated to where the text's transform puts its position. Such a box is kept
+        (:data:`_LAYOUTS`), and translated here as matplotlib translates it (the same float sums): the extent
+        is matplotlib's, to the bit (tests/test_drawspeed.py). Where matplotlib has no such method (another
+        version), or the text is empty (its extent a point), the text is measured as it is."""
         from matplotlib.text import Text
-        t = Text(x, y, s, **{"verticalalignment": "baseline", "horizontalalignment": "left",
-                             "transform": self.trans, "clip_on": False, **kw})
-        t.set_figure(self.figure)
-        return t.get_window_extent(self.renderer)
+        if self.settings is None:
+            import matplotlib
+            rc = matplotlib.rcParams
+            self.settings = (tuple(str(rc[k]) for k in sorted(rc) if k.startswith(("font.", "mathtext.", "text."))),
+                             self.figure.dpi, type(self.renderer))
+        key = (self.settings, s, tuple(kw.items()))
+        box = _LAYOUTS.get(key)
+        if box is None:
+            t = Text(x, y, s, **{"verticalalignment": "baseline", "horizontalalignment": "left",
+                                 "transform": self.trans, "clip_on": False, **kw})
+            t.set_figure(self.figure)
+            if not s or not hasattr(t, "_get_layout"):
+                return t.get_window_extent(self.renderer)
+            box = _LAYOUTS[key] = t._get_layout(self.renderer)[0]
+            if len(_LAYOUTS) > LAYOUTS_KEPT:
+                del _LAYOUTS[next(iter(_LAYOUTS))]
+        return box.translated(*self.trans.transform((float(x), float(y))))
 
     def points(self, pixels: float) -> float:
         return pixels * 72 / self.figure.dpi
@@ -804,22 +827,12 @@ def _paint(lay: TableLayout, ax, st) -> Artists:
 def drawn_extent(lay: TableLayout, fig) -> tuple[float, float]:
     """(left, right): the pixels of ``fig`` (at its dpi) where an axes made at the measured table's room
     (``lay.rect``) starts and where the rightmost of the texts and rules :func:`_paint` would draw in it ends, to
-    the bit, without an axes or an artist: each text's extent taken by one probe text given its properties in
-    turn, in the room's coordinates (:class:`_Room`: its transform is the axes' box's, and the axes' data at
-    0-1 limits is the same transform)."""
-    from matplotlib.cbook import normalize_kwargs
-    from matplotlib.text import Text
+    the bit, without an axes or an artist: each text's extent as :meth:`_Room.extent` measures it, in the room's
+    coordinates (:class:`_Room`: its transform is the axes' box's, and the axes' data at 0-1 limits is the same
+    transform)."""
     room = _Room(fig, lay.rect)
-    probe = Text(0, 0, "", verticalalignment="baseline", horizontalalignment="left", transform=room.trans,
-                 clip_on=False)
-    probe.set_figure(fig)
-    fresh = {"fontstyle": probe.get_fontstyle(), "fontsize": probe.get_fontsize(),
-             "verticalalignment": "baseline", "horizontalalignment": "left"}   # (as ax.text makes a text)
-    ends = []
-    for _, x, y, text, kw, _ in _texts(lay):
-        kw = normalize_kwargs({k: v for k, v in kw.items() if k != "gid"}, Text)
-        probe.update({**fresh, **kw, "text": text, "position": (x, y)})
-        ends.append(probe.get_window_extent(room.renderer).x1)
+    ends = [room.extent(x, y, text, **{k: v for k, v in kw.items() if k != "gid"}).x1
+            for _, x, y, text, kw, _ in _texts(lay)]
     for xs, ys, _ in _rules(lay):
         ends.append(room.trans.transform(np.column_stack([xs, ys]))[:, 0].max())
     left = room.bbox.x0

@@ -37,7 +37,7 @@ import os
 import threading
 from collections import OrderedDict
 
-__all__ = ["canvas_class", "new_canvas", "clear", "stats", "LIMITS"]
+__all__ = ["canvas_class", "new_canvas", "add_axes", "share_rectangle_transforms", "clear", "stats", "LIMITS"]
 
 LIMITS = {"metrics": 20000, "height": 1000, "layout": 10000, "glyph": 20000}   # entries kept per cache (a glyph
 # bitmap 0.3-3 KB at 200 dpi)
@@ -141,6 +141,45 @@ def canvas_class():
 def new_canvas(fig):
     """Give ``fig`` a :func:`canvas_class` canvas (as ``FigureCanvasAgg(fig)`` does) and return it."""
     return canvas_class()(fig)
+
+
+class _Kept:
+    """A patch's ``get_transform`` that gives the one transform it was made with (picklable, unlike a lambda)."""
+
+    __slots__ = ("transform",)
+
+    def __init__(self, transform):
+        self.transform = transform
+
+    def __call__(self):
+        return self.transform
+
+
+def share_rectangle_transforms(ax):
+    """Let every artist added to ``ax`` clip by one transform of its background Rectangle; return ``ax``.
+
+    matplotlib clips a line, patch or text added to an axes by the axes' background (``ax.patch``, the unit
+    Rectangle in axes coordinates): ``set_clip_path`` asks the Rectangle for its transform, and
+    ``Patch.get_transform`` builds it anew each time (``BboxTransformTo`` of its box, an ``Affine2D`` of its
+    rotation, each composed with ``transAxes``: four transform nodes an artist, each registered with its
+    parents, so that every later move of the axes invalidates them all). The axes' Rectangle never changes
+    (its box is (0, 0, 1, 1), unrotated, its transform ``transAxes``), so the transform it gives is the same
+    each time, value for value: kept once, it is the very transform each artist would get, and it is
+    invalidated with ``transAxes`` as each new one would be. The output is the same bytes. An axes whose
+    background is not such a Rectangle (another projection) is left as it is.
+    """
+    from matplotlib.patches import Rectangle
+    patch = ax.patch
+    if type(patch) is not Rectangle or patch.get_bbox().bounds != (0.0, 0.0, 1.0, 1.0) or patch.angle != 0 \
+            or patch.get_transform.__class__ is _Kept:
+        return ax
+    patch.get_transform = _Kept(patch.get_transform())
+    return ax
+
+
+def add_axes(fig, rect, **kw):
+    """``fig.add_axes(rect, **kw)``, its artists clipped by one kept transform (:func:`share_rectangle_transforms`)."""
+    return share_rectangle_transforms(fig.add_axes(rect, **kw))
 
 
 _MATRICES: dict = {}   # (angle, slant, extend) -> FreeType's 16.16 matrix of a glyph, as matplotlib computes it
