@@ -812,14 +812,31 @@ def _step(system, rows, q, jac, d0, d1, sign):
     pose was crossed, or the step is not smooth: it starts or ends on one).
     """
     h = d1 - d0
-    qd = _velocity(system, rows, q, jac)
+    qd = _tangent(system, rows, q, jac)
     guess = q + h * qd
     qn, ok, jn = _newton(system, rows, guess, np.array([d1]))
     if ok[0] and _drift(system, qn - guess)[0] <= _drift_bound(system, np.array([h]), qd)[0] \
             and _cond(system, rows, jn)[0] <= 1e10 and _orientation(jn)[0] == sign \
-            and _smooth(system, qn - q, h * qd, h * _velocity(system, rows, qn, jn))[0]:
+            and _smooth(system, qn - q, h * qd, h * _tangent(system, rows, qn, jn))[0]:
         return qn, jn
     if abs(h) < 1e-6:
         return None
     mid = _step(system, rows, q, jac, d0, d0 + h / 2, sign)   # near a toggle: halve the step
     return None if mid is None else _step(system, rows, mid[0], mid[1], d0 + h / 2, d1, sign)
+
+
+_TANGENT: tuple = (None, None)   # the last Jacobian given to _tangent (the array itself) and its tangent
+
+
+def _tangent(system, rows, q, jac) -> np.ndarray:
+    """:func:`_velocity` of one pose's Jacobian ``jac``, which alone it depends on: the last one's kept.
+    A step's tangent at the pose it reaches (its smoothness check) is the next step's tangent at its
+    start, and a halved step starts with the tangent of the step it halves; each was solved twice.
+    The Jacobian is known by the array itself (kept here, so its id is not another's): continuation
+    never writes into a Jacobian once it is made (Knots keeps them)."""
+    global _TANGENT
+    last, qd = _TANGENT
+    if last is not jac:
+        qd = _velocity(system, rows, q, jac)
+        _TANGENT = (jac, qd)
+    return qd
