@@ -336,6 +336,7 @@ class Knots:
         self.d: list[float] = []       # the knots' driver positions, from 0.0
         self.made: list = []           # (q, jac) at each knot after the first
         self.failed: set = set()       # (knot, target) steps that failed
+        self.retried: dict = {}        # (pose bytes, from, to) -> a retried pose's step (Knots.retry)
 
     def start(self, system, rows, coarse) -> None:
         """Use these knots for a continuation of ``system`` on ``rows`` with steps of ``coarse``
@@ -343,7 +344,19 @@ class Knots:
         key = (system, tuple(rows), coarse)
         if self.key is None or self.key[1:] != key[1:] or not (
                 self.key[0] is system or same_mechanism(self.key[0].mechanism, system.mechanism)):
-            self.key, self.d, self.made, self.failed = key, [0.0], [], set()
+            self.key, self.d, self.made, self.failed, self.retried = key, [0.0], [], set(), {}
+
+    def retry(self, system, rows, q, d0: float, d1: float, sign):
+        """:func:`_step` from the pose ``q`` (1, nq) at driver position d0 to d1, kept: the sequential
+        retry of a pose the batched correction missed (:func:`_continue`), which near a toggle halves
+        its step a score of times; the same continuation asked again (an equal mechanism swept or
+        solved again at the same positions) retries from the same pose, bit for bit."""
+        key = (q.tobytes(), d0, d1, sign)
+        if key not in self.retried:
+            if len(self.retried) >= 64:
+                self.retried.clear()
+            self.retried[key] = _step(system, rows, q, system.evaluate(q)[1][:, rows], d0, d1, sign)
+        return self.retried[key]
 
     def step(self, system, rows, q, jac, k: int, target: float, sign):
         """:func:`_step` from knot ``k`` (pose ``q``, Jacobian ``jac``) to ``target``, kept."""
@@ -422,7 +435,7 @@ def _continue(system, rows, deltas, coarse, knots: Knots | None = None):
             d0, q0 = float(deltas[j]), out[j:j + 1]
         else:
             d0, q0 = float(kd[attach[i]]), kq[attach[i]][None, :]
-        nxt = _step(system, rows, q0, system.evaluate(q0)[1][:, rows], d0, float(deltas[i]), sign)
+        nxt = (knots or Knots()).retry(system, rows, q0, d0, float(deltas[i]), sign)
         if nxt is None:
             return Reassembly(deltas[:i], out[:i], "toggle", continued=True), kd, kq, attach[:i], sign
         out[i], ok[i] = nxt[0][0], True
