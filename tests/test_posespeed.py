@@ -4,8 +4,7 @@
   frame) give the bytes of the same pose evaluated in a batch of poses (arrays, nothing kept);
 * ``Jet.rotated``'s two-column case (a link's point or direction) gives the general loop's columns;
 * a continuation step's tangents, each solved once (``pose._tangent``), and its kept retries
-  (``Knots.retry``) give the poses and stops of tangents and retries made afresh;
-* ``pose._solve`` (np.linalg.solve's gufunc called directly) gives np.linalg.solve's bytes and errors.
+  (``Knots.retry``) give the poses and stops of tangents and retries made afresh.
 
 The mechanisms are generated (seeded: tests/zoo.py): contacts (rolling, cams with a flat or curved
 follower), a slot, sliders (a slider driver, a curved one, a floating guide). Floats are compared by their bytes.
@@ -133,29 +132,3 @@ def test_kept_tangents_and_retries_give_the_same_continuation(monkeypatch, which
     del solves[:]
     assert _reassembly(system, rows, way) == kept
     assert n_kept < len(solves)
-
-
-def test_solve_is_numpy_s():
-    """pose._solve (np.linalg.solve's gufunc called directly) gives np.linalg.solve's bytes, raises its
-    LinAlgError for a singular matrix, and leaves other arrays to it."""
-    rng = np.random.default_rng(8)
-    singular = rng.normal(size=(2, 5, 5))
-    singular[1, 2] = singular[1, 0]
-    with_nan = rng.normal(size=(1, 3, 3))
-    with_nan[0, 1, 1] = np.nan
-    cases = [(rng.normal(size=(k, n, n)), rng.normal(size=(k, n, j))) for n in (1, 3, 9, 24) for k in (1, 4)
-             for j in (1, 2)]
-    cases += [(singular, rng.normal(size=(2, 5, 1))), (np.zeros((1, 4, 4)), np.ones((1, 4, 1))),
-              (with_nan, rng.normal(size=(1, 3, 1))), (rng.normal(size=(6, 6)), rng.normal(size=(6, 2))),
-              (rng.normal(size=(2, 3, 3))[:, ::-1], rng.normal(size=(2, 3, 1)))]
-    for a, b in cases:
-        try:
-            want = np.linalg.solve(a, b)
-        except np.linalg.LinAlgError:
-            with pytest.raises(np.linalg.LinAlgError):
-                pose._solve(a, b)
-            continue
-        got = pose._solve(a, b)
-        assert got.shape == want.shape and got.dtype == want.dtype
-        assert np.array_equal(np.isnan(got), np.isnan(want))
-        assert np.where(np.isnan(got), 0.0, got).tobytes() == np.where(np.isnan(want), 0.0, want).tobytes()

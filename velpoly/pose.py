@@ -157,7 +157,7 @@ def _newton_batch(system: System, rows, q, targets, iters=30):
         jac = jac[:, rows]
         phi[:, -1] -= targets[active]
         try:
-            dq = _solve(jac, -phi[..., None])[..., 0]
+            dq = np.linalg.solve(jac, -phi[..., None])[..., 0]
         except np.linalg.LinAlgError:
             dq = np.stack([_solve_or_nan(j, -p) for j, p in zip(jac, phi)])
         size = np.abs(_scaled(system, dq)).max(axis=1, initial=0.0)
@@ -191,7 +191,7 @@ def _newton_one(system, rows, q, target: float, iters: int):
             jac = jac[:, rows]
         phi[0, -1] -= target
         try:
-            dq = _solve(jac, -phi[..., None])[..., 0]
+            dq = np.linalg.solve(jac, -phi[..., None])[..., 0]
         except np.linalg.LinAlgError:
             dq = _solve_or_nan(jac[0], -phi[0])[None, :]
         size = float(np.abs(dq[0] / unit).max())
@@ -217,33 +217,9 @@ def _velocity(system, rows, q, jac=None):
     rhs = np.zeros(jac.shape[:2])
     rhs[:, -1] = 1.0
     try:
-        return _solve(jac, rhs[..., None])[..., 0]
+        return np.linalg.solve(jac, rhs[..., None])[..., 0]
     except np.linalg.LinAlgError:   # a singular pose among them: no tangent there (NaN)
         return np.stack([_solve_or_nan(j, r) for j, r in zip(jac, rhs)])
-
-
-try:   # np.linalg.solve's own gufunc (numpy >= 1.8 has it here), without its checks and conversions
-    from numpy.linalg import _umath_linalg
-except ImportError:   # pragma: no cover - a numpy without it: np.linalg.solve itself
-    _umath_linalg = None
-
-
-def _singular(err, flag):
-    raise np.linalg.LinAlgError("Singular matrix")
-
-
-def _solve(a: np.ndarray, b: np.ndarray) -> np.ndarray:
-    """``np.linalg.solve(a, b)`` for stacks of square float64 matrices a (N, n, n) and right-hand
-    sides b (N, n, k): the gufunc it calls, under the floating-point handling it sets (a singular
-    matrix raises LinAlgError), so the same bits. Its checks and conversions, which such arrays
-    pass unchanged, cost more than the solve of a mechanism's few equations (each Newton iteration
-    makes one); any other arrays go to np.linalg.solve."""
-    if (_umath_linalg is None or type(a) is not np.ndarray or type(b) is not np.ndarray
-            or a.dtype != np.float64 or b.dtype != np.float64 or a.ndim != 3 or b.ndim != 3
-            or a.shape[1] != a.shape[2] or a.shape[1] == 0):
-        return np.linalg.solve(a, b)
-    with np.errstate(call=_singular, invalid="call", over="ignore", divide="ignore", under="ignore"):
-        return _umath_linalg.solve(a, b, signature="dd->d")
 
 
 def _solve_or_nan(a, b):
