@@ -104,6 +104,7 @@ class Frame:
         self._index = system.index
         self._cache = {}
         self._points = {}
+        self._chords = {}
 
     def _body(self, link: str):
         b = self._cache.get(link)
@@ -171,6 +172,18 @@ class Frame:
             return p
         return x + c * sx - s_ * sy, y + s_ * sx + c * sy
 
+    def chord(self, a: str, sa, b: str, sb) -> tuple:
+        """r_a(sa) - r_b(sb): from b's point sb to a's point sa (reference coordinates, tuples of floats).
+
+        Kept for the frame's other equations: a contact's normal and slip equations both take the one
+        between its centres, a slider's path equation and a slider driver's coordinate the one at its
+        point (the same jets, made once)."""
+        key = (a, sa, b, sb)
+        d = self._chords.get(key)
+        if d is None:
+            d = self._chords[key] = _sub(self.point(a, sa), self.point(b, sb))
+        return d
+
     def direction(self, link: str, d) -> tuple[Jet, Jet]:
         """R(theta_link) d: a direction fixed to the link."""
         dx, dy = float(d[0]), float(d[1])
@@ -208,19 +221,22 @@ class PinBlock:
     sign: np.ndarray      # (moving sides,) +1 for side 0, -1 for side 1
 
     @functools.cached_property
-    def sides(self) -> tuple:
-        """Each side's (theta, x, y columns in the padded q, reference x, y) as lists (:func:`_pins_one`)."""
-        return (self.theta.tolist(), self.x.tolist(), self.y.tolist(), self.sx.tolist(), self.sy.tolist())
+    def pinwise(self) -> list:
+        """Each pin's (theta, x, y columns in the padded q of side 0, the same of side 1, reference x, y,
+        whether side 0 and side 1 are moving links) as floats and ints (:func:`_pins_one`)."""
+        n = len(self.ki)
+        t, x, y, m = self.theta.tolist(), self.x.tolist(), self.y.tolist(), self.moving.tolist()
+        return [(t[p], x[p], y[p], t[p + n], x[p + n], y[p + n], float(self.s[p, 0]), float(self.s[p, 1]),
+                 m[p], m[p + n]) for p in range(n)]
 
     @functools.cached_property
-    def moving_sides(self) -> list:
-        """The moving sides' numbers (side 0 of pin p is p, side 1 is p + L), as ``flat_x`` lists them."""
-        return np.flatnonzero(self.moving).tolist()
-
-    @functools.cached_property
-    def flat_xy(self) -> np.ndarray:
-        """``flat_x`` then ``flat_y``: every theta column of the pins' rows, for one assignment."""
-        return np.concatenate([self.flat_x, self.flat_y])
+    def flat_pinwise(self) -> np.ndarray:
+        """``flat_x`` then ``flat_y``, each in the order of the pins (side 0 before side 1 of a pin):
+        every theta column of the pins' rows for one assignment, as :func:`_pins_one` gathers them."""
+        n = len(self.ki)
+        sides = np.flatnonzero(self.moving)               # as flat_x lists them: sides 0, then sides 1
+        order = np.lexsort((sides // n, sides % n))        # by pin, side 0 first
+        return np.concatenate([self.flat_x[order], self.flat_y[order]])
 
     @staticmethod
     def build(ki, kj, s, nq: int) -> "PinBlock":
@@ -275,44 +291,75 @@ def _pins_bulk(block: PinBlock, q, qd, phi, jac, h) -> int:
 
 
 def _pins_one(block: PinBlock, q, qd, phi, jac, h) -> int:
-    """:func:`_pins_bulk` at one pose on plain floats: the same operations in the same order, side
-    by side (each side's R(theta) s, its place x + R s, Phi = r_i - r_j, the theta columns -R s_y
-    and R s_x signed, h = theta_j'^2 R_j s - theta_i'^2 R_i s), so the same bits (math's cos and
-    sin are numpy's on the platforms checked: tests/test_instant_speedups.py). At one pose the
-    arrays' cost per call was most of the pins' time: ``solve`` evaluates them twice."""
+    """:func:`_pins_bulk` at one pose on plain floats: the same operations in the same order, pin by
+    pin (each side's R(theta) s, its place x + R s, Phi = r_i - r_j, the theta columns -R s_y and
+    R s_x signed, h = theta_j'^2 R_j s - theta_i'^2 R_i s), so the same bits (math's cos and sin are
+    numpy's on the platforms checked: tests/test_instant_speedups.py). At one pose the arrays' cost
+    per call was most of the pins' time (``solve`` evaluates them twice); each row's values are
+    gathered in the one loop over the pins, in the order :attr:`PinBlock.pinwise` lays them out."""
     n_pins = len(block.ki)
-    theta, xs, ys, sxs, sys_ = block.sides
     qe = q[0].tolist() + [0.0, 0.0, 0.0]   # a zero "link" for the frame
     cos, sin = math.cos, math.sin
-    rx, ry, px, py = [], [], [], []
-    for t, x, y, sx, sy in zip(theta, xs, ys, sxs, sys_):
-        th = qe[t]
+    vals, rs, fx, fy = [], [], [], []
+    for ti, xi, yi, tj, xj, yj, sx, sy, mi, mj in block.pinwise:
+        th = qe[ti]
         c, sn = cos(th), sin(th)
-        u, v = c * sx - sn * sy, sn * sx + c * sy
-        rx.append(u)
-        ry.append(v)
-        px.append(qe[x] + u)
-        py.append(qe[y] + v)
-    phi[0, :2 * n_pins] = [d for p in range(n_pins) for d in (px[p] - px[p + n_pins], py[p] - py[p + n_pins])]
+        ui, vi = c * sx - sn * sy, sn * sx + c * sy
+        th = qe[tj]
+        c, sn = cos(th), sin(th)
+        uj, vj = c * sx - sn * sy, sn * sx + c * sy
+        vals.append((qe[xi] + ui) - (qe[xj] + uj))
+        vals.append((qe[yi] + vi) - (qe[yj] + vj))
+        rs.append((ui, vi, uj, vj))
+        if mi:     # the theta columns: -sign R s_y in the x row, sign R s_x in the y row
+            fx.append(-vi)
+            fy.append(ui)
+        if mj:
+            fx.append(vj)
+            fy.append(-uj)
+    phi[0, :2 * n_pins] = vals
     if jac is not None:
         jac[0, :2 * n_pins] = block.j0
-        moving = block.moving_sides   # the theta columns: -sign R s_y in the x rows, sign R s_x in the y rows
-        jac.reshape(-1)[block.flat_xy] = ([-ry[t] if t < n_pins else ry[t] for t in moving]
-                                          + [rx[t] if t < n_pins else -rx[t] for t in moving])
+        jac.reshape(-1)[block.flat_pinwise] = fx + fy
     if h is not None and qd is not None:
         qe[:-3] = qd[0].tolist()
-        hx, hy = [], []
-        for t, u, v in zip(theta, rx, ry):
-            w = qe[t]
-            w2 = w * w
-            hx.append(w2 * u)
-            hy.append(w2 * v)
-        h[0, :2 * n_pins] = [d for p in range(n_pins) for d in (hx[p + n_pins] - hx[p], hy[p + n_pins] - hy[p])]
+        hs = []
+        for (ti, _, _, tj, *_), (ui, vi, uj, vj) in zip(block.pinwise, rs):
+            wi, wj = qe[ti], qe[tj]
+            wi2, wj2 = wi * wi, wj * wj
+            hs.append(wj2 * uj - wi2 * ui)
+            hs.append(wj2 * vj - wi2 * vi)
+        h[0, :2 * n_pins] = hs
     return 2 * n_pins
+
+
+def _rows_one(f: Frame, rest, start: int, phi, jac, h) -> None:
+    """The equations ``rest`` at one pose's sparse frame ``f``, written from row ``start`` on: each
+    jet's value and h-term gathered and stored with one assignment per array (the same floats that
+    element by element assignments store; numpy's cost per item was a good part of a small system's
+    evaluation), its gradient written into its row of ``jac`` (:meth:`Grad.into`; a dense one as is)."""
+    rows = jac[0]
+    vals, hs = [], []
+    for i, e in enumerate(rest, start=start):
+        j = e.fn(f)
+        vals.append(j.v)
+        hs.append(j.h)
+        if type(j.g) is Grad:
+            j.g.into(rows[i])
+        else:
+            rows[i] = j.g
+    end = start + len(rest)
+    phi[0, start:end] = vals
+    h[0, start:end] = hs
 
 
 def _sub(a, b):
     return a[0] - b[0], a[1] - b[1]
+
+
+def _xy(s) -> tuple[float, float]:
+    """A point's reference coordinates as a tuple of floats (a key of :meth:`Frame.chord`'s)."""
+    return float(s[0]), float(s[1])
 
 
 @dataclass(frozen=True)
@@ -384,14 +431,16 @@ class System:
             rest.append(self.driver)
         if rest:
             f = Frame(self, q, qd, one_pose=True)
-            rows = jac[0] if f.sparse else None
-            for i, e in enumerate(rest, start=start):
-                j = e.fn(f)
-                phi[:, i], h[:, i] = j.v, j.h
-                if type(j.g) is Grad:
-                    j.g.into(rows[i])
-                else:
-                    jac[:, i] = j.g
+            if f.sparse:
+                _rows_one(f, rest, start, phi, jac, h)
+            else:
+                for i, e in enumerate(rest, start=start):
+                    j = e.fn(f)
+                    phi[:, i], h[:, i] = j.v, j.h
+                    if type(j.g) is Grad:
+                        j.g.into(jac[0, i])
+                    else:
+                        jac[:, i] = j.g
         if crank:
             k = self.crank
             phi[:, -1] = q[:, 3 * k + 2]
@@ -516,7 +565,8 @@ def _coincide(lab: str, a: str, b: str, s) -> list[Equation]:
 def _on_line(lab: str, a: str, b: str, s, n) -> Equation:
     """a's point s stays on b's straight path through s with normal n (reference pose):
     (r_a(s) - r_b(s)) . R_b n = 0 (with n along the path instead: a's travel along it)."""
-    return Equation(lab, (a, b), lambda f: _dot(_sub(f.point(a, s), f.point(b, s)), f.direction(b, n)))
+    s = _xy(s)
+    return Equation(lab, (a, b), lambda f: _dot(f.chord(a, s, b, s), f.direction(b, n)))
 
 
 def _on_circle(lab: str, a: str, b: str, s, k) -> Equation:
@@ -656,14 +706,15 @@ def _contact_equations(m: Mechanism, c, P, with_slip: bool = False):
     if ca is not None and cb is not None:
         A, B = P[ca], P[cb]
         D = float(np.hypot(*(B - A)))
+        A_, B_ = _xy(A), _xy(B)
         phi0 = float(np.arctan2(u[1], u[0]))
 
         def normal_eq(f):
-            d = _sub(f.point(b, B), f.point(a, A))
+            d = f.chord(b, B_, a, A_)
             return _dot(d, d).sqrt() - D
 
         def slip_eq(f, sigma=0.0):
-            d = _sub(f.point(b, B), f.point(a, A))
+            d = f.chord(b, B_, a, A_)
             ta, tb = f.theta(a), f.theta(b)
             # the line of centres' turn, unwrapped near the value that the slip sigma implies
             # (D = la - lb), phi = (la theta_a - lb theta_b - sigma) / D, so that it stays
@@ -679,13 +730,14 @@ def _contact_equations(m: Mechanism, c, P, with_slip: bool = False):
         else:            # flat on a: use u' = -u from Cb towards P
             cur, fl, C, l_, uu = b, a, P[cb], -lb, -u
         tt = np.array([-uu[1], uu[0]])
+        C_, p_ = _xy(C), _xy(p)
         # the rate of slip_eq is (V_P(cur) - V_P(fl)) . tt = (V_P(a) - V_P(b)) . t either way
 
         def normal_eq(f):
-            return _dot(_sub(f.point(cur, C), f.point(fl, p)), f.direction(fl, uu)) + l_
+            return _dot(f.chord(cur, C_, fl, p_), f.direction(fl, uu)) + l_
 
         def slip_eq(f, sigma=0.0):
-            return _dot(_sub(f.point(cur, C), f.point(fl, p)), f.direction(fl, tt)) \
+            return _dot(f.chord(cur, C_, fl, p_), f.direction(fl, tt)) \
                 + l_ * (f.theta(cur) - f.theta(fl))
     out = [Equation(lab, (a, b), normal_eq)]
     slip = Equation(lab, (a, b), slip_eq, holonomic=c.slip is None, rate=rate, timed=c.slip is not None)

@@ -227,6 +227,11 @@ class Jet:
             return Jet(v, None, vd, h)
         bd, cd = b.g.d, c.g.d
         bz, cz = b.g.z * fb, c.g.z * fc     # the factors' products in the columns they do not hold
+        if len(bd) == 1 and len(cd) == 1 and (a is None or len(a.g.d) == 1):
+            d = _rotated_one_column(a, bd, fb, cd, fc, bz, cz, plus)
+            if d is not None:
+                z = bz if a is None else a.g.z + bz
+                return Jet(v, Grad(d, z + cz if plus else z - cz, b.g.n), vd, h)
         keys = bd.keys() | cd.keys()
         if a is not None:
             ad, az = a.g.d, a.g.z
@@ -281,3 +286,24 @@ class Jet:
         vd = cross_d / r2
         h = (xv * y.h - yv * x.h) / r2 - 2.0 * cross_d * (xv * x.vd + yv * y.vd) / r2 ** 2
         return Jet(ang, g, vd, h)
+
+
+def _rotated_one_column(a, bd: dict, fb, cd: dict, fc, bz, cz, plus: bool) -> dict | None:
+    """:meth:`Jet.rotated`'s gradient columns where ``b`` and ``c`` hold the same one column (a link's
+    cos and sin: its angle's) and ``a`` none or another one (the link's x or y): the loop's
+    operations on each of the two columns written out, without building the set of columns; None
+    for any other layout (the loop serves)."""
+    (k, vb), = bd.items()
+    if k not in cd:
+        return None
+    u = cd[k] * fc
+    if a is None:
+        t = vb * fb
+        return {k: t + u if plus else t - u}
+    ad = a.g.d
+    (ka, va), = ad.items()
+    if ka == k:
+        return None
+    t = a.g.z + vb * fb
+    ta = va + bz
+    return {k: t + u if plus else t - u, ka: ta + cz if plus else ta - cz}

@@ -312,6 +312,7 @@ class Knots:
         self.d: list[float] = []       # the knots' driver positions, from 0.0
         self.made: list = []           # (q, jac) at each knot after the first
         self.failed: set = set()       # (knot, target) steps that failed
+        self.retried: dict = {}        # (pose bytes, from, to) -> a retried pose's step (Knots.retry)
 
     def start(self, system, rows, coarse) -> None:
         """Use these knots for a continuation of ``system`` on ``rows`` with steps of ``coarse``
@@ -319,7 +320,19 @@ class Knots:
         key = (system, tuple(rows), coarse)
         if self.key is None or self.key[1:] != key[1:] or not (
                 self.key[0] is system or same_mechanism(self.key[0].mechanism, system.mechanism)):
-            self.key, self.d, self.made, self.failed = key, [0.0], [], set()
+            self.key, self.d, self.made, self.failed, self.retried = key, [0.0], [], set(), {}
+
+    def retry(self, system, rows, q, d0: float, d1: float, sign):
+        """:func:`_step` from the pose ``q`` (1, nq) at driver position d0 to d1, kept: the sequential
+        retry of a pose the batched correction missed (:func:`_continue`), which near a toggle halves
+        its step a score of times; the same continuation asked again (an equal mechanism swept or
+        solved again at the same positions) retries from the same pose, bit for bit."""
+        key = (q.tobytes(), d0, d1, sign)
+        if key not in self.retried:
+            if len(self.retried) >= 64:
+                self.retried.clear()
+            self.retried[key] = _step(system, rows, q, system.evaluate(q)[1][:, rows], d0, d1, sign)
+        return self.retried[key]
 
     def step(self, system, rows, q, jac, k: int, target: float, sign):
         """:func:`_step` from knot ``k`` (pose ``q``, Jacobian ``jac``) to ``target``, kept."""
@@ -398,7 +411,7 @@ def _continue(system, rows, deltas, coarse, knots: Knots | None = None):
             d0, q0 = float(deltas[j]), out[j:j + 1]
         else:
             d0, q0 = float(kd[attach[i]]), kq[attach[i]][None, :]
-        nxt = _step(system, rows, q0, system.evaluate(q0)[1][:, rows], d0, float(deltas[i]), sign)
+        nxt = (knots or Knots()).retry(system, rows, q0, d0, float(deltas[i]), sign)
         if nxt is None:
             return Reassembly(deltas[:i], out[:i], "toggle", continued=True), kd, kq, attach[:i], sign
         out[i], ok[i] = nxt[0][0], True
@@ -812,14 +825,31 @@ def _step(system, rows, q, jac, d0, d1, sign):
     pose was crossed, or the step is not smooth: it starts or ends on one).
     """
     h = d1 - d0
-    qd = _velocity(system, rows, q, jac)
+    qd = _tangent(system, rows, q, jac)
     guess = q + h * qd
     qn, ok, jn = _newton(system, rows, guess, np.array([d1]))
     if ok[0] and _drift(system, qn - guess)[0] <= _drift_bound(system, np.array([h]), qd)[0] \
             and _cond(system, rows, jn)[0] <= 1e10 and _orientation(jn)[0] == sign \
-            and _smooth(system, qn - q, h * qd, h * _velocity(system, rows, qn, jn))[0]:
+            and _smooth(system, qn - q, h * qd, h * _tangent(system, rows, qn, jn))[0]:
         return qn, jn
     if abs(h) < 1e-6:
         return None
     mid = _step(system, rows, q, jac, d0, d0 + h / 2, sign)   # near a toggle: halve the step
     return None if mid is None else _step(system, rows, mid[0], mid[1], d0 + h / 2, d1, sign)
+
+
+_TANGENT: tuple = (None, None)   # the last Jacobian given to _tangent (the array itself) and its tangent
+
+
+def _tangent(system, rows, q, jac) -> np.ndarray:
+    """:func:`_velocity` of one pose's Jacobian ``jac``, which alone it depends on: the last one's kept.
+    A step's tangent at the pose it reaches (its smoothness check) is the next step's tangent at its
+    start, and a halved step starts with the tangent of the step it halves; each was solved twice.
+    The Jacobian is known by the array itself (kept here, so its id is not another's): continuation
+    never writes into a Jacobian once it is made (Knots keeps them)."""
+    global _TANGENT
+    last, qd = _TANGENT
+    if last is not jac:
+        qd = _velocity(system, rows, q, jac)
+        _TANGENT = (jac, qd)
+    return qd
