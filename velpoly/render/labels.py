@@ -366,7 +366,8 @@ class LabelPlacer:
         ``clear``: the far rings too while every free candidate nearer lies on a line (a place there off
         every line, whose leader crosses at most one line or outline); ``reach``: the farthest rings too
         while nothing nearer is free. A ring's candidates are tested together (:class:`_Scene`: the same
-        answers as testing each box with shapely, in the same order)."""
+        answers as testing each box with shapely, in the same order; a second search on the same scene, as
+        :meth:`place` makes with ``accept``, finds the rings and their tests made: :meth:`_Scene.ring`)."""
         scene = _Scene(self, anchor, per_point(self.ax)) if scene is None else scene
         rings = (gap,) + tuple(r for r in RINGS if r > gap)
         best = None
@@ -377,16 +378,13 @@ class LabelPlacer:
             if seeking and not (clear and leader and best[0][0] > 0):
                 break
             k = 48 if ring in REACH_RINGS else 24 if far else 16 if ring_i >= 2 else 8
-            cands = _Ring(anchor, w, h, prefer, ring * scene.pp, k, within)
+            cands = scene.ring(anchor, w, h, prefer, ring, k, within)
             # the first ring's preferred place alone first (where most labels go), then the rest together
             for part in np.split(np.arange(len(cands)), [1] if ring_i == 0 else []):
-                free = scene.free(cands, part)
+                lines = leader and ring >= 9.0
+                free, soft, crosses, line_hits = scene.tests(cands, part, lines)
                 if not len(free):
                     continue
-                soft = scene.soft_hits(cands, free)
-                lines = leader and ring >= 9.0
-                if lines:
-                    crosses, line_hits = scene.leader_tests(cands, free)
                 for n, i in enumerate(free):
                     b = cands.geom(i)
                     if accept is not None and not accept(b):
@@ -541,11 +539,11 @@ class LabelPlacer:
             c = p0 + u * (frac * length) + n * side * (offset * pp + h / 2)
             b = affinity.rotate(box(c[0] - w / 2, c[1] - h / 2, c[0] + w / 2, c[1] + h / 2), ang,
                                 origin=(c[0], c[1]))
-            # its ends kept ``pad`` from labels and arrowheads (the words must not run on into a label)
-            big = affinity.rotate(box(c[0] - w / 2 - grow, c[1] - h / 2, c[0] + w / 2 + grow, c[1] + h / 2), ang,
-                                  origin=(c[0], c[1]))
-            if view.contains(b) and self.free(b, soft=True) and (grow == 0 or self.free(big)) and \
-                    not any(g.intersects(b) for g in self.along + reserved):
+            # its ends kept ``pad`` from labels and arrowheads (the words must not run on into a label; that box
+            # made only where the text's own is free)
+            if view.contains(b) and self.free(b, soft=True) and (grow == 0 or self.free(affinity.rotate(
+                    box(c[0] - w / 2 - grow, c[1] - h / 2, c[0] + w / 2 + grow, c[1] + h / 2), ang,
+                    origin=(c[0], c[1])))) and not any(g.intersects(b) for g in self.along + reserved):
                 t.set_position((float(c[0]), float(c[1])))
                 self.along.append(b.buffer(ALONG_APART * t.get_fontsize() * pp))
                 if gid:
@@ -675,14 +673,12 @@ class _Ring:
     numbers of the candidates made one at a time before: tests/test_placer_speed.py)."""
 
     def __init__(self, anchor, w: float, h: float, prefer, reach: float, k: int, within=None):
-        u, a, b, has_a, has_b = _units(prefer, k, within, w, h)
-        # half_extent(w, h, u), as min() of its list picks: the second where it is smaller
-        with np.errstate(divide="ignore", invalid="ignore"):
-            he = np.where(has_a & has_b, np.where(b < a, b, a), np.where(has_a, a, b))
+        u, he = _kept_or_made(_unit_extents_kept, _unit_extents_made, prefer, k, within, w, h)
         self.centres = anchor[None, :] + u * (reach + he)[:, None]
         cx, cy = self.centres[:, 0], self.centres[:, 1]
         self.bounds = np.column_stack([cx - w / 2, cy - h / 2, cx + w / 2, cy + h / 2])
         self._geoms = None
+        self.tested: dict = {}   # a search's tests of its candidates (:meth:`_Scene.tests`)
 
     def __len__(self) -> int:
         return len(self.centres)
@@ -719,6 +715,37 @@ class _Scene:
         # the lines and outlines at the anchor itself: a leader leaving it does not count them
         self.at_anchor = (shapely.intersects(self.soft[0], Point(*anchor).buffer(2.0 * self.pp))
                           if self.soft.size else None)
+        self._rings: dict = {}   # (ring, its size and directions) -> _Ring (see ring())
+
+    def ring(self, anchor, w: float, h: float, prefer, ring: float, k: int, within) -> _Ring:
+        """The candidates ``ring`` points out from ``anchor`` (``_Ring(anchor, w, h, prefer, ring * pp, k,
+        within)``), made once per scene with their tests (:meth:`tests`): nothing is placed while a scene
+        lives, so a second search of the same label (:meth:`LabelPlacer.place` with ``accept``) walks the
+        same rings to the same answers. Kept by the exact values and their types (a numpy float's arithmetic is
+        its own); an unhashable argument: made anew."""
+        anchor = np.asarray(anchor, float)
+        key = (anchor.tobytes(), w, h, prefer, ring, k, within, type(w), type(h), type(prefer), type(ring),
+               type(within))
+        try:
+            got = self._rings.get(key)
+        except TypeError:
+            return _Ring(anchor, w, h, prefer, ring * self.pp, k, within)
+        if got is None:
+            got = self._rings[key] = _Ring(anchor, w, h, prefer, ring * self.pp, k, within)
+        return got
+
+    def tests(self, cands: _Ring, part: np.ndarray, lines: bool) -> tuple:
+        """For the candidates ``part`` of a ring: the free ones (:meth:`free`), the soft obstacles each of those
+        meets (:meth:`soft_hits`) and, with ``lines``, their leaders' tests (:meth:`leader_tests`; else None,
+        None), kept on the ring for a second search (:meth:`ring`)."""
+        key = (tuple(part.tolist()), lines)
+        got = cands.tested.get(key)
+        if got is None:
+            free = self.free(cands, part)
+            soft = self.soft_hits(cands, free) if len(free) else None
+            crosses, line_hits = self.leader_tests(cands, free) if lines and len(free) else (None, None)
+            got = cands.tested[key] = (free, soft, crosses, line_hits)
+        return got
 
     def in_view(self, cands: _Ring) -> np.ndarray:
         """Which candidates the view contains (``view.contains(b)``): a box of some width and height in a box is
@@ -764,10 +791,15 @@ def _unit_rows(prefer, k: int, within):
     """The unit vectors of :func:`_directions` within ``within`` of ``prefer`` (read only), as the candidates
     were made one at a time: kept per (prefer, k, within) and their types (a numpy float's arithmetic is its
     own), else (unhashable) made anew."""
+    return _kept_or_made(_unit_rows_kept, _unit_rows_made, prefer, k, within)
+
+
+def _kept_or_made(kept, made, *args):
+    """``kept(*args)`` (``made`` kept by an lru_cache), or ``made(*args)`` where an argument is unhashable."""
     try:
-        return _unit_rows_kept(prefer, k, within)
+        return kept(*args)
     except TypeError:
-        return _unit_rows_made(prefer, k, within)
+        return made(*args)
 
 
 def _unit_rows_made(prefer, k: int, within):
@@ -791,6 +823,21 @@ def _units(prefer, k: int, within, w: float, h: float):
     has_a, has_b = ux > 1e-12, uy > 1e-12
     with np.errstate(divide="ignore", invalid="ignore"):
         return u, (w / 2) / ux, (h / 2) / uy, has_a, has_b
+
+
+def _unit_extents_made(prefer, k: int, within, w: float, h: float):
+    """The directions' unit vectors (:func:`_unit_rows`) and :func:`half_extent` of a w x h box along each (read
+    only): the same for every ring of one size and number of directions (:class:`_Ring` keeps them per the
+    arguments and their types, :data:`_unit_extents_kept`)."""
+    u, a, b, has_a, has_b = _units(prefer, k, within, w, h)
+    # half_extent(w, h, u), as min() of its list picks: the second where it is smaller
+    with np.errstate(divide="ignore", invalid="ignore"):
+        he = np.where(has_a & has_b, np.where(b < a, b, a), np.where(has_a, a, b))
+    he.setflags(write=False)
+    return u, he
+
+
+_unit_extents_kept = functools.lru_cache(maxsize=4096, typed=True)(_unit_extents_made)
 
 
 def _proper(bounds: np.ndarray) -> np.ndarray:
