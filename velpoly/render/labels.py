@@ -73,6 +73,7 @@ class LabelPlacer:
         self.pins: dict = {}
         self.along: list = []      # the boxes of the texts written along lines (a line's reason), each grown by
         #                            the em its neighbours keep from it
+        self._prepared: dict = {}  # id(soft obstacle) -> (it, its prepared copy): see prepared_soft()
 
     @property
     def boxes(self) -> list:
@@ -178,6 +179,21 @@ class LabelPlacer:
         if not others:
             return True
         return not bool(np.any(shapely.intersects(np.array(others, dtype=object), geom)))
+
+    def prepared_soft(self) -> list:
+        """The soft obstacles as copies shapely has prepared (each indexed once: a search tests hundreds of boxes
+        and leaders against the same lines and outlines; GEOS's prepared predicates answer as the plain ones
+        do, faster), made once per obstacle while the placer lives. Copies: the registered geometries stay as
+        they are for the drawings that share them."""
+        out = []
+        for g in self.soft:
+            got = self._prepared.get(id(g))
+            if got is None or got[0] is not g:
+                copy = shapely.from_wkb(shapely.to_wkb(g))
+                shapely.prepare(copy)
+                got = self._prepared[id(g)] = (g, copy)
+            out.append(got[1])
+        return out
 
     def soft_hits(self, geom) -> int:
         if not self.soft:
@@ -710,7 +726,7 @@ class _Scene:
         self.view = view_box(pl.ax)
         self.view_bounds = np.array(self.view.bounds, float)
         self.taken = np.array(pl.boxes + pl.hard, dtype=object)[None, :]        # what a label's box must not meet
-        self.soft = np.array(pl.soft, dtype=object)[None, :]
+        self.soft = np.array(pl.prepared_soft(), dtype=object)[None, :]   # (prepared copies: the same answers)
         self.crossed = np.array(pl.boxes + pl.leaders, dtype=object)[None, :]    # what a leader must not cross
         # the lines and outlines at the anchor itself: a leader leaving it does not count them
         self.at_anchor = (shapely.intersects(self.soft[0], Point(*anchor).buffer(2.0 * self.pp))
