@@ -98,3 +98,40 @@ def test_caches_are_bounded(monkeypatch):
         page(textcache.canvas_class(), texts(4, 30), 72)
     assert textcache.stats()["metrics"][2] <= 5
     textcache.clear()
+
+
+def test_kept_layout_boxes_give_matplotlibs_extents():
+    """``textcache.window_extent`` (the label placer's measure) equals ``Text.get_window_extent`` to the bit on
+    generated texts (plain, math, two lines, turned, every alignment, five sizes), on the same texts changed
+    in place (size, angle, string, place: a kept box must not follow a text's font object), in both styles'
+    settings (the same text objects: another font family and mathtext set), at another dpi, and on texts
+    matplotlib measures itself (empty, hidden, wrapped)."""
+    fig = Figure(figsize=(5, 4), dpi=72)
+    textcache.new_canvas(fig)
+    ax = fig.add_axes((0, 0, 1, 1))
+    renderer = fig.canvas.get_renderer()
+    spec = texts(11, 60)
+    made = [ax.text(t["x"], t["y"], t["s"], fontsize=t["fontsize"], family=t["family"], rotation=t["rotation"],
+                    ha=t["ha"], va=t["va"]) for t in spec]
+    made[0].set_text("")
+    made[1].set_visible(False)
+    made[2].set_wrap(True)
+
+    def same():
+        for t in made:
+            assert tuple(textcache.window_extent(t, renderer).extents) == tuple(t.get_window_extent(renderer).extents), t
+    rng = np.random.default_rng(5)
+    for style in ("textbook", "slides", "textbook"):
+        with rc_context(get_style(style)):
+            same()
+            same()   # the second time from the kept boxes
+            for t in made[3:]:
+                t.set_fontsize(float(rng.choice([6.3, 8, 11.1])))
+                t.set_rotation(float(rng.choice([0, 90, 12.5])))
+                t.set_position((float(rng.uniform(0, 1)), float(rng.uniform(0, 1))))
+                t.set_text(spec[int(rng.integers(len(spec)))]["s"])
+            same()
+    fig.set_dpi(200)
+    same()
+    found, computed, _ = textcache.stats()["box"]
+    assert found > 0 and computed > 0

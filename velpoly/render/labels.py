@@ -25,6 +25,7 @@ from shapely import affinity
 from shapely.geometry import LineString, Point
 
 from .canvas import box, per_point, renderer_of, view_box
+from .textcache import window_extent
 
 __all__ = ["LabelPlacer", "Placed", "placer", "segment", "half_extent", "ALONG_APART"]
 
@@ -159,7 +160,7 @@ class LabelPlacer:
     def box_of(self, text, pad: float = 1.0, pp: float | None = None):
         """The Text's box in data coordinates, grown by ``pad`` points (a rotated text: its outline; ``pp``: the
         axes' :func:`per_point`, where known)."""
-        bb = text.get_window_extent(self.renderer)
+        bb = window_extent(text, self.renderer)
         inv = self.ax.transData.inverted()
         (x0, y0), (x1, y1) = inv.transform([[bb.x0, bb.y0], [bb.x1, bb.y1]])
         p = pad * (per_point(self.ax) if pp is None else pp)

@@ -37,9 +37,10 @@ import os
 import threading
 from collections import OrderedDict
 
-__all__ = ["canvas_class", "new_canvas", "add_axes", "share_rectangle_transforms", "clear", "stats", "LIMITS"]
+__all__ = ["canvas_class", "new_canvas", "add_axes", "share_rectangle_transforms", "window_extent", "clear", "stats",
+           "LIMITS"]
 
-LIMITS = {"metrics": 20000, "height": 1000, "layout": 10000, "glyph": 20000}   # entries kept per cache (a glyph
+LIMITS = {"metrics": 20000, "height": 1000, "layout": 10000, "glyph": 20000, "box": 10000}   # entries kept per cache (a glyph
 # bitmap 0.3-3 KB at 200 dpi)
 
 _CACHES: dict[str, OrderedDict] = {name: OrderedDict() for name in LIMITS}
@@ -90,6 +91,41 @@ def _font_key(prop, dpi: float) -> tuple:
     return (tuple(prop.get_family()), prop.get_style(), prop.get_variant(), prop.get_weight(),
             prop.get_stretch(), prop.get_size_in_points(), str(prop.get_file()), prop.get_math_fontfamily(),
             tuple(tuple(v) if isinstance(v, list) else v for v in (rc[k] for k in _RC)), dpi)
+
+
+_MATH_RC: list = []   # the mathtext settings (their names, read once): a math text's layout depends on them
+
+
+def window_extent(text, renderer):
+    """``text.get_window_extent(renderer)``, the text's layout box kept for the process (the ``box`` cache).
+
+    matplotlib's extent is ``Text._get_layout``'s box (the lines measured and aligned at the origin, then
+    rotated) translated by where the text's transform puts its position. That box is a function of the
+    string, the font properties and the font settings (:func:`_font_key`), the mathtext settings, whether
+    math is parsed, the rotation and its mode, the alignments, the line spacing, the figure's dpi and the
+    renderer (its type and dpi): it is kept by those and translated as matplotlib translates it (the same
+    float sums), so the extent is matplotlib's to the bit (tests/test_textcache.py). A label placer measures
+    the same names and values on every sheet of a process, each at a few sizes. A text laid out otherwise
+    (hidden, empty, wrapped, TeX, turned with its transform) or a matplotlib without these methods is
+    measured by matplotlib."""
+    fig = text.get_figure(root=True)
+    if (fig is None or renderer is None or not text.get_visible() or not text.get_text() or text.get_wrap()
+            or text.get_usetex() or text.get_transform_rotates_text()
+            or not hasattr(text, "_get_layout") or not hasattr(text, "_get_multialignment")):
+        return text.get_window_extent(renderer)
+    import matplotlib
+    rc = matplotlib.rcParams
+    if not _MATH_RC:
+        _MATH_RC.extend(sorted(k for k in rc if k.startswith("mathtext.")) + ["text.hinting_factor"])
+    key = (text.get_text(), _font_key(text.get_fontproperties(), fig.dpi), tuple(str(rc[k]) for k in _MATH_RC),
+           text.get_parse_math(), text.get_rotation(), text.get_rotation_mode(), text.get_horizontalalignment(),
+           text.get_verticalalignment(), text._get_multialignment(), text.get_linespacing(), type(renderer),
+           getattr(renderer, "dpi", None))
+    box = _get("box", key)
+    if box is None:
+        box = _put("box", key, text._get_layout(renderer)[0])
+    x, y = text.get_transform().transform(text.get_unitless_position())
+    return box.translated(x, y)
 
 
 def _height_metrics(prop, dpi: float) -> tuple:
