@@ -19,7 +19,7 @@ import numpy as np
 
 import velpoly
 from velpoly.polygons import acceleration_polygon
-from velpoly.render import polygon, table
+from velpoly.render import polygon, table, textcache
 from velpoly.render.style import get_style, rc_context
 
 import mechanisms
@@ -82,7 +82,7 @@ def test_text_extents_with_layouts_kept_are_to_the_bit(monkeypatch):
     with rc_context(st):
         fig = _figure((13.333, 7.5))
         texts = ["$V_{B_{3}}$ = 12.5 m/s", "x", "‡ $\\omega_{3}$: rounded\nsecond line", "$A^{t}_{C}$", "−0.0314"]
-        table._LAYOUTS.clear()
+        textcache.clear()
         for k, s in enumerate(texts):
             kw = dict(fontsize=float(rng.uniform(5, 14)), **({"style": "italic", "va": "top"} if k % 2 else {}))
             for _ in range(2):   # measured, then found
@@ -95,7 +95,7 @@ def test_text_extents_with_layouts_kept_are_to_the_bit(monkeypatch):
         got = []
         for rect in ((0.05, 0.05, 0.5, 0.3), (0.3137, 0.0713, 0.5, 0.3)):
             lay.set_position(rect)
-            table._LAYOUTS.clear()
+            textcache.clear()
             fresh = table.drawn_extent(lay, fig)
             kept = table.drawn_extent(lay, fig)
             with monkeypatch.context() as mp:

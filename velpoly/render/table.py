@@ -26,6 +26,7 @@ from ..compare import Value, polygon_values
 from ..report import Table, fmt
 from .canvas import Artists, equation_tex, get_ax, literal, renderer_of
 from .style import get_style
+from .textcache import kept_layout
 
 __all__ = ["results_table", "draw_results_table", "given_table", "cuts_the_book"]
 
@@ -423,8 +424,6 @@ def _where(pos, direction) -> str:
 
 
 _WIDTHS: dict = {}   # measured widths of the table's texts (points), by font, size and text: they never change
-_LAYOUTS: dict = {}  # the layout boxes of a table's texts (pixels, at their origin): _Room.extent's
-LAYOUTS_KEPT = 20000
 
 
 def _box(ax) -> tuple[float, float]:
@@ -464,7 +463,8 @@ class _Room:
         ``Text.get_window_extent`` is the text's layout box (``Text._get_layout``: its lines measured and
         aligned at the origin), a function of the text and its properties, the settings in force, the dpi and
         the renderer, translated to where the text's transform puts its position. Such a box is kept
-        (:data:`_LAYOUTS`), and translated here as matplotlib translates it (the same float sums): the extent
+        (:func:`~velpoly.render.textcache.kept_layout`), and translated here as matplotlib translates it (the
+        same float sums), without a text made where it is kept: the extent
         is matplotlib's, to the bit (tests/test_drawspeed.py). Where matplotlib has no such method (another
         version), or the text is empty (its extent a point), the text is measured as it is."""
         from matplotlib.text import Text
@@ -473,17 +473,15 @@ class _Room:
             rc = matplotlib.rcParams
             self.settings = (tuple(str(rc[k]) for k in sorted(rc) if k.startswith(("font.", "mathtext.", "text."))),
                              self.figure.dpi, type(self.renderer))
-        key = (self.settings, s, tuple(kw.items()))
-        box = _LAYOUTS.get(key)
-        if box is None:
+
+        def make():
             t = Text(x, y, s, **{"verticalalignment": "baseline", "horizontalalignment": "left",
                                  "transform": self.trans, "clip_on": False, **kw})
             t.set_figure(self.figure)
-            if not s or not hasattr(t, "_get_layout"):
-                return t.get_window_extent(self.renderer)
-            box = _LAYOUTS[key] = t._get_layout(self.renderer)[0]
-            if len(_LAYOUTS) > LAYOUTS_KEPT:
-                del _LAYOUTS[next(iter(_LAYOUTS))]
+            return t
+        if not s or not hasattr(Text, "_get_layout"):
+            return make().get_window_extent(self.renderer)
+        box = kept_layout(("table room", self.settings, s, tuple(kw.items())), make, self.renderer)
         return box.translated(*self.trans.transform((float(x), float(y))))
 
     def points(self, pixels: float) -> float:

@@ -37,8 +37,8 @@ import os
 import threading
 from collections import OrderedDict
 
-__all__ = ["canvas_class", "new_canvas", "add_axes", "share_rectangle_transforms", "window_extent", "clear", "stats",
-           "LIMITS"]
+__all__ = ["canvas_class", "new_canvas", "add_axes", "share_rectangle_transforms", "window_extent", "kept_layout",
+           "clear", "stats", "LIMITS"]
 
 LIMITS = {"metrics": 20000, "height": 1000, "layout": 10000, "glyph": 20000, "box": 10000}   # entries kept per cache (a glyph
 # bitmap 0.3-3 KB at 200 dpi)
@@ -121,11 +121,20 @@ def window_extent(text, renderer):
            text.get_parse_math(), text.get_rotation(), text.get_rotation_mode(), text.get_horizontalalignment(),
            text.get_verticalalignment(), text._get_multialignment(), text.get_linespacing(), type(renderer),
            getattr(renderer, "dpi", None))
+    x, y = text.get_transform().transform(text.get_unitless_position())
+    return kept_layout(key, lambda: text, renderer).translated(x, y)
+
+
+def kept_layout(key, make, renderer):
+    """The layout box (``Text._get_layout``'s, pixels at the text's origin) kept under ``key`` in the ``box``
+    cache, laid out from the text ``make()`` gives where it is not kept yet. ``key`` must name everything the
+    layout depends on (:func:`window_extent`'s, or a table room's settings, string and properties); the caller
+    translates the box to the text's place as matplotlib does, and measures texts matplotlib lays out
+    otherwise (empty, or no ``_get_layout``) itself."""
     box = _get("box", key)
     if box is None:
-        box = _put("box", key, text._get_layout(renderer)[0])
-    x, y = text.get_transform().transform(text.get_unitless_position())
-    return box.translated(x, y)
+        box = _put("box", key, make()._get_layout(renderer)[0])
+    return box
 
 
 def _height_metrics(prop, dpi: float) -> tuple:
