@@ -12,6 +12,8 @@ from __future__ import annotations
 
 import re
 
+import pytest
+
 import velpoly
 from paths import EXAMPLES
 from velpoly.errors import VelpolyError
@@ -74,6 +76,7 @@ def check_step(poly, step, where: str) -> None:
         assert f"the instant centre of link" in text and "O_v" in text, where
 
 
+@pytest.mark.xdist_group("zoo")   # on test_zoo's worker: its first 90 specimens are made once there (tests/zoo.py)
 def test_captions_of_generated_mechanisms():
     """Every step of both polygons and every pole found, over the gallery and 90 zoo mechanisms of
     every kind (one pass: the solves are the cost)."""

@@ -27,6 +27,9 @@ from chains import ladder, parallel_chain, stage_chain
 from test_poles import both_forms, check_order, check_poles
 from zoo import zoo
 
+# on test_zoo's worker: the specimens of its seed are made once there (tests/zoo.py)
+pytestmark = pytest.mark.xdist_group("zoo")
+
 
 def _solved(dicts):
     out = []
