@@ -261,7 +261,9 @@ class _PolygonDrawing:
         pinned = self.pl.pins.get("legend")
         if pinned is not None:    # a step frame: the finished construction's legend, so that it does not change
             kinds = set(pinned[4])
-        if not self.velocity and len(kinds) > 1:
+        # a velocity polygon's absolute and relative vectors read apart by their weight (and colour) and labels;
+        # one that also draws a block's slip along its guide lists its kinds, as an acceleration polygon does
+        if len(kinds) > 1 and (not self.velocity or kinds - {"absolute", "relative"}):
             self.art.add("legend", *_legend(self.ax, self.st, [k for k in self.st.kind_styles if k in kinds]))
 
     def labels(self, within=None, gid_prefix="label", every: bool = False):
