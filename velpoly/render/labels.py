@@ -34,6 +34,8 @@ RINGS = (2.5, 5.0, 9.0, 14.0, 21.0, 30.0, 42.0, 58.0)
 FAR_RINGS = (9.0, 21.0, 42.0, 80.0, 105.0)   # finer directions, only when nothing above is free
 REACH_RINGS = (135.0, 170.0, 220.0, 280.0)   # finer still, with ``reach`` only, when nothing above is free
 ALONG_APART = 1.0   # of the type size: the gap two texts along lines keep between their boxes
+REMATCH_ASTRAY = 24.0   # points of leader a label pays, in LabelPlacer.rematch, for a place nearer another ring
+REMATCH_ACROSS = 240.0   # and for each other label or leader its leader crosses there
 LEADER_MOST = 0   # the most lines and outlines a far label's leader (see LabelPlacer.place's clear) may cross
 
 
@@ -422,20 +424,23 @@ class LabelPlacer:
         return best
 
     def _least_bad(self, anchor, w: float, h: float, prefer, gap: float, leader: bool, reach: bool = False):
-        """Nothing free: the place clear of every label (and of their leaders) covering the fewest arrowheads
-        and pins, then lines (``reach``: out to :data:`REACH_RINGS` too, where only such a place covers less);
-        else the first ring's preferred spot."""
+        """Nothing free: the place clear of every label (and of their leaders) whose leader crosses the fewest
+        labels, then covering the fewest arrowheads, pins and lines that labels keep off, then whose leader
+        crosses the fewest other leaders, then covering the fewest lines (``reach``: out to
+        :data:`REACH_RINGS` too, where only such a place covers less or crosses fewer leaders); else the first
+        ring's preferred spot."""
         pp, view = per_point(self.ax), view_box(self.ax)
         hard = np.array(self.hard, dtype=object)[None, :]
         keep_off = np.array(self.boxes + self.leaders, dtype=object)[None, :]   # what its box must keep off
         labels = np.array(self.boxes, dtype=object)[None, :]   # what its leader had best not cross
+        leaders = np.array(self.leaders, dtype=object)[None, :]   # and then these
         soft = np.array(self.soft, dtype=object)[None, :]
         best = None
         # (the far rings in finer steps too: a leader that crosses a label, the worst, is rarely the only way)
         far = REACH_RINGS if reach and leader else ()
         for ring in sorted({gap, *(r for r in RINGS if r > gap), *FAR_RINGS, 135.0, *far}):
-            if ring in far and best is not None and best[0][1] == 0:
-                break   # farther only while every place nearer covers a mark or a line the label must keep off
+            if ring in far and best is not None and best[0][1:3] == (0, 0):
+                break   # farther only while every place nearer covers a mark or a line, or crosses a leader
             cands = _Ring(anchor, w, h, prefer, ring * pp, 48 if ring in far else 24 if ring in FAR_RINGS else 16)
             ok = shapely.contains(view, cands.geoms)
             if keep_off.size:
@@ -444,12 +449,11 @@ class LabelPlacer:
             if not len(idx):
                 continue
             g = cands.geoms[idx][:, None]
-            crossed = (shapely.intersects(labels, _leaders(cands.geoms[idx], anchor)[:, None]).sum(axis=1)
-                       if leader and ring >= 9.0 and labels.size else np.zeros(len(idx), int))
-            on_hard = shapely.intersects(hard, g).sum(axis=1) if hard.size else np.zeros(len(idx), int)
-            on_soft = shapely.intersects(soft, g).sum(axis=1) if soft.size else np.zeros(len(idx), int)
+            lines = _leaders(cands.geoms[idx], anchor)[:, None] if leader and ring >= 9.0 else None
+            crossed, across = _count(labels, lines, len(idx)), _count(leaders, lines, len(idx))
+            on_hard, on_soft = _count(hard, g, len(idx)), _count(soft, g, len(idx))
             for n, i in enumerate(idx):
-                score = (int(crossed[n]), int(on_hard[n]), int(on_soft[n]))
+                score = (int(crossed[n]), int(on_hard[n]), int(across[n]), int(on_soft[n]))
                 if best is None or score < best[0]:
                     best = (score, cands.centres[i].copy(), cands.geom(i), ring)
         if best is None:
@@ -595,6 +599,108 @@ class LabelPlacer:
             swaps += 1
         return swaps
 
+    def relocate(self, text, prefer=None, accept=None, sizes=(), gap: float = 2.5) -> bool:
+        """Move the placed label ``text`` (put down with :meth:`place`) to where it covers least, its own box and
+        leader lifted and every other label known (:meth:`_least_bad`, out to :data:`REACH_RINGS`), at its size,
+        else at each of ``sizes`` in turn (type sizes, points), where that leaves fewer crossings (a leader
+        across a label, then across a leader: :func:`_tally`), its box meets no more hard obstacles, other
+        labels' leaders, lines and outlines than where it stood and, if its place passed ``accept`` (a pole's
+        label nearer its own ring), the new one does too. Whether it moved."""
+        own = self.of(text)
+        if own is None or own.anchor is None:
+            return False
+        k, size = self.labels.index(own), text.get_fontsize()
+        x0, y0, x1, y1 = own.box.bounds
+        w0, h0 = self.text_size(text, 0.0)
+        before = _tally(self._crossings())
+        for s in (size,) + tuple(x for x in sizes if x < size):
+            text.set_fontsize(s)
+            w, h = self.text_size(text, 0.0)
+            del self.labels[k]
+            try:
+                b = self._least_bad(own.anchor, w + x1 - x0 - w0, h + y1 - y0 - h0, prefer, gap, True, True)[2]
+                covered = [np.array(g, dtype=object) for g in (self.hard, self.prepared_soft())]
+            finally:
+                self.labels.insert(k, own)
+            new = list(self.labels)
+            new[k] = self._moved(own, b, self._leader_line(own.anchor, b))
+            if _tally(self._crossings(new)) < before and not any(
+                    g.size and shapely.intersects(g, b).sum() > shapely.intersects(g, own.box).sum() for g in covered) \
+                    and not (accept is not None and accept(own.box) and not accept(b)):
+                self._commit(new, (k,))
+                return True
+        text.set_fontsize(size)
+        return False
+
+    def rematch(self, texts, accept: dict | None = None) -> int:
+        """Deal the places of ``texts`` (labels this placer put down with :meth:`place`) out among them again so
+        that their leaders together are shortest: the assignment of labels to places of least total leader
+        length (each label's box, at its own size, centred where one of them stands). Two leaders a-A and b-B
+        that cross are longer together than a-B and b-A (the triangle inequality), so in such an assignment no
+        two of them cross: the untangling of :meth:`untangle` done at once for a whole crowd, cycles of three
+        or more included. A label may take a place only where its box stays in view, meets no other label or
+        leader and no more hard obstacles, lines and outlines than the place's own label meets there, and its
+        leader crosses no other label or leader; one that leaves its ``accept`` test (id(text) -> the test its
+        box passed where it could: a pole's label nearer its own ring) pays as much as :data:`REMATCH_ASTRAY`
+        points of leader. Taken where it leaves fewer crossings (leader on label, then leader on leader: a
+        drawing with none is left as it is). Return the labels moved."""
+        mine = {id(t) for t in texts}
+        pool = [k for k, p in enumerate(self.labels) if id(p.text) in mine and p.anchor is not None]
+        if len(pool) < 2 or not self._crossings():
+            return 0
+        cost, places = self._place_costs(pool, accept or {})
+        for _ in range(len(pool)):
+            perm = _assignment(cost)
+            clash = _clashing(places, perm)
+            if clash is None:
+                break
+            cost[clash, perm[clash]] = math.inf   # a larger box that meets a neighbour's there: not that place
+        else:
+            return 0
+        new = list(self.labels)
+        moved = [k for n, k in enumerate(pool) if perm[n] != n]
+        for n, k in enumerate(pool):
+            b = places[n][perm[n]]
+            new[k] = self._moved(self.labels[k], b, self._leader_line(self.labels[k].anchor, b))
+        if not moved or _tally(self._crossings(new)) >= _tally(self._crossings()):
+            return 0
+        self._commit(new, moved)
+        return len(moved)
+
+    def _place_costs(self, pool: list, accept: dict) -> tuple:
+        """For :meth:`rematch`: ``(cost, places)``, ``places[i][j]`` the box of label ``pool[i]`` centred where
+        label ``pool[j]`` stands and ``cost[i, j]`` its leader's length (data units) and what it pays there
+        (:data:`REMATCH_ACROSS` for each other place, label or leader its leader crosses, :data:`REMATCH_ASTRAY`
+        off its ``accept``), infinite where it may not go (out of view, on another label or leader, on more
+        marks, lines and outlines than the place's own label); each label's own place always allowed."""
+        pp, n = per_point(self.ax), len(pool)
+        labs = [self.labels[k] for k in pool]
+        bounds = np.array([p.box.bounds for p in labs], float)
+        centres, half = (bounds[:, :2] + bounds[:, 2:]) / 2, (bounds[:, 2:] - bounds[:, :2]) / 2
+        lo, hi = centres[None, :, :] - half[:, None, :], centres[None, :, :] + half[:, None, :]
+        places = shapely.box(lo[..., 0], lo[..., 1], hi[..., 0], hi[..., 1])
+        flat, starts = places.ravel(), np.repeat(np.array([p.anchor for p in labs], float), n, axis=0)
+        reach = shapely.distance(flat, shapely.points(starts)).reshape(n, n)
+        rest = [p for k, p in enumerate(self.labels) if k not in set(pool)]
+        near = np.array([p.box for p in rest] + [p.leader_geom for p in rest if p.leader_geom is not None],
+                        dtype=object)[None, :]
+        bad = ~shapely.contains(view_box(self.ax), places) | (_count(near, flat[:, None], n * n).reshape(n, n) > 0)
+        for obstacles in (self._hard, self.prepared_soft()):   # no more marks, lines, outlines than its own label's
+            hits = _count(np.array(obstacles, dtype=object)[None, :], flat[:, None], n * n).reshape(n, n)
+            bad |= hits > np.diag(hits)[None, :]
+        ends = shapely.get_coordinates(shapely.shortest_line(shapely.get_exterior_ring(flat),
+                                                             shapely.points(starts))).reshape(-1, 2, 2)[:, 0]
+        lines = shapely.linestrings(np.stack([starts, ends], axis=1))[:, None]
+        across = shapely.intersects(np.diag(places)[None, :], lines)
+        across[np.arange(n * n), np.tile(np.arange(n), n)] = False   # (its own place)
+        across = (across.sum(axis=1) + _count(near, lines, n * n)).reshape(n, n) * (reach >= 8.0 * pp)
+        astray = np.array([[not accept.get(id(p.text), _any)(places[i, j]) for j in range(n)]
+                           for i, p in enumerate(labs)])
+        cost = reach + pp * (REMATCH_ACROSS * across + REMATCH_ASTRAY * astray)
+        bad[np.diag_indices(n)] = False
+        cost[bad] = math.inf
+        return cost, places
+
     def _leader_line(self, anchor, b):
         """The leader from ``anchor`` to box ``b`` as :meth:`_put` draws it (its first 1.5 pt left open), or None
         where the box stands near enough not to need one."""
@@ -606,7 +712,7 @@ class LabelPlacer:
     def _crossings(self, labels=None) -> list:
         """(i, j) of every leader of label i that crosses the leader or the box of label j (see :func:`_tally`)."""
         labels = self.labels if labels is None else labels
-        lines = [None if p.leader is None else LineString(np.column_stack(p.leader.get_data())) for p in labels]
+        lines = [_drawn(p.leader) for p in labels]
         out = []
         for i, ln in enumerate(lines):
             if ln is None:
@@ -620,7 +726,6 @@ class LabelPlacer:
 
     def _swap(self, i: int, j: int, before: tuple, accept: dict) -> bool:
         """Exchange the places of labels i and j where :meth:`untangle` says it helps; whether it did."""
-        from matplotlib.lines import Line2D
         a, b = self.labels[i], self.labels[j]
         if a.text.get_fontsize() != b.text.get_fontsize():
             return False   # places, not sizes, are exchanged: a label set smaller keeps its own
@@ -648,21 +753,31 @@ class LabelPlacer:
             return False
         la, lb = self._leader_line(a.anchor, na), self._leader_line(b.anchor, nb)
         pp = per_point(self.ax)
-
-        def trial(p, nbox, line):
-            ln = None
-            if line is not None:
-                ln = Line2D(*np.asarray(line.coords).T, lw=0.4, color=p.text.get_color(), zorder=p.text.get_zorder(),
-                            gid=(p.text.get_gid() + "-leader") if p.text.get_gid() else None)
-            return Placed(p.text, nbox, ln, None if line is None else line.buffer(0.4 * pp), p.again, p.anchor)
         new = list(self.labels)
-        new[i], new[j] = trial(a, na, la), trial(b, nb, lb)
+        new[i], new[j] = self._moved(a, na, la), self._moved(b, nb, lb)
         after = _tally(self._crossings(new))
         if after > before or after[0] > before[0] or (after == before and _reach(la, lb) >= _reach(
-                *(None if p.leader is None else LineString(np.column_stack(p.leader.get_data()))
-                  for p in (a, b))) - 1e-9 * pp):
+                *(_drawn(p.leader) for p in (a, b))) - 1e-9 * pp):
             return False
-        for old, p in ((a, new[i]), (b, new[j])):
+        self._commit(new, (i, j))
+        return True
+
+    def _moved(self, p, nbox, line) -> Placed:
+        """Placed label ``p`` as it would stand in the box ``nbox`` (its size kept), with the leader ``line``
+        (:meth:`_leader_line`; None: none): its new Line2D made, not yet drawn."""
+        from matplotlib.lines import Line2D
+        ln = None
+        if line is not None:
+            ln = Line2D(*np.asarray(line.coords).T, lw=0.4, color=p.text.get_color(), zorder=p.text.get_zorder(),
+                        gid=(p.text.get_gid() + "-leader") if p.text.get_gid() else None)
+        return Placed(p.text, nbox, ln, None if line is None else line.buffer(0.4 * per_point(self.ax)), p.again,
+                      p.anchor)
+
+    def _commit(self, new: list, moved) -> None:
+        """The labels at the indices ``moved`` put where ``new`` (:meth:`_moved`'s) has them: their old leaders
+        taken off, the new drawn, each text centred in its box, and where it went remembered."""
+        for k in moved:
+            old, p = self.labels[k], new[k]
             if old.leader is not None:
                 old.leader.remove()
             if p.leader is not None:
@@ -673,8 +788,7 @@ class LabelPlacer:
             gid = p.text.get_gid()
             if gid and gid in self.placed:
                 self.placed[gid] = ("place", c, 9.0 if p.leader is not None else 0.0, p.text.get_fontsize())
-        self.labels[i], self.labels[j] = new[i], new[j]
-        return True
+            self.labels[k] = p
 
     @property
     def overlapping(self) -> list:
@@ -901,6 +1015,72 @@ def _meet(box_a, line_a, box_b, line_b) -> bool:
     """Whether two labels meet: box on box, or a leader (line or buffered geometry, None: none) on the other's box."""
     return (box_a.intersects(box_b) or (line_a is not None and line_a.intersects(box_b))
             or (line_b is not None and line_b.intersects(box_a)))
+
+
+def _count(obstacles: np.ndarray, geoms, n: int) -> np.ndarray:
+    """How many of ``obstacles`` (a row) each of the ``n`` ``geoms`` (a column; None: none to test) meets."""
+    if geoms is None or not obstacles.size:
+        return np.zeros(n, int)
+    return shapely.intersects(obstacles, geoms).sum(axis=1)
+
+
+def _any(b) -> bool:
+    """A test every box passes."""
+    return True
+
+
+def _assignment(cost: np.ndarray) -> np.ndarray:
+    """The assignment of rows to columns of the square ``cost`` of least total (the Hungarian method, with
+    potentials, O(n^3)): ``perm[i]`` the column of row ``i``. Infinite entries are never taken where a finite
+    assignment exists (they count as a sum larger than any finite one)."""
+    n = len(cost)
+    finite = cost[np.isfinite(cost)]
+    big = (float(np.abs(finite).sum()) + 1.0) * (n + 1)
+    c = np.where(np.isfinite(cost), cost, big)
+    u, v = np.zeros(n + 1), np.zeros(n + 1)
+    p, way = np.zeros(n + 1, int), np.zeros(n + 1, int)   # p[j]: the row (1-based) on column j; 0: none
+    for i in range(1, n + 1):
+        p[0], j0 = i, 0
+        minv, used = np.full(n + 1, math.inf), np.zeros(n + 1, bool)
+        while True:
+            used[j0] = True
+            i0 = p[j0]
+            js = np.flatnonzero(~used[1:]) + 1
+            cur = c[i0 - 1, js - 1] - u[i0] - v[js]
+            better = cur < minv[js]
+            minv[js[better]], way[js[better]] = cur[better], j0
+            j1 = js[np.argmin(minv[js])]
+            delta = minv[j1]
+            u[p[used]] += delta
+            v[used] -= delta
+            minv[~used] -= delta
+            j0 = j1
+            if p[j0] == 0:
+                break
+        while j0:
+            j1 = way[j0]
+            p[j0] = p[j1]
+            j0 = j1
+    perm = np.zeros(n, int)
+    perm[p[1:] - 1] = np.arange(n)
+    return perm
+
+
+def _clashing(places: np.ndarray, perm: np.ndarray):
+    """A label (row) of an assignment whose box meets another's (labels of different sizes in each other's
+    places): of the two, one not in its own place (the larger), else None."""
+    chosen = places[np.arange(len(perm)), perm]
+    tree = shapely.STRtree(chosen)
+    for i, j in zip(*tree.query(chosen, predicate="intersects")):
+        if i != j:   # the one not in its own place, else the larger
+            mine = [k for k in (int(i), int(j)) if perm[k] != k]
+            return max(mine, key=lambda k: chosen[k].area)
+    return None
+
+
+def _drawn(leader):
+    """A leader's Line2D as a shapely segment (None: None)."""
+    return None if leader is None else LineString(np.column_stack(leader.get_data()))
 
 
 def _reach(*lines) -> float:
