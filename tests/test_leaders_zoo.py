@@ -4,8 +4,8 @@ The specimens are the first ``COUNT`` of a seeded stream of six-bars and slotted
 each kind and variant drawn by the seed, not picked by hand); their poles drawings in slides style (the larger
 type, the more crowded) are checked at the data level: each pole label's leader (Line2D data) against every
 other leader and every other label's box, and each pole label's box against the rings of the poles. Before
-the crowd's last-resort places weighed the leaders they cross, and before crossed labels were dealt out again
-and moved (``LabelPlacer.rematch``, ``LabelPlacer.relocate``), the third of them (a quick-return ram) had a
+the crowd's last-resort places weighed the leaders they cross, and before crossed labels were moved
+(``LabelPlacer.relocate``), the third of them (a quick-return ram) had a
 leader across another label (P46's across D).
 """
 from __future__ import annotations

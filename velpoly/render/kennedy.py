@@ -164,13 +164,11 @@ def draw_poles(sol, ax=None, *, style="textbook", options=None, poleset=None, up
 
 
 def _untangle(pl, art) -> None:
-    """Leaders that cross (a crowd's last-resort places, taken one at a time) untangled: the pole labels' places
-    dealt out again so that their leaders together are shortest (:meth:`LabelPlacer.rematch`), then two
-    places exchanged where that leaves fewer crossings (:meth:`LabelPlacer.untangle`)."""
+    """Leaders that cross (a crowd's last-resort places, taken one at a time) untangled: two pole labels' places
+    exchanged where that leaves fewer crossings (:meth:`LabelPlacer.untangle`)."""
     rings = list(art.rings.values())
     texts = list(art.labels.values())
     accept = {id(art.labels[k]): _nearer_own(g, rings) for k, g in art.rings.items() if k in art.labels}
-    pl.rematch(texts, accept)
     pl.untangle(texts, accept)
 
 

@@ -34,8 +34,6 @@ RINGS = (2.5, 5.0, 9.0, 14.0, 21.0, 30.0, 42.0, 58.0)
 FAR_RINGS = (9.0, 21.0, 42.0, 80.0, 105.0)   # finer directions, only when nothing above is free
 REACH_RINGS = (135.0, 170.0, 220.0, 280.0)   # finer still, with ``reach`` only, when nothing above is free
 ALONG_APART = 1.0   # of the type size: the gap two texts along lines keep between their boxes
-REMATCH_ASTRAY = 24.0   # points of leader a label pays, in LabelPlacer.rematch, for a place nearer another ring
-REMATCH_ACROSS = 240.0   # and for each other label or leader its leader crosses there
 LEADER_MOST = 0   # the most lines and outlines a far label's leader (see LabelPlacer.place's clear) may cross
 
 
@@ -632,75 +630,6 @@ class LabelPlacer:
         text.set_fontsize(size)
         return False
 
-    def rematch(self, texts, accept: dict | None = None) -> int:
-        """Deal the places of ``texts`` (labels this placer put down with :meth:`place`) out among them again so
-        that their leaders together are shortest: the assignment of labels to places of least total leader
-        length (each label's box, at its own size, centred where one of them stands). Two leaders a-A and b-B
-        that cross are longer together than a-B and b-A (the triangle inequality), so in such an assignment no
-        two of them cross: the untangling of :meth:`untangle` done at once for a whole crowd, cycles of three
-        or more included. A label may take a place only where its box stays in view, meets no other label or
-        leader and no more hard obstacles, lines and outlines than the place's own label meets there, and its
-        leader crosses no other label or leader; one that leaves its ``accept`` test (id(text) -> the test its
-        box passed where it could: a pole's label nearer its own ring) pays as much as :data:`REMATCH_ASTRAY`
-        points of leader. Taken where it leaves fewer crossings (leader on label, then leader on leader: a
-        drawing with none is left as it is). Return the labels moved."""
-        mine = {id(t) for t in texts}
-        pool = [k for k, p in enumerate(self.labels) if id(p.text) in mine and p.anchor is not None]
-        if len(pool) < 2 or not self._crossings():
-            return 0
-        cost, places = self._place_costs(pool, accept or {})
-        for _ in range(len(pool)):
-            perm = _assignment(cost)
-            clash = _clashing(places, perm)
-            if clash is None:
-                break
-            cost[clash, perm[clash]] = math.inf   # a larger box that meets a neighbour's there: not that place
-        else:
-            return 0
-        new = list(self.labels)
-        moved = [k for n, k in enumerate(pool) if perm[n] != n]
-        for n, k in enumerate(pool):
-            b = places[n][perm[n]]
-            new[k] = self._moved(self.labels[k], b, self._leader_line(self.labels[k].anchor, b))
-        if not moved or _tally(self._crossings(new)) >= _tally(self._crossings()):
-            return 0
-        self._commit(new, moved)
-        return len(moved)
-
-    def _place_costs(self, pool: list, accept: dict) -> tuple:
-        """For :meth:`rematch`: ``(cost, places)``, ``places[i][j]`` the box of label ``pool[i]`` centred where
-        label ``pool[j]`` stands and ``cost[i, j]`` its leader's length (data units) and what it pays there
-        (:data:`REMATCH_ACROSS` for each other place, label or leader its leader crosses, :data:`REMATCH_ASTRAY`
-        off its ``accept``), infinite where it may not go (out of view, on another label or leader, on more
-        marks, lines and outlines than the place's own label); each label's own place always allowed."""
-        pp, n = per_point(self.ax), len(pool)
-        labs = [self.labels[k] for k in pool]
-        bounds = np.array([p.box.bounds for p in labs], float)
-        centres, half = (bounds[:, :2] + bounds[:, 2:]) / 2, (bounds[:, 2:] - bounds[:, :2]) / 2
-        lo, hi = centres[None, :, :] - half[:, None, :], centres[None, :, :] + half[:, None, :]
-        places = shapely.box(lo[..., 0], lo[..., 1], hi[..., 0], hi[..., 1])
-        flat, starts = places.ravel(), np.repeat(np.array([p.anchor for p in labs], float), n, axis=0)
-        reach = shapely.distance(flat, shapely.points(starts)).reshape(n, n)
-        rest = [p for k, p in enumerate(self.labels) if k not in set(pool)]
-        near = np.array([p.box for p in rest] + [p.leader_geom for p in rest if p.leader_geom is not None],
-                        dtype=object)[None, :]
-        bad = ~shapely.contains(view_box(self.ax), places) | (_count(near, flat[:, None], n * n).reshape(n, n) > 0)
-        for obstacles in (self._hard, self.prepared_soft()):   # no more marks, lines, outlines than its own label's
-            hits = _count(np.array(obstacles, dtype=object)[None, :], flat[:, None], n * n).reshape(n, n)
-            bad |= hits > np.diag(hits)[None, :]
-        ends = shapely.get_coordinates(shapely.shortest_line(shapely.get_exterior_ring(flat),
-                                                             shapely.points(starts))).reshape(-1, 2, 2)[:, 0]
-        lines = shapely.linestrings(np.stack([starts, ends], axis=1))[:, None]
-        across = shapely.intersects(np.diag(places)[None, :], lines)
-        across[np.arange(n * n), np.tile(np.arange(n), n)] = False   # (its own place)
-        across = (across.sum(axis=1) + _count(near, lines, n * n)).reshape(n, n) * (reach >= 8.0 * pp)
-        astray = np.array([[not accept.get(id(p.text), _any)(places[i, j]) for j in range(n)]
-                           for i, p in enumerate(labs)])
-        cost = reach + pp * (REMATCH_ACROSS * across + REMATCH_ASTRAY * astray)
-        bad[np.diag_indices(n)] = False
-        cost[bad] = math.inf
-        return cost, places
-
     def _leader_line(self, anchor, b):
         """The leader from ``anchor`` to box ``b`` as :meth:`_put` draws it (its first 1.5 pt left open), or None
         where the box stands near enough not to need one."""
@@ -1022,60 +951,6 @@ def _count(obstacles: np.ndarray, geoms, n: int) -> np.ndarray:
     if geoms is None or not obstacles.size:
         return np.zeros(n, int)
     return shapely.intersects(obstacles, geoms).sum(axis=1)
-
-
-def _any(b) -> bool:
-    """A test every box passes."""
-    return True
-
-
-def _assignment(cost: np.ndarray) -> np.ndarray:
-    """The assignment of rows to columns of the square ``cost`` of least total (the Hungarian method, with
-    potentials, O(n^3)): ``perm[i]`` the column of row ``i``. Infinite entries are never taken where a finite
-    assignment exists (they count as a sum larger than any finite one)."""
-    n = len(cost)
-    finite = cost[np.isfinite(cost)]
-    big = (float(np.abs(finite).sum()) + 1.0) * (n + 1)
-    c = np.where(np.isfinite(cost), cost, big)
-    u, v = np.zeros(n + 1), np.zeros(n + 1)
-    p, way = np.zeros(n + 1, int), np.zeros(n + 1, int)   # p[j]: the row (1-based) on column j; 0: none
-    for i in range(1, n + 1):
-        p[0], j0 = i, 0
-        minv, used = np.full(n + 1, math.inf), np.zeros(n + 1, bool)
-        while True:
-            used[j0] = True
-            i0 = p[j0]
-            js = np.flatnonzero(~used[1:]) + 1
-            cur = c[i0 - 1, js - 1] - u[i0] - v[js]
-            better = cur < minv[js]
-            minv[js[better]], way[js[better]] = cur[better], j0
-            j1 = js[np.argmin(minv[js])]
-            delta = minv[j1]
-            u[p[used]] += delta
-            v[used] -= delta
-            minv[~used] -= delta
-            j0 = j1
-            if p[j0] == 0:
-                break
-        while j0:
-            j1 = way[j0]
-            p[j0] = p[j1]
-            j0 = j1
-    perm = np.zeros(n, int)
-    perm[p[1:] - 1] = np.arange(n)
-    return perm
-
-
-def _clashing(places: np.ndarray, perm: np.ndarray):
-    """A label (row) of an assignment whose box meets another's (labels of different sizes in each other's
-    places): of the two, one not in its own place (the larger), else None."""
-    chosen = places[np.arange(len(perm)), perm]
-    tree = shapely.STRtree(chosen)
-    for i, j in zip(*tree.query(chosen, predicate="intersects")):
-        if i != j:   # the one not in its own place, else the larger
-            mine = [k for k in (int(i), int(j)) if perm[k] != k]
-            return max(mine, key=lambda k: chosen[k].area)
-    return None
 
 
 def _drawn(leader):
