@@ -553,7 +553,7 @@ BESIDE_FRACTIONS = (0.4, 0.5)   # of the panels' height: the last row's, with th
 CROWD_ROOM = 1.5    # cm² of paper about a poles panel's links for each pole's or point's label (10-pt type)
 CROWD_GAIN = 1.25   # a crowded poles panel is laid out anew only where that draws it this much larger (its length)
 CROWD_TYPE = 0.85   # of the table's type size: the least a crowded poles sheet's table in its column is set at
-CROWD_REACHES = (2.5, 1.5, 1.0)   # mechanism sizes: a crowded poles panel's view, tried in turn (kennedy.REACH first)
+CROWD_REACHES = (2.5, 1.5, 1.0, 0.75)   # mechanism sizes: a crowded poles panel's view, tried in turn (kennedy.REACH first)
 
 
 def _cover(spans, bands) -> float:
