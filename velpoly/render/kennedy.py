@@ -113,7 +113,7 @@ def far_pole_arrow(view, pole, lines, centre, inset: float) -> tuple[np.ndarray,
 
 
 def draw_poles(sol, ax=None, *, style="textbook", options=None, poleset=None, upto: int | None = None,
-               mechanism: bool = True, reach: float = REACH, far_first: bool = False) -> Artists:
+               mechanism: bool = True, reach: float | None = None) -> Artists:
     """Draw the mechanism with every instant centre and the Kennedy lines used; return the Artists.
 
     Parameters
@@ -126,14 +126,9 @@ def draw_poles(sol, ax=None, *, style="textbook", options=None, poleset=None, up
     mechanism : bool
         Draw the displacement diagram first (default); False to draw the
         poles over a mechanism already drawn on ``ax``.
-    reach : float
-        The view (where ``ax`` has none) holds the finite poles within this
-        many mechanism sizes (:func:`poles_bounds`); the arrows to poles at
-        infinity stand at the border of what it holds.
-    far_first : bool
-        Label the poles out of view (an arrow at the border, its label long:
-        the position) before those in view, while the border has room (a
-        crowded sheet's: its view holds fewer poles).
+    reach : float, optional
+        A crowded sheet's view: the poles within so many mechanism sizes
+        (:func:`poles_bounds`), the labels of those out of it placed first.
 
     Returns
     -------
@@ -149,7 +144,7 @@ def draw_poles(sol, ax=None, *, style="textbook", options=None, poleset=None, up
     opts = options if options is not None else drawing_options(sol.mechanism)
     ps = _poleset(sol, poleset)
     if view_scale(ax) is None:
-        fit_view(ax, poles_bounds(sol, ps, reach), scale=opts.scale, margin=0.1)
+        fit_view(ax, poles_bounds(sol, ps, reach or REACH), scale=opts.scale, margin=0.1)
         ax.set_axis_off()
     art = Artists(ax)
     art.labels = {}
@@ -172,8 +167,7 @@ def draw_poles(sol, ax=None, *, style="textbook", options=None, poleset=None, up
         art.point_labels = mech.labels
     _draw_kennedy_lines(ax, klines, st, art)
     _draw_pole_marks(sol, ax, shown, st, art)
-    how = _label_poles(sol, ax, ps, sorted(shown, key=lambda p: _in_view(ax, p)) if far_first else shown, pole_lines,
-                       st, art, reach)
+    how = _label_poles(sol, ax, ps, shown, pole_lines, st, art, reach)
     _untangle(pl, art)
     _uncross(pl, art, how)
     _off_the_leaders(pl, art)
@@ -428,24 +422,25 @@ def _infinity_arrow_tip(pl, content, c, d, pc: float, far) -> np.ndarray:
     return border_point(content, c, d, 0.2 * pc)
 
 
-def _label_poles(sol, ax, ps, shown, pole_lines, st, art, reach: float = REACH) -> dict:
+def _label_poles(sol, ax, ps, shown, pole_lines, st, art, reach: float | None = None) -> dict:
     """Each pole's label: by its ring (nearer it than any other ring), or by the arrow at the border that
     points to a pole at infinity or out of view. Return how each was placed: its key -> (anchor, text, the
-    placing's arguments), for placing it again (:func:`_uncross`)."""
+    placing's arguments), for placing it again (:func:`_uncross`). A crowded sheet's (``reach`` given, the view
+    it holds): the poles out of view first (their labels long, the position), while the border has room."""
     pl = placer(ax)
     pc, pp = per_cm(ax), per_point(ax)
     view = view_box(ax)
     c = _centre(sol)
     # arrows to poles at infinity stand at the border of what is drawn, not of the whole panel
     from shapely.geometry import box as sbox
-    bx0, by0, bx1, by1 = poles_bounds(sol, ps, reach)
+    bx0, by0, bx1, by1 = poles_bounds(sol, ps, reach or REACH)
     content = sbox(bx0 - 1.6 * pc, by0 - 1.6 * pc, bx1 + 1.6 * pc, by1 + 1.6 * pc).intersection(view)
     rings = list(art.rings.values())
     colour = _pole_colour(st)
     kw = dict(fontsize=st.font_size * 0.9, color=colour, zorder=7)
     far = []   # the arrows drawn to poles out of view (another such arrow keeps off them)
     how = {}
-    for p in shown:
+    for p in (sorted(shown, key=lambda p: _in_view(ax, p)) if reach is not None else shown):
         if p.position is None and p.direction is None:
             continue   # undefined: the links move alike (listed in the table)
         label = pole_label(p.links)

@@ -213,7 +213,7 @@ class _Plan:
     scales: dict
     table: object = None
     reach: float | None = None   # a crowded poles sheet's view: the poles within so many mechanism sizes (else None:
-    #                              kennedy.REACH); its poles out of view labelled first
+    #                              kennedy.REACH; kennedy.draw_poles' reach)
 
 
 class _Planner:
@@ -689,11 +689,9 @@ def _draw_panels(sol, axes, st, opts, cons, sheet, frame, plan, pins) -> dict:
         ax = axes["poles"]
         from .kennedy import poles_bounds
         from .kennedy import REACH
-        reach = REACH if plan.reach is None else plan.reach
-        _fit(ax, poles_bounds(sol, cons.poles, reach), plan.scales["poles"])
+        _fit(ax, poles_bounds(sol, cons.poles, plan.reach or REACH), plan.scales["poles"])
         ax.set_axis_off()
-        draw_poles(sol, ax, style=st, options=opts, poleset=cons.poles, upto=frame.poles, reach=reach,
-                   far_first=plan.reach is not None)
+        draw_poles(sol, ax, style=st, options=opts, poleset=cons.poles, upto=frame.poles, reach=plan.reach)
         captions["poles"] = scale_text(view_scale(ax), sol.mechanism.units, 0)
     if "kennedy" in axes:
         draw_kennedy_circle(sol, axes["kennedy"], style=st, options=opts, poleset=cons.poles, upto=frame.poles)
