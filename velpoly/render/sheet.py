@@ -193,7 +193,7 @@ def _bounds(sol, cons: Constructions, name: str, reach: float | None = None):
     if name == "mechanism":
         return _space_bounds(sol, cons)
     if name == "poles":
-        return poles_bounds(sol, cons.poles, REACH if reach is None else reach)
+        return poles_bounds(sol, cons.poles, reach or REACH)
     if name == "kennedy":
         return (-1.3, -1.3, 1.3, 1.3)   # the circle and its links' labels
     return polygon_bounds(getattr(cons, name))
@@ -687,8 +687,7 @@ def _draw_panels(sol, axes, st, opts, cons, sheet, frame, plan, pins) -> dict:
                                                       plan.scales.get("mechanism"))
     if "poles" in axes:
         ax = axes["poles"]
-        from .kennedy import poles_bounds
-        from .kennedy import REACH
+        from .kennedy import REACH, poles_bounds
         _fit(ax, poles_bounds(sol, cons.poles, plan.reach or REACH), plan.scales["poles"])
         ax.set_axis_off()
         draw_poles(sol, ax, style=st, options=opts, poleset=cons.poles, upto=frame.poles, reach=plan.reach)
