@@ -12,7 +12,8 @@ Draws the poles sheet of every specimen of ``zoo(SEED, COUNT)`` (tests/zoo.py) i
 
 Usage (from the checkout's root, PYTHONPATH=$PWD)::
 
-    python3 benchmarks/leaders_zoo.py [--seed 2026] [--count 60] [--part 0/1] [--worst 8] [--json OUT]
+    python3 benchmarks/leaders_zoo.py [--seed 2026] [--count 60] [--part 0/1] [--only 25-39,54-56] [--worst 8]
+                                      [--json OUT]
 """
 from __future__ import annotations
 
@@ -101,6 +102,7 @@ def main() -> None:
     ap.add_argument("--seed", type=int, default=2026)
     ap.add_argument("--count", type=int, default=60)
     ap.add_argument("--part", default="0/1", help="i/n: only the specimens whose index is i modulo n")
+    ap.add_argument("--only", help="comma-separated specimen indices (e.g. the crowded ones: 25-39,43,44,54-56)")
     ap.add_argument("--styles", default="textbook,slides")
     ap.add_argument("--worst", type=int, default=8, help="list the worst sheets")
     ap.add_argument("--json", help="write every sheet's counts here")
@@ -108,10 +110,16 @@ def main() -> None:
     import velpoly
     from zoo import zoo
     i0, n = map(int, a.part.split("/"))
+    only = None
+    if a.only:
+        only = set()
+        for part in a.only.split(","):
+            lo, _, hi = part.partition("-")
+            only.update(range(int(lo), int(hi or lo) + 1))
     rows = []
     t0 = time.process_time()
     for i, sp in enumerate(zoo(a.seed, a.count)):
-        if i % n != i0:
+        if i % n != i0 or (only is not None and i not in only):
             continue
         sol = velpoly.solve(velpoly.load(sp.mech))
         for style in a.styles.split(","):

@@ -37,6 +37,7 @@ NUMBER_SPOTS = (0.3, 0.7, 0.5, 0.4, 0.6, 0.22, 0.78, 0.35, 0.65, 0.45, 0.55)  # 
 FINE_SPOTS = tuple(sorted((round(0.12 + 0.02 * i, 2) for i in range(39)), key=lambda f: (abs(f - 0.5), f)))
 KENNEDY_Z = 3.6   # Kennedy and constraint lines: above every body (links 2, ground 2.9, blocks 3.2), below points 4
 REACH = 2.5   # the view holds the finite poles within REACH mechanism sizes of the mechanism
+FAR_BAND = 0.15   # mechanism sizes beyond the box's corners: a crowded view's room towards a pole out of it
 
 
 def pole_label(links: tuple[str, str]) -> str:
@@ -66,15 +67,22 @@ def _centre(sol) -> np.ndarray:
     return np.array([(x0 + x1) / 2, (y0 + y1) / 2])
 
 
-def poles_bounds(sol, ps) -> tuple[float, float, float, float]:
-    """The mechanism's box grown to hold every finite pole within :data:`REACH` sizes."""
+def poles_bounds(sol, ps, reach: float = REACH) -> tuple[float, float, float, float]:
+    """The mechanism's box grown to hold every finite pole within ``reach`` mechanism sizes of its centre
+    (:data:`REACH`). A crowded poles sheet's view holds fewer (``velpoly.render.sheet.CROWD_REACHES``, less
+    than :data:`REACH`) and is grown towards each farther pole to :data:`FAR_BAND` sizes beyond the box's
+    corners (where its arrow at the border stands clear of the links)."""
     x0, y0, x1, y1 = mechanism_bounds(sol)
     c = _centre(sol)
-    reach = REACH * sol.mechanism.size
+    size = sol.mechanism.size
+    band = math.hypot(x1 - x0, y1 - y0) / 2 + FAR_BAND * size if reach < REACH else 0.0
     for p in ps.poles.values():
-        if p.position is not None and float(np.hypot(*(p.position - c))) <= reach:
-            x0, y0 = min(x0, p.position[0]), min(y0, p.position[1])
-            x1, y1 = max(x1, p.position[0]), max(y1, p.position[1])
+        if p.position is None:
+            continue
+        d = float(np.hypot(*(p.position - c)))
+        q = p.position if d <= reach * size else c + (p.position - c) * min(band / d, 1.0)
+        x0, y0 = min(x0, q[0]), min(y0, q[1])
+        x1, y1 = max(x1, q[0]), max(y1, q[1])
     return x0, y0, x1, y1
 
 
@@ -105,7 +113,7 @@ def far_pole_arrow(view, pole, lines, centre, inset: float) -> tuple[np.ndarray,
 
 
 def draw_poles(sol, ax=None, *, style="textbook", options=None, poleset=None, upto: int | None = None,
-               mechanism: bool = True) -> Artists:
+               mechanism: bool = True, reach: float | None = None) -> Artists:
     """Draw the mechanism with every instant centre and the Kennedy lines used; return the Artists.
 
     Parameters
@@ -118,6 +126,9 @@ def draw_poles(sol, ax=None, *, style="textbook", options=None, poleset=None, up
     mechanism : bool
         Draw the displacement diagram first (default); False to draw the
         poles over a mechanism already drawn on ``ax``.
+    reach : float, optional
+        A crowded sheet's view: the poles within so many mechanism sizes
+        (:func:`poles_bounds`), the labels of those out of it placed first.
 
     Returns
     -------
@@ -133,7 +144,7 @@ def draw_poles(sol, ax=None, *, style="textbook", options=None, poleset=None, up
     opts = options if options is not None else drawing_options(sol.mechanism)
     ps = _poleset(sol, poleset)
     if view_scale(ax) is None:
-        fit_view(ax, poles_bounds(sol, ps), scale=opts.scale, margin=0.1)
+        fit_view(ax, poles_bounds(sol, ps, reach or REACH), scale=opts.scale, margin=0.1)
         ax.set_axis_off()
     art = Artists(ax)
     art.labels = {}
@@ -156,7 +167,7 @@ def draw_poles(sol, ax=None, *, style="textbook", options=None, poleset=None, up
         art.point_labels = mech.labels
     _draw_kennedy_lines(ax, klines, st, art)
     _draw_pole_marks(sol, ax, shown, st, art)
-    how = _label_poles(sol, ax, ps, shown, pole_lines, st, art)
+    how = _label_poles(sol, ax, ps, shown, pole_lines, st, art, reach)
     _untangle(pl, art)
     _uncross(pl, art, how)
     _off_the_leaders(pl, art)
@@ -411,24 +422,25 @@ def _infinity_arrow_tip(pl, content, c, d, pc: float, far) -> np.ndarray:
     return border_point(content, c, d, 0.2 * pc)
 
 
-def _label_poles(sol, ax, ps, shown, pole_lines, st, art) -> dict:
+def _label_poles(sol, ax, ps, shown, pole_lines, st, art, reach: float | None = None) -> dict:
     """Each pole's label: by its ring (nearer it than any other ring), or by the arrow at the border that
     points to a pole at infinity or out of view. Return how each was placed: its key -> (anchor, text, the
-    placing's arguments), for placing it again (:func:`_uncross`)."""
+    placing's arguments), for placing it again (:func:`_uncross`). A crowded sheet's (``reach`` given, the view
+    it holds): the poles out of view first (their labels long, the position), while the border has room."""
     pl = placer(ax)
     pc, pp = per_cm(ax), per_point(ax)
     view = view_box(ax)
     c = _centre(sol)
     # arrows to poles at infinity stand at the border of what is drawn, not of the whole panel
     from shapely.geometry import box as sbox
-    bx0, by0, bx1, by1 = poles_bounds(sol, ps)
+    bx0, by0, bx1, by1 = poles_bounds(sol, ps, reach or REACH)
     content = sbox(bx0 - 1.6 * pc, by0 - 1.6 * pc, bx1 + 1.6 * pc, by1 + 1.6 * pc).intersection(view)
     rings = list(art.rings.values())
     colour = _pole_colour(st)
     kw = dict(fontsize=st.font_size * 0.9, color=colour, zorder=7)
     far = []   # the arrows drawn to poles out of view (another such arrow keeps off them)
     how = {}
-    for p in shown:
+    for p in (sorted(shown, key=lambda p: _in_view(ax, p)) if reach is not None else shown):
         if p.position is None and p.direction is None:
             continue   # undefined: the links move alike (listed in the table)
         label = pole_label(p.links)

@@ -186,13 +186,14 @@ def _fit(ax, bounds, s: float | None) -> None:
     ax.set_ylim(y0 - d, y1 - d)
 
 
-def _bounds(sol, cons: Constructions, name: str):
-    """What panel ``name`` draws, as a box in its own units."""
-    from .kennedy import poles_bounds
+def _bounds(sol, cons: Constructions, name: str, reach: float | None = None):
+    """What panel ``name`` draws, as a box in its own units (``reach``: the poles' view holds the poles within
+    so many mechanism sizes, :func:`velpoly.render.kennedy.poles_bounds`)."""
+    from .kennedy import REACH, poles_bounds
     if name == "mechanism":
         return _space_bounds(sol, cons)
     if name == "poles":
-        return poles_bounds(sol, cons.poles)
+        return poles_bounds(sol, cons.poles, reach or REACH)
     if name == "kennedy":
         return (-1.3, -1.3, 1.3, 1.3)   # the circle and its links' labels
     return polygon_bounds(getattr(cons, name))
@@ -211,6 +212,8 @@ class _Plan:
     rects: dict
     scales: dict
     table: object = None
+    reach: float | None = None   # a crowded poles sheet's view: the poles within so many mechanism sizes (else None:
+    #                              kennedy.REACH; kennedy.draw_poles' reach)
 
 
 class _Planner:
@@ -225,6 +228,7 @@ class _Planner:
         self.want_table = table
         self.width = self.W - 2 * EDGE
         self.table_rows = None    # the table's rows, gathered once for every room it is measured in
+        self.reach = None         # the poles' view (None: kennedy.REACH; a crowded sheet's less, CROWD_REACHES)
 
     def rect(self, x: float, y: float, w: float, h: float) -> tuple:
         return (x / self.W, y / self.H, w / self.W, h / self.H)
@@ -232,7 +236,7 @@ class _Planner:
     def spans(self, names):
         out = []
         for name in names:
-            x0, y0, x1, y1 = _bounds(self.sol, self.cons, name)
+            x0, y0, x1, y1 = _bounds(self.sol, self.cons, name, self.reach)
             out.append((x1 - x0, y1 - y0))
         return out
 
@@ -411,36 +415,89 @@ class _Planner:
     def poles(self) -> _Plan:
         """The poles sheet: the mechanism at the full height with the Kennedy circle and the table in a
         column beside it, or across the page with them beneath it (whichever draws it larger), or, where
-        the table is too wide for the column, the panels side by side over the table."""
+        the table is too wide for the column, the panels side by side over the table.
+
+        A crowded panel (:meth:`crowded`: too little paper about its links for its labels) is drawn larger
+        where it can be at least :data:`CROWD_GAIN` times as large: in the layout that draws it largest, the
+        table cut to its room (its rows counted) rather than the drawing shrunk for it (but for the rows with a
+        book's value); then, while still crowded, with a view that holds fewer far poles
+        (:data:`CROWD_REACHES`: a pole out of view is an arrow at the border with its position)."""
         if not self.want_table:
             return self.over_table(["poles", "kennedy"])
+        first = plan = self._poles_plan(False)
+        if not self.crowded(plan):
+            return plan
+        for reach in CROWD_REACHES:
+            self.reach = reach
+            other = self._poles_plan(True)
+            s = other.scales["poles"]
+            if s < plan.scales["poles"] * (1 - 1e-9) and s * CROWD_GAIN <= first.scales["poles"] * (1 + 1e-9):
+                plan = other
+            if not self.crowded(plan):
+                break
+        return plan
+
+    def crowded(self, plan) -> bool:
+        """Whether the poles panel of ``plan`` gives its labels (a pole's and a point's each) less than
+        :data:`CROWD_ROOM` cm² each of the paper about its links (their box at the plan's scale, each side at
+        least half the other: a flat slider-crank's poles spread along it), at 10-pt type (a larger type
+        needs more, as its square)."""
+        from .displacement import mechanism_bounds
+        x0, y0, x1, y1 = mechanism_bounds(self.sol)
+        s = plan.scales["poles"]
+        w, h = (x1 - x0) / s, (y1 - y0) / s
+        n = len(self.cons.poles.poles) + len(self.sol.mechanism.points)
+        return max(w, h / 2) * max(h, w / 2) < CROWD_ROOM * n * (self.st.font_size / 10) ** 2
+
+    def _poles_plan(self, crowded: bool) -> _Plan:
+        """The poles sheet beside or across (:meth:`poles`); ``crowded``: the table is cut to the room the
+        drawing leaves it, the drawing shrunk only for the rows with a book's value."""
         total = self.top - EDGE
         (pw, ph), = self.spans(["poles"])
         user = _user_scale(self.opts, "poles")
         mx, mt, mb = MARGIN
         column = min(max(self.width - GAP - pw / ph * (total - mt - mb) - 2 * mx, 0.3 * self.W), 0.42 * self.W)
-        beside = share_row([(pw, ph)], self.width - GAP - column, total, 0.0, [user])
         wide = share_row([(pw, ph)], self.width, total - TABLE_GAP - TABLE_LEAST * self.H, 0.0, [user])
+        column = self._column_keeping_type(column) if crowded else column
+        if column is None:   # no column holds the table at its type size
+            return self._poles_across(wide, crowded)
+        beside = share_row([(pw, ph)], self.width - GAP - column, total, 0.0, [user])
         if beside.scales[0] > wide.scales[0]:
-            return self._poles_across(wide)
-        return self._poles_beside(column, beside) or self._poles_across(wide)
+            return self._poles_across(wide, crowded)
+        return self._poles_beside(column, beside, crowded) or self._poles_across(wide, crowded)
 
-    def _poles_beside(self, column: float, row) -> _Plan | None:
+    def _column_keeping_type(self, column: float) -> float | None:
+        """The narrowest column, from ``column`` cm wide up to 0.42 of the page's width (in fifths of the way),
+        whose table (under the Kennedy circle) keeps :data:`CROWD_TYPE` of its type size, its rows cut to the
+        room; None where none does (a crowded sheet's table is cut, not set too small to read from afar)."""
+        total = self.top - EDGE
+        most = 0.42 * self.W
+        for w in (column + (most - column) * k / 5 for k in range(6)):
+            tax, _, _ = self.draw_table(EDGE + self.width - w, w, total - min(w, 0.45 * total, KENNEDY_MOST) - TABLE_GAP)
+            if tax.size >= CROWD_TYPE * self.st.small_size - 1e-9:
+                return w
+        return None
+
+    def _poles_beside(self, column: float, row, cut: bool = False) -> _Plan | None:
+        """The mechanism at the full height, the Kennedy circle and the table in a column beside it; None where
+        the table does not show every row at its size there (``cut``: every row with a book's value, the others
+        cut to the room)."""
         total = self.top - EDGE
         side = min(column, 0.45 * total, KENNEDY_MOST)
         x = EDGE + self.width - column
         tax, used, whole = self.draw_table(x, column, total - side - TABLE_GAP)
-        if not whole:
+        if not (whole or cut and not cuts_the_book(tax)):
             return None
         _move(tax, self, self.top - side - TABLE_GAP)
         rects = {"poles": self.rect(EDGE, EDGE, row.widths[0], total),
                  "kennedy": self.rect(x + (column - side) / 2, self.top - side, side, side)}
-        return _Plan(rects, {"poles": row.scales[0]}, tax)
+        return _Plan(rects, {"poles": row.scales[0]}, tax, self.reach)
 
-    def _poles_across(self, row) -> _Plan:
+    def _poles_across(self, row, crowded: bool = False) -> _Plan:
         """The mechanism across the page, the Kennedy circle and the table beneath it; the mechanism a round
         scale or two smaller (down to :data:`TABLE_SHRINK` of its size) where the table then shows more rows
-        (the largest that shows every row, else the largest that shows the most)."""
+        (the largest that shows every row, else the largest that shows the most); ``crowded``: only where the
+        table then shows more of the rows with a book's value."""
         total = self.top - EDGE
 
         cap = max(_caption_cm(self.st, 1) - TABLE_GAP, 0.0)   # the Kennedy circle's caption's room over it
@@ -454,7 +511,7 @@ class _Planner:
         most = None
         for r in [row, *(self._smaller(row, "poles", total) if not self.cut else ())]:
             room, side, (tax, used, whole) = place(r)
-            if whole:
+            if whole or (crowded and not cuts_the_book(tax)):
                 break
             if most is None or self.shown > most[0]:
                 most = (self.shown, r)
@@ -464,7 +521,7 @@ class _Planner:
         _move(tax, self, EDGE + room)
         rects = {"poles": self.rect(EDGE, self.top - r.height, self.width, r.height),
                  "kennedy": self.rect(EDGE + max(caption - side, 0.0) / 2, EDGE + room - cap - side, side, side)}
-        return _Plan(rects, {"poles": r.scales[0]}, tax)
+        return _Plan(rects, {"poles": r.scales[0]}, tax, self.reach)
 
     def _smaller(self, row, name: str, height: float) -> list:
         """The one-panel ``row`` of panel ``name`` at each round scale smaller, down to :data:`TABLE_SHRINK` of its
@@ -493,6 +550,10 @@ TABLE_TALLER = (0.45, 0.5, 0.55)   # of the page's height: the table's room wher
 TABLE_SHRINK = 0.75  # a drawing shrunk to no less than this (its length) so that the table shows every row
 CORNER_LEAST = 6.0  # cm beside the table in the page's corner: the least room for panels there
 BESIDE_FRACTIONS = (0.4, 0.5)   # of the panels' height: the last row's, with the table beside its panel
+CROWD_ROOM = 1.5    # cm² of paper about a poles panel's links for each pole's or point's label (10-pt type)
+CROWD_GAIN = 1.25   # a crowded poles panel is laid out anew only where that draws it this much larger (its length)
+CROWD_TYPE = 0.85   # of the table's type size: the least a crowded poles sheet's table in its column is set at
+CROWD_REACHES = (2.5, 1.5, 1.0, 0.75)   # mechanism sizes: a crowded poles panel's view, tried in turn (kennedy.REACH first)
 
 
 def _cover(spans, bands) -> float:
@@ -626,10 +687,10 @@ def _draw_panels(sol, axes, st, opts, cons, sheet, frame, plan, pins) -> dict:
                                                       plan.scales.get("mechanism"))
     if "poles" in axes:
         ax = axes["poles"]
-        from .kennedy import poles_bounds
-        _fit(ax, poles_bounds(sol, cons.poles), plan.scales["poles"])
+        from .kennedy import REACH, poles_bounds
+        _fit(ax, poles_bounds(sol, cons.poles, plan.reach or REACH), plan.scales["poles"])
         ax.set_axis_off()
-        draw_poles(sol, ax, style=st, options=opts, poleset=cons.poles, upto=frame.poles)
+        draw_poles(sol, ax, style=st, options=opts, poleset=cons.poles, upto=frame.poles, reach=plan.reach)
         captions["poles"] = scale_text(view_scale(ax), sol.mechanism.units, 0)
     if "kennedy" in axes:
         draw_kennedy_circle(sol, axes["kennedy"], style=st, options=opts, poleset=cons.poles, upto=frame.poles)
