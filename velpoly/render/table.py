@@ -704,14 +704,15 @@ class _Title:
     def __init__(self, room: _Room, text: str, size: float, wrap_pt: float):
         self.room, self.size, self.wrap_pt = room, size, wrap_pt
         self.kw = dict(fontsize=size * 1.1, va="top", ha="left", style="italic")
-        self.width = room.points(room.extent(0, 1, literal(text), **self.kw).width)
-        self.chars = len(text) * wrap_pt / self.width * 0.97   # characters a line of the title holds
         self.lines = self.wrap(text)
+
+    def width(self, line: str) -> float:
+        """A line's width (points) as the title sets it."""
+        return self.room.points(self.room.extent(0, 1, literal(line), **self.kw).width)
 
     def wrap(self, text: str) -> int:
         """Set ``text``, wrapped; the number of its lines."""
-        import textwrap
-        wrapped = textwrap.wrap(text, max(20, int(self.chars))) if self.width > self.wrap_pt else [text]
+        wrapped = _wrapped(text, self.width, self.wrap_pt, indent="", fill=0.97)
         self.text = literal("\n".join(wrapped))
         return len(wrapped)
 
@@ -872,16 +873,30 @@ def _footnote_lines(room: _Room, notes, width_pt: float, size: float, m=None) ->
     """Each footnote ``(mark, key, text)`` as the lines it takes at ``size`` within ``width_pt``:
     ``{mark: [line, ...]}``, the first line starting with the mark and the quantity it explains (named
     as the table names it, with the mechanism ``m``)."""
-    import textwrap
+    def width(line):
+        return room.points(room.extent(0, 0, line, fontsize=size).width)
     out = {}
     for mark, key, text in notes:
         # typeset as the sheet's equations are (omega_5 -> omega with subscript 5, 400 x 2 -> 400 × 2), a minus
         # sign for a negative number's hyphen
         full = f"{mark} {_math(_key(key, m))}: " + re.sub(r"(?<![\w.])-(?=[0-9.])", "−", equation_tex(text))
-        w = room.points(room.extent(0, 0, full, fontsize=size).width)
-        if w <= width_pt:
-            out[mark] = [full]
-        else:
-            out[mark] = textwrap.wrap(full, max(20, int(len(full) * width_pt / w * 0.95)),
-                                      subsequent_indent="   ", break_long_words=False)
+        out[mark] = _wrapped(full, width, width_pt)
     return out
+
+
+def _wrapped(text: str, width, width_pt: float, indent: str = "   ", fill: float = 0.95) -> list[str]:
+    """``text`` in lines no wider than ``width_pt`` by ``width`` (points), the lines after the first set in by
+    ``indent``: wrapped at ``fill`` of the characters a line holds at the text's mean letter width (20 at
+    least), and shorter while a line of wider letters runs past ``width_pt`` (a word is never broken: one wider
+    than the line stands alone on it)."""
+    import textwrap
+    w = width(text)
+    if w <= width_pt:
+        return [text]
+    longest = len(indent) + max(len(word) for word in text.split())
+    chars = max(20, int(len(text) * width_pt / w * fill))
+    while True:
+        lines = textwrap.wrap(text, chars, subsequent_indent=indent, break_long_words=False)
+        if chars <= longest or all(width(line) <= width_pt for line in lines):
+            return lines
+        chars = max(longest, int(chars * 0.9))
