@@ -1,8 +1,11 @@
 import gc
+import importlib
 import os
 import sys
+from pathlib import Path
 
 import matplotlib
+import pytest
 
 matplotlib.use("Agg")  # headless: never open a window from the tests
 
@@ -12,6 +15,28 @@ sys.path.insert(0, os.path.dirname(__file__))
 # pages, specimens and sweeps that tests share stay alive, so every full collection walked them all again.
 # It runs a fourteenth as often (still every 10000 new objects; the memory stays flat).
 gc.set_threshold(10_000, 10, 10)
+
+
+def pytest_collection(session):
+    """On the second xdist worker, import the test modules about to be collected in reverse order first. Each
+    worker rewrites the asserts of every test module it imports (pytest's assertion rewriting: an AST pass, 4
+    CPU s for all of them here) unless the other has written the rewritten module's cache already: in a fresh
+    checkout both workers collect at once, and went through the modules in the same order, each rewriting all of
+    them; from both ends, each rewrites about half. A module that fails to import here is left to the
+    collection, which imports it again and reports the error."""
+    if os.environ.get("PYTEST_XDIST_WORKER") != "gw1" or session.config.getoption("ignore") \
+            or session.config.getoption("ignore_glob"):
+        return
+    here = Path(__file__).parent.resolve()
+    start = session.config.invocation_params.dir
+    if not any((start / a.split("::")[0]).resolve() in (here, here.parent) for a in session.config.args):
+        return   # only some files asked for: leave the collection's order alone
+    for path in sorted(here.glob("test_*.py"), reverse=True):
+        if path.stem not in sys.modules:
+            try:
+                importlib.import_module(path.stem)
+            except (Exception, pytest.skip.Exception, pytest.fail.Exception):
+                sys.modules.pop(path.stem, None)
 
 
 def pytest_sessionfinish(session):

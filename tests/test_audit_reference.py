@@ -104,6 +104,7 @@ def printed_values(d: dict, s: dict) -> dict:
     return vals
 
 
+@pytest.mark.xdist_group("audit-reference-zoo")   # one worker makes specimens() (zoo.zoo(4242, 24)) for all eight
 @pytest.mark.parametrize("index", range(0, 24, 3))
 def test_every_printed_value_is_read_as_the_book_means_it(index):
     sp = specimens()[index:index + 3]

@@ -62,6 +62,10 @@ def _systems():
         yield name, prepare(velpoly.load(gen(3, 50.0)))
 
 
+# the tests reading _all() on one worker: its generated systems are made once (0.26 CPU s a worker)
+ON_ALL = pytest.mark.xdist_group("newton-eval-systems")
+
+
 @functools.cache
 def _all():
     return list(_systems())
@@ -102,6 +106,7 @@ def _evaluations(system, rows, qs, qd, monkeypatch, dense):
     return out
 
 
+@ON_ALL
 def test_sparse_gradients_give_the_dense_bits_on_generated_mechanisms(monkeypatch):
     rng = np.random.default_rng(2026)
     kinds = set()
@@ -151,6 +156,7 @@ def test_grad_holds_the_dense_columns():
         assert _same(x.dense(), y)
 
 
+@ON_ALL
 def test_scaled_divides_the_lengths_alone():
     """pose._scaled (one division by the column scales L, L, 1) gives the lengths' columns divided
     by L and the angles' as they are, to the byte (-0.0, infinities)."""

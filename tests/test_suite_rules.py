@@ -82,3 +82,36 @@ def test_the_collections_before_the_freeze_leave_no_finaliser_unreported(tmp_pat
                        cwd=tmp_path, env={"PYTHONPATH": str(ROOT / "tests"), "PATH": "/usr/bin:/bin"})
     assert r.returncode == 0, r.stderr
     assert r.stdout.strip() == "['dead long ago', 'made by a finaliser']", r.stdout + r.stderr
+
+
+def test_the_second_worker_imports_the_test_modules_from_the_end_and_only_for_the_whole_folder(monkeypatch):
+    """conftest.pytest_collection: on xdist's gw1, with the tests folder (or the checkout) asked for, every test
+    module not yet imported is imported, in reverse order of its name, before the collection; on another
+    worker, alone, or with some files asked for, nothing is (the collection's own order is left)."""
+    from pathlib import Path
+    from types import SimpleNamespace
+
+    import conftest
+    tests = Path(conftest.__file__).parent
+    imported = []
+    monkeypatch.setattr(conftest.importlib, "import_module", imported.append)
+    monkeypatch.setattr(conftest, "sys", SimpleNamespace(modules={"test_cli": None}))   # one imported already
+
+    def session(*args, ignore=None):
+        opts = {"ignore": ignore, "ignore_glob": None}
+        return SimpleNamespace(config=SimpleNamespace(args=list(args), getoption=opts.get,
+                                                      invocation_params=SimpleNamespace(dir=tests.parent)))
+
+    want = [p.stem for p in sorted(tests.glob("test_*.py"), reverse=True) if p.stem != "test_cli"]
+    assert len(want) > 50 and want[0] > want[-1]
+    for worker, args, ignore, expected in [("gw1", ("tests", "velpoly"), None, want), ("gw1", (str(tests),), None, want),
+                                           ("gw1", (".",), None, want), ("gw0", ("tests",), None, []),
+                                           ("gw1", ("tests/test_cli.py",), None, []),
+                                           ("gw1", ("tests",), ["tests/test_cli.py"], []), (None, ("tests",), None, [])]:
+        if worker is None:
+            monkeypatch.delenv("PYTEST_XDIST_WORKER", raising=False)
+        else:
+            monkeypatch.setenv("PYTEST_XDIST_WORKER", worker)
+        imported.clear()
+        conftest.pytest_collection(session(*args, ignore=ignore))
+        assert imported == expected, (worker, args, ignore)

@@ -24,6 +24,7 @@ from test_table_page import book_reference
 from velpoly.render import sheet, table
 from velpoly.render.style import get_style, rc_context
 
+import sheets
 import zoo
 
 BGAP, GAP = 3.0, 1.6   # the gap between blocks and between columns, in type sizes (velpoly.render.table)
@@ -77,6 +78,7 @@ def _cases():
                   (specimens[1].kind, specimens[1].mech, "slides", "poles")]
 
 
+@sheets.on("textbook")   # on test_layout_columns' worker: zoo(5, 27) are the first of its zoo(5, 30), made once there
 def test_blocks_side_by_side_where_they_fit(monkeypatch):
     """Generated mechanisms, full and poles sheets, both styles: the table is in as many blocks (three at most) as
     fit its room's width wherever more would take fewer lines; its ink lies under no panel and on no caption. Some tables stand in
