@@ -12,6 +12,8 @@ from __future__ import annotations
 
 import re
 
+import pytest
+
 import velpoly
 from paths import EXAMPLES
 from velpoly.errors import VelpolyError
@@ -25,9 +27,12 @@ QUANTITY = re.compile(r"(?<![A-Za-z])(?:omega|alpha|theta|[VARP])(?:\^[nt])?_(?:
 DEBUG = re.compile(r"(?i:\bscale\b|\bturned\b|\bdeg\b|\bnan\b)|°|@|\bNone\b|\bTrue\b|\bFalse\b|[\[\]]")
 
 
-def _mechanisms():
-    out = [(p.stem, velpoly.load(p)) for p in sorted(EXAMPLES.glob("*.toml"))]
-    out += [(f"zoo {i} {s.kind}", velpoly.load(s.mech)) for i, s in enumerate(zoo(20261125, 90))]
+def _solves():
+    """(name, how to solve it) of every gallery file (loaded here: a file that stops loading fails the test) and
+    90 zoo specimens (solved at their drawn pose already, as ``velpoly.solve(velpoly.load(mech))``: their
+    solutions)."""
+    out = [(p.stem, lambda m=velpoly.load(p): velpoly.solve(m)) for p in sorted(EXAMPLES.glob("*.toml"))]
+    out += [(f"zoo {i} {s.kind}", lambda s=s: s.drawn) for i, s in enumerate(zoo(20261125, 90))]
     return out
 
 
@@ -74,14 +79,15 @@ def check_step(poly, step, where: str) -> None:
         assert f"the instant centre of link" in text and "O_v" in text, where
 
 
+@pytest.mark.xdist_group("zoo")   # on test_zoo's worker: its first 90 specimens are made once there (tests/zoo.py)
 def test_captions_of_generated_mechanisms():
     """Every step of both polygons and every pole found, over the gallery and 90 zoo mechanisms of
     every kind (one pass: the solves are the cost)."""
     kinds = set()
     checked = 0
-    for n, (name, m) in enumerate(_mechanisms()):
+    for n, (name, solved) in enumerate(_solves()):
         try:
-            sol = velpoly.solve(m)
+            sol = solved()
             polys = [velocity_polygon(sol)] + ([acceleration_polygon(sol)] if sol.has_accelerations else [])
         except VelpolyError:
             continue

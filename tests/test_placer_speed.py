@@ -84,14 +84,16 @@ def ref_least_bad(pl, anchor, w, h, prefer, gap, leader, reach=False):
     best = None
     far = L.REACH_RINGS if reach and leader else ()
     for ring in sorted({gap, *(r for r in L.RINGS if r > gap), *L.FAR_RINGS, 135.0, *far}):
-        if ring in far and best is not None and best[0][1] == 0:
+        if ring in far and best is not None and best[0][1:3] == (0, 0):
             break
         k = 48 if ring in far else 24 if ring in L.FAR_RINGS else 16
         for c, b in ref_candidates(anchor, w, h, prefer, ring, k, None, pp):
             if not view.contains(b) or count(pl.boxes + pl.leaders, b):
                 continue
             line = LineString([tuple(anchor), tuple(ref_toward(b, anchor))])
-            score = (count(pl.boxes, line) if leader and ring >= 9.0 else 0, count(pl.hard, b), count(pl.soft, b))
+            drawn = leader and ring >= 9.0
+            score = (count(pl.boxes, line) if drawn else 0, count(pl.hard, b), count(pl.leaders, line) if drawn else 0,
+                     count(pl.soft, b))
             if best is None or score < best[0]:
                 best = (score, c, b, ring)
     if best is None:

@@ -203,11 +203,43 @@ def test_a_ctrl_c_swallowed_in_a_callback_still_stops_the_run(tmp_path, capsys, 
         gc.collect()
         atomic_write_text(out, "a table")   # the run must not commit its output after that
         return 0
+    _stops(monkeypatch, capsys, tmp_path, command, 130, "interrupted")
+
+
+def _stops(monkeypatch, capsys, tmp_path, command, code, word):
+    """``velpoly solve`` running ``command`` returns ``code`` with the one line "error: WORD" and writes nothing."""
     monkeypatch.setitem(velpoly.cli.COMMANDS, "solve", command)
-    assert main(["solve", str(FOURBAR)]) == 130
+    assert main(["solve", str(FOURBAR)]) == code
     err = capsys.readouterr().err
-    assert err.splitlines() == ["error: interrupted"] and "Exception ignored" not in err
+    assert err.splitlines() == [f"error: {word}"] and "Exception ignored" not in err
     assert list(tmp_path.iterdir()) == []
+
+
+class _TerminateOnCollect:
+    """Raises SIGTERM's exception where Python can only ignore it (the GIF writer's callbacks under load)."""
+
+    def __del__(self):
+        raise velpoly.cli.Terminated
+
+
+@pytest.mark.parametrize("late", [False, True])
+def test_a_sigterm_swallowed_in_a_callback_is_still_a_termination(tmp_path, capsys, monkeypatch, late):
+    """SIGTERM whose exception a callback swallowed: exit 143 and "error: terminated", not Ctrl-C's 130 (a
+    run terminated under load once reported "interrupted"), whether the run ends by raising the recorded
+    interruption or by an error raised while unwinding from it (``late``); a Ctrl-C after it does not
+    change which signal stopped the run."""
+    out = tmp_path / "c.csv"
+
+    def command(args):
+        _TerminateOnCollect()
+        gc.collect()
+        if late:
+            _InterruptOnCollect()
+            gc.collect()
+            raise RuntimeError("a library's cleanup failing on its half-done work")
+        atomic_write_text(out, "a table")
+        return 0
+    _stops(monkeypatch, capsys, tmp_path, command, 143, "terminated")
 
 
 @pytest.mark.parametrize("how", ["raised", "swallowed"])

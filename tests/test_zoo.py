@@ -176,8 +176,8 @@ def test_zoo_is_big_and_covers_every_kind():
         for v in variants:
             assert any(k.endswith(v) for k in kinds), (kind, v)
     assert any(sp.mech["driver"].get("slider") for sp in by_kind()["inverted"])
-    # the same seed, the same zoo
-    again = zoo.zoo(SEED, 20)
+    # the same seed, the same zoo (made anew: zoo.zoo shares a seed's specimens within the process)
+    again = zoo.fresh_zoo(SEED, 20)
     assert [s.mech for s in again] == [s.mech for s in specimens()[:20]]
 
 
@@ -351,3 +351,12 @@ def test_auxiliary_point_reached_through_a_slip_is_true():
                                 ("A@4", "A@3"):
                             reversed_seen += 1   # A4 relative to A3: a subtracted term drawn forwards
     assert solved >= 35 and reversed_seen >= 10 and ic_seen >= 3, (solved, reversed_seen, ic_seen)
+
+
+def test_a_seed_s_specimens_are_made_once_and_each_call_gets_its_own_dicts():
+    """zoo.zoo shares a seed's specimens within the process: a longer batch goes on from a shorter one, as
+    fresh_zoo makes them; the solutions are shared, each call's dicts are its own."""
+    first = zoo.zoo(424242, 3)
+    more = zoo.zoo(424242, 5)
+    assert [s.mech for s in more] == [s.mech for s in zoo.fresh_zoo(424242, 5)]
+    assert all(a.drawn is b.drawn and a.mech is not b.mech and a.mech == b.mech for a, b in zip(first, more))

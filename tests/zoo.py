@@ -18,6 +18,7 @@ to 100 units), so that nothing depends on the frame lying along +x.
 """
 from __future__ import annotations
 
+import copy
 import math
 from dataclasses import dataclass, field, replace
 
@@ -750,8 +751,28 @@ def specimen(rng, kind, variant=None, tries=200) -> Specimen:
     raise RuntimeError(f"no regular draw of {kind} {variant} in {tries} tries")
 
 
-def zoo(seed: int = 2026, count: int = 300) -> list[Specimen]:
-    """``count`` specimens cycling through every kind and variant (seeded)."""
+def fresh_zoo(seed: int = 2026, count: int = 300) -> list[Specimen]:
+    """``count`` specimens cycling through every kind and variant (seeded), made anew."""
     rng = np.random.default_rng(seed)
     pairs = variants()
     return [specimen(rng, *pairs[i % len(pairs)]) for i in range(count)]
+
+
+_MADE: dict = {}   # seed -> (its generator, as the last specimen made left it; the specimens made, in order)
+
+
+def zoo(seed: int = 2026, count: int = 300) -> list[Specimen]:
+    """:func:`fresh_zoo`'s specimens, made once per process and shared: each specimen draws on from where the
+    one before it left the seeded generator, so the first n of a seed's specimens are the same whatever the
+    count, and a longer batch goes on from a shorter one (test_zoo's 300 of seed 20261125, test_captions' 90,
+    test_chain_poles' 57; test_zoo checks them against :func:`fresh_zoo`'s). Each call gets its own copies of
+    the mechanisms' dicts (a test may change them); the drawn poses' solutions are shared (read only)."""
+    rng, made = _MADE.setdefault(seed, (np.random.default_rng(seed), []))
+    pairs = variants()
+    try:
+        while len(made) < count:
+            made.append(specimen(rng, *pairs[len(made) % len(pairs)]))
+    except BaseException:
+        del _MADE[seed]     # the generator went on without its specimen: start that seed again
+        raise
+    return [replace(sp, mech=copy.deepcopy(sp.mech)) for sp in made[:count]]

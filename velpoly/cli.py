@@ -21,7 +21,7 @@ from pathlib import Path
 from .errors import InputError, VelpolyError, one_line
 # at once, not when a signal comes: a Ctrl-C while a command imports fileio must find it whole
 from .fileio import (atomic_write_text, check_not_input, check_output, committed_together, forget_inputs,
-                     forget_interrupt, interrupted, note_interrupt, protect_input, raise_if_interrupted)
+                     forget_interrupt, interrupted, interruption, note_interrupt, protect_input, raise_if_interrupted)
 
 __all__ = ["main", "build_parser"]
 
@@ -510,8 +510,9 @@ class Terminated(BaseException):
 
 
 def _on_signal(signum, frame):
-    note_interrupt()
-    raise Terminated if signum == signal.SIGTERM else KeyboardInterrupt
+    kind = Terminated if signum == signal.SIGTERM else KeyboardInterrupt
+    note_interrupt(kind)
+    raise kind
 
 
 def _unraisable(hook):
@@ -521,7 +522,7 @@ def _unraisable(hook):
     frames are freed, which is no news to the user after ``error: interrupted``."""
     def unraisable(u):
         if isinstance(u.exc_value, (KeyboardInterrupt, Terminated)):
-            note_interrupt()
+            note_interrupt(type(u.exc_value))
             return
         if not interrupted():
             hook(u)
@@ -636,7 +637,7 @@ def _interruption(e: BaseException | None):
             return e
         seen.add(id(e))
         e = e.__context__
-    return KeyboardInterrupt() if interrupted() else None
+    return interruption()
 
 
 def _main(argv) -> int:

@@ -18,9 +18,9 @@ Input files are never written: the command line registers its input with
 symbolic link to it, too) is an :class:`~velpoly.errors.InputError`. A write
 that fails (no space, no permission) is an InputError ``cannot write OUT: REASON``.
 
-Interruptions: :func:`note_interrupt` records a Ctrl-C even where Python could
-not raise it (inside a callback whose exceptions are ignored); an output is
-then never committed (:func:`raise_if_interrupted`).
+Interruptions: :func:`note_interrupt` records a Ctrl-C or SIGTERM, and which, even
+where Python could not raise it (inside a callback whose exceptions are ignored);
+an output is then never committed (:func:`raise_if_interrupted` raises it again).
 """
 from __future__ import annotations
 
@@ -33,10 +33,10 @@ from pathlib import Path
 from .errors import InputError
 
 __all__ = ["atomic_path", "atomic_write_text", "atomic_write_bytes", "committed_together", "check_output", "protect_input", "forget_inputs",
-           "same_file", "check_not_input", "cannot_write", "note_interrupt", "forget_interrupt", "interrupted", "raise_if_interrupted"]
+           "same_file", "check_not_input", "cannot_write", "note_interrupt", "forget_interrupt", "interrupted", "interruption", "raise_if_interrupted"]
 
 _INPUTS: dict[tuple[int, int], str] = {}   # (device, inode) of each input file -> its name as given
-_INTERRUPTED: list[bool] = [False]
+_INTERRUPTED: list[type[BaseException] | None] = [None]   # the recorded interruption's kind
 # committed_together(): (pid, [(temporary file, target)]) while a group of outputs is being written
 _GROUP: list = [None]
 
@@ -66,7 +66,7 @@ def protect_input(path) -> None:
 def forget_inputs() -> None:
     """Forget every registered input (a new run starts)."""
     _INPUTS.clear()
-    _INTERRUPTED[0] = False
+    _INTERRUPTED[0] = None
 
 
 def same_file(a, b) -> bool:
@@ -93,25 +93,36 @@ def cannot_write(target, e: BaseException) -> InputError:
 
 
 # -- interruptions ---------------------------------------------------------------------------------
-def note_interrupt() -> None:
-    """Record that the run was interrupted (Ctrl-C, SIGTERM): no output is committed after it."""
-    _INTERRUPTED[0] = True
+def note_interrupt(kind: type[BaseException] = KeyboardInterrupt) -> None:
+    """Record that the run was interrupted, and how: ``kind`` is the exception its signal raises
+    (KeyboardInterrupt for Ctrl-C, the command line's Terminated for SIGTERM); the first one recorded is kept,
+    so that the exit status says which signal stopped the run even where its exception was swallowed. No
+    output is committed after it."""
+    if _INTERRUPTED[0] is None:
+        _INTERRUPTED[0] = kind
 
 
 def forget_interrupt() -> None:
     """Forget a recorded interruption: the run it stopped is over (its caller has handled it)."""
-    _INTERRUPTED[0] = False
+    _INTERRUPTED[0] = None
 
 
 def interrupted() -> bool:
     """Whether the run was interrupted (Ctrl-C, SIGTERM), even where the interrupt was swallowed."""
-    return _INTERRUPTED[0]
+    return _INTERRUPTED[0] is not None
+
+
+def interruption() -> BaseException | None:
+    """The exception of the recorded interruption (a new one, of the kind :func:`note_interrupt` recorded),
+    None if the run was not interrupted."""
+    return None if _INTERRUPTED[0] is None else _INTERRUPTED[0]()
 
 
 def raise_if_interrupted() -> None:
-    """Raise KeyboardInterrupt if the run was interrupted, even where the interrupt itself was swallowed."""
-    if _INTERRUPTED[0]:
-        raise KeyboardInterrupt
+    """Raise the recorded interruption (KeyboardInterrupt, or SIGTERM's exception) if the run was interrupted,
+    even where the interrupt itself was swallowed."""
+    if _INTERRUPTED[0] is not None:
+        raise _INTERRUPTED[0]
 
 
 def _special(target: Path, st) -> bool:

@@ -7,7 +7,9 @@ detail captioned "detail, 1 cm = X", in a free part of the panel, with a thin bo
 region on the polygon and a leader joining the box to the detail. The detail is the same drawing
 (link images, construction lines, vectors, the origin, the labels of the images in the region),
 its data coordinates still velocities (accelerations), at the larger scale; the images in the
-marked region are labelled in the detail only.
+marked region are labelled in the detail only, every label inside the frame (``EDGE_PT`` clear of its
+rule) and off the lines where it finds room (``polygon._PolygonDrawing._off_lines``), the origin's with
+room of its own about the crowd (:func:`_pads`).
 
 The rule (:func:`crowd`), on paper at the panel's scale: join two of the polygon's points (the
 origin, the images, the auxiliary points' images) closer than ``JOIN_CM``; the origin's group is
@@ -26,7 +28,7 @@ import shapely.affinity
 from shapely.geometry import Polygon, box
 from shapely.ops import nearest_points
 
-from .canvas import Artists, fit_view, nice_scale, per_cm, view_box, view_scale
+from .canvas import Artists, fit_view, nice_scale, per_cm, per_point, view_box, view_scale
 from .labels import placer
 from .scalebar import scale_text
 
@@ -42,6 +44,8 @@ MIN_ZOOM = 2.0     # the detail at least twice the panel's scale
 PAD_CM = 0.45      # room about the region in the detail, for the labels
 MARK_CM = 0.15     # the region's mark about the crowd's box, on the polygon
 MOST_STEPS = 4     # the panel's scale at most so many round steps coarser, to make room for the detail
+EDGE_PT = 2.0      # the detail's labels at least this far inside its frame (points)
+ORIGIN_LINES = 1.5 # room for the origin's label beside the crowd, in the detail: lines of type (see _pads)
 
 
 @dataclass(frozen=True)
@@ -115,10 +119,24 @@ class Detail:
     hits: int = 0          # what its frame meets of the panel (0: a free place)
 
 
-def _inset_size(bounds, s: float, pad: float, cap: float, min_w: float = 0.0) -> tuple[float, float]:
-    """The inset's width (at least ``min_w``) and height in cm of paper showing ``bounds`` at the scale ``s``."""
+def _inset_size(bounds, s: float, pads, cap: float, min_w: float = 0.0) -> tuple[float, float]:
+    """The inset's width (at least ``min_w``) and height in cm of paper showing ``bounds`` at the scale ``s``, with
+    ``pads`` (left, bottom, right, top; cm) of room about them."""
     x0, y0, x1, y1 = bounds
-    return max((x1 - x0) / s + 2 * pad, min_w), (y1 - y0) / s + 2 * pad + cap
+    pl, pb, pr, pt = pads
+    return max((x1 - x0) / s + pl + pr, min_w), (y1 - y0) / s + pb + pt + cap
+
+
+def _pads(c: Crowd, st) -> tuple:
+    """The room (cm) about the region in the detail, left, bottom, right and top: ``PAD_CM`` for the images'
+    labels, and ``ORIGIN_LINES`` lines of type more on a side the origin lies at (within a quarter of the
+    crowd's box from it): the origin's label lists every point at rest and needs the room its vectors leave
+    it (they all leave it on the crowd's side)."""
+    x0, y0, x1, y1 = c.bounds
+    more = ORIGIN_LINES * st.font_size / 72 * 2.54
+    w, h = max(x1 - x0, 1e-300), max(y1 - y0, 1e-300)
+    return (PAD_CM + (more if -x0 <= w / 4 else 0.0), PAD_CM + (more if -y0 <= h / 4 else 0.0),
+            PAD_CM + (more if x1 <= w / 4 else 0.0), PAD_CM + (more if y1 <= h / 4 else 0.0))
 
 
 def round_below(x: float) -> float:
@@ -131,11 +149,12 @@ def round_below(x: float) -> float:
     return s
 
 
-def _scales(bounds, main: float, room: tuple[float, float], pad: float, cap: float) -> list[float]:
+def _scales(bounds, main: float, room: tuple[float, float], pads, cap: float) -> list[float]:
     """The detail's candidate scales, finest first: the round scales at least MIN_ZOOM times finer than the
     panel's ``main``, from the finest whose inset fits in ``room`` (cm); at least the coarsest of them."""
     x0, y0, x1, y1 = bounds
-    need = max((x1 - x0) / max(room[0] - 2 * pad, 1e-9), (y1 - y0) / max(room[1] - 2 * pad - cap, 1e-9), 1e-300)
+    pl, pb, pr, pt = pads
+    need = max((x1 - x0) / max(room[0] - pl - pr, 1e-9), (y1 - y0) / max(room[1] - pb - pt - cap, 1e-9), 1e-300)
     top = round_below(main / MIN_ZOOM)
     out, s = [], nice_scale(need)
     while s <= top * (1 + 1e-12):
@@ -167,11 +186,27 @@ def _shifts(d, pc) -> list:
     return out
 
 
-def _find(d, region, min_w: float):
-    """(hits, scale, frame box in panel data units, view shift): the finest candidate scale whose inset finds a
-    place free of every mark, line and link image of the panel and away from the region (hits 0), in the
-    present view or one moved with the polygon against a side; else the place meeting the fewest marks, then
-    lines and images."""
+def _find(d, region, min_w: float, options):
+    """(hits, scale, frame box in panel data units, view shift, pads): the detail's place (:func:`_find_at`) with
+    the first of the ``options`` of room about the region (:func:`_pads`: with the origin's label's room, then
+    without) that finds a free one; else the one meeting the fewest marks, lines and images (the first among
+    equals). A panel with no free place for the larger inset keeps its scale and the detail its scale rather
+    than drawing the polygon smaller for the origin's label (Example 3.4's velocity polygon, textbook)."""
+    best = None
+    for pads in dict.fromkeys(options):
+        got = _find_at(d, region, min_w, pads) + (pads,)
+        if got[0] == 0:
+            return got
+        if best is None or got[0] < best[0]:
+            best = got
+    return best
+
+
+def _find_at(d, region, min_w: float, pads):
+    """(hits, scale, frame box in panel data units, view shift): the finest candidate scale whose inset, with
+    ``pads`` of room about the region, finds a place free of every mark, line and link image of the panel and
+    away from the region (hits 0), in the present view or one moved with the polygon against a side; else the
+    place meeting the fewest marks, then lines and images."""
     pl, pc = d.pl, d.pc
     view = view_box(d.ax)
     wcm, hcm = (view.bounds[2] - view.bounds[0]) / pc, (view.bounds[3] - view.bounds[1]) / pc
@@ -184,9 +219,9 @@ def _find(d, region, min_w: float):
     def hits_of(b):
         return marks(b) + (int(np.count_nonzero(shapely.intersects(images, b))) if len(images) else 0)
     best = None
-    scales = _scales(region.bounds, pc, (0.7 * wcm, 0.6 * hcm), PAD_CM, cap)
+    scales = _scales(region.bounds, pc, (0.7 * wcm, 0.6 * hcm), pads, cap)
     for s in scales:
-        w, h = (v * pc for v in _inset_size(region.bounds, s, PAD_CM, cap, min_w))
+        w, h = (v * pc for v in _inset_size(region.bounds, s, pads, cap, min_w))
         for dx, dy in _shifts(d, pc):
             moved = shapely.affinity.translate(view, dx, dy)
             named, grid = d.spots(moved.bounds, w, h, 0.1 * pc)
@@ -200,20 +235,20 @@ def _find(d, region, min_w: float):
                 if best is None or score < best[0]:
                     best = (score, s, b, (dx, dy))
     if best is None:   # an inset larger than the panel: the coarsest, at the upper right
-        w, h = (v * pc for v in _inset_size(region.bounds, scales[-1], PAD_CM, cap, min_w))
+        w, h = (v * pc for v in _inset_size(region.bounds, scales[-1], pads, cap, min_w))
         vx0, vy0, vx1, vy1 = view.bounds
         b = box(vx1 - w, vy1 - h, vx1, vy1)
         return 10000 + hits_of(b), scales[-1], b, (0.0, 0.0)
     return best
 
 
-def _place(d, region, min_w: float):
-    """(hits, scale, frame box in panel data units, view shift) of the detail (:func:`_find`; a step frame:
-    where the finished construction has it)."""
+def _place(d, region, min_w: float, options):
+    """(hits, scale, frame box in panel data units, view shift, pads) of the detail (:func:`_find`; a step frame:
+    where, and with the room, the finished construction has it)."""
     pin = d.pl.pins.get("detail")
     if pin is not None:      # a step frame: where the finished construction has it
-        return 0, pin[2], box(*pin[1]), (0.0, 0.0)
-    return _find(d, region, min_w)
+        return 0, pin[2], box(*pin[1]), (0.0, 0.0), pin[4]
+    return _find(d, region, min_w, options)
 
 
 def _region(c: Crowd, pc: float):
@@ -309,8 +344,9 @@ def _mark(d, region, frame) -> list:
     return marks
 
 
-def _inset(d, region, frame, s):
-    """The detail's axes over ``frame`` beneath its caption's strip: the region at the scale ``s``, centred."""
+def _inset(d, region, frame, s, pads):
+    """The detail's axes over ``frame`` beneath its caption's strip: the region at the scale ``s``, centred in
+    it with ``pads`` (:func:`_pads`) about it."""
     pc = d.pc
     cap = _caption_cm(d.st) * pc
     fx0, fy0, fx1, fy1 = frame.bounds
@@ -319,6 +355,8 @@ def _inset(d, region, frame, s):
     fw, fh = (fx1 - fx0) / pc, (fy1 - fy0 - cap) / pc
     x0, y0, x1, y1 = region.bounds
     cx, cy = (x0 + x1) / 2, (y0 + y1) / 2
+    pl, pb, pr, pt = pads
+    cx, cy = cx + (pr - pl) * s / 2, cy + (pt - pb) * s / 2
     inset.set_xlim(cx - fw * s / 2, cx + fw * s / 2)
     inset.set_ylim(cy - fh * s / 2, cy + fh * s / 2)
     inset.set_axis_off()
@@ -336,7 +374,7 @@ def draw_detail(d) -> Detail | None:
     region = _region(c, pc)
     units = d.m.units if d.m is not None else ""
     min_w = _caption_width(d)
-    hits, s, frame, (dx, dy) = _place(d, region, min_w)
+    hits, s, frame, (dx, dy), pads = _place(d, region, min_w, (_pads(c, d.st), (PAD_CM,) * 4))
     if dx or dy:
         ax.set_xlim(*(v + dx for v in ax.get_xlim()))
         ax.set_ylim(*(v + dy for v in ax.get_ylim()))
@@ -344,16 +382,18 @@ def draw_detail(d) -> Detail | None:
     fx0, fy0, fx1, fy1 = frame.bounds
     caption = ax.text(fx0 + 0.15 * pc, fy1 - 0.08 * pc, "detail, " + scale_text(s, units, 1 if d.velocity else 2),
                       ha="left", va="top", fontsize=d.st.small_size, style="italic", zorder=9, gid="detail-caption")
-    inset = _inset(d, region, frame, s)
+    inset = _inset(d, region, frame, s, pads)
     ipl = placer(inset)
     pin = pl.pins.get("detail")
     ipl.pins = pin[3] if pin is not None else {}
+    # the labels keep EDGE_PT inside the frame (its rule is as thick as a line; a glyph on it reads as cut)
+    ipl.add_obstacle(view_box(inset).exterior.buffer(EDGE_PT * per_point(inset)))
     inner = type(d)(d.polygon, inset, d.st, d.opts, d.m, d.upto)   # (the polygon module's class: no import cycle)
     inner.shade_images()
     inner.construction_lines()
     inner.vectors()
     inner.origin()
-    inner.labels(within=region, gid_prefix="detail-label")
-    pl.placed["detail"] = ("detail", tuple(map(float, frame.bounds)), s, ipl.placed)
+    inner.labels(within=region, gid_prefix="detail-label", every=True)
+    pl.placed["detail"] = ("detail", tuple(map(float, frame.bounds)), s, ipl.placed, pads)
     outside = view_box(ax).difference(region)
     return Detail(c, s, inset, region, frame, outside, caption, inner.art, marks, hits)

@@ -156,18 +156,46 @@ def draw_poles(sol, ax=None, *, style="textbook", options=None, poleset=None, up
         art.point_labels = mech.labels
     _draw_kennedy_lines(ax, klines, st, art)
     _draw_pole_marks(sol, ax, shown, st, art)
-    _label_poles(sol, ax, ps, shown, pole_lines, st, art)
+    how = _label_poles(sol, ax, ps, shown, pole_lines, st, art)
     _untangle(pl, art)
+    _uncross(pl, art, how)
     _off_the_leaders(pl, art)
     return art
 
 
 def _untangle(pl, art) -> None:
-    """Leaders that cross (a crowd's last-resort places, taken one at a time) untangled: two pole labels'
-    places exchanged where that leaves fewer crossings (:meth:`LabelPlacer.untangle`)."""
+    """Leaders that cross (a crowd's last-resort places, taken one at a time) untangled: two pole labels' places
+    exchanged where that leaves fewer crossings (:meth:`LabelPlacer.untangle`)."""
     rings = list(art.rings.values())
-    pl.untangle(list(art.labels.values()),
-                {id(art.labels[k]): _nearer_own(g, rings) for k, g in art.rings.items() if k in art.labels})
+    texts = list(art.labels.values())
+    accept = {id(art.labels[k]): _nearer_own(g, rings) for k, g in art.rings.items() if k in art.labels}
+    pl.untangle(texts, accept)
+
+
+def _uncross(pl, art, how: dict) -> None:
+    """The labels whose leaders still cross another label's leader or box (a crowd's last-resort places, each
+    taken before the later ones were known) moved, one at a time, to where they cover least now that every
+    other label is known (:meth:`LabelPlacer.relocate`: a pole's at its size, else smaller), where that leaves
+    fewer crossings. Pole labels first, of those the one that had a free place first (another place may lie
+    clear of the later leader), then a point's or a link number's with a leader; each tried at most twice.
+    ``how``: each pole's key -> (anchor, text, its placing's arguments) (:func:`_label_poles`). A step frame's
+    labels stand where the finished construction's do: left as placed."""
+    if pl.pins:
+        return
+    keys = {id(t): k for k, t in art.labels.items()}
+    tries: dict = {}
+    while True:
+        crowded = {id(t) for t in pl.overlapping}
+        crossed = [pl.labels[k] for i, j, _ in pl._crossings() for k in (j, i)]
+        crossed = sorted(dict.fromkeys(p.text for p in crossed if p.anchor is not None and tries.get(id(p.text), 0) < 2),
+                         key=lambda t: (id(t) not in keys, id(t) in crowded))
+        if not crossed:
+            return
+        t = crossed[0]
+        tries[id(t)] = tries.get(id(t), 0) + 1
+        kw = how[keys[id(t)]][2] if id(t) in keys else {"prefer": None}
+        sizes = tuple(kw["fontsize"] * f for f in SMALLER) if id(t) in keys else ()
+        pl.relocate(t, kw["prefer"], kw.get("accept"), sizes)
 
 
 def _off_the_leaders(pl, art) -> None:
@@ -383,9 +411,10 @@ def _infinity_arrow_tip(pl, content, c, d, pc: float, far) -> np.ndarray:
     return border_point(content, c, d, 0.2 * pc)
 
 
-def _label_poles(sol, ax, ps, shown, pole_lines, st, art) -> None:
+def _label_poles(sol, ax, ps, shown, pole_lines, st, art) -> dict:
     """Each pole's label: by its ring (nearer it than any other ring), or by the arrow at the border that
-    points to a pole at infinity or out of view."""
+    points to a pole at infinity or out of view. Return how each was placed: its key -> (anchor, text, the
+    placing's arguments), for placing it again (:func:`_uncross`)."""
     pl = placer(ax)
     pc, pp = per_cm(ax), per_point(ax)
     view = view_box(ax)
@@ -398,13 +427,14 @@ def _label_poles(sol, ax, ps, shown, pole_lines, st, art) -> None:
     colour = _pole_colour(st)
     kw = dict(fontsize=st.font_size * 0.9, color=colour, zorder=7)
     far = []   # the arrows drawn to poles out of view (another such arrow keeps off them)
+    how = {}
     for p in shown:
         if p.position is None and p.direction is None:
             continue   # undefined: the links move alike (listed in the table)
         label = pole_label(p.links)
         if _in_view(ax, p):   # in view: where it is
-            t = _place_free(pl, np.asarray(p.position, float), label, prefer=-45.0, gid=f"label-pole-{p.key}",
-                            accept=_nearer_own(art.rings[p.key], rings), **kw)
+            anchor, text, prefer = np.asarray(p.position, float), label, -45.0
+            accept = _nearer_own(art.rings[p.key], rings)
         else:
             if p.position is None:
                 d = np.array([math.cos(math.radians(p.direction)), math.sin(math.radians(p.direction))])
@@ -422,10 +452,13 @@ def _label_poles(sol, ax, ps, shown, pole_lines, st, art) -> None:
             pl.add_obstacle(poly)
             pl.add_obstacle(segment(tail, tip).buffer(pp), hard=True)
             far.append(segment(tail, tip).buffer(pp))
-            t = _place_free(pl, tail, text, prefer=math.degrees(math.atan2(-d[1], -d[0])), gid=f"label-pole-{p.key}",
-                            **kw)
+            anchor, prefer, accept = tail, math.degrees(math.atan2(-d[1], -d[0])), None
+        how[p.key] = (anchor, text, dict(kw, prefer=prefer, gid=f"label-pole-{p.key}",
+                                         **({} if accept is None else {"accept": accept})))
+        t = _place_free(pl, anchor, text, **how[p.key][2])
         art.add("labels", t)
         art.labels[p.key] = t
+    return how
 
 
 def draw_kennedy_circle(sol, ax=None, *, style="textbook", options=None, poleset=None,

@@ -424,20 +424,23 @@ class LabelPlacer:
         return best
 
     def _least_bad(self, anchor, w: float, h: float, prefer, gap: float, leader: bool, reach: bool = False):
-        """Nothing free: the place clear of every label (and of their leaders) covering the fewest arrowheads
-        and pins, then lines (``reach``: out to :data:`REACH_RINGS` too, where only such a place covers less);
-        else the first ring's preferred spot."""
+        """Nothing free: the place clear of every label (and of their leaders) whose leader crosses the fewest
+        labels, then covering the fewest arrowheads, pins and lines that labels keep off, then whose leader
+        crosses the fewest other leaders, then covering the fewest lines (``reach``: out to
+        :data:`REACH_RINGS` too, where only such a place covers less or crosses fewer leaders); else the first
+        ring's preferred spot."""
         pp, view = per_point(self.ax), view_box(self.ax)
         hard = np.array(self.hard, dtype=object)[None, :]
         keep_off = np.array(self.boxes + self.leaders, dtype=object)[None, :]   # what its box must keep off
         labels = np.array(self.boxes, dtype=object)[None, :]   # what its leader had best not cross
+        leaders = np.array(self.leaders, dtype=object)[None, :]   # and then these
         soft = np.array(self.soft, dtype=object)[None, :]
         best = None
         # (the far rings in finer steps too: a leader that crosses a label, the worst, is rarely the only way)
         far = REACH_RINGS if reach and leader else ()
         for ring in sorted({gap, *(r for r in RINGS if r > gap), *FAR_RINGS, 135.0, *far}):
-            if ring in far and best is not None and best[0][1] == 0:
-                break   # farther only while every place nearer covers a mark or a line the label must keep off
+            if ring in far and best is not None and best[0][1:3] == (0, 0):
+                break   # farther only while every place nearer covers a mark or a line, or crosses a leader
             cands = _Ring(anchor, w, h, prefer, ring * pp, 48 if ring in far else 24 if ring in FAR_RINGS else 16)
             ok = shapely.contains(view, cands.geoms)
             if keep_off.size:
@@ -446,12 +449,11 @@ class LabelPlacer:
             if not len(idx):
                 continue
             g = cands.geoms[idx][:, None]
-            crossed = (shapely.intersects(labels, _leaders(cands.geoms[idx], anchor)[:, None]).sum(axis=1)
-                       if leader and ring >= 9.0 and labels.size else np.zeros(len(idx), int))
-            on_hard = shapely.intersects(hard, g).sum(axis=1) if hard.size else np.zeros(len(idx), int)
-            on_soft = shapely.intersects(soft, g).sum(axis=1) if soft.size else np.zeros(len(idx), int)
+            lines = _leaders(cands.geoms[idx], anchor)[:, None] if leader and ring >= 9.0 else None
+            crossed, across = _count(labels, lines, len(idx)), _count(leaders, lines, len(idx))
+            on_hard, on_soft = _count(hard, g, len(idx)), _count(soft, g, len(idx))
             for n, i in enumerate(idx):
-                score = (int(crossed[n]), int(on_hard[n]), int(on_soft[n]))
+                score = (int(crossed[n]), int(on_hard[n]), int(across[n]), int(on_soft[n]))
                 if best is None or score < best[0]:
                     best = (score, cands.centres[i].copy(), cands.geom(i), ring)
         if best is None:
@@ -597,6 +599,39 @@ class LabelPlacer:
             swaps += 1
         return swaps
 
+    def relocate(self, text, prefer=None, accept=None, sizes=(), gap: float = 2.5) -> bool:
+        """Move the placed label ``text`` (put down with :meth:`place`) to where it covers least, its own box and
+        leader lifted and every other label known (:meth:`_least_bad`, out to :data:`REACH_RINGS`), at its size,
+        else at each of ``sizes`` in turn (type sizes, points), where that leaves fewer crossings (a leader
+        across a label, then across a leader: :func:`_tally`), its box meets no more hard obstacles, other
+        labels' leaders, lines and outlines than where it stood and, if its place passed ``accept`` (a pole's
+        label nearer its own ring), the new one does too. Whether it moved."""
+        own = self.of(text)
+        if own is None or own.anchor is None:
+            return False
+        k, size = self.labels.index(own), text.get_fontsize()
+        x0, y0, x1, y1 = own.box.bounds
+        w0, h0 = self.text_size(text, 0.0)
+        before = _tally(self._crossings())
+        for s in (size,) + tuple(x for x in sizes if x < size):
+            text.set_fontsize(s)
+            w, h = self.text_size(text, 0.0)
+            del self.labels[k]
+            try:
+                b = self._least_bad(own.anchor, w + x1 - x0 - w0, h + y1 - y0 - h0, prefer, gap, True, True)[2]
+                covered = [np.array(g, dtype=object) for g in (self.hard, self.prepared_soft())]
+            finally:
+                self.labels.insert(k, own)
+            new = list(self.labels)
+            new[k] = self._moved(own, b, self._leader_line(own.anchor, b))
+            if _tally(self._crossings(new)) < before and not any(
+                    g.size and shapely.intersects(g, b).sum() > shapely.intersects(g, own.box).sum() for g in covered) \
+                    and not (accept is not None and accept(own.box) and not accept(b)):
+                self._commit(new, (k,))
+                return True
+        text.set_fontsize(size)
+        return False
+
     def _leader_line(self, anchor, b):
         """The leader from ``anchor`` to box ``b`` as :meth:`_put` draws it (its first 1.5 pt left open), or None
         where the box stands near enough not to need one."""
@@ -608,7 +643,7 @@ class LabelPlacer:
     def _crossings(self, labels=None) -> list:
         """(i, j) of every leader of label i that crosses the leader or the box of label j (see :func:`_tally`)."""
         labels = self.labels if labels is None else labels
-        lines = [None if p.leader is None else LineString(np.column_stack(p.leader.get_data())) for p in labels]
+        lines = [_drawn(p.leader) for p in labels]
         out = []
         for i, ln in enumerate(lines):
             if ln is None:
@@ -622,7 +657,6 @@ class LabelPlacer:
 
     def _swap(self, i: int, j: int, before: tuple, accept: dict) -> bool:
         """Exchange the places of labels i and j where :meth:`untangle` says it helps; whether it did."""
-        from matplotlib.lines import Line2D
         a, b = self.labels[i], self.labels[j]
         if a.text.get_fontsize() != b.text.get_fontsize():
             return False   # places, not sizes, are exchanged: a label set smaller keeps its own
@@ -650,21 +684,31 @@ class LabelPlacer:
             return False
         la, lb = self._leader_line(a.anchor, na), self._leader_line(b.anchor, nb)
         pp = per_point(self.ax)
-
-        def trial(p, nbox, line):
-            ln = None
-            if line is not None:
-                ln = Line2D(*np.asarray(line.coords).T, lw=0.4, color=p.text.get_color(), zorder=p.text.get_zorder(),
-                            gid=(p.text.get_gid() + "-leader") if p.text.get_gid() else None)
-            return Placed(p.text, nbox, ln, None if line is None else line.buffer(0.4 * pp), p.again, p.anchor)
         new = list(self.labels)
-        new[i], new[j] = trial(a, na, la), trial(b, nb, lb)
+        new[i], new[j] = self._moved(a, na, la), self._moved(b, nb, lb)
         after = _tally(self._crossings(new))
         if after > before or after[0] > before[0] or (after == before and _reach(la, lb) >= _reach(
-                *(None if p.leader is None else LineString(np.column_stack(p.leader.get_data()))
-                  for p in (a, b))) - 1e-9 * pp):
+                *(_drawn(p.leader) for p in (a, b))) - 1e-9 * pp):
             return False
-        for old, p in ((a, new[i]), (b, new[j])):
+        self._commit(new, (i, j))
+        return True
+
+    def _moved(self, p, nbox, line) -> Placed:
+        """Placed label ``p`` as it would stand in the box ``nbox`` (its size kept), with the leader ``line``
+        (:meth:`_leader_line`; None: none): its new Line2D made, not yet drawn."""
+        from matplotlib.lines import Line2D
+        ln = None
+        if line is not None:
+            ln = Line2D(*np.asarray(line.coords).T, lw=0.4, color=p.text.get_color(), zorder=p.text.get_zorder(),
+                        gid=(p.text.get_gid() + "-leader") if p.text.get_gid() else None)
+        return Placed(p.text, nbox, ln, None if line is None else line.buffer(0.4 * per_point(self.ax)), p.again,
+                      p.anchor)
+
+    def _commit(self, new: list, moved) -> None:
+        """The labels at the indices ``moved`` put where ``new`` (:meth:`_moved`'s) has them: their old leaders
+        taken off, the new drawn, each text centred in its box, and where it went remembered."""
+        for k in moved:
+            old, p = self.labels[k], new[k]
             if old.leader is not None:
                 old.leader.remove()
             if p.leader is not None:
@@ -675,8 +719,7 @@ class LabelPlacer:
             gid = p.text.get_gid()
             if gid and gid in self.placed:
                 self.placed[gid] = ("place", c, 9.0 if p.leader is not None else 0.0, p.text.get_fontsize())
-        self.labels[i], self.labels[j] = new[i], new[j]
-        return True
+            self.labels[k] = p
 
     @property
     def overlapping(self) -> list:
@@ -903,6 +946,18 @@ def _meet(box_a, line_a, box_b, line_b) -> bool:
     """Whether two labels meet: box on box, or a leader (line or buffered geometry, None: none) on the other's box."""
     return (box_a.intersects(box_b) or (line_a is not None and line_a.intersects(box_b))
             or (line_b is not None and line_b.intersects(box_a)))
+
+
+def _count(obstacles: np.ndarray, geoms, n: int) -> np.ndarray:
+    """How many of ``obstacles`` (a row) each of the ``n`` ``geoms`` (a column; None: none to test) meets."""
+    if geoms is None or not obstacles.size:
+        return np.zeros(n, int)
+    return shapely.intersects(obstacles, geoms).sum(axis=1)
+
+
+def _drawn(leader):
+    """A leader's Line2D as a shapely segment (None: None)."""
+    return None if leader is None else LineString(np.column_stack(leader.get_data()))
 
 
 def _reach(*lines) -> float:

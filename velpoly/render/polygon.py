@@ -84,14 +84,43 @@ def image_groups(polygon, points: dict) -> tuple[list[str], list[list[str]]]:
     return at_origin, groups
 
 
-def _label_text(polygon, names: dict, keys, with_origin: bool) -> str:
+def _label_names(polygon, names: dict, keys, with_origin: bool) -> list[str]:
+    """The names a group's label lists (the origin's first, each once), as text for an italic Text."""
     labels = [polygon.origin_label] if with_origin else []
     for k in keys:
         lab = names.get(k, k)
         if lab not in labels:
             labels.append(lab)
     math = any(tex(lab).startswith("$") for lab in labels)   # primes beside mathtext go in mathtext too
-    return ", ".join(tex(lab, math=math) for lab in labels)
+    return [tex(lab, math=math) for lab in labels]
+
+
+def _label_text(polygon, names: dict, keys, with_origin: bool) -> str:
+    return ", ".join(_label_names(polygon, names, keys, with_origin))
+
+
+def wrapped(names: list[str], lines: int) -> str:
+    """The names of coinciding points listed in ``lines`` lines, as even as their order allows (the longer
+    lines first), each line but the last ending in a comma: a long list beside the origin set as a block.
+
+    >>> wrapped(["O", "a", "b", "c", "d"], 2)
+    'O, a, b,\\nc, d'
+    >>> wrapped(["O", "a", "b"], 1)
+    'O, a, b'
+    """
+    lines = max(1, min(lines, len(names)))
+    size, more = divmod(len(names), lines)
+    out, i = [], 0
+    for n in range(lines):
+        j = i + size + (1 if n < more else 0)
+        out.append(", ".join(names[i:j]))
+        i = j
+    return ",\n".join(out)
+
+
+def most_lines(n: int) -> int:
+    """The most lines a list of ``n`` names is set in: at least two names a line, at most three lines."""
+    return max(1, min(3, (n + 1) // 2))
 
 
 class _PolygonDrawing:
@@ -232,12 +261,16 @@ class _PolygonDrawing:
         pinned = self.pl.pins.get("legend")
         if pinned is not None:    # a step frame: the finished construction's legend, so that it does not change
             kinds = set(pinned[4])
-        if not self.velocity and len(kinds) > 1:
+        # a velocity polygon's absolute and relative vectors read apart by their weight (and colour) and labels;
+        # one that also draws a block's slip along its guide lists its kinds, as an acceleration polygon does
+        if len(kinds) > 1 and (not self.velocity or kinds - {"absolute", "relative"}):
             self.art.add("legend", *_legend(self.ax, self.st, [k for k in self.st.kind_styles if k in kinds]))
 
-    def labels(self, within=None, gid_prefix="label"):
+    def labels(self, within=None, gid_prefix="label", every: bool = False):
         """One label per group of coinciding images (the origin's group labelled with the origin); only the
-        groups whose image lies in ``within`` (a shapely geometry), if given."""
+        groups whose image lies in ``within`` (a shapely geometry), if given. The origin's label (``every``:
+        each label, as a detail's are) is kept off the lines where any of its forms finds room
+        (:meth:`_off_lines`)."""
         at_origin, groups = image_groups(self.polygon, self.points)
         cx, cy = np.mean(np.array([np.zeros(2)] + list(self.points.values())), axis=0)
         for gi, g in enumerate([at_origin] + groups):
@@ -247,27 +280,70 @@ class _PolygonDrawing:
             prefer, near = self._label_side(p, np.array([cx, cy]), groups)
             kw = dict(prefer=prefer, zorder=7, fontstyle="italic", within=70.0 if near else None, clear=True,
                       gid=f"{gid_prefix}-{self.polygon.kind}-" + ("origin+" if gi == 0 else "") + "+".join(g))
-            text = _label_text(self.polygon, self.names, g, gi == 0)
-            t = self._origin_label(p, text, kw) if gi == 0 else None
-            if t is None:
-                t = self.pl.place(p, text, fontsize=self.st.font_size, **kw)
+            if gi == 0 or every:
+                t = self._off_lines(p, _label_names(self.polygon, self.names, g, gi == 0), kw)
+            else:
+                t = self.pl.place(p, _label_text(self.polygon, self.names, g, False), fontsize=self.st.font_size, **kw)
             self.art.add("labels", t)
             for k in g:
                 self.art.labels[k] = t
 
-    def _origin_label(self, p, text, kw):
-        """The origin's label at its size, else smaller (:data:`~velpoly.render.displacement.SMALLER`), where
-        its box lies on no line (a polygon crushed flat: every place near the origin is on a vector's shaft);
-        None where none is (then placed as any image's label)."""
+    def _off_lines(self, p, names, kw):
+        """A label (``names``: the point's and its coinciding points', the origin's first) where its box lies on
+        no line and no other label: in one line at its size, else in two or three (:func:`wrapped`: a long
+        list beside the origin stacked into a block that finds room between the vectors), else smaller
+        (:data:`~velpoly.render.displacement.SMALLER`), one to three lines at each size; each form first as the
+        placer's search puts it, then hugging its point (:meth:`_hug`: a wide box beside a point whose
+        vectors all leave on one side). Where no form finds such a place (a polygon crushed flat: every place
+        near the origin is on a vector's shaft), the form whose place meets the fewest labels, then lines (the
+        larger and the fewer lines first among equals). A step frame tries the finished construction's form
+        first."""
         from .displacement import SMALLER
-        for f in (1.0,) + SMALLER:
+        forms = [(f, n) for f in (1.0,) + SMALLER for n in range(1, most_lines(len(names)) + 1)]
+        pinned = self.pl.pins.get(kw["gid"] + ":form")
+        if pinned is not None and tuple(pinned[1]) in forms:
+            forms.remove(tuple(pinned[1]))
+            forms.insert(0, tuple(pinned[1]))
+        best = None
+        for f, n in forms:
             with self.pl.trial():
-                n = len(self.pl.overlapping)
-                t = self.pl.place(p, text, fontsize=self.st.font_size * f, **kw)
-                self.pl.keep = len(self.pl.overlapping) == n and not self.pl.soft_hits(self.pl.box_of(t, pad=0.0))
+                before = len(self.pl.overlapping)
+                t = self._form_text(p, names, f, n, kw)
+                score = (len(self.pl.overlapping) - before, self.pl.soft_hits(self.pl.box_of(t, pad=0.0)))
+                self.pl.keep = score == (0, 0)
             if self.pl.of(t) is not None:
                 return t
-        return None
+            t = self._form_text(p, names, f, n, kw, hug=True)
+            if t is not None:
+                return t
+            if best is None or score < best[0]:
+                best = (score, f, n)
+        return self._form_text(p, names, best[1], best[2], kw)
+
+    def _form_text(self, p, names, f: float, n: int, kw, hug: bool = False):
+        """The label placed at ``f`` of the type size in ``n`` lines (its form kept for the step frames); ``hug``:
+        only beside its point, off every line (:meth:`_hug`), else None."""
+        text, gid = wrapped(names, n), kw["gid"]
+        size = self.st.font_size * f
+        if hug:
+            t = self._hug(p, text, size, kw)
+        else:
+            t = self.pl.place(p, text, fontsize=size, multialignment="left", **kw)
+        if t is not None:
+            self.pl.placed[gid + ":form"] = ("form", (f, n))
+        return t
+
+    def _hug(self, p, text, size: float, kw):
+        """The label beside its point ``p``, touching the point's ring of 2.5, 5 or 9 pt anywhere along its
+        outline (:func:`hugging`: the nearest and the preferred side first), at the first place free of every
+        label, mark and line; None where none is."""
+        pl, pp = self.pl, self.pp
+        probe = self.ax.text(0, 0, text, fontsize=size, fontstyle="italic", multialignment="left")
+        w, h = pl.text_size(probe, 1.0, pp)
+        probe.remove()
+        cands = hugging(w, h, [g * pp for g in (2.5, 5.0, 9.0)], kw["prefer"])
+        return pl.place_at([p + c for c in cands], text, gid=kw["gid"], soft=True, anchor=p,
+                           fontsize=size, fontstyle="italic", multialignment="left", zorder=kw["zorder"])
 
     def _label_side(self, p, centre, groups):
         """The preferred direction of an image's label (away from the polygon's centre, or from an image
@@ -301,6 +377,26 @@ class _PolygonDrawing:
                                     gid=line.get_gid() + "-reason")
             if t is not None:
                 self.art.add("reasons", t)
+
+
+def hugging(w: float, h: float, gaps, prefer: float, k: int = 6) -> list:
+    """The centres (about a point at 0) of a ``w`` x ``h`` box whose outline passes ``gap`` from the point, for
+    each of ``gaps``: the point beside each corner (diagonally) and beside ``k`` places along each side, the
+    nearer gaps first, and in each the places whose direction is nearest ``prefer`` (degrees) first.
+
+    >>> [tuple(round(float(v), 2) + 0.0 for v in c) for c in hugging(4.0, 2.0, [1.0], 0.0, k=1)][:3]
+    [(3.0, 0.0), (2.71, 1.71), (2.71, -1.71)]
+    """
+    out = []
+    for g in gaps:
+        d = g / math.sqrt(2.0)
+        rows = [(sx * (w / 2 + d), sy * (h / 2 + d)) for sx in (1, -1) for sy in (1, -1)]
+        for f in np.linspace(-0.5, 0.5, k + 2)[1:-1] if k > 1 else [0.0]:
+            rows += [(w / 2 + g, -f * h), (-(w / 2 + g), -f * h), (-f * w, h / 2 + g), (-f * w, -(h / 2 + g))]
+        a = math.radians(prefer)
+        rows.sort(key=lambda c: -math.cos(math.atan2(c[1], c[0]) - a))
+        out += [np.array(c, float) for c in rows]
+    return out
 
 
 def _collinear(lines) -> list[list]:

@@ -1,0 +1,77 @@
+"""Pole labels on generated dense mechanisms: leaders apart, each label by its own ring (issue 17, item 4).
+
+The specimens are the first ``COUNT`` of a seeded stream of six-bars and slotted mechanisms (``dense(SEED)``:
+each kind and variant drawn by the seed, not picked by hand); their poles drawings in slides style (the larger
+type, the more crowded) are checked at the data level: each pole label's leader (Line2D data) against every
+other leader and every other label's box, and each pole label's box against the rings of the poles. Before
+the crowd's last-resort places weighed the leaders they cross, and before crossed labels were moved
+(``LabelPlacer.relocate``), the third of them (a quick-return ram) had a
+leader across another label (P46's across D).
+"""
+from __future__ import annotations
+
+import functools
+
+import numpy as np
+import pytest
+from shapely.geometry import LineString, Point
+
+import zoo
+from test_pole_labels import _poles_drawing
+from velpoly.render.canvas import per_point
+from velpoly.render.labels import placer
+from velpoly.render.style import get_style
+
+SEED, COUNT = 4, 3
+KINDS = [v for v in zoo.variants() if v[0] in ("six-bar", "slot")]
+
+
+@functools.cache
+def dense(seed: int) -> tuple:
+    """The first ``COUNT`` specimens of the stream of ``seed``: each a six-bar or slot variant the seed draws."""
+    rng = np.random.default_rng(seed)
+    return tuple(zoo.specimen(rng, *KINDS[rng.integers(len(KINDS))]) for _ in range(COUNT))
+
+
+def leaders(ax) -> dict:
+    """Each placed label's leader as a shapely segment (data coordinates), by its Text's id."""
+    return {id(p.text): LineString(np.column_stack(p.leader.get_data())) for p in placer(ax).labels
+            if p.leader is not None}
+
+
+def astray(ax, rings: dict) -> list:
+    """The pole labels that sit nearer another pole's ring than their own with no leader from their own ring
+    (``rings``: draw_poles' ``art.rings``, each pole in view's ring by its key)."""
+    lines, pp = leaders(ax), per_point(ax)
+    out = []
+    for p in placer(ax).labels:
+        key = (p.text.get_gid() or "")[len("label-pole-"):]
+        if not (p.text.get_gid() or "").startswith("label-pole-") or key not in rings:
+            continue
+        line = lines.get(id(p.text))
+        if line is not None:   # its leader starts at its own pole (1.5 pt off it)
+            if Point(line.coords[0]).distance(rings[key].centroid) > 2.0 * pp:
+                out.append(key)
+            continue
+        own = p.box.distance(rings[key])
+        if any(p.box.distance(g) < own for k, g in rings.items() if k != key):
+            out.append(key)
+    return out
+
+
+@pytest.mark.parametrize("i", range(COUNT))
+def test_dense_leaders_cross_nothing_and_labels_sit_by_their_rings(i):
+    """No pole label's leader crosses another leader or another label's box, and each pole label is nearer its
+    own ring than any other (or has its leader from its own ring), on each of the seeded dense specimens."""
+    sp = dense(SEED)[i]
+    ax, art = _poles_drawing(sp.drawn, get_style("slides"))
+    pl, lines = placer(ax), leaders(ax)
+    poles = [p for p in pl.labels if (p.text.get_gid() or "").startswith("label-pole-")]
+    assert len(poles) >= 10, sp.kind
+    crossed = [(p.text.get_gid(), q.text.get_gid()) for p in poles if id(p.text) in lines for q in pl.labels
+               if q is not p and (q.box.intersects(lines[id(p.text)]) or
+                                  (id(q.text) in lines and lines[id(q.text)].intersects(lines[id(p.text)])))]
+    assert not crossed, (sp.kind, crossed)
+    assert not astray(ax, art.rings), (sp.kind, astray(ax, art.rings))
+    drawn = {ln for ln in ax.lines if (ln.get_gid() or "").endswith("-leader")}
+    assert {p.leader for p in pl.labels if p.leader is not None} == drawn   # what is kept is what is drawn
