@@ -224,6 +224,7 @@ class _Drawing:
         self.grounds: list = []          # the hatched strips drawn (shapely): the driver's values keep off
         self.geoms: dict = {}            # link -> its body as drawn
         self.slot_cuts: dict = {}        # slot index -> (link, centre line, cut) of a moving link's slot
+        self.reserved: list = []         # the point labels' boxes in a clear field (:meth:`draw`)
 
     # -- pieces ------------------------------------------------------------------------
     def patch(self, geom, role, zorder, facecolor, lw=None, gid=None, **kw):
@@ -634,9 +635,13 @@ class _Drawing:
             self.pl.add_obstacle(g.boundary.buffer(0.6 * self.pp), hard=False)
         # pins and points
         self.points(ground_dir)
+        labelled = self.opts.label_points is None or self.opts.label_points
+        if labelled:   # where the point labels go in a clear field: the driver's arcs and the numbers, when moved
+            with self.pl.trial():   # to read as their own, keep off these boxes (the labels come last)
+                self.reserved = self.point_labels(record=False)
         self.driver(ground_dir)          # before the link numbers, which then keep clear of its arrow
         self.link_numbers(geoms)
-        if self.opts.label_points is None or self.opts.label_points:
+        if labelled:
             self.point_labels()
         self.art.add("scale_bar", *scale_bar(self.ax, st, m.units, 0))
         return self.art
@@ -663,8 +668,11 @@ class _Drawing:
                 self.patch(Point(*p).buffer(r, quad_segs=8), "points", 4, st.ink, lw=0)
                 self.pl.add_obstacle(Point(*p).buffer(r))
 
-    def point_labels(self):
+    def point_labels(self, record: bool = True) -> list:
+        """Each point's label beside it, away from its links; returns their boxes (``record``: kept as the
+        drawing's labels)."""
         sol, m, st = self.sol, self.m, self.st
+        out = []
         wanted = self.opts.label_points
         for name, keys in _groups(sol).items():
             if wanted is not None and name not in wanted:
@@ -679,10 +687,14 @@ class _Drawing:
                 text = tex(name) if len(spots) == 1 else tex(key_text(key))   # P₂, velpoly.names
                 t = self.pl.place(pos, text, prefer=prefer, fontsize=st.font_size, zorder=7, fontstyle="italic",
                                   gid=f"label-point-{name}" if len(spots) == 1 else f"label-point-{key}")
+                out.append(self.pl.box_of(t, pad=0.0))
+                if not record:
+                    continue
                 self.art.add("labels", t)
                 for k, q in keys:
                     if len(spots) == 1 or k == key:
                         self.art.labels[k] = t
+        return out
 
     def number_style(self, lk) -> dict:
         """The Text keywords of a link's number: circled (by default); on slides, the circle no larger in
@@ -745,11 +757,15 @@ class _Drawing:
             else:
                 mine = anchor
             test = self.owned(lk, bodies, mine)
-            with self.pl.trial():   # where the rule below would put it, if it reads as its link's there
+            with self.pl.trial():   # where the rule below would put it, if it reads as its link's there, off the lines
                 t = self._first_number(lk, pts, g, anchor, prefer, n, pad, kw)
-                self.pl.keep = test(self.pl.of(t).box)
-            if not self.pl.of(t):
-                t = self._link_number(lk, pts, g, mine, prefer, n if len(pts) >= 2 else None, pad, kw, test)
+                owned = test(self.pl.of(t).box)
+                self.pl.keep = owned and not self.pl.soft_hits(self._number_box(t))
+            if not self.pl.of(t):   # else a place that reads as its own, off the lines; else, where the first
+                clear = self._off_lines(lk, kw, test)   # rule's place does not read as its own, one on a line
+                t = self._link_number(lk, pts, g, mine, prefer, n if len(pts) >= 2 else None, pad, kw, clear, True)
+                if t is None and not owned:
+                    t = self._link_number(lk, pts, g, mine, prefer, n if len(pts) >= 2 else None, pad, kw, test)
             if t is None:
                 t = self._first_number(lk, pts, g, anchor, prefer, n, pad, kw)
             self.art.add("link_numbers", t)
@@ -795,13 +811,34 @@ class _Drawing:
         """Whether the point ``p`` of link ``lk`` lies under another link's body or block."""
         return any(g.intersects(Point(*p)) for k, g in (*self.geoms.items(), *self.block_geom.items()) if k != lk)
 
-    def _link_number(self, lk, pts, g, anchor, prefer, n, pad: float, kw, test):
+    def _off_lines(self, lk, kw, test):
+        """``test`` (:meth:`owned`) and the box of the number's circle (drawn with ``kw``; its text's box, where it
+        has none), about the centre of the box tested, on no line (the circle reaches past the box searched)."""
+        r = self.number_radius(lk, kw) if "bbox" in kw else None
+
+        def clear(b, leader: bool = True) -> bool:
+            x, y = b.centroid.coords[0]
+            return test(b, leader) and not self.pl.soft_hits(box(x - r, y - r, x + r, y + r) if r else b)
+        return clear
+
+    def _number_box(self, t):
+        """A link number's box as drawn (data coordinates): its circle's, where it has one."""
+        ring = t.get_bbox_patch()
+        if ring is None:
+            return self.pl.box_of(t, pad=0.0)
+        t.update_bbox_position_size(self.pl.renderer)
+        e = ring.get_window_extent(self.pl.renderer)
+        (x0, y0), (x1, y1) = self.ax.transData.inverted().transform([[e.x0, e.y0], [e.x1, e.y1]])
+        return box(min(x0, x1), min(y0, y1), max(x0, x1), max(y0, y1))
+
+    def _link_number(self, lk, pts, g, anchor, prefer, n, pad: float, kw, test, strict: bool = False):
         """Link ``lk``'s number placed where ``test`` passes (None: anywhere): a plate's inside it; a bar's beside
-        its middle, clear of every line, else near it off every line, else beside it clear of marks and labels;
-        anything else near ``anchor`` off every line. None where no such place is."""
+        its middle, clear of every line, else near it off every line, else (unless ``strict``: off the lines
+        only) beside it clear of marks and labels; anything else near ``anchor`` off every line. None where no
+        such place is."""
         gid = f"link-number-{lk}"
         if len(pts) >= 3:
-            t = self._plate_number(lk, g, anchor, prefer, pad, kw, test)
+            t = self._plate_number(lk, g, anchor, prefer, pad, kw, test, strict)
             if t is not None or test is None:
                 return t
         if len(pts) == 2:
@@ -821,16 +858,16 @@ class _Drawing:
             t = self.pl.place_at(spots, literal(lk), gid=gid, pad=pad, soft=True, anchor=anchor, **kw) if spots else None
             if t is None:   # nothing clear of every line beside it: near it off every line, if anywhere
                 t = self._off_the_lines(anchor, literal(lk), prefer=prefer, gap=2.0, gid=gid, pad=pad, test=test, **kw)
-            if t is None and spots:   # else clear of marks and labels beside it
+            if t is None and spots and not strict:   # else clear of marks and labels beside it
                 t = self.pl.place_at(spots, literal(lk), gid=gid, pad=pad, anchor=anchor, **kw)
             return t
         return self._off_the_lines(anchor, literal(lk), prefer=prefer, gap=2.0, gid=gid, pad=pad, test=test, **kw) \
             if test is not None else None
 
-    def _plate_number(self, lk, g, anchor, prefer, pad: float, kw, test=None):
+    def _plate_number(self, lk, g, anchor, prefer, pad: float, kw, test=None, strict: bool = False):
         """A plate's number inside it, at its centroid ``anchor``, if there is room there off every line (and
-        ``test`` passes there); else near it off every line (where ``test`` passes); else at the centroid all the
-        same; None if the centroid has no room."""
+        ``test`` passes there); else near it off every line (where ``test`` passes); else (unless ``strict``) at
+        the centroid all the same; None if the centroid has no room."""
         gid = f"link-number-{lk}"
         t = self.ax.text(*anchor, literal(lk), ha="center", va="center", gid=gid, **kw)
         b = self.pl.box_of(t, pad=pad)
@@ -840,7 +877,7 @@ class _Drawing:
         if self.pl.soft_hits(b):
             t.remove()
             near = self._off_the_lines(anchor, literal(lk), prefer=prefer, gap=2.0, gid=gid, pad=pad, test=test, **kw)
-            if near is not None:
+            if near is not None or strict:
                 return near
             t = self.ax.text(*anchor, literal(lk), ha="center", va="center", gid=gid, **kw)
         self.pl.add_box(t, b, anchor=anchor)
@@ -1071,14 +1108,20 @@ class _Drawing:
         def again():   # placed again, where a later label's leader crosses it (velpoly.render.kennedy)
             return self.value(at, text, fontsize=fontsize, **kw)
         floor = self.st.small_size / fontsize
-        for f in dict.fromkeys((1.0,) + tuple(max(f, floor) for f in SMALLER)):
+        sizes = tuple(dict.fromkeys((1.0,) + tuple(max(f, floor) for f in SMALLER)))
+        for f, reach in [(f, False) for f in sizes] + [(f, True) for f in sizes]:
             with self.pl.trial():
                 n = len(self.pl.overlapping)
-                t = self.pl.place(at, text, fontsize=fontsize * f, clear=True, again=again, **kw)
+                t = self.pl.place(at, text, fontsize=fontsize * f, clear=True, reach=reach, again=again,
+                                  accept=self._unreserved, **kw)
                 self.pl.keep = len(self.pl.overlapping) == n and not self.pl.soft_hits(self.pl.box_of(t, pad=0.0))
             if self.pl.of(t) is not None:
                 return self.off_ground(t)
-        return self.off_ground(self.pl.place(at, text, fontsize=fontsize, clear=True, again=again, **kw))
+        return self.off_ground(self.pl.place(at, text, fontsize=fontsize * sizes[-1], clear=True, again=again, **kw))
+
+    def _unreserved(self, b) -> bool:
+        """Whether the box ``b`` (data coordinates) keeps off the point labels' places (:attr:`reserved`)."""
+        return not any(b.intersects(q) for q in self.reserved)
 
     def off_ground(self, t):
         """A driver's value that crowds hatched ground nudged straight away from it to :data:`GROUND_CLEAR`
