@@ -1,5 +1,5 @@
 """Measure the space diagram's driver arrows/values and link numbers over zoo(2026, 60), full and poles sheets,
-both styles. Usage: PYTHONPATH=<tree> python3 benchmarks/space_marks.py [indices...]  (prints per-case findings and totals)."""
+both styles. Usage: PYTHONPATH=<tree> python3 benchmarks/space_marks.py [i or i:sheet:style ...]  (prints per-case findings and totals)."""
 import sys, os, json
 sys.path.insert(0, os.path.join(os.environ["PYTHONPATH"], "tests"))
 import numpy as np
@@ -35,7 +35,8 @@ def measure(sol, sheet, style):
         pl = placer(ax)
         r = pl.renderer
         axbb = ax.bbox
-        out = {"out": [], "on_line": [], "overlap": [], "far_number": [], "leader_cross": [], "small": [], "arrow_cross": []}
+        out = {"out": [], "on_line": [], "overlap": [], "far_number": [], "leader_cross": [], "small": [], "arrow_cross": [],
+               "point_on_link": []}
         bodies = dict(art.bodies)
         for a in art.get("sliders", []):
             g = a.get_gid() or ""
@@ -88,17 +89,29 @@ def measure(sol, sheet, style):
                     ln = LineString(xy).difference(own.buffer(1e-9 * (own.length + 1)))
                     if any(ln.intersects(g) for k, g in bodies.items() if k != lk and k not in guides and g is not None):
                         out["leader_cross"].append(gid)
+        # point labels on a link's or block's outline, or over a link that does not carry the point
+        for p in texts:
+            gid = p.text.get_gid() or ""
+            if not gid.startswith("label-point-"):
+                continue
+            b = boxes[id(p.text)]
+            name = gid[len("label-point-"):]
+            carriers = set(sol.mechanism.carriers.get(name, ()))
+            if any(g is not None and (b.intersects(g.boundary) or k not in carriers and b.intersects(g))
+                   for k, g in bodies.items()):
+                out["point_on_link"].append(gid)
     return out
 
 if __name__ == "__main__":
     Z = zoo(2026, 60)
-    idx = [int(a) for a in sys.argv[1:]] or range(len(Z))
+    specs = [a.split(":") for a in sys.argv[1:]] or [[str(i)] for i in range(len(Z))]   # i or i:sheet:style
     tot = {}
     cases = 0
-    for i in idx:
+    for spec in specs:
+        i = int(spec[0])
         sol = velpoly.solve(velpoly.load(Z[i].mech))
-        for sheet in ("full", "poles"):
-            for style in ("textbook", "slides"):
+        for sheet in spec[1:2] or ("full", "poles"):
+            for style in spec[2:3] or ("textbook", "slides"):
                 try:
                     res = measure(sol, sheet, style)
                 except Exception as e:
