@@ -635,16 +635,21 @@ class _Drawing:
             self.pl.add_obstacle(g.boundary.buffer(0.6 * self.pp), hard=False)
         # pins and points
         self.points(ground_dir)
+        self.marks(ground_dir, geoms)
+        self.art.add("scale_bar", *scale_bar(self.ax, st, m.units, 0))
+        return self.art
+
+    def marks(self, ground_dir, geoms):
+        """The driver's arrows and values, the link numbers, then the point labels: the labels come last, so
+        their places in a clear field are found first (:attr:`reserved`), and the driver's values keep off them."""
         labelled = self.opts.label_points is None or self.opts.label_points
-        if labelled:   # where the point labels go in a clear field: the driver's arcs and the numbers, when moved
-            with self.pl.trial():   # to read as their own, keep off these boxes (the labels come last)
+        if labelled:
+            with self.pl.trial():
                 self.reserved = self.point_labels(record=False)
         self.driver(ground_dir)          # before the link numbers, which then keep clear of its arrow
         self.link_numbers(geoms)
         if labelled:
             self.point_labels()
-        self.art.add("scale_bar", *scale_bar(self.ax, st, m.units, 0))
-        return self.art
 
     def points(self, ground_dir):
         sol, m, st = self.sol, self.m, self.st
