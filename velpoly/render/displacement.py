@@ -224,7 +224,8 @@ class _Drawing:
         self.grounds: list = []          # the hatched strips drawn (shapely): the driver's values keep off
         self.geoms: dict = {}            # link -> its body as drawn
         self.slot_cuts: dict = {}        # slot index -> (link, centre line, cut) of a moving link's slot
-        self.reserved: list = []         # the point labels' boxes in a clear field (:meth:`draw`)
+        self.reserved: list = []         # the point labels' boxes in a clear field (:meth:`marks`)
+        self.bare = not self.pl.soft     # nothing drawn in the panel before (a poles sheet's Kennedy lines are)
 
     # -- pieces ------------------------------------------------------------------------
     def patch(self, geom, role, zorder, facecolor, lw=None, gid=None, **kw):
@@ -643,7 +644,7 @@ class _Drawing:
         """The driver's arrows and values, the link numbers, then the point labels: the labels come last, so
         their places in a clear field are found first (:attr:`reserved`), and the driver's values keep off them."""
         labelled = self.opts.label_points is None or self.opts.label_points
-        if labelled:
+        if labelled and self.bare:   # (on a poles sheet the poles' labels, placed after, need that room too)
             with self.pl.trial():
                 self.reserved = self.point_labels(record=False)
         self.driver(ground_dir)          # before the link numbers, which then keep clear of its arrow
@@ -1105,20 +1106,21 @@ class _Drawing:
                                          **label_kw))
         return arts, labels
 
-    def value(self, at, text, *, fontsize: float, **kw):
+    def value(self, at, text, *, fontsize: float, reserve: bool = True, **kw):
         """A driver's value beside its arrow (at ``at``), off every line where any free place is: at its size, else
         smaller (:data:`SMALLER`, never below the style's small size: a value is read from the back of the room)
-        where only that finds such a place (a crowd of Kennedy lines on a poles sheet), else at its size where it
-        covers least."""
+        where only that finds such a place (a crowd of Kennedy lines on a poles sheet), farther still, else at the
+        small size where it covers least; off the point labels' places where any free place is (``reserve``: not
+        when placed again, once the point labels are drawn)."""
         def again():   # placed again, where a later label's leader crosses it (velpoly.render.kennedy)
-            return self.value(at, text, fontsize=fontsize, **kw)
+            return self.value(at, text, fontsize=fontsize, reserve=False, **kw)
         floor = self.st.small_size / fontsize
         sizes = tuple(dict.fromkeys((1.0,) + tuple(max(f, floor) for f in SMALLER)))
         for f, reach in [(f, False) for f in sizes] + [(f, True) for f in sizes]:
             with self.pl.trial():
                 n = len(self.pl.overlapping)
                 t = self.pl.place(at, text, fontsize=fontsize * f, clear=True, reach=reach, again=again,
-                                  accept=self._unreserved, **kw)
+                                  accept=self._unreserved if reserve else None, **kw)
                 self.pl.keep = len(self.pl.overlapping) == n and not self.pl.soft_hits(self.pl.box_of(t, pad=0.0))
             if self.pl.of(t) is not None:
                 return self.off_ground(t)
