@@ -17,6 +17,7 @@ import math
 from typing import NamedTuple
 
 import numpy as np
+import shapely
 from shapely.geometry import LineString, MultiPoint, Point
 from shapely.geometry import Polygon as SPolygon
 from shapely.affinity import translate
@@ -24,7 +25,7 @@ from shapely.ops import nearest_points, unary_union
 
 from ..rigid import direction as _unit, perp as _perp
 from ..names import key_text, link_math, upper_name
-from .canvas import (Artists, add_patch, arrow, border_point, fit_view, get_ax, literal, math_literal, per_cm,
+from .canvas import (Artists, add_patch, arrow, border_point, box, fit_view, get_ax, literal, math_literal, per_cm,
                      per_point, tex, view_box, view_scale)
 from .labels import placer
 from .options import drawing_options
@@ -38,8 +39,15 @@ __all__ = ["draw_mechanism", "away_from", "neighbours", "mechanism_bounds", "sha
 PLATE_FILL = "0.9"      # a plate's fill where links are white (textbook): light, so that it reads as one body
 SMALLER = (0.85, 0.72)   # a text with no free place off the lines at its size: these fractions of it tried
 NUMBER_RADIUS = 0.8     # slides: a link number's circle at most this many bar widths in radius
+NUMBER_NEAR = 1.0       # cm: a link number at most this far from its own link (beside it, not out at a leader's end)
 GROUND_CLEAR = 0.15     # cm: a driver's value is nudged this far from hatched ground it crowds, where that is free
 #                         (omega's value crowded the ground of a swinging block's pivot)
+ARC_RADIUS = 0.8       # cm: a driver's omega arc about its pivot, in the widest gap between its links and ground
+ARC_RADII = (0.8, 0.6, 0.45, 1.1)   # cm: else (that arc crosses a link, block or label: a pivot in a crowd) in a
+#                                     run of directions where a circle of one of these radii is clear, the first
+#                                     radius that crosses least
+ARC_STEP = 3.0         # deg: the directions about a pivot tested for such a run
+RUN_SPAN = 45.0        # deg: the least span of an arc in such a run (a shorter arc reads as a tick, not a turn)
 
 
 def shape_patch(geom, **kw):
@@ -216,6 +224,8 @@ class _Drawing:
         self.grounds: list = []          # the hatched strips drawn (shapely): the driver's values keep off
         self.geoms: dict = {}            # link -> its body as drawn
         self.slot_cuts: dict = {}        # slot index -> (link, centre line, cut) of a moving link's slot
+        self.reserved: list = []         # the point labels' boxes in a clear field (:meth:`marks`)
+        self.bare = not self.pl.soft     # nothing drawn in the panel before (a poles sheet's Kennedy lines are)
 
     # -- pieces ------------------------------------------------------------------------
     def patch(self, geom, role, zorder, facecolor, lw=None, gid=None, **kw):
@@ -626,12 +636,21 @@ class _Drawing:
             self.pl.add_obstacle(g.boundary.buffer(0.6 * self.pp), hard=False)
         # pins and points
         self.points(ground_dir)
-        self.driver(ground_dir)          # before the link numbers, which then keep clear of its arrow
-        self.link_numbers(geoms)
-        if self.opts.label_points is None or self.opts.label_points:
-            self.point_labels()
+        self.marks(ground_dir, geoms)
         self.art.add("scale_bar", *scale_bar(self.ax, st, m.units, 0))
         return self.art
+
+    def marks(self, ground_dir, geoms):
+        """The driver's arrows and values, the link numbers, then the point labels: the labels come last, so
+        their places in a clear field are found first (:attr:`reserved`), and the driver's values keep off them."""
+        labelled = self.opts.label_points is None or self.opts.label_points
+        if labelled and self.bare:   # (on a poles sheet the poles' labels, placed after, need that room too)
+            with self.pl.trial():
+                self.reserved = self.point_labels(record=False)
+        self.driver(ground_dir)          # before the link numbers, which then keep clear of its arrow
+        self.link_numbers(geoms)
+        if labelled:
+            self.point_labels()
 
     def points(self, ground_dir):
         sol, m, st = self.sol, self.m, self.st
@@ -655,8 +674,11 @@ class _Drawing:
                 self.patch(Point(*p).buffer(r, quad_segs=8), "points", 4, st.ink, lw=0)
                 self.pl.add_obstacle(Point(*p).buffer(r))
 
-    def point_labels(self):
+    def point_labels(self, record: bool = True) -> list:
+        """Each point's label beside it, away from its links; returns their boxes (``record``: kept as the
+        drawing's labels)."""
         sol, m, st = self.sol, self.m, self.st
+        out = []
         wanted = self.opts.label_points
         for name, keys in _groups(sol).items():
             if wanted is not None and name not in wanted:
@@ -671,10 +693,14 @@ class _Drawing:
                 text = tex(name) if len(spots) == 1 else tex(key_text(key))   # P₂, velpoly.names
                 t = self.pl.place(pos, text, prefer=prefer, fontsize=st.font_size, zorder=7, fontstyle="italic",
                                   gid=f"label-point-{name}" if len(spots) == 1 else f"label-point-{key}")
+                out.append(self.pl.box_of(t, pad=0.0))
+                if not record:
+                    continue
                 self.art.add("labels", t)
                 for k, q in keys:
                     if len(spots) == 1 or k == key:
                         self.art.labels[k] = t
+        return out
 
     def number_style(self, lk) -> dict:
         """The Text keywords of a link's number: circled (by default); on slides, the circle no larger in
@@ -705,12 +731,16 @@ class _Drawing:
         return max(bb.width, bb.height) / 2 / self.ax.figure.dpi * 72 * self.pp
 
     def link_numbers(self, geoms):
+        """Every moving link's number beside or on its own link: a bar's beside its middle, a plate's inside it, a
+        block's beside it; each nearer its own link than any other, with nothing between (:meth:`owned`), where
+        any such place is free; else where it was placed before that rule."""
         if self.opts.link_numbers == "none":
             return
-        sol, m, st = self.sol, self.m, self.st
-        cx, cy = np.mean(np.array(list(sol.position.values())), axis=0)
+        sol, m = self.sol, self.m
+        centre = np.mean(np.array(list(sol.position.values())), axis=0)
+        bodies = {**self.block_geom, **geoms}
         for lk in [k.name for k in m.moving_links]:
-            g = geoms.get(lk) if lk in geoms else self.block_geom.get(lk)
+            g = bodies.get(lk)
             if g is None:
                 continue
             pts = [sol.place(lk, p) for p in m.link(lk).points]
@@ -718,67 +748,156 @@ class _Drawing:
                 a, b = pts[0], pts[1]
                 anchor = (a + b) / 2 if len(pts) == 2 else np.array(g.centroid.coords[0])
                 n = _perp((b - a) / max(np.hypot(*(b - a)), 1e-300))
-                if np.dot(n, anchor - np.array([cx, cy])) < 0:
+                if np.dot(n, anchor - centre) < 0:
                     n = -n
                 prefer = math.degrees(math.atan2(n[1], n[0]))
             else:
                 anchor = np.array(g.centroid.coords[0])
-                prefer = away_from(anchor, [np.array([cx, cy])], default=90.0)
+                prefer = away_from(anchor, [centre], default=90.0)
             kw = self.number_style(lk)
             pad = 3.5 if "bbox" in kw else 1.0
-            if len(pts) >= 3:
-                t = self._plate_number(lk, g, anchor, prefer, pad, kw)
-                if t is not None:
-                    self.art.add("link_numbers", t)
-                    continue
             t = None
-            if len(pts) == 2:
-                # a bar: its number beside it, near its middle, on the side clear of everything
-                probe = self.ax.text(*anchor, literal(lk), ha="center", va="center", **kw)
-                w, h = self.pl.text_size(probe, pad)
-                probe.remove()
-                u = (b - a) / max(np.hypot(*(b - a)), 1e-300)
-                off = st.bar_width * self.pc / 2 + 2.0 * self.pp + 0.5 * (abs(n[0]) * w + abs(n[1]) * h)
-                spots = [a + (b - a) * f + side * n * off for f in (0.5, 0.38, 0.62, 0.27, 0.73)
-                         for side in (1, -1)]
-                if np.hypot(*(b - a)) > 2 * off:
-                    t = self.pl.place_at(spots, literal(lk), gid=f"link-number-{lk}", pad=pad, soft=True,
-                                         anchor=anchor, **kw)
-                    if t is None:   # nothing clear of every line beside it: near it off every line, if anywhere
-                        t = self._off_the_lines(anchor, literal(lk), prefer=prefer, gap=2.0, gid=f"link-number-{lk}",
-                                                pad=pad, **kw)
-                    if t is None:   # else clear of marks and labels beside it
-                        t = self.pl.place_at(spots, literal(lk), gid=f"link-number-{lk}", pad=pad, anchor=anchor, **kw)
+            if len(pts) == 2:   # a leader from a point of the bar no other link covers (its middle, if free)
+                mine = next((a + (b - a) * f for f in (0.5, 0.38, 0.62, 0.27, 0.73, 0.16, 0.84)
+                             if not self._covered(lk, a + (b - a) * f)), anchor)
+            else:
+                mine = anchor
+            test = self.owned(lk, bodies, mine)
+            with self.pl.trial():   # where the rule below would put it, if it reads as its link's there, off the lines
+                t = self._first_number(lk, pts, g, anchor, prefer, n, pad, kw)
+                owned = test(self.pl.of(t).box)
+                self.pl.keep = owned and not self.pl.soft_hits(self._number_box(t))
+            if not self.pl.of(t):   # else a place that reads as its own, off the lines; else, where the first
+                clear = self._off_lines(lk, kw, test)   # rule's place does not read as its own, one on a line
+                t = self._link_number(lk, pts, g, mine, prefer, n if len(pts) >= 2 else None, pad, kw, clear, True)
+                if t is None and not owned:
+                    t = self._link_number(lk, pts, g, mine, prefer, n if len(pts) >= 2 else None, pad, kw, test)
             if t is None:
-                t = self.pl.place(anchor, literal(lk), prefer=prefer, gap=2.0, gid=f"link-number-{lk}", pad=pad, **kw)
+                t = self._first_number(lk, pts, g, anchor, prefer, n, pad, kw)
             self.art.add("link_numbers", t)
 
-    def _plate_number(self, lk, g, anchor, prefer, pad: float, kw):
-        """A plate's number inside it, at its centroid ``anchor``, if there is room there off every line; else
-        near it off every line; else at the centroid all the same; None if the centroid has no room."""
+    def _first_number(self, lk, pts, g, anchor, prefer, n, pad: float, kw):
+        """A link's number placed by the first rule (:meth:`_link_number` with no test), else near ``anchor``."""
+        t = self._link_number(lk, pts, g, anchor, prefer, n if len(pts) >= 2 else None, pad, kw, None)
+        if t is None:
+            t = self.pl.place(anchor, literal(lk), prefer=prefer, gap=2.0, gid=f"link-number-{lk}", pad=pad, **kw)
+        return t
+
+    def owned(self, lk, bodies, anchor):
+        """The test a link number's box (data coordinates) passes where it reads as link ``lk``'s: within
+        :data:`NUMBER_NEAR` of that link's body, nearer it (of ``bodies``) than any other's, nothing of another link (nor hatched ground) between the two,
+        nor across its leader from ``anchor`` where it stands far enough to have one (unless called with
+        ``leader=False``: a number put beside its link, with none). A block lies in its guide: the guide is no other link here, but
+        the number keeps off it."""
+        own = bodies[lk]
+        guides = {s.guide for s in self.m.sliders if s.block == lk}
+        others = np.array([g for k, g in bodies.items() if k != lk and k not in guides], dtype=object)
+        off = [bodies[k] for k in guides if k in bodies]
+        a = Point(*anchor)
+
+        def crossed(p, q) -> bool:
+            if p.distance(q) < 1e-9 * self.pc:
+                return False
+            line = LineString([(p.x, p.y), (q.x, q.y)]).difference(own)
+            return bool(shapely.intersects(others, line).any()) or any(g.intersects(line) for g in self.grounds)
+
+        def test(b, leader: bool = True) -> bool:
+            if any(g.intersects(b) for g in off):
+                return False
+            if not len(others):
+                return True
+            if b.distance(own) > NUMBER_NEAR * self.pc or float(shapely.distance(others, b).min()) <= b.distance(own):
+                return False
+            if crossed(*nearest_points(own, b)):
+                return False
+            return not leader or b.distance(a) < 8.0 * self.pp or not crossed(a, nearest_points(b, a)[0])
+        return test
+
+    def _covered(self, lk, p) -> bool:
+        """Whether the point ``p`` of link ``lk`` lies under another link's body or block."""
+        return any(g.intersects(Point(*p)) for k, g in (*self.geoms.items(), *self.block_geom.items()) if k != lk)
+
+    def _off_lines(self, lk, kw, test):
+        """``test`` (:meth:`owned`) and the box of the number's circle (drawn with ``kw``; its text's box, where it
+        has none), about the centre of the box tested, on no line (the circle reaches past the box searched)."""
+        r = self.number_radius(lk, kw) if "bbox" in kw else None
+
+        def clear(b, leader: bool = True) -> bool:
+            x, y = b.centroid.coords[0]
+            return test(b, leader) and not self.pl.soft_hits(box(x - r, y - r, x + r, y + r) if r else b)
+        return clear
+
+    def _number_box(self, t):
+        """A link number's box as drawn (data coordinates): its circle's, where it has one."""
+        ring = t.get_bbox_patch()
+        if ring is None:
+            return self.pl.box_of(t, pad=0.0)
+        t.update_bbox_position_size(self.pl.renderer)
+        e = ring.get_window_extent(self.pl.renderer)
+        (x0, y0), (x1, y1) = self.ax.transData.inverted().transform([[e.x0, e.y0], [e.x1, e.y1]])
+        return box(min(x0, x1), min(y0, y1), max(x0, x1), max(y0, y1))
+
+    def _link_number(self, lk, pts, g, anchor, prefer, n, pad: float, kw, test, strict: bool = False):
+        """Link ``lk``'s number placed where ``test`` passes (None: anywhere): a plate's inside it; a bar's beside
+        its middle, clear of every line, else near it off every line, else (unless ``strict``: off the lines
+        only) beside it clear of marks and labels; anything else near ``anchor`` off every line. None where no
+        such place is."""
+        gid = f"link-number-{lk}"
+        if len(pts) >= 3:
+            t = self._plate_number(lk, g, anchor, prefer, pad, kw, test, strict)
+            if t is not None or test is None:
+                return t
+        if len(pts) == 2:
+            a, b = pts
+            probe = self.ax.text(*anchor, literal(lk), ha="center", va="center", **kw)
+            w, h = self.pl.text_size(probe, pad)
+            probe.remove()
+            off = self.st.bar_width * self.pc / 2 + 2.0 * self.pp + 0.5 * (abs(n[0]) * w + abs(n[1]) * h)
+            if np.hypot(*(b - a)) <= 2 * off:   # too short to be beside: near it
+                return None if test is None else self._off_the_lines(anchor, literal(lk), prefer=prefer, gap=2.0,
+                                                                        gid=gid, pad=pad, test=test, **kw)
+            along = (0.5, 0.38, 0.62, 0.27, 0.73) + ((0.16, 0.84) if test is not None else ())
+            spots = [a + (b - a) * f + side * n * off for f in along for side in (1, -1)]
+            if test is not None:   # (farther along too: a bar that lies over another link in its middle)
+                spots = [c for c in spots if test(box(c[0] - w / 2, c[1] - h / 2, c[0] + w / 2, c[1] + h / 2),
+                                                  leader=False)]
+            t = self.pl.place_at(spots, literal(lk), gid=gid, pad=pad, soft=True, anchor=anchor, **kw) if spots else None
+            if t is None:   # nothing clear of every line beside it: near it off every line, if anywhere
+                t = self._off_the_lines(anchor, literal(lk), prefer=prefer, gap=2.0, gid=gid, pad=pad, test=test, **kw)
+            if t is None and spots and not strict:   # else clear of marks and labels beside it
+                t = self.pl.place_at(spots, literal(lk), gid=gid, pad=pad, anchor=anchor, **kw)
+            return t
+        return self._off_the_lines(anchor, literal(lk), prefer=prefer, gap=2.0, gid=gid, pad=pad, test=test, **kw) \
+            if test is not None else None
+
+    def _plate_number(self, lk, g, anchor, prefer, pad: float, kw, test=None, strict: bool = False):
+        """A plate's number inside it, at its centroid ``anchor``, if there is room there off every line (and
+        ``test`` passes there); else near it off every line (where ``test`` passes); else (unless ``strict``) at
+        the centroid all the same; None if the centroid has no room."""
         gid = f"link-number-{lk}"
         t = self.ax.text(*anchor, literal(lk), ha="center", va="center", gid=gid, **kw)
         b = self.pl.box_of(t, pad=pad)
-        if not (g.contains(b) and self.pl.free(b)):
+        if not (g.contains(b) and self.pl.free(b) and (test is None or test(b))):
             t.remove()
             return None
         if self.pl.soft_hits(b):
             t.remove()
-            near = self._off_the_lines(anchor, literal(lk), prefer=prefer, gap=2.0, gid=gid, pad=pad, **kw)
-            if near is not None:
+            near = self._off_the_lines(anchor, literal(lk), prefer=prefer, gap=2.0, gid=gid, pad=pad, test=test, **kw)
+            if near is not None or strict:
                 return near
             t = self.ax.text(*anchor, literal(lk), ha="center", va="center", gid=gid, **kw)
         self.pl.add_box(t, b, anchor=anchor)
         return t
 
-    def _off_the_lines(self, anchor, text, **kw):
-        """The text placed near ``anchor`` where it is free and on no line (a soft obstacle); None if no such
-        place is near."""
+    def _off_the_lines(self, anchor, text, test=None, **kw):
+        """The text placed near ``anchor`` where it is free and on no line (a soft obstacle), and where ``test`` (of
+        its box, data coordinates) passes if given; None if no such place is near."""
         kept = None
         with self.pl.trial():
             n = len(self.pl.overlapping)
-            t = self.pl.place(anchor, text, **kw)
-            self.pl.keep = len(self.pl.overlapping) == n and not self.pl.soft_hits(self.pl.box_of(t, pad=0.0))
+            t = self.pl.place(anchor, text, accept=test, only=test is not None, **kw)
+            self.pl.keep = len(self.pl.overlapping) == n and not self.pl.soft_hits(self.pl.box_of(t, pad=0.0)) and \
+                (test is None or test(self.pl.of(t).box))
             kept = t if self.pl.keep else None
         return kept
 
@@ -797,9 +916,10 @@ class _Drawing:
         self.turning_driver(pivot, p, ground_dir)
 
     def slider_driver(self):
-        """A slider driver's speed beside its block as an arrow in its sense, and its acceleration (when not
-        zero) as a double-headed arrow in its sense next to it along the path, on the side of the path away
-        from its hatched guide, each with its value."""
+        """A slider driver's speed beside its block as an arrow along its path in its sense, and its acceleration
+        (when not zero) as a double-headed arrow in its sense next to it along the path, each with its value:
+        beside the block on the side of the path away from its hatched guide, else farther along the path or
+        on the other side, where that keeps an arrow in the panel and off the other links (:meth:`_slide_places`)."""
         sol, m, st, pc = self.sol, self.m, self.st, self.pc
         drv = m.driver
         s = next(s for s in m.sliders if s.point == drv.slider)
@@ -807,24 +927,55 @@ class _Drawing:
         p = sol.place(s.block, s.point)
         n = _perp(path) * self.guide_side(s, p, _perp(path))
         name = math_literal(drv.slider)
-        arrows = [(drv.speed, 0.0, "driver-arrow", "driver-label", f"$V_{{{name}}}$", 1)]
+        base = p + n * (st.block[1] * 0.5 + 0.35) * pc
+        # the other side: beyond the guide's hatching, or its slotted bar
+        other = p - n * (st.block[1] * 0.5 + (0.6 if m.link(s.guide).frame else 0.45)) * pc
+        speed = self._slide_places(base, other, path, drv.speed, (0.0, 0.9, -0.9, 1.6, -1.6), s.block, [])[0]
+        arrows = [(speed, "driver-arrow", "driver-label", f"$V_{{{name}}}$", 1)]
         if drv.accel:   # next to the speed's, along the path on the side clear of the links
-            base = p + n * (st.block[1] * 0.5 + 0.35) * pc
             ahead = [sum(1 for g in self.geoms.values() if g.intersects(LineString(
                 [tuple(base + k * path * 0.9 * pc), tuple(base + k * path * 2.1 * pc)]))) for k in (1, -1)]
-            arrows.append((drv.accel, 1.5 if ahead[0] <= ahead[1] else -1.5, "driver-accel-arrow",
-                           "driver-label-accel", f"$A_{{{name}}}$", 2))
+            k = 1.0 if ahead[0] <= ahead[1] else -1.0
+            at = speed[2]
+            steps = (at + 1.5 * k, at - 1.5 * k, at + 2.3 * k, at - 2.3 * k, at + 3.1 * k, at - 3.1 * k)
+            kept = LineString([tuple(speed[0]), tuple(speed[1])]).buffer(1.0 * self.pp)
+            if speed[3] is base:
+                accel = self._slide_places(base, other, path, drv.accel, steps, s.block, [kept])[0]
+            else:
+                accel = self._slide_places(other, base, path, drv.accel, steps, s.block, [kept])[0]
+            arrows.append((accel, "driver-accel-arrow", "driver-label-accel", f"$A_{{{name}}}$", 2))
         spots = []
-        for value, along, gid, label_gid, symbol, power in arrows:
-            d = path * (1 if value >= 0 else -1)
-            a = p + n * (st.block[1] * 0.5 + 0.35) * pc + path * along * pc - d * 0.6 * pc
-            b = a + d * 1.2 * pc
+        for (a, b, _, side), gid, label_gid, symbol, power in arrows:
+            value = drv.speed if power == 1 else drv.accel
             self.art.add("driver", *self.straight_arrow(a, b, gid, double=power == 2))
-            spots.append(((a + b) / 2, f"{symbol} = {abs(value):.4g} {unit_label(m.units, power)}", label_gid))
-        for at, text, label_gid in spots:   # the values once both arrows are drawn: clear of both
-            t = self.value(at, text, prefer=math.degrees(math.atan2(n[1], n[0])), fontsize=st.small_size * 1.15,
+            away = n if side is base else -n
+            spots.append(((a + b) / 2, f"{symbol} = {abs(value):.4g} {unit_label(m.units, power)}", label_gid, away))
+        for at, text, label_gid, away in spots:   # the values once both arrows are drawn: clear of both
+            t = self.value(at, text, prefer=math.degrees(math.atan2(away[1], away[0])), fontsize=st.small_size * 1.15,
                            zorder=7, gid=label_gid)
             self.art.add("driver", t)
+
+    def _slide_places(self, first, second, path, value, steps, block, kept) -> list:
+        """The places (tail, tip, offset along the path in cm, side: ``first`` or ``second``) for a slider driver's
+        straight arrow of ``value``'s sense, 1.2 cm long, centred ``steps`` cm along the ``path`` from the side
+        points ``first`` (every step) then ``second``: best first, the first of them that stays in the panel,
+        crosses the fewest other links and blocks (those pinned at the block's point aside: they run from it)
+        and none of the ``kept`` (arrows already placed)."""
+        pc = self.pc
+        d = path * (1 if value >= 0 else -1)
+        view = view_box(self.ax)
+        at = set(self.m.carriers.get(self.m.driver.slider, ()))   # the links pinned at the block run from it
+        bodies = [g for lk, g in (*self.geoms.items(), *self.block_geom.items()) if lk not in at] + list(kept)
+        places = []
+        for side in (first, second):
+            for along in steps:
+                a = side + path * along * pc - d * 0.6 * pc
+                places.append((a, a + d * 1.2 * pc, along, side))
+
+        def cost(place):
+            shape = LineString([tuple(place[0]), tuple(place[1])]).buffer(0.5 * self.st.head_length * self.pp)
+            return (not view.contains(shape), sum(1 for g in bodies if g.intersects(shape)))
+        return sorted(places, key=cost)
 
     def guide_side(self, s, p, n) -> float:
         """+1 or -1: the side of a slider's path (along ``n``) away from its hatched guide (towards its links)."""
@@ -858,6 +1009,56 @@ class _Drawing:
             dirs += [ground_dir[pivot] - 40.0, ground_dir[pivot], ground_dir[pivot] + 40.0]
         dirs = sorted(d % 360 for d in dirs) or [270.0]
         return [((dirs[(i + 1) % len(dirs)] - d) % 360 or 360, d) for i, d in enumerate(dirs)]
+
+    def _free_runs(self, p, rad, ground) -> list:
+        """(width, start) of the runs of directions (deg) about the pivot ``p`` where the circle of radius ``rad`` is
+        in view, off the pivot's ground (``ground``: its direction, or None) and clear of every other link, block and
+        label: where an arc reads as turning about this pivot alone (over the driver's own link, as books draw it)."""
+        drv = self.m.driver.link
+        bodies = [g for lk, g in (*self.geoms.items(), *self.block_geom.items()) if lk != drv] + list(self.pl.boxes)
+        ang = np.arange(0.0, 360.0, ARC_STEP)
+        t = np.radians(ang)
+        pts = shapely.points(p[0] + rad * np.cos(t), p[1] + rad * np.sin(t))
+        ok = shapely.contains(view_box(self.ax).buffer(-0.5 * self.st.head_length * self.pp), pts)
+        if ground is not None:
+            ok &= np.abs((ang - ground + 180.0) % 360.0 - 180.0) > 45.0
+        if bodies:
+            ok &= ~shapely.intersects(unary_union(bodies).buffer(0.5 * self.st.head_length * self.pp), pts)
+        if ok.all() or not ok.any():
+            return [(360.0, 0.0)] if ok.all() else []
+        k = int(np.flatnonzero(~ok)[0])   # runs read round the circle from a blocked direction
+        runs, n = [], 0
+        for j in range(1, len(ang) + 1):
+            if ok[(k + j) % len(ang)]:
+                n += 1
+                continue
+            if n > 1:
+                runs.append(((n - 1) * ARC_STEP, float(ang[(k + j - n) % len(ang)])))
+            n = 0
+        return runs
+
+    def _run_plans(self, runs, rad) -> list:
+        """Every (omega's place, alpha's place or None) in the free ``runs`` (:meth:`_free_runs`): omega's arc filling
+        a run (up to 130 deg), alpha's another or beyond omega's; each arc at least :data:`RUN_SPAN` and long enough
+        for its heads."""
+        hl, pc = self.st.head_length * self.pp, self.pc
+
+        def places(rs, r, most, length):
+            out = []
+            for w, start in sorted(rs, reverse=True):
+                span = min(most, w)
+                if span >= RUN_SPAN and math.radians(span) * r >= length * hl:
+                    out.append(_ArcPlace(len(out), start + w / 2, span, r, (w, start)))
+            return out
+        plans = []
+        for w in places(runs, rad, 130.0, 1.8):
+            if not self.m.driver.alpha:
+                plans.append((w, None))
+                continue
+            rest = places([g for g in runs if g != w.gap], rad, 130.0, 2.8)
+            beyond = places([w.gap], rad + 0.45 * pc, 110.0, 2.8)
+            plans += [(w, a) for a in rest + [b._replace(rank=len(rest)) for b in beyond]]
+        return plans
 
     def _arc_points(self, p, rad, mid, span, sense) -> np.ndarray:
         a0, a1 = mid - sense * span / 2, mid + sense * span / 2
@@ -905,20 +1106,29 @@ class _Drawing:
                                          **label_kw))
         return arts, labels
 
-    def value(self, at, text, *, fontsize: float, **kw):
+    def value(self, at, text, *, fontsize: float, reserve: bool = True, **kw):
         """A driver's value beside its arrow (at ``at``), off every line where any free place is: at its size, else
-        smaller (:data:`SMALLER`) where only that finds such a place (a crowd of Kennedy lines on a poles
-        sheet), else at its size where it covers least."""
+        smaller (:data:`SMALLER`, never below the style's small size: a value is read from the back of the room)
+        where only that finds such a place (a crowd of Kennedy lines on a poles sheet), farther still, else at the
+        small size where it covers least; off the point labels' places where any free place is (``reserve``: not
+        when placed again, once the point labels are drawn)."""
         def again():   # placed again, where a later label's leader crosses it (velpoly.render.kennedy)
-            return self.value(at, text, fontsize=fontsize, **kw)
-        for f in (1.0,) + SMALLER:
+            return self.value(at, text, fontsize=fontsize, reserve=False, **kw)
+        floor = self.st.small_size / fontsize
+        sizes = tuple(dict.fromkeys((1.0,) + tuple(max(f, floor) for f in SMALLER)))
+        for f, reach in [(f, False) for f in sizes] + [(f, True) for f in sizes]:
             with self.pl.trial():
                 n = len(self.pl.overlapping)
-                t = self.pl.place(at, text, fontsize=fontsize * f, clear=True, again=again, **kw)
+                t = self.pl.place(at, text, fontsize=fontsize * f, clear=True, reach=reach, again=again,
+                                  accept=self._unreserved if reserve else None, **kw)
                 self.pl.keep = len(self.pl.overlapping) == n and not self.pl.soft_hits(self.pl.box_of(t, pad=0.0))
             if self.pl.of(t) is not None:
                 return self.off_ground(t)
-        return self.off_ground(self.pl.place(at, text, fontsize=fontsize, clear=True, again=again, **kw))
+        return self.off_ground(self.pl.place(at, text, fontsize=fontsize * sizes[-1], clear=True, again=again, **kw))
+
+    def _unreserved(self, b) -> bool:
+        """Whether the box ``b`` (data coordinates) keeps off the point labels' places (:attr:`reserved`)."""
+        return not any(b.intersects(q) for q in self.reserved)
 
     def off_ground(self, t):
         """A driver's value that crowds hatched ground nudged straight away from it to :data:`GROUND_CLEAR`
@@ -958,18 +1168,22 @@ class _Drawing:
         self.pl.move(t, u, nb, geom)
         return t
 
-    def _plan_score(self, p, plan, texts, label_kw) -> tuple:
-        """How a plan reads, lower is better: its arcs cross no other link, block or label and stay in view (an
-        arc cut by the panel's edge runs into the caption above it); then its values lie on no line (soft
-        obstacle) and are placed, close to their arcs; then the wider gaps."""
+    def _plan_crossings(self, p, plan) -> tuple:
+        """How many of a plan's arcs (with their heads) leave the view (an arc cut by the panel's edge runs into the
+        caption above it), then how many other links, blocks and labels they cross."""
         drv = self.m.driver
         others = [g for lk, g in self.geoms.items() if lk != drv.link]
         others += [g for lk, g in self.block_geom.items() if lk != drv.link] + list(self.pl.boxes)
         view = view_box(self.ax)
         arcs = [LineString(self._arc_points(p, place.rad, place.mid, place.span, 1.0 if value >= 0 else -1.0))
                 for place, value in zip(plan, (drv.omega, drv.alpha)) if place is not None]
-        crossed = sum(1 for arc in arcs for g in others if g.intersects(arc)) + \
-            sum(1 for arc in arcs if not view.contains(arc))
+        return (sum(1 for arc in arcs if not view.contains(arc.buffer(0.5 * self.st.head_length * self.pp))),
+                sum(1 for arc in arcs for g in others if g.intersects(arc)))
+
+    def _plan_score(self, p, plan, texts, label_kw) -> tuple:
+        """How a plan's values read, lower is better (its arcs crossing nothing comes first:
+        :meth:`_plan_crossings`): its values lie on no line (soft obstacle) and are placed, close to their arcs;
+        then the wider gaps."""
         with self.pl.trial():
             n_bad = len(self.pl.overlapping)
             _, labels = self._draw_driver(p, plan, texts, label_kw)
@@ -978,7 +1192,27 @@ class _Drawing:
             on_lines = sum(self.pl.soft_hits(b) for b in boxes)
             far = sum(round(float(b.distance(Point(*(p + place.rad * _unit(place.mid))))) / self.pp / 6.0)
                       for b, place in zip(boxes, [q for q in plan if q is not None]))
-        return (crossed, lost, on_lines, far) + tuple(q.rank for q in plan if q is not None)
+        return (lost, on_lines, far) + tuple(q.rank for q in plan if q is not None)
+
+    def _best_plan(self, p, plans, family, texts, label_kw) -> int:
+        """The index of the plan to draw: of those whose arcs cross fewest (:meth:`_plan_crossings`), the one whose
+        values are all placed and on no line, in the first family (the widest gap's arc, then each radius's free
+        runs: :data:`ARC_RADII`) that has one; then closest to their arcs, in the widest gaps
+        (:meth:`_plan_score`). A later family is scored only where no earlier one has such a plan."""
+        crossings = [self._plan_crossings(p, plan) for plan in plans]
+        least = min(crossings)
+        best = None
+        for fam in sorted(set(family)):
+            for i in range(len(plans)):
+                if family[i] != fam or crossings[i] != least:
+                    continue
+                score = self._plan_score(p, plans[i], texts, label_kw)
+                key = score[:2] + (fam,) + score[2:]
+                if best is None or key < best[0]:
+                    best = (key, i)
+            if best is not None and best[0][:2] == (0, 0):
+                break
+        return best[1]
 
     def curved_arrow(self, xy, gid, double=False) -> list:
         """An arrow along the points ``xy`` (its head at the last; a second head behind it when ``double``)."""
@@ -1013,19 +1247,26 @@ class _Drawing:
     def turning_driver(self, pivot, p, ground_dir):
         """omega's arc in a free gap about the pivot (the widest, unless another reads better), alpha's
         (double-headed) in another free gap or beyond omega's in the same, each in its sense, each labelled
-        with its value beside it: of every such layout, the one whose arcs cross nothing and whose values lie
+        with its value beside it: of every such layout, the one whose arcs cross nothing (at the radius of
+        :data:`ARC_RADII` that crosses least, the first of them where that is no worse) and whose values lie
         on no line, close to their arcs."""
         drv, st = self.m.driver, self.st
         lk = link_math(drv.link)   # velpoly.names: a word upright, as written
         texts = (rf"$\omega_{{{lk}}}$ = {abs(drv.omega):.4g} rad/s {'ccw' if drv.omega >= 0 else 'cw'}",
                  rf"$\alpha_{{{lk}}}$ = {abs(drv.alpha):.4g} rad/s² {'ccw' if drv.alpha > 0 else 'cw'}")
         label_kw = dict(fontsize=st.small_size * 1.15, zorder=7)
-        plans = self._driver_plans(self._driver_gaps(pivot, p, ground_dir), 0.8 * self.pc)
+        gaps = self._driver_gaps(pivot, p, ground_dir)
+        plans, family = self._driver_plans(gaps, ARC_RADIUS * self.pc), []
+        family += [0] * len(plans)
+        for i, r in enumerate(ARC_RADII, 1):
+            more = self._run_plans(self._free_runs(p, r * self.pc, ground_dir.get(pivot)), r * self.pc)
+            plans += more
+            family += [i] * len(more)
         pin = self.pl.pins.get("driver-plan")   # a step frame: the finished construction's layout (scored here, with
         if pin is not None and pin[0] == "plan" and pin[1] < len(plans):   # its values at their pins, another may win)
             k = pin[1]
         else:
-            k = min(range(len(plans)), key=lambda i: self._plan_score(p, plans[i], texts, label_kw))
+            k = self._best_plan(p, plans, family, texts, label_kw)
         self.pl.placed["driver-plan"] = ("plan", k)
         best = plans[k]
         arts, labels = self._draw_driver(p, best, texts, label_kw)

@@ -204,7 +204,8 @@ class LabelPlacer:
     # -- placing -----------------------------------------------------------------------
     def place(self, anchor, s: str, *, prefer: float | None = None, gap: float = 2.5, leader: bool = True,
               gid: str | None = None, obstacle: bool = True, pad: float = 1.0, within: float | None = None,
-              accept=None, clear: bool = False, reach: bool = False, again: Callable | None = None, **text_kw):
+              accept=None, clear: bool = False, reach: bool = False, again: Callable | None = None, only: bool = False,
+              **text_kw):
         """Draw text ``s`` near ``anchor`` where it overlaps nothing; return the Text.
 
         ``prefer``: the preferred direction from the anchor (degrees), e.g.
@@ -217,7 +218,8 @@ class LabelPlacer:
         of ``prefer`` (a label that must sit on one side of its anchor); if none
         of them is free, every direction. ``accept``: a test of a candidate box
         (data coordinates) it must pass where any free place does (a pole's label
-        nearer its own ring than any other). ``clear``: when every free place near
+        nearer its own ring than any other; ``only``: even where a place failing it
+        crosses fewer lines). ``clear``: when every free place near
         the anchor lies on a line (a soft obstacle), look farther out (with a
         leader) for one on none. ``reach``: when nothing is free within the far
         rings, farther still (:data:`REACH_RINGS`: a long leader out of a crowd
@@ -234,7 +236,7 @@ class LabelPlacer:
         if best is None:
             scene = _Scene(self, anchor, pp)
             best = self._search(anchor, w, h, prefer, gap, leader, within, accept, clear, reach, scene)
-            if accept is not None and (best is None or best[0] != (0, 0)):   # a line under it is worse
+            if accept is not None and not only and (best is None or best[0] != (0, 0)):   # a line under it is worse
                 anywhere = self._search(anchor, w, h, prefer, gap, leader, within, None, clear, reach, scene)
                 if anywhere is not None and (best is None or anywhere[0] < best[0]):
                     best = anywhere
