@@ -67,14 +67,15 @@ def _centre(sol) -> np.ndarray:
     return np.array([(x0 + x1) / 2, (y0 + y1) / 2])
 
 
-def poles_bounds(sol, ps, reach: float = REACH) -> tuple[float, float, float, float]:
+def poles_bounds(sol, ps, reach: float | None = None) -> tuple[float, float, float, float]:
     """The mechanism's box grown to hold every finite pole within ``reach`` mechanism sizes of its centre
-    (:data:`REACH`). A crowded poles sheet's view holds fewer (``velpoly.render.sheet.CROWD_REACHES``, less
+    (None: :data:`REACH`). A crowded poles sheet's view holds fewer (``velpoly.render.sheet.CROWD_REACHES``, less
     than :data:`REACH`) and is grown towards each farther pole to :data:`FAR_BAND` sizes beyond the box's
     corners (where its arrow at the border stands clear of the links)."""
     x0, y0, x1, y1 = mechanism_bounds(sol)
     c = _centre(sol)
     size = sol.mechanism.size
+    reach = REACH if reach is None else reach
     band = math.hypot(x1 - x0, y1 - y0) / 2 + FAR_BAND * size if reach < REACH else 0.0
     for p in ps.poles.values():
         if p.position is None:
@@ -144,7 +145,7 @@ def draw_poles(sol, ax=None, *, style="textbook", options=None, poleset=None, up
     opts = options if options is not None else drawing_options(sol.mechanism)
     ps = _poleset(sol, poleset)
     if view_scale(ax) is None:
-        fit_view(ax, poles_bounds(sol, ps, reach or REACH), scale=opts.scale, margin=0.1)
+        fit_view(ax, poles_bounds(sol, ps, reach), scale=opts.scale, margin=0.1)
         ax.set_axis_off()
     art = Artists(ax)
     art.labels = {}
@@ -433,7 +434,7 @@ def _label_poles(sol, ax, ps, shown, pole_lines, st, art, reach: float | None = 
     c = _centre(sol)
     # arrows to poles at infinity stand at the border of what is drawn, not of the whole panel
     from shapely.geometry import box as sbox
-    bx0, by0, bx1, by1 = poles_bounds(sol, ps, reach or REACH)
+    bx0, by0, bx1, by1 = poles_bounds(sol, ps, reach)
     content = sbox(bx0 - 1.6 * pc, by0 - 1.6 * pc, bx1 + 1.6 * pc, by1 + 1.6 * pc).intersection(view)
     rings = list(art.rings.values())
     colour = _pole_colour(st)

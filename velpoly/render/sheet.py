@@ -189,11 +189,11 @@ def _fit(ax, bounds, s: float | None) -> None:
 def _bounds(sol, cons: Constructions, name: str, reach: float | None = None):
     """What panel ``name`` draws, as a box in its own units (``reach``: the poles' view holds the poles within
     so many mechanism sizes, :func:`velpoly.render.kennedy.poles_bounds`)."""
-    from .kennedy import REACH, poles_bounds
+    from .kennedy import poles_bounds
     if name == "mechanism":
         return _space_bounds(sol, cons)
     if name == "poles":
-        return poles_bounds(sol, cons.poles, reach or REACH)
+        return poles_bounds(sol, cons.poles, reach)
     if name == "kennedy":
         return (-1.3, -1.3, 1.3, 1.3)   # the circle and its links' labels
     return polygon_bounds(getattr(cons, name))
@@ -687,8 +687,8 @@ def _draw_panels(sol, axes, st, opts, cons, sheet, frame, plan, pins) -> dict:
                                                       plan.scales.get("mechanism"))
     if "poles" in axes:
         ax = axes["poles"]
-        from .kennedy import REACH, poles_bounds
-        _fit(ax, poles_bounds(sol, cons.poles, plan.reach or REACH), plan.scales["poles"])
+        from .kennedy import poles_bounds
+        _fit(ax, poles_bounds(sol, cons.poles, plan.reach), plan.scales["poles"])
         ax.set_axis_off()
         draw_poles(sol, ax, style=st, options=opts, poleset=cons.poles, upto=frame.poles, reach=plan.reach)
         captions["poles"] = scale_text(view_scale(ax), sol.mechanism.units, 0)
