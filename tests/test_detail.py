@@ -206,7 +206,7 @@ def test_detail_frames_cover_nothing_of_their_panel_on_generated_mechanisms():
     from frame_checks import frame_clashes
     rng = np.random.default_rng(1721)
     drawn, kinds, scales = 0, set(), []
-    for sp in zoo.zoo(seed=1721, count=16):
+    for sp in zoo.each(seed=1721, count=16):   # made as they are looked at: 6 of the 16
         if drawn == 6:
             break
         try:

@@ -133,9 +133,13 @@ def check_links(sol, ax, art, style):
 def test_driver_and_links_on_generated_mechanisms():
     """Every kind of the zoo (seeded; every seventh variant, 9 of them: every fourth, 14, until the suite had to
     fit 2 minutes), in both styles alternately: the driver's arrows in their senses, the driver on top, plates as
-    one polygon, slides circles no larger than the links."""
-    specimens = zoo.zoo(seed=77, count=len(zoo.variants()))[::7]    # every kind, a seventh of the variants
-    assert {k for k, _ in zoo.variants()[::7]} == set(zoo.KINDS)
+    one polygon, slides circles no larger than the links. Only the nine drawn are made (from one seeded
+    generator: until issue 19 item 7's twelfth session, the first 57 of ``zoo(77)`` were made and every seventh
+    drawn; 0.9 CPU s for 48 specimens never looked at)."""
+    rng = np.random.default_rng(77)
+    pairs = zoo.variants()[::7]                          # every kind, a seventh of the variants
+    assert {k for k, _ in pairs} == set(zoo.KINDS)
+    specimens = [zoo.specimen(rng, *pair) for pair in pairs]
     kinds = {"alpha": 0, "no alpha": 0, "slider accel": 0, "plate": 0}
     for i, sp in enumerate(specimens):
         sol = sp.drawn

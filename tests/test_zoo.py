@@ -355,8 +355,12 @@ def test_auxiliary_point_reached_through_a_slip_is_true():
 
 def test_a_seed_s_specimens_are_made_once_and_each_call_gets_its_own_dicts():
     """zoo.zoo shares a seed's specimens within the process: a longer batch goes on from a shorter one, as
-    fresh_zoo makes them; the solutions are shared, each call's dicts are its own."""
+    fresh_zoo makes them; the solutions are shared, each call's dicts are its own. zoo.each hands out the same
+    specimens one at a time, going on from those made (two made here, then one more) with dicts of its own."""
     first = zoo.zoo(424242, 3)
     more = zoo.zoo(424242, 5)
     assert [s.mech for s in more] == [s.mech for s in zoo.fresh_zoo(424242, 5)]
     assert all(a.drawn is b.drawn and a.mech is not b.mech and a.mech == b.mech for a, b in zip(first, more))
+    one = list(zoo.each(424242, 6))
+    assert [s.mech for s in one] == [s.mech for s in zoo.fresh_zoo(424242, 6)]
+    assert all(a.drawn is b.drawn and a.mech is not b.mech for a, b in zip(one, more))

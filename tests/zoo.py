@@ -767,6 +767,19 @@ def zoo(seed: int = 2026, count: int = 300) -> list[Specimen]:
     count, and a longer batch goes on from a shorter one (test_zoo's 300 of seed 20261125, test_captions' 90,
     test_chain_poles' 57; test_zoo checks them against :func:`fresh_zoo`'s). Each call gets its own copies of
     the mechanisms' dicts (a test may change them); the drawn poses' solutions are shared (read only)."""
+    return [replace(sp, mech=copy.deepcopy(sp.mech)) for sp in _made(seed, count)[:count]]
+
+
+def each(seed: int = 2026, count: int = 300):
+    """:func:`zoo`'s specimens one at a time (the same, shared the same way, each with its own copy of the
+    mechanism's dict), made as they are asked for: a test that stops at the first few that suit it makes no more."""
+    for k in range(count):
+        sp = _made(seed, k + 1)[k]
+        yield replace(sp, mech=copy.deepcopy(sp.mech))
+
+
+def _made(seed: int, count: int) -> list:
+    """The seed's specimens made so far in this process, at least ``count`` of them."""
     rng, made = _MADE.setdefault(seed, (np.random.default_rng(seed), []))
     pairs = variants()
     try:
@@ -775,4 +788,4 @@ def zoo(seed: int = 2026, count: int = 300) -> list[Specimen]:
     except BaseException:
         del _MADE[seed]     # the generator went on without its specimen: start that seed again
         raise
-    return [replace(sp, mech=copy.deepcopy(sp.mech)) for sp in made[:count]]
+    return made
