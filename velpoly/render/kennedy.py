@@ -25,7 +25,7 @@ from shapely.geometry import LineString, Point
 from .canvas import (Artists, arrow, border_point, fit_view, get_ax, math_literal, per_cm, per_point, view_box,
                      view_scale)
 from .displacement import SMALLER, draw_mechanism, mechanism_bounds, shape_patch
-from .labels import _drawn, placer, segment
+from .labels import placer, segment
 from .options import drawing_options
 from .style import get_style
 
@@ -168,12 +168,19 @@ def draw_poles(sol, ax=None, *, style="textbook", options=None, poleset=None, up
         art.point_labels = mech.labels
     _draw_kennedy_lines(ax, klines, st, art)
     _draw_pole_marks(sol, ax, shown, st, art)
-    how = _label_poles(sol, ax, ps, shown, pole_lines, st, art, reach)
+    _apart(pl, art, _label_poles(sol, ax, ps, shown, pole_lines, st, art, reach))
+    return art
+
+
+def _apart(pl, art, how: dict) -> None:
+    """The leaders a crowd's last-resort places leave crossing taken apart, in turn: two pole labels' places
+    swapped (:func:`_untangle`), one label moved to where it covers least (:func:`_uncross`), the two labels of a
+    crossing placed again together (:func:`_afresh`); then the driver's values a pole label's leader crosses
+    placed again (:func:`_off_the_leaders`). ``how``: :func:`_label_poles`'."""
     _untangle(pl, art)
     _uncross(pl, art, how)
     _afresh(pl, art, how)
     _off_the_leaders(pl, art)
-    return art
 
 
 def _untangle(pl, art) -> None:
@@ -242,8 +249,7 @@ def _place_again(pl, art, olds: list, how: dict) -> bool:
     """The placed labels ``olds`` (each with its pole's key, or None for a driver's value) lifted and placed again
     as at first (a pole's by :func:`_place_free` with ``how``'s arguments, a value by its ``again``), in either
     order, kept where :func:`_better`; whether they moved."""
-    from .labels import _tally
-    before = (_tally(pl._crossings()), [_hard_hits(pl, p) for p, _ in olds])
+    before = (pl.tally(), [_hard_hits(pl, p) for p, _ in olds])
     idx = [pl.labels.index(p) for p, _ in olds]
     for k in sorted(idx, reverse=True):
         del pl.labels[k]
@@ -268,11 +274,10 @@ def _place_again(pl, art, olds: list, how: dict) -> bool:
 
 def _better(pl, art, olds: list, new: list, before: tuple) -> bool:
     """Whether the labels ``olds`` (:func:`_place_again`'s, lifted) placed anew as ``new`` (their Texts) leave
-    fewer crossings than ``before[0]`` (:func:`~velpoly.render.labels._tally`) with no label on more hard
+    fewer crossings than ``before[0]`` (:meth:`~velpoly.render.labels.LabelPlacer.tally`) with no label on more hard
     obstacles (Kennedy lines, marks, leaders) than ``before[1]`` (each where it stood), as many pole labels
     nearer their own rings than any other as before, and none on a drawn line where it was on none."""
-    from .labels import _tally
-    if _tally(pl._crossings()) >= before[0]:
+    if pl.tally() >= before[0]:
         return False
     lines, rings = _drawn_lines(pl.ax), list(art.rings.values())
     placed = [pl.of(t) for t in new]
@@ -309,7 +314,8 @@ def _off_the_leaders(pl, art) -> None:
         if any(line.intersects(box) for line in lines):
             pl.remove(t)   # with its own leader, which is drawn again with it
             new = p.again()
-        elif p.leader is not None and any(line.intersects(_drawn(p.leader)) for line in lines):
+        elif p.leader is not None and any(line.intersects(LineString(np.column_stack(p.leader.get_data())))
+                                          for line in lines):
             new = _again_free(pl, p)
         else:
             continue
@@ -320,15 +326,14 @@ def _off_the_leaders(pl, art) -> None:
 def _again_free(pl, p):
     """The placed label ``p`` (a driver's value, :attr:`~velpoly.render.labels.Placed.again`) placed again, its
     own box and leader lifted, where that finds a free place (no last resort) and leaves fewer crossings
-    (:func:`~velpoly.render.labels._tally`): the new Text, else ``p``'s, left where it stood."""
-    from .labels import _tally
-    before = _tally(pl._crossings())
+    (:meth:`~velpoly.render.labels.LabelPlacer.tally`): the new Text, else ``p``'s, left where it stood."""
+    before = pl.tally()
     k = pl.labels.index(p)
     del pl.labels[k]
     with pl.trial():
         n = len(pl.overlapping)
         new = p.again()
-        pl.keep = len(pl.overlapping) == n and _tally(pl._crossings()) < before
+        pl.keep = len(pl.overlapping) == n and pl.tally() < before
     if pl.of(new) is None:
         pl.labels.insert(k, p)
         return p.text
