@@ -168,11 +168,19 @@ def draw_poles(sol, ax=None, *, style="textbook", options=None, poleset=None, up
         art.point_labels = mech.labels
     _draw_kennedy_lines(ax, klines, st, art)
     _draw_pole_marks(sol, ax, shown, st, art)
-    how = _label_poles(sol, ax, ps, shown, pole_lines, st, art, reach)
+    _apart(pl, art, _label_poles(sol, ax, ps, shown, pole_lines, st, art, reach))
+    return art
+
+
+def _apart(pl, art, how: dict) -> None:
+    """The leaders a crowd's last-resort places leave crossing taken apart, in turn: two pole labels' places
+    swapped (:func:`_untangle`), one label moved to where it covers least (:func:`_uncross`), the two labels of a
+    crossing placed again together (:func:`_afresh`); then the driver's values a pole label's leader crosses
+    placed again (:func:`_off_the_leaders`). ``how``: :func:`_label_poles`'."""
     _untangle(pl, art)
     _uncross(pl, art, how)
+    _afresh(pl, art, how)
     _off_the_leaders(pl, art)
-    return art
 
 
 def _untangle(pl, art) -> None:
@@ -210,21 +218,129 @@ def _uncross(pl, art, how: dict) -> None:
         pl.relocate(t, kw["prefer"], kw.get("accept"), sizes)
 
 
+def _afresh(pl, art, how: dict) -> None:
+    """Leaders that still cross (issue 17: one cannot tell which ring is which) where the labels in the crossing
+    (a pole's, and the other if it is a pole's or a driver's value, :attr:`~velpoly.render.labels.Placed.again`)
+    lifted together and placed again as at first, in either order (the one placed second keeps off the first's
+    new leader), leave fewer crossings (:func:`_place_again`). Untangling by swaps (:func:`_untangle`) and by
+    moving one label to where it covers least (:func:`_uncross`) keeps a pair whose swapped leaders strike
+    through another label, or a label with no free place while its neighbour in the crossing stands; lifting
+    both frees one. Each pair is tried once. A step frame's labels stand where the finished construction's do:
+    left as placed."""
+    if pl.pins:
+        return
+    tried = set()
+    for _ in range(2 * len(art.labels)):
+        poles = {id(t): k for k, t in art.labels.items()}
+        pairs = {}
+        for i, j, _ in pl._crossings():
+            two = [p for p in (pl.labels[i], pl.labels[j]) if id(p.text) in poles or p.again is not None]
+            gids = tuple(p.text.get_gid() for p in two)
+            if any(id(p.text) in poles for p in two) and gids not in tried:
+                pairs.setdefault(gids, two)
+        if not pairs:
+            return
+        gids, two = next(iter(pairs.items()))
+        tried.add(gids)
+        _place_again(pl, art, [(p, poles.get(id(p.text))) for p in two], how)
+
+
+def _place_again(pl, art, olds: list, how: dict) -> bool:
+    """The placed labels ``olds`` (each with its pole's key, or None for a driver's value) lifted and placed again
+    as at first (a pole's by :func:`_place_free` with ``how``'s arguments, a value by its ``again``), in either
+    order, kept where :func:`_better`; whether they moved."""
+    before = (pl.tally(), [_hard_hits(pl, p) for p, _ in olds])
+    idx = [pl.labels.index(p) for p, _ in olds]
+    for k in sorted(idx, reverse=True):
+        del pl.labels[k]
+    kept = False
+    try:
+        for order in (olds, olds[::-1])[:len(olds)]:
+            with pl.trial():
+                new = {id(p): (_place_free(pl, *how[k][:2], **how[k][2]) if k is not None else p.again())
+                       for p, k in order}
+                pl.keep = _better(pl, art, olds, [new[id(p)] for p, _ in olds], before)
+            kept = all(pl.of(t) is not None for t in new.values())
+            if kept:
+                break
+    finally:
+        if not kept:   # the lifted ones back where they stood
+            for k, p in sorted(zip(idx, (p for p, _ in olds)), key=lambda x: x[0]):
+                pl.labels.insert(k, p)
+    for p, k in olds if kept else ():
+        _replace_text(pl, art, p, k, new[id(p)])
+    return kept
+
+
+def _better(pl, art, olds: list, new: list, before: tuple) -> bool:
+    """Whether the labels ``olds`` (:func:`_place_again`'s, lifted) placed anew as ``new`` (their Texts) leave
+    fewer crossings than ``before[0]`` (:meth:`~velpoly.render.labels.LabelPlacer.tally`) with no label on more hard
+    obstacles (Kennedy lines, marks, leaders) than ``before[1]`` (each where it stood), as many pole labels
+    nearer their own rings than any other as before, and none on a drawn line where it was on none."""
+    if pl.tally() >= before[0]:
+        return False
+    lines, rings = _drawn_lines(pl.ax), list(art.rings.values())
+    placed = [pl.of(t) for t in new]
+    if any(_hard_hits(pl, p) > hits for p, hits in zip(placed, before[1])) or any(
+            _on_lines(pl, p.text, lines) and not _on_lines(pl, old.text, lines) for (old, _), p in zip(olds, placed)):
+        return False
+    tests = [_nearer_own(art.rings[k], rings) if k in art.rings else (lambda b: True) for _, k in olds]
+    return sum(f(p.box) for f, p in zip(tests, placed)) >= sum(f(old.box) for f, (old, _) in zip(tests, olds))
+
+
+def _replace_text(pl, art, old, key, new) -> None:
+    """The label ``old`` (a :class:`~velpoly.render.labels.Placed`, lifted; ``key``: its pole's, or None) taken
+    off the axes with its leader, ``new`` (its Text placed anew) standing for it in ``art``."""
+    if old.leader is not None:
+        old.leader.remove()
+    old.text.remove()
+    pl.overlapping[:] = [t for t in pl.overlapping if t is not old.text]
+    if key is not None:
+        art.labels[key] = new
+    for role in art.values():
+        role[:] = [new if a is old.text else a for a in role]
+
+
 def _off_the_leaders(pl, art) -> None:
     """The driver's values that a pole label's leader crosses (they are placed before the poles' labels, and a
-    crowded pole's label may have had no other place) placed again, now clear of the leaders."""
+    crowded pole's label may have had no other place) placed again, now clear of the leaders; one whose own
+    leader crosses a pole label's placed again where a free place leaves fewer crossings (:func:`_again_free`)."""
     poles = {id(t) for t in art.labels.values()}
     lines = [LineString(np.column_stack(p.leader.get_data())) for p in pl.labels
              if id(p.text) in poles and p.leader is not None]
     for p in [p for p in pl.labels if p.again is not None]:
         t = p.text
         box = pl.box_of(t, pad=0.0)
-        if not any(line.intersects(box) for line in lines):
+        if any(line.intersects(box) for line in lines):
+            pl.remove(t)   # with its own leader, which is drawn again with it
+            new = p.again()
+        elif p.leader is not None and any(line.intersects(LineString(np.column_stack(p.leader.get_data())))
+                                          for line in lines):
+            new = _again_free(pl, p)
+        else:
             continue
-        pl.remove(t)   # with its own leader, which is drawn again with it
-        new = p.again()
         for role in art.values():
             role[:] = [new if a is t else a for a in role]
+
+
+def _again_free(pl, p):
+    """The placed label ``p`` (a driver's value, :attr:`~velpoly.render.labels.Placed.again`) placed again, its
+    own box and leader lifted, where that finds a free place (no last resort) and leaves fewer crossings
+    (:meth:`~velpoly.render.labels.LabelPlacer.tally`): the new Text, else ``p``'s, left where it stood."""
+    before = pl.tally()
+    k = pl.labels.index(p)
+    del pl.labels[k]
+    with pl.trial():
+        n = len(pl.overlapping)
+        new = p.again()
+        pl.keep = len(pl.overlapping) == n and pl.tally() < before
+    if pl.of(new) is None:
+        pl.labels.insert(k, p)
+        return p.text
+    if p.leader is not None:
+        p.leader.remove()
+    p.text.remove()
+    return new
 
 
 def _kennedy_lines(ps, shown, current, vb, pc):

@@ -640,6 +640,11 @@ class LabelPlacer:
             return None
         return _leader_segment(anchor, b, pp)
 
+    def tally(self) -> tuple[int, int]:
+        """The placed labels' crossings as :func:`_tally` counts them: (leaders across a label, leaders across a
+        leader); fewer is better, a label struck through first."""
+        return _tally(self._crossings())
+
     def _crossings(self, labels=None) -> list:
         """(i, j) of every leader of label i that crosses the leader or the box of label j (see :func:`_tally`)."""
         labels = self.labels if labels is None else labels

@@ -214,6 +214,7 @@ class _Plan:
     table: object = None
     reach: float | None = None   # a crowded poles sheet's view: the poles within so many mechanism sizes (else None:
     #                              kennedy.REACH; kennedy.draw_poles' reach)
+    crowded: bool = False        # a crowded poles sheet (_Planner.crowded): its step frames keep this plan
 
 
 class _Planner:
@@ -435,7 +436,7 @@ class _Planner:
                 plan = other
             if not self.crowded(plan):
                 break
-        return plan
+        return replace(plan, crowded=True)
 
     def crowded(self, plan) -> bool:
         """Whether the poles panel of ``plan`` gives its labels (a pole's and a point's each) less than
@@ -764,14 +765,10 @@ def render(sol, sheet: str = "full", style="textbook", *, cons: Constructions | 
     new_canvas(fig)
     title = _page(fig, st, m, sol)
     two = bool(equivalent_linkage_note(m)) and sheet != "poles"
-    top = _top(fig, st, title, frame.caption, two)
-    plan = _plan(fig, sol, st, opts, cons, sheet, top, True)
-    # the book's rows or notes cut: every one of them on a page of its own (table_page), as the last line says;
-    # a slide laid out again for its drawings, its table in less room (its height goes to the drawings; a
-    # page, read closer, keeps the rows it has room for)
-    own_page = plan.table is not None and cuts_the_book(plan.table)
-    if own_page and st.name == "slides":
-        plan = _plan(fig, sol, st, opts, cons, sheet, top, True, cut=True)
+    if frame.caption and sheet == "poles":
+        plan, own_page = _poles_frame(fig, sol, st, opts, cons, title, frame)
+    else:
+        plan, own_page = _laid_out(fig, sol, st, opts, cons, sheet, _top(fig, st, title, frame.caption, two))
     if own_page:
         plan.table.see_table_page()
     if plan.table is not None and frame.table:   # a step before the last: the answers not yet given
@@ -790,6 +787,89 @@ def render(sol, sheet: str = "full", style="textbook", *, cons: Constructions | 
         for name, ax in axes.items():
             fig._velpoly_pins[name]["_crowded"] = ("crowded", placer(ax).crowded())
     return Rendered(fig, own_page)
+
+
+def _laid_out(fig, sol, st, opts, cons, sheet: str, top: float) -> tuple:
+    """The sheet's plan (:func:`_plan`) under ``top`` and whether its table has a page of its own (the book's rows
+    or notes cut: every one of them on that page, as the table's last line says); a slide's then laid out
+    again for its drawings, its table in less room (its height goes to the drawings; a page, read closer, keeps
+    the rows it has room for)."""
+    plan = _plan(fig, sol, st, opts, cons, sheet, top, True)
+    own_page = plan.table is not None and cuts_the_book(plan.table)
+    if own_page and st.name == "slides":
+        plan = _plan(fig, sol, st, opts, cons, sheet, top, True, cut=True)
+    return plan, own_page
+
+
+def _poles_frame(fig, sol, st, opts, cons, title, frame) -> tuple:
+    """A poles sheet's step frame's plan and whether its table has a page of its own (:func:`_laid_out`). A
+    crowded sheet's frames (crowded as the plain sheet is laid out, or as a frame would be under its caption)
+    keep the plain sheet's layout: its drawing's scale, view and panels where the sheet without ``--steps`` has
+    them (a lecturer flips from the steps to the finished sheet and sees the same drawing), the step's caption
+    at the top of the table's room (which a frame before the last leaves empty), the last frame's table
+    under it (:func:`_caption_over_table`). Any other sheet's frames (or one whose caption the table's room
+    cannot hold) are laid out under their caption."""
+    plain, own_page = _laid_out(fig, sol, st, opts, cons, "poles", _top(fig, st, title, "", False))
+    plan, own = _laid_out(fig, sol, st, opts, cons, "poles", _top(fig, st, title, frame.caption, False))
+    if plain.table is None or not (plain.crowded or plan.crowded):
+        return plan, own
+    under_title = [t for t in fig.texts if t.get_gid() == "step-caption"]
+    got = _caption_over_table(fig, sol, st, cons, plain, own_page, frame)
+    if got is None:
+        return plan, own
+    for t in under_title:
+        t.remove()
+    return got
+
+
+def _caption_over_table(fig, sol, st, cons, plan, own_page: bool, frame) -> tuple | None:
+    """The step's caption, boxed as :func:`_step_caption`'s, at the top of the table's room in ``plan`` (a crowded
+    poles sheet's plain layout), in as many lines as that width takes; the last frame's table measured in the
+    room under it (its rows cut to it): the plan and whether the table has a page of its own (None, the
+    caption taken off again, where the room cannot hold it)."""
+    from .canvas import renderer_of
+    r = renderer_of(fig)
+    x, y, w, h = plan.table.rect
+    t = fig.text(x + w / 2, y + h, "", ha="center", va="top", fontsize=st.font_size * 1.1, gid="step-caption",
+                 bbox=dict(boxstyle="round,pad=0.3", facecolor=st.paper, edgecolor=st.ink, lw=st.thin_lw))
+    pad = (0.3 * st.font_size * 1.1 + st.thin_lw) / 72   # inches: the box's pad and its outline
+    room = w * fig.get_figwidth() * fig.dpi - 2 * pad * fig.dpi
+
+    def width_of(text):
+        t.set_text(text)
+        return t.get_window_extent(r).width
+    t.set_text("\n".join(_lines(frame.caption, width_of, room)))
+    fit_width(fig, t, w - 2 * pad / fig.get_figwidth())
+    t.set_y(y + h - pad / fig.get_figheight())
+    bottom = (t.get_window_extent(r).y0 / fig.dpi - pad) / fig.get_figheight()
+    if bottom < y:
+        t.remove()
+        return None
+    if not frame.table:
+        return plan, own_page
+    bottom -= TABLE_GAP / _page_cm(st)[1]
+    table = _measure_table(sol, fig, (x, y, w, max(bottom - y, 1e-3)), "poles", st, cons, plan.table.table)
+    return replace(plan, table=table), own_page or cuts_the_book(table)
+
+
+def _lines(text: str, width_of, room: float) -> list[str]:
+    """``text`` broken at spaces outside mathtext ($...$) into lines no wider than ``room`` (``width_of``: a
+    text's width, in its units), each as full as it can be (a word wider than the line stands alone on it)."""
+    words, inside, start = [], False, 0
+    for i, ch in enumerate(text):
+        if ch == "$":
+            inside = not inside
+        elif ch == " " and not inside:
+            words.append(text[start:i])
+            start = i + 1
+    words.append(text[start:])
+    lines = []
+    for word in words:
+        if lines and width_of(lines[-1] + " " + word) <= room:
+            lines[-1] += " " + word
+        else:
+            lines.append(word)
+    return lines
 
 
 def table_page(sol, sheet: str = "full", style="textbook", *, cons: Constructions | None = None):
