@@ -473,6 +473,13 @@ class Beside:
         """The shift of the vector ``tail`` -> ``head``: none where it lies along no vector drawn; else the nearest
         offset, at right angles to it, whose copy lies along none (of the two sides, the one whose copy crosses
         fewer vectors, then the one away from ``centre``, the polygon's middle). It is drawn there."""
+        shift = self._beside(tail, head, centre) if np.any(self._along(tail, head)) else np.zeros(2)
+        self.tails.append(tail + shift)
+        self.heads.append(head + shift)
+        return shift
+
+    def _beside(self, tail, head, centre) -> np.ndarray:
+        """:meth:`add`'s shift of a vector that lies along one drawn (else the one whose copy lies along fewest)."""
         d = head - tail
         n = np.array([-d[1], d[0]]) / float(np.hypot(*d))
         side = 1.0 if float(np.dot(n, 0.5 * (tail + head) - centre)) >= 0 else -1.0
@@ -486,10 +493,7 @@ class Beside:
                     best = (score, s)
             if best[0][0] == 0:
                 break
-        shift = best[1]
-        self.tails.append(tail + shift)
-        self.heads.append(head + shift)
-        return shift
+        return best[1]
 
     def _along(self, p, q) -> np.ndarray:
         if not self.tails:
