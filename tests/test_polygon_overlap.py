@@ -122,7 +122,7 @@ def test_slides_draw_the_swinging_blocks_slip_apart(specimens):
     assert "slip along the path" in [t.get_text() for t in ax.get_legend().get_texts()]
 
 
-@settings(max_examples=40, deadline=None)
+@settings(max_examples=25, deadline=None)
 @given(st.lists(st.tuples(st.floats(-5, 5), st.floats(-5, 5), st.sampled_from([0.0, 0.3, 1.0]),
                           st.booleans()), min_size=2, max_size=6),
        st.floats(0, 180))
@@ -147,3 +147,27 @@ def test_beside_puts_no_vector_along_another(segments, angle):
     for i, a in enumerate(placed):
         for c in placed[i + 1:]:
             assert _one_line(np.array(a), np.array(c), 0.2) <= 0.4 + 1e-9
+
+
+def test_step_frames_draw_each_vector_where_the_last_frame_does(specimens):
+    """The offsets are planned on the finished construction: a ``--steps`` frame draws each of its vectors where the
+    finished polygon has it (nothing jumps from frame to frame), moved ones included."""
+    sp = specimens[2]
+    poly = acceleration_polygon(sp.drawn)
+
+    def shifts(upto):
+        with rc_context(get_style("textbook")):
+            fig = Figure(figsize=(5, 4), dpi=72)
+            FigureCanvasAgg(fig)
+            ax = fig.add_axes((0.02, 0.02, 0.96, 0.96))
+            art = P.draw_polygon(poly, ax, mechanism=sp.drawn.mechanism, style="textbook", upto=upto)
+        return {(tuple(np.round(t, 9)), tuple(np.round(h, 9))): np.asarray(hd._velpoly_shift) / per_point(ax)
+                for _, t, h, hd in art.arrows}
+
+    final = shifts(None)
+    assert any(np.any(s) for s in final.values())
+    for upto in (len(poly.steps) - 1,):
+        frame = shifts(upto)
+        assert frame
+        for key, s in frame.items():
+            assert np.allclose(s, final[key], rtol=0, atol=1e-9), key
