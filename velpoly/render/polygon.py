@@ -30,7 +30,7 @@ from .scalebar import scale_bar
 from .style import KIND_LABELS, get_style, link_colour
 
 __all__ = ["draw_polygon", "draw_velocity_polygon", "draw_acceleration_polygon", "polygon_bounds",
-           "known_keys", "image_groups", "legend_room"]
+           "known_keys", "image_groups", "legend_room", "lying_along", "Beside", "APART"]
 
 _REL_TOL = 1e-9
 
