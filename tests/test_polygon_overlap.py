@@ -68,13 +68,13 @@ def _one_line(a, b, width: float) -> float:
 
 
 def _check(ax, art, style):
-    """Every pair of drawn vectors apart on paper; every vector drawn where it is, or as its offset copy. Returns
-    how many are offset."""
+    """Every pair of drawn vectors apart on paper, or two images on one ray from one tail; every vector drawn where
+    it is, or as its offset copy. Returns how many are offset and how many pairs stay on one ray."""
     s = get_style(style)
     width = s.arrow_lw * s.kind_styles["absolute"][2] * MM       # an absolute vector's stroke
     pp = per_point(ax)
     assert len(art["shafts"]) == len(art.arrows)
-    drawn, moved = [], 0
+    drawn, moved, on_ray = [], 0, 0
     for (kind, tail, head, patch), sh in zip(art.arrows, art["shafts"]):
         shift = np.asarray(getattr(patch, "_velpoly_shift", np.zeros(2)), float)
         x, y = sh.get_data()
@@ -94,22 +94,29 @@ def _check(ax, art, style):
             assert k >= 1 - 1e-9 and abs(k - round(k)) <= 1e-9, k
             if style == "textbook" and round(k) == 1:
                 assert 1.0 <= apart * MM <= 1.6
-        drawn.append((patch.get_gid(), _paper(ax, sh, patch)))
-    for i, (gi, a) in enumerate(drawn):
-        for gj, b in drawn[i + 1:]:
-            assert _one_line(a, b, width) <= LONG and _one_line(b, a, width) <= LONG, (gi, gj)
-    return moved
+        drawn.append((kind, patch.get_gid(), _paper(ax, sh, patch)))
+    head_mm = s.head_length * MM
+    for i, (ki, gi, a) in enumerate(drawn):
+        for kj, gj, b in drawn[i + 1:]:
+            if _one_line(a, b, width) <= LONG and _one_line(b, a, width) <= LONG:
+                continue
+            # on one line only as books draw two images on one ray: one kind, one tail, one sense, both arrowheads
+            # seen (the heads P.HEADS_APART arrowheads apart)
+            assert ki == kj and np.hypot(*(a[0] - b[0])) <= 0.1 and np.dot(a[1] - a[0], b[1] - b[0]) > 0, (gi, gj)
+            assert np.hypot(*(a[1] - b[1])) >= P.HEADS_APART * head_mm - 1e-6, (gi, gj)
+            on_ray += 1
+    return moved, on_ray
 
 
 @pytest.mark.parametrize("build", [velocity_polygon, acceleration_polygon], ids=["velocity", "acceleration"])
 def test_vectors_on_one_line_are_drawn_apart(specimens, build):
-    moved = 0
+    moved = np.zeros(2, int)
     for sp in specimens:
         ax, art = _drawn(build(sp.drawn), sp.drawn, "textbook")
         moved += _check(ax, art, "textbook")
         if art.detail is not None:
             moved += _check(art.detail.ax, art.detail.art, "textbook")
-    assert moved >= 2      # each polygon of these classes had vectors on one line
+    assert moved[0] >= 1 and moved.sum() >= 2     # each polygon of these classes had vectors on one line
 
 
 def test_slides_draw_the_swinging_blocks_slip_apart(specimens):
@@ -117,7 +124,7 @@ def test_slides_draw_the_swinging_blocks_slip_apart(specimens):
     a larger offset), and listed in the legend, whose long dashes now show."""
     sp = specimens[0]
     ax, art = _drawn(velocity_polygon(sp.drawn), sp.drawn, "slides")
-    assert _check(ax, art, "slides") >= 1
+    assert _check(ax, art, "slides")[0] >= 1
     assert "slip" in {kind for kind, *_ in art.arrows}
     assert "slip along the path" in [t.get_text() for t in ax.get_legend().get_texts()]
 
@@ -171,3 +178,24 @@ def test_step_frames_draw_each_vector_where_the_last_frame_does(specimens):
         assert frame
         for key, s in frame.items():
             assert np.allclose(s, final[key], rtol=0, atol=1e-9), key
+
+
+def test_two_images_on_one_ray_from_the_origin_stay_on_it():
+    """Two absolute vectors from the origin along one ray (O-a' and O-b', as books draw them) stay on their line
+    where both arrowheads are seen; the same vector drawn back, another kind along it, or a head within
+    HEADS_APART arrowheads of the other's is moved beside it."""
+    apart = 1.0
+    head = apart / P.APART                                   # an arrowhead's length, in the same units
+    u = np.array([0.6, 0.8])
+    o = np.zeros(2)
+
+    def shifts(*vectors):
+        b = P.Beside(apart=apart, along=0.4)
+        return [float(np.hypot(*b.add(t, h, np.array([5.0, -5.0]), kind))) for kind, t, h in vectors]
+
+    far, short = 10 * u, 10 * u - (P.HEADS_APART + 0.5) * head * u
+    assert shifts(("absolute", o, far), ("absolute", o, short)) == [0.0, 0.0]
+    assert shifts(("absolute", o, far), ("absolute", o, 10 * u - 0.5 * head * u))[1] > 0     # heads too near
+    assert shifts(("absolute", o, far), ("slip", o, short))[1] > 0                            # another kind
+    assert shifts(("absolute", o, far), ("absolute", far, o))[1] > 0                          # drawn back
+    assert shifts(("absolute", o, far), ("relative", 2 * u, short))[1] > 0                    # another tail

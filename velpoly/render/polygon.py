@@ -30,7 +30,7 @@ from .scalebar import scale_bar
 from .style import KIND_LABELS, get_style, link_colour
 
 __all__ = ["draw_polygon", "draw_velocity_polygon", "draw_acceleration_polygon", "polygon_bounds",
-           "known_keys", "image_groups", "legend_room", "lying_along", "Beside", "APART"]
+           "known_keys", "image_groups", "legend_room", "lying_along", "Beside", "APART", "HEADS_APART"]
 
 _REL_TOL = 1e-9
 
@@ -231,10 +231,10 @@ class _PolygonDrawing:
         the finished construction, so that a step frame draws each vector where the last frame has it."""
         drawn, out = Beside(APART * self.st.head_length * self.pp, ALONG * self.pp), {}
         centre = np.mean(np.array([np.zeros(2)] + list(self.polygon.images.values()), float), axis=0)
-        for _, tail, head, _ in self._all_vectors():
+        for kind, tail, head, _ in self._all_vectors():
             key = self._key(tail, head)
             if key is not None and key not in out:
-                out[key] = drawn.add(tail, head, centre)
+                out[key] = drawn.add(tail, head, centre, kind)
         return out
 
     def vector(self, kind, tail, head, label="", shift=None):
@@ -423,10 +423,13 @@ class _PolygonDrawing:
 
 # vectors on one line drawn apart: the offset, in the style's arrowhead lengths (1.5 mm on a textbook page: two
 # arrowheads side by side clear of each other); and what lies on one line: nearer parallel than ONE_LINE degrees,
-# within half the offset of each other's line over more than ALONG points
+# within half the offset of each other's line over more than ALONG points; two vectors of one kind from one tail in
+# one sense stay on their line (as books draw O-a' and O-b' on one ray) where their heads are HEADS_APART arrowhead
+# lengths apart or more: the shorter one's arrowhead then stands clear on the longer one's shaft
 APART = 0.7
 ONE_LINE = 1.5
 ALONG = 3.0
+HEADS_APART = 2.0
 
 
 def lying_along(p, q, tails, heads, near: float, along: float, degrees: float = ONE_LINE) -> np.ndarray:
@@ -468,15 +471,32 @@ class Beside:
         self.apart, self.along = apart, along
         self.tails: list = []
         self.heads: list = []
+        self.kinds: list = []
 
-    def add(self, tail, head, centre) -> np.ndarray:
-        """The shift of the vector ``tail`` -> ``head``: none where it lies along no vector drawn; else the nearest
-        offset, at right angles to it, whose copy lies along none (of the two sides, the one whose copy crosses
-        fewer vectors, then the one away from ``centre``, the polygon's middle). It is drawn there."""
-        shift = self._beside(tail, head, centre) if np.any(self._along(tail, head)) else np.zeros(2)
+    def add(self, tail, head, centre, kind=None) -> np.ndarray:
+        """The shift of the vector ``tail`` -> ``head`` (of line style ``kind``): none where it lies along no vector
+        drawn, or only along vectors of its kind from its tail in its sense whose heads stand HEADS_APART arrowhead
+        lengths from its own (both arrowheads seen on one line, as books draw two images on one ray from O); else
+        the nearest offset, at right angles to it, whose copy lies along none (of the two sides, the one whose copy
+        crosses fewer vectors, then the one away from ``centre``, the polygon's middle). It is drawn there."""
+        along = self._along(tail, head)
+        if np.any(along) and kind is not None:
+            along &= ~self._nested(tail, head, kind)
+        shift = self._beside(tail, head, centre) if np.any(along) else np.zeros(2)
         self.tails.append(tail + shift)
         self.heads.append(head + shift)
+        self.kinds.append(kind)
         return shift
+
+    def _nested(self, tail, head, kind) -> np.ndarray:
+        """Which vectors drawn are of ``kind``, start where ``tail`` -> ``head`` starts, point its way and end
+        HEADS_APART arrowhead lengths (``apart / APART`` each) or more from its head."""
+        tails, heads = np.asarray(self.tails, float), np.asarray(self.heads, float)
+        same = np.array([k == kind for k in self.kinds], bool)
+        near = np.hypot(*(tails - tail).T) <= 0.5 * self.apart
+        sense = (heads - tails) @ (head - tail) > 0
+        clear = np.hypot(*(heads - head).T) >= HEADS_APART * self.apart / APART
+        return same & near & sense & clear
 
     def _beside(self, tail, head, centre) -> np.ndarray:
         """:meth:`add`'s shift of a vector that lies along one drawn (else the one whose copy lies along fewest)."""
