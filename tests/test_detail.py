@@ -106,7 +106,7 @@ def check_detail(sol, poly, ax, pc, art):
     panel = {(k, tuple(np.round(t, 9)), tuple(np.round(h, 9))) for k, t, h, _ in art.arrows}
     for kind, tail, head, patch in det.art.arrows:
         assert (kind, tuple(np.round(tail, 9)), tuple(np.round(head, 9))) in panel
-        assert np.hypot(*(patch.get_xy()[0] - head)) <= REL * max(np.hypot(*head), 1.0)
+        assert np.hypot(*(patch.get_xy()[0] - patch._velpoly_shift - head)) <= REL * max(np.hypot(*head), 1.0)
     # the region holds the crowd; the frame lies in the panel, clear of the region
     for k in det.crowd.keys:
         q = poly.images[k] if k in poly.images else poly.auxiliary[k].image

@@ -30,7 +30,7 @@ from .scalebar import scale_bar
 from .style import KIND_LABELS, get_style, link_colour
 
 __all__ = ["draw_polygon", "draw_velocity_polygon", "draw_acceleration_polygon", "polygon_bounds",
-           "known_keys", "image_groups", "legend_room"]
+           "known_keys", "image_groups", "legend_room", "lying_along", "Beside", "APART", "HEADS_APART"]
 
 _REL_TOL = 1e-9
 
@@ -212,38 +212,68 @@ class _PolygonDrawing:
         self.art.add("construction", line)
         self.pl.add_obstacle(segment((x0, y0), (x1, y1)), hard=False)
 
-    def vector(self, kind, tail, head, label=""):
-        """Draw the vector unless it is null or already drawn; whether it was drawn."""
-        st, tol = self.st, self.tol
+    def _key(self, tail, head) -> tuple | None:
+        """The vector's ends rounded to the polygon's tolerance (one arrow a key); None for a null vector."""
+        if float(np.hypot(*(head - tail))) <= self.tol:
+            return None
+        return tuple(np.round(np.r_[tail, head] / self.tol).astype(np.int64))
+
+    def _all_vectors(self) -> list:
+        """(kind, tail, head, label) of every vector of the finished construction, in the order they are drawn:
+        the absolute vector of each image, then the steps' others."""
+        out = [("absolute", np.zeros(2), np.asarray(self.polygon.images[k], float), k) for k in self.polygon.images]
+        return out + [(v.kind, np.asarray(v.tail, float), np.asarray(v.head, float), v.label)
+                      for step in self.polygon.steps for v in step.vectors]
+
+    def shifts(self) -> dict:
+        """Where each vector of the finished construction is drawn: its key's shift (data units), zero for one on its
+        own line, else the offset that draws it beside the vectors drawn before it (:func:`beside`). Planned on
+        the finished construction, so that a step frame draws each vector where the last frame has it."""
+        drawn, out = Beside(APART * self.st.head_length * self.pp, ALONG * self.pp), {}
+        centre = np.mean(np.array([np.zeros(2)] + list(self.polygon.images.values()), float), axis=0)
+        for kind, tail, head, _ in self._all_vectors():
+            key = self._key(tail, head)
+            if key is not None and key not in out:
+                out[key] = drawn.add(tail, head, centre, kind)
+        return out
+
+    def vector(self, kind, tail, head, label="", shift=None):
+        """Draw the vector unless it is null or already drawn, moved by ``shift`` (beside another vector on its
+        line: :meth:`shifts`); whether it was drawn."""
+        st = self.st
         tail, head = np.asarray(tail, float), np.asarray(head, float)
-        if float(np.hypot(*(head - tail))) <= tol:
-            return False
-        key = tuple(np.round(np.r_[tail, head] / tol).astype(np.int64))
-        if key in self.drawn:   # one arrow a vector: an absolute one that is also relative (from O_v) stays absolute
+        key = self._key(tail, head)
+        if key is None or key in self.drawn:   # one arrow a vector: an absolute one that is also relative stays absolute
             return False
         self.drawn.add(key)
+        shift = np.zeros(2) if shift is None else shift
         ls, colour, f = st.kind_styles.get(kind, st.kind_styles["relative"])
         colour = st.ink if colour is None else colour
         gid = f"{kind}-{label}" if label else None
-        sh, hd, poly = arrow(self.ax, tail, head, lw=st.arrow_lw * f, head_length=st.head_length, colour=colour,
-                             linestyle=ls, zorder=3 if kind == "absolute" else 3.5, gid=gid)
+        sh, hd, poly = arrow(self.ax, tail + shift, head + shift, lw=st.arrow_lw * f, head_length=st.head_length,
+                             colour=colour, linestyle=ls, zorder=3 if kind == "absolute" else 3.5, gid=gid)
+        sh._velpoly_shift = hd._velpoly_shift = shift
         self.art.add("shafts", sh)
         self.art.add("arrows", hd)
         self.art.arrows.append((kind, tail, head, hd))
         self.pl.add_obstacle(poly)
-        self.pl.add_obstacle(segment(tail, head).buffer(0.6 * self.pp), hard=False)
+        self.pl.add_obstacle(segment(tail + shift, head + shift).buffer(0.6 * self.pp), hard=False)
         return True
 
     def vectors(self) -> set:
-        """Absolute vectors from the origin to each known image, then the steps' others; the kinds drawn."""
+        """Absolute vectors from the origin to each known image, then the steps' others, each where
+        :meth:`shifts` puts it; the kinds drawn."""
+        shifts = self.shifts()
         for k in self.keys:
-            self.vector("absolute", np.zeros(2), self.polygon.images[k], label=k)
+            img = np.asarray(self.polygon.images[k], float)
+            self.vector("absolute", np.zeros(2), img, label=k, shift=shifts.get(self._key(np.zeros(2), img)))
         kinds = {"absolute"}
         for step in self.steps:
             for v in step.vectors:
                 # the legend lists the kinds drawn: a component that is also an absolute vector (the slip of a
                 # block on the frame, the normal acceleration of a crank) is drawn, and listed, as absolute
-                if self.vector(v.kind, v.tail, v.head, label=v.label):
+                tail, head = np.asarray(v.tail, float), np.asarray(v.head, float)
+                if self.vector(v.kind, tail, head, label=v.label, shift=shifts.get(self._key(tail, head))):
                     kinds.add(v.kind)
         return kinds
 
@@ -372,11 +402,130 @@ class _PolygonDrawing:
             line = max(group, key=lambda g: float(np.hypot(*np.diff(np.asarray(g.get_data(), float), axis=1).ravel())))
             xs, ys = line.get_data()
             reason = joined_reasons([g._velpoly_line.reason for g in group])
-            t = self.pl.place_along((xs[0], ys[0]), (xs[1], ys[1]), prose_tex(reason), pad=8.0,
-                                    fontsize=self.st.small_size * 0.9, style="italic", zorder=6,
-                                    gid=line.get_gid() + "-reason")
-            if t is not None:
-                self.art.add("reasons", t)
+            # a vector moved off the line (drawn beside another on it) takes the reason's room there: the reason
+            # then stands beyond it, where there is room
+            offsets = (1.5, 2.5 + APART * self.st.head_length) if self._moved_along(xs, ys) else (1.5,)
+            for offset in offsets:
+                t = self.pl.place_along((xs[0], ys[0]), (xs[1], ys[1]), prose_tex(reason), pad=8.0, offset=offset,
+                                        fontsize=self.st.small_size * 0.9, style="italic", zorder=6,
+                                        gid=line.get_gid() + "-reason")
+                if t is not None:
+                    self.art.add("reasons", t)
+                    break
+
+    def _moved_along(self, xs, ys) -> bool:
+        """Whether a vector drawn beside another lies (where it belongs) along the line through ``xs``, ``ys``."""
+        moved = [(tail, head) for _, tail, head, hd in self.art.arrows if np.any(hd._velpoly_shift)]
+        line = np.array([[xs[0], ys[0]], [xs[1], ys[1]]], float)
+        return any(lying_along(tail, head, line[:1], line[1:], near=0.5 * APART * self.st.head_length * self.pp,
+                               along=ALONG * self.pp)[0] for tail, head in moved)
+
+
+# vectors on one line drawn apart: the offset, in the style's arrowhead lengths (1.5 mm on a textbook page: two
+# arrowheads side by side clear of each other); and what lies on one line: nearer parallel than ONE_LINE degrees,
+# within half the offset of each other's line over more than ALONG points; two vectors of one kind from one tail in
+# one sense stay on their line (as books draw O-a' and O-b' on one ray) where their heads are HEADS_APART arrowhead
+# lengths apart or more: the shorter one's arrowhead then stands clear on the longer one's shaft
+APART = 0.7
+ONE_LINE = 1.5
+ALONG = 3.0
+HEADS_APART = 2.0
+
+
+def lying_along(p, q, tails, heads, near: float, along: float, degrees: float = ONE_LINE) -> np.ndarray:
+    """Which of the segments ``tails[i]`` -> ``heads[i]`` the segment ``p`` -> ``q`` lies along: parallel to it within
+    ``degrees`` (either sense) and within ``near`` of its line over a stretch of it longer than ``along``.
+
+    >>> t, h = np.array([[0.0, 0.0], [0.0, 1.0]]), np.array([[10.0, 0.0], [10.0, 1.0]])
+    >>> lying_along(np.array([8.0, 0.1]), np.array([2.0, 0.1]), t, h, near=0.5, along=1.0).tolist()
+    [True, False]
+    >>> lying_along(np.array([9.5, 0.0]), np.array([12.0, 0.0]), t, h, near=0.5, along=1.0).tolist()
+    [False, False]
+    """
+    tails, heads = np.asarray(tails, float).reshape(-1, 2), np.asarray(heads, float).reshape(-1, 2)
+    d = heads - tails
+    size = np.hypot(d[:, 0], d[:, 1])
+    u = d / np.maximum(size, 1e-300)[:, None]
+    e = np.asarray(q, float) - np.asarray(p, float)
+    sine = np.abs(u[:, 0] * e[1] - u[:, 1] * e[0]) / max(float(np.hypot(*e)), 1e-300)
+    rp, rq = np.asarray(p, float) - tails, np.asarray(q, float) - tails
+    dp, dq = u[:, 0] * rp[:, 1] - u[:, 1] * rp[:, 0], u[:, 0] * rq[:, 1] - u[:, 1] * rq[:, 0]   # distances from the line
+    tp, tq = np.sum(u * rp, axis=1), np.sum(u * rq, axis=1)                                   # places along it
+    slope = dq - dp
+    flat = np.abs(slope) <= 1e-12 * max(near, 1e-300)
+    with np.errstate(divide="ignore", invalid="ignore"):
+        l1, l2 = (-near - dp) / slope, (near - dp) / slope
+    lo = np.where(flat, np.where(np.abs(dp) <= near, 0.0, 1.0), np.clip(np.minimum(l1, l2), 0.0, 1.0))
+    hi = np.where(flat, np.where(np.abs(dp) <= near, 1.0, 0.0), np.clip(np.maximum(l1, l2), 0.0, 1.0))
+    a, b = tp + lo * (tq - tp), tp + hi * (tq - tp)
+    overlap = np.minimum(np.maximum(a, b), size) - np.maximum(np.minimum(a, b), 0.0)
+    return (sine <= math.sin(math.radians(degrees))) & (hi > lo) & (overlap > along)
+
+
+class Beside:
+    """The vectors of a polygon drawn so far, each where it is drawn; :meth:`add` puts the next one beside those it
+    would lie along (:func:`lying_along` over more than ``along``), ``apart`` (data units) to one side, or twice
+    that, ... ."""
+
+    def __init__(self, apart: float, along: float):
+        self.apart, self.along = apart, along
+        self.tails: list = []
+        self.heads: list = []
+        self.kinds: list = []
+
+    def add(self, tail, head, centre, kind=None) -> np.ndarray:
+        """The shift of the vector ``tail`` -> ``head`` (of line style ``kind``): none where it lies along no vector
+        drawn, or only along vectors of its kind from its tail in its sense whose heads stand HEADS_APART arrowhead
+        lengths from its own (both arrowheads seen on one line, as books draw two images on one ray from O); else
+        the nearest offset, at right angles to it, whose copy lies along none (of the two sides, the one whose copy
+        crosses fewer vectors, then the one away from ``centre``, the polygon's middle). It is drawn there."""
+        along = self._along(tail, head)
+        if np.any(along) and kind is not None:
+            along &= ~self._nested(tail, head, kind)
+        shift = self._beside(tail, head, centre) if np.any(along) else np.zeros(2)
+        self.tails.append(tail + shift)
+        self.heads.append(head + shift)
+        self.kinds.append(kind)
+        return shift
+
+    def _nested(self, tail, head, kind) -> np.ndarray:
+        """Which vectors drawn are of ``kind``, start where ``tail`` -> ``head`` starts, point its way and end
+        HEADS_APART arrowhead lengths (``apart / APART`` each) or more from its head."""
+        tails, heads = np.asarray(self.tails, float), np.asarray(self.heads, float)
+        same = np.array([k == kind for k in self.kinds], bool)
+        near = np.hypot(*(tails - tail).T) <= 0.5 * self.apart
+        sense = (heads - tails) @ (head - tail) > 0
+        clear = np.hypot(*(heads - head).T) >= HEADS_APART * self.apart / APART
+        return same & near & sense & clear
+
+    def _beside(self, tail, head, centre) -> np.ndarray:
+        """:meth:`add`'s shift of a vector that lies along one drawn (else the one whose copy lies along fewest)."""
+        d = head - tail
+        n = np.array([-d[1], d[0]]) / float(np.hypot(*d))
+        side = 1.0 if float(np.dot(n, 0.5 * (tail + head) - centre)) >= 0 else -1.0
+        best = None
+        for k in range(0, 5):
+            shifts = [np.zeros(2)] if k == 0 else [side * k * self.apart * n, -side * k * self.apart * n]
+            for s in shifts:
+                hits = int(np.sum(self._along(tail + s, head + s)))
+                score = (hits, self._crossings(tail + s, head + s))
+                if best is None or score < best[0]:
+                    best = (score, s)
+            if best[0][0] == 0:
+                break
+        return best[1]
+
+    def _along(self, p, q) -> np.ndarray:
+        if not self.tails:
+            return np.zeros(0, bool)
+        return lying_along(p, q, self.tails, self.heads, near=0.5 * self.apart, along=self.along)
+
+    def _crossings(self, p, q) -> int:
+        """How many vectors drawn the segment ``p`` -> ``q`` crosses."""
+        if not self.tails:
+            return 0
+        return int(np.sum(shapely.intersects(shapely.linestrings(np.stack([self.tails, self.heads], axis=1)),
+                                             segment(p, q))))
 
 
 def hugging(w: float, h: float, gaps, prefer: float, k: int = 6) -> list:
