@@ -199,3 +199,41 @@ def test_two_images_on_one_ray_from_the_origin_stay_on_it():
     assert shifts(("absolute", o, far), ("slip", o, short))[1] > 0                            # another kind
     assert shifts(("absolute", o, far), ("absolute", far, o))[1] > 0                          # drawn back
     assert shifts(("absolute", o, far), ("relative", 2 * u, short))[1] > 0                    # another tail
+
+
+def test_animation_frames_draw_vectors_on_one_line_apart(specimens):
+    """An animation's polygon panels (velpoly animate) draw vectors on one line apart as a sheet does: in every frame
+    drawn, no two visible arrows lie along each other (but two images on one ray from one tail), and each arrow is
+    one of the frame's vectors moved at right angles (its true length and direction)."""
+    from velpoly.render.animate import Animator, plan_frames
+    anim = Animator(plan_frames(specimens[0].drawn.mechanism, 60.0), "full", "textbook", (480, 270))
+    moved = 0
+    for k in range(0, len(anim.plan), max(1, len(anim.plan) // 3)):
+        anim.update(k)
+        for kind in anim.polys:
+            art, poly = anim._poly_art[kind], anim.polys[kind][k]
+            truth = [(np.zeros(2), np.asarray(p, float)) for p in poly.images.values()]
+            truth += [(np.asarray(v.tail, float), np.asarray(v.head, float)) for s in poly.steps for v in s.vectors]
+            ax, drawn = art["ax"], []
+            for key, (shaft, tip) in art["arrows"].items():
+                if not shaft.get_visible():
+                    continue
+                x, y = shaft.get_data()
+                start, end = np.array([x[0], y[0]]), tip.get_xy()[0]
+                fits = [float(np.hypot(*((end - start) - (h - t)))) for t, h in truth]
+                i = int(np.argmin(fits))
+                t, h = truth[i]
+                size = float(np.hypot(*(h - t)))
+                assert fits[i] <= 1e-9 * size, key                     # its true length and direction
+                shift = start - t
+                assert abs(float(np.dot(shift, h - t))) <= 1e-9 * size * max(float(np.hypot(*shift)), 1e-300)
+                moved += bool(np.hypot(*shift) > 1e-9 * size)
+                kind_of = "absolute" if key.startswith("abs-") else key.split("-")[0]
+                drawn.append((kind_of, key, ax.transData.transform([start, end]) * 25.4 / anim.dpi))
+            for i, (ki, gi, a) in enumerate(drawn):
+                for kj, gj, b in drawn[i + 1:]:
+                    if _one_line(a, b, 0.3) <= LONG and _one_line(b, a, 0.3) <= LONG:
+                        continue
+                    assert ki == kj and np.hypot(*(a[0] - b[0])) <= 0.1 and np.dot(a[1] - a[0], b[1] - b[0]) > 0, \
+                        (k, gi, gj)
+    assert moved >= 1      # the swinging block's slip beside its absolute velocity

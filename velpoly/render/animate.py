@@ -753,7 +753,7 @@ class Animator:
             labels[key] = self._move(t, ax)
         self._poly_art = getattr(self, "_poly_art", {})
         self._poly_art[kind] = {"shades": shades, "arrows": arrows, "labels": labels, "ax": ax,
-                                "head": st.head_length * 1.6 * pp, "lw": self.pt(3.0)}
+                                "head": st.head_length * 1.6 * pp, "lw": self.pt(3.0), "pp": pp}
         if kind == "acceleration" and len([k for k in kinds if k != "absolute"]) >= 1:
             from .style import KIND_LABELS
             handles = []
@@ -1056,6 +1056,7 @@ class Animator:
 
     def _update_polygon(self, kind: str, poly) -> None:
         from shapely.geometry import MultiPoint
+        from .polygon import ALONG, APART, Beside
         art = self._poly_art[kind]
         images = {k: np.asarray(v, float) for k, v in poly.images.items()}
         for lk, patch in art["shades"].items():
@@ -1074,25 +1075,27 @@ class Animator:
                 if v.kind == "absolute":
                     continue
                 vectors.append((v.kind, np.asarray(v.tail, float), np.asarray(v.head, float), v.kind + "-" + v.label))
-        seen = set()
+        seen, drawn = set(), []
+        centre = np.array([np.zeros(2)] + list(images.values())).mean(axis=0)
+        beside = Beside(APART * art["head"], ALONG * art["pp"])   # vectors on one line drawn apart, as on a sheet
         for vkind, tail, head, key in vectors:
             sig = tuple(np.round(np.r_[tail, head] / tol).astype(np.int64))
             if float(np.hypot(*(head - tail))) <= tol or sig in seen:
                 continue
             seen.add(sig)
+            shift = beside.add(tail, head, centre, vkind)
             shaft, tip = self._arrow(kind, key, vkind)
-            _set_arrow(shaft, tip, tail, head, art["head"])
+            _set_arrow(shaft, tip, tail + shift, head + shift, art["head"])
             shaft.set_visible(True)
             tip.set_visible(True)
             used.add(key)
+            drawn.append((tail + shift, head + shift))
         for key, (shaft, tip) in art["arrows"].items():
             if key not in used:
                 shaft.set_visible(False)
                 tip.set_visible(False)
         self.images[kind] = images
-        pts = np.array([np.zeros(2)] + list(images.values()))
-        centre = pts.mean(axis=0)
-        pts = self._seg_points(art["ax"], [(tail, head) for _, tail, head, key in vectors if key in used])
+        pts = self._seg_points(art["ax"], drawn)
         taken = [self._origin_box.get(kind)] if self._origin_box.get(kind) is not None else []
         for key, t in art["labels"].items():
             p = images[key]
