@@ -434,3 +434,33 @@ def test_names_that_look_like_mathtext_are_animated_as_written(tmp_path, capsys)
     from PIL import Image
     with Image.open(out) as im:
         assert im.n_frames == len(plan)
+
+
+@pytest.mark.parametrize("kind,variant", [("slot", "straight offset"), ("slot", "circular"),
+                                          ("inverted slider-crank", "swinging-block slider")])
+def test_a_pin_or_block_stays_in_the_track_its_moving_link_carries(kind, variant):
+    """A slot or guide cut in a moving link is drawn in every frame (it was not drawn at all: a slot's pin and a
+    swinging block were seen off the link that carries them), long enough for the whole travel, and joined to its
+    link: in every frame the pin (block) lies in the track's cut and in the link's body, and the link's body is
+    one piece holding its own points."""
+    from matplotlib.path import Path as MPath
+    from shapely.geometry import Point, Polygon as SPolygon
+    from zoo import specimen
+    sp = specimen(np.random.default_rng(2611), kind, variant)
+    m = sp.drawn.mechanism
+    anim = Animator(plan_frames(m, 30.0), "velocity", "textbook", SMALL)
+    movers = {s.slot: (s.link, s.pin) for s in m.slots} | {s.guide: (s.block, s.point) for s in m.sliders}
+    assert anim.tracks
+    for k in range(0, len(anim.plan), 3):
+        anim.update(k)
+        sol = anim.sols[k]
+        for (lk, point, _), cut in zip(anim.tracks, anim.cuts):
+            mover, _ = movers[lk]
+            at = sol.place(mover, point)
+            assert cut.get_path().contains_point(at), (k, lk)
+            rings = [SPolygon(r) for r in anim.bodies[lk].get_path().to_polygons()]
+            outer = max(rings, key=lambda r: r.area)
+            assert outer.buffer(1e-9 * m.size).contains(Point(*at)), (k, lk)
+            for q in m.link(lk).points:
+                if q != point:
+                    assert outer.buffer(1e-6 * m.size).contains(Point(*sol.place(lk, q))), (k, lk, q)

@@ -368,6 +368,7 @@ class Animator:
         self.omega = plan.series("omega")
         self.alpha = plan.series("alpha")
         self.slider_rows = plan.rows("sliders")
+        self.slot_rows = plan.rows("slots")
         self.contact_rows = plan.rows("contacts")
         self.centrodes = centrodes
         has_acc = all(s.has_accelerations for s in self.sols[:1])
@@ -626,10 +627,12 @@ class Animator:
         # the moving parts
         self.bw = st.bar_width * pc
         self.bodies = {}
+        crank = None if m.driver.is_slider else m.driver.link
         for z, link in enumerate(m.moving_links):
             if len(link.points) < 2:
                 continue
             colour = link_colour(m, self.opts, st, link.name)
+            z = len(m.moving_links) if link.name == crank else z     # the crank over the links it drives
             patch = PathPatch(_empty_path(), facecolor=link_fill(m, self.opts, st, link.name),
                               edgecolor=colour if st.coloured else st.ink, lw=st.link_lw * 1.4, zorder=3 + 0.01 * z)
             ax.add_patch(patch)
@@ -640,6 +643,13 @@ class Animator:
                              edgecolor=st.ink, lw=st.link_lw * 1.4, zorder=3.5)
             ax.add_patch(patch)
             self.blocks[(s.block, s.point)] = self._move(patch, ax)
+        self.tracks = self._tracks()
+        self.cuts = []
+        for lk, _, _ in self.tracks:     # the cut just over its link's body
+            cut = PathPatch(_empty_path(), facecolor=st.paper, edgecolor=st.ink, lw=st.thin_lw,
+                            zorder=self.bodies[lk].get_zorder() + 0.005)
+            ax.add_patch(cut)
+            self.cuts.append(self._move(cut, ax))
         self.profiles = []
         self.flats = []
         for ci, c in enumerate(m.contacts):
@@ -891,21 +901,87 @@ class Animator:
             v = vals[k]
             t.set_text("–" if not math.isfinite(v) else f"{v:.{dec}f}".replace("-", "−"))
 
+    def _tracks(self) -> list:
+        """The slots and guides cut in moving links: (link, frame k -> (centre line, width)), each long enough for
+        its pin's (block's) whole travel in the animation, as the link carries it (its place in the link's own
+        axes is taken in every frame: a straight track's offset and direction, a circular one's centre and
+        radius are fixed in the link). A track whose link has no other point to carry it is left out."""
+        m, pc = self.m, self.bw / self.st.bar_width
+        items = [(s.slot, s.link, s.pin, s.centre, 2.6 * self.st.pin_radius * pc, self.slot_rows[j])
+                 for j, s in enumerate(m.slots) if not m.link(s.slot).frame]
+        items += [(s.guide, s.block, s.point, s.centre, 0.6 * self.st.block[1] * pc, self.slider_rows[j])
+                  for j, s in enumerate(m.sliders) if not m.link(s.guide).frame]
+        out = []
+        for lk, mover, point, centre, width, rows in items:
+            base = next((q for q in m.link(lk).points if q != point), None)
+            if base is None:
+                continue
+            out.append((lk, point, self._track(lk, base, mover, point, centre, width, rows)))
+        return out
+
+    def _track(self, lk, base, mover, point, centre, width, rows):
+        """One track of :meth:`_tracks`: its centre line at frame k from the link's ``base`` point and angle, over
+        the mover's travel in the link's axes plus a block's length at each end."""
+        from shapely.geometry import LineString
+        th = np.radians(self.plan.series("angle")[lk])
+        q = np.array([s.place(lk, base) for s in self.sols], float)
+        p = np.array([s.place(mover, point) for s in self.sols], float)
+
+        def local(v):   # world vectors (N, 2) in the link's own axes
+            c, s_ = np.cos(th), np.sin(th)
+            return np.stack([c * v[:, 0] + s_ * v[:, 1], -s_ * v[:, 0] + c * v[:, 1]], axis=1)
+
+        def world(k, v):
+            c, s_ = math.cos(th[k]), math.sin(th[k])
+            return q[k] + np.stack([c * v[..., 0] - s_ * v[..., 1], s_ * v[..., 0] + c * v[..., 1]], axis=-1)
+
+        margin = self.st.block[0] * self.bw / self.st.bar_width
+        if centre is None:
+            d0 = math.radians(float(rows["direction"][0]))
+            d = local(np.array([[math.cos(d0), math.sin(d0)]]))[0]
+            at = local(p - q)
+            t, off = at @ d, float((at[0] @ np.array([-d[1], d[0]])))
+            ts = np.array([t.min() - margin, t.max() + margin])
+            ends = off * np.array([-d[1], d[0]]) + ts[:, None] * d
+            return lambda k: (LineString(world(k, ends)), width)
+        kc = local(np.array([s.place(lk, centre) for s in self.sols], float) - q)[0]
+        at = local(p - q) - kc
+        rad = float(np.hypot(*at[0]))
+        phi = np.unwrap(np.arctan2(at[:, 1], at[:, 0]))
+        span = margin / max(rad, 1e-300)
+        a = np.linspace(phi.min() - span, phi.max() + span, 48)
+        arc = kc + rad * np.stack([np.cos(a), np.sin(a)], axis=1)
+        return lambda k: (LineString(world(k, arc)), width)
+
     def _update_bodies(self, k: int, sol) -> None:
         """The links' bodies (a link of three or more points as one plate with its corners at its points, as
         the space diagram draws it), the slider blocks and the contact profiles at frame k."""
-        from .displacement import link_bodies, plain_links, plate_fill, plate_outline, shape_patch
+        from shapely.ops import unary_union
+        from .displacement import body_shape, link_bodies, plain_links, plate_fill, plate_outline, shape_patch
         from .style import link_fill
         m, st = self.m, self.st
         bodies = link_bodies(sol, self.bw)
         plain = plain_links(m)
+        webs, pc = {}, self.bw / st.bar_width
+        for (lk, point, track), cut in zip(self.tracks, self.cuts):
+            path, width = track(k)
+            # the track joined to the rest of its link, as the sheet joins a slot: the hull (or bars) of the link's
+            # own points and the track's ends, and the track's rim
+            own = [tuple(sol.place(lk, q)) for q in m.link(lk).points if q != point]
+            ends = list(path.coords)
+            foreign = [tuple(sol.place(c, q)) for q in m.point_order if lk not in m.carriers.get(q, ())
+                       for c in m.carriers.get(q, ())[:1]]
+            webs.setdefault(lk, []).extend([body_shape(own[:1] + [ends[0], ends[-1]] + own[1:], foreign, self.bw),
+                                            path.buffer(width / 2 + 0.12 * pc, cap_style="round")])
+            cut.set_path(shape_patch(path.buffer(width / 2, cap_style="round")).get_path())
         for lk, patch in self.bodies.items():
             plate = plate_outline(sol, lk, self.bw) if lk in plain else None
             g = plate if plate is not None else bodies.get(lk)
+            if g is not None and lk in webs:
+                g = unary_union([g] + webs[lk])
             patch.set_path(shape_patch(g).get_path() if g is not None else _empty_path())
             fill = link_fill(m, self.opts, st, lk)
             patch.set_facecolor(plate_fill(fill, st) if plate is not None else fill)
-        pc = self.bw / st.bar_width
         for (block, point), patch in self.blocks.items():
             j = [i for i, s in enumerate(m.sliders) if s.block == block and s.point == point][0]
             d = math.radians(float(self.slider_rows[j]["direction"][k]))
