@@ -40,6 +40,8 @@ __all__ = ["draw_mechanism", "away_from", "neighbours", "mechanism_bounds", "sha
 PLATE_FILL = "0.9"      # a plate's fill where links are white (textbook): light, so that it reads as one body
 SMALLER = (0.85, 0.72)   # a text with no free place off the lines at its size: these fractions of it tried
 NUMBER_RADIUS = 0.8     # slides: a link number's circle at most this many bar widths in radius
+LABEL_NEAR = 2.0        # cm: a point's label off the other links at most this far from its point (farther out, its
+#                         leader reads worse than a label beside its point over a plate or an outline)
 NUMBER_NEAR = 1.0       # cm: a link number at most this far from its own link (beside it, not out at a leader's end)
 GROUND_CLEAR = 0.15     # cm: a driver's value is nudged this far from hatched ground it crowds, where that is free
 #                         (omega's value crowded the ground of a swinging block's pivot)
@@ -252,6 +254,7 @@ class _Drawing:
         self.grounds: list = []          # the hatched strips drawn (shapely): the driver's values keep off
         self.geoms: dict = {}            # link -> its body as drawn
         self.slot_cuts: dict = {}        # slot index -> (link, centre line, cut) of a moving link's slot
+        self.zorders: dict = {s.block: 3.2 for s in self.m.sliders}   # link -> its body's zorder (blocks: 3.2)
         self.guide_bars: dict = {}       # moving guide -> its slotted bar (in a plate: the part a block's number
         #                                  keeps off; the rest of the plate it may stand on, beside its block)
         self.reserved: list = []         # the point labels' boxes in a clear field (:meth:`marks`)
@@ -670,7 +673,7 @@ class _Drawing:
         self.art.guide_bars = {k: g for k, g in self.guide_bars.items() if k in self.filled}   # a plate's slotted bar
         for z, lk in enumerate(order):
             if lk in geoms:
-                zorder = 3.3 if lk == drv and lk not in self.slotted else 2 + 0.01 * z
+                zorder = self.zorders[lk] = 3.3 if lk == drv and lk not in self.slotted else 2 + 0.01 * z
                 self.body(lk, geoms[lk], zorder)
                 # its outline, not its area: a label may sit inside a plate or a wheel, clear of its edges
                 self.pl.add_obstacle(geoms[lk].boundary.buffer(0.6 * self.pp), hard=False)
@@ -718,9 +721,39 @@ class _Drawing:
                 self.patch(Point(*p).buffer(r, quad_segs=8), "points", 4, st.ink, lw=0)
                 self.pl.add_obstacle(Point(*p).buffer(r))
 
+    def off_links(self, links):
+        """The test a point label's box (data coordinates) passes where it reads as its point's: over no body
+        (link or block) but those of ``links`` (the point's own; where one of them lies over another link, as a
+        gear inside an internal gear, the label may stand on it), and on no body's outline."""
+        bodies = {**self.block_geom, **self.geoms}
+        outlines = np.array([g.boundary for g in bodies.values()], dtype=object)
+        z = self.zorders
+
+        def seen(k, g):   # the part of another link's body that none of the point's own links lies over
+            over = [bodies[j] for j in links if j in bodies and z.get(j, 0) > z.get(k, 0)]
+            return g.difference(unary_union(over)) if over else g
+        others = np.array([seen(k, g) for k, g in bodies.items() if k not in links], dtype=object)
+
+        def test(b) -> bool:
+            return not (shapely.intersects(outlines, b).any() or shapely.intersects(others, b).any())
+        return test
+
+    def _point_label(self, pos, text, links, **kw):
+        """A point's label placed where it reads as its point's (:meth:`off_links`: a free place with a leader,
+        if need be, within :data:`LABEL_NEAR` of the point, rather than one over another link's plate or on an
+        outline), else where it is free."""
+        test = self.off_links(links)
+        with self.pl.trial():
+            n = len(self.pl.overlapping)
+            t = self.pl.place(pos, text, accept=test, only=True, **kw)
+            b = self.pl.of(t).box
+            kept = self.pl.keep = len(self.pl.overlapping) == n and test(b) and \
+                b.distance(Point(*pos)) <= LABEL_NEAR * self.pc
+        return t if kept else self.pl.place(pos, text, **kw)
+
     def point_labels(self, record: bool = True) -> list:
-        """Each point's label beside it, away from its links; returns their boxes (``record``: kept as the
-        drawing's labels)."""
+        """Each point's label beside it, away from its links, where it can off the other links' bodies and
+        off every outline (:meth:`off_links`); returns their boxes (``record``: kept as the drawing's labels)."""
         sol, m, st = self.sol, self.m, self.st
         out = []
         wanted = self.opts.label_points
@@ -735,8 +768,9 @@ class _Drawing:
                 links = m.carriers.get(name, ())
                 prefer = away_from(pos, neighbours(sol, name, links), default=45.0)
                 text = tex(name) if len(spots) == 1 else tex(key_text(key))   # P₂, velpoly.names
-                t = self.pl.place(pos, text, prefer=prefer, fontsize=st.font_size, zorder=7, fontstyle="italic",
-                                  gid=f"label-point-{name}" if len(spots) == 1 else f"label-point-{key}")
+                t = self._point_label(pos, text, links, prefer=prefer, fontsize=st.font_size, zorder=7,
+                                      fontstyle="italic",
+                                      gid=f"label-point-{name}" if len(spots) == 1 else f"label-point-{key}")
                 out.append(self.pl.box_of(t, pad=0.0))
                 if not record:
                     continue
