@@ -1,7 +1,8 @@
 """A link of three or more joints reads as one rigid plate on the space diagram (issue 17, item 7;
 render/displacement.py).
 
-Joints are its pins, the points of the blocks it guides, the pins in its slots and its contact points, in any mix.
+Joints are its pins, the points of the blocks it guides, the pins in its slots and its contact points (where it
+has a profile), in any mix.
 At the data level, on seeded zoo mechanisms of the classes whose ternary links carry a slot, a moving guide or a
 profile (and a four-bar coupler with a coupler point, drawn as a bell-crank's bars): every such link is drawn as one patch, a single
 polygon (no separate bars or pieces) holding all its joints, filled as plates are (not white in the textbook
@@ -41,9 +42,11 @@ def _draw(sol, style):
 
 
 def joints(m, link) -> set:
-    """The names of a link's joints: its points, the points of the blocks it guides, its slots' pins, its contacts."""
+    """The names of a link's joints: its points, the points of the blocks it guides, its slots' pins, its contacts
+    where it has a profile (one given by its normal alone draws none)."""
     out = set(m.link(link).points) | {s.point for s in m.sliders if s.guide == link}
-    return out | {s.pin for s in m.slots if s.slot == link} | {c.point for c in m.contacts if link in c.links}
+    return out | {s.pin for s in m.slots if s.slot == link} | {c.point for c in m.contacts
+                                                                if link in c.links and c.centres is not None}
 
 
 def foreign_points(sol, link, own) -> list:

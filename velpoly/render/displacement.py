@@ -160,10 +160,11 @@ def foreign_points(sol, link, own=()) -> list:
 
 def joints(m, link) -> set:
     """The joints of a link: its points (pins), the points of the blocks it guides, the pins in its slots and
-    its contact points. A moving link with three or more is a plate (one rigid body), however they mix."""
+    its contact points (where it has a profile: a contact given by its normal alone draws none on the link).
+    A moving link with three or more is a plate (one rigid body), however they mix."""
     out = set(m.link(link).points)
     out |= {s.point for s in m.sliders if s.guide == link} | {s.pin for s in m.slots if s.slot == link}
-    return out | {c.point for c in m.contacts if link in c.links}
+    return out | {c.point for c in m.contacts if link in c.links and c.centres is not None}
 
 
 def whole_body(shape, foreign, bar_width: float):
