@@ -52,10 +52,14 @@ def measure(sol, sheet, style):
         drv = sol.mechanism.driver
         mine_link = drv.link if not drv.is_slider else next(s.block for s in sol.mechanism.sliders if s.point == drv.slider)
         from matplotlib.lines import Line2D
+        crossed = dict(bodies)   # a slider driver's arrows may run over its block's guide plate, off the slotted bar
+        if drv.is_slider:
+            crossed.update({k: art.guide_bars[k] for s in sol.mechanism.sliders if s.point == drv.slider
+                            for k in [s.guide] if k in getattr(art, "guide_bars", {})})
         for a in art.get("driver", []):
             if isinstance(a, Line2D) and a.figure is not None:
                 xy = np.column_stack(a.get_data())
-                if len(xy) >= 2 and any(LineString(xy).intersects(g) for k, g in bodies.items() if k != mine_link and g is not None):
+                if len(xy) >= 2 and any(LineString(xy).intersects(g) for k, g in crossed.items() if k != mine_link and g is not None):
                     out["arrow_cross"].append(a.get_gid())
         texts = [p for p in pl.labels]
         boxes = {id(p.text): pl.box_of(p.text, pad=0.0) for p in texts}
@@ -82,7 +86,7 @@ def measure(sol, sheet, style):
                 d_own = b.distance(own)
                 guides = {s.guide for s in sol.mechanism.sliders if s.block == lk}   # a block lies in its guide
                 others = [(k, b.distance(g)) for k, g in bodies.items() if k != lk and k not in guides and g is not None]
-                if others and min(d for _, d in others) < d_own - 1e-12 or any(b.intersects(bodies[k]) for k in guides if k in bodies):
+                if others and min(d for _, d in others) < d_own - 1e-12 or any(b.intersects(getattr(art, "guide_bars", {}).get(k, bodies[k])) for k in guides if k in bodies):
                     out["far_number"].append(gid)
                 if p.leader is not None:
                     xy = np.column_stack(p.leader.get_data())

@@ -1,7 +1,8 @@
 """The displacement (space) diagram: the mechanism to scale, as a textbook draws it.
 
-Links are bars (two points) or plates (one light-filled polygon with its
-corners at the points of a link of three or more), frame pivots stand on hatched ground, pins are open circles,
+Links are bars (two points) or plates (a link of three or more joints, light-filled and in one piece: a
+polygon with its corners at its points, or the hull of its bars, slotted bar and profile, with the slot cut in
+it), frame pivots stand on hatched ground, pins are open circles,
 slider blocks are rectangles aligned with their path on a hatched guide (a
 slotted bar when the guide moves), contacts show their profiles' circles
 about the centres of curvature. Every point is labelled once, every link
@@ -39,6 +40,8 @@ __all__ = ["draw_mechanism", "away_from", "neighbours", "mechanism_bounds", "sha
 PLATE_FILL = "0.9"      # a plate's fill where links are white (textbook): light, so that it reads as one body
 SMALLER = (0.85, 0.72)   # a text with no free place off the lines at its size: these fractions of it tried
 NUMBER_RADIUS = 0.8     # slides: a link number's circle at most this many bar widths in radius
+LABEL_NEAR = 2.0        # cm: a point's label off the other links at most this far from its point (farther out, its
+#                         leader reads worse than a label beside its point over a plate or an outline)
 NUMBER_NEAR = 1.0       # cm: a link number at most this far from its own link (beside it, not out at a leader's end)
 GROUND_CLEAR = 0.15     # cm: a driver's value is nudged this far from hatched ground it crowds, where that is free
 #                         (omega's value crowded the ground of a swinging block's pivot)
@@ -129,9 +132,7 @@ def link_bodies(sol, bar_width: float) -> dict:
         if len(link.points) < 2:
             continue
         pts = [tuple(sol.place(link.name, p)) for p in link.points]
-        foreign = [tuple(sol.place(lk, p)) for p in m.point_order if link.name not in m.carriers.get(p, ())
-                   for lk in m.carriers.get(p, ())[:1]]
-        out[link.name] = body_shape(pts, foreign, bar_width)
+        out[link.name] = body_shape(pts, foreign_points(sol, link.name), bar_width)
     return out
 
 
@@ -147,6 +148,38 @@ def equivalent_linkage_note(m) -> str:
     Short, to fit beside the scale in every style; the dashed coupler joins the two centres of
     curvature (a dashed block sits at the centre facing a flat), whose names are on the figure."""
     return "dashed: equivalent linkage" if any(equivalent(c) for c in m.contacts) else ""
+
+
+def foreign_points(sol, link, own=()) -> list:
+    """Where the points that ``link`` does not carry (nor names in ``own``) are now: the other links' pivots
+    and pins a body of ``link`` must not cover."""
+    m = sol.mechanism
+    return [tuple(sol.place(k, p)) for p in m.point_order if link not in m.carriers.get(p, ()) and p not in own
+            for k in m.carriers.get(p, ())[:1]]
+
+
+def joints(m, link) -> set:
+    """The joints of a link: its points (pins), the points of the blocks it guides, the pins in its slots and
+    its contact points (where it has a profile: a contact given by its normal alone draws none on the link).
+    A moving link with three or more is a plate (one rigid body), however they mix."""
+    out = set(m.link(link).points)
+    out |= {s.point for s in m.sliders if s.guide == link} | {s.pin for s in m.slots if s.slot == link}
+    return out | {c.point for c in m.contacts if link in c.links and c.centres is not None}
+
+
+def whole_body(shape, foreign, bar_width: float):
+    """A plate's body in one piece with its outline whole: the convex hull of its ``shape`` (its bars, its slotted
+    bar, its profile), or, where that hull would cover one of the ``foreign`` points, the shape itself with
+    its separate pieces joined by bars (nearest to nearest), as a bell-crank's arms are."""
+    hull = shape.convex_hull
+    if not any(hull.buffer(bar_width / 2).contains(Point(*q)) for q in foreign):
+        return hull
+    pieces = sorted(getattr(shape, "geoms", [shape]), key=lambda g: -g.area)
+    whole = pieces[0]
+    for g in pieces[1:]:
+        a, b = nearest_points(whole, g)
+        whole = unary_union([whole, g, LineString([a, b]).buffer(bar_width / 2, quad_segs=12)])
+    return whole
 
 
 def body_shape(pts, foreign, bar_width: float):
@@ -174,9 +207,7 @@ def plate_outline(sol, link, bar_width: float):
     sides = np.hypot(np.diff(x), np.diff(y))
     if float(sides.min()) < bar_width:
         return None
-    foreign = [tuple(sol.place(k, p)) for p in m.point_order if link not in m.carriers.get(p, ())
-               for k in m.carriers.get(p, ())[:1]]
-    if any(hull.buffer(bar_width).contains(Point(*q)) for q in foreign):
+    if any(hull.buffer(bar_width).contains(Point(*q)) for q in foreign_points(sol, link)):
         return None
     return hull
 
@@ -224,6 +255,9 @@ class _Drawing:
         self.grounds: list = []          # the hatched strips drawn (shapely): the driver's values keep off
         self.geoms: dict = {}            # link -> its body as drawn
         self.slot_cuts: dict = {}        # slot index -> (link, centre line, cut) of a moving link's slot
+        self.zorders: dict = {s.block: 3.2 for s in self.m.sliders}   # link -> its body's zorder (blocks: 3.2)
+        self.guide_bars: dict = {}       # moving guide -> its slotted bar (in a plate: the part a block's number
+        #                                  keeps off; the rest of the plate it may stand on, beside its block)
         self.reserved: list = []         # the point labels' boxes in a clear field (:meth:`marks`)
         self.bare = not self.pl.soft     # nothing drawn in the panel before (a poles sheet's Kennedy lines are)
 
@@ -242,6 +276,7 @@ class _Drawing:
         plate reads as one link, not as bars), else its shape (bars, slotted bars, discs)."""
         fill = link_fill(self.m, self.opts, self.st, lk)
         if lk not in self.plates:
+            fill = plate_fill(fill, self.st) if lk in self.filled else fill
             return self.patch(geom, "links", zorder, fill, gid=f"link-{lk}")
         from matplotlib.patches import Polygon as MPolygon
         fill = plate_fill(fill, self.st)
@@ -250,6 +285,14 @@ class _Drawing:
         add_patch(self.ax, p)
         self.art.add("links", p)
         return p
+
+    def whole(self, lk, shape):
+        """The body of a link of three or more joints drawn otherwise than as a bare plate (with a slot, a
+        moving guide or a profile; or as bars): in one piece, its outline whole (:func:`whole_body`). The points
+        of the blocks it guides are not foreign: the blocks lie over it."""
+        m = self.m
+        own = joints(m, lk) | {p for s in m.sliders if s.guide == lk for p in m.link(s.block).points}
+        return whole_body(shape, foreign_points(self.sol, lk, own), self.st.bar_width * self.pc)
 
     def hatch(self, a, b, side, role="ground", zorder=1.0, exempt=()):
         """A ground line a-b with short slanted strokes on ``side`` (a unit normal).
@@ -402,7 +445,9 @@ class _Drawing:
                 self.hatch(a, b, seg_n, role="guides")
             self.centre_line(path)
         else:
-            self.extra_body.setdefault(s.guide, []).append(path.buffer(H / 2 + 0.09 * pc, cap_style="flat"))
+            bar = path.buffer(H / 2 + 0.09 * pc, cap_style="flat")
+            self.extra_body.setdefault(s.guide, []).append(bar)
+            self.guide_bars[s.guide] = unary_union([self.guide_bars.get(s.guide, bar), bar])
             self.slotted.add(s.guide)
             self.slots.append((s.guide, path.buffer(H * 0.3, cap_style="round")))
         block = SPolygon([p - d * L / 2 - n * H / 2, p + d * L / 2 - n * H / 2, p + d * L / 2 + n * H / 2,
@@ -495,9 +540,8 @@ class _Drawing:
         line = list(path.coords)
         if own:   # the nearest of the link's points first: bars from it where a plate would cover others' pins
             own.sort(key=lambda q: path.distance(Point(*q)))
-        foreign = [tuple(self.sol.place(lk, q)) for q in m.point_order
-                   if s.slot not in m.carriers.get(q, ()) and q != s.pin for lk in m.carriers.get(q, ())[:1]]
-        web = body_shape(own[:1] + [line[0], line[-1]] + own[1:], foreign, st.bar_width * pc)
+        web = body_shape(own[:1] + [line[0], line[-1]] + own[1:], foreign_points(self.sol, s.slot, {s.pin}),
+                         st.bar_width * pc)
         self.extra_body.setdefault(s.slot, []).append(web.union(path.buffer(w / 2 + 0.12 * pc, cap_style="round")))
         self.slotted.add(s.slot)
         self.slots.append((s.slot, cut))
@@ -601,7 +645,7 @@ class _Drawing:
         drv = None if m.driver.is_slider else m.driver.link
         if drv in order and drv not in self.slotted:   # the driver over the links it drives (the crank seen
             order = [lk for lk in order if lk != drv] + [drv]   # over the lever or the block it turns)
-        geoms, self.plates = {}, {}
+        geoms, self.plates, self.filled = {}, {}, set()
         for lk in order:
             plate = None if self.extra_body.get(lk) else plate_outline(sol, lk, st.bar_width * self.pc)
             if plate is not None:     # a ternary (or larger) link: one plate with its corners at its points
@@ -614,6 +658,9 @@ class _Drawing:
                 parts = [Point(*p).buffer(2.2 * st.pin_radius * self.pc)]
             if parts:
                 geoms[lk] = unary_union(parts)
+            if lk in geoms and len(joints(m, lk)) >= 3:   # a plate with a slot, a guide or a profile, or bars
+                self.filled.add(lk)
+                geoms[lk] = self.whole(lk, geoms[lk])
         self.geoms = geoms
         # ground pivots, clear of the bodies
         ground_dir = {}
@@ -624,9 +671,10 @@ class _Drawing:
         self.art.bodies = dict(geoms)                # link -> its drawn body (shapely), for checks
         self.art.plates = dict(self.plates)          # link -> its plate (the hull of its points)
         self.art.slot_cuts = dict(self.slot_cuts)    # slot index -> (link, centre line, cut)
+        self.art.guide_bars = {k: g for k, g in self.guide_bars.items() if k in self.filled}   # a plate's slotted bar
         for z, lk in enumerate(order):
             if lk in geoms:
-                zorder = 3.3 if lk == drv and lk not in self.slotted else 2 + 0.01 * z
+                zorder = self.zorders[lk] = 3.3 if lk == drv and lk not in self.slotted else 2 + 0.01 * z
                 self.body(lk, geoms[lk], zorder)
                 # its outline, not its area: a label may sit inside a plate or a wheel, clear of its edges
                 self.pl.add_obstacle(geoms[lk].boundary.buffer(0.6 * self.pp), hard=False)
@@ -674,9 +722,39 @@ class _Drawing:
                 self.patch(Point(*p).buffer(r, quad_segs=8), "points", 4, st.ink, lw=0)
                 self.pl.add_obstacle(Point(*p).buffer(r))
 
+    def off_links(self, links):
+        """The test a point label's box (data coordinates) passes where it reads as its point's: over no body
+        (link or block) but those of ``links`` (the point's own; where one of them lies over another link, as a
+        gear inside an internal gear, the label may stand on it), and on no body's outline."""
+        bodies = {**self.block_geom, **self.geoms}
+        outlines = np.array([g.boundary for g in bodies.values()], dtype=object)
+        z = self.zorders
+
+        def seen(k, g):   # the part of another link's body that none of the point's own links lies over
+            over = [bodies[j] for j in links if j in bodies and z.get(j, 0) > z.get(k, 0)]
+            return g.difference(unary_union(over)) if over else g
+        others = np.array([seen(k, g) for k, g in bodies.items() if k not in links], dtype=object)
+
+        def test(b) -> bool:
+            return not (shapely.intersects(outlines, b).any() or shapely.intersects(others, b).any())
+        return test
+
+    def _point_label(self, pos, text, links, **kw):
+        """A point's label placed where it reads as its point's (:meth:`off_links`: a free place with a leader,
+        if need be, within :data:`LABEL_NEAR` of the point, rather than one over another link's plate or on an
+        outline), else where it is free."""
+        test = self.off_links(links)
+        with self.pl.trial():
+            n = len(self.pl.overlapping)
+            t = self.pl.place(pos, text, accept=test, only=True, **kw)
+            b = self.pl.of(t).box
+            kept = self.pl.keep = len(self.pl.overlapping) == n and test(b) and \
+                b.distance(Point(*pos)) <= LABEL_NEAR * self.pc
+        return t if kept else self.pl.place(pos, text, **kw)
+
     def point_labels(self, record: bool = True) -> list:
-        """Each point's label beside it, away from its links; returns their boxes (``record``: kept as the
-        drawing's labels)."""
+        """Each point's label beside it, away from its links, where it can off the other links' bodies and
+        off every outline (:meth:`off_links`); returns their boxes (``record``: kept as the drawing's labels)."""
         sol, m, st = self.sol, self.m, self.st
         out = []
         wanted = self.opts.label_points
@@ -691,8 +769,9 @@ class _Drawing:
                 links = m.carriers.get(name, ())
                 prefer = away_from(pos, neighbours(sol, name, links), default=45.0)
                 text = tex(name) if len(spots) == 1 else tex(key_text(key))   # P₂, velpoly.names
-                t = self.pl.place(pos, text, prefer=prefer, fontsize=st.font_size, zorder=7, fontstyle="italic",
-                                  gid=f"label-point-{name}" if len(spots) == 1 else f"label-point-{key}")
+                t = self._point_label(pos, text, links, prefer=prefer, fontsize=st.font_size, zorder=7,
+                                      fontstyle="italic",
+                                      gid=f"label-point-{name}" if len(spots) == 1 else f"label-point-{key}")
                 out.append(self.pl.box_of(t, pad=0.0))
                 if not record:
                     continue
@@ -783,16 +862,23 @@ class _Drawing:
             t = self.pl.place(anchor, literal(lk), prefer=prefer, gap=2.0, gid=f"link-number-{lk}", pad=pad, **kw)
         return t
 
+    def beside_block(self, guide, body):
+        """What a block's marks (its number, a slider driver's arrows) keep off of the ``body`` of the ``guide`` it
+        lies in: the whole of a bar, only the slotted bar of a plate (beside the block, on the plate, they read as
+        the block's: its slot runs there)."""
+        return self.guide_bars[guide] if guide in self.filled and guide in self.guide_bars else body
+
     def owned(self, lk, bodies, anchor):
         """The test a link number's box (data coordinates) passes where it reads as link ``lk``'s: within
         :data:`NUMBER_NEAR` of that link's body, nearer it (of ``bodies``) than any other's, nothing of another link (nor hatched ground) between the two,
         nor across its leader from ``anchor`` where it stands far enough to have one (unless called with
         ``leader=False``: a number put beside its link, with none). A block lies in its guide: the guide is no other link here, but
-        the number keeps off it."""
+        the number keeps off it (off its slotted bar, where the guide is a plate: on the plate beside the block it
+        reads as the block's)."""
         own = bodies[lk]
         guides = {s.guide for s in self.m.sliders if s.block == lk}
         others = np.array([g for k, g in bodies.items() if k != lk and k not in guides], dtype=object)
-        off = [bodies[k] for k in guides if k in bodies]
+        off = [self.beside_block(k, bodies[k]) for k in guides if k in bodies]
         a = Point(*anchor)
 
         def crossed(p, q) -> bool:
@@ -965,7 +1051,9 @@ class _Drawing:
         d = path * (1 if value >= 0 else -1)
         view = view_box(self.ax)
         at = set(self.m.carriers.get(self.m.driver.slider, ()))   # the links pinned at the block run from it
-        bodies = [g for lk, g in (*self.geoms.items(), *self.block_geom.items()) if lk not in at] + list(kept)
+        guides = {s.guide for s in self.m.sliders if s.block == block}
+        bodies = [self.beside_block(lk, g) if lk in guides else g
+                  for lk, g in (*self.geoms.items(), *self.block_geom.items()) if lk not in at] + list(kept)
         places = []
         for side in (first, second):
             for along in steps:
@@ -1298,7 +1386,8 @@ def draw_mechanism(sol, ax=None, *, style="textbook", options=None, scale: float
         ``equivalent`` (a sliding contact's dashed equivalent linkage);
         ``.labels`` maps each point key to its label, ``.bodies`` each moving
         link to its drawn body (shapely), ``.plates`` each link drawn as a plate to
-        its polygon, ``.slot_cuts`` each moving link's slot
+        its polygon, ``.guide_bars`` each moving guide drawn in a plate to its slotted bar, ``.slot_cuts`` each
+        moving link's slot
         (by index) to ``(link, centre line, cut)``, ``.exempt`` each ground hatch
         (a LineCollection) to the links it may touch.
     """
