@@ -442,7 +442,7 @@ def test_a_pin_or_block_stays_in_the_track_its_moving_link_carries(kind, variant
     """A slot or guide cut in a moving link is drawn in every frame (it was not drawn at all: a slot's pin and a
     swinging block were seen off the link that carries them), long enough for the whole travel, and joined to its
     link: in every frame the pin (block) lies in the track's cut and in the link's body, and the link's body is
-    one piece holding its own points."""
+    one piece holding its own points, of one shape (its area) in every frame."""
     from matplotlib.path import Path as MPath
     from shapely.geometry import Point, Polygon as SPolygon
     from zoo import specimen
@@ -451,6 +451,7 @@ def test_a_pin_or_block_stays_in_the_track_its_moving_link_carries(kind, variant
     anim = Animator(plan_frames(m, 30.0), "velocity", "textbook", SMALL)
     movers = {s.slot: (s.link, s.pin) for s in m.slots} | {s.guide: (s.block, s.point) for s in m.sliders}
     assert anim.tracks
+    areas = {}
     for k in range(0, len(anim.plan), 3):
         anim.update(k)
         sol = anim.sols[k]
@@ -460,7 +461,10 @@ def test_a_pin_or_block_stays_in_the_track_its_moving_link_carries(kind, variant
             assert cut.get_path().contains_point(at), (k, lk)
             rings = [SPolygon(r) for r in anim.bodies[lk].get_path().to_polygons()]
             outer = max(rings, key=lambda r: r.area)
+            areas.setdefault(lk, []).append(outer.area)
             assert outer.buffer(1e-9 * m.size).contains(Point(*at)), (k, lk)
             for q in m.link(lk).points:
                 if q != point:
                     assert outer.buffer(1e-6 * m.size).contains(Point(*sol.place(lk, q))), (k, lk, q)
+    for lk, a in areas.items():     # a rigid body keeps its shape: one choice of plate or bars for every frame
+        assert max(a) - min(a) <= 1e-3 * max(a), (lk, a)

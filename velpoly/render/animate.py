@@ -627,7 +627,8 @@ class Animator:
         # the moving parts
         self.bw = st.bar_width * pc
         self.bodies = {}
-        crank = None if m.driver.is_slider else m.driver.link
+        tracked = {s.slot for s in m.slots} | {s.guide for s in m.sliders}
+        crank = None if m.driver.is_slider or m.driver.link in tracked else m.driver.link
         for z, link in enumerate(m.moving_links):
             if len(link.points) < 2:
                 continue
@@ -644,6 +645,7 @@ class Animator:
             ax.add_patch(patch)
             self.blocks[(s.block, s.point)] = self._move(patch, ax)
         self.tracks = self._tracks()
+        self.barred = self._barred()
         self.cuts = []
         for lk, _, _ in self.tracks:     # the cut just over its link's body
             cut = PathPatch(_empty_path(), facecolor=st.paper, edgecolor=st.ink, lw=st.thin_lw,
@@ -901,6 +903,30 @@ class Animator:
             v = vals[k]
             t.set_text("–" if not math.isfinite(v) else f"{v:.{dec}f}".replace("-", "−"))
 
+    def _barred(self) -> set:
+        """The links drawn as bars (a bell-crank's arms, joined) in every frame: those whose plate (the hull of
+        their points, or of their body and tracks) covers another link's pivot or pin in the first frame (the
+        drawn pose: the sheet's choice). A rigid body keeps one shape for the whole animation."""
+        from shapely.geometry import MultiPoint, Point
+        from shapely.ops import unary_union
+        from .displacement import foreign_points, joints, link_bodies, on_body
+        m, out = self.m, set()
+        links = [k.name for k in m.moving_links if len(k.points) >= 2 and len(joints(m, k.name)) >= 3]
+        for k, sol in enumerate(self.sols[:1]):
+            bodies = None
+            for lk in links:
+                if lk in out:
+                    continue
+                shape = MultiPoint([tuple(sol.place(lk, p)) for p in m.link(lk).points]).convex_hull
+                tracks = [track(k)[0] for name, _, track in self.tracks if name == lk]
+                if tracks:
+                    bodies = link_bodies(sol, self.bw, set(links)) if bodies is None else bodies
+                    shape = unary_union([bodies[lk]] + tracks).convex_hull
+                near = self.bw if not tracks else self.bw / 2
+                if any(shape.buffer(near).contains(Point(*q)) for q in foreign_points(sol, lk, on_body(m, lk))):
+                    out.add(lk)
+        return out
+
     def _tracks(self) -> list:
         """The slots and guides cut in moving links: (link, frame k -> (centre line, width)), each long enough for
         its pin's (block's) whole travel in the animation, as the link carries it (its place in the link's own
@@ -957,31 +983,26 @@ class Animator:
         """The links' bodies (a link of three or more points as one plate with its corners at its points, as
         the space diagram draws it), the slider blocks and the contact profiles at frame k."""
         from shapely.ops import unary_union
-        from .displacement import body_shape, link_bodies, plain_links, plate_fill, plate_outline, shape_patch
+        from .displacement import joints, link_bodies, plain_links, plate_fill, plate_outline, shape_patch, whole_body
         from .style import link_fill
         m, st = self.m, self.st
-        bodies = link_bodies(sol, self.bw)
+        bodies = link_bodies(sol, self.bw, self.barred)
         plain = plain_links(m)
         webs, pc = {}, self.bw / st.bar_width
         for (lk, point, track), cut in zip(self.tracks, self.cuts):
             path, width = track(k)
-            # the track joined to the rest of its link, as the sheet joins a slot: the hull (or bars) of the link's
-            # own points and the track's ends, and the track's rim
-            own = [tuple(sol.place(lk, q)) for q in m.link(lk).points if q != point]
-            ends = list(path.coords)
-            foreign = [tuple(sol.place(c, q)) for q in m.point_order if lk not in m.carriers.get(q, ())
-                       for c in m.carriers.get(q, ())[:1]]
-            webs.setdefault(lk, []).extend([body_shape(own[:1] + [ends[0], ends[-1]] + own[1:], foreign, self.bw),
-                                            path.buffer(width / 2 + 0.12 * pc, cap_style="round")])
+            webs.setdefault(lk, []).append(path.buffer(width / 2 + 0.12 * pc, cap_style="round"))
             cut.set_path(shape_patch(path.buffer(width / 2, cap_style="round")).get_path())
         for lk, patch in self.bodies.items():
-            plate = plate_outline(sol, lk, self.bw) if lk in plain else None
+            plate = plate_outline(sol, lk, self.bw) if lk in plain and lk not in self.barred else None
             g = plate if plate is not None else bodies.get(lk)
-            if g is not None and lk in webs:
-                g = unary_union([g] + webs[lk])
+            whole = g is not None and plate is None and len(joints(m, lk)) >= 3
+            if g is not None and (lk in webs or whole):   # one piece with its tracks, as the sheet draws it
+                g = unary_union([g] + webs.get(lk, []))
+                g = whole_body(g, (), self.bw, lk in self.barred) if whole else g
             patch.set_path(shape_patch(g).get_path() if g is not None else _empty_path())
             fill = link_fill(m, self.opts, st, lk)
-            patch.set_facecolor(plate_fill(fill, st) if plate is not None else fill)
+            patch.set_facecolor(plate_fill(fill, st) if plate is not None or whole else fill)
         for (block, point), patch in self.blocks.items():
             j = [i for i, s in enumerate(m.sliders) if s.block == block and s.point == point][0]
             d = math.radians(float(self.slider_rows[j]["direction"][k]))

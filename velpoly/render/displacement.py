@@ -117,13 +117,14 @@ def away_from(p, others, default: float = -90.0) -> float:
     return math.degrees(math.atan2(-u[1], -u[0]))
 
 
-def link_bodies(sol, bar_width: float) -> dict:
+def link_bodies(sol, bar_width: float, bars=None) -> dict:
     """Link -> shapely geometry of its body: a bar, or the buffered hull of its points.
 
     One-point links (slider blocks, wheels) have no body here; they are drawn
     as blocks and profiles. A link of three or more points whose plate would
     cover a point it does not carry (another link's pivot or pin: a slotted
-    lever's plate over the crank's pivot) is drawn as bars from its first
+    lever's plate over the crank's pivot), or that is in ``bars`` (a set of links:
+    an animation's choice for every frame), is drawn as bars from its first
     point to the others instead, as a bell-crank is.
     """
     out = {}
@@ -132,7 +133,8 @@ def link_bodies(sol, bar_width: float) -> dict:
         if len(link.points) < 2:
             continue
         pts = [tuple(sol.place(link.name, p)) for p in link.points]
-        out[link.name] = body_shape(pts, foreign_points(sol, link.name), bar_width)
+        out[link.name] = body_shape(pts, foreign_points(sol, link.name), bar_width,
+                                    None if bars is None else link.name in bars)
     return out
 
 
@@ -167,12 +169,21 @@ def joints(m, link) -> set:
     return out | {c.point for c in m.contacts if link in c.links and c.centres is not None}
 
 
-def whole_body(shape, foreign, bar_width: float):
+def on_body(m, link) -> set:
+    """The points a plate of ``link`` may cover: its joints and the points of the blocks it guides (the blocks lie
+    over it)."""
+    return joints(m, link) | {p for s in m.sliders if s.guide == link for p in m.link(s.block).points}
+
+
+def whole_body(shape, foreign, bar_width: float, bars: bool | None = None):
     """A plate's body in one piece with its outline whole: the convex hull of its ``shape`` (its bars, its slotted
-    bar, its profile), or, where that hull would cover one of the ``foreign`` points, the shape itself with
-    its separate pieces joined by bars (nearest to nearest), as a bell-crank's arms are."""
+    bar, its profile), or, where that hull would cover one of the ``foreign`` points (or ``bars`` is True: an
+    animation keeps one choice in every frame), the shape itself with its separate pieces joined by bars
+    (nearest to nearest), as a bell-crank's arms are."""
     hull = shape.convex_hull
-    if not any(hull.buffer(bar_width / 2).contains(Point(*q)) for q in foreign):
+    if bars is None:
+        bars = any(hull.buffer(bar_width / 2).contains(Point(*q)) for q in foreign)
+    if not bars:
         return hull
     pieces = sorted(getattr(shape, "geoms", [shape]), key=lambda g: -g.area)
     whole = pieces[0]
@@ -182,11 +193,13 @@ def whole_body(shape, foreign, bar_width: float):
     return whole
 
 
-def body_shape(pts, foreign, bar_width: float):
+def body_shape(pts, foreign, bar_width: float, bars: bool | None = None):
     """The buffered hull of ``pts`` (a bar or a plate), or bars from the first point to the others where
-    the hull would cover one of the ``foreign`` points."""
+    the hull would cover one of the ``foreign`` points (or ``bars`` is True)."""
     hull = MultiPoint(pts).convex_hull
-    if len(pts) >= 3 and any(hull.buffer(bar_width).contains(Point(*q)) for q in foreign):
+    if bars is None:
+        bars = any(hull.buffer(bar_width).contains(Point(*q)) for q in foreign)
+    if len(pts) >= 3 and bars:
         return unary_union([LineString([pts[0], q]).buffer(bar_width / 2, quad_segs=12) for q in pts[1:]])
     return hull.buffer(bar_width / 2, quad_segs=12)
 
@@ -290,9 +303,7 @@ class _Drawing:
         """The body of a link of three or more joints drawn otherwise than as a bare plate (with a slot, a
         moving guide or a profile; or as bars): in one piece, its outline whole (:func:`whole_body`). The points
         of the blocks it guides are not foreign: the blocks lie over it."""
-        m = self.m
-        own = joints(m, lk) | {p for s in m.sliders if s.guide == lk for p in m.link(s.block).points}
-        return whole_body(shape, foreign_points(self.sol, lk, own), self.st.bar_width * self.pc)
+        return whole_body(shape, foreign_points(self.sol, lk, on_body(self.m, lk)), self.st.bar_width * self.pc)
 
     def hatch(self, a, b, side, role="ground", zorder=1.0, exempt=()):
         """A ground line a-b with short slanted strokes on ``side`` (a unit normal).
