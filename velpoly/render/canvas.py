@@ -313,6 +313,21 @@ def equation_tex(eq: str) -> str:
     return s.replace(" x ", " × ").replace(" - ", " − ")
 
 
+def breaks(text: str) -> list[int]:
+    """Where ``text`` may be broken into lines: the indices of its spaces outside mathtext ($...$).
+
+    >>> breaks("Step 2: $V_B = V_A$, along")
+    [4, 7, 20]
+    """
+    out, inside = [], False
+    for i, ch in enumerate(text):
+        if ch == "$":
+            inside = not inside
+        elif ch == " " and not inside:
+            out.append(i)
+    return out
+
+
 def wrap_caption(caption: str, width_of=len) -> str:
     """``caption`` in two lines, broken at a space outside mathtext ($...$) where its first line is as wide as
     its second (``width_of``: a text's width; by default its number of characters).
@@ -320,12 +335,7 @@ def wrap_caption(caption: str, width_of=len) -> str:
     >>> wrap_caption("Step 2: $V_B = V_A + V_{BA}$, along the path of B, perpendicular to AB")
     'Step 2: $V_B = V_A + V_{BA}$, along\\nthe path of B, perpendicular to AB'
     """
-    spaces, inside = [], False
-    for i, ch in enumerate(caption):
-        if ch == "$":
-            inside = not inside
-        elif ch == " " and not inside:
-            spaces.append(i)
+    spaces = breaks(caption)
     if not spaces:
         return caption
     half = width_of(caption) / 2

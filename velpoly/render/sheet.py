@@ -855,15 +855,9 @@ def _caption_over_table(fig, sol, st, cons, plan, own_page: bool, frame) -> tupl
 def _lines(text: str, width_of, room: float) -> list[str]:
     """``text`` broken at spaces outside mathtext ($...$) into lines no wider than ``room`` (``width_of``: a
     text's width, in its units), each as full as it can be (a word wider than the line stands alone on it)."""
-    words, inside, start = [], False, 0
-    for i, ch in enumerate(text):
-        if ch == "$":
-            inside = not inside
-        elif ch == " " and not inside:
-            words.append(text[start:i])
-            start = i + 1
-    words.append(text[start:])
-    lines = []
+    from .canvas import breaks
+    cuts = [-1] + breaks(text) + [len(text)]
+    words, lines = [text[a + 1:b] for a, b in zip(cuts[:-1], cuts[1:])], []
     for word in words:
         if lines and width_of(lines[-1] + " " + word) <= room:
             lines[-1] += " " + word
