@@ -907,24 +907,20 @@ class Animator:
         """The links drawn as bars (a bell-crank's arms, joined) in every frame: those whose plate (the hull of
         their points, or of their body and tracks) covers another link's pivot or pin in the first frame (the
         drawn pose: the sheet's choice). A rigid body keeps one shape for the whole animation."""
-        from shapely.geometry import MultiPoint, Point
+        from shapely.geometry import MultiPoint
         from shapely.ops import unary_union
-        from .displacement import foreign_points, joints, link_bodies, on_body
-        m, out = self.m, set()
+        from .displacement import covers, foreign_points, joints, link_bodies, on_body
+        m, sol, out = self.m, self.sols[0], set()
         links = [k.name for k in m.moving_links if len(k.points) >= 2 and len(joints(m, k.name)) >= 3]
-        for k, sol in enumerate(self.sols[:1]):
-            bodies = None
-            for lk in links:
-                if lk in out:
-                    continue
-                shape = MultiPoint([tuple(sol.place(lk, p)) for p in m.link(lk).points]).convex_hull
-                tracks = [track(k)[0] for name, _, track in self.tracks if name == lk]
-                if tracks:
-                    bodies = link_bodies(sol, self.bw, set(links)) if bodies is None else bodies
-                    shape = unary_union([bodies[lk]] + tracks).convex_hull
-                near = self.bw if not tracks else self.bw / 2
-                if any(shape.buffer(near).contains(Point(*q)) for q in foreign_points(sol, lk, on_body(m, lk))):
-                    out.add(lk)
+        bodies = None
+        for lk in links:
+            shape = MultiPoint([tuple(sol.place(lk, p)) for p in m.link(lk).points]).convex_hull
+            tracks = [track(0)[0] for name, _, track in self.tracks if name == lk]
+            if tracks:   # as the sheet's whole_body: the hull of the body and its tracks
+                bodies = link_bodies(sol, self.bw, set(links)) if bodies is None else bodies
+                shape = unary_union([bodies[lk]] + tracks).convex_hull
+            if covers(shape, foreign_points(sol, lk, on_body(m, lk)), self.bw / 2 if tracks else self.bw):
+                out.add(lk)
         return out
 
     def _tracks(self) -> list:

@@ -169,6 +169,13 @@ def joints(m, link) -> set:
     return out | {c.point for c in m.contacts if link in c.links and c.centres is not None}
 
 
+def covers(shape, foreign, margin: float) -> bool:
+    """Whether ``shape`` (a plate), grown by ``margin``, covers one of the ``foreign`` points (another link's
+    pivot or pin: the plate is then drawn as bars)."""
+    grown = shape.buffer(margin)
+    return any(grown.contains(Point(*q)) for q in foreign)
+
+
 def on_body(m, link) -> set:
     """The points a plate of ``link`` may cover: its joints and the points of the blocks it guides (the blocks lie
     over it)."""
@@ -182,7 +189,7 @@ def whole_body(shape, foreign, bar_width: float, bars: bool | None = None):
     (nearest to nearest), as a bell-crank's arms are."""
     hull = shape.convex_hull
     if bars is None:
-        bars = any(hull.buffer(bar_width / 2).contains(Point(*q)) for q in foreign)
+        bars = covers(hull, foreign, bar_width / 2)
     if not bars:
         return hull
     pieces = sorted(getattr(shape, "geoms", [shape]), key=lambda g: -g.area)
@@ -198,7 +205,7 @@ def body_shape(pts, foreign, bar_width: float, bars: bool | None = None):
     the hull would cover one of the ``foreign`` points (or ``bars`` is True)."""
     hull = MultiPoint(pts).convex_hull
     if bars is None:
-        bars = any(hull.buffer(bar_width).contains(Point(*q)) for q in foreign)
+        bars = covers(hull, foreign, bar_width)
     if len(pts) >= 3 and bars:
         return unary_union([LineString([pts[0], q]).buffer(bar_width / 2, quad_segs=12) for q in pts[1:]])
     return hull.buffer(bar_width / 2, quad_segs=12)
@@ -220,7 +227,7 @@ def plate_outline(sol, link, bar_width: float):
     sides = np.hypot(np.diff(x), np.diff(y))
     if float(sides.min()) < bar_width:
         return None
-    if any(hull.buffer(bar_width).contains(Point(*q)) for q in foreign_points(sol, link)):
+    if covers(hull, foreign_points(sol, link), bar_width):
         return None
     return hull
 
