@@ -340,6 +340,82 @@
     if (!isFinite(kk) || kk <= 0) kk = 1;
     return { k: kk, x0: (x0 + x1) / 2 - W / 2 / kk, y1: (y0 + y1) / 2 + H / 2 / kk, w: W, h: H };
   }
+  // -- vectors on one line drawn apart, as the sheets draw them (velpoly/render/polygon.py: Beside, lying_along):
+  // a vector lying along one drawn before it (parallel within ONE_LINE degrees, within half the offset of its line
+  // over more than ALONG px) is drawn APART arrowheads (HEAD px) to one side, or twice that, ...; two of one kind
+  // from one tail in one sense whose heads are HEADS_APART arrowheads apart stay on their ray
+  var APART = 0.7, ONE_LINE = 1.5, ALONG = 3.0, HEADS_APART = 2.0, HEAD = 13;
+  function lyingAlong(p, q, t, h, near, along) {   // whether segment p-q lies along segment t-h
+    var size = Math.hypot(h[0] - t[0], h[1] - t[1]), el = Math.hypot(q[0] - p[0], q[1] - p[1]);
+    if (!(size > 0) || !(el > 0)) return false;
+    var ux = (h[0] - t[0]) / size, uy = (h[1] - t[1]) / size;
+    if (Math.abs(ux * (q[1] - p[1]) - uy * (q[0] - p[0])) / el > Math.sin(ONE_LINE * Math.PI / 180)) return false;
+    var rpx = p[0] - t[0], rpy = p[1] - t[1], rqx = q[0] - t[0], rqy = q[1] - t[1];
+    var dp = ux * rpy - uy * rpx, dq = ux * rqy - uy * rqx, tp = ux * rpx + uy * rpy, tq = ux * rqx + uy * rqy;
+    var slope = dq - dp, lo = 0, hi = 1;
+    if (Math.abs(slope) <= 1e-12 * near) { if (Math.abs(dp) > near) return false; }
+    else {
+      var l1 = (-near - dp) / slope, l2 = (near - dp) / slope;
+      lo = Math.min(Math.max(Math.min(l1, l2), 0), 1); hi = Math.min(Math.max(Math.max(l1, l2), 0), 1);
+    }
+    if (!(hi > lo)) return false;
+    var a = tp + lo * (tq - tp), b = tp + hi * (tq - tp);
+    return Math.min(Math.max(a, b), size) - Math.max(Math.min(a, b), 0) > along;
+  }
+  function crosses(p, q, t, h) {   // whether segments p-q and t-h meet
+    function side(o, a, b) { var c = (a[0] - o[0]) * (b[1] - o[1]) - (a[1] - o[1]) * (b[0] - o[0]); return c > 0 ? 1 : c < 0 ? -1 : 0; }
+    return side(p, q, t) * side(p, q, h) <= 0 && side(t, h, p) * side(t, h, q) <= 0;
+  }
+  function Beside() { this.drawn = []; this.apart = APART * HEAD; }
+  Beside.prototype.along = function (p, q, kind) {   // how many drawn vectors p-q lies along (kind: its own rays spared)
+    var n = 0, self = this;
+    this.drawn.forEach(function (d) {
+      if (!lyingAlong(p, q, d.t, d.h, 0.5 * self.apart, ALONG)) return;
+      if (kind !== undefined && d.kind === kind && Math.hypot(d.t[0] - p[0], d.t[1] - p[1]) <= 0.5 * self.apart &&
+          (d.h[0] - d.t[0]) * (q[0] - p[0]) + (d.h[1] - d.t[1]) * (q[1] - p[1]) > 0 &&
+          Math.hypot(d.h[0] - q[0], d.h[1] - q[1]) >= HEADS_APART * HEAD) return;
+      n++;
+    });
+    return n;
+  };
+  Beside.prototype.add = function (t, h, centre, kind) {   // the shift [dx, dy] px the vector t-h is drawn with
+    var s = [0, 0];
+    if (this.along(t, h, kind)) {
+      var L = Math.hypot(h[0] - t[0], h[1] - t[1]), nx = -(h[1] - t[1]) / L, ny = (h[0] - t[0]) / L;
+      var side = nx * ((t[0] + h[0]) / 2 - centre[0]) + ny * ((t[1] + h[1]) / 2 - centre[1]) >= 0 ? 1 : -1;
+      var best = null, self = this;
+      for (var k = 0; k < 5 && !(best && best.hits === 0); k++) {
+        (k === 0 ? [0] : [side * k, -side * k]).forEach(function (m) {
+          var o = [m * self.apart * nx, m * self.apart * ny], p = [t[0] + o[0], t[1] + o[1]], q = [h[0] + o[0], h[1] + o[1]];
+          var hits = self.along(p, q), cross = 0;
+          self.drawn.forEach(function (d) { if (crosses(p, q, d.t, d.h)) cross++; });
+          if (!best || hits < best.hits || (hits === best.hits && cross < best.cross)) best = { hits: hits, cross: cross, s: o };
+        });
+      }
+      s = best.s;
+    }
+    this.drawn.push({ t: [t[0] + s[0], t[1] + s[1]], h: [h[0] + s[0], h[1] + s[1]], kind: kind });
+    return s;
+  };
+  function besideAll(poly, v) {   // {ids: per step, per vector its id (null: not drawn), shift: per id [dx, dy] px}
+    var drawn = new Beside(), order = [], kinds = {}, shift = {}, cx = 0, cy = 0, m = 1, key;
+    for (key in poly.img) if (poly.img[key]) { cx += poly.img[key][0]; cy += poly.img[key][1]; m++; }
+    var centre = [X(v, cx / m), Y(v, cy / m)], ends = {};
+    var ids = poly.st.map(function (s) {
+      return s.v.map(function (vv) {
+        if (!vv[0] && vv[0] !== 0) return null;
+        var t = [X(v, vv[0]), Y(v, vv[1])], h = [X(v, vv[2]), Y(v, vv[3])];
+        if (Math.hypot(h[0] - t[0], h[1] - t[1]) < 0.5) return null;
+        var id = [t, h].map(function (p) { return n2(p[0]) + "," + n2(p[1]); }).join(" ");
+        if (!(id in kinds)) { order.push(id); ends[id] = [t, h]; kinds[id] = vv[4]; }
+        else if (vv[4] === "absolute") kinds[id] = "absolute";
+        return id;
+      });
+    });
+    order.forEach(function (id) { shift[id] = drawn.add(ends[id][0], ends[id][1], centre, kinds[id]); });
+    return { ids: ids, shift: shift };
+  }
+
   function polygon(P, level, v, n, cur) {
     var poly = level === "velocity" ? P.vp : P.ap, out = [];
     if (!poly) {
@@ -381,14 +457,23 @@
         }
       }
     }
-    // vectors
+    // vectors, each beside those on its line (planned over every step: a step draws it where the last has it); one
+    // arrow a vector (an absolute one that is also relative stays absolute), marked now if a current step has it
+    var plan = besideAll(poly, v), pick = {}, nowIds = {}, id;
+    for (j = 0; j < last; j++) for (k = 0; k < steps[j].v.length; k++) {
+      id = plan.ids[j][k];
+      if (id === null) continue;
+      if (j + 1 === now) nowIds[id] = true;
+      if (!pick[id] || (steps[j].v[k][4] === "absolute" && pick[id].kind !== "absolute"))
+        pick[id] = { j: j, k: k, kind: steps[j].v[k][4] };
+    }
     for (j = 0; j < last; j++) {
       s = steps[j];
       for (k = 0; k < s.v.length; k++) {
-        var vv = s.v[k];
-        if (!vv[0] && vv[0] !== 0) continue;
-        out.push(arrow(X(v, vv[0]), Y(v, vv[1]), X(v, vv[2]), Y(v, vv[3]), vv[4], j + 1 === now,
-          vv[5] + " = " + polar([vv[2] - vv[0], vv[3] - vv[1]]) + " " + unitsOf(power)));
+        var vv = s.v[k], sh = plan.shift[plan.ids[j][k]];
+        if (plan.ids[j][k] === null || pick[plan.ids[j][k]].j !== j || pick[plan.ids[j][k]].k !== k) continue;
+        out.push(arrow(X(v, vv[0]) + sh[0], Y(v, vv[1]) + sh[1], X(v, vv[2]) + sh[0], Y(v, vv[3]) + sh[1], vv[4],
+          !!nowIds[plan.ids[j][k]], vv[5] + " = " + polar([vv[2] - vv[0], vv[3] - vv[1]]) + " " + unitsOf(power)));
       }
     }
     // images: one label for coincident ones (O_v, a, d)
