@@ -160,14 +160,17 @@ def test_detail_where_the_rule_says_on_generated_mechanisms():
     assert drawn == {True: 4, False: 2}, drawn
 
 
-@pytest.mark.parametrize("name, kind", [("ex3_4_slotted_lever", "velocity"),
-                                        ("ex3_10_rolling_contact", "acceleration"),
-                                        ("cam_roller_follower", "acceleration")])
-@pytest.mark.parametrize("style", ["textbook", "slides"])
-def test_crushed_gallery_polygons_get_their_detail(name, kind, style):
-    """Example 3.4's velocity polygon (a₂ five times the rest) and Example 3.10's acceleration polygon (d₅′)
-    are drawn with a detail, in both styles."""
-    sol = velpoly.solve(velpoly.load(EXAMPLES / f"{name}.toml"))
+@pytest.mark.parametrize("style, name, kind", [("textbook", "ex3_4_slotted_lever", "velocity"),
+                                               ("textbook", "ex3_10_rolling_contact", "acceleration"),
+                                               ("textbook", "cam_roller_follower", "acceleration"),
+                                               ("slides", "ex3_4_slotted_lever", "velocity")])
+def test_crushed_gallery_polygons_get_their_detail(style, name, kind):
+    """Example 3.4's velocity polygon (a₂ five times the rest), Example 3.10's and the roller follower's
+    acceleration polygons (d₅′) are drawn with a detail, textbook; Example 3.4's in slides too (what is checked,
+    the detail where the rule says, at its stated scale, its images true, is the style's only through the
+    panel's size: the other two in slides were cut by issue 19 item 7; Example 3.10's slide draws its detail in
+    its full sheet, test_example_3_10_full_sheet_detail_has_its_room)."""
+    sol = sheets.solved(name)
     poly = velocity_polygon(sol) if kind == "velocity" else acceleration_polygon(sol)
     ax, pc, art = _draw(sol, poly, style)
     assert art.detail is not None

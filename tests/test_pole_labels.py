@@ -109,7 +109,13 @@ def _poles_drawing(sol, st):
     return ax, art
 
 
-CROWDS = (7, 23, 26)   # of sixbars(5, 36) on slides: the crowds of each kind (6 and 22 had a driver's value on a line)
+# of sixbars(5, 36) on slides: the crowds of each kind (6 and 22 had a driver's value on a line). 26, the pole in a
+# cluster of seven that found no free place within the far rings (32a440d gave it a longer leader: labels.REACH_RINGS),
+# was cut by issue 19 item 7: with REACH_RINGS emptied by hand its drawing has no text on a line or leader all the
+# same (the placer's later passes find it a place), so it no longer failed on its defect, and it was the suite's
+# costliest drawing (7 to 12 CPU s); with REACH_RINGS emptied test_fig17_leaders' crowded six-bars 3 and 14 have
+# crossing leaders (2 and 3) and fail
+CROWDS = (7, 23)
 
 
 @DENSE
@@ -117,8 +123,8 @@ def test_no_text_on_a_line_or_leader_in_a_crowd():
     """Slides, the dense six-bars of seed 5 that had a pole label or a driver's value on a Kennedy line or under
     a leader (before: 4 of the 36 of sixbars(5, 36), then 2 pole labels and 1 driver's value; now 0 of 36): an
     arrow to a pole at infinity drawn under the driver's value (its label's every leader crossed that value),
-    a pole in a cluster of seven with no free place within the far rings (now a longer leader, out of the
-    crowd), a driver's value under a later leader (placed again clear of it). No pole label and no driver's
+    a driver's value under a later leader (placed again clear of it); the third, a pole in a cluster of seven
+    (``CROWDS``), is test_fig17_leaders' to catch. No pole label and no driver's
     value meets a Kennedy line or another text's leader; each arrow to a pole at infinity points its pole's
     way, clear of every label."""
     specs = dense_sixbars(5)

@@ -28,6 +28,9 @@ def _afresh(ax) -> float:
 
 @pytest.mark.parametrize("style", ["textbook", "slides"])
 def test_per_point_kept_is_per_point_computed_and_never_stale(style):
+    """Generated mechanisms' drawings, every kind in textbook, the six-bar in slides (the kept value and the
+    value afresh read the same axes whatever the style: the other three kinds in slides were cut by issue 19
+    item 7)."""
     st = get_style(style)
     rng = np.random.default_rng(19 if style == "textbook" else 7)
     changes = [
@@ -41,7 +44,7 @@ def test_per_point_kept_is_per_point_computed_and_never_stale(style):
         ("aspect", lambda fig, ax: ax.set_aspect(2.0)),
     ]
     with rc_context(st):
-        for kind in ("four-bar", "six-bar", "slot", "contact"):
+        for kind in ("four-bar", "six-bar", "slot", "contact") if style == "textbook" else ("six-bar",):
             sol = zoo.specimen(rng, kind).drawn
             fig = Figure(figsize=st.figsize, dpi=72)
             FigureCanvasAgg(fig)
