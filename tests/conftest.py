@@ -55,3 +55,19 @@ def collect_before_the_check():
     finaliser that raises, and one in a cycle another finaliser made, are still reported)."""
     gc.collect()
     gc.collect(1)
+
+
+# -- the browser ---------------------------------------------------------------------------------------
+@pytest.fixture(scope="session")
+def browser():
+    """One headless Chromium a test process (tests/browser.py), for the interactive page's tests (test_html,
+    test_html_apart: one xdist group, so one worker starts it once)."""
+    from browser import Browser, find_chromium
+    exe = find_chromium()
+    if not exe:
+        if os.environ.get("VELPOLY_REQUIRE_BROWSER") == "1":
+            pytest.fail("VELPOLY_REQUIRE_BROWSER=1 but no chromium: install Debian's chromium package")
+        pytest.skip("no chromium (set VELPOLY_REQUIRE_BROWSER=1 to make this a failure)")
+    b = Browser(exe, size=(1280, 900))
+    yield b
+    b.close()

@@ -292,20 +292,6 @@ def test_a_failing_construction_is_reported_not_raised(monkeypatch):
 
 
 # -- the browser ---------------------------------------------------------------------------------------
-@pytest.fixture(scope="module")
-def browser():
-    """One headless Chromium for the module (tests/browser.py)."""
-    from browser import Browser, find_chromium
-    exe = find_chromium()
-    if not exe:
-        if os.environ.get("VELPOLY_REQUIRE_BROWSER") == "1":
-            pytest.fail("VELPOLY_REQUIRE_BROWSER=1 but no chromium: install Debian's chromium package")
-        pytest.skip("no chromium (set VELPOLY_REQUIRE_BROWSER=1 to make this a failure)")
-    b = Browser(exe, size=(1280, 900))
-    yield b
-    b.close()
-
-
 class Dom(HTMLParser):
     """The body's attributes and every element carrying data-key."""
 

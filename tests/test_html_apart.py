@@ -23,7 +23,6 @@ import pytest
 import velpoly
 from velpoly.html import page
 from velpoly.polygons import acceleration_polygon, velocity_polygon
-from test_html import browser  # noqa: F401  (the fixture: one headless Chromium for the module)
 from zoo import specimen
 
 # generated classes that put two vectors on one line, crank-driven (a slider driver's stroke search costs seconds a
@@ -119,6 +118,7 @@ def _check_panel(arrows, vectors, k, off):
     return shifts, moved
 
 
+@pytest.mark.xdist_group("html-page")     # with test_html's browser tests: one Chromium (conftest's browser)
 def test_the_page_draws_vectors_on_one_line_apart(browser, pages):
     moved_in_all = []
     for m, path in pages:
