@@ -65,16 +65,14 @@ def test_an_eight_bar_slide_gives_its_labels_room(variant):
 
 @pytest.mark.parametrize("seed, variant", [
     (3, "stephenson I"),
-    pytest.param(9, "stephenson III", marks=pytest.mark.xfail(strict=True, reason=(
-        "known, open: with the space diagram's plates filled whole (branch space2, merged after this case was "
-        "fixed on branch leaders) P35's leader crosses P46's again; swapping the two would put P35's leader "
-        "across link number 5 and P46's across P26's: no clean place in that crowd")))])
+    (9, "stephenson III")])
 def test_a_crowded_six_bar_slide_has_leaders_apart(seed, variant):
     """A seeded six-bar's poles slide, drawn: no two leaders of which one is a pole label's cross, and every pole
     label in view stands nearer its own ring than any other or has its leader from its own ring. The Stephenson
     I had two crossing pairs before the crowded layout (its links 6 x 7 cm over a table of 6 of its 13 rows, now
-    10 x 11 cm beside a table of 11); the Stephenson III one on 39e3408 (P35's leader across P46's: no free place
-    for either while the other stood, both placed again together now, kennedy._afresh)."""
+    10 x 11 cm beside a table of 11); the Stephenson III one on 39e3408 and on 5ffbd6b (P35's leader across P46's:
+    no free place for either while the other stood; with the plates filled whole, no place for the two together
+    either while P26's label stood: the three placed again now, kennedy._clear_of_all)."""
     from test_leaders_zoo import astray
     sol = zoo.specimen(np.random.default_rng(seed), "six-bar", variant).drawn
     st = get_style("slides")

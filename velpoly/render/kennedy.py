@@ -37,6 +37,8 @@ NUMBER_SPOTS = (0.3, 0.7, 0.5, 0.4, 0.6, 0.22, 0.78, 0.35, 0.65, 0.45, 0.55)  # 
 FINE_SPOTS = tuple(sorted((round(0.12 + 0.02 * i, 2) for i in range(39)), key=lambda f: (abs(f - 0.5), f)))
 KENNEDY_Z = 3.6   # Kennedy and constraint lines: above every body (links 2, ground 2.9, blocks 3.2), below points 4
 REACH = 2.5   # the view holds the finite poles within REACH mechanism sizes of the mechanism
+THIRD_MOST, THIRD_TRIES = 4, 8   # a crossing's third label lifted: the nearest so many, each with so many places
+PAIR_MOST = 80   # of each label's places that leave no crossing, the best so many are paired (_clear_pair)
 FAR_BAND = 0.15   # mechanism sizes beyond the box's corners: a crowded view's room towards a pole out of it
 
 
@@ -181,6 +183,193 @@ def _apart(pl, art, how: dict) -> None:
     _uncross(pl, art, how)
     _afresh(pl, art, how)
     _off_the_leaders(pl, art)
+    _clear_of_all(pl, art, how)
+
+
+def _clear_of_all(pl, art, how: dict) -> None:
+    """Leaders that still cross after every step above (issue 17: one cannot tell which ring is which): the labels
+    of each crossing of a pole label's leader (the pole's, and the other: a pole's, a driver's value, a point's
+    label or a link number) moved to places that leave no crossing at all: one of them alone, else the two
+    together (:func:`_clear_pair`), else the two with a third label lifted too (:func:`_clear_with_third`); every
+    other label stays where it stands. A label so moved covers no more marks, pins and lines than where it
+    stood, stays nearer its own ring if it was (and always where it has no leader) and off the lines drawn if
+    it was, and the leaders moved cross no more lines and outlines together than before; a pole's label at its
+    size or smaller (:data:`SMALLER`), any other at its size. Of such places, the one covering least, at the
+    largest size, whose leader crosses the fewest lines and is shortest. Each crossing is tried once. A step
+    frame's labels stand where the finished construction's do: left as placed."""
+    if pl.pins:
+        return
+    poles = {id(t): k for k, t in art.labels.items()}
+    tried = set()
+    while True:
+        pairs = [(pl.labels[i], pl.labels[j]) for i, j, _ in pl._crossings()]
+        pairs = [two for two in pairs if any(id(p.text) in poles for p in two)
+                 and frozenset(id(p.text) for p in two) not in tried]
+        if not pairs:
+            return
+        tried.add(frozenset(id(p.text) for p in pairs[0]))
+        movers = [(p, _spec(p, how, poles)) for p in pairs[0] if p.anchor is not None]
+        alone = [(_clear_places(pl, p, spec), p) for p, spec in movers]
+        alone = [(c[0], c, p) for c, p in alone if c is not None]
+        if alone:
+            _, c, p = min(alone, key=lambda x: x[0])
+            _clear_commit(pl, [(p, c)])
+        elif not (len(movers) == 2 and _clear_pair(pl, movers)):
+            _clear_with_third(pl, how, movers, poles)
+
+
+def _limits(pl, p, accept, lines) -> tuple:
+    """What a placed label ``p`` may not get worse at when moved (:func:`_clear_options`): the hard obstacles and
+    the soft ones its box meets, whether it is nearer its own ring (``accept``) and off the ``lines`` drawn, the
+    lines and outlines its leader crosses (:func:`_across`)."""
+    return (_hard_hits(pl, p), pl.soft_hits(p.box), accept is not None and accept(p.box),
+            not _on_lines(pl, p.text, lines), _across(pl, p))
+
+
+def _across(pl, p) -> int:
+    """How many lines and outlines (soft obstacles) the placed label ``p``'s leader crosses besides those at its
+    anchor, as :meth:`~velpoly.render.labels.LabelPlacer.clear_places` counts them (0 without a leader)."""
+    import shapely
+    if p.leader is None or not pl.soft:
+        return 0
+    soft = np.array(pl.prepared_soft(), dtype=object)
+    at = shapely.intersects(soft, Point(*p.anchor).buffer(2.0 * per_point(pl.ax)))
+    return int((shapely.intersects(soft, LineString(np.column_stack(p.leader.get_data()))) & ~at).sum())
+
+
+def _spec(p, how: dict, poles: dict) -> dict:
+    """How the placed label ``p`` may be placed anew (:func:`_clear_options`): a pole's label (``poles``: id of its
+    Text -> its pole's key; ``how``: :func:`_label_poles`') as it was placed, at its size or smaller; any other
+    (a driver's value, a point's label) at the size it has."""
+    if id(p.text) in poles:
+        kw = how[poles[id(p.text)]][2]
+        return dict(fontsize=kw["fontsize"], prefer=kw["prefer"], accept=kw.get("accept"), sizes=(1.0,) + SMALLER)
+    return dict(fontsize=p.text.get_fontsize(), prefer=None, accept=None, sizes=(1.0,))
+
+
+def _clear_options(pl, p, spec: dict, lifted: list, limits=None, spare: int = 0) -> list:
+    """The places that leave no crossing (:meth:`~velpoly.render.labels.LabelPlacer.clear_places`) for the pole
+    label ``p`` (placed as ``spec`` says, :func:`_spec`), the labels ``lifted`` (``p`` among them) taken off while they are sought,
+    that :func:`_clear_of_all` allows (``limits``: :func:`_limits`' of ``p`` where it stood; ``spare``: lines its
+    leader may cross beyond its old one's, which others of a group cross fewer), best first: ``[(score, size, box,
+    leader or None)]``, the score (marks,
+    pins and lines the box covers; lines and outlines it covers; the size's rank; lines the leader crosses; its
+    length)."""
+    import shapely
+    kw = spec
+    accept, lines = kw.get("accept"), np.array(_drawn_lines(pl.ax), dtype=object)[None, :]
+    pp, t = per_point(pl.ax), p.text
+    old_hard, old_soft, keep_near, keep_off, old_across = (_limits(pl, p, accept, list(lines[0])) if limits is None
+                                                           else limits)
+    taken = sorted(((pl.labels.index(q), q) for q in lifted), key=lambda x: x[0])
+    size, out = t.get_fontsize(), []
+    for k, _ in reversed(taken):
+        del pl.labels[k]
+    try:
+        for rank, f in enumerate(kw["sizes"]):
+            t.set_fontsize(kw["fontsize"] * f)
+            got = pl.clear_places(p.anchor, *pl.text_size(t), kw["prefer"])
+            ok = (got["hard"] <= old_hard) & (got["soft"] <= old_soft) & (got["across"] <= old_across + spare)
+            if keep_off and lines.size and ok.any():   # (its box as placed: the margin off)
+                inner = shapely.buffer(got["boxes"][ok], -pp, join_style="mitre")
+                ok[ok] = ~shapely.intersects(lines, inner[:, None]).any(axis=1)
+            for n in np.flatnonzero(ok):
+                b = got["boxes"][n]
+                if (keep_near or got["leaders"][n] is None) and accept is not None and not accept(b):
+                    continue   # (a label with no leader is read as the nearest ring's)
+                score = (int(got["hard"][n]), int(got["soft"][n]), rank, int(got["across"][n]), float(got["reach"][n]))
+                out.append((score, t.get_fontsize(), b, got["leaders"][n]))
+    finally:
+        t.set_fontsize(size)
+        for k, q in taken:
+            pl.labels.insert(k, q)
+    return sorted(out, key=lambda x: x[0])
+
+
+def _clear_places(pl, p, spec: dict):
+    """The best place :func:`_clear_options` finds for the label ``p`` alone, or None."""
+    got = _clear_options(pl, p, spec, [p])
+    return got[0] if got else None
+
+
+def _clear_pair(pl, movers: list) -> bool:
+    """The two labels ``movers`` (each with its :func:`_spec`) of a crossing, where neither alone has a place
+    that leaves no crossing, placed together: the best two places of :func:`_combos`, both lifted, their
+    leaders across no more lines and outlines together than before; whether they moved."""
+    lifted = [p for p, _ in movers]
+    combos = _combos(pl, movers, lifted, sum(_across(pl, p) for p in lifted))
+    if combos:
+        _clear_commit(pl, list(zip(lifted, combos[0])))
+    return bool(combos)
+
+
+def _combos(pl, movers: list, lifted: list, budget: int) -> list:
+    """The places of ``movers`` (one label, or the two of a crossing, each with its :func:`_spec`), ``lifted``
+    taken off, that leave no crossing among them and whose leaders cross at most ``budget`` lines and outlines
+    together, best first (at most :data:`THIRD_TRIES`; of two, the best :data:`PAIR_MOST` places of each paired,
+    their scores summed): ``[[option, ...]]`` (:func:`_clear_options`' each)."""
+    import shapely
+    opts = [_clear_options(pl, p, spec, lifted, spare=budget - _across(pl, p))[:PAIR_MOST] for p, spec in movers]
+    if not all(opts):
+        return []
+    if len(opts) == 1:
+        return [[o] for o in opts[0][:THIRD_TRIES]]
+    pp = per_point(pl.ax)
+    boxes = [np.array([o[2] for o in x], dtype=object) for x in opts]
+    lines = [np.array([None if o[3] is None else o[3].buffer(0.4 * pp) for o in x], dtype=object) for x in opts]
+    meet = shapely.intersects(boxes[0][:, None], boxes[1][None, :])
+    meet |= shapely.intersects(lines[0][:, None], boxes[1][None, :]) | shapely.intersects(boxes[0][:, None], lines[1][None, :])
+    meet |= shapely.intersects(lines[0][:, None], lines[1][None, :])
+    pairs = sorted((tuple(a + b for a, b in zip(opts[0][i][0], opts[1][j][0])), int(i), int(j))
+                   for i, j in np.argwhere(~meet) if opts[0][i][0][3] + opts[1][j][0][3] <= budget)
+    return [[opts[0][i], opts[1][j]] for _, i, j in pairs[:THIRD_TRIES]]
+
+
+def _clear_with_third(pl, how: dict, movers: list, poles: dict) -> bool:
+    """The labels ``movers`` of a crossing with no place that leaves none, while a third label stands where it
+    does (a crowd: its box or leader takes their free places): with a third lifted too (the labels nearest the
+    movers' anchors first, at most :data:`THIRD_MOST`), the movers placed as
+    :func:`_combos` finds (best first) and the third where :func:`_clear_options` then finds it a place, the
+    three leaders across no more lines and outlines together than before; of such threes, the one whose scores
+    summed are least (:func:`_clear_options`) kept. Whether they moved."""
+    ones = {id(p) for p, _ in movers}
+    at = [np.asarray(p.anchor, float) for p, _ in movers]
+    thirds = sorted((q for q in pl.labels if id(q) not in ones and q.anchor is not None),
+                    key=lambda q: min(q.box.distance(Point(*a)) for a in at))[:THIRD_MOST]
+    best, n = None, 0
+    for q in thirds:
+        spec = _spec(q, how, poles)
+        limits = _limits(pl, q, spec["accept"], _drawn_lines(pl.ax))
+        budget = sum(_across(pl, p) for p, _ in movers) + limits[4]
+        for combo in _combos(pl, movers, [p for p, _ in movers] + [q], budget):
+            saved = list(pl.labels)
+            sizes = [p.text.get_fontsize() for p, _ in movers]
+            for (p, _), o in zip(movers, combo):
+                p.text.set_fontsize(o[1])
+                pl.labels[pl.labels.index(p)] = pl._moved(p, o[2], o[3])
+            got = _clear_options(pl, q, spec, [q], limits, budget - sum(o[0][3] for o in combo) - limits[4])
+            pl.labels[:] = saved
+            for (p, _), size in zip(movers, sizes):
+                p.text.set_fontsize(size)
+            if got:
+                group = [(p, o) for (p, _), o in zip(movers, combo)] + [(q, got[0])]
+                score = tuple(sum(x) for x in zip(*(o[0] for _, o in group)))
+                best = min(best, (score, n, group), key=lambda x: x[:2]) if best else (score, n, group)
+                n += 1
+    if best:
+        _clear_commit(pl, best[2])
+    return best is not None
+
+
+def _clear_commit(pl, moves: list) -> None:
+    """Each placed label of ``moves`` put at its place (:func:`_clear_options`' ``(score, size, box, leader)``)."""
+    new, ks = list(pl.labels), []
+    for p, (_, size, b, line) in moves:
+        p.text.set_fontsize(size)
+        k = pl.labels.index(p)
+        new[k] = pl._moved(p, b, line)
+        ks.append(k)
+    pl._commit(new, ks)
 
 
 def _untangle(pl, art) -> None:

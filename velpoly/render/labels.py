@@ -632,6 +632,42 @@ class LabelPlacer:
         text.set_fontsize(size)
         return False
 
+    def clear_places(self, anchor, w: float, h: float, prefer=None, gap: float = 2.5) -> dict:
+        """Every place near ``anchor`` (out to :data:`REACH_RINGS`, in 24 directions, 48 on those) where a w x h box
+        stands in view clear of every placed label and leader, and its leader as :meth:`_leader_line` draws it
+        (none within 8 pt) crosses no label and no leader: a place that leaves no crossing at all. Returns arrays
+        (one row a place, nearest rings first): ``centres``, ``boxes``, ``leaders`` (None: none), ``hard`` (marks,
+        pins and lines the box covers), ``soft`` (lines and outlines it covers), ``across`` (lines and outlines
+        its leader crosses besides those at the anchor), ``reach`` (the leader's length, 0 without one)."""
+        pp, view, anchor = per_point(self.ax), view_box(self.ax), np.asarray(anchor, float)
+        keep_off = np.array(self.boxes + self.leaders, dtype=object)[None, :]
+        hard = np.array(self._hard, dtype=object)[None, :]
+        soft = np.array(self.prepared_soft(), dtype=object)[None, :]
+        at_anchor = shapely.intersects(soft[0], Point(*anchor).buffer(2.0 * pp)) if soft.size else None
+        got = []
+        for ring in sorted({gap, *(r for r in RINGS if r > gap), *FAR_RINGS, *REACH_RINGS}):
+            cands = _Ring(anchor, w, h, prefer, ring * pp, 48 if ring in REACH_RINGS else 24)
+            ok = shapely.contains(view, cands.geoms)
+            if keep_off.size:
+                ok &= ~shapely.intersects(keep_off, cands.geoms[:, None]).any(axis=1)
+            idx = np.flatnonzero(ok)
+            edges = _towards(cands.geoms[idx], anchor)
+            far = np.hypot(*(edges - anchor).T)
+            lines = np.array([None if d < 8.0 * pp else _leader_segment(anchor, b, pp)
+                              for d, b in zip(far, cands.geoms[idx])], dtype=object)
+            has = np.array([ln is not None for ln in lines], bool)
+            if keep_off.size and has.any():   # (None: a missing geometry, which meets nothing)
+                crossing = shapely.intersects(keep_off, lines[:, None]).any(axis=1)
+                idx, lines, far, has = idx[~crossing], lines[~crossing], far[~crossing], has[~crossing]
+            g = cands.geoms[idx][:, None]
+            across = np.zeros(len(idx), int)
+            if soft.size and has.any():
+                across[has] = (shapely.intersects(soft, lines[has][:, None]) & ~at_anchor).sum(axis=1)
+            got.append((cands.centres[idx], cands.geoms[idx], lines, _count(hard, g, len(idx)),
+                        _count(soft, g, len(idx)), across, np.where(has, far, 0.0)))
+        keys = ("centres", "boxes", "leaders", "hard", "soft", "across", "reach")
+        return {k: np.concatenate([x[n] for x in got]) for n, k in enumerate(keys)}
+
     def _leader_line(self, anchor, b):
         """The leader from ``anchor`` to box ``b`` as :meth:`_put` draws it (its first 1.5 pt left open), or None
         where the box stands near enough not to need one."""
