@@ -109,3 +109,41 @@ def test_generated_sheet_svg_is_matplotlibs(monkeypatch):
         fig = sheet.render_sheet(sol, "full", st)
         assert _svg(fig) == _svg(fig, backend="svg")
     assert len(asked) > len(set(asked))   # rooms asked for again
+
+
+def _old_sprite(dpi, t, s, per_char):
+    """What ``Animator._sprite`` made before: a scratch figure on matplotlib's own Agg canvas, its whole picture
+    made float, then cut to the ink."""
+    from matplotlib.backends.backend_agg import FigureCanvasAgg
+    sc = Figure(figsize=(800 / dpi, 300 / dpi), dpi=dpi)
+    sc.patch.set_alpha(0.0)
+    FigureCanvasAgg(sc)
+    tx = sc.text(0.5, 0.5, s, fontproperties=t.get_fontproperties(), color=t.get_color(),
+                 ha="left" if per_char else t.get_ha(), va=t.get_va())
+    sc.canvas.draw()
+    buf = np.asarray(sc.canvas.buffer_rgba()).astype(np.float32) / 255.0
+    adv = tx.get_window_extent(sc.canvas.get_renderer()).width if per_char else 0.0
+    alpha = buf[..., 3]
+    rows, cols = np.flatnonzero(alpha.any(axis=1)), np.flatnonzero(alpha.any(axis=0))
+    if not len(rows):
+        return np.zeros((1, 1, 4), np.float32), 0, 0, adv
+    return buf[rows[0]:rows[-1] + 1, cols[0]:cols[-1] + 1], cols[0] - 400.0, rows[0] - 150.0, adv
+
+
+def test_animation_sprites_are_the_old_pictures():
+    """An animation's text pictures (``Animator._sprite``: drawn on a canvas whose glyphs are kept, only the ink's
+    rectangle made float) are the old ones, value for value, on generated texts and characters (and a blank)."""
+    from types import SimpleNamespace
+    from velpoly.render.animate import Animator
+    rng = np.random.default_rng(8)
+    with rc_context(get_style("slides")):
+        fig = _page([])
+        for spec in _texts(4, 6) + [dict(_texts(5, 1)[0], s=" ")]:
+            dpi = float(rng.choice([60.0, 120.0]))
+            me = SimpleNamespace(dpi=dpi, _sprites={})
+            t = fig.text(0.5, 0.5, spec["s"], fontsize=spec["fontsize"], family=spec["family"], color=spec["color"],
+                         ha=spec["ha"], va=spec["va"])
+            for s, per_char in [(spec["s"], False)] + [(ch, True) for ch in spec["s"][:3]]:
+                new, old = Animator._sprite(me, t, s, per_char), _old_sprite(dpi, t, s, per_char)
+                assert new[0].dtype == old[0].dtype and np.array_equal(new[0], old[0]), s
+                assert new[1:] == old[1:]
