@@ -350,9 +350,9 @@ class Animator:
 
     def __init__(self, plan: FramePlan, sheet: str = "velocity", style: str = "slides",
                  size: tuple[int, int] = DEFAULT_SIZE, centrodes=None):
-        from matplotlib.backends.backend_agg import FigureCanvasAgg
         from matplotlib.figure import Figure
         from .style import get_style, rc_context
+        from .textcache import new_canvas
         from .options import drawing_options
         if sheet not in SHEETS:
             raise InputError(f"unknown sheet {sheet!r}; valid sheets: " + ", ".join(SHEETS), where="--sheet")
@@ -395,7 +395,7 @@ class Animator:
         try:
             self.fig = Figure(figsize=(16.0, h / self.dpi), dpi=self.dpi)
             self.fig.patch.set_facecolor(st.paper)
-            FigureCanvasAgg(self.fig)
+            new_canvas(self.fig)   # (Agg, its text kept: velpoly.render.textcache)
             self.moving: list = []           # (axes or None, artist) drawn every frame
             self.texts: list = []            # (axes or None, Text) moving texts, pasted as sprites
             self._sprites: dict = {}
@@ -1252,13 +1252,13 @@ class Animator:
         hit = self._sprites.get(key)
         if hit is not None:
             return hit
-        from matplotlib.backends.backend_agg import FigureCanvasAgg
         from matplotlib.figure import Figure
+        from .textcache import new_canvas
         sc = getattr(self, "_scratch", None)
         if sc is None:
             sc = self._scratch = Figure(figsize=(800 / self.dpi, 300 / self.dpi), dpi=self.dpi)
             sc.patch.set_alpha(0.0)
-            FigureCanvasAgg(sc)
+            new_canvas(sc)   # (Agg, its glyphs kept: velpoly.render.textcache)
         kw = dict(fontproperties=t.get_fontproperties(), color=t.get_color(),
                   ha="left" if per_char else t.get_ha(), va=t.get_va())
         bb = t.get_bbox_patch()
@@ -1267,15 +1267,15 @@ class Animator:
                               lw=bb.get_linewidth())
         tx = sc.text(0.5, 0.5, s, **kw)
         sc.canvas.draw()
-        buf = np.asarray(sc.canvas.buffer_rgba()).astype(np.float32) / 255.0
+        buf = np.asarray(sc.canvas.buffer_rgba())
         adv = tx.get_window_extent(sc.canvas.get_renderer()).width if per_char else 0.0
         tx.remove()
-        alpha = buf[..., 3]
+        alpha = buf[..., 3]   # (a byte over 255 is above zero where the byte is: the ink's rows and columns)
         rows, cols = np.flatnonzero(alpha.any(axis=1)), np.flatnonzero(alpha.any(axis=0))
         if not len(rows):
             out = (np.zeros((1, 1, 4), np.float32), 0, 0, adv)
-        else:
-            spr = buf[rows[0]:rows[-1] + 1, cols[0]:cols[-1] + 1]
+        else:   # only the ink's rectangle made float (each value as the whole picture's would be)
+            spr = buf[rows[0]:rows[-1] + 1, cols[0]:cols[-1] + 1].astype(np.float32) / 255.0
             out = (spr, cols[0] - 400.0, rows[0] - 150.0, adv)
         self._sprites[key] = out
         return out

@@ -24,6 +24,7 @@ salt, no dates) and written atomically: a failed run leaves no file.
 """
 from __future__ import annotations
 
+import copy
 import io
 import re
 from dataclasses import dataclass, replace
@@ -229,6 +230,7 @@ class _Planner:
         self.want_table = table
         self.width = self.W - 2 * EDGE
         self.table_rows = None    # the table's rows, gathered once for every room it is measured in
+        self.measured: dict = {}  # room (fractions of the page) -> the table measured there (:meth:`_measured`)
         self.reach = None         # the poles' view (None: kennedy.REACH; a crowded sheet's less, CROWD_REACHES)
 
     def rect(self, x: float, y: float, w: float, h: float) -> tuple:
@@ -257,19 +259,28 @@ class _Planner:
         """The table measured for a room ``width`` x ``room`` cm at ``x``, the page's bottom (drawn once the
         layout is chosen, :func:`render_sheet`); (the measured table, cm used, whether it shows every row at
         its full type size)."""
-        art = _measure_table(self.sol, self.fig, self.rect(x, EDGE, width, room), self.sheet, self.st, self.cons,
-                             self.table_rows)
+        art = self._measured(self.rect(x, EDGE, width, room))
         self.table_rows = art.table
         if art.whole * room < art.used * room - 0.3:   # in fewer rows of more blocks: less of the page's height
             room = art.whole * room
-            art = _measure_table(self.sol, self.fig, self.rect(x, EDGE, width, room), self.sheet, self.st,
-                                 self.cons, art.table)
+            art = self._measured(self.rect(x, EDGE, width, room))
         whole = art.size >= self.st.small_size - 1e-9 and art.shown == len(art.table.rows)
         self.shown = art.shown   # (the rows the table last drawn shows, of them those with a book's value)
         self.need = art.whole * room   # (cm: the height it would take to show every row at this width)
         ref = art.table.header.index("reference") if "reference" in art.table.header else None
         self.refs = sum(1 for r in art.table.rows if r[ref]) if ref is not None else 0
         return art, art.used * room, whole
+
+    def _measured(self, rect: tuple):
+        """The table measured for ``rect`` (:func:`_measure_table`), once a room: the layout's search asks for some
+        rooms again (a crowded poles sheet's views, the corner's counts restored). A measure is the same in the
+        same room of the same sheet; each asker gets a copy of its own (a plan moves its table's room, a sheet
+        with a table page rewrites its last line: :meth:`TableLayout.set_position`, ``see_table_page``)."""
+        got = self.measured.get(rect)
+        if got is None:
+            got = self.measured[rect] = _measure_table(self.sol, self.fig, rect, self.sheet, self.st, self.cons,
+                                                       self.table_rows)
+        return copy.copy(got)
 
     def row(self, names, x: float, width: float, height: float, bottom: float, least=None):
         """Panels ``names`` side by side in the band ``width`` x ``height`` cm at (x, bottom)."""

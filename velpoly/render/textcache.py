@@ -21,6 +21,10 @@ for the whole process, what each of these requests depends on and what came back
   point, the six low bits): FreeType rasterises an outline moved by whole pixels into the same bitmap
   moved by those pixels, so the bitmap is kept with its offset from the whole-pixel position.
 
+The SVG a sheet is written to gets the same from :func:`svg_renderer_class` (matplotlib's SVG writer sets
+each text as paths: it measures the text and lays out its glyphs at a fixed 100 pt and scales them, and writes
+each glyph's outline once a file; all three are kept per process, keyed alike).
+
 Each is a pure function of its key, so a value found is the value FreeType would give: the pixels, SVG
 and PDF output are the same bytes (tests/test_textcache.py checks the three against matplotlib's own
 renderer on generated texts; benchmarks/golden.sh writes every example's SVG to compare). Mathtext needs none of it:
@@ -32,16 +36,18 @@ expects (another version), :func:`canvas_class` gives matplotlib's own canvas an
 """
 from __future__ import annotations
 
+import codecs
 import math
 import os
 import threading
 from collections import OrderedDict
 
-__all__ = ["canvas_class", "new_canvas", "add_axes", "share_rectangle_transforms", "window_extent", "kept_layout",
-           "clear", "stats", "LIMITS"]
+__all__ = ["canvas_class", "svg_renderer_class", "new_canvas", "add_axes", "share_rectangle_transforms",
+           "window_extent", "kept_layout", "clear", "stats", "LIMITS"]
 
-LIMITS = {"metrics": 20000, "height": 1000, "layout": 10000, "glyph": 20000, "box": 10000}   # entries kept per cache (a glyph
-# bitmap 0.3-3 KB at 200 dpi)
+LIMITS = {"metrics": 20000, "height": 1000, "layout": 10000, "glyph": 20000, "box": 10000,
+          "svg metrics": 20000, "svg glyphs": 10000, "outline": 5000}   # entries kept per cache (a glyph bitmap
+# 0.3-3 KB at 200 dpi, an outline about 1 KB)
 
 _CACHES: dict[str, OrderedDict] = {name: OrderedDict() for name in LIMITS}
 _HITS = {name: [0, 0] for name in LIMITS}   # name -> [found, computed]
@@ -298,6 +304,27 @@ def _make():
                 self._lastKey = key
             return self.renderer
 
+    if _svg_supported():
+        def print_svg(self, filename, *, bbox_inches_restore=None, metadata=None, **_):
+            """matplotlib's ``FigureCanvasSVG.print_svg`` (the same steps), its renderer
+            :func:`svg_renderer_class`'s: the SVG text written as paths, kept per process."""
+            from matplotlib import cbook
+            from matplotlib.backends.backend_mixed import MixedModeRenderer
+            with cbook.open_file_cm(filename, "w", encoding="utf-8") as fh:
+                if not cbook.file_requires_unicode(fh):
+                    fh = codecs.getwriter("utf-8")(fh)
+                dpi = self.figure.dpi
+                self.figure.dpi = 72
+                width, height = self.figure.get_size_inches()
+                renderer = MixedModeRenderer(
+                    self.figure, width, height, dpi,
+                    svg_renderer_class()(width * 72, height * 72, fh, image_dpi=dpi, metadata=metadata,
+                                         figure=self.figure),
+                    bbox_inches_restore=bbox_inches_restore)
+                self.figure.draw(renderer)
+                renderer.finalize()
+        TextCanvas.print_svg = print_svg
+
     return TextCanvas
 
 
@@ -344,3 +371,114 @@ def _renderer_class():
                 super()._draw_text_glyphs_and_boxes(gc, x, y, angle, (), boxes)
 
     return _Renderer
+
+
+def _svg_supported() -> bool:
+    """matplotlib's SVG writer sets text as paths as this module expects (matplotlib 3.11's ``RendererSVG`` and
+    ``TextToPath``, :data:`TESTED`): the names :func:`svg_renderer_class` follows."""
+    from matplotlib.backends import backend_svg
+    from matplotlib.textpath import TextToPath
+    return all(hasattr(TextToPath, n) for n in ("get_glyphs_with_font", "get_text_width_height_descent",
+                                                "_get_font", "_get_glyph_repr", "FONT_SCALE", "DPI")) \
+        and all(hasattr(backend_svg.RendererSVG, n) for n in ("_draw_text_as_path", "_update_glyph_map_defs")) \
+        and "_text2path" in backend_svg.RendererSVG._draw_text_as_path.__code__.co_names
+
+
+def _text_key(s, prop) -> tuple:
+    """What a plain text's glyphs at TextToPath's fixed size depend on: the string, the font chosen (the
+    properties and settings, :func:`_font_key`, less the size), the hinting factor."""
+    import matplotlib
+    font = _font_key(prop, None)
+    return s, font[:5] + font[6:], matplotlib.rcParams["text.hinting_factor"], threading.get_ident()
+
+
+def _outline(path_of, glyph_repr, vertices, codes) -> str:
+    """A glyph's outline as the SVG writer sets it in its ``<defs>`` (``RendererSVG._update_glyph_map_defs``:
+    FreeType's units, not simplified), kept by the glyph and the very outline arrays it was set from."""
+    key = (glyph_repr, id(vertices), id(codes))
+    got = _get("outline", key)
+    if got is None or got[0] is not vertices or got[1] is not codes:
+        from matplotlib.path import Path
+        got = _put("outline", key, (vertices, codes, path_of(Path(vertices * 64, codes), simplify=False)))
+    return got[2]
+
+
+_SVG: list = []   # the SVG renderer class, made once
+
+
+def svg_renderer_class():
+    """matplotlib's ``RendererSVG`` whose text, written as paths, is kept for the process: a plain text's
+    measure at ``TextToPath``'s fixed size (its width, height and descent, which matplotlib scales by the
+    type size), its glyphs' places and outlines (``TextToPath.get_glyphs_with_font``: every size shares them,
+    matplotlib sets text as paths at 100 pt and scales it), each glyph outline's path data, and the font's
+    ascent, descent and line gap (``Text._get_layout``'s hook, as the Agg renderer here). Each is a pure function
+    of its key (the string, the font chosen, the hinting factor, the thread), so the file is the same bytes
+    (tests/test_drawspeed2.py); a mathtext's parse is shared already (:func:`velpoly.render.style.share_mathtext`)."""
+    if _SVG:
+        return _SVG[0]
+    from collections import OrderedDict as Ordered
+    from matplotlib.backends.backend_svg import RendererSVG, _generate_transform
+    from matplotlib.textpath import TextToPath
+
+    class _TextToPath(TextToPath):
+        def get_text_width_height_descent(self, s, prop, ismath):
+            if ismath:
+                return super().get_text_width_height_descent(s, prop, ismath)
+            key = _text_key(s, prop)
+            got = _get("svg metrics", key)
+            if got is None:
+                font = self._get_font(prop)
+                font.set_text(s, 0.0, flags=self._get_hinting_flag())
+                w, h = font.get_width_height()
+                got = _put("svg metrics", key, (w / 64.0, h / 64.0, font.get_descent() / 64.0))
+            scale = prop.get_size_in_points() / self.FONT_SCALE
+            w, h, d = got
+            return w * scale, h * scale, d * scale
+
+        def get_glyphs_with_font(self, font, s, glyph_map=None, return_new_glyphs_only=False, *, features=None,
+                                 language=None):
+            key = (font, s, tuple(features) if isinstance(features, list) else features,
+                   tuple(language) if isinstance(language, list) else language)
+            got = _get("svg glyphs", key)
+            if got is None:
+                glyphs, paths, _ = super().get_glyphs_with_font(font, s, features=features, language=language)
+                got = _put("svg glyphs", key, (tuple(glyphs), paths))
+            glyphs, paths = got
+            glyph_map = Ordered() if glyph_map is None else glyph_map
+            new = Ordered() if return_new_glyphs_only else glyph_map
+            for glyph_repr, *_ in glyphs:
+                if glyph_repr not in glyph_map:
+                    new[glyph_repr] = paths[glyph_repr]
+            return list(glyphs), new, []
+
+    class _SVGRenderer(RendererSVG):
+        """matplotlib's SVG renderer, its text as paths kept per process (:func:`svg_renderer_class`)."""
+
+        def __init__(self, *args, figure=None, **kw):
+            super().__init__(*args, **kw)
+            self._text2path = _TextToPath()
+            self._figure = figure
+
+        def _get_font_height_metrics(self, prop):
+            # Text._get_layout's hook: what it computes from the font's tables at the figure's dpi (72 while
+            # the SVG is written), kept as the Agg renderer's are
+            dpi = self._figure.dpi
+            key = _font_key(prop, dpi)
+            got = _get("height", key)
+            if got is None:
+                got = _put("height", key, _height_metrics(prop, dpi))
+            return got
+
+        def _update_glyph_map_defs(self, glyph_map_new):
+            writer = self.writer
+            if glyph_map_new:
+                writer.start("defs")
+                for glyph_repr, (vertices, codes) in glyph_map_new.items():
+                    writer.element("path", id=self._adjust_glyph_repr(glyph_repr),
+                                   d=_outline(self._convert_path, glyph_repr, vertices, codes),
+                                   transform=_generate_transform([("scale", (1 / 64,))]))
+                writer.end("defs")
+                self._glyph_map.update(glyph_map_new)
+
+    _SVG.append(_SVGRenderer)
+    return _SVGRenderer
