@@ -782,14 +782,19 @@ def _drift(system, dq):
 
 
 def _drift_bound(system, h, qd):
-    """The largest correction that is still on the predicted branch: a fraction of the step.
+    """The largest correction that is still on the predicted branch: half the predicted step.
 
     A jump to the other assembly moves links by a good part of their length;
-    the predictor's own error is second order in the step ``h``.
+    the predictor's own error is second order in the step ``h``. In unit lengths and radians
+    the bound is 0.5 max(|h| / u, |h q'|): the predicted step h q' (scaled), or the driver's own
+    travel h / u where the links move slower than the driver (u = 1 for a crank's radians, the
+    mechanism's size L for a slider's lengths). q' is per driver unit, so h q' is the step for
+    either driver; the driver's travel alone is divided by u (dividing h q' by L as well made a
+    slider's bound L times too tight: a drawing of size 80 then halved every step to 1/30 of
+    the coarse one, and a pose away from the batch's knots failed at any step).
     """
-    rate = np.maximum(1.0, np.abs(_scaled(system, qd)).max(axis=1))
-    if system.mechanism.driver.is_slider:
-        h = h / system.size
+    u = system.size if system.mechanism.driver.is_slider else 1.0
+    rate = np.maximum(1.0 / u, np.abs(_scaled(system, qd)).max(axis=1))
     return 0.5 * np.abs(h) * rate + 1e-9
 
 
