@@ -142,3 +142,26 @@ def test_the_poses_are_main_s(monkeypatch):
         q_main, _, _, retries, system, _ = _continued(ms[2], monkeypatch, bound=_main_bound, pick=[5])
         assert retries == 1, name
         assert np.abs(pose._scaled(system, q - q_main)).max() <= 1e-9, name
+
+
+def test_a_failing_step_halves_to_the_same_fraction_of_the_size(monkeypatch):
+    """A step that fails at every length (here: the determinant's sign demanded the other way) is halved
+    down to 1e-6 of the driver's unit, a slider's size: the same halvings at every size (the old floor
+    of 1e-6 length units halved a size-64 drawing's step 10 times, a size-1/64 one's not at all)."""
+    for name, ms in _mechanisms():
+        calls = []
+        for m in ms:
+            kin = prepare(m)
+            system, rows = kin.system.positions, list(kin.rows)
+            q0 = np.zeros((1, system.nq))
+            jac = system.evaluate(q0)[1][:, rows]
+            count, step = [0], pose._step
+
+            def counted(*a, count=count, step=step):
+                count[0] += 1
+                return step(*a)
+            with monkeypatch.context() as mp:
+                mp.setattr(pose, "_step", counted)
+                assert pose._step(system, rows, q0, jac, 0.0, 1e-5 * system.size, -pose._orientation(jac)[0]) is None
+            calls.append(count[0])
+        assert calls == [calls[1]] * len(ms), (name, calls)
