@@ -110,7 +110,7 @@ def test_the_tangent_is_the_branch_s():
         d = np.r_[0.0, _positions(system, rows)[[1, 5]]]
         q = pose.reassemble(kin.system, rows, d, knots=pose.Knots()).q
         qd = pose._velocity(system, rows, q)
-        e = 1e-5 * system.size
+        e = 2e-6 * system.size
         ends = [pose._newton(system, rows, q + s * e * qd, d + s * e) for s in (1.0, -1.0)]
         assert ends[0][1].all() and ends[1][1].all(), name
         fd = (ends[0][0] - ends[1][0]) / (2 * e)
