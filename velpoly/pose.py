@@ -9,7 +9,7 @@ method on the constraint equations, Phi(q) = 0. Poses between the steps are
 corrected all at once (one batched Newton over every remaining pose); a pose
 that batch misses is retried step by step, halving the step, from the
 nearest pose already found. A pose where the Jacobian degenerates or Newton
-cannot converge even with the step halved (to 1e-6) is a toggle:
+cannot converge even with the step halved (to 1e-6 rad, or 1e-6 of a slider's size) is a toggle:
 continuation stops there, with the reachable range.
 """
 from __future__ import annotations
@@ -781,15 +781,25 @@ def _drift(system, dq):
     return np.abs(_scaled(system, dq)).max(axis=1)
 
 
+def _driver_unit(system) -> float:
+    """The driver's unit travel: 1 radian for a crank, the mechanism's size L for a slider (the
+    lengths' unit in :func:`_scaled`), so that a slider's steps are the same at any drawing scale."""
+    return system.size if system.mechanism.driver.is_slider else 1.0
+
+
 def _drift_bound(system, h, qd):
-    """The largest correction that is still on the predicted branch: a fraction of the step.
+    """The largest correction that is still on the predicted branch: half the predicted step.
 
     A jump to the other assembly moves links by a good part of their length;
-    the predictor's own error is second order in the step ``h``.
+    the predictor's own error is second order in the step ``h``. In unit lengths and radians
+    the bound is 0.5 max(|h| / u, |h q'|): the predicted step h q' (scaled), or the driver's own
+    travel h / u where the links move slower than the driver (u = 1 for a crank's radians, the
+    mechanism's size L for a slider's lengths). q' is per driver unit, so h q' is the step for
+    either driver; the driver's travel alone is divided by u (dividing h q' by L as well made a
+    slider's bound L times too tight: a drawing of size 80 then halved every step to 1/30 of
+    the coarse one, and a pose away from the batch's knots failed at any step).
     """
-    rate = np.maximum(1.0, np.abs(_scaled(system, qd)).max(axis=1))
-    if system.mechanism.driver.is_slider:
-        h = h / system.size
+    rate = np.maximum(1.0 / _driver_unit(system), np.abs(_scaled(system, qd)).max(axis=1))
     return 0.5 * np.abs(h) * rate + 1e-9
 
 
@@ -822,7 +832,8 @@ def _step(system, rows, q, jac, d0, d1, sign):
     Returns (q, jac) at d1, or None at a toggle (Newton fails, the pose
     jumps away from the prediction, the equations become singular, the
     Jacobian's determinant no longer has the drawn pose's ``sign``: a singular
-    pose was crossed, or the step is not smooth: it starts or ends on one).
+    pose was crossed, or the step is not smooth: it starts or ends on one),
+    even with the step halved to 1e-6 of the driver's unit (:func:`_driver_unit`).
     """
     h = d1 - d0
     qd = _tangent(system, rows, q, jac)
@@ -832,7 +843,7 @@ def _step(system, rows, q, jac, d0, d1, sign):
             and _cond(system, rows, jn)[0] <= 1e10 and _orientation(jn)[0] == sign \
             and _smooth(system, qn - q, h * qd, h * _tangent(system, rows, qn, jn))[0]:
         return qn, jn
-    if abs(h) < 1e-6:
+    if abs(h) < 1e-6 * _driver_unit(system):     # 1e-6 rad, or 1e-6 of a slider's size
         return None
     mid = _step(system, rows, q, jac, d0, d0 + h / 2, sign)   # near a toggle: halve the step
     return None if mid is None else _step(system, rows, mid[0], mid[1], d0 + h / 2, d1, sign)
