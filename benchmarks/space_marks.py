@@ -1,5 +1,6 @@
 """Measure the space diagram's driver arrows/values and link numbers over zoo(2026, 60), full and poles sheets,
-both styles. Usage: PYTHONPATH=<tree> python3 benchmarks/space_marks.py [i or i:sheet:style ...]  (prints per-case findings and totals)."""
+both styles. Usage: PYTHONPATH=<tree> python3 benchmarks/space_marks.py [--zoo SEED,COUNT] [i or i:sheet:style ...]
+(prints per-case findings and totals; --zoo measures another zoo, e.g. --zoo 7,40, the default 2026,60)."""
 import sys, os, json
 sys.path.insert(0, os.path.join(os.environ["PYTHONPATH"], "tests"))
 import numpy as np
@@ -36,7 +37,7 @@ def measure(sol, sheet, style):
         r = pl.renderer
         axbb = ax.bbox
         out = {"out": [], "on_line": [], "overlap": [], "far_number": [], "leader_cross": [], "small": [], "arrow_cross": [],
-               "point_on_link": []}
+               "point_on_link": [], "point_on_line": []}
         bodies = dict(art.bodies)
         for a in art.get("sliders", []):
             g = a.get_gid() or ""
@@ -104,11 +105,18 @@ def measure(sol, sheet, style):
             if any(g is not None and (b.intersects(g.boundary) or k not in carriers and b.intersects(g))
                    for k, g in bodies.items()):
                 out["point_on_link"].append(gid)
+            if pl.soft_hits(b):   # on a line: an outline, slot, path, guide or Kennedy line, hatched ground
+                out["point_on_line"].append(gid)
     return out
 
 if __name__ == "__main__":
-    Z = zoo(2026, 60)
-    specs = [a.split(":") for a in sys.argv[1:]] or [[str(i)] for i in range(len(Z))]   # i or i:sheet:style
+    args = sys.argv[1:]
+    seed, count = 2026, 60
+    if args[:1] == ["--zoo"]:
+        seed, count = map(int, args[1].split(","))
+        args = args[2:]
+    Z = zoo(seed, count)
+    specs = [a.split(":") for a in args] or [[str(i)] for i in range(len(Z))]   # i or i:sheet:style
     tot = {}
     cases = 0
     for spec in specs:

@@ -79,9 +79,10 @@ def fresh_compared(monkeypatch):
     search = L.LabelPlacer._search
     scenes: set = set()
 
-    def checked(self, anchor, w, h, prefer, gap, leader, within, accept, clear=False, reach=False, scene=None):
-        new = search(self, anchor, w, h, prefer, gap, leader, within, accept, clear, reach, scene)
-        old = search(self, anchor, w, h, prefer, gap, leader, within, accept, clear, reach, None)
+    def checked(self, anchor, w, h, prefer, gap, leader, within, accept, clear=False, reach=False, scene=None,
+                crossing=L.LEADER_MOST):
+        new = search(self, anchor, w, h, prefer, gap, leader, within, accept, clear, reach, scene, crossing)
+        old = search(self, anchor, w, h, prefer, gap, leader, within, accept, clear, reach, None, crossing)
         assert _same(new, old), (anchor, prefer, new, old)
         seen["search"] += 1
         seen["again"] += scene is not None and id(scene) in scenes

@@ -47,7 +47,8 @@ def count(geoms, g) -> int:
     return int(np.count_nonzero(shapely.intersects(np.array(geoms, dtype=object), g))) if geoms else 0
 
 
-def ref_search(pl, anchor, w, h, prefer, gap, leader, within, accept, clear=False, reach=False):
+def ref_search(pl, anchor, w, h, prefer, gap, leader, within, accept, clear=False, reach=False,
+               crossing=L.LEADER_MOST):
     view, pp = view_box(pl.ax), per_point(pl.ax)
     taken, soft, crossed = pl.boxes + pl.hard, pl.soft, pl.boxes + pl.leaders
     near = np.array([g.intersects(Point(*anchor).buffer(2.0 * pp)) for g in soft], bool)
@@ -70,7 +71,7 @@ def ref_search(pl, anchor, w, h, prefer, gap, leader, within, accept, clear=Fals
                     continue
                 on = shapely.intersects(np.array(soft, dtype=object), line) if soft else np.zeros(0, bool)
                 hits = (hits[0], int(np.count_nonzero(on & ~near)))
-                if seeking and hits[1] > L.LEADER_MOST:
+                if seeking and hits[1] > crossing:
                     continue
             if best is None or hits < best[0]:
                 best = (hits, c, b, ring)
@@ -236,9 +237,10 @@ def compared(monkeypatch):
     seen = {"search": 0, "least_bad": 0, "kept": 0}
     search, least_bad = L.LabelPlacer._search, L.LabelPlacer._least_bad
 
-    def checked_search(self, anchor, w, h, prefer, gap, leader, within, accept, clear=False, reach=False, scene=None):
-        old = ref_search(self, anchor, w, h, prefer, gap, leader, within, accept, clear, reach)
-        new = search(self, anchor, w, h, prefer, gap, leader, within, accept, clear, reach, scene)
+    def checked_search(self, anchor, w, h, prefer, gap, leader, within, accept, clear=False, reach=False, scene=None,
+                       crossing=L.LEADER_MOST):
+        old = ref_search(self, anchor, w, h, prefer, gap, leader, within, accept, clear, reach, crossing)
+        new = search(self, anchor, w, h, prefer, gap, leader, within, accept, clear, reach, scene, crossing)
         assert same(new, old), (anchor, prefer, new, old)
         seen["search"] += 1
         seen["kept"] += new is not None and new[3] >= 9.0

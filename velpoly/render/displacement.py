@@ -39,9 +39,14 @@ __all__ = ["draw_mechanism", "away_from", "neighbours", "mechanism_bounds", "sha
 
 PLATE_FILL = "0.9"      # a plate's fill where links are white (textbook): light, so that it reads as one body
 SMALLER = (0.85, 0.72)   # a text with no free place off the lines at its size: these fractions of it tried
+CROSSING = 3            # a driver's value with no free place off the lines whose leader crosses none: its leader may
+#                        cross so many lines and outlines (out of a plate that holds its block) to reach one
 NUMBER_RADIUS = 0.8     # slides: a link number's circle at most this many bar widths in radius
 LABEL_NEAR = 2.0        # cm: a point's label off the other links at most this far from its point (farther out, its
 #                         leader reads worse than a label beside its point over a plate or an outline)
+NUMBER_BESIDE = 0.4     # cm: else (no such place found off the lines) a number's circle at most this far from its link
+BESIDE_STEP = 0.08      # cm: the grid of places searched there
+LABEL_ROOM = 0.3        # cm: such a number's circle at least this far from every labelled point (room for its label)
 NUMBER_NEAR = 1.0       # cm: a link number at most this far from its own link (beside it, not out at a leader's end)
 GROUND_CLEAR = 0.15     # cm: a driver's value is nudged this far from hatched ground it crowds, where that is free
 #                         (omega's value crowded the ground of a swinging block's pivot)
@@ -864,14 +869,69 @@ class _Drawing:
                 t = self._first_number(lk, pts, g, anchor, prefer, n, pad, kw)
                 owned = test(self.pl.of(t).box)
                 self.pl.keep = owned and not self.pl.soft_hits(self._number_box(t))
-            if not self.pl.of(t):   # else a place that reads as its own, off the lines; else, where the first
-                clear = self._off_lines(lk, kw, test)   # rule's place does not read as its own, one on a line
+            if not self.pl.of(t):   # else a place that reads as its own, off the lines (near it, else on a grid)
+                clear = self._off_lines(lk, kw, test)
                 t = self._link_number(lk, pts, g, mine, prefer, n if len(pts) >= 2 else None, pad, kw, clear, True)
-                if t is None and not owned:
-                    t = self._link_number(lk, pts, g, mine, prefer, n if len(pts) >= 2 else None, pad, kw, test)
-            if t is None:
-                t = self._first_number(lk, pts, g, anchor, prefer, n, pad, kw)
+                if t is None:
+                    t = self._number_beside(lk, bodies, mine, pad, kw, nearest=True)
+                if t is None:
+                    t = self._number_last(lk, pts, g, (anchor, mine), prefer, n, pad, kw, test, owned, bodies)
             self.art.add("link_numbers", t)
+
+    def _number_last(self, lk, pts, g, anchors, prefer, n, pad: float, kw, test, owned: bool, bodies):
+        """Link ``lk``'s number where no place off the lines reads as its own: where the first rule's place does not
+        read as its own, one that does (``test``), else the first rule's; unless that lies on a line and a free place
+        beside the link is on none (:meth:`_number_beside`, ``nearest=False``: text never on lines comes first).
+        ``anchors``: the first rule's anchor and the point of the link a leader starts from."""
+        anchor, mine = anchors
+
+        def last():
+            t = None if owned else self._link_number(lk, pts, g, mine, prefer, n if len(pts) >= 2 else None, pad,
+                                                     kw, test)
+            return t if t is not None else self._first_number(lk, pts, g, anchor, prefer, n, pad, kw)
+        with self.pl.trial():
+            t = last()
+            self.pl.keep = not self.pl.soft_hits(self._number_box(t))
+        if self.pl.of(t):
+            return t
+        t = self._number_beside(lk, bodies, mine, pad, kw, nearest=False)
+        return t if t is not None else last()
+
+    def _number_beside(self, lk, bodies, anchor, pad: float, kw, nearest: bool):
+        """Link ``lk``'s number, with its circle on no line, at the free place nearest its body within
+        :data:`NUMBER_BESIDE` of it (a grid of places :data:`BESIDE_STEP` apart, finer than the placer's rings,
+        which miss a gap between lines) where it reads as its link's (:meth:`owned`; ``nearest=False``: merely
+        beside it), off the point labels' places (:attr:`reserved`) and :data:`LABEL_ROOM` from every
+        labelled point (the room its label takes, placed last): None where there is no such place."""
+        own, pc = bodies[lk], self.pc
+        probe = self.ax.text(0, 0, literal(lk), ha="center", va="center", **kw)
+        r = self.number_radius(lk, kw) if "bbox" in kw else 0.5 * max(self.pl.text_size(probe, pad))
+        probe.remove()
+        x0, y0, x1, y1 = own.buffer(NUMBER_BESIDE * pc + r).bounds
+        step = BESIDE_STEP * pc
+        xs, ys = np.meshgrid(np.arange(x0, x1, step), np.arange(y0, y1, step))
+        cx, cy = xs.ravel(), ys.ravel()
+        rings = shapely.box(cx - r, cy - r, cx + r, cy + r)
+        ok = shapely.contains(view_box(self.ax), rings) & (shapely.distance(rings, own) <= NUMBER_BESIDE * pc)
+        taken = np.array(self.pl.boxes + self.pl.hard + self.pl.soft + self.reserved, dtype=object)
+        if taken.size:
+            ok[ok] = ~shapely.intersects(taken[None, :], rings[ok][:, None]).any(axis=1)
+        if self.opts.label_points is None or self.opts.label_points:   # the points' labels, placed last, go there
+            points = shapely.points(np.array([keys[0][1] for keys in _groups(self.sol).values()], float))
+            ok[ok] = (shapely.distance(points[None, :], rings[ok][:, None]) > LABEL_ROOM * pc).all(axis=1)
+        idx = np.flatnonzero(ok)
+        if not len(idx):
+            return None
+        idx = idx[np.lexsort((np.hypot(cx[idx] - anchor[0], cy[idx] - anchor[1]),
+                              np.round(shapely.distance(rings[idx], own) / (0.5 * step))))]
+        test = self.owned(lk, bodies, anchor, nearest)
+        for i in idx:
+            if test(rings[i], leader=False):
+                t = self.pl.place_at([(cx[i], cy[i])], literal(lk), gid=f"link-number-{lk}", pad=pad, soft=True,
+                                     anchor=anchor, **kw)
+                if t is not None:
+                    return t
+        return None
 
     def _first_number(self, lk, pts, g, anchor, prefer, n, pad: float, kw):
         """A link's number placed by the first rule (:meth:`_link_number` with no test), else near ``anchor``."""
@@ -886,9 +946,10 @@ class _Drawing:
         the block's: its slot runs there)."""
         return self.guide_bars[guide] if guide in self.filled and guide in self.guide_bars else body
 
-    def owned(self, lk, bodies, anchor):
+    def owned(self, lk, bodies, anchor, nearest: bool = True):
         """The test a link number's box (data coordinates) passes where it reads as link ``lk``'s: within
-        :data:`NUMBER_NEAR` of that link's body, nearer it (of ``bodies``) than any other's, nothing of another link (nor hatched ground) between the two,
+        :data:`NUMBER_NEAR` of that link's body, nearer it (of ``bodies``) than any other's (unless ``nearest`` is
+        False: only beside it, a place a number takes rather than one on a line), nothing of another link (nor hatched ground) between the two,
         nor across its leader from ``anchor`` where it stands far enough to have one (unless called with
         ``leader=False``: a number put beside its link, with none). A block lies in its guide: the guide is no other link here, but
         the number keeps off it (off its slotted bar, where the guide is a plate: on the plate beside the block it
@@ -910,7 +971,8 @@ class _Drawing:
                 return False
             if not len(others):
                 return True
-            if b.distance(own) > NUMBER_NEAR * self.pc or float(shapely.distance(others, b).min()) <= b.distance(own):
+            if b.distance(own) > NUMBER_NEAR * self.pc or \
+                    nearest and float(shapely.distance(others, b).min()) <= b.distance(own):
                 return False
             if crossed(*nearest_points(own, b)):
                 return False
@@ -1217,16 +1279,20 @@ class _Drawing:
         smaller (:data:`SMALLER`, never below the style's small size: a value is read from the back of the room)
         where only that finds such a place (a crowd of Kennedy lines on a poles sheet), farther still, else at the
         small size where it covers least; off the point labels' places where any free place is (``reserve``: not
-        when placed again, once the point labels are drawn)."""
+        when placed again, once the point labels are drawn). Where every place off the lines lies beyond a line
+        or outline from the arrow (a block amid a plate), its leader crosses up to :data:`CROSSING` of them to
+        one off the point labels' places: a line across a leader reads, a line through a value does not."""
         def again():   # placed again, where a later label's leader crosses it (velpoly.render.kennedy)
             return self.value(at, text, fontsize=fontsize, reserve=False, **kw)
         floor = self.st.small_size / fontsize
         sizes = tuple(dict.fromkeys((1.0,) + tuple(max(f, floor) for f in SMALLER)))
-        for f, reach in [(f, False) for f in sizes] + [(f, True) for f in sizes]:
+        tries = [(f, False, 0) for f in sizes] + [(f, True, 0) for f in sizes] + [(f, True, CROSSING) for f in sizes]
+        for f, reach, crossing in tries:
             with self.pl.trial():
                 n = len(self.pl.overlapping)
                 t = self.pl.place(at, text, fontsize=fontsize * f, clear=True, reach=reach, again=again,
-                                  accept=self._unreserved if reserve else None, **kw)
+                                  accept=self._unreserved if reserve else None, crossing=crossing,
+                                  only=bool(crossing), **kw)
                 self.pl.keep = len(self.pl.overlapping) == n and not self.pl.soft_hits(self.pl.box_of(t, pad=0.0))
             if self.pl.of(t) is not None:
                 return self.off_ground(t)

@@ -205,7 +205,7 @@ class LabelPlacer:
     def place(self, anchor, s: str, *, prefer: float | None = None, gap: float = 2.5, leader: bool = True,
               gid: str | None = None, obstacle: bool = True, pad: float = 1.0, within: float | None = None,
               accept=None, clear: bool = False, reach: bool = False, again: Callable | None = None, only: bool = False,
-              **text_kw):
+              crossing: int = LEADER_MOST, **text_kw):
         """Draw text ``s`` near ``anchor`` where it overlaps nothing; return the Text.
 
         ``prefer``: the preferred direction from the anchor (degrees), e.g.
@@ -224,6 +224,7 @@ class LabelPlacer:
         leader) for one on none. ``reach``: when nothing is free within the far
         rings, farther still (:data:`REACH_RINGS`: a long leader out of a crowd
         to a free place). A leader crosses no other label and no other leader.
+        ``crossing``: with ``clear``, the most lines and outlines the leader of such a farther place may cross.
         ``again``: kept in the label's :class:`Placed` (how to place it anew).
         """
         anchor = np.asarray(anchor, float)
@@ -235,15 +236,15 @@ class LabelPlacer:
         best = self._pinned(gid, t, w, h, pad, pp)
         if best is None:
             scene = _Scene(self, anchor, pp)
-            best = self._search(anchor, w, h, prefer, gap, leader, within, accept, clear, reach, scene)
+            best = self._search(anchor, w, h, prefer, gap, leader, within, accept, clear, reach, scene, crossing)
             if accept is not None and not only and (best is None or best[0] != (0, 0)):   # a line under it is worse
-                anywhere = self._search(anchor, w, h, prefer, gap, leader, within, None, clear, reach, scene)
+                anywhere = self._search(anchor, w, h, prefer, gap, leader, within, None, clear, reach, scene, crossing)
                 if anywhere is not None and (best is None or anywhere[0] < best[0]):
                     best = anywhere
         if best is None and within is not None:   # nothing free on that side: any side
             t.remove()
             return self.place(anchor, s, prefer=prefer, gap=gap, leader=leader, gid=gid, obstacle=obstacle, pad=pad,
-                              clear=clear, reach=reach, again=again, **text_kw)
+                              clear=clear, reach=reach, again=again, crossing=crossing, **text_kw)
         if best is None:
             best = self._least_bad(anchor, w, h, prefer, gap, leader, reach)
             self.overlapping.append(t)
@@ -380,10 +381,10 @@ class LabelPlacer:
         self.placed[t.get_gid()] = pin
 
     def _search(self, anchor, w: float, h: float, prefer, gap: float, leader: bool, within, accept,
-                clear: bool = False, reach: bool = False, scene=None):
+                clear: bool = False, reach: bool = False, scene=None, crossing: int = LEADER_MOST):
         """The first free candidate, ring after ring, crossing the fewest soft obstacles (None if none is free);
         ``clear``: the far rings too while every free candidate nearer lies on a line (a place there off
-        every line, whose leader crosses at most one line or outline); ``reach``: the farthest rings too
+        every line, whose leader crosses at most ``crossing`` lines and outlines); ``reach``: the farthest rings too
         while nothing nearer is free. A ring's candidates are tested together (:class:`_Scene`: the same
         answers as testing each box with shapely, in the same order; a second search on the same scene, as
         :meth:`place` makes with ``accept``, finds the rings and their tests made: :meth:`_Scene.ring`)."""
@@ -415,7 +416,7 @@ class LabelPlacer:
                         if crosses[n]:
                             continue
                         hits = (hits[0], int(line_hits[n]))
-                        if seeking and hits[1] > LEADER_MOST:
+                        if seeking and hits[1] > crossing:
                             continue
                     if best is None or hits < best[0]:
                         best = (hits, cands.centres[i].copy(), b, ring)
