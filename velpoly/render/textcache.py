@@ -406,18 +406,14 @@ def _outline(path_of, glyph_repr, vertices, codes) -> str:
 _SVG: list = []   # the SVG renderer class, made once
 
 
-def svg_renderer_class():
-    """matplotlib's ``RendererSVG`` whose text, written as paths, is kept for the process: a plain text's
-    measure at ``TextToPath``'s fixed size (its width, height and descent, which matplotlib scales by the
-    type size), its glyphs' places and outlines (``TextToPath.get_glyphs_with_font``: every size shares them,
-    matplotlib sets text as paths at 100 pt and scales it), each glyph outline's path data, and the font's
-    ascent, descent and line gap (``Text._get_layout``'s hook, as the Agg renderer here). Each is a pure function
-    of its key (the string, the font chosen, the hinting factor, the thread), so the file is the same bytes
-    (tests/test_drawspeed2.py); a mathtext's parse is shared already (:func:`velpoly.render.style.share_mathtext`)."""
-    if _SVG:
-        return _SVG[0]
+# a glyph outline's transform in the SVG's defs, as matplotlib's RendererSVG writes it (its outlines are in 1/64 pt)
+GLYPH_SCALE = "scale(0.015625)"
+
+
+def _kept_text_to_path():
+    """matplotlib's ``TextToPath`` whose plain texts' measures and glyphs are kept for the process (the text of
+    :func:`svg_renderer_class`'s renderer: each a pure function of its key)."""
     from collections import OrderedDict as Ordered
-    from matplotlib.backends.backend_svg import RendererSVG, _generate_transform
     from matplotlib.textpath import TextToPath
 
     class _TextToPath(TextToPath):
@@ -451,6 +447,22 @@ def svg_renderer_class():
                     new[glyph_repr] = paths[glyph_repr]
             return list(glyphs), new, []
 
+    return _TextToPath
+
+
+def svg_renderer_class():
+    """matplotlib's ``RendererSVG`` whose text, written as paths, is kept for the process: a plain text's
+    measure at ``TextToPath``'s fixed size (its width, height and descent, which matplotlib scales by the
+    type size), its glyphs' places and outlines (``TextToPath.get_glyphs_with_font``: every size shares them,
+    matplotlib sets text as paths at 100 pt and scales it), each glyph outline's path data, and the font's
+    ascent, descent and line gap (``Text._get_layout``'s hook, as the Agg renderer here). Each is a pure function
+    of its key (the string, the font chosen, the hinting factor, the thread), so the file is the same bytes
+    (tests/test_drawspeed2.py); a mathtext's parse is shared already (:func:`velpoly.render.style.share_mathtext`)."""
+    if _SVG:
+        return _SVG[0]
+    from matplotlib.backends.backend_svg import RendererSVG
+    _TextToPath = _kept_text_to_path()
+
     class _SVGRenderer(RendererSVG):
         """matplotlib's SVG renderer, its text as paths kept per process (:func:`svg_renderer_class`)."""
 
@@ -476,7 +488,7 @@ def svg_renderer_class():
                 for glyph_repr, (vertices, codes) in glyph_map_new.items():
                     writer.element("path", id=self._adjust_glyph_repr(glyph_repr),
                                    d=_outline(self._convert_path, glyph_repr, vertices, codes),
-                                   transform=_generate_transform([("scale", (1 / 64,))]))
+                                   transform=GLYPH_SCALE)
                 writer.end("defs")
                 self._glyph_map.update(glyph_map_new)
 
