@@ -453,7 +453,7 @@ def lying_along(p, q, tails, heads, near: float, along: float, degrees: float = 
     tp, tq = np.sum(u * rp, axis=1), np.sum(u * rq, axis=1)                                   # places along it
     slope = dq - dp
     flat = np.abs(slope) <= 1e-12 * max(near, 1e-300)
-    with np.errstate(divide="ignore", invalid="ignore"):
+    with np.errstate(divide="ignore", invalid="ignore", over="ignore"):
         l1, l2 = (-near - dp) / slope, (near - dp) / slope
     lo = np.where(flat, np.where(np.abs(dp) <= near, 0.0, 1.0), np.clip(np.minimum(l1, l2), 0.0, 1.0))
     hi = np.where(flat, np.where(np.abs(dp) <= near, 1.0, 0.0), np.clip(np.maximum(l1, l2), 0.0, 1.0))
