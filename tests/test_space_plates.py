@@ -14,14 +14,12 @@ from __future__ import annotations
 
 import numpy as np
 import pytest
-from matplotlib.backends.backend_agg import FigureCanvasAgg
 from matplotlib.colors import to_rgb
-from matplotlib.figure import Figure
 from shapely.geometry import Point
 
 import zoo
-from velpoly.render.displacement import draw_mechanism
-from velpoly.render.style import get_style, rc_context
+from test_space_marks import _draw   # the space diagram alone in a 4 x 3 in panel
+from velpoly.render.style import get_style
 
 # each had a link of three or more joints unfilled (white), in two pieces or notched on main 39e3408
 CASES = [("inverted slider-crank", "swinging-block slider", 0, "textbook"),
@@ -31,14 +29,6 @@ CASES = [("inverted slider-crank", "swinging-block slider", 0, "textbook"),
          ("slot", "circular", 0, "textbook"),
          ("contact", "cam oscillating follower", 0, "textbook"),
          ("four-bar", "crank-rocker", 0, "textbook")]
-
-
-def _draw(sol, style):
-    """The space diagram alone in a 4 x 3 in panel: (axes, artists)."""
-    ax = Figure(figsize=(4, 3), dpi=72).add_axes((0.02, 0.02, 0.96, 0.96))
-    FigureCanvasAgg(ax.figure)
-    with rc_context(get_style(style)):
-        return ax, draw_mechanism(sol, ax, style=get_style(style))
 
 
 def joints(m, link) -> set:
