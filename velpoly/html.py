@@ -44,6 +44,7 @@ from pathlib import Path
 import numpy as np
 
 from .errors import InputError, VelpolyError
+from .names import driver_index
 from .rigid import direction as _unit
 
 __all__ = ["sheet_data", "page", "html", "HtmlSheet", "write_page", "pose_values"]
@@ -557,8 +558,8 @@ def _point_kinds(m, sol0, pins_at) -> dict:
 
 def _driver_text(m) -> str:
     d = m.driver
-    if d.is_slider:
-        return f"V_{d.slider} = {abs(d.speed):.4g} {m.units}/s"
+    if d.is_slider:   # along its path: relative to a moving guide (V_A₃/A₄), as the sheet and captions name it
+        return f"V_{driver_index(m)} = {abs(d.speed):.4g} {m.units}/s"
     text = f"omega_{d.link} = {abs(d.omega):.4g} rad/s {'ccw' if d.omega >= 0 else 'cw'}"
     if d.alpha:
         text += f", alpha_{d.link} = {abs(d.alpha):.4g} rad/s^2 {'ccw' if d.alpha >= 0 else 'cw'}"

@@ -122,6 +122,14 @@ def relative(a: str, b: str) -> str:
     return f"{a}/{b}"
 
 
+def driver_index(m) -> str:
+    """A slider driver's index as plain text: its point (``A``) where its guide is the frame, else its block's point
+    relative to the guide's (``A₃/A₄``): the driver's speed and acceleration are given along the guide's path, the
+    slip that the polygons and step captions name V_A₃/A₄."""
+    s = next(s for s in m.sliders if s.point == m.driver.slider)
+    return s.point if m.link(s.guide).frame else relative(place(s.point, s.block), place(s.point, s.guide))
+
+
 def quantity_text(symbol: str, index: str) -> str:
     """A quantity as plain text: ``V`` and ``P₂`` -> V_P₂, ``omega`` and ``3`` -> omega_3."""
     return f"{symbol}_{index}"

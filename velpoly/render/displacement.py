@@ -25,7 +25,7 @@ from shapely.affinity import translate
 from shapely.ops import nearest_points, unary_union
 
 from ..rigid import direction as _unit, perp as _perp
-from ..names import key_text, link_math, upper_name
+from ..names import driver_index, key_text, link_math, quantity_math, upper_name
 from .canvas import (Artists, add_patch, arrow, border_point, box, fit_view, get_ax, literal, math_literal, per_cm,
                      per_point, tex, view_box, view_scale)
 from .labels import placer
@@ -1092,12 +1092,12 @@ class _Drawing:
         path = _unit(float(sol.motion.sliders[m.sliders.index(s)]["direction"][0]))
         p = sol.place(s.block, s.point)
         n = _perp(path) * self.guide_side(s, p, _perp(path))
-        name = math_literal(drv.slider)
+        speed_name, accel_name = (quantity_math(q, driver_index(m)) for q in "VA")   # V_A, or V_A₃/A₄ on a moving guide
         base = p + n * (st.block[1] * 0.5 + 0.35) * pc
         # the other side: beyond the guide's hatching, or its slotted bar
         other = p - n * (st.block[1] * 0.5 + (0.6 if m.link(s.guide).frame else 0.45)) * pc
         speed = self._slide_places(base, other, path, drv.speed, (0.0, 0.9, -0.9, 1.6, -1.6), s.block, [])[0]
-        arrows = [(speed, "driver-arrow", "driver-label", f"$V_{{{name}}}$", 1)]
+        arrows = [(speed, "driver-arrow", "driver-label", speed_name, 1)]
         if drv.accel:   # next to the speed's, along the path on the side clear of the links
             ahead = [sum(1 for g in self.geoms.values() if g.intersects(LineString(
                 [tuple(base + k * path * 0.9 * pc), tuple(base + k * path * 2.1 * pc)]))) for k in (1, -1)]
@@ -1109,7 +1109,7 @@ class _Drawing:
                 accel = self._slide_places(base, other, path, drv.accel, steps, s.block, [kept])[0]
             else:
                 accel = self._slide_places(other, base, path, drv.accel, steps, s.block, [kept])[0]
-            arrows.append((accel, "driver-accel-arrow", "driver-label-accel", f"$A_{{{name}}}$", 2))
+            arrows.append((accel, "driver-accel-arrow", "driver-label-accel", accel_name, 2))
         spots = []
         for (a, b, _, side), gid, label_gid, symbol, power in arrows:
             value = drv.speed if power == 1 else drv.accel
