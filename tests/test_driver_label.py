@@ -18,6 +18,7 @@ import velpoly
 from test_space_marks import _draw   # the space diagram alone in a 4 x 3 in panel
 from velpoly.html import _driver_text
 from velpoly.names import place, quantity_math, relative
+from velpoly.render.table import given_table
 from zoo import specimen
 
 # (kind, variant): a slider on the frame's guide, a block through a swinging guide, a rocker's block, a guide through
@@ -48,5 +49,6 @@ def test_a_slider_drivers_value_is_named_as_what_it_is(case):
     if m.driver.accel:
         accel = re.fullmatch(r"(\$.+\$) = ([0-9.e+-]+) .*", texts["driver-label-accel"])
         assert accel and accel.group(1) == quantity_math("A", index), texts["driver-label-accel"]
-    # the interactive page names it the same, in plain text
+    # the interactive page and the handout's table of given data (--sheet displacement) name it the same
     assert _driver_text(m).startswith(f"V_{index} = ")
+    assert [r[0] for r in given_table(sol).rows[:2]] == [f"$V_{{{index}}}$", f"$A_{{{index}}}$"]

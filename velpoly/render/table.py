@@ -20,7 +20,7 @@ import re
 
 import numpy as np
 
-from ..names import NAME, key_text, link_of, polar, quantity_math, unit, vector_direction
+from ..names import NAME, driver_index, key_text, link_of, polar, quantity_math, unit, vector_direction
 from ..names import direction as fmt_direction
 from ..compare import Value, polygon_values
 from ..report import Table, fmt
@@ -399,8 +399,9 @@ def given_table(sol) -> Table:
     drv = m.driver
     rows = []
     if drv.is_slider:
-        rows.append((_q("V", drv.slider), f"{_fmt(abs(drv.speed), 5)} {unit(m.units, 1)}"))
-        rows.append((_q("A", drv.slider), f"{_fmt(drv.accel, 5)} {unit(m.units, 2)}"))
+        index = driver_index(m)   # the slip V_A₃/A₄ along a moving guide's path, V_A along the frame's
+        rows.append((_q("V", index), f"{_fmt(abs(drv.speed), 5)} {unit(m.units, 1)}"))
+        rows.append((_q("A", index), f"{_fmt(drv.accel, 5)} {unit(m.units, 2)}"))
     else:
         lk = drv.link
         if sol.driver_angle is not None:
