@@ -136,7 +136,7 @@ def _point_keys(m: Mechanism) -> list[tuple[str, str, str]]:
     # a circular path's centre listed in no link is its guide's (slot link's), keyed K@guide (FORMAT.md section 5)
     unlisted = {j.centre for j in (*m.sliders, *m.slots) if j.centre is not None} - {
         p for lk in m.links for p in lk.points}
-    out = []
+    out, frame = [], m.frame.name
     for p in m.point_order:
         carriers = list(m.carriers[p])
         parent = {lk: lk for lk in carriers}
@@ -149,8 +149,8 @@ def _point_keys(m: Mechanism) -> list[tuple[str, str, str]]:
             if pin.point == p and all(lk in parent for lk in pin.links):
                 parent[find(pin.links[0])] = find(pin.links[1])
         groups = {find(lk) for lk in carriers}
-        if len(groups) == 1 and p not in contact_pts and p not in unlisted:
-            out.append((p, p, carriers[0]))
+        if len(groups) == 1 and p not in contact_pts and p not in unlisted:   # the frame's point is at rest exactly
+            out.append((p, p, frame if frame in carriers else carriers[0]))
         else:
             out.extend((f"{p}@{lk}", p, lk) for lk in carriers)
     return out
