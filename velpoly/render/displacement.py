@@ -853,8 +853,8 @@ class _Drawing:
                 if np.dot(n, anchor - centre) < 0:
                     n = -n
                 prefer = math.degrees(math.atan2(n[1], n[0]))
-            else:
-                anchor = np.array(g.centroid.coords[0])
+            else:   # a one-point link (a gear or cam turning about its pivot): no bar to stand beside
+                anchor, n = np.array(g.centroid.coords[0]), None
                 prefer = away_from(anchor, [centre], default=90.0)
             kw = self.number_style(lk)
             pad = 3.5 if "bbox" in kw else 1.0
