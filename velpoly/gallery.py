@@ -23,6 +23,7 @@ from .errors import InputError, VelpolyError
 from .fileio import atomic_write_bytes, atomic_write_text, committed_together, raise_if_interrupted
 from .compare import comparison
 from .report import Table, fmt, render_table
+from .tables import angle
 
 __all__ = ["example_path", "example_files", "example_titles", "EXAMPLES", "comparison_text", "top_comments", "example_markdown",
            "build_gallery", "GalleryResult", "find_gallery", "build_demo", "gallery_folders",
@@ -95,7 +96,7 @@ def comparison_text(sol, style: str = "text") -> str:
     if drv.is_slider:
         head = f"driver: slider {drv.slider}, speed {fmt(drv.speed)} {m.units}/s, accel {fmt(drv.accel)} {m.units}/s^2"
     else:
-        head = (f"driver: link {drv.link} at {sol.driver_angle:.4f} deg, omega {fmt(drv.omega)} rad/s, "
+        head = (f"driver: link {drv.link} at {angle(sol.driver_angle)} deg, omega {fmt(drv.omega)} rad/s, "
                 f"alpha {fmt(drv.alpha)} rad/s^2")
     legend = ("book: the printed value; graphical: read off the exact polygons and the Kennedy "
               "construction; analytic: the linear solve. Deviations: book vs analytic relative (%) and in "

@@ -18,7 +18,7 @@ import numpy as np
 from .compare import polygon_values
 from .driver import driver_label
 from .names import direction, key_text, place, relative
-from .tables import Table, coordinates, fmt, magnitude_angle, magnitude_direction, polar, render_table   # re-exported: the tables' primitives
+from .tables import Table, angle, coordinates, fmt, magnitude_angle, magnitude_direction, polar, render_table   # re-exported: the tables' primitives
 from .reference import at_file_pose, compare, file_pose_angle
 
 __all__ = ["Table", "render_table", "solution_tables", "solution_report", "fmt", "polar", "magnitude_direction", "poles_tables", "polygon_tables",
@@ -29,7 +29,7 @@ __all__ = ["Table", "render_table", "solution_tables", "solution_report", "fmt",
 def _links(sol) -> Table:
     rows = []
     for k in sol.mechanism.links:
-        rows.append((k.name + (" (frame)" if k.frame else ""), f"{sol.angle[k.name]:.4f}",
+        rows.append((k.name + (" (frame)" if k.frame else ""), angle(sol.angle[k.name]),
                      fmt(sol.omega[k.name]), fmt(sol.alpha[k.name])))
     return Table("Links", ("link", "angle (deg)", "omega (rad/s)", "alpha (rad/s^2)"), tuple(rows))
 
@@ -266,7 +266,7 @@ def _head(sol) -> tuple[str, str]:
     if m.driver.is_slider:
         return m.title, (f"driver: slider {m.driver.slider}, speed {fmt(m.driver.speed)} {m.units or 'units'}/s, "
                          f"accel {fmt(m.driver.accel)} {m.units or 'units'}/s^2")
-    return m.title, (f"driver: link {m.driver.link} at {sol.driver_angle:.4f} deg, omega {fmt(m.driver.omega)} "
+    return m.title, (f"driver: link {m.driver.link} at {angle(sol.driver_angle)} deg, omega {fmt(m.driver.omega)} "
                      f"rad/s, alpha {fmt(m.driver.alpha)} rad/s^2")
 
 

@@ -17,7 +17,7 @@ import numpy as np
 
 from .names import polar as _angle_text
 
-__all__ = ["Table", "fmt", "polar", "magnitude_angle", "coordinates", "magnitude_direction", "render_table"]
+__all__ = ["Table", "fmt", "angle", "polar", "magnitude_angle", "coordinates", "magnitude_direction", "render_table"]
 
 
 @dataclass(frozen=True)
@@ -45,6 +45,17 @@ def fmt(x, digits: int = 6) -> str:
     return f"{x:.{digits}g}"
 
 
+def angle(deg: float, decimals: int = 4) -> str:
+    """A link's (or the driver's) angle in degrees as the tables print it: rounded, in (-180, 180] as the
+    JSON gives it, never -0.0000 (a coupler along the frame after re-assembly, -2.8e-14 deg) nor -180.0000.
+
+    >>> angle(-2.8e-14), angle(-179.99999999), angle(30.0)
+    ('0.0000', '180.0000', '30.0000')
+    """
+    d = round(float(deg), decimals) + 0.0
+    return f"{180.0 if d <= -180.0 else d:.{decimals}f}"
+
+
 def magnitude_direction(v) -> tuple[float, float] | None:
     """A vector as (magnitude, direction in degrees in [0, 360)); None if it is None or not finite."""
     if v is None:
@@ -56,11 +67,11 @@ def magnitude_direction(v) -> tuple[float, float] | None:
 
 
 def polar(v) -> str:
-    """A vector as ``magnitude ∠ direction°`` (direction in [0, 360)); '-' if undefined, '0' if zero."""
+    """A vector as ``magnitude ∠ direction°`` (direction in [0, 360)); '-' if undefined, '0' if it prints as zero."""
     md = magnitude_direction(v)
     if md is None:
         return "-"
-    if md[0] == 0:
+    if fmt(md[0]) == "0":   # no direction for a zero vector, nor for one that prints as zero (1e-17)
         return "0"
     return magnitude_angle(*md)
 
