@@ -184,6 +184,35 @@ def _choose(ref: float, lo: float, hi: float, hint: str) -> str:
             "reached only by velpoly sweep (or draw the mechanism nearer to that angle)")
 
 
+def _carried(kin, ref: float, target: float, delta: float) -> tuple[np.ndarray, float]:
+    """The pose with the driver turned by ``delta`` degrees from the reference pose (the shorter way round, on
+    the drawn branch) and the turn taken: at half a turn either way is the shorter, and the one that reaches the
+    angle without crossing a toggle is taken. A pin leaving its slot or a toggle on the way: AssemblyError."""
+    m = kin.mechanism
+    r = reassemble(kin.system, list(kin.rows), [math.radians(delta)])
+    if len(r.deltas) == 0 and abs(abs(delta) - 180.0) < 1e-9:   # half a turn: either way round is the shorter
+        other = reassemble(kin.system, list(kin.rows), [math.radians(-delta)])
+        if len(other.deltas):
+            return other.q, -delta
+    if len(r.deltas) == 0 and r.leaves is not None:
+        lo, hi = reachable_range(kin)
+        sl = m.slots[r.leaves[0]]
+        raise AssemblyError(
+            f"cannot assemble at driver angle {target:g} deg: pin {sl.pin} leaves the slot of "
+            f"{sl.slot} at its end {r.leaves[1]} at {wrap_deg_float(ref + math.degrees(r.leaves[2])):g} "
+            f"deg; the pin is in the slot from {ref + lo:g} to {ref + hi:g} deg",
+            where="driver.angle", file=m.source, links=(sl.link, sl.slot),
+            hint=_choose(ref, lo, hi, "choose an angle in that range (the slot's ends bound the motion)"))
+    if len(r.deltas) == 0:
+        lo, hi = reachable_range(kin)
+        raise AssemblyError(
+            f"cannot assemble at driver angle {target:g} deg: a toggle lies on the way from the "
+            f"reference pose ({ref:g} deg); reachable: {ref + lo:g} to {ref + hi:g} deg",
+            where="driver.angle", file=m.source, links=tuple(kin.system.index),
+            hint=_choose(ref, lo, hi, "choose an angle in the reachable range"))
+    return r.q, delta
+
+
 def solve(m: Mechanism, angle: float | None = None) -> Solution:
     """Solve the mechanism at its reference pose, or with the driver at ``angle`` (degrees).
 
@@ -208,24 +237,7 @@ def solve(m: Mechanism, angle: float | None = None) -> Solution:
         delta = wrap_deg_float(float(target) - ref)
         if abs(delta) > 1e-12:
             velocities(kin, q, where="reference pose")   # regular, to tell its branch (else exit 3)
-            r = reassemble(kin.system, list(kin.rows), [math.radians(delta)])
-            if len(r.deltas) == 0 and r.leaves is not None:
-                lo, hi = reachable_range(kin)
-                sl = m.slots[r.leaves[0]]
-                raise AssemblyError(
-                    f"cannot assemble at driver angle {target:g} deg: pin {sl.pin} leaves the slot of "
-                    f"{sl.slot} at its end {r.leaves[1]} at {wrap_deg_float(ref + math.degrees(r.leaves[2])):g} "
-                    f"deg; the pin is in the slot from {ref + lo:g} to {ref + hi:g} deg",
-                    where="driver.angle", file=m.source, links=(sl.link, sl.slot),
-                    hint=_choose(ref, lo, hi, "choose an angle in that range (the slot's ends bound the motion)"))
-            if len(r.deltas) == 0:
-                lo, hi = reachable_range(kin)
-                raise AssemblyError(
-                    f"cannot assemble at driver angle {target:g} deg: a toggle lies on the way from the "
-                    f"reference pose ({ref:g} deg); reachable: {ref + lo:g} to {ref + hi:g} deg",
-                    where="driver.angle", file=m.source, links=tuple(kin.system.index),
-                    hint=_choose(ref, lo, hi, "choose an angle in the reachable range"))
-            q = r.q
+            q, delta = _carried(kin, ref, target, delta)
         angle_now = wrap_deg_float(ref + delta)
     else:
         angle_now = ref
