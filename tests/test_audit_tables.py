@@ -2,6 +2,10 @@
 degrees in (-180, 180]): an angle is printed as the JSON gives it, rounded, never ``-0.0000`` nor ``-180.0000``,
 and a vector that prints as zero has no direction.
 
+Also: a slow or small mechanism's values are printed, not rounded to 0 (fmt's floor for rounding noise was
+1e-9 absolute: a crank at 1e-5 rad/s on a 1 m four-bar has accelerations of 1e-10 m/s^2, and every one of them
+printed 0 in the points, links, sliders, polygon and reference tables, beside the right JSON).
+
 Found by the audit: a parallelogram four-bar re-assembled at another crank angle has its coupler along the
 frame to rounding (-2.8e-14 deg in the JSON), and the links table printed its angle as "-0.0000" (7 of 30
 generated parallelograms); a fixed pivot whose velocity was 1.8e-15 printed "0 ∠ 90.000°".
@@ -16,6 +20,8 @@ import pytest
 import velpoly
 from velpoly.report import solution_report
 from velpoly.tables import angle, polar
+
+import mechanisms
 
 BAD = re.compile(r"(?<![\d.])-0\.0+(?!\d)|-180\.0+(?!\d)| 0 ∠")
 
@@ -51,3 +57,24 @@ def test_an_angle_prints_in_the_json_s_range(deg, text):
 def test_a_vector_that_prints_as_zero_has_no_direction():
     assert polar([0.0, 1.8e-15]) == "0" and polar([0.0, 0.0]) == "0"
     assert polar([0.0, 2.0]) == "2 ∠ 90.000°"
+
+
+def test_a_slow_mechanism_s_values_are_printed_not_zero():
+    rng = np.random.default_rng(3)
+    for _ in range(3):   # a four-bar a metre across, the crank at 1e-6 .. 1e-4 rad/s: accelerations 1e-12 .. 1e-8
+        d = mechanisms.fourbar(theta=float(rng.uniform(20, 160)), omega=float(10 ** rng.uniform(-6, -4)))
+        d["points"] = {k: ([x / 10 for x in v] if isinstance(v, list) else
+                           {**v, **({"length": v["length"] / 10} if "length" in v else {}),
+                            **({"circles": [[c, r / 10] for c, r in v["circles"]]} if "circles" in v else {})})
+                       for k, v in d["points"].items()}
+        sol = velpoly.solve(velpoly.load(d))
+        text = solution_report(sol).splitlines()
+        for lk, a in sol.alpha.items():   # the links table: alpha as the JSON has it, to its 6 digits
+            row = next(line.split() for line in text if line.split()[:1] == [lk])
+            assert float(row[-1]) == pytest.approx(a, rel=1e-5, abs=1e-30), (lk, row, a)
+        points = text.index("Points")
+        for key, acc in sol.acceleration.items():
+            row = next(line for line in text[points:] if line.split()[:1] == [key])
+            shown = row.split(")", 1)[1].split()[-3 if np.any(acc) else -1]
+            assert float(shown) == pytest.approx(np.hypot(*acc), rel=1e-5, abs=1e-30), (key, row, acc)
+        assert not any(line.split()[1:3] == ["0", "0"] for line in text if line.startswith("A_B"))   # the polygon

@@ -20,7 +20,7 @@ import numpy as np
 from .errors import InputError
 from .reference import Quantity, compare, evaluate, parse_key
 from .rigid import point_acceleration, point_velocity
-from .tables import Table, coordinates, fmt, magnitude_angle, magnitude_direction
+from .tables import ZERO, Table, coordinates, fmt, magnitude_angle, magnitude_direction, zero_floor
 
 __all__ = ["Graphical", "Comparison", "comparison", "HEADER", "Value", "polygon_values"]
 
@@ -119,14 +119,24 @@ class Comparison:
     values: tuple = ()
 
 
-def _show(value, kind: str) -> str:
+def _show(value, kind: str, floor: float = ZERO) -> str:
     if value is None:
         return "-"
     if kind == "P":
-        return coordinates(value)
+        return coordinates(value, floor)
     if isinstance(value, tuple):
-        return magnitude_angle(value[0], value[1])
-    return fmt(value)
+        return "0" if fmt(value[0], floor=floor) == "0" else magnitude_angle(value[0], value[1], floor)
+    return fmt(value, floor=floor)
+
+
+def key_floor(m, key: str, scales: dict) -> float:
+    """Below what a row's computed value prints as 0 (:func:`velpoly.tables.zero_floor`): a billionth of the
+    largest value of its kind in the mechanism (:func:`_scales`), at most ZERO; a link angle's, ZERO."""
+    if key.startswith(("omega_", "alpha_")):
+        q = Quantity(key.split("_", 1)[0], links=(key.split("_", 1)[1],))
+    else:
+        q = _key_kind(m, key)
+    return ZERO if q.kind == "theta" else zero_floor([_scale_of(q, scales)])
 
 
 def _graphical_shown(row, q: Quantity, g):
@@ -218,14 +228,15 @@ def comparison(sol) -> Comparison:
         else:
             q = _key_kind(m, r.key)
         gv = _graphical_shown(r, q, g.value(q))
-        kind = "P" if q.kind == "P" else ""
+        kind, floor = "P" if q.kind == "P" else "", key_floor(m, r.key, scales)
         ref = ""
         if r.note:
             if r.note not in note_no:
                 note_no[r.note] = len(note_no) + 1
                 notes.append((note_no[r.note], r.key, r.note))
             ref = f"[{note_no[r.note]}]"
-        rows.append((r.key, _show(r.printed, kind), _show(gv, kind), _show(r.computed, kind), _book_deviation(r),
+        rows.append((r.key, _show(r.printed, kind, 0.0), _show(gv, kind, floor), _show(r.computed, kind, floor),
+                     _book_deviation(r),
                      _difference(gv, r.computed, _scale_of(q, scales), polar=q.kind != "P"), ref))
         values.append((r.key, r.printed, gv, r.computed))
     title = "Book, graphical and analytic values" + (f" ({m.reference.source})" if m.reference.source else "")
@@ -241,7 +252,8 @@ def _results(sol, g: Graphical, scales: dict) -> Comparison:
 
     def add(key, graphical, analytic):
         scale = scales[key.split("_", 1)[0]]
-        rows.append((key, "-", _show(graphical, ""), _show(analytic, ""), "-",
+        floor = zero_floor([scale])   # a column's rounding noise prints 0, a slow mechanism's values as they are
+        rows.append((key, "-", _show(graphical, "", floor), _show(analytic, "", floor), "-",
                      _difference(graphical, analytic, scale), ""))
         values.append((key, None, graphical, analytic))
     keys = [k for k, v in sol.velocity.items() if np.hypot(*v) > 0]

@@ -15,10 +15,10 @@ import math
 
 import numpy as np
 
-from .compare import polygon_values
+from .compare import _scales, key_floor, polygon_values
 from .driver import driver_label
 from .names import direction, key_text, place, relative
-from .tables import Table, angle, coordinates, fmt, magnitude_angle, magnitude_direction, polar, render_table   # re-exported: the tables' primitives
+from .tables import Table, angle, coordinates, fmt, magnitude_angle, zero_floor, magnitude_direction, polar, render_table   # re-exported: the tables' primitives
 from .reference import at_file_pose, compare, file_pose_angle
 
 __all__ = ["Table", "render_table", "solution_tables", "solution_report", "fmt", "polar", "magnitude_direction", "poles_tables", "polygon_tables",
@@ -28,9 +28,10 @@ __all__ = ["Table", "render_table", "solution_tables", "solution_report", "fmt",
 
 def _links(sol) -> Table:
     rows = []
+    zw, za = zero_floor(sol.omega.values()), zero_floor(sol.alpha.values())   # a column's rounding noise prints 0
     for k in sol.mechanism.links:
         rows.append((k.name + (" (frame)" if k.frame else ""), angle(sol.angle[k.name]),
-                     fmt(sol.omega[k.name]), fmt(sol.alpha[k.name])))
+                     fmt(sol.omega[k.name], floor=zw), fmt(sol.alpha[k.name], floor=za)))
     return Table("Links", ("link", "angle (deg)", "omega (rad/s)", "alpha (rad/s^2)"), tuple(rows))
 
 
@@ -69,11 +70,12 @@ def on_links(links) -> str:
 def _points(sol) -> Table:
     rows = []
     pinned = pinned_keys(sol.mechanism)
+    zp, zv, za = (zero_floor(d.values()) for d in (sol.position, sol.velocity, sol.acceleration))
     for key, p in sol.position.items():
         if key in pinned and pinned[key] is None:
             continue   # shown with the first key of its pinned group
         label = f"{pinned[key][0]} (on {on_links(pinned[key][1])})" if key in pinned else key_text(key)
-        rows.append((label, coordinates(p), polar(sol.velocity[key]), polar(sol.acceleration[key])))
+        rows.append((label, coordinates(p, zp), polar(sol.velocity[key], zv), polar(sol.acceleration[key], za)))
     u = sol.mechanism.units or "units"
     return Table("Points", ("point", f"position ({u})", f"velocity ({u}/s)", f"acceleration ({u}/s^2)"),
                  tuple(rows))
@@ -83,31 +85,33 @@ def _joints(sol) -> list[Table]:
     m = sol.mechanism
     mo = sol.motion
     out = []
+    zv, za = zero_floor(sol.velocity.values()), zero_floor(sol.acceleration.values())   # as the points table
     if m.sliders:
         out.append(Table("Sliders", ("block on guide", "point", "slip velocity", "slip acceleration", "Coriolis"),
-                         tuple((f"{s.block} on {s.guide}", s.point, fmt(r["slip_velocity"][0]),
-                                fmt(r["slip_acceleration"][0]), polar(r["coriolis"][0]))
+                         tuple((f"{s.block} on {s.guide}", s.point, fmt(r["slip_velocity"][0], floor=zv),
+                                fmt(r["slip_acceleration"][0], floor=za), polar(r["coriolis"][0], za))
                                for s, r in zip(m.sliders, mo.sliders))))
     if m.slots:
         out.append(Table("Pins in slots", ("pin of link in slot", "point", "slip velocity", "slip acceleration",
                                            "Coriolis"),
-                         tuple((f"{s.link} in {s.slot}", s.pin, fmt(r["slip_velocity"][0]),
-                                fmt(r["slip_acceleration"][0]), polar(r["coriolis"][0]))
+                         tuple((f"{s.link} in {s.slot}", s.pin, fmt(r["slip_velocity"][0], floor=zv),
+                                fmt(r["slip_acceleration"][0], floor=za), polar(r["coriolis"][0], za))
                                for s, r in zip(m.slots, mo.slots))))
     if m.contacts:
         out.append(Table("Contacts", ("links", "point", "kind", "slip velocity", "slip acceleration"),
-                         tuple((f"{c.links[0]}, {c.links[1]}", c.point, c.kind, fmt(r["slip_velocity"][0]),
-                                fmt(r["slip_acceleration"][0])) for c, r in zip(m.contacts, mo.contacts))))
+                         tuple((f"{c.links[0]}, {c.links[1]}", c.point, c.kind, fmt(r["slip_velocity"][0], floor=zv),
+                                fmt(r["slip_acceleration"][0], floor=za)) for c, r in zip(m.contacts, mo.contacts))))
     return out
 
 
-def _show_value(v) -> str:
+def _show_value(v, floor: float = 0.0) -> str:
+    """A printed (floor 0: as given) or computed value of the reference table."""
     if v is None:
         return "at infinity"
     if isinstance(v, tuple):
         if len(v) == 2:
-            return magnitude_angle(v[0], v[1])
-    return fmt(v)
+            return magnitude_angle(v[0], v[1], floor)
+    return fmt(v, floor=floor)
 
 
 def _compass(sol) -> Table | None:
@@ -146,11 +150,12 @@ def _reference(sol) -> Table | None:
         return Table(f"{title}: printed for the file's pose (driver at {pose:g} deg), not compared at "
                      f"{sol.driver_angle:g} deg", ("quantity", "printed", "note"), rows)
     rows = []
+    scales = _scales(sol)
     for r in compare(sol):
         if _is_pole(r):
             printed, computed = _pole_text(r.printed), _pole_text(r.computed)
         else:
-            printed, computed = _show_value(r.printed), _show_value(r.computed)
+            printed, computed = _show_value(r.printed), _show_value(r.computed, key_floor(m, r.key, scales))
         dev = [] if r.deviation is None else [f"{100 * r.deviation:.3g}%"]
         if r.angle_error is not None:
             dev.append(f"{r.angle_error:.3g}°")
@@ -227,10 +232,13 @@ def polygon_tables(sol) -> list[Table]:
         h = hd[poly.kind]
         rname, pname = ("omega", "V") if vel else ("alpha", "A")
         rates, points = polygon_values(sol, poly)
+        zr = zero_floor(v.analytic for v in rates)   # each column's rounding noise prints 0, as in the tables above
+        zp = zero_floor(v.analytic for v in points)
         rows = []
         for v in rates:
             lo, hi = h["omega" if vel else "alpha"][v.key]
-            rows.append((f"{rname}_{v.key}", fmt(v.graphical), fmt(v.analytic), f"{fmt(lo, 4)} .. {fmt(hi, 4)}"))
+            rows.append((f"{rname}_{v.key}", fmt(v.graphical, floor=zr), fmt(v.analytic, floor=zr),
+                         f"{fmt(lo, 4, zr)} .. {fmt(hi, 4, zr)}"))
         for v in points:
             key = v.key
             if key in pinned and pinned[key] is None:
@@ -238,8 +246,8 @@ def polygon_tables(sol) -> list[Table]:
             lo, hi = h["speed" if vel else "magnitude"][key]
             name = f"{pname}_{pinned[key][0]} (on {on_links(pinned[key][1])})" if key in pinned else \
                 f"{pname}_{key_text(key)}"
-            rows.append((f"{name} ({poly.labels[key]})", polar(v.graphical), polar(v.analytic),
-                         f"{fmt(lo, 4)} .. {fmt(hi, 4)}"))
+            rows.append((f"{name} ({poly.labels[key]})", polar(v.graphical, zp), polar(v.analytic, zp),
+                         f"{fmt(lo, 4, zp)} .. {fmt(hi, 4, zp)}"))
         rows.append(("max error (relative to the largest)", f"{poly.max_error:.2g}", "", ""))
         title = (f"{poly.kind.capitalize()} polygon ({len(poly.steps)} steps): graphical and analytic, "
                  f"hand-drafted 95% range at {fmt(h['scale'], 4)} mm per unit")
@@ -264,10 +272,10 @@ def _head(sol) -> tuple[str, str]:
     """The report's title and its driver's line."""
     m = sol.mechanism
     if m.driver.is_slider:
-        return m.title, (f"driver: slider {m.driver.slider}, speed {fmt(m.driver.speed)} {m.units or 'units'}/s, "
-                         f"accel {fmt(m.driver.accel)} {m.units or 'units'}/s^2")
-    return m.title, (f"driver: link {m.driver.link} at {angle(sol.driver_angle)} deg, omega {fmt(m.driver.omega)} "
-                     f"rad/s, alpha {fmt(m.driver.alpha)} rad/s^2")
+        return m.title, (f"driver: slider {m.driver.slider}, speed {fmt(m.driver.speed, floor=0)} "
+                         f"{m.units or 'units'}/s, accel {fmt(m.driver.accel, floor=0)} {m.units or 'units'}/s^2")
+    return m.title, (f"driver: link {m.driver.link} at {angle(sol.driver_angle)} deg, omega "
+                     f"{fmt(m.driver.omega, floor=0)} rad/s, alpha {fmt(m.driver.alpha, floor=0)} rad/s^2")   # as given
 
 
 def _html_table(t: Table) -> str:

@@ -17,7 +17,9 @@ import numpy as np
 
 from .names import polar as _angle_text
 
-__all__ = ["Table", "fmt", "angle", "polar", "magnitude_angle", "coordinates", "magnitude_direction", "render_table"]
+ZERO = 1e-9   # below this a value of order one prints as 0: rounding noise (fmt)
+
+__all__ = ["Table", "fmt", "zero_floor", "angle", "polar", "magnitude_angle", "coordinates", "magnitude_direction", "render_table"]
 
 
 @dataclass(frozen=True)
@@ -31,8 +33,9 @@ class Table:
     notes: tuple[tuple[str, str, str], ...] = ()
 
 
-def fmt(x, digits: int = 6) -> str:
-    """A number to ``digits`` significant digits; '-' for None or NaN."""
+def fmt(x, digits: int = 6, floor: float = ZERO) -> str:
+    """A number to ``digits`` significant digits; '-' for None or NaN; '0' below ``floor`` (rounding noise:
+    :data:`ZERO` for values of order one, :func:`zero_floor` for those of a slow or small mechanism)."""
     if x is None:
         return "-"
     x = float(x)
@@ -40,9 +43,22 @@ def fmt(x, digits: int = 6) -> str:
         return "-"
     if x == 0:
         return "0"
-    if abs(x) < 1e-12 * 10 ** digits and abs(x) < 1e-9:
+    if abs(x) < 1e-12 * 10 ** digits and abs(x) < floor:
         return "0"
     return f"{x:.{digits}g}"
+
+
+def zero_floor(values) -> float:
+    """Below what a column of ``values`` (numbers or vectors) prints as 0: :data:`ZERO`, or a billionth of the
+    column's largest magnitude where that is smaller. The accelerations of a clock's hands (1e-10 m/s^2) are
+    values, not rounding noise, and print as such; the noise of a solve (1e-16 of the largest) still prints 0.
+
+    >>> zero_floor([1.0, 30.0]), zero_floor([[3e-10, 4e-10], None])
+    (1e-09, 5e-19)
+    """
+    sizes = [float(np.hypot(*np.ravel(v))) if np.ndim(v) else abs(float(v)) for v in values if v is not None]
+    big = max((x for x in sizes if math.isfinite(x)), default=1.0)
+    return min(ZERO, ZERO * big) or ZERO
 
 
 def angle(deg: float, decimals: int = 4) -> str:
@@ -66,24 +82,25 @@ def magnitude_direction(v) -> tuple[float, float] | None:
     return float(np.hypot(*v)), math.degrees(math.atan2(v[1], v[0])) % 360.0
 
 
-def polar(v) -> str:
-    """A vector as ``magnitude ∠ direction°`` (direction in [0, 360)); '-' if undefined, '0' if it prints as zero."""
+def polar(v, floor: float = ZERO) -> str:
+    """A vector as ``magnitude ∠ direction°`` (direction in [0, 360)); '-' if undefined, '0' if it prints as zero
+    (below ``floor``, as :func:`fmt`)."""
     md = magnitude_direction(v)
     if md is None:
         return "-"
-    if fmt(md[0]) == "0":   # no direction for a zero vector, nor for one that prints as zero (1e-17)
+    if fmt(md[0], floor=floor) == "0":   # no direction for a zero vector, nor for one that prints as zero (1e-17)
         return "0"
-    return magnitude_angle(*md)
+    return magnitude_angle(*md, floor)
 
 
-def magnitude_angle(magnitude, deg) -> str:
+def magnitude_angle(magnitude, deg, floor: float = ZERO) -> str:
     """A magnitude and a direction in degrees as a cell: ``12.5 ∠ 30.000°`` (the direction in [0, 360))."""
-    return _angle_text(fmt(magnitude), deg, 3)
+    return _angle_text(fmt(magnitude, floor=floor), deg, 3)
 
 
-def coordinates(p) -> str:
-    """A position as a cell: ``(0.1, -2.5)``."""
-    return f"({fmt(p[0])}, {fmt(p[1])})"
+def coordinates(p, floor: float = ZERO) -> str:
+    """A position as a cell: ``(0.1, -2.5)`` (each coordinate as :func:`fmt`, 0 below ``floor``)."""
+    return f"({fmt(p[0], floor=floor)}, {fmt(p[1], floor=floor)})"
 
 
 def render_table(t: Table, style: str = "text") -> str:
