@@ -4,7 +4,8 @@ and a vector that prints as zero has no direction.
 
 Also: a slow or small mechanism's values are printed, not rounded to 0 (fmt's floor for rounding noise was
 1e-9 absolute: a crank at 1e-5 rad/s on a 1 m four-bar has accelerations of 1e-10 m/s^2, and every one of them
-printed 0 in the points, links, sliders, polygon and reference tables, beside the right JSON).
+printed 0 in the points, links, sliders, polygon and reference tables and in the sweep's summary, beside the right
+JSON).
 
 Found by the audit: a parallelogram four-bar re-assembled at another crank angle has its coupler along the
 frame to rounding (-2.8e-14 deg in the JSON), and the links table printed its angle as "-0.0000" (7 of 30
@@ -18,7 +19,7 @@ import numpy as np
 import pytest
 
 import velpoly
-from velpoly.report import solution_report
+from velpoly.report import solution_report, summary_table
 from velpoly.tables import angle, polar
 
 import mechanisms
@@ -78,3 +79,6 @@ def test_a_slow_mechanism_s_values_are_printed_not_zero():
             shown = row.split(")", 1)[1].split()[-3 if np.any(acc) else -1]
             assert float(shown) == pytest.approx(np.hypot(*acc), rel=1e-5, abs=1e-30), (key, row, acc)
         assert not any(line.split()[1:3] == ["0", "0"] for line in text if line.startswith("A_B"))   # the polygon
+    w = velpoly.sweep(sol.mechanism, sol.driver_angle + np.arange(0.0, 360.0, 30.0))   # velpoly sweep's summary
+    rows = {r[0]: r for r in summary_table(w).rows}
+    assert float(rows["|A_B|"][4]) == pytest.approx(np.hypot(*w.acceleration["B"].T).max(), rel=1e-5)

@@ -368,13 +368,18 @@ def moving_keys(sw) -> list[str]:
     return out
 
 
-def _extremes(name: str, unit: str, values: np.ndarray, at: np.ndarray):
+def _extremes(name: str, unit: str, values: np.ndarray, at: np.ndarray, floor: float):
     good = np.isfinite(values)
     if not good.any():
         return (name, unit, "-", "-", "-", "-")
     v = np.where(good, values, np.nan)
     i, j = int(np.nanargmin(v)), int(np.nanargmax(v))
-    return (name, unit, fmt(v[i]), f"{at[i]:.6g}", fmt(v[j]), f"{at[j]:.6g}")
+    return (name, unit, fmt(v[i], floor=floor), f"{at[i]:.6g}", fmt(v[j], floor=floor), f"{at[j]:.6g}")
+
+
+def _cycle_floor(arrays) -> float:
+    """:func:`zero_floor` of a kind of quantity over the cycle: a billionth of its largest magnitude, at most 1e-9."""
+    return zero_floor([float(np.nanmax(np.abs(a))) for a in arrays if np.isfinite(a).any()])
 
 
 def summary_table(sw, points=None) -> Table:
@@ -385,20 +390,22 @@ def summary_table(sw, points=None) -> Table:
     u = m.units or "units"
     at = sw.angles
     rows = []
-    for k in m.moving_links:
-        rows.append(_extremes(f"omega_{k.name}", "rad/s", sw.omega[k.name], at))
-    for k in m.moving_links:
-        rows.append(_extremes(f"alpha_{k.name}", "rad/s^2", sw.alpha[k.name], at))
     keys = list(points) if points else moving_keys(sw)
+    speeds = {key: np.hypot(*sw.velocity[key].T) for key in keys}
+    accels = {key: np.hypot(*sw.acceleration[key].T) for key in keys}
+    zw, za = (_cycle_floor(d[k.name] for k in m.moving_links) for d in (sw.omega, sw.alpha))   # noise prints 0
+    zv, zA = _cycle_floor(speeds.values()), _cycle_floor(accels.values())
+    for k in m.moving_links:
+        rows.append(_extremes(f"omega_{k.name}", "rad/s", sw.omega[k.name], at, zw))
+    for k in m.moving_links:
+        rows.append(_extremes(f"alpha_{k.name}", "rad/s^2", sw.alpha[k.name], at, za))
     for key in keys:
-        v = sw.velocity[key]
-        rows.append(_extremes(f"|V_{key_text(key)}|", f"{u}/s", np.hypot(v[:, 0], v[:, 1]), at))
+        rows.append(_extremes(f"|V_{key_text(key)}|", f"{u}/s", speeds[key], at, zv))
     for key in keys:
-        a = sw.acceleration[key]
-        rows.append(_extremes(f"|A_{key_text(key)}|", f"{u}/s^2", np.hypot(a[:, 0], a[:, 1]), at))
+        rows.append(_extremes(f"|A_{key_text(key)}|", f"{u}/s^2", accels[key], at, zA))
     for s, r in zip(m.sliders, sw.sliders):
         slip = relative(place(s.point, s.block), place(s.point, s.guide))
-        rows.append(_extremes(f"slip V_{slip}", f"{u}/s", r["slip_velocity"], at))
+        rows.append(_extremes(f"slip V_{slip}", f"{u}/s", r["slip_velocity"], at, zv))
     _, unit = driver_label(m)
     return Table(f"Over the cycle ({len(at)} poses)",
                  ("quantity", "unit", "min", f"at ({unit})", "max", f"at ({unit})"), tuple(rows))
