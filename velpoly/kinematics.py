@@ -29,7 +29,7 @@ from .model import Mechanism
 from .pose import select_rows
 
 __all__ = ["Kinematics", "prepare", "velocities", "accelerations", "condition", "involved_links", "SINGULAR",
-           "WARN"]
+           "WARN", "singular_hint"]
 
 SINGULAR = 1e10   # condition number above which a pose is singular (exit 3)
 WARN = 1e6        # above which results carry a warning
@@ -265,7 +265,7 @@ def velocities(kin: Kinematics, q, check: bool = True, where: str = "pose", jac=
             f"{'inf' if not np.isfinite(cond[i]) else f'{cond[i]:.3g}'})",
             where=where, file=kin.mechanism.source,
             links=_involved(kin.system, a[i], rows, True),
-            hint="links in line (a toggle or dead centre) or two pins at one place: choose another driver angle")
+            hint=singular_hint(kin.mechanism))
     rhs = np.empty(a.shape[:2])
     rhs[:] = _rates(kin)
     if any_bad:
@@ -275,6 +275,13 @@ def velocities(kin: Kinematics, q, check: bool = True, where: str = "pose", jac=
     qd = np.linalg.solve(a, rhs[..., None])[..., 0]
     _exact_crank(kin, qd, kin.mechanism.driver.omega)
     return qd, cond
+
+
+def singular_hint(m) -> str:
+    """What to do about a singular pose: another driver angle, or for a slider driver (which has none) another
+    place of the slider on its path."""
+    where = "draw the slider elsewhere on its path" if m.driver.is_slider else "choose another driver angle"
+    return f"links in line (a toggle or dead centre) or two pins at one place: {where}"
 
 
 def _exact_crank(kin: Kinematics, rates: np.ndarray, value: float) -> None:

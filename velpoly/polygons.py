@@ -75,7 +75,7 @@ import numpy as np
 from . import geometry as G
 from .errors import ConstructionError, InputError, SingularPoseError
 from .frozen import quick_init
-from .kinematics import SINGULAR
+from .kinematics import SINGULAR, singular_hint
 from .motion import point_keys
 from .rigid import coriolis as coriolis_term, dot as _dot, normal_acceleration, perp, rate_cross
 from .names import lower_name, point_text, relative
@@ -1061,7 +1061,7 @@ class _Planner:
             raise SingularPoseError(
                 f"singular pose: the construction lines locating the image of {g.name(t)} are parallel "
                 f"({l1.reason}; {l2.reason}; sine {sine:.2g})", where="pose", file=g.m.source, links=links,
-                hint="links in line (a toggle or dead centre) or two pins at one place: choose another driver angle")
+                hint=singular_hint(g.m))
         left = [lk for lk in g.moving if not self.full(lk)]
         raise ConstructionError(
             f"no graphical construction order: links {', '.join(left)} form a group that neither a dyad "

@@ -191,11 +191,12 @@ def _stop_message(m: Mechanism, angles: np.ndarray, n: int, ref, stopped: str, l
     (a pin leaving its slot, or a toggle), and the slot exit only when that is why."""
     if stopped and leaves is not None and stopped == "slot":
         return (f"pin {leaves[0]} leaves the slot of {leaves[1]} at " +
-                (f"{leaves[2]:g}" if m.driver.is_slider else f"{leaves[2]:.1f} deg") +
+                (f"{leaves[2]:g}" + (f" {m.units}" if m.units else "") if m.driver.is_slider else f"{leaves[2]:.1f} deg") +
                 f": {len(angles) - n} of {len(angles)} positions not reached"), leaves
     if stopped:
         last = angles[n - 1] if n else (ref if ref is not None else 0.0)
-        return (f"stopped at a toggle after {last:g}" + ("" if m.driver.is_slider else " deg") +
+        return (f"stopped at a toggle after {last:g}" + ((f" {m.units}" if m.units else "") if m.driver.is_slider
+                                                          else " deg") +
                 f": {len(angles) - n} of {len(angles)} positions not reached on this branch"), None
     return "", None
 
