@@ -908,11 +908,11 @@ class _Drawing:
         r = self.number_radius(lk, kw) if "bbox" in kw else 0.5 * max(self.pl.text_size(probe, pad))
         probe.remove()
         x0, y0, x1, y1 = own.buffer(NUMBER_BESIDE * pc + r).bounds
-        step = BESIDE_STEP * pc
-        xs, ys = np.meshgrid(np.arange(x0, x1, step), np.arange(y0, y1, step))
+        step, view = BESIDE_STEP * pc, view_box(self.ax)
+        xs, ys = np.meshgrid(_grid_in(x0, x1, step, *view.bounds[::2], r), _grid_in(y0, y1, step, *view.bounds[1::2], r))
         cx, cy = xs.ravel(), ys.ravel()
         rings = shapely.box(cx - r, cy - r, cx + r, cy + r)
-        ok = shapely.contains(view_box(self.ax), rings) & (shapely.distance(rings, own) <= NUMBER_BESIDE * pc)
+        ok = shapely.contains(view, rings) & (shapely.distance(rings, own) <= NUMBER_BESIDE * pc)
         taken = np.array(self.pl.boxes + self.pl.hard + self.pl.soft + self.reserved, dtype=object)
         if taken.size:
             ok[ok] = ~shapely.intersects(taken[None, :], rings[ok][:, None]).any(axis=1)
@@ -1443,6 +1443,17 @@ class _Drawing:
         best = plans[k]
         arts, labels = self._draw_driver(p, best, texts, label_kw)
         self.art.add("driver", *arts, *labels)
+
+
+def _grid_in(a0: float, a1: float, step: float, v0: float, v1: float, r: float) -> np.ndarray:
+    """``np.arange(a0, a1, step)``, the same numbers, but only those whose ring of half-width ``r`` may lie within
+    the view ``v0 .. v1``: a body far larger than the view (a user's scale that draws the mechanism metres wide on
+    paper) must not make a grid of millions of places, none of them in the view."""
+    d = (a0 + step) - a0   # numpy's own increment: arange's i-th number is a0 + i * d
+    n = max(int(math.ceil((a1 - a0) / step)), 0)
+    i0 = min(max(int(math.floor((v0 + r - a0) / d)) - 1, 0), n) if math.isfinite((v0 + r - a0) / d) else 0
+    i1 = min(max(int(math.ceil((v1 - r - a0) / d)) + 2, 0), n) if math.isfinite((v1 - r - a0) / d) else n
+    return a0 + np.arange(i0, max(i0, i1)) * d
 
 
 def draw_mechanism(sol, ax=None, *, style="textbook", options=None, scale: float | None = None) -> Artists:

@@ -200,6 +200,27 @@ def _bounds(sol, cons: Constructions, name: str, reach: float | None = None):
     return polygon_bounds(getattr(cons, name))
 
 
+PAPER = (1e-4, 1e6)   # cm: a drawing a user's [drawing] scale makes smaller or larger than this is an input error
+
+
+def _check_user_scales(sol, opts, cons) -> None:
+    """A ``[drawing]`` scale that draws its panel's content within :data:`PAPER` (a scale written in the wrong unit,
+    1e-20 or 1e300, drew nothing, hung or overflowed): else an InputError naming the key, with a scale that fits."""
+    m = sol.mechanism
+    for key, scale, bounds in (("scale", opts.scale, lambda: mechanism_bounds(sol)),
+                               ("velocity_scale", opts.velocity_scale, lambda: polygon_bounds(cons.velocity)),
+                               ("acceleration_scale", opts.acceleration_scale,
+                                lambda: polygon_bounds(cons.acceleration))):
+        if scale is None or (key != "scale" and getattr(cons, key.split("_")[0]) is None):
+            continue
+        x0, y0, x1, y1 = bounds()
+        cm = max(x1 - x0, y1 - y0) / scale
+        if not PAPER[0] <= cm <= PAPER[1]:
+            raise InputError(f"at 1 cm = {scale:g} the drawing is {cm:.3g} cm across", where=f"drawing.{key}",
+                             file=m.source, hint=f"a scale of {nice_scale(max(x1 - x0, y1 - y0) / 15):g} draws it "
+                             f"15 cm across ({key}: units per cm of paper); or leave {key} out")
+
+
 def _user_scale(opts, name: str):
     return {"mechanism": opts.scale, "poles": opts.scale, "velocity": opts.velocity_scale,
             "acceleration": opts.acceleration_scale}.get(name)
@@ -771,6 +792,7 @@ def render(sol, sheet: str = "full", style="textbook", *, cons: Constructions | 
     m = sol.mechanism
     opts = drawing_options(m)
     cons = cons if cons is not None else constructions(sol, sheet)
+    _check_user_scales(sol, opts, cons)
     frame = frame or Frame()
     fig = Figure(figsize=st.figsize, dpi=72)   # text is measured at the dpi vector output is written at
     new_canvas(fig)
