@@ -22,7 +22,7 @@ from .reference import Quantity, compare, evaluate, parse_key
 from .rigid import point_acceleration, point_velocity
 from .tables import ZERO, Table, coordinates, fmt, magnitude_angle, magnitude_direction, zero_floor
 
-__all__ = ["Graphical", "Comparison", "comparison", "HEADER", "Value", "polygon_values"]
+__all__ = ["Graphical", "Comparison", "comparison", "HEADER", "Value", "polygon_values", "kind_scales", "key_floor"]
 
 
 # -- graphical values ----------------------------------------------------------------------------
@@ -131,7 +131,7 @@ def _show(value, kind: str, floor: float = ZERO) -> str:
 
 def key_floor(m, key: str, scales: dict) -> float:
     """Below what a row's computed value prints as 0 (:func:`velpoly.tables.zero_floor`): a billionth of the
-    largest value of its kind in the mechanism (:func:`_scales`), at most ZERO; a link angle's, ZERO."""
+    largest value of its kind in the mechanism (:func:`kind_scales`), at most ZERO; a link angle's, ZERO."""
     if key.startswith(("omega_", "alpha_")):
         q = Quantity(key.split("_", 1)[0], links=(key.split("_", 1)[1],))
     else:
@@ -152,7 +152,7 @@ def _graphical_shown(row, q: Quantity, g):
     return float(g)
 
 
-def _scales(sol) -> dict:
+def kind_scales(sol) -> dict:
     """The size of each kind of quantity in the mechanism, to which a graphical value's error is
     relative (as FORMAT.md's graphical.max_error): the largest |omega|, speed, |alpha| (at least
     omega_max^2) and acceleration (at least v_max^2 / size), and the mechanism's size for positions."""
@@ -217,7 +217,7 @@ def comparison(sol) -> Comparison:
     """
     m = sol.mechanism
     g = Graphical(sol)
-    scales = _scales(sol)
+    scales = kind_scales(sol)
     if not m.reference:
         return _results(sol, g, scales)
     rows, notes, values = [], [], []

@@ -15,7 +15,7 @@ import math
 
 import numpy as np
 
-from .compare import _scales, key_floor, polygon_values
+from .compare import key_floor, kind_scales, polygon_values
 from .driver import driver_label
 from .names import direction, key_text, place, relative
 from .tables import Table, angle, coordinates, fmt, magnitude_angle, zero_floor, magnitude_direction, polar, render_table   # re-exported: the tables' primitives
@@ -150,7 +150,7 @@ def _reference(sol) -> Table | None:
         return Table(f"{title}: printed for the file's pose (driver at {pose:g} deg), not compared at "
                      f"{sol.driver_angle:g} deg", ("quantity", "printed", "note"), rows)
     rows = []
-    scales = _scales(sol)
+    scales = kind_scales(sol)
     for r in compare(sol):
         if _is_pole(r):
             printed, computed = _pole_text(r.printed), _pole_text(r.computed)
