@@ -1,6 +1,7 @@
 """Measure the space diagram's driver arrows/values and link numbers over zoo(2026, 60), full and poles sheets,
 both styles. Usage: PYTHONPATH=<tree> python3 benchmarks/space_marks.py [--zoo SEED,COUNT] [i or i:sheet:style ...]
-(prints per-case findings and totals; --zoo measures another zoo, e.g. --zoo 7,40, the default 2026,60)."""
+(prints per-case findings and totals, and the length of each driver value's leader in cm of paper, 0 where it
+stands beside its arrow; --zoo measures another zoo, e.g. --zoo 7,40, the default 2026,60)."""
 import sys, os, json
 sys.path.insert(0, os.path.join(os.environ["PYTHONPATH"], "tests"))
 import numpy as np
@@ -12,6 +13,7 @@ from velpoly.render import sheet as S
 from velpoly.render import displacement as D
 from velpoly.render.labels import placer
 from velpoly.render.style import get_style, rc_context
+from velpoly.render.canvas import per_cm
 
 CAUGHT = []
 _orig = S.draw_mechanism
@@ -37,7 +39,7 @@ def measure(sol, sheet, style):
         r = pl.renderer
         axbb = ax.bbox
         out = {"out": [], "on_line": [], "overlap": [], "far_number": [], "leader_cross": [], "small": [], "arrow_cross": [],
-               "point_on_link": [], "point_on_line": []}
+               "point_on_link": [], "point_on_line": [], "value_leader": []}
         bodies = dict(art.bodies)
         for a in art.get("sliders", []):
             g = a.get_gid() or ""
@@ -94,6 +96,12 @@ def measure(sol, sheet, style):
                     ln = LineString(xy).difference(own.buffer(1e-9 * (own.length + 1)))
                     if any(ln.intersects(g) for k, g in bodies.items() if k != lk and k not in guides and g is not None):
                         out["leader_cross"].append(gid)
+        # each driver value's leader in cm of paper (0 beside its arrow, no leader): gid=length
+        for p in texts:
+            gid = p.text.get_gid() or ""
+            if gid.startswith("driver-label"):
+                n = 0.0 if p.leader is None else LineString(np.column_stack(p.leader.get_data())).length / per_cm(ax)
+                out["value_leader"].append(f"{gid}={n:.2f}")
         # point labels on a link's or block's outline, or over a link that does not carry the point
         for p in texts:
             gid = p.text.get_gid() or ""
@@ -118,7 +126,7 @@ if __name__ == "__main__":
     Z = zoo(seed, count)
     specs = [a.split(":") for a in args] or [[str(i)] for i in range(len(Z))]   # i or i:sheet:style
     tot = {}
-    cases = 0
+    cases, leaders = 0, []
     for spec in specs:
         i = int(spec[0])
         sol = velpoly.solve(velpoly.load(Z[i].mech))
@@ -130,9 +138,17 @@ if __name__ == "__main__":
                     print(i, sheet, style, "ERROR", type(e).__name__, e)
                     continue
                 cases += 1
+                values = res.pop("value_leader")
+                leaders += [float(v.split("=")[1]) for v in values]
                 bad = {k: v for k, v in res.items() if v}
+                long = [v for v in values if float(v.split("=")[1]) > 1.0]
+                if long:
+                    bad["long_leader"] = long
                 if bad:
                     print(i, sheet, style, Z[i].kind, json.dumps(bad), flush=True)
                 for k, v in res.items():
                     tot[k] = tot.get(k, 0) + len(v)
     print("cases", cases, "TOTAL", json.dumps(tot))
+    lead = np.array(leaders)
+    print("driver values", len(lead), "leader cm: mean %.2f, max %.2f, over 1 cm %d, over 2 cm %d, sum %.1f" % (
+        lead.mean(), lead.max(), (lead > 1).sum(), (lead > 2).sum(), lead.sum()) if len(lead) else "no driver values")

@@ -42,12 +42,12 @@ def test_a_slider_drivers_value_is_named_as_what_it_is(case):
     index = p if fixed else relative(place(p, s.block), place(p, s.guide))
     ax, art = _draw(sol, "textbook")
     texts = {t.get_gid(): t.get_text() for t in art["driver"] if hasattr(t, "get_text")}
-    speed = re.fullmatch(r"(\$.+\$) = ([0-9.e+-]+) .*", texts["driver-label"])
+    speed = re.fullmatch(r"(\$.+\$) =\s([0-9.e+-]+) .*", texts["driver-label"])
     assert speed and speed.group(1) == quantity_math("V", index), texts["driver-label"]
     assert float(speed.group(2)) == pytest.approx(np.hypot(*v), rel=5e-4)       # printed to 4 digits
     assert float(speed.group(2)) == pytest.approx(abs(m.driver.speed), rel=5e-4)
     if m.driver.accel:
-        accel = re.fullmatch(r"(\$.+\$) = ([0-9.e+-]+) .*", texts["driver-label-accel"])
+        accel = re.fullmatch(r"(\$.+\$) =\s([0-9.e+-]+) .*", texts["driver-label-accel"])
         assert accel and accel.group(1) == quantity_math("A", index), texts["driver-label-accel"]
     # the interactive page and the handout's table of given data (--sheet displacement) name it the same
     assert _driver_text(m).startswith(f"V_{index} = ")

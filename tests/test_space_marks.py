@@ -8,7 +8,8 @@ other link; the driver's arrows (omega's and alpha's arcs, a slider driver's str
 or block (but those pinned at a slider driver's point, which run from its block, and its guide's plate off the
 slotted bar) and stay inside the panel; the driver's values are set no smaller than the style's small size; the
 numbers (their circles) and the values lie on no line (an outline, a slot, a path or guide line) and the point
-labels on no link's outline nor over a link not theirs.
+labels on no link's outline nor over a link not theirs; a value stands by its arrow (within
+displacement.VALUE_NEAR of it) where such a place is free.
 """
 from __future__ import annotations
 
@@ -21,7 +22,8 @@ from shapely.geometry import LineString, Polygon, box
 from shapely.ops import unary_union
 
 import zoo
-from velpoly.render.displacement import draw_mechanism
+from velpoly.render.canvas import per_cm
+from velpoly.render.displacement import VALUE_NEAR, draw_mechanism
 from velpoly.render.labels import placer
 from velpoly.render.style import get_style, rc_context
 
@@ -30,24 +32,20 @@ from velpoly.render.style import get_style, rc_context
 # the double-crank 1's alpha value on the coupler's outline in slides; and on the branch before, texts on lines
 # and point labels on links: the curved crank 0's number 3 and label A, the through-both slider 0's
 # acceleration value and labels O2 and A; the curved slider 1's acceleration value on the plate's outline, in
-# slides, until 5ffbd6b)
-# known, open (strict: fails once fixed): a slider driver's value on a moving guide is now named as what it is, the slip
-# V_A₃/A₄ (test_driver_label), wider than the V_A it was; in these crowded slides panels (4 x 3 in) it finds no
-# place off the lines within the leaders the value may take (displacement.CROSSING), as on 5ffbd6b
-NAMED_WIDER = pytest.mark.xfail(strict=True, reason="the driver's value named V_A3/A4 (wider) finds no place off the "
-                                "lines in this crowded slides panel")
+# slides, until 5ffbd6b; the curved slider 1's, the rocker slider 0's and the offset both slider 3's value, named
+# V_A₃/A₄ (wider than V_A), on a line until the value was tried in two lines near its arrow: strict xfail on 19e5f21)
 CASES = [("four-bar", "double-crank", 0, "textbook"), ("four-bar", "double-crank", 0, "slides"),
          ("four-bar", "double-crank", 1, "textbook"), ("four-bar", "double-crank", 1, "slides"),
          ("six-bar", "watt II", 0, "textbook"), ("inverted slider-crank", "curved slider", 0, "textbook"),
-         pytest.param("inverted slider-crank", "curved slider", 1, "slides", marks=NAMED_WIDER),
+         ("inverted slider-crank", "curved slider", 1, "slides"),
          ("slider-crank", "curved crank", 0, "slides"),
          ("inverted slider-crank", "through both slider", 0, "slides"),
          # slider drivers amid their guide's plate, in slides: a value (and, offset both 2, number 3) on the slot's or
          # the plate's outline on 5ffbd6b, every place off the lines beyond an outline from the arrow (the value's
          # leader now crosses up to displacement.CROSSING of them); the rocker 1's number 3 on its guide, A on it
-         pytest.param("inverted slider-crank", "rocker slider", 0, "slides", marks=NAMED_WIDER),
+         ("inverted slider-crank", "rocker slider", 0, "slides"),
          ("inverted slider-crank", "rocker slider", 1, "slides"),
-         pytest.param("inverted slider-crank", "offset both slider", 3, "slides", marks=NAMED_WIDER)]
+         ("inverted slider-crank", "offset both slider", 3, "slides")]
 
 
 def _draw(sol, style):
@@ -135,6 +133,26 @@ def line_faults(ax, art) -> list:
     return out
 
 
+ARROWS = {"driver-label": ("driver-arc", "driver-arrow"), "driver-label-alpha": ("driver-alpha",),
+          "driver-label-accel": ("driver-accel",)}   # a value's gid: its arrow's artists' gids begin so
+
+
+def far_values(ax, art, most: float = VALUE_NEAR) -> list:
+    """The driver's values that stand farther than ``most`` cm of paper from their own arrow (its arc or shaft
+    and heads): (gid, cm)."""
+    r, out = ax.figure.canvas.get_renderer(), []
+    drawn = [a for a in art.get("driver", []) if a.figure is not None]
+    texts = [a for a in drawn if hasattr(a, "get_fontsize")]
+    for t in texts:
+        mine = [a for a in drawn if a not in texts and (a.get_gid() or "").startswith(ARROWS[t.get_gid()])]
+        shape = unary_union([LineString(np.column_stack(a.get_data())) if isinstance(a, Line2D) else
+                             Polygon(a.get_xy()) for a in mine])
+        d = _data_box(ax, t.get_window_extent(r)).distance(shape) / per_cm(ax)
+        if d > most:
+            out.append((t.get_gid(), round(d, 2)))
+    return out
+
+
 def point_faults(sol, ax, art) -> list:
     """The point labels on a link's or block's outline, or over a link that does not carry their point."""
     r, bodies, out = ax.figure.canvas.get_renderer(), _bodies(art), []
@@ -156,6 +174,25 @@ def test_marks_read_as_their_links(kind, variant, seed, style):
     assert driver_faults(sol, ax, art, style) == []
     assert line_faults(ax, art) == []
     assert point_faults(sol, ax, art) == []
+
+
+# a driver's value by its arrow (within displacement.VALUE_NEAR) where a place there is free off the lines, in one line,
+# in two (name over value) or smaller: each stood 1.1-2.4 cm from its arrow at a leader's end on main 19e5f21 (omega's
+# value, alpha's, a slider driver's slip V_A3/A4), while the other marks still read as their links'
+NEAR_CASES = [("four-bar", "change-point", 1, "slides"), ("four-bar", "crank-rocker", 0, "slides"),
+              ("inverted slider-crank", "curved slider", 1, "textbook"),
+              ("inverted slider-crank", "through block slider", 0, "textbook")]
+
+
+@pytest.mark.parametrize("kind, variant, seed, style", NEAR_CASES)
+def test_values_by_their_arrows(kind, variant, seed, style):
+    sol = zoo.specimen(np.random.default_rng(seed), kind, variant).drawn
+    ax, art = _draw(sol, style)
+    assert far_values(ax, art) == []
+    assert driver_faults(sol, ax, art, style) == []
+    assert line_faults(ax, art) == []
+    assert point_faults(sol, ax, art) == []
+    assert number_faults(sol, ax, art) == []
 
 
 # point labels off the links not theirs (a block's pin amid its guide's plate: the label beside it, off the plate,

@@ -39,6 +39,8 @@ __all__ = ["draw_mechanism", "away_from", "neighbours", "mechanism_bounds", "sha
 
 PLATE_FILL = "0.9"      # a plate's fill where links are white (textbook): light, so that it reads as one body
 SMALLER = (0.85, 0.72)   # a text with no free place off the lines at its size: these fractions of it tried
+VALUE_NEAR = 1.0        # cm: a driver's value sought first within this of its arrow, in every form and size, before
+#                         a place farther out at the end of a leader (a long leader reads worse than a smaller value)
 CROSSING = 3            # a driver's value with no free place off the lines whose leader crosses none: its leader may
 #                        cross so many lines and outlines (out of a plate that holds its block) to reach one
 NUMBER_RADIUS = 0.8     # slides: a link number's circle at most this many bar widths in radius
@@ -240,6 +242,17 @@ def plate_outline(sol, link, bar_width: float):
 def plate_fill(fill, st):
     """A plate's fill: the link's, or :data:`PLATE_FILL` where links are white (it must read as one body)."""
     return PLATE_FILL if fill == st.paper else fill
+
+
+def stacked(text: str) -> str:
+    """A value written in two lines, its name over its value (``"V_A = 1.2 m/s"`` as ``"V_A =" / "1.2 m/s"``):
+    half as wide, where a crowd leaves no room for one line (a slip's name V_A₃/A₄ is wide).
+
+    >>> stacked("$V_{A}$ = 1.2 m/s")
+    '$V_{A}$ =\\n1.2 m/s'
+    """
+    name, _, rest = text.partition(" = ")
+    return f"{name} =\n{rest}" if rest else text
 
 
 def plain_links(m) -> set:
@@ -777,7 +790,8 @@ class _Drawing:
 
     def point_labels(self, record: bool = True) -> list:
         """Each point's label beside it, away from its links, where it can off the other links' bodies and
-        off every outline (:meth:`off_links`); returns their boxes (``record``: kept as the drawing's labels)."""
+        off every outline (:meth:`off_links`); returns their boxes with their leaders (``record``: kept as the
+        drawing's labels)."""
         sol, m, st = self.sol, self.m, self.st
         out = []
         wanted = self.opts.label_points
@@ -795,7 +809,9 @@ class _Drawing:
                 t = self._point_label(pos, text, links, prefer=prefer, fontsize=st.font_size, zorder=7,
                                       fontstyle="italic",
                                       gid=f"label-point-{name}" if len(spots) == 1 else f"label-point-{key}")
-                out.append(self.pl.box_of(t, pad=0.0))
+                own = self.pl.of(t)   # (with its leader, if any: a value or number across it sends the label elsewhere)
+                b = self.pl.box_of(t, pad=0.0)
+                out.append(b if own is None or own.leader_geom is None else b.union(own.leader_geom))
                 if not record:
                     continue
                 self.art.add("labels", t)
@@ -868,7 +884,8 @@ class _Drawing:
             with self.pl.trial():   # where the rule below would put it, if it reads as its link's there, off the lines
                 t = self._first_number(lk, pts, g, anchor, prefer, n, pad, kw)
                 owned = test(self.pl.of(t).box)
-                self.pl.keep = owned and not self.pl.soft_hits(self._number_box(t))
+                b = self._number_box(t)
+                self.pl.keep = owned and not self.pl.soft_hits(b) and self._unreserved(b)
             if not self.pl.of(t):   # else a place that reads as its own, off the lines (near it, else on a grid)
                 clear = self._off_lines(lk, kw, test)
                 t = self._link_number(lk, pts, g, mine, prefer, n if len(pts) >= 2 else None, pad, kw, clear, True)
@@ -990,7 +1007,8 @@ class _Drawing:
 
         def clear(b, leader: bool = True) -> bool:
             x, y = b.centroid.coords[0]
-            return test(b, leader) and not self.pl.soft_hits(box(x - r, y - r, x + r, y + r) if r else b)
+            ring = box(x - r, y - r, x + r, y + r) if r else b
+            return test(b, leader) and not self.pl.soft_hits(ring) and self._unreserved(ring)
         return clear
 
     def _number_box(self, t):
@@ -1115,10 +1133,11 @@ class _Drawing:
             value = drv.speed if power == 1 else drv.accel
             self.art.add("driver", *self.straight_arrow(a, b, gid, double=power == 2))
             away = n if side is base else -n
-            spots.append(((a + b) / 2, f"{symbol} = {abs(value):.4g} {unit_label(m.units, power)}", label_gid, away))
-        for at, text, label_gid, away in spots:   # the values once both arrows are drawn: clear of both
-            t = self.value(at, text, prefer=math.degrees(math.atan2(away[1], away[0])), fontsize=st.small_size * 1.15,
-                           zorder=7, gid=label_gid)
+            spots.append(((a, b), f"{symbol} = {abs(value):.4g} {unit_label(m.units, power)}", label_gid, away))
+        for (a, b), text, label_gid, away in spots:   # the values once both arrows are drawn: clear of both
+            t = self.value((a + b) / 2, text, prefer=math.degrees(math.atan2(away[1], away[0])),
+                           fontsize=st.small_size * 1.15, arrow=LineString([tuple(a), tuple(b)]), zorder=7,
+                           gid=label_gid)
             self.art.add("driver", t)
 
     def _slide_places(self, first, second, path, value, steps, block, kept) -> list:
@@ -1268,38 +1287,53 @@ class _Drawing:
             if place is not None:
                 xy = self._arc_points(p, place.rad, place.mid, place.span, 1.0 if value >= 0 else -1.0)
                 arts += self.curved_arrow(xy, gid, double=gid == "driver-alpha")
-        for place, label_gid, text in zip(plan, ("driver-label", "driver-label-alpha"), texts):
+        for place, value, label_gid, text in zip(plan, (drv.omega, drv.alpha), ("driver-label", "driver-label-alpha"),
+                                                 texts):
             if place is not None:
+                arc = LineString(self._arc_points(p, place.rad, place.mid, place.span, 1.0 if value >= 0 else -1.0))
                 labels.append(self.value(p + place.rad * _unit(place.mid), text, prefer=place.mid, gid=label_gid,
-                                         **label_kw))
+                                         arrow=arc, **label_kw))
         return arts, labels
 
-    def value(self, at, text, *, fontsize: float, reserve: bool = True, **kw):
-        """A driver's value beside its arrow (at ``at``), off every line where any free place is: at its size, else
-        smaller (:data:`SMALLER`, never below the style's small size: a value is read from the back of the room)
-        where only that finds such a place (a crowd of Kennedy lines on a poles sheet), farther still, else at the
-        small size where it covers least; off the point labels' places where any free place is (``reserve``: not
-        when placed again, once the point labels are drawn). Where every place off the lines lies beyond a line
-        or outline from the arrow (a block amid a plate), its leader crosses up to :data:`CROSSING` of them to
-        one off the point labels' places: a line across a leader reads, a line through a value does not."""
+    def value(self, at, text, *, fontsize: float, reserve: bool = True, arrow=None, **kw):
+        """A driver's value beside its arrow (placed about ``at``, the middle of ``arrow``: its arc or shaft,
+        shapely), off every line: first within :data:`VALUE_NEAR` of the arrow, at its size in one line, else in
+        two (its name over its value: :func:`stacked`), else smaller (:data:`SMALLER`, never below the style's
+        small size: a value is read from the back of the room), each with its leader off the point labels' places
+        (``reserve``: not when placed again, once the point labels are drawn); only where none of these is free
+        (a long leader reads worse than a value by its arrow), farther out with a leader in the same order of
+        forms (off those places where any free place is), farther still, else at the small size where it covers
+        least. Where every place off the lines lies
+        beyond a line or outline from the arrow (a block amid a plate), its leader crosses up to
+        :data:`CROSSING` of them to one off the point labels' places: a line across a leader reads, a line
+        through a value does not."""
         def again():   # placed again, where a later label's leader crosses it (velpoly.render.kennedy)
-            return self.value(at, text, fontsize=fontsize, reserve=False, **kw)
+            return self.value(at, text, fontsize=fontsize, reserve=False, arrow=arrow, **kw)
         floor = self.st.small_size / fontsize
         sizes = tuple(dict.fromkeys((1.0,) + tuple(max(f, floor) for f in SMALLER)))
-        tries = [(f, False, 0) for f in sizes] + [(f, True, 0) for f in sizes] + [(f, True, CROSSING) for f in sizes]
-        for f, reach, crossing in tries:
+        forms = [(s, f) for f in sizes for s in (text, stacked(text))]
+        anchor, near = Point(*at) if arrow is None else arrow, VALUE_NEAR * self.pc
+
+        def nearby(b) -> bool:   # (``only``: a place farther out, on no line, does not count here)
+            return b.distance(anchor) <= near and (not reserve or self._unreserved(b, at))
+        tries = [(s, f, False, 0, nearby, True) for s, f in forms]
+        tries += [(s, f, reach, crossing, self._unreserved if reserve else None, bool(crossing))
+                  for reach, crossing in ((False, 0), (True, 0), (True, CROSSING)) for s, f in forms]
+        for s, f, reach, crossing, accept, only in tries:
             with self.pl.trial():
                 n = len(self.pl.overlapping)
-                t = self.pl.place(at, text, fontsize=fontsize * f, clear=True, reach=reach, again=again,
-                                  accept=self._unreserved if reserve else None, crossing=crossing,
-                                  only=bool(crossing), **kw)
+                t = self.pl.place(at, s, fontsize=fontsize * f, clear=True, reach=reach, again=again, accept=accept,
+                                  crossing=crossing, only=only, **kw)
                 self.pl.keep = len(self.pl.overlapping) == n and not self.pl.soft_hits(self.pl.box_of(t, pad=0.0))
             if self.pl.of(t) is not None:
                 return self.off_ground(t)
         return self.off_ground(self.pl.place(at, text, fontsize=fontsize * sizes[-1], clear=True, again=again, **kw))
 
-    def _unreserved(self, b) -> bool:
-        """Whether the box ``b`` (data coordinates) keeps off the point labels' places (:attr:`reserved`)."""
+    def _unreserved(self, b, at=None) -> bool:
+        """Whether the box ``b`` (data coordinates) keeps off the point labels' places (:attr:`reserved`: their
+        boxes and leaders), and with ``at`` (its anchor) its leader too."""
+        if at is not None and self.reserved:
+            b = b.union(LineString([tuple(at), nearest_points(b, Point(*at))[0].coords[0]]))
         return not any(b.intersects(q) for q in self.reserved)
 
     def off_ground(self, t):
