@@ -38,9 +38,9 @@ CASES = [("inverted slider-crank", "swinging-block slider", 0, "textbook"),
 # a plate over another link's pivot or pin, drawn as a bell-crank's bars on main 19e5f21 (each fails there): now
 # notched clear of it; a frame pivot's notch holds its ground
 NOTCHED = [("six-bar", "watt II", 0, "textbook"),                 # a rocker's triangle over the coupler's pin
-           ("six-bar", "stephenson III", 2, "textbook"),          # a coupler over the crank's pivot, at its edge
-           ("four-bar", "crank-rocker", 23, "slides"),            # a coupler with its point over a pivot
-           ("inverted slider-crank", "curved slider", 2, "textbook")]   # a guide over the crank's pivot   # a guide over the crank's pivot
+           ("six-bar", "stephenson III", 21, "textbook"),         # a coupler over a pivot
+           ("six-bar", "slider on coupler point", 14, "textbook"),   # a coupler over the rocker's pivot
+           ("four-bar", "crank-rocker", 23, "slides")]            # a coupler with its point over a pivot
 
 
 def joints(m, link) -> set:

@@ -57,7 +57,8 @@ ARC_RADII = (0.8, 0.6, 0.45, 1.1)   # cm: else (that arc crosses a link, block o
 ARC_STEP = 3.0         # deg: the directions about a pivot tested for such a run
 PEDESTAL, HATCH = 0.5, 0.5   # cm: a pivot's pedestal's height (to its hatched ground's line), that line's half width
 DRIVER_ROOM = 0.65     # cm: a plate notched about the driver's pivot keeps this far from it (room for its arcs)
-DRIVER_OVER = 0.25     # a plate the driver crank would lie over by more than this fraction of it is not notched
+CRANK_OVER = 0.25      # a plate notched about a pivot whose link would lie over it by more than this fraction of
+#                        that link is not notched (bars): the link's number and arcs need the room about it
 GROUND_GAP = 0.2       # cm: a plate notched about a frame pivot keeps this far from its ground's line ends
 RUN_SPAN = 45.0        # deg: the least span of an arc in such a run (a shorter arc reads as a tick, not a turn)
 
@@ -445,8 +446,7 @@ class _Drawing:
         """``hull`` notched clear of the other links' points (:func:`bitten_plate`) and True, else ``bars()`` (a
         bell-crank's) and False. Its joints are its points but those in its slots and on its slotted bars (which
         ``keep`` holds). The notch about the driver's pivot leaves room for its arcs (:data:`DRIVER_ROOM`); a
-        plate about the driver's pivot that the driver crank would lie over (more than :data:`DRIVER_OVER` of it:
-        a slotted lever about its crank) is not notched, since the crank's number and arcs need the room."""
+        plate notched about a pivot whose crank would lie over it (:meth:`cranks_over`) is not notched."""
         m = self.m
         moving = {s.pin for s in m.slots if s.slot == lk} | {s.point for s in m.sliders if s.guide == lk}
         pts = [tuple(map(float, self.sol.place(lk, p))) for p in m.link(lk).points if p not in moving]
@@ -456,11 +456,25 @@ class _Drawing:
         g = bitten_plate(hull, foreign_bars(self.sol, lk, own), pts, self.st.bar_width * self.pc, keep,
                          unary_union(under) if under else None, (PEDESTAL * self.pc, (HATCH + GROUND_GAP) * self.pc),
                          room)
-        crank = self.bodies.get(drv) if drv != lk and room is not None else None
-        if g is not None and crank is not None and hull.distance(Point(*room[0])) < self.st.bar_width * self.pc \
-                and g.intersection(crank).area > DRIVER_OVER * crank.area:
-            g = None   # about the driver's pivot, the crank over the plate: its number and arcs need the room
+        if g is not None and self.cranks_over(lk, hull, g):
+            g = None   # a crank about its pivot in the notch, lying over the plate: its number (and arcs) need room
         return (g, True) if g is not None else (bars(), False)
+
+    def cranks_over(self, lk, hull, plate) -> bool:
+        """Whether a link pivoted on the frame near ``hull`` (within a bar width: in a notch of ``plate``) lies over
+        ``plate`` by more than :data:`CRANK_OVER` of its body (a slotted lever about its crank)."""
+        m, w = self.m, self.st.bar_width * self.pc
+        for p, links in self.pins_at.items():
+            if m.frame.name not in links or lk in links:
+                continue
+            q = next(k for k in sorted(links) if k != m.frame.name)
+            if hull.distance(Point(*self.sol.place(q, p))) >= w:
+                continue
+            for k in links - {m.frame.name}:
+                body = self.bodies.get(k)
+                if body is not None and plate.intersection(body).area > CRANK_OVER * body.area:
+                    return True
+        return False
 
     def link_shape(self, lk, under, notch: bool = True):
         """A moving link's body and how it is drawn: (the hull plate, "plate"), (a plate notched clear of another
