@@ -57,6 +57,11 @@ ARC_RADII = (0.8, 0.6, 0.45, 1.1)   # cm: else (that arc crosses a link, block o
 #                                     run of directions where a circle of one of these radii is clear, the first
 #                                     radius that crosses least
 ARC_STEP = 3.0         # deg: the directions about a pivot tested for such a run
+PEDESTAL, HATCH = 0.5, 0.5   # cm: a pivot's pedestal's height (to its hatched ground's line), that line's half width
+DRIVER_ROOM = 0.65     # cm: a plate notched about the driver's pivot keeps this far from it (room for its arcs)
+CRANK_OVER = 0.25      # a plate notched about a pivot whose link would lie over it by more than this fraction of
+#                        that link is not notched (bars): the link's number and arcs need the room about it
+GROUND_GAP = 0.2       # cm: a plate notched about a frame pivot keeps this far from its ground's line ends
 RUN_SPAN = 45.0        # deg: the least span of an arc in such a run (a shorter arc reads as a tick, not a turn)
 
 
@@ -167,6 +172,24 @@ def foreign_points(sol, link, own=()) -> list:
             for k in m.carriers.get(p, ())[:1]]
 
 
+def foreign_bars(sol, link, own=()) -> list:
+    """The points :func:`foreign_points` lists, each with the directions (deg) of its links' bars from it (to their
+    other points) and whether it is a frame pivot: (point, directions, pivot), for a plate's notches
+    (:func:`bitten_plate`)."""
+    m, out = sol.mechanism, []
+    pivots = {pin.point for pin in m.pins if m.frame.name in pin.links}
+    for p in m.point_order:
+        carriers = m.carriers.get(p, ())
+        if link in carriers or p in own or not carriers:
+            continue
+        f = np.asarray(sol.place(carriers[0], p), float)
+        along = [math.degrees(math.atan2(*(q - f)[::-1])) for k in carriers if not m.link(k).frame
+                 for q in (np.asarray(sol.place(k, r), float) for r in m.link(k).points if r != p)
+                 if float(np.hypot(*(q - f))) > 0]
+        out.append((tuple(f), along, p in pivots))
+    return out
+
+
 def joints(m, link) -> set:
     """The joints of a link: its points (pins), the points of the blocks it guides, the pins in its slots and
     its contact points (where it has a profile: a contact given by its normal alone draws none on the link).
@@ -218,10 +241,9 @@ def body_shape(pts, foreign, bar_width: float, bars: bool | None = None):
     return hull.buffer(bar_width / 2, quad_segs=12)
 
 
-def plate_outline(sol, link, bar_width: float):
-    """The plate of a link of three or more points drawn as one: the hull of its points (a polygon with its
-    corners at the points), or None where the link is drawn otherwise (bars of a bell-crank whose plate
-    would cover another link's pin; a hull thinner than a bar, drawn as a bar)."""
+def hull_plate(sol, link, bar_width: float):
+    """The hull of a moving link's three or more points (a polygon with its corners at the points), or None (the
+    frame, a bar, a hull thinner than a bar: drawn as a bar)."""
     m = sol.mechanism
     lk = m.link(link)
     if lk.frame or len(lk.points) < 3:
@@ -232,11 +254,103 @@ def plate_outline(sol, link, bar_width: float):
         return None
     x, y = hull.minimum_rotated_rectangle.exterior.xy
     sides = np.hypot(np.diff(x), np.diff(y))
-    if float(sides.min()) < bar_width:
-        return None
-    if covers(hull, foreign_points(sol, link), bar_width):
-        return None
-    return hull
+    return None if float(sides.min()) < bar_width else hull
+
+
+def plate_outline(sol, link, bar_width: float):
+    """The plate of a link of three or more points drawn as one: the hull of its points (a polygon with its
+    corners at the points), or None where the link is drawn otherwise (a plate notched clear of another link's
+    pin, :func:`bitten_plate`, or the bars of a bell-crank; a hull thinner than a bar, drawn as a bar)."""
+    hull = hull_plate(sol, link, bar_width)
+    return None if hull is None or covers(hull, foreign_points(sol, link), bar_width) else hull
+
+
+BITE = 1.0          # bar widths: a plate bitten clear of another link's pivot or pin keeps this far from it
+BITE_TURNS = 48     # directions tried for a bite's way out of the plate (and those along the pivot's own links)
+NECK = 0.3          # bar widths: a bitten plate's part thinner than twice this is trimmed (a joint's corner kept);
+#                     a plate that this leaves in pieces is no plate (drawn as bars)
+
+
+def _pieces(g) -> list:
+    """The polygons of a shapely geometry (one, or the parts of a collection)."""
+    return [q for q in getattr(g, "geoms", [g]) if q.geom_type == "Polygon" and not q.is_empty]
+
+
+def _trimmed(g, joints, r: float):
+    """``g`` without its parts thinner than ``2 r`` (slivers a bite leaves along the hull's edge) but those at a
+    joint (a plate's sharp corner at its pin), or None where what is left is not one polygon without holes."""
+    at = MultiPoint([tuple(j) for j in joints])
+    spurs = [q for q in _pieces(g.difference(g.buffer(-r).buffer(r, quad_segs=4)))
+             if q.area > 1e-3 * r * r and q.distance(at) > r]
+    out = g.difference(unary_union(spurs)) if spurs else g
+    out = out if out.geom_type == "Polygon" else None
+    return out if out is not None and not out.interiors and not out.is_empty else None
+
+
+GROUND_TURNS = (-90.0, 0.0, 180.0, 90.0, -45.0, -135.0, 45.0, 135.0)   # the directions a pivot's ground may take
+
+
+def _notches(f, turns, rad: float, reach: float, ground=None):
+    """The ways out of a plate clear of the point ``f``, one for each direction (deg) of ``turns``: a disc of
+    radius ``rad`` about ``f`` with a channel as wide to beyond the plate's edge (the notch a bell-crank's plate
+    has where another link's pin and bar pass it); for a frame pivot (``ground``: the distance from the pivot to
+    its hatched ground's line and that line's half width) the channel widens to the ground, so that its pedestal
+    and hatching stand in the notch."""
+    f = np.asarray(f, float)
+    disc = Point(*f).buffer(rad, quad_segs=8)
+    for t in turns:
+        u = _unit(t)
+        if ground is None:
+            yield t, LineString([tuple(f), tuple(f + u * reach)]).buffer(rad, quad_segs=8)
+            continue
+        depth, half = ground
+        n = _perp(u) * half
+        base, far = f + u * depth, f + u * (depth + reach)
+        yield t, unary_union([MultiPoint([tuple(base + n), tuple(base - n)]).union(disc).convex_hull,
+                              SPolygon([tuple(base + n), tuple(far + n), tuple(far - n), tuple(base - n)])])
+
+
+def bitten_plate(plate, foreign, joints, bar_width: float, keep=None, under=None, ground=None, room=None):
+    """A plate in one piece clear of the other links' pivots and pins: ``plate`` with a notch about each of the
+    ``foreign`` points it covers, open to its edge, as a bell-crank's or lever's plate is drawn about a pivot
+    it turns past; None where no such plate holds its ``joints`` (then it is drawn as bars).
+
+    ``foreign`` is a list of (point, directions, pivot): each point another link's pin (or a point it carries),
+    the directions (deg) of that link's bars from it (a notch along them holds the bar too), and whether it is
+    a frame pivot. A notch (:func:`_notches`) is a disc of :data:`BITE` bar widths about the point and a channel
+    as wide from it out of the plate, the way that cuts least (along the point's own bars where that costs
+    little more); a frame pivot's widens to its hatched ground (``ground``: (depth, half width)), one of the
+    eight ways the ground may point. A notch must keep half a bar width from each joint and leaves ``keep`` (a
+    slotted bar, a slot's rim, a profile: parts of the body that must stay whole) whole, however near the point
+    they pass; what is left must be one polygon without holes (the point is not enclosed) and with no neck
+    thinner than :data:`NECK` bar widths twice. The bodies ``under`` it (links drawn beneath,
+    shared pins aside) are cut out of it first. ``room`` (point, radius): the driver's pivot, whose notch's disc
+    is that wide (its curved arrows stand in it, clear of the plate).
+    """
+    rad = BITE * bar_width
+    x0, y0, x1, y1 = plate.bounds
+    reach = 2.0 * float(np.hypot(x1 - x0, y1 - y0)) + 2 * max(rad, room[1] if room else 0.0)
+    own = unary_union([Point(*j).buffer(bar_width / 2, quad_segs=8) for j in joints])
+    out = plate
+    if under is not None and not under.is_empty:
+        out = _trimmed(plate.difference(under.difference(own.buffer(bar_width / 2))), joints, NECK * bar_width)
+        if out is None:
+            return None
+    for f, along, pivot in sorted(foreign, key=lambda fa: plate.exterior.distance(Point(*fa[0]))):
+        r = room[1] if room and np.allclose(f, room[0]) else rad
+        if out.distance(Point(*f)) >= r * 0.999:
+            continue
+        turns = GROUND_TURNS if pivot and ground else [*along, *np.arange(BITE_TURNS) * 360.0 / BITE_TURNS]
+        ways = []   # (the area it cuts, its order, the cut), cheapest first: the first that leaves one plate
+        for k, (t, cut) in enumerate(_notches(f, turns, r, reach, ground if pivot else None)):
+            if not cut.intersects(own):
+                cut = cut if keep is None else cut.difference(keep)
+                ways.append((out.intersection(cut).area * (0.8 if t in along else 1.0), k, cut))
+        out = next((g for _, _, cut in sorted(ways, key=lambda w: w[:2])
+                    for g in [_trimmed(out.difference(cut), joints, NECK * bar_width)] if g is not None), None)
+        if out is None:
+            return None
+    return out
 
 
 def plate_fill(fill, st):
@@ -287,6 +401,8 @@ class _Drawing:
         self.blocks = {s.block for s in self.m.sliders}
         self.bodies = link_bodies(sol, st.bar_width * self.pc)
         self.extra_body: dict = {}       # link -> geometry to union (slotted bars, wheels)
+        self.keep: dict = {}             # link -> the parts of it a notch must leave whole (slotted bars, a slot's
+        #                                  rim, profiles: :func:`bitten_plate`)
         self.slots: list = []            # (link, slot geometry) drawn white over bodies
         self.slotted: set = set()        # links with a slot or a moving guide's slotted bar
         self.hatches: list = []          # ground to draw once the bodies are known
@@ -324,11 +440,117 @@ class _Drawing:
         self.art.add("links", p)
         return p
 
-    def whole(self, lk, shape):
+    def whole(self, lk, shape, under=None, notch: bool = True):
         """The body of a link of three or more joints drawn otherwise than as a bare plate (with a slot, a
-        moving guide or a profile; or as bars): in one piece, its outline whole (:func:`whole_body`). The points
-        of the blocks it guides are not foreign: the blocks lie over it."""
-        return whole_body(shape, foreign_points(self.sol, lk, on_body(self.m, lk)), self.st.bar_width * self.pc)
+        moving guide or a profile; or as bars): in one piece, its outline whole (:func:`whole_body`), notched
+        clear of the other links' pins where its hull covers one (:func:`bitten_plate`, its slotted bars, slot
+        rims and profiles whole, clear of the bodies ``under`` it), else (or not ``notch``) as bars. The points
+        of the blocks it guides are not foreign: the blocks lie over it. Returns (body, notched)."""
+        w, own = self.st.bar_width * self.pc, on_body(self.m, lk)
+        foreign = foreign_points(self.sol, lk, own)
+        hull = shape.convex_hull
+        if not covers(hull, foreign, w / 2):
+            return hull, False
+        keep = unary_union(self.keep[lk]) if self.keep.get(lk) else None
+        bars = lambda: whole_body(shape, foreign, w, True)   # noqa: E731
+        return self.notched(lk, hull, own, keep, under, bars) if notch else (bars(), False)
+
+    def notched(self, lk, hull, own, keep, under, bars):
+        """``hull`` notched clear of the other links' points (:func:`bitten_plate`) and True, else ``bars()`` (a
+        bell-crank's) and False. Its joints are its points but those in its slots and on its slotted bars (which
+        ``keep`` holds). The notch about the driver's pivot leaves room for its arcs (:data:`DRIVER_ROOM`); a
+        plate notched about a pivot whose crank would lie over it (:meth:`cranks_over`) is not notched."""
+        m = self.m
+        moving = {s.pin for s in m.slots if s.slot == lk} | {s.point for s in m.sliders if s.guide == lk}
+        pts = [tuple(map(float, self.sol.place(lk, p))) for p in m.link(lk).points if p not in moving]
+        drv = m.driver.link if not m.driver.is_slider else None
+        pivot = next((p for p, links in self.pins_at.items() if drv in links and m.frame.name in links), None)
+        room = None if pivot is None else (tuple(self.sol.place(drv, pivot)), DRIVER_ROOM * self.pc)
+        g = bitten_plate(hull, foreign_bars(self.sol, lk, own), pts, self.st.bar_width * self.pc, keep,
+                         unary_union(under) if under else None, (PEDESTAL * self.pc, (HATCH + GROUND_GAP) * self.pc),
+                         room)
+        if g is not None and self.cranks_over(lk, hull, g):
+            g = None   # a crank about its pivot in the notch, lying over the plate: its number (and arcs) need room
+        return (g, True) if g is not None else (bars(), False)
+
+    def cranks_over(self, lk, hull, plate) -> bool:
+        """Whether a link pivoted on the frame near ``hull`` (within a bar width: in a notch of ``plate``) lies over
+        ``plate`` by more than :data:`CRANK_OVER` of its body (a slotted lever about its crank)."""
+        m, w = self.m, self.st.bar_width * self.pc
+        for p, links in self.pins_at.items():
+            if m.frame.name not in links or lk in links:
+                continue
+            q = next(k for k in sorted(links) if k != m.frame.name)
+            if hull.distance(Point(*self.sol.place(q, p))) >= w:
+                continue
+            for k in links - {m.frame.name}:
+                body = self.bodies.get(k)
+                if body is not None and plate.intersection(body).area > CRANK_OVER * body.area:
+                    return True
+        return False
+
+    def link_shape(self, lk, under, notch: bool = True):
+        """A moving link's body and how it is drawn: (the hull plate, "plate"), (a plate notched clear of another
+        link's pins, "notched"), else (its bars, slotted bars, profiles or disc, None); (None, None) for a block."""
+        sol, m, st = self.sol, self.m, self.st
+        plate = None if self.extra_body.get(lk) else plate_outline(sol, lk, st.bar_width * self.pc)
+        if plate is not None:     # a ternary (or larger) link: one plate with its corners at its points
+            return plate, "plate"
+        hull = None if self.extra_body.get(lk) or not notch else hull_plate(sol, lk, st.bar_width * self.pc)
+        g, notched = (None, False) if hull is None else self.notched(lk, hull, (), None, under, lambda: None)
+        if not notched:   # (else its plate would cover another link's pin, and no notch clears it: bars)
+            parts = ([self.bodies[lk]] if lk in self.bodies else []) + self.extra_body.get(lk, [])
+            if not parts and lk not in self.blocks:
+                p = sol.place(lk, m.link(lk).points[0])
+                parts = [Point(*p).buffer(2.2 * st.pin_radius * self.pc)]
+            if parts:
+                g = unary_union(parts)
+            if g is not None and len(joints(m, lk)) >= 3:   # a plate with a slot, a guide or a profile, or bars
+                g, notched = self.whole(lk, g, under, notch)
+        return g, "notched" if notched else None
+
+    def link_shapes(self, order, drv):
+        """Each link's body (link -> shapely geometry), and the order to draw them in: ``order`` with the plates
+        notched clear of another link's pin (:meth:`link_shape`) moved beneath every link but those with a slot
+        or a guide (so that the links crossing them are seen whole; the driver stays on top). A notched plate is
+        cut clear of the bodies beneath it (the driver's of every other), and is drawn as bars after all where
+        it lies under or over another link's plate (:meth:`stacked`: plates on plates read as one)."""
+        m = self.m
+        geoms, self.plates, self.filled, self.notched_links, moved = {}, {}, set(), set(), []
+        for lk in order:
+            under = [geoms[k] for k in geoms if lk == drv or lk in self.slotted or k in self.slotted or k in moved]
+            g, kind = self.link_shape(lk, under)
+            if kind == "plate":
+                self.plates[lk] = g
+            elif g is not None and len(joints(m, lk)) >= 3:
+                self.filled.add(lk)
+            if g is not None:
+                geoms[lk] = g
+            if kind == "notched":
+                self.notched_links.add(lk)
+                moved += [lk] if lk != drv and lk not in self.slotted else []
+        for lk in [k for k in order if k in self.notched_links and self.stacked(k, geoms)]:
+            geoms[lk] = self.link_shape(lk, None, notch=False)[0]
+            self.notched_links.discard(lk)
+            moved = [k for k in moved if k != lk]
+        first = [lk for lk in order if lk in self.slotted]
+        return geoms, first + moved + [lk for lk in order if lk not in first and lk not in moved]
+
+    def stacked(self, lk, geoms) -> bool:
+        """Whether the body of ``lk`` overlaps another link's plate (a link of three or more joints) by more than
+        a bar's width squared, away from the joints they share."""
+        m, w = self.m, self.st.bar_width * self.pc
+        for k, g in geoms.items():
+            if k == lk or len(joints(m, k)) < 3:
+                continue
+            shared = joints(m, k) & joints(m, lk)
+            over = geoms[lk].intersection(g)
+            if shared and not over.is_empty:
+                over = over.difference(unary_union([Point(*self.sol.place(lk, j)).buffer(w) for j in shared
+                                                    if lk in m.carriers.get(j, ())]))
+            if over.area > w * w:
+                return True
+        return False
 
     def hatch(self, a, b, side, role="ground", zorder=1.0, exempt=()):
         """A ground line a-b with short slanted strokes on ``side`` (a unit normal).
@@ -403,9 +625,9 @@ class _Drawing:
         def shape(g):
             u = _unit(g)
             n = _perp(u)
-            apex, base = p, p + u * 0.5 * pc
+            apex, base = p, p + u * PEDESTAL * pc
             tri = SPolygon([apex + n * 0.12 * pc, base + n * 0.3 * pc, base - n * 0.3 * pc, apex - n * 0.12 * pc])
-            return u, n, base, tri, tri.union(self.hatch_strokes(base + n * 0.5 * pc, base - n * 0.5 * pc, u)[1])
+            return u, n, base, tri, tri.union(self.hatch_strokes(base + n * HATCH * pc, base - n * HATCH * pc, u)[1])
 
         def score(g):
             crossed = others.intersection(shape(g)[4]).area / (pc * pc)
@@ -417,7 +639,7 @@ class _Drawing:
         # over the link bodies: a pivot inside a plate or a cam disc keeps its ground in sight
         self.patch(tri, "ground", 2.9, self.st.paper, lw=self.st.link_lw)
         self.pl.add_obstacle(tri)
-        self.hatch(base + n * 0.5 * pc, base - n * 0.5 * pc, u, zorder=2.9, exempt=links)
+        self.hatch(base + n * HATCH * pc, base - n * HATCH * pc, u, zorder=2.9, exempt=links)
         return g
 
     # -- sliders, slots, contacts --------------------------------------------------------
@@ -482,7 +704,7 @@ class _Drawing:
             self.centre_line(path)
         else:
             bar = path.buffer(H / 2 + 0.09 * pc, cap_style="flat")
-            self.extra_body.setdefault(s.guide, []).append(bar)
+            self.profile(s.guide, bar)
             self.guide_bars[s.guide] = unary_union([self.guide_bars.get(s.guide, bar), bar])
             self.slotted.add(s.guide)
             self.slots.append((s.guide, path.buffer(H * 0.3, cap_style="round")))
@@ -578,10 +800,17 @@ class _Drawing:
             own.sort(key=lambda q: path.distance(Point(*q)))
         web = body_shape(own[:1] + [line[0], line[-1]] + own[1:], foreign_points(self.sol, s.slot, {s.pin}),
                          st.bar_width * pc)
-        self.extra_body.setdefault(s.slot, []).append(web.union(path.buffer(w / 2 + 0.12 * pc, cap_style="round")))
+        rim = path.buffer(w / 2 + 0.12 * pc, cap_style="round")
+        self.extra_body.setdefault(s.slot, []).append(web.union(rim))
+        self.keep.setdefault(s.slot, []).append(rim)
         self.slotted.add(s.slot)
         self.slots.append((s.slot, cut))
         self.slot_cuts[i] = (s.slot, path, cut)
+
+    def profile(self, lk, geom):
+        """A part of a link's body that a notch must leave whole (a slotted bar, a profile)."""
+        self.extra_body.setdefault(lk, []).append(geom)
+        self.keep.setdefault(lk, []).append(geom)
 
     def equivalent_linkage(self, i, c, place, t):
         """A sliding contact's equivalent linkage, dashed: the coupler joining the two centres of
@@ -651,16 +880,16 @@ class _Drawing:
                 if float(np.hypot(*(own - foot))) > 0.3 * pc:
                     geom = geom.union(LineString([tuple(own), tuple(foot)]).buffer(st.bar_width * pc / 2,
                                                                                   cap_style="flat"))
-                self.extra_body.setdefault(lk, []).append(geom)
+                self.profile(lk, geom)
                 continue
             ctr = sol.place(lk, cn)
             rad = float(np.hypot(*(place - ctr)))
             if rad < 1.5 * self.m.size:
-                self.extra_body.setdefault(lk, []).append(Point(*ctr).buffer(rad, quad_segs=32))
+                self.profile(lk, Point(*ctr).buffer(rad, quad_segs=32))
             else:
                 mid = math.atan2(*(place - ctr)[::-1])
                 arc = self._arc(ctr, rad, mid, min(2.0 * pc / rad, 1.0))
-                self.extra_body.setdefault(lk, []).append(arc.buffer(0.11 * pc, cap_style="flat"))
+                self.profile(lk, arc.buffer(0.11 * pc, cap_style="flat"))
 
     # -- the whole -----------------------------------------------------------------------
     def draw(self):
@@ -681,22 +910,7 @@ class _Drawing:
         drv = None if m.driver.is_slider else m.driver.link
         if drv in order and drv not in self.slotted:   # the driver over the links it drives (the crank seen
             order = [lk for lk in order if lk != drv] + [drv]   # over the lever or the block it turns)
-        geoms, self.plates, self.filled = {}, {}, set()
-        for lk in order:
-            plate = None if self.extra_body.get(lk) else plate_outline(sol, lk, st.bar_width * self.pc)
-            if plate is not None:     # a ternary (or larger) link: one plate with its corners at its points
-                self.plates[lk] = plate
-                geoms[lk] = plate
-                continue
-            parts = ([self.bodies[lk]] if lk in self.bodies else []) + self.extra_body.get(lk, [])
-            if not parts and lk not in self.blocks:
-                p = sol.place(lk, m.link(lk).points[0])
-                parts = [Point(*p).buffer(2.2 * st.pin_radius * self.pc)]
-            if parts:
-                geoms[lk] = unary_union(parts)
-            if lk in geoms and len(joints(m, lk)) >= 3:   # a plate with a slot, a guide or a profile, or bars
-                self.filled.add(lk)
-                geoms[lk] = self.whole(lk, geoms[lk])
+        geoms, order = self.link_shapes(order, drv)
         self.geoms = geoms
         # ground pivots, clear of the bodies
         ground_dir = {}
@@ -706,6 +920,7 @@ class _Drawing:
         self.draw_hatches()
         self.art.bodies = dict(geoms)                # link -> its drawn body (shapely), for checks
         self.art.plates = dict(self.plates)          # link -> its plate (the hull of its points)
+        self.art.notched = set(self.notched_links)   # the plates notched clear of another link's pins
         self.art.slot_cuts = dict(self.slot_cuts)    # slot index -> (link, centre line, cut)
         self.art.guide_bars = {k: g for k, g in self.guide_bars.items() if k in self.filled}   # a plate's slotted bar
         for z, lk in enumerate(order):
