@@ -263,16 +263,245 @@ def _axes(size):
     return fig.add_axes((0.02, 0.02, 0.96, 0.96))
 
 
-def test_placements_of_generated_drawings_are_the_reference_ones(compared):
+def test_placements_of_generated_drawings_are_the_reference_ones(compared, monkeypatch):
     """A dense generated six-bar's poles drawing (fifteen poles, Kennedy lines, leaders, labels pushed to last
     resorts on a small page) and a generated four-bar's displacement diagram: each search and last resort the
-    drawings made equals the reference's, bit for bit."""
+    drawings made equals the reference's, bit for bit. The six-bar drawn again with every slow path of the
+    fourteenth session (:func:`_slow_paths`) places the same texts, sizes, leaders and boxes, bit for bit; and
+    ``clear_places`` of four of its pole labels (its own box lifted, at its size and smaller, as the Kennedy passes
+    ask) answers as the old one."""
     rng = np.random.default_rng(29)
     variants = [v for k, v in zoo.variants() if k == "six-bar"]
     six = zoo.specimen(rng, "six-bar", variants[int(rng.integers(len(variants)))]).drawn
     four = zoo.specimen(rng, "four-bar").drawn
     st = get_style("textbook")
     with rc_context(st):
-        draw_poles(six, _axes((4.5, 4.2)), style=st)
+        art = draw_poles(six, fast := _axes((4.5, 4.2)), style=st)
         draw_mechanism(four, _axes((5.0, 4.0)), style=st)
     assert compared["search"] > 40 and compared["kept"] > 5, compared
+    monkeypatch.undo()
+    with rc_context(st), monkeypatch.context() as m:
+        _slow_paths(m)
+        draw_poles(six, slow := _axes((4.5, 4.2)), style=st)
+    assert _placements(fast) == _placements(slow)
+    pl, found = L.placer(fast), 0
+    for t, f in zip(list(art.labels.values())[:4], (1.0, 0.8, 1.0, 0.8)):   # (30 ms a search)
+        own = pl.of(t)
+        k = pl.labels.index(own)
+        del pl.labels[k]
+        w, h = pl.text_size(t)
+        new = pl.clear_places(own.anchor, w * f, h * f, -45.0)
+        assert _same_places(new, _old_clear_places(pl, own.anchor, w * f, h * f, -45.0))
+        found += len(new["boxes"])
+        pl.labels.insert(k, own)
+    assert found > 100, found
+
+
+# -- the fourteenth session's shortcuts against their slow paths (issue 19 item 7) ----------------------------------
+# The envelope prefilter (_Row.meets: GEOS asked only where the envelopes meet; prepared copies for leaders), the
+# scenes a placer keeps while nothing changed (_scene, and the last resort's answers in it), the leaders of a
+# ring in one shapely call (_leader_segments, clear_places), a pole label's ring test asking GEOS only of the rings
+# near enough (kennedy._nearer_own) and the tries that keep only a free place (place's last_resort=False).
+from hypothesis import HealthCheck, given, settings, strategies as st   # noqa: E402
+
+from velpoly.render import kennedy as K   # noqa: E402
+
+
+def _grid_geoms(draw, n):
+    """``n`` geometries on a coarse grid (shared edges, corners, collinear runs): boxes, segments (some of zero
+    length), two-segment polylines, circles and buffered segments (a leader's obstacle), an empty one."""
+    pt = st.tuples(st.integers(-4, 4), st.integers(-4, 4)).map(lambda p: (float(p[0]), float(p[1])))
+    out = []
+    for _ in range(n):
+        kind = draw(st.sampled_from(["box", "seg", "seg", "poly", "circle", "leader", "empty"]))
+        a, b = draw(pt), draw(pt)
+        if kind == "box":
+            out.append(box(min(a[0], b[0]), min(a[1], b[1]), max(a[0], b[0]) + 1, max(a[1], b[1]) + 0.5))
+        elif kind == "seg":
+            out.append(LineString([a, b]))
+        elif kind == "poly":
+            out.append(LineString([a, b, draw(pt)]))
+        elif kind == "circle":
+            out.append(Point(a).buffer(draw(st.sampled_from([0.5, 1.0, 1.5]))))
+        elif kind == "leader":
+            out.append(LineString([a, b]).buffer(0.25))
+        else:
+            out.append(LineString())
+    return out
+
+
+@settings(max_examples=25, deadline=None, suppress_health_check=[HealthCheck.too_slow])
+@given(st.data())
+def test_rows_meet_as_shapely_pair_for_pair(data):
+    """``_Row.meets`` (envelopes first; leaders against prepared copies) is ``shapely.intersects(row, column)`` of the
+    plain geometries, pair for pair, on grid geometry that touches at edges and corners: boxes given with their
+    bounds (a ring's), leaders without; ``count`` and ``any`` its sums."""
+    obstacles = _grid_geoms(data.draw, data.draw(st.integers(0, 9)))
+    cands = _grid_geoms(data.draw, data.draw(st.integers(1, 6)))
+    row = L._Row(obstacles, lambda gs: [shapely.from_wkb(shapely.to_wkb(g)) for g in gs])
+    column = np.array(cands, dtype=object)
+    want = shapely.intersects(np.array(obstacles, dtype=object).reshape(-1)[None, :], column[:, None])
+    for lines in (False, True):
+        got = row.meets(column, lines=lines)
+        assert np.array_equal(got, want)
+        assert np.array_equal(row.count(column, lines=lines), want.sum(axis=1))
+        assert np.array_equal(row.any(column, lines=lines), want.any(axis=1))
+    rects = np.array([g for g in cands if g.geom_type == "Polygon" and shapely.equals(g, shapely.envelope(g))],
+                     dtype=object)
+    if len(rects):
+        assert np.array_equal(row.meets(rects, shapely.bounds(rects)),
+                              shapely.intersects(np.array(obstacles, dtype=object).reshape(-1)[None, :], rects[:, None]))
+
+
+def test_leader_segments_are_leader_segment_bit_for_bit():
+    """``_leader_segments`` of a ring's boxes (their nearest edge points from ``_towards``) is ``_leader_segment`` of
+    each box, coordinate for coordinate: anchors outside, on an edge, at a corner and inside boxes of every shape."""
+    rng = np.random.default_rng(14)
+    checked = 0
+    for _ in range(40):
+        anchor = rng.normal(0, 30, 2) if rng.random() < 0.8 else np.round(rng.normal(0, 3, 2))
+        w, h = (float(x) for x in rng.choice([rng.uniform(0.01, 20), 1.0, 2.0], 2))
+        ring = L._Ring(anchor, w, h, float(rng.uniform(-180, 180)), float(rng.choice([0.0, 3.0, rng.uniform(0, 40)])),
+                       int(rng.choice([8, 16, 24])))
+        pp = float(rng.choice([0.35, 0.01, 2.0]))
+        edges = L._towards(ring.geoms, anchor)
+        got = L._leader_segments(anchor, edges, pp)
+        for i, b in enumerate(ring.geoms):
+            want = L._leader_segment(anchor, b, pp)
+            assert np.array_equal(shapely.get_coordinates(got[i]), shapely.get_coordinates(want))
+            checked += 1
+    assert len(L._leader_segments(np.zeros(2), np.empty((0, 2)), 0.35)) == 0
+    assert checked > 300
+
+
+def _slow_nearer_own(own, rings):
+    """kennedy._nearer_own as it was: every other ring's distance asked of GEOS."""
+    others = np.array([g for g in rings if not g.equals(own)], dtype=object)
+
+    def accept(b) -> bool:
+        return bool(np.all(b.distance(own) < shapely.distance(b, others)))
+    return accept
+
+
+def test_nearer_own_ring_answers_as_every_distance():
+    """``kennedy._nearer_own``'s test (GEOS asked only of the rings whose envelopes lie near) answers as the test that
+    asks every ring, box for box: rings in a crowd and apart, boxes touching a ring, between two rings at equal
+    distance, over a ring, far off."""
+    rng = np.random.default_rng(41)
+    checked = 0
+    for _ in range(8):
+        centres = np.round(rng.uniform(-5, 5, (int(rng.integers(2, 9)), 2)) * 2) / 2
+        rings = [Point(*c).buffer(0.25, quad_segs=10) for c in centres]
+        for own in rings[:3]:
+            fast, slow = K._nearer_own(own, rings), _slow_nearer_own(own, rings)
+            x0, y0, x1, y1 = own.bounds
+            boxes = [box(x1, y0, x1 + 1.0, y1), box(x0 - 0.5, y0 - 0.5, x1 + 0.5, y1 + 0.5)]
+            for _ in range(25):
+                c = np.round(rng.uniform(-6, 6, 2) * 4) / 4
+                w, h = rng.choice([0.25, 0.5, 1.0, 2.0], 2)
+                boxes.append(box(c[0] - w / 2, c[1] - h / 2, c[0] + w / 2, c[1] + h / 2))
+            for b in boxes:
+                assert fast(b) == slow(b), (own, b)
+                checked += 1
+    assert checked > 500
+
+
+def test_a_scene_is_kept_while_every_geometry_is_the_same_object():
+    """``LabelPlacer._scene`` gives the scene made before from the same anchor while the view, the scale and every
+    label's box, obstacle and leader are the very same objects (after a trial undone, too); a label placed, an
+    obstacle added or one exchanged for an equal copy, another anchor: a new scene."""
+    ax = _axes((4, 4))
+    ax.set_xlim(-8, 8)
+    ax.set_ylim(-8, 8)
+    pl = L.LabelPlacer(ax)
+    pl.add_obstacle(Point(0.0, 3.0).buffer(0.5))
+    line = LineString([(-8, 0.5), (8, 0.5)])
+    pl.add_obstacle(line, hard=False)
+    pp, anchor = per_point(ax), np.array([1.0, 1.0])
+    first = pl._scene(anchor, pp)
+    assert pl._scene(anchor.copy(), pp) is first
+    with pl.trial():
+        pl.place((2.0, 2.0), "x", fontsize=9)
+    assert pl._scene(anchor, pp) is first
+    pl.place((2.0, 2.0), "x", fontsize=9)
+    second = pl._scene(anchor, pp)
+    assert second is not first and len(second.state[0]) == 1
+    pl.soft[0] = LineString([(-8, 0.5), (8, 0.5)])   # an equal copy: not the same object
+    assert pl._scene(anchor, pp) is not second
+    assert pl._scene(anchor + 1e-9, pp) is not pl._scene(anchor, pp)
+
+
+def _old_clear_places(pl, anchor, w, h, prefer=None, gap=2.5):
+    """LabelPlacer.clear_places as it was (one box, one leader at a time)."""
+    pp, view, anchor = per_point(pl.ax), view_box(pl.ax), np.asarray(anchor, float)
+    keep_off = np.array(pl.boxes + pl.leaders, dtype=object)[None, :]
+    hard = np.array(pl._hard, dtype=object)[None, :]
+    soft = np.array(pl.prepared_soft(), dtype=object)[None, :]
+    at_anchor = shapely.intersects(soft[0], Point(*anchor).buffer(2.0 * pp)) if soft.size else None
+
+    def n_of(obstacles, geoms, n):
+        return np.zeros(n, int) if not obstacles.size else shapely.intersects(obstacles, geoms).sum(axis=1)
+    got = []
+    for ring in sorted({gap, *(r for r in L.RINGS if r > gap), *L.FAR_RINGS, *L.REACH_RINGS}):
+        cands = L._Ring(anchor, w, h, prefer, ring * pp, 48 if ring in L.REACH_RINGS else 24)
+        ok = shapely.contains(view, cands.geoms)
+        if keep_off.size:
+            ok &= ~shapely.intersects(keep_off, cands.geoms[:, None]).any(axis=1)
+        idx = np.flatnonzero(ok)
+        edges = L._towards(cands.geoms[idx], anchor)
+        far = np.hypot(*(edges - anchor).T)
+        lines = np.array([None if d < 8.0 * pp else L._leader_segment(anchor, b, pp)
+                          for d, b in zip(far, cands.geoms[idx])], dtype=object)
+        has = np.array([ln is not None for ln in lines], bool)
+        if keep_off.size and has.any():
+            crossing = shapely.intersects(keep_off, lines[:, None]).any(axis=1)
+            idx, lines, far, has = idx[~crossing], lines[~crossing], far[~crossing], has[~crossing]
+        g = cands.geoms[idx][:, None]
+        across = np.zeros(len(idx), int)
+        if soft.size and has.any():
+            across[has] = (shapely.intersects(soft, lines[has][:, None]) & ~at_anchor).sum(axis=1)
+        got.append((cands.centres[idx], cands.geoms[idx], lines, n_of(hard, g, len(idx)), n_of(soft, g, len(idx)),
+                    across, np.where(has, far, 0.0)))
+    keys = ("centres", "boxes", "leaders", "hard", "soft", "across", "reach")
+    return {k: np.concatenate([x[n] for x in got]) for n, k in enumerate(keys)}
+
+
+def _same_places(new: dict, old: dict) -> bool:
+    """Two clear_places answers alike bit for bit."""
+    if new.keys() != old.keys() or len(new["boxes"]) != len(old["boxes"]):
+        return False
+    geoms = [(a, b) for k in ("boxes", "leaders") for a, b in zip(new[k], old[k])]
+    return (all(np.array_equal(new[k], old[k]) for k in ("centres", "hard", "soft", "across", "reach"))
+            and all((a is None and b is None) or (a is not None and b is not None and
+                                                  shapely.equals_exact(a, b, tolerance=0.0)) for a, b in geoms))
+
+
+def _slow_paths(monkeypatch):
+    """Every shortcut of the fourteenth session replaced by its slow path: every pair asked of GEOS on the plain
+    geometries, a new scene for every search, each ring's distance asked, a try placed and undone."""
+    def meets(self, geoms, bounds=None, lines=False):
+        if not len(geoms) or not self.size:
+            return np.zeros((len(geoms), self.size), bool)
+        return shapely.intersects(self.geoms[None, :], np.asarray(geoms, dtype=object)[:, None])
+    place = L.LabelPlacer.place
+
+    def tried(self, *args, last_resort=True, **kw):
+        if last_resort:
+            return place(self, *args, **kw)
+        with self.trial():
+            n = len(self.overlapping)
+            t = place(self, *args, **kw)
+            self.keep = len(self.overlapping) == n
+        return t if self.of(t) is not None else None
+    monkeypatch.setattr(L._Row, "meets", meets)
+    monkeypatch.setattr(L.LabelPlacer, "_scene", lambda self, anchor, pp: L._Scene(self, anchor, pp))
+    monkeypatch.setattr(L.LabelPlacer, "place", tried)
+    monkeypatch.setattr(K, "_nearer_own", _slow_nearer_own)
+
+
+def _placements(ax) -> list:
+    """Everything placed on ``ax``, as numbers: each text's gid, string, position and size, each line's data, each
+    placed label's box."""
+    return ([(t.get_gid(), t.get_text(), tuple(map(float, t.get_position())), t.get_fontsize()) for t in ax.texts]
+            + [(ln.get_gid(), np.asarray(ln.get_xydata()).tobytes()) for ln in ax.lines]
+            + [p.box.wkb for p in L.placer(ax).labels])

@@ -40,6 +40,7 @@ REACH = 2.5   # the view holds the finite poles within REACH mechanism sizes of 
 THIRD_MOST, THIRD_TRIES = 4, 8   # a crossing's third label lifted: the nearest so many, each with so many places
 PAIR_MOST = 80   # of each label's places that leave no crossing, the best so many are paired (_clear_pair)
 FAR_BAND = 0.15   # mechanism sizes beyond the box's corners: a crowded view's room towards a pole out of it
+APART_BY = 1e-6   # of a distance (and of a ring's size): a ring whose envelope lies farther is farther (_nearer_own)
 
 
 def pole_label(links: tuple[str, str]) -> str:
@@ -613,13 +614,25 @@ def _draw_pole_marks(sol, ax, shown, st, art) -> None:
 
 
 def _nearer_own(own, rings):
-    """A test of a label's box: nearer its own ring than any other ring (a pole's label by its pole)."""
+    """A test of a label's box: nearer its own ring than any other ring (a pole's label by its pole).
+
+    ``b.distance(g)`` of every other ring is asked of GEOS (in one call) where the gap between the two envelopes
+    is not clearly more than the distance to its own ring (:data:`APART_BY`): a ring is never nearer than its
+    envelope, and GEOS's distances are exact to far less than that, so a ring left out is one GEOS puts
+    farther (the same answers)."""
     import shapely
     others = np.array([g for g in rings if not g.equals(own)], dtype=object)
+    bounds = shapely.bounds(others) if len(others) else np.empty((0, 4))
+    x0, y0, x1, y1 = own.bounds
+    slack = APART_BY * max(x1 - x0, y1 - y0)
 
     def accept(b) -> bool:
         d = b.distance(own)
-        return bool(np.all(d < shapely.distance(b, others)))   # (b.distance(g) of every other ring, in one call)
+        u0, v0, u1, v1 = b.bounds
+        gap = np.hypot(np.maximum(np.maximum(bounds[:, 0] - u1, u0 - bounds[:, 2]), 0.0),
+                       np.maximum(np.maximum(bounds[:, 1] - v1, v0 - bounds[:, 3]), 0.0))
+        near = ~(gap > d * (1.0 + APART_BY) + slack)   # (NaN: asked)
+        return bool(np.all(d < shapely.distance(b, others[near])))
     return accept
 
 
@@ -632,11 +645,8 @@ def _place_free(pl, anchor, text, *, fontsize: float, **kw):
     covers least (a crowd of poles)."""
     tries = [(reach, f) for reach in (False, True) for f in (1.0,) + SMALLER]
     for reach, f in tries:
-        with pl.trial():
-            n = len(pl.overlapping)
-            t = pl.place(anchor, text, fontsize=fontsize * f, reach=reach, **kw)
-            pl.keep = len(pl.overlapping) == n
-        if pl.of(t) is not None:
+        t = pl.place(anchor, text, fontsize=fontsize * f, reach=reach, last_resort=False, **kw)
+        if t is not None:
             return t if pl.at_pin(t) or not _on_lines(pl, t) else _off_drawn_lines(pl, t, anchor, text, fontsize, tries, reach, f, kw)
     return _least_covering(pl, anchor, text, fontsize, kw)
 
@@ -700,10 +710,9 @@ def _off_drawn_lines(pl, t, anchor, text, fontsize: float, tries, reach0: bool, 
         return (accept is None or accept(b)) and not any(g.intersects(b) for g in lines)
     for reach, f in tries:
         with pl.trial():
-            n = len(pl.overlapping)
-            t = pl.place(anchor, text, fontsize=fontsize * f, reach=reach, accept=off, **kw)
-            pl.keep = len(pl.overlapping) == n and not _on_lines(pl, t, lines)
-        if pl.of(t) is not None:
+            t = pl.place(anchor, text, fontsize=fontsize * f, reach=reach, accept=off, last_resort=False, **kw)
+            pl.keep = t is not None and not _on_lines(pl, t, lines)
+        if t is not None and pl.of(t) is not None:
             return t
     return pl.place(anchor, text, fontsize=fontsize * f0, reach=reach0, accept=accept, **kw)
 
@@ -917,14 +926,11 @@ def _number_off_chords(pl, kc, segs, left, st, art) -> None:
         anchor = max(clear, key=lambda q: float(np.hypot(*q))) if clear else spots[int(np.argmax(apart))]
         gid = f"chord-number-{ch.key}"
         for f in (1.0,) + SMALLER:
-            with pl.trial():
-                n = len(pl.overlapping)
-                t = pl.place(anchor, str(ch.order), gid=gid, pad=3.0, reach=True,
-                             prefer=math.degrees(math.atan2(anchor[1], anchor[0])), **_number_style(st, colour, f))
-                pl.keep = len(pl.overlapping) == n
-            if pl.of(t) is not None:
+            t = pl.place(anchor, str(ch.order), gid=gid, pad=3.0, reach=True, last_resort=False,
+                         prefer=math.degrees(math.atan2(anchor[1], anchor[0])), **_number_style(st, colour, f))
+            if t is not None:
                 break
-        if pl.of(t) is None:   # no free place (the trial took it off again): where it covers least
+        if t is None:   # no free place (none kept): where it covers least
             t = _least_on_chords(pl, [anchor, spots[0]], str(ch.order), gid, others, _number_style(st, colour))
         art.add("numbers", t)
 

@@ -35,6 +35,7 @@ FAR_RINGS = (9.0, 21.0, 42.0, 80.0, 105.0)   # finer directions, only when nothi
 REACH_RINGS = (135.0, 170.0, 220.0, 280.0)   # finer still, with ``reach`` only, when nothing above is free
 ALONG_APART = 1.0   # of the type size: the gap two texts along lines keep between their boxes
 LEADER_MOST = 0   # the most lines and outlines a far label's leader (see LabelPlacer.place's clear) may cross
+SCENES_KEPT = 8   # the search scenes a placer keeps (LabelPlacer._scene)
 
 
 @dataclass(frozen=True, eq=False)
@@ -75,6 +76,7 @@ class LabelPlacer:
         self.along: list = []      # the boxes of the texts written along lines (a line's reason), each grown by
         #                            the em its neighbours keep from it
         self._prepared: dict = {}  # id(soft obstacle) -> (it, its prepared copy): see prepared_soft()
+        self._scenes: dict = {}    # (anchor, scale, view) -> the last _Scene made there: see _scene()
 
     @property
     def boxes(self) -> list:
@@ -186,8 +188,12 @@ class LabelPlacer:
         and leaders against the same lines and outlines; GEOS's prepared predicates answer as the plain ones
         do, faster), made once per obstacle while the placer lives. Copies: the registered geometries stay as
         they are for the drawings that share them."""
+        return self.prepared(self.soft)
+
+    def prepared(self, geoms) -> list:
+        """Prepared copies of ``geoms`` (:meth:`prepared_soft`), each made once while the placer lives."""
         out = []
-        for g in self.soft:
+        for g in geoms:
             got = self._prepared.get(id(g))
             if got is None or got[0] is not g:
                 copy = shapely.from_wkb(shapely.to_wkb(g))
@@ -195,6 +201,28 @@ class LabelPlacer:
                 got = self._prepared[id(g)] = (g, copy)
             out.append(got[1])
         return out
+
+    def _state(self) -> tuple:
+        """What a search tests against, as the geometries themselves: the labels' boxes, the hard obstacles
+        registered, the leaders, the soft obstacles (lists)."""
+        return self.boxes, list(self._hard), self.leaders, list(self.soft)
+
+    def _scene(self, anchor, pp: float) -> _Scene:
+        """The :class:`_Scene` of a search from ``anchor`` (``pp``: :func:`per_point`): the one last made there if
+        the view and every geometry it was gathered from are the very same objects (shapely geometries do not
+        change; each try a crowded label makes is undone by :meth:`trial`, which leaves these lists as they
+        were), else a new one (kept in its place: one scene an anchor, at most :data:`SCENES_KEPT`)."""
+        anchor = np.asarray(anchor, float)
+        key = (anchor.tobytes(), pp, view_box(self.ax).bounds)
+        state = self._state()
+        got = self._scenes.get(key)
+        if got is not None and all(len(a) == len(b) and all(x is y for x, y in zip(a, b))
+                                   for a, b in zip(got.state, state)):
+            return got
+        if len(self._scenes) >= SCENES_KEPT:
+            del self._scenes[next(iter(self._scenes))]
+        got = self._scenes[key] = _Scene(self, anchor, pp, state)
+        return got
 
     def soft_hits(self, geom) -> int:
         if not self.soft:
@@ -205,7 +233,7 @@ class LabelPlacer:
     def place(self, anchor, s: str, *, prefer: float | None = None, gap: float = 2.5, leader: bool = True,
               gid: str | None = None, obstacle: bool = True, pad: float = 1.0, within: float | None = None,
               accept=None, clear: bool = False, reach: bool = False, again: Callable | None = None, only: bool = False,
-              crossing: int = LEADER_MOST, **text_kw):
+              crossing: int = LEADER_MOST, last_resort: bool = True, **text_kw):
         """Draw text ``s`` near ``anchor`` where it overlaps nothing; return the Text.
 
         ``prefer``: the preferred direction from the anchor (degrees), e.g.
@@ -225,7 +253,9 @@ class LabelPlacer:
         rings, farther still (:data:`REACH_RINGS`: a long leader out of a crowd
         to a free place). A leader crosses no other label and no other leader.
         ``crossing``: with ``clear``, the most lines and outlines the leader of such a farther place may cross.
-        ``again``: kept in the label's :class:`Placed` (how to place it anew).
+        ``again``: kept in the label's :class:`Placed` (how to place it anew). ``last_resort``: False where a
+        label with no free place is of no use (a try that :meth:`trial` undoes unless one is free): the text is
+        taken off again and None returned, its least bad place not sought.
         """
         anchor = np.asarray(anchor, float)
         t = self.ax.text(anchor[0], anchor[1], s, ha="center", va="center", **text_kw)
@@ -235,7 +265,7 @@ class LabelPlacer:
         w, h = self.text_size(t, pad, pp)
         best = self._pinned(gid, t, w, h, pad, pp)
         if best is None:
-            scene = _Scene(self, anchor, pp)
+            scene = self._scene(anchor, pp)
             best = self._search(anchor, w, h, prefer, gap, leader, within, accept, clear, reach, scene, crossing)
             if accept is not None and not only and (best is None or best[0] != (0, 0)):   # a line under it is worse
                 anywhere = self._search(anchor, w, h, prefer, gap, leader, within, None, clear, reach, scene, crossing)
@@ -244,9 +274,13 @@ class LabelPlacer:
         if best is None and within is not None:   # nothing free on that side: any side
             t.remove()
             return self.place(anchor, s, prefer=prefer, gap=gap, leader=leader, gid=gid, obstacle=obstacle, pad=pad,
-                              clear=clear, reach=reach, again=again, crossing=crossing, **text_kw)
+                              clear=clear, reach=reach, again=again, crossing=crossing, last_resort=last_resort,
+                              **text_kw)
+        if best is None and not last_resort:
+            t.remove()
+            return None
         if best is None:
-            best = self._least_bad(anchor, w, h, prefer, gap, leader, reach)
+            best = self._least_bad(anchor, w, h, prefer, gap, leader, reach)   # (kept in its scene: see _least_bad)
             self.overlapping.append(t)
         self._put(t, anchor, best, gid, leader, obstacle, again, pp)
         return t
@@ -429,32 +463,50 @@ class LabelPlacer:
         labels, then covering the fewest arrowheads, pins and lines that labels keep off, then whose leader
         crosses the fewest other leaders, then covering the fewest lines (``reach``: out to
         :data:`REACH_RINGS` too, where only such a place covers less or crosses fewer leaders); else the first
-        ring's preferred spot."""
-        pp, view = per_point(self.ax), view_box(self.ax)
-        hard = np.array(self.hard, dtype=object)[None, :]
-        keep_off = np.array(self.boxes + self.leaders, dtype=object)[None, :]   # what its box must keep off
-        labels = np.array(self.boxes, dtype=object)[None, :]   # what its leader had best not cross
-        leaders = np.array(self.leaders, dtype=object)[None, :]   # and then these
-        soft = np.array(self.soft, dtype=object)[None, :]
+        ring's preferred spot. Kept in the anchor's scene (:meth:`_scene`) with its arguments: a crowded label's
+        tries at one state ask again."""
+        pp = per_point(self.ax)
+        scene = self._scene(anchor, pp)
+        key = (w, h, prefer, gap, leader, reach, type(w), type(h), type(prefer), type(gap))
+        try:
+            got = scene.least.get(key)
+        except TypeError:
+            return self._least_bad_made(scene, anchor, w, h, prefer, gap, leader, reach)
+        if got is None:
+            got = scene.least[key] = self._least_bad_made(scene, anchor, w, h, prefer, gap, leader, reach)
+        return got[0], got[1].copy(), got[2], got[3]
+
+    def _least_bad_made(self, scene: _Scene, anchor, w: float, h: float, prefer, gap: float, leader: bool,
+                        reach: bool):
+        """:meth:`_least_bad`'s answer, found on ``scene``."""
+        pp = scene.pp
+        hard, labels, leaders, soft = scene.rows   # marks, pins, lines and leaders; what its leader had best not
+        keep_off = scene.crossed                   # cross, then these; what its box must keep off (labels, leaders)
         best = None
         # (the far rings in finer steps too: a leader that crosses a label, the worst, is rarely the only way)
         far = REACH_RINGS if reach and leader else ()
         for ring in sorted({gap, *(r for r in RINGS if r > gap), *FAR_RINGS, 135.0, *far}):
             if ring in far and best is not None and best[0][1:3] == (0, 0):
                 break   # farther only while every place nearer covers a mark or a line, or crosses a leader
-            cands = _Ring(anchor, w, h, prefer, ring * pp, 48 if ring in far else 24 if ring in FAR_RINGS else 16)
-            ok = shapely.contains(view, cands.geoms)
+            cands = scene.ring(anchor, w, h, prefer, ring, 48 if ring in far else 24 if ring in FAR_RINGS else 16,
+                               None)
+            ok = scene.in_view(cands)
             if keep_off.size:
-                ok &= ~shapely.intersects(keep_off, cands.geoms[:, None]).any(axis=1)
+                ok &= ~keep_off.any(cands.geoms, cands.bounds)
             idx = np.flatnonzero(ok)
             if not len(idx):
                 continue
-            g = cands.geoms[idx][:, None]
-            lines = _leaders(cands.geoms[idx], anchor)[:, None] if leader and ring >= 9.0 else None
-            crossed, across = _count(labels, lines, len(idx)), _count(leaders, lines, len(idx))
-            on_hard, on_soft = _count(hard, g, len(idx)), _count(soft, g, len(idx))
-            for n, i in enumerate(idx):
-                score = (int(crossed[n]), int(on_hard[n]), int(across[n]), int(on_soft[n]))
+            g, gb = cands.geoms[idx], cands.bounds[idx]
+            n = len(idx)
+            if leader and ring >= 9.0:
+                lines = _leaders(g, anchor)
+                lb = shapely.bounds(lines)
+                crossed, across = labels.count(lines, lb, True), leaders.count(lines, lb, True)
+            else:
+                crossed = across = np.zeros(n, int)
+            on_hard, on_soft = hard.count(g, gb), soft.count(g, gb)
+            for m, i in enumerate(idx):
+                score = (int(crossed[m]), int(on_hard[m]), int(across[m]), int(on_soft[m]))
                 if best is None or score < best[0]:
                     best = (score, cands.centres[i].copy(), cands.geom(i), ring)
         if best is None:
@@ -640,32 +692,31 @@ class LabelPlacer:
         (one row a place, nearest rings first): ``centres``, ``boxes``, ``leaders`` (None: none), ``hard`` (marks,
         pins and lines the box covers), ``soft`` (lines and outlines it covers), ``across`` (lines and outlines
         its leader crosses besides those at the anchor), ``reach`` (the leader's length, 0 without one)."""
-        pp, view, anchor = per_point(self.ax), view_box(self.ax), np.asarray(anchor, float)
-        keep_off = np.array(self.boxes + self.leaders, dtype=object)[None, :]
-        hard = np.array(self._hard, dtype=object)[None, :]
-        soft = np.array(self.prepared_soft(), dtype=object)[None, :]
-        at_anchor = shapely.intersects(soft[0], Point(*anchor).buffer(2.0 * pp)) if soft.size else None
+        pp, anchor = per_point(self.ax), np.asarray(anchor, float)
+        scene = self._scene(anchor, pp)
+        keep_off, hard, soft, at_anchor = scene.crossed, scene.own_hard, scene.soft, scene.at_anchor
         got = []
         for ring in sorted({gap, *(r for r in RINGS if r > gap), *FAR_RINGS, *REACH_RINGS}):
-            cands = _Ring(anchor, w, h, prefer, ring * pp, 48 if ring in REACH_RINGS else 24)
-            ok = shapely.contains(view, cands.geoms)
+            cands = scene.ring(anchor, w, h, prefer, ring, 48 if ring in REACH_RINGS else 24, None)
+            ok = scene.in_view(cands)
             if keep_off.size:
-                ok &= ~shapely.intersects(keep_off, cands.geoms[:, None]).any(axis=1)
+                ok &= ~keep_off.any(cands.geoms, cands.bounds)
             idx = np.flatnonzero(ok)
             edges = _towards(cands.geoms[idx], anchor)
             far = np.hypot(*(edges - anchor).T)
-            lines = np.array([None if d < 8.0 * pp else _leader_segment(anchor, b, pp)
-                              for d, b in zip(far, cands.geoms[idx])], dtype=object)
-            has = np.array([ln is not None for ln in lines], bool)
+            has = ~(far < 8.0 * pp)   # (as a NaN reach had one)
+            lines = np.full(len(idx), None, dtype=object)
+            lines[has] = _leader_segments(anchor, edges[has], pp)
             if keep_off.size and has.any():   # (None: a missing geometry, which meets nothing)
-                crossing = shapely.intersects(keep_off, lines[:, None]).any(axis=1)
+                crossing = np.zeros(len(idx), bool)
+                crossing[has] = keep_off.any(lines[has], lines=True)
                 idx, lines, far, has = idx[~crossing], lines[~crossing], far[~crossing], has[~crossing]
-            g = cands.geoms[idx][:, None]
+            g, gb = cands.geoms[idx], cands.bounds[idx]
             across = np.zeros(len(idx), int)
             if soft.size and has.any():
-                across[has] = (shapely.intersects(soft, lines[has][:, None]) & ~at_anchor).sum(axis=1)
-            got.append((cands.centres[idx], cands.geoms[idx], lines, _count(hard, g, len(idx)),
-                        _count(soft, g, len(idx)), across, np.where(has, far, 0.0)))
+                across[has] = (soft.meets(lines[has]) & ~at_anchor).sum(axis=1)
+            got.append((cands.centres[idx], g, lines, hard.count(g, gb), soft.count(g, gb), across,
+                        np.where(has, far, 0.0)))
         keys = ("centres", "boxes", "leaders", "hard", "soft", "across", "reach")
         return {k: np.concatenate([x[n] for x in got]) for n, k in enumerate(keys)}
 
@@ -801,25 +852,102 @@ class _Ring:
         return self.geoms[i]
 
 
+class _Row:
+    """Obstacles tested together, a row as shapely's broadcasting takes them (``geoms``), with each one's envelope
+    (``bounds``, as shapely gives it). :meth:`meets` answers ``shapely.intersects(geoms, g)`` for every obstacle
+    and every geometry ``g`` of a column, asking GEOS only of the pairs whose envelopes meet (touching
+    included): GEOS's intersects (plain or prepared) is false where the envelopes are apart (its first test), so
+    the answers are the very ones, and a pair whose envelope is not finite (an empty or missing geometry, a NaN
+    corner) is asked all the same. The same argument order, the same objects (a prepared copy where one was
+    asked): pair for pair the same GEOS call, for a tenth of the pairs in a crowd."""
+
+    def __init__(self, geoms, copies: Callable | None = None):
+        self.geoms = np.array(geoms, dtype=object).reshape(-1)
+        self.size = len(self.geoms)
+        self.bounds = shapely.bounds(self.geoms) if self.size else np.empty((0, 4))
+        self.known = bool(np.isfinite(self.bounds).all())
+        self._copies = copies   # (LabelPlacer.prepared)
+        self._prepared = None
+
+    def meets(self, geoms, bounds: np.ndarray | None = None, lines: bool = False) -> np.ndarray:
+        """``(len(geoms), size)``: whether each obstacle meets each of ``geoms`` (``bounds``: their envelopes,
+        where known: a ring's); ``shapely.intersects(self.geoms[None, :], geoms[:, None])``. ``lines``: ``geoms``
+        are leaders (segments), tested against the obstacles' prepared copies (:meth:`LabelPlacer.prepared`,
+        where the row was given them: GEOS's prepared intersects answers as the plain one, and a segment across
+        a leader's or a ring's outline of 67 points is found three times faster; a box, a rectangle, is tested
+        faster by the plain one)."""
+        n = len(geoms)
+        out = np.zeros((n, self.size), bool)
+        if not n or not self.size:
+            return out
+        gb = shapely.bounds(geoms) if bounds is None else bounds
+        ob = self.bounds
+        near = ((ob[:, 0] <= gb[:, 2, None]) & (gb[:, 0, None] <= ob[:, 2])
+                & (ob[:, 1] <= gb[:, 3, None]) & (gb[:, 1, None] <= ob[:, 3]))
+        if not self.known:
+            near |= ~np.isfinite(ob).all(axis=1)
+        unknown = ~np.isfinite(gb).all(axis=1)
+        if unknown.any():
+            near[unknown] = True
+        i, j = np.nonzero(near)
+        if len(i):
+            row = self.geoms
+            if lines and self._copies is not None:
+                if self._prepared is None:
+                    self._prepared = np.array(self._copies(self.geoms), dtype=object).reshape(-1)
+                row = self._prepared
+            out[i, j] = shapely.intersects(row[j], geoms[i])
+        return out
+
+    def count(self, geoms, bounds: np.ndarray | None = None, lines: bool = False) -> np.ndarray:
+        """How many of the obstacles each of ``geoms`` meets (:meth:`meets`)."""
+        return self.meets(geoms, bounds, lines).sum(axis=1)
+
+    def any(self, geoms, bounds: np.ndarray | None = None, lines: bool = False) -> np.ndarray:
+        """Whether each of ``geoms`` meets any of the obstacles (:meth:`meets`)."""
+        return self.meets(geoms, bounds, lines).any(axis=1)
+
+
 class _Scene:
     """What one label's search tests its candidates against, gathered once: nothing is placed while it
     searches (the placed labels and hard obstacles, the soft ones, the leaders, the lines through the
     anchor, the view, the axes' scale). A ring's candidates are tested in one shapely call per test (every
-    candidate against every obstacle: the very predicate :meth:`LabelPlacer.free` and the others ask of each
-    pair, without a Python call per candidate)."""
+    candidate against every obstacle whose envelope meets its own, :class:`_Row`: the very predicate
+    :meth:`LabelPlacer.free` and the others ask of each pair, without a Python call per candidate).
 
-    def __init__(self, pl: LabelPlacer, anchor, pp: float):
+    ``state``: the geometries it was gathered from (:meth:`LabelPlacer._state`); a placer keeps its last scenes
+    and gives one again to a search from the same anchor while every one of these is the very object it was
+    (:meth:`LabelPlacer._scene`: the same rings, their tests and the last resort's answers, for the tries a
+    crowded label makes at one state, each undone by :meth:`LabelPlacer.trial`)."""
+
+    def __init__(self, pl: LabelPlacer, anchor, pp: float, state: tuple | None = None):
         self.pp = pp
         self.anchor = np.asarray(anchor, float)
         self.view = view_box(pl.ax)
         self.view_bounds = np.array(self.view.bounds, float)
-        self.taken = np.array(pl.boxes + pl.hard, dtype=object)[None, :]        # what a label's box must not meet
-        self.soft = np.array(pl.prepared_soft(), dtype=object)[None, :]   # (prepared copies: the same answers)
-        self.crossed = np.array(pl.boxes + pl.leaders, dtype=object)[None, :]    # what a leader must not cross
+        self.state = pl._state() if state is None else state
+        boxes, hard, leaders, _ = self.state
+        self.taken = _Row(boxes + hard + leaders)   # what a label's box must not meet (pl.boxes + pl.hard)
+        self.soft = _Row(pl.prepared_soft())        # (prepared copies: the same answers)
+        self.crossed = _Row(boxes + leaders, pl.prepared)   # what a leader must not cross
+        self._copies = pl.prepared
         # the lines and outlines at the anchor itself: a leader leaving it does not count them
-        self.at_anchor = (shapely.intersects(self.soft[0], Point(*anchor).buffer(2.0 * self.pp))
+        self.at_anchor = (self.soft.meets(np.array([Point(*anchor).buffer(2.0 * self.pp)], dtype=object))[0]
                           if self.soft.size else None)
         self._rings: dict = {}   # (ring, its size and directions) -> _Ring (see ring())
+        self.least: dict = {}    # (the last resort's arguments) -> its answer (LabelPlacer._least_bad)
+
+    @functools.cached_property
+    def rows(self) -> tuple:
+        """The last resort's rows (:meth:`LabelPlacer._least_bad`): hard obstacles and leaders, labels' boxes, leaders,
+        soft obstacles (plain)."""
+        boxes, hard, leaders, soft = self.state
+        return _Row(hard + leaders), _Row(boxes, self._copies), _Row(leaders, self._copies), _Row(soft)
+
+    @functools.cached_property
+    def own_hard(self) -> _Row:
+        """The hard obstacles registered (no leader)."""
+        return _Row(self.state[1])
 
     def ring(self, anchor, w: float, h: float, prefer, ring: float, k: int, within) -> _Ring:
         """The candidates ``ring`` points out from ``anchor`` (``_Ring(anchor, w, h, prefer, ring * pp, k,
@@ -870,25 +998,25 @@ class _Scene:
         (:meth:`LabelPlacer.free`), in order."""
         idx = idx[self.in_view(cands)[idx]]
         if len(idx) and self.taken.size:
-            idx = idx[~shapely.intersects(self.taken, cands.geoms[idx][:, None]).any(axis=1)]
+            idx = idx[~self.taken.any(cands.geoms[idx], cands.bounds[idx])]
         return idx
 
     def soft_hits(self, cands: _Ring, idx) -> np.ndarray:
         """How many soft obstacles each of the candidates ``idx`` meets (:meth:`LabelPlacer.soft_hits`)."""
         if not self.soft.size:
             return np.zeros(len(idx), int)
-        return shapely.intersects(self.soft, cands.geoms[idx][:, None]).sum(axis=1)
+        return self.soft.count(cands.geoms[idx], cands.bounds[idx])
 
     def leader_tests(self, cands: _Ring, idx) -> tuple[np.ndarray, np.ndarray]:
         """For the candidates ``idx``, the leader from the anchor to the nearest point of each box's outline
         (:func:`_toward`): whether it crosses a label or leader, and how many lines and outlines it crosses
         besides those at its anchor."""
-        lines = _leaders(cands.geoms[idx], self.anchor)[:, None]
-        crosses = (shapely.intersects(self.crossed, lines).any(axis=1) if self.crossed.size
-                   else np.zeros(len(idx), bool))
+        lines = _leaders(cands.geoms[idx], self.anchor)
+        bounds = shapely.bounds(lines)
+        crosses = self.crossed.any(lines, bounds, True) if self.crossed.size else np.zeros(len(idx), bool)
         if not self.soft.size:
             return crosses, np.zeros(len(idx), int)
-        return crosses, (shapely.intersects(self.soft, lines) & ~self.at_anchor[None, :]).sum(axis=1)
+        return crosses, (self.soft.meets(lines, bounds) & ~self.at_anchor[None, :]).sum(axis=1)
 
 
 def _unit_rows(prefer, k: int, within):
@@ -978,6 +1106,14 @@ def _leader_segment(anchor, b, pp: float) -> LineString:
     return LineString([tuple(start), tuple(edge)])
 
 
+def _leader_segments(anchor, edges: np.ndarray, pp: float) -> np.ndarray:
+    """:func:`_leader_segment` of each box, given the nearest points of their outlines (``edges``: :func:`_towards`;
+    the same arithmetic, element by element, in one shapely call)."""
+    d = edges - anchor
+    start = anchor + d * ((1.5 * pp) / np.maximum(np.hypot(d[:, 0], d[:, 1]), 1e-300))[:, None]
+    return shapely.linestrings(np.stack([start, edges], axis=1)) if len(edges) else np.empty(0, dtype=object)
+
+
 def _pinned_at(pin) -> tuple:
     """Where a pin (:attr:`LabelPlacer.pins`) puts its text's position: a place's or a mark's point, a text along
     a line's centre there."""
@@ -988,13 +1124,6 @@ def _meet(box_a, line_a, box_b, line_b) -> bool:
     """Whether two labels meet: box on box, or a leader (line or buffered geometry, None: none) on the other's box."""
     return (box_a.intersects(box_b) or (line_a is not None and line_a.intersects(box_b))
             or (line_b is not None and line_b.intersects(box_a)))
-
-
-def _count(obstacles: np.ndarray, geoms, n: int) -> np.ndarray:
-    """How many of ``obstacles`` (a row) each of the ``n`` ``geoms`` (a column; None: none to test) meets."""
-    if geoms is None or not obstacles.size:
-        return np.zeros(n, int)
-    return shapely.intersects(obstacles, geoms).sum(axis=1)
 
 
 def _drawn(leader):
