@@ -71,7 +71,7 @@ def test_a_crowded_six_bar_slide_has_leaders_apart(seed, variant):
     10 x 11 cm beside a table of 11). The Stephenson III six-bar of seed 9 (P35's leader across P46's on 39e3408
     and 5ffbd6b, the three labels placed again now: kennedy._clear_of_all) was cut by issue 19 item 7, the suite's
     costliest test (10-11 CPU s): with kennedy._clear_with_third disabled by hand it fails, and so does
-    test_fig17_leaders' six-bar 10 of seed 5 (its drawing 2-5 CPU s, P25's leader then across P26's)."""
+    test_fig17_leaders' six-bar 10 of seed 5 (its drawing 3-6 CPU s, P25's leader then across P26's)."""
     from test_leaders_zoo import astray
     sol = zoo.specimen(np.random.default_rng(seed), "six-bar", variant).drawn
     st = get_style("slides")
