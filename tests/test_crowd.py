@@ -63,16 +63,15 @@ def test_an_eight_bar_slide_gives_its_labels_room(variant):
     assert room_per_label(eight(variant), "slides") >= 0.75, variant
 
 
-@pytest.mark.parametrize("seed, variant", [
-    (3, "stephenson I"),
-    (9, "stephenson III")])
+@pytest.mark.parametrize("seed, variant", [(3, "stephenson I")])
 def test_a_crowded_six_bar_slide_has_leaders_apart(seed, variant):
     """A seeded six-bar's poles slide, drawn: no two leaders of which one is a pole label's cross, and every pole
     label in view stands nearer its own ring than any other or has its leader from its own ring. The Stephenson
     I had two crossing pairs before the crowded layout (its links 6 x 7 cm over a table of 6 of its 13 rows, now
-    10 x 11 cm beside a table of 11); the Stephenson III one on 39e3408 and on 5ffbd6b (P35's leader across P46's:
-    no free place for either while the other stood; with the plates filled whole, no place for the two together
-    either while P26's label stood: the three placed again now, kennedy._clear_of_all)."""
+    10 x 11 cm beside a table of 11). The Stephenson III six-bar of seed 9 (P35's leader across P46's on 39e3408
+    and 5ffbd6b, the three labels placed again now: kennedy._clear_of_all) was cut by issue 19 item 7, the suite's
+    costliest test (10-11 CPU s): with kennedy._clear_with_third disabled by hand it fails, and so does
+    test_fig17_leaders' six-bar 10 of seed 5 (its drawing 3-6 CPU s, P25's leader then across P26's)."""
     from test_leaders_zoo import astray
     sol = zoo.specimen(np.random.default_rng(seed), "six-bar", variant).drawn
     st = get_style("slides")

@@ -28,6 +28,7 @@ import numpy as np
 import pytest
 from hypothesis import HealthCheck, given, note, settings, strategies as st
 
+import texts
 import velpoly
 from mechanisms import (CAM_FLAT, CAM_ROLLER, EXAMPLE_3_6, SIXBAR_1_4_4, SLOTTED_LEVER, WHEEL_ROLLING, fourbar,
                         in_process, inverted_slider_crank, ranges_by_dyads_only, slider_crank)
@@ -194,9 +195,9 @@ WORDS = ["A", "B", "C", "D", "E", "F", "O2", "O4", "P", "K", "0", "1", "2", "3",
          "rolling", "sliding", "60 rpm", "10 rad/s cw", "5 rad/s^2", "a-b", "B@3", "", " ", "points", "links",
          "frame", "near", "side", "from", "to", "along", "circles", "circle", "line", "through"]
 scalars = st.one_of(st.booleans(), st.integers(-10 ** 6, 10 ** 6), st.floats(), st.floats(-100, 100),
-                    st.text(max_size=8), st.sampled_from(WORDS))
+                    texts.text(max_size=8), st.sampled_from(WORDS))
 junk = st.recursive(scalars, lambda inner: st.lists(inner, max_size=3) |
-                    st.dictionaries(st.one_of(st.sampled_from(WORDS), st.text(max_size=5)), inner, max_size=3),
+                    st.dictionaries(st.one_of(st.sampled_from(WORDS), texts.text(max_size=5)), inner, max_size=3),
                     max_leaves=6)
 
 
@@ -285,7 +286,7 @@ def corrupted(draw):
             text = text[:i] + text[i + draw(st.integers(1, 12)):]
         elif op == 1:                      # insert a token
             i = draw(st.integers(0, len(text)))
-            text = text[:i] + draw(st.sampled_from(TOKENS) | st.text(max_size=4)) + text[i:]
+            text = text[:i] + draw(st.sampled_from(TOKENS) | texts.text(max_size=4)) + text[i:]
         elif op == 2:                      # drop, duplicate or swap lines
             lines = text.split("\n")
             i, j = draw(st.integers(0, len(lines) - 1)), draw(st.integers(0, len(lines) - 1))
@@ -314,7 +315,7 @@ def test_corrupted_toml_text(text):
 
 
 @settings(FUZZ, max_examples=EXAMPLES["random"])
-@given(st.one_of(st.text(max_size=200), st.lists(st.sampled_from(TOKENS + WORDS), max_size=40).map(" ".join)))
+@given(st.one_of(texts.text(max_size=200), st.lists(st.sampled_from(TOKENS + WORDS), max_size=40).map(" ".join)))
 def test_random_text(text):
     check(text + "\n")   # a newline: always TOML text, never taken for a path
 

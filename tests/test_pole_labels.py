@@ -73,7 +73,10 @@ def dense_drawing(seed: int, index: int, style: str):
 # with 2 and 5 such texts, slides watt I, stephenson I and III with 12, 6 and 4). The others of the four a style
 # (textbook stephenson I and III, slides watt II) had none then and were cut when the suite had to fit 2 minutes:
 # every six-bar variant is still drawn, in slides, and test_no_text_on_a_line_or_leader_in_a_crowd draws three more.
-FAILED = {"textbook": (6, (0, 1)), "slides": (5, (0, 2, 3))}
+# Slides' watt I (six-bar 0, 5-10 CPU s: the crowd kennedy._clear_with_third works on, the dearest drawing here) was
+# cut by issue 19 item 7: with the Kennedy lines no obstacles (80ed0ef's defect, by hand) the other four fail
+# (slides' 2 and 3 with 25 and 12 texts on a line, textbook's 0 and 1 with 5 and 10); watt I is still drawn in textbook.
+FAILED = {"textbook": (6, (0, 1)), "slides": (5, (2, 3))}
 
 
 @DENSE

@@ -753,11 +753,14 @@ def test_auxiliary_points_are_labelled_in_the_polygon_and_marked_on_the_mechanis
         assert marks.labels[key].get_text().startswith(tex(aux.label.upper()))
 
 
-def test_panels_draw_on_pyplots_current_axes(sixbar):
+def test_panels_draw_on_pyplots_current_axes():
+    """Each panel's drawing function, given no axes, draws on pyplot's current one. Example 3.6's four-bar (the
+    six-bar of Problem 1.4.4 until issue 19 item 7: where a panel draws does not depend on the mechanism, and the
+    four-bar's panels are the cheaper to draw)."""
     import matplotlib.pyplot as plt
     from velpoly.render import (draw_acceleration_polygon, draw_kennedy_circle, draw_mechanism, draw_poles,
                                 draw_results_table, draw_velocity_polygon)
-    m, sol = sixbar
+    sol = sheets.solved("ex3_6_fourbar")
     try:
         for fn in (draw_mechanism, draw_velocity_polygon, draw_acceleration_polygon, draw_poles,
                    draw_kennedy_circle, draw_results_table):

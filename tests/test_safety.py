@@ -276,6 +276,8 @@ def test_after_an_interrupted_run_python_goes_on_writing(tmp_path, capsys, monke
 import numpy as np
 from hypothesis import HealthCheck, given, settings, strategies as st
 
+import texts
+
 M = velpoly.load(FOURBAR)
 
 
@@ -322,8 +324,8 @@ def test_a_wrong_api_argument_is_a_velpoly_error_naming_it(call, where, gist):
 
 
 @settings(max_examples=60, deadline=None, suppress_health_check=[HealthCheck.too_slow])
-@given(st.one_of(st.booleans(), st.text(max_size=5), st.complex_numbers(), st.binary(max_size=3),
-                 st.lists(st.floats(), max_size=3), st.dictionaries(st.text(max_size=2), st.integers(), max_size=2),
+@given(st.one_of(st.booleans(), texts.text(max_size=5), st.complex_numbers(), st.binary(max_size=3),
+                 st.lists(st.floats(), max_size=3), st.dictionaries(texts.text(max_size=2), st.integers(), max_size=2),
                  st.floats(allow_nan=True, allow_infinity=True).filter(lambda x: not np.isfinite(x))))
 def test_fuzz_solve_s_angle(angle):
     e = _api_error(velpoly.solve, M, angle=angle)
@@ -331,7 +333,7 @@ def test_fuzz_solve_s_angle(angle):
 
 
 _reals = st.one_of(st.floats(-720, 720), st.integers(-720, 720))
-_bad_element = st.one_of(st.none(), st.booleans(), st.text(min_size=1, max_size=3), st.complex_numbers(),
+_bad_element = st.one_of(st.none(), st.booleans(), texts.text(min_size=1, max_size=3), st.complex_numbers(),
                          st.floats(allow_nan=True, allow_infinity=True).filter(lambda x: not np.isfinite(x)),
                          st.lists(_reals, min_size=2, max_size=2))
 

@@ -115,3 +115,19 @@ def test_the_second_worker_imports_the_test_modules_from_the_end_and_only_for_th
         imported.clear()
         conftest.pytest_collection(session(*args, ignore=ignore))
         assert imported == expected, (worker, args, ignore)
+
+
+def test_hypothesis_text_is_drawn_from_every_character_utf_8_encodes_named_by_category():
+    """No test asks hypothesis for ``st.text()`` without an alphabet (its own, ``characters(codec="utf-8")``, costs
+    about 3 CPU s a process in a fresh checkout: tests/texts.py); texts.CHARS, the alphabet they use instead, is
+    every code point but the surrogates, the characters UTF-8 encodes."""
+    import re
+    from hypothesis.strategies._internal.lazy import unwrap_strategies
+    import texts
+    bare = [(path.name, n) for path in sorted((ROOT / "tests").glob("*.py"))
+            if path.name not in ("texts.py", "test_suite_rules.py")   # (their docstrings name it)
+            for n, line in enumerate(path.read_text(encoding="utf-8").splitlines(), 1)
+            if re.search(r"\bst\.text\((?!alphabet=)(\)|\w+=)", line)]
+    assert not bare, bare
+    assert unwrap_strategies(texts.CHARS).intervals.intervals == ((0, 0xD7FF), (0xE000, 0x10FFFF))
+    assert all(chr(c).encode("utf-8") for c in (0, 0xD7FF, 0xE000, 0x10FFFF))
