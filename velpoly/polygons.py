@@ -552,11 +552,10 @@ class ThroughAuxiliaryPoint:
     sign: ClassVar[int] = 1   # the line adds it
 
     def describe(self, run: "_Run") -> UnknownPart:
-        g, lk = run.g, self.link
-        vel = run.level == "velocity"
         inner = self.line.unknown.describe(run)
-        ks, kx = g.qkey((lk, self.s)), g.qkey((lk, self.x))
-        t_of = ("difference", ks, kx) if vel else ("tangential", lk, ks, kx)
+        vel = run.level == "velocity"
+        ks, kx = (run.g.qkey((self.link, p)) for p in (self.s, self.x))
+        t_of = ("difference", ks, kx) if vel else ("tangential", self.link, ks, kx)
         label = _sum([("-" if inner.sign < 0 else "") + inner.label, f"{run.X}{'' if vel else '^t'}_{self.s}{self.x}"])
         return UnknownPart(label, 1, ("sum", ((inner.sign, inner.of), (1, t_of))), "relative")
 
