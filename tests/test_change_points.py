@@ -71,9 +71,11 @@ def dims(kind: str, rng) -> tuple[float, float, float, float]:
 
 
 def closure_margin(a, b, c, d, theta_deg):
-    """How far |A O4| is inside (|b - c|, b + c), in units of the size (negative: cannot close)."""
+    """How far |A O4| is inside (|b - c|, b + c), in units of the size (negative: cannot close).
+    |A O4| is the length of the vector from A = a (cos t, sin t) to O4 = (d, 0): never NaN (the law of
+    cosines, a^2 + d^2 - 2 a d cos t, rounds below zero where a = d and t = 0 but for an ulp)."""
     t = np.radians(theta_deg)
-    r = np.sqrt(a * a + d * d - 2 * a * d * np.cos(t))
+    r = np.hypot(d - a * np.cos(t), a * np.sin(t))
     return np.minimum(r - abs(b - c), b + c - r) / max(a, b, c, d)
 
 
@@ -198,7 +200,9 @@ def test_solve_at_an_angle_follows_the_drawn_branch_and_stops_at_toggles_and_cha
 
 def test_the_continuation_agrees_where_no_dyad_plan_serves(monkeypatch):
     """The same decisions and poses by continuation (the path of mechanisms with slots, contacts
-    and loops the dyad walk cannot follow): the determinant's sign and smooth steps stop it."""
+    and loops the dyad walk cannot follow): the determinant's sign and smooth steps stop it, and at a
+    change point itself (180 deg for the change-point four-bar) a converged Newton and a determinant
+    clear of zero (test_toggle_targets: on main b313165 this machine reached 180 deg here)."""
     monkeypatch.setattr(pose, "plan_for", lambda system: None)
     monkeypatch.setattr(sweeps, "plan_for", lambda system: None)
     # the range in the message is tested above; by continuation it takes four more continuations
