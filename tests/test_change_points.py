@@ -186,7 +186,21 @@ def check(kind, abcd, ref, m, seen, where):
             margins = closure_margin(a, b, c, d, way)
             first_bad = int(np.argmax(margins <= TOL)) if (margins <= TOL).any() else None
             if first_bad is not None:
-                assert len(w.angles) == first_bad, label
+                assert len(w.angles) == first_bad or (
+                    len(w.angles) == first_bad + 1 and short_of_change_point(kind, way, first_bad)), label
+
+
+def short_of_change_point(kind: str, way, k: int) -> bool:
+    """Whether the sweep's angle way[k], within TOL of the circles touching, still lies short of the change
+    point (at 0 or 180 deg) on the way: the pose there exists on the drawn branch, as distinct from the
+    crossed one as TOL lets it be (a transmission sine of 1e-5, say, at 0.002 deg short of 180), and velpoly
+    reaches it (the dyads' closure stops at TOUCH, a sine of 1e-6: 1e-4 deg from a change point). TOL is this
+    oracle's own width, not velpoly's: seeds 10, 11, 13, 14 of the test above put a sweep angle there (the
+    oracle then asked the sweep to stop before it; main b313165 reached it on every machine)."""
+    if kind not in ("change-point", "parallelogram", "parallelogram-crossed", "kite-frame", "kite-coupler"):
+        return False
+    at = 180.0 * round(way[k] / 180.0)
+    return (at - way[k]) * (way[-1] - way[0]) > 0
 
 
 @pytest.mark.parametrize("seed", [1, 2])
