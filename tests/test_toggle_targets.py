@@ -1,4 +1,7 @@
-"""A driver angle asked exactly at a change point, or within rounding of one, is refused by both paths.
+"""Driver positions at a bound of the motion but for rounding: decided alike on every machine.
+
+A change point (below) is refused by both paths; a pin at the end of its slot (at the end of this file)
+is reached.
 
 At a four-bar's change point (a + d = b + c at 180 deg; a parallelogram's 0 and 180 deg; a kite's 0 deg,
 and 180 deg where crank = coupler) the dyad's circles touch: the assembly branches meet, and the drawn
@@ -25,6 +28,7 @@ import velpoly
 from velpoly import pose, solution, sweeps
 from tests.mechanisms import fourbar
 from test_change_points import closure_margin, dims, expected
+from test_slot_ends import drive, rho
 
 # each class with its change points (driver angles, deg)
 CHANGE_POINTS = {"change-point": (180.0,), "parallelogram": (0.0, 180.0), "parallelogram-crossed": (0.0, 180.0),
@@ -104,3 +108,40 @@ def test_the_nudged_lengths_touch_cross_and_miss():
         elif kind.startswith("parallelogram"):
             signs.add(np.sign(a - c))
     assert signs == {-1.0, 0.0, 1.0}, signs
+
+
+# -- a pin at the end of its slot at a sweep's step, but for rounding ------------------------------------------
+def slot_drives(seed: int, count: int = 4):
+    """(a, e, psi, theta, sense, steps): slotted levers and Whitworth links (test_slot_ends.drive) whose pin
+    moves out along its slot at the driver angle theta + sense * 5 * steps deg, reaching nowhere farther
+    before it: the slot's outer end is cut there, at the pin's distance rho from the pivot, to the bit."""
+    rng = np.random.default_rng(seed)
+    out = []
+    while len(out) < count:
+        a = float(rng.uniform(0.5, 3.0))
+        e = a * float(rng.uniform(1.3, 2.5) if len(out) % 2 else rng.uniform(0.2, 0.75))
+        psi, theta = float(rng.uniform(-180, 180)), float(np.round(rng.uniform(-180, 180), 3))
+        sense, steps = float(rng.choice([-1.0, 1.0])), int(rng.integers(3, 10))
+        way = theta + sense * np.linspace(0.0, 5.0 * steps, 40 * steps + 1)
+        r = rho(a, e, psi, way)
+        if np.all(np.diff(r[-41:]) > 0) and r[:-41].max() < r[-1] - 0.01 * a and r.min() > 0.1 * a:
+            out.append((a, e, psi, theta, sense, steps))
+    return out
+
+
+def test_a_pin_at_its_slot_s_end_at_a_sweep_step_is_reached_whatever_the_last_bits():
+    """The sweep's angle at the end reaches the pin's end (t = 1 but for rounding) on every machine and nudge:
+    main b313165 refused it (t = 1 + 2e-16: 'leaves') for some nudges of the crank's length by an ulp or of the
+    drawn angle by 1e-13 deg, and reached it for others (test_slot_ends' before = 31.0 case is one). A sweep
+    1e-6 deg beyond (t past 1 by 1e-8) is cut there, one short of it: the tolerance is rounding's only."""
+    for a, e, psi, theta, sense, steps in slot_drives(5):
+        for ulps, shift, reached in ((0, 0.0, steps + 1), (1, 0.0, steps + 1), (-2, 1e-13, steps + 1),
+                                     (3, -1e-13, steps + 1), (0, 1e-6 * sense, steps)):
+            a1 = nudged(a, ulps)
+            end = theta + sense * 5.0 * steps
+            r_end = float(rho(a1, e, psi, end))
+            m = velpoly.load(drive(a1, e, psi, theta + shift, 0.05 * a, r_end, omega=3.0 * sense))
+            w = velpoly.sweep(m, theta + shift + sense * 5.0 * np.arange(steps + 3))
+            label = (a1, e, psi, theta, shift, sense, steps)
+            assert len(w.angles) == reached and w.leaves is not None, (label, len(w.angles), w.stopped)
+            assert abs(w.leaves[2] - end) < 1e-6, (label, w.leaves)

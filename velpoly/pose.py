@@ -496,14 +496,14 @@ def _within_slots(system, rows, r, ends, kd, kq, attach, sign):
     for k in range(1, len(d)):
         i = order[k - 1][2]
         prev = (d[k - 1], q[k - 1], t[k - 1])
-        if not np.all((t[k] >= 0) & (t[k] <= 1)):
+        if not np.all(_in_slot(t[k])):
             return _cut(system, rows, r, i, ends, prev, (d[k], t[k]), sign)
         h = d[k] - d[k - 1]
         for c in range(len(ends)):
             s0, s1 = slope[k - 1, c] * h, slope[k, c] * h
             low, at_low = _hermite_extreme(t[k - 1, c], t[k, c], s0, s1)
             high, at_high = _hermite_extreme(-t[k - 1, c], -t[k, c], -s0, -s1)
-            for over, at in ((low < 0, at_low), (-high > 1, at_high)):
+            for over, at in ((not _in_slot(low), at_low), (not _in_slot(-high), at_high)):
                 if not over:
                     continue
                 x = float(d[k - 1] + at * h)
@@ -512,9 +512,22 @@ def _within_slots(system, rows, r, ends, kd, kq, attach, sign):
                 if nxt is None:
                     continue
                 tx = slot_travel(m, system.index, nxt[0], ends)[0]
-                if not np.all((tx >= 0) & (tx <= 1)):
+                if not np.all(_in_slot(tx)):
                     return _cut(system, rows, r, i, ends, prev, (x, tx), sign)
     return r
+
+
+# A pin this near an end of its slot (a fraction of the slot's length, either way) is at it: rounding in
+# the slip coordinate t (and in the pose, converged to 1e-14 unit lengths) is 1e-16..1e-15, and a position
+# at the end but for that (the end at a sweep's step exactly) is reached on every machine, not on one and cut
+# on another; the end itself is found to 1e-10 rad (_cut), on a slope dt/d(driver) of order 1
+AT_END = 1e-12
+
+
+def _in_slot(t) -> np.ndarray:
+    """Whether the slip coordinates t are within the slot's ends, 0 <= t <= 1, give or take AT_END."""
+    t = np.asarray(t)
+    return (t >= -AT_END) & (t <= 1.0 + AT_END)
 
 
 def _travel_and_slope(system, rows, q, ends):
@@ -556,14 +569,14 @@ def _cut(system, rows, r, i, ends, inside, outside, sign):
     m = system.mechanism
     d0, q0, t0 = inside
     d1, t1 = outside
-    col = int(np.argmax((t1 < 0) | (t1 > 1)))
+    col = int(np.argmax(~_in_slot(t1)))
     bound = 0.0 if t1[col] < 0 else 1.0
     f0, f1 = t0[col] - bound, t1[col] - bound
     lo, hi = float(d0), float(d1)
     q_lo = np.asarray(q0)[None, :]
     unit = m.size if m.driver.is_slider else 1.0
     last = 0
-    if f0 == 0.0:               # the last position inside is at the end itself
+    if abs(f0) <= AT_END:       # the last position inside is at the end itself
         hi = lo
     for _ in range(100):
         if abs(hi - lo) <= 1e-10 * unit:
