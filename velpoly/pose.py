@@ -147,10 +147,9 @@ def _newton(system: System, rows, q, targets, iters=30):
     below 1e-10 (:data:`SETTLED`): the pose is then determined by the equations to that tolerance.
     The residual alone does not tell: at a double root (a target on a toggle or a change point,
     where the circles touch) Newton converges only linearly, and rounding holds its corrections near
-    the square root of the rounding (1e-8) however long it iterates, while the residual (their square)
-    passes. Where the correction comes below 1e-10, the Jacobian is conditioned better than about
-    1e-10 / 2.2e-16 = 4.5e5 in unit lengths (rounding in the equations, amplified by it, would keep the
-    correction above): far from any singular pose on the scale of rounding.
+    the square root of the rounding (1e-8: 5e-9 to 2.5e-7 at a change-point four-bar's 180 deg) however
+    long it iterates, while the residual (their square) passes. A simple root near a singular pose may
+    still settle (a change point 1e-7 deg away): :func:`_clear` refuses that one.
     """
     if len(q) == 1:
         return _newton_one(system, rows, q, float(targets[0]), iters)
@@ -518,7 +517,7 @@ def _within_slots(system, rows, r, ends, kd, kq, attach, sign):
 
 
 # A pin this near an end of its slot (a fraction of the slot's length, either way) is at it: rounding in
-# the slip coordinate t (and in the pose, converged to 1e-14 unit lengths) is 1e-16..1e-15, and a position
+# the slip coordinate t is 1e-16..1e-15 (the pose converged to 1e-14 unit lengths; SETTLED bounds it), and a position
 # at the end but for that (the end at a sweep's step exactly) is reached on every machine, not on one and cut
 # on another; the end itself is found to 1e-10 rad (_cut), on a slope dt/d(driver) of order 1
 AT_END = 1e-12
