@@ -71,9 +71,11 @@ def dims(kind: str, rng) -> tuple[float, float, float, float]:
 
 
 def closure_margin(a, b, c, d, theta_deg):
-    """How far |A O4| is inside (|b - c|, b + c), in units of the size (negative: cannot close)."""
+    """How far |A O4| is inside (|b - c|, b + c), in units of the size (negative: cannot close).
+    |A O4| is the length of the vector from A = a (cos t, sin t) to O4 = (d, 0): never NaN (the law of
+    cosines, a^2 + d^2 - 2 a d cos t, rounds below zero where a = d and t = 0 but for an ulp)."""
     t = np.radians(theta_deg)
-    r = np.sqrt(a * a + d * d - 2 * a * d * np.cos(t))
+    r = np.hypot(d - a * np.cos(t), a * np.sin(t))
     return np.minimum(r - abs(b - c), b + c - r) / max(a, b, c, d)
 
 
@@ -184,7 +186,21 @@ def check(kind, abcd, ref, m, seen, where):
             margins = closure_margin(a, b, c, d, way)
             first_bad = int(np.argmax(margins <= TOL)) if (margins <= TOL).any() else None
             if first_bad is not None:
-                assert len(w.angles) == first_bad, label
+                assert len(w.angles) == first_bad or (
+                    len(w.angles) == first_bad + 1 and short_of_change_point(kind, way, first_bad)), label
+
+
+def short_of_change_point(kind: str, way, k: int) -> bool:
+    """Whether the sweep's angle way[k], within TOL of the circles touching, still lies short of the change
+    point (at 0 or 180 deg) on the way: the pose there exists on the drawn branch, as distinct from the
+    crossed one as TOL lets it be (a transmission sine of 1e-5, say, at 0.002 deg short of 180), and velpoly
+    reaches it (the dyads' closure stops at TOUCH, a sine of 1e-6: 1e-4 deg from a change point). TOL is this
+    oracle's own width, not velpoly's: seeds 10, 11, 13, 14 of the test above put a sweep angle there (the
+    oracle then asked the sweep to stop before it; main b313165 reached it on every machine)."""
+    if kind not in ("change-point", "parallelogram", "parallelogram-crossed", "kite-frame", "kite-coupler"):
+        return False
+    at = 180.0 * round(way[k] / 180.0)
+    return (at - way[k]) * (way[-1] - way[0]) > 0
 
 
 @pytest.mark.parametrize("seed", [1, 2])
@@ -198,7 +214,9 @@ def test_solve_at_an_angle_follows_the_drawn_branch_and_stops_at_toggles_and_cha
 
 def test_the_continuation_agrees_where_no_dyad_plan_serves(monkeypatch):
     """The same decisions and poses by continuation (the path of mechanisms with slots, contacts
-    and loops the dyad walk cannot follow): the determinant's sign and smooth steps stop it."""
+    and loops the dyad walk cannot follow): the determinant's sign and smooth steps stop it, and at a
+    change point itself (180 deg for the change-point four-bar) a converged Newton and a determinant
+    clear of zero (test_toggle_targets: on main b313165 this machine reached 180 deg here)."""
     monkeypatch.setattr(pose, "plan_for", lambda system: None)
     monkeypatch.setattr(sweeps, "plan_for", lambda system: None)
     # the range in the message is tested above; by continuation it takes four more continuations

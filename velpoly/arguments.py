@@ -6,6 +6,7 @@ or :class:`~velpoly.errors.ArgumentValueError` (also a ``ValueError``) whose
 """
 from __future__ import annotations
 
+import decimal
 import math
 import numbers
 import os
@@ -58,17 +59,30 @@ def check_angle(angle, name: str = "angle") -> float | None:
     if isinstance(angle, (bool, np.bool_)) or not isinstance(angle, numbers.Real):
         raise ArgumentTypeError(f"expected a number of degrees, got {_kind(angle)}", where=name,
                                 hint=f"{name}=40.0 (degrees, counter-clockwise from +x)")
+    shown = None
     try:
         x = float(angle)
-    except (OverflowError, ValueError, TypeError):
+    except OverflowError:   # an int or a fraction beyond any float (10**400): too large, to 6 digits
+        x, shown = math.inf, _rational_g(angle)
+    except (ValueError, TypeError):
         x = math.nan
-    if not math.isfinite(x):
+    if not math.isfinite(x) and shown is None:
         raise ArgumentValueError(f"the driver angle must be finite, got {angle}", where=name,
                                  hint=f"{name} is a finite number of degrees")
     if abs(x) > MAX_ANGLE:
-        raise ArgumentValueError(f"the driver angle {x:g} deg is too large (at most {MAX_ANGLE:g} deg either way)",
+        raise ArgumentValueError(f"the driver angle {shown or format(x, '.12g')} deg is too large (at most "
+                                 f"{MAX_ANGLE:g} deg either way)",
                                  where=name, hint="give the angle within a turn or a few (it is absolute)")
     return x
+
+
+def _rational_g(v) -> str:
+    """A rational number too large for a float, as ``%g`` would write it ("1e+400", "-3.33333e+399")."""
+    try:
+        d = (decimal.Decimal(v.numerator) / decimal.Decimal(v.denominator)).normalize()
+    except (AttributeError, TypeError, ArithmeticError):
+        return "beyond any float"
+    return format(d, ".6g").replace("E", "e")
 
 
 def check_angles(angles, name: str = "angles", limit: float = MAX_ANGLE, unit: str = "deg") -> np.ndarray:

@@ -10,7 +10,9 @@ corrected all at once (one batched Newton over every remaining pose); a pose
 that batch misses is retried step by step, halving the step, from the
 nearest pose already found. A pose where the Jacobian degenerates or Newton
 cannot converge even with the step halved (to 1e-6 rad, or 1e-6 of a slider's size) is a toggle:
-continuation stops there, with the reachable range.
+continuation stops there, with the reachable range. So is a pose on or within that travel of a
+singular one (a change point: :func:`_clear`), and one Newton converges to only linearly (a double
+root: :func:`_newton`), as the dyad walk refuses a dyad whose circles touch (:data:`TOUCH`).
 """
 from __future__ import annotations
 
@@ -126,6 +128,9 @@ class Reassembly:
         self.leaves = leaves         # (slot index, end point, driver position) where a pin leaves its slot
 
 
+SETTLED = 1e-10   # Newton's last correction (unit lengths, radians) on a converged pose (_newton)
+
+
 def _newton(system: System, rows, q, targets, iters=30):
     """Batched Newton on the selected rows plus the driver row.
 
@@ -136,7 +141,15 @@ def _newton(system: System, rows, q, targets, iters=30):
     longer shrinks (Newton converging would cut it by orders of magnitude; what
     is left is noise, and iterating on it only walks q about in its last
     digits). Steps are limited so that Newton cannot jump to another branch.
-    Returns (q, converged mask).
+    Returns (q, converged mask, Jacobians of the selected rows).
+
+    A pose has converged when its residual is below 1e-9 of the size and Newton's last correction
+    below 1e-10 (:data:`SETTLED`): the pose is then determined by the equations to that tolerance.
+    The residual alone does not tell: at a double root (a target on a toggle or a change point,
+    where the circles touch) Newton converges only linearly, and rounding holds its corrections near
+    the square root of the rounding (1e-8: 5e-9 to 2.5e-7 at a change-point four-bar's 180 deg) however
+    long it iterates, while the residual (their square) passes. A simple root near a singular pose may
+    still settle (a change point 1e-7 deg away): :func:`_clear` refuses that one.
     """
     if len(q) == 1:
         return _newton_one(system, rows, q, float(targets[0]), iters)
@@ -164,13 +177,13 @@ def _newton_batch(system: System, rows, q, targets, iters=30):
         scale = np.where(size > 0.5, 0.5 / np.maximum(size, 1e-300), 1.0)
         idx = np.flatnonzero(active)
         q[idx] += dq * scale[:, None]
-        done = (size <= 1e-14) | ((size <= 1e-10) & (size >= last[idx]))
+        done = (size <= 1e-14) | ((size <= SETTLED) & (size >= last[idx]))
         last[idx] = size
         active[idx[done]] = False
     phi, jac, _ = system.evaluate(q)
     phi = phi[:, rows]
     phi[:, -1] -= targets
-    ok = np.all(np.isfinite(phi), axis=1) & (np.abs(phi).max(axis=1) <= 1e-9 * L)
+    ok = np.all(np.isfinite(phi), axis=1) & (np.abs(phi).max(axis=1) <= 1e-9 * L) & (last <= SETTLED)
     return q, ok, jac[:, rows]
 
 
@@ -180,7 +193,7 @@ def _newton_one(system, rows, q, target: float, iters: int):
     column scales; 1.0 an exact identity), as :func:`_scaled` divides the lengths' columns."""
     q = q.copy()
     unit = system.column_scales
-    last = math.inf
+    last = size = math.inf
     every = None       # rows selecting every equation: the evaluation's own (fresh) arrays serve
     for _ in range(iters):
         phi, jac, _ = system.evaluate(q)
@@ -198,7 +211,7 @@ def _newton_one(system, rows, q, target: float, iters: int):
         if size > 0.5:
             dq = dq * (0.5 / max(size, 1e-300))
         q += dq
-        if size <= 1e-14 or (size <= 1e-10 and size >= last):
+        if size <= 1e-14 or (size <= SETTLED and size >= last):
             break
         last = size
     phi, jac, _ = system.evaluate(q)
@@ -206,7 +219,8 @@ def _newton_one(system, rows, q, target: float, iters: int):
         phi = phi[:, rows]
         jac = jac[:, rows]
     phi[0, -1] -= target
-    ok = np.all(np.isfinite(phi), axis=1) & (np.abs(phi).max(axis=1) <= 1e-9 * max(system.size, 1e-300))
+    ok = np.all(np.isfinite(phi), axis=1) & (np.abs(phi).max(axis=1) <= 1e-9 * max(system.size, 1e-300)) \
+        & (size <= SETTLED)
     return q, ok, jac
 
 
@@ -394,12 +408,14 @@ def _continue(system, rows, deltas, coarse, knots: Knots | None = None):
     if n == 0:
         return Reassembly(deltas, np.zeros((0, nq)), stopped, continued=True), kd, kq, attach, sign
     # 2. every requested pose at once: predicted from its knot, corrected by batched Newton
-    qd = _velocity(system, rows, kq)
+    jk = system.evaluate(kq)[1][:, rows]
+    qd = _velocity(system, rows, kq, jk)
     h = deltas - kd[attach]
     guess = kq[attach] + h[:, None] * qd[attach]
     out, ok, jo = _newton(system, rows, guess, deltas)
     ok &= _drift(system, out - guess) <= _drift_bound(system, h, qd[attach])
     ok &= _orientation(jo) == sign
+    ok &= _clear(system, h, jk[attach], jo)
     ok &= _smooth(system, out - kq[attach], h[:, None] * qd[attach], h[:, None] * _velocity(system, rows, out, jo))
     # 3. a pose the batched correction missed (a poor prediction where the links turn fast) is
     #    retried sequentially, with the knots' halving, from the nearest pose already converged
@@ -479,14 +495,14 @@ def _within_slots(system, rows, r, ends, kd, kq, attach, sign):
     for k in range(1, len(d)):
         i = order[k - 1][2]
         prev = (d[k - 1], q[k - 1], t[k - 1])
-        if not np.all((t[k] >= 0) & (t[k] <= 1)):
+        if not np.all(_in_slot(t[k])):
             return _cut(system, rows, r, i, ends, prev, (d[k], t[k]), sign)
         h = d[k] - d[k - 1]
         for c in range(len(ends)):
             s0, s1 = slope[k - 1, c] * h, slope[k, c] * h
             low, at_low = _hermite_extreme(t[k - 1, c], t[k, c], s0, s1)
             high, at_high = _hermite_extreme(-t[k - 1, c], -t[k, c], -s0, -s1)
-            for over, at in ((low < 0, at_low), (-high > 1, at_high)):
+            for over, at in ((not _in_slot(low), at_low), (not _in_slot(-high), at_high)):
                 if not over:
                     continue
                 x = float(d[k - 1] + at * h)
@@ -495,9 +511,22 @@ def _within_slots(system, rows, r, ends, kd, kq, attach, sign):
                 if nxt is None:
                     continue
                 tx = slot_travel(m, system.index, nxt[0], ends)[0]
-                if not np.all((tx >= 0) & (tx <= 1)):
+                if not np.all(_in_slot(tx)):
                     return _cut(system, rows, r, i, ends, prev, (x, tx), sign)
     return r
+
+
+# A pin this near an end of its slot (a fraction of the slot's length, either way) is at it: rounding in
+# the slip coordinate t is 1e-16..1e-15 (the pose converged to 1e-14 unit lengths; SETTLED bounds it), and a position
+# at the end but for that (the end at a sweep's step exactly) is reached on every machine, not on one and cut
+# on another; the end itself is found to 1e-10 rad (_cut), on a slope dt/d(driver) of order 1
+AT_END = 1e-12
+
+
+def _in_slot(t) -> np.ndarray:
+    """Whether the slip coordinates t are within the slot's ends, 0 <= t <= 1, give or take AT_END."""
+    t = np.asarray(t)
+    return (t >= -AT_END) & (t <= 1.0 + AT_END)
 
 
 def _travel_and_slope(system, rows, q, ends):
@@ -539,14 +568,14 @@ def _cut(system, rows, r, i, ends, inside, outside, sign):
     m = system.mechanism
     d0, q0, t0 = inside
     d1, t1 = outside
-    col = int(np.argmax((t1 < 0) | (t1 > 1)))
+    col = int(np.argmax(~_in_slot(t1)))
     bound = 0.0 if t1[col] < 0 else 1.0
     f0, f1 = t0[col] - bound, t1[col] - bound
     lo, hi = float(d0), float(d1)
     q_lo = np.asarray(q0)[None, :]
     unit = m.size if m.driver.is_slider else 1.0
     last = 0
-    if f0 == 0.0:               # the last position inside is at the end itself
+    if abs(f0) <= AT_END:       # the last position inside is at the end itself
         hi = lo
     for _ in range(100):
         if abs(hi - lo) <= 1e-10 * unit:
@@ -826,14 +855,39 @@ def _smooth(system, chord, t0, t1) -> np.ndarray:
     return err <= 0.1 * np.abs(c).max(axis=1) + SMOOTH_FLOOR     # NaN (a singular tangent): False
 
 
+# The continuation resolves the driver's travel to 1e-6 of its unit (:func:`_driver_unit`): a step
+# is not halved below it, and a pose that near a singular one is on it (:func:`_clear`)
+RESOLUTION = 1e-6
+
+
+def _clear(system, h, jac0, jac1) -> np.ndarray:
+    """Whether each step of driver travel h, from a pose with the Jacobian jac0 to one with jac1 (the
+    same determinant sign), ends clear of a singular pose: the determinant, linear along the step,
+    vanishes no nearer its end than RESOLUTION driver units, |h| det1 / (det0 - det1) >= RESOLUTION u,
+    i.e. det0 / det1 <= 1 + |h| / (RESOLUTION u).
+
+    A target on or within rounding of a change point (the circles touch there; the determinant crosses
+    zero linearly along the branch) has a determinant of rounding's size against the step's start, as
+    close to zero on one machine as on another, and its sign is rounding's: the sign alone (the
+    orientation) cannot tell such a pose. At a toggle the determinant falls as the square root of the
+    travel left: a pose RESOLUTION short of it is still clear after a step of that length. A fall of
+    1e-9 or less is rounding's, not the step's (a step of no length, as in :func:`_smooth`: a position
+    equal to its knot but for the last bit lands on the knot's pose but for Newton's stopping noise)."""
+    with np.errstate(invalid="ignore"):          # NaN (Newton failed), -inf - -inf (both singular): not clear
+        (s0, l0), (s1, l1) = np.linalg.slogdet(jac0), np.linalg.slogdet(jac1)
+        fall = l0 - l1                           # log |det0 / det1|
+    u = RESOLUTION * _driver_unit(system)
+    return (s0 * s1 > 0) & (fall <= np.log1p(np.abs(h) / u) + 1e-9)
+
+
 def _step(system, rows, q, jac, d0, d1, sign):
     """One continuation step of the knots from driver position d0 to d1.
 
     Returns (q, jac) at d1, or None at a toggle (Newton fails, the pose
     jumps away from the prediction, the equations become singular, the
     Jacobian's determinant no longer has the drawn pose's ``sign``: a singular
-    pose was crossed, or the step is not smooth: it starts or ends on one),
-    even with the step halved to 1e-6 of the driver's unit (:func:`_driver_unit`).
+    pose was crossed, or it vanishes at the pose reached (:func:`_clear`), or the step is not
+    smooth: it starts or ends on one), even with the step halved to RESOLUTION of the driver's unit.
     """
     h = d1 - d0
     qd = _tangent(system, rows, q, jac)
@@ -841,9 +895,10 @@ def _step(system, rows, q, jac, d0, d1, sign):
     qn, ok, jn = _newton(system, rows, guess, np.array([d1]))
     if ok[0] and _drift(system, qn - guess)[0] <= _drift_bound(system, np.array([h]), qd)[0] \
             and _cond(system, rows, jn)[0] <= 1e10 and _orientation(jn)[0] == sign \
+            and _clear(system, h, jac, jn)[0] \
             and _smooth(system, qn - q, h * qd, h * _tangent(system, rows, qn, jn))[0]:
         return qn, jn
-    if abs(h) < 1e-6 * _driver_unit(system):     # 1e-6 rad, or 1e-6 of a slider's size
+    if abs(h) < RESOLUTION * _driver_unit(system):     # 1e-6 rad, or 1e-6 of a slider's size
         return None
     mid = _step(system, rows, q, jac, d0, d0 + h / 2, sign)   # near a toggle: halve the step
     return None if mid is None else _step(system, rows, mid[0], mid[1], d0 + h / 2, d1, sign)
