@@ -640,13 +640,40 @@ def _interruption(e: BaseException | None):
     return interruption()
 
 
-def _main(argv) -> int:
-    parser = build_parser()
-    args = parser.parse_args(argv)
-    args.program = argv is None   # the velpoly program itself, not cli.main([...]) from Python
-    if not args.command:
+def _arguments(parser, argv):
+    """The parsed arguments, or the exit status 2 of no command (the help printed). Help and ``--version``
+    exit as argparse makes them (SystemExit 0; a wrong option, 2 with its usage on standard error), but what
+    argparse prints on standard output goes through :class:`_Stdout` and is flushed here: argparse swallows a
+    failed write (``velpoly --help > /dev/full`` exited 0), which FORMAT.md section 3 makes exit 2, ``cannot
+    write standard output: REASON``, as for any command's output."""
+    stdout, sys.stdout = sys.stdout, _Stdout(sys.stdout)
+    try:
+        try:
+            args = parser.parse_args(argv)
+        except SystemExit:
+            sys.stdout.flush()
+            raise
+        if args.command:
+            return args
         parser.print_help()
+        sys.stdout.flush()
         return 2
+    except StdoutError as e:
+        _silence_stdout()
+        print(f"error: {e.line()}\nhint: {e.hint_line()}", file=sys.stderr)
+        return 2
+    except BrokenPipeError:   # the reader went away (velpoly --help | head -1): not an error
+        _silence_stdout()
+        return 0
+    finally:
+        sys.stdout = stdout
+
+
+def _main(argv) -> int:
+    args = _arguments(build_parser(), argv)
+    if isinstance(args, int):
+        return args
+    args.program = argv is None   # the velpoly program itself, not cli.main([...]) from Python
     for stream in (sys.stdout, sys.stderr):  # a title in any script prints on any terminal
         try:
             stream.reconfigure(errors="backslashreplace")
