@@ -20,7 +20,7 @@ from pathlib import Path
 
 from .errors import InputError, VelpolyError, one_line
 # at once, not when a signal comes: a Ctrl-C while a command imports fileio must find it whole
-from .fileio import (atomic_write_text, check_not_input, check_output, committed_together, forget_inputs,
+from .fileio import (atomic_write_text, check_not_input, check_output, committed_together, forget_inputs, same_file,
                      forget_interrupt, interrupted, interruption, note_interrupt, protect_input, raise_if_interrupted)
 
 __all__ = ["main", "build_parser"]
@@ -590,6 +590,21 @@ def _check_outputs(args) -> None:
     protect_input(file)
     for attr, option in OUTPUT_OPTIONS:
         check_not_input(getattr(args, attr, None), file, option)
+    _distinct_outputs(args)
+
+
+def _distinct_outputs(args) -> None:
+    """No two output options name one file: ``velpoly sweep --csv c.svg -o c.svg`` wrote the plot over the
+    CSV and exited 0, the CSV lost. The same path (after symbolic links) or the same existing file (a hard
+    link) is exit 2 naming both options; a FIFO or a device takes both (each is written through)."""
+    given = [(option, getattr(args, attr, None)) for attr, option in OUTPUT_OPTIONS if getattr(args, attr, None)]
+    for i, (option, out) in enumerate(given):
+        if Path(out).exists() and not Path(out).is_file():
+            continue
+        for first, other in given[:i]:
+            if os.path.realpath(out) == os.path.realpath(other) or same_file(out, other):
+                raise InputError(f"{first} and {option} name the same file {str(out)!r}: each output is a file "
+                                 f"of its own", where=option, hint=f"give {option} another file name")
 
 
 def main(argv=None) -> int:
