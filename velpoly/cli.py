@@ -754,7 +754,8 @@ def _explain(e: VelpolyError, args) -> None:
         if e.where == "angle":   # the API's argument: the hint about the option applies
             e.hint = ""
         e.where = "--angle"
-    if file and e.where and "(line " not in e.where and e.file == file:
+    if file and e.where and "(line " not in e.where and e.file == file and os.path.isfile(file):
+        # the file read again for the entry's line: a regular file only (a FIFO read again waits for ever)
         from .loader import locate
         try:
             line = locate(Path(file).read_text(encoding="utf-8"), e.where)
