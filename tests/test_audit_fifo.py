@@ -31,7 +31,7 @@ def read_fifo(fifo):
 
 def finish(reader, fifo) -> None:
     """Let the reader end: a writer that never opened the FIFO (a refused or failed one) leaves it waiting."""
-    reader.join(timeout=2)
+    reader.join(timeout=0.2)
     if reader.is_alive():
         try:
             os.close(os.open(fifo, os.O_WRONLY | os.O_NONBLOCK))

@@ -4,7 +4,7 @@ body is drawn over it.
 
 Found by the audit: a cam's or a gear's driving disc is drawn over the links it drives (zorder 3.3), and with it
 over its own pivot's ground (2.9): the pivot O of every generated cam and gear (and the gallery's two cams) showed
-a bare pin on the disc, no ground.
+a bare pin on the disc, no ground (the gallery's two cams too: golden cam_*.svg).
 """
 from __future__ import annotations
 
@@ -13,8 +13,6 @@ import numpy as np
 from matplotlib.collections import LineCollection
 from shapely.geometry import Point, Polygon
 
-import velpoly
-from velpoly.gallery import example_path
 from velpoly.render.displacement import draw_mechanism
 
 import zoo
@@ -57,7 +55,4 @@ def test_every_frame_pivot_of_a_cam_gear_or_contact_stands_on_ground():
         for point, seen in grounds_shown(sp.drawn):
             assert seen, (variant, point)
             checked += 1
-    for name in ("cam_flat_follower", "cam_roller_follower"):
-        for point, seen in grounds_shown(velpoly.solve(velpoly.load(example_path(name)))):
-            assert seen, (name, point)
     assert checked >= 12
