@@ -20,7 +20,7 @@ from pathlib import Path
 
 from .errors import InputError, VelpolyError, one_line
 # at once, not when a signal comes: a Ctrl-C while a command imports fileio must find it whole
-from .fileio import (atomic_write_text, check_not_input, check_output, committed_together, forget_inputs,
+from .fileio import (atomic_write_text, check_not_input, check_output, committed_together, forget_inputs, same_file,
                      forget_interrupt, interrupted, interruption, note_interrupt, protect_input, raise_if_interrupted)
 
 __all__ = ["main", "build_parser"]
@@ -590,6 +590,21 @@ def _check_outputs(args) -> None:
     protect_input(file)
     for attr, option in OUTPUT_OPTIONS:
         check_not_input(getattr(args, attr, None), file, option)
+    _distinct_outputs(args)
+
+
+def _distinct_outputs(args) -> None:
+    """No two output options name one file: ``velpoly sweep --csv c.svg -o c.svg`` wrote the plot over the
+    CSV and exited 0, the CSV lost. The same path (after symbolic links) or the same existing file (a hard
+    link) is exit 2 naming both options; a FIFO or a device takes both (each is written through)."""
+    given = [(option, getattr(args, attr, None)) for attr, option in OUTPUT_OPTIONS if getattr(args, attr, None)]
+    for i, (option, out) in enumerate(given):
+        if Path(out).exists() and not Path(out).is_file():
+            continue
+        for first, other in given[:i]:
+            if os.path.realpath(out) == os.path.realpath(other) or same_file(out, other):
+                raise InputError(f"{first} and {option} name the same file {str(out)!r}: each output is a file "
+                                 f"of its own", where=option, hint=f"give {option} another file name")
 
 
 def main(argv=None) -> int:
@@ -640,13 +655,40 @@ def _interruption(e: BaseException | None):
     return interruption()
 
 
-def _main(argv) -> int:
-    parser = build_parser()
-    args = parser.parse_args(argv)
-    args.program = argv is None   # the velpoly program itself, not cli.main([...]) from Python
-    if not args.command:
+def _arguments(parser, argv):
+    """The parsed arguments, or the exit status 2 of no command (the help printed). Help and ``--version``
+    exit as argparse makes them (SystemExit 0; a wrong option, 2 with its usage on standard error), but what
+    argparse prints on standard output goes through :class:`_Stdout` and is flushed here: argparse swallows a
+    failed write (``velpoly --help > /dev/full`` exited 0), which FORMAT.md section 3 makes exit 2, ``cannot
+    write standard output: REASON``, as for any command's output."""
+    stdout, sys.stdout = sys.stdout, _Stdout(sys.stdout)
+    try:
+        try:
+            args = parser.parse_args(argv)
+        except SystemExit:
+            sys.stdout.flush()
+            raise
+        if args.command:
+            return args
         parser.print_help()
+        sys.stdout.flush()
         return 2
+    except StdoutError as e:
+        _silence_stdout()
+        print(f"error: {e.line()}\nhint: {e.hint_line()}", file=sys.stderr)
+        return 2
+    except BrokenPipeError:   # the reader went away (velpoly --help | head -1): not an error
+        _silence_stdout()
+        return 0
+    finally:
+        sys.stdout = stdout
+
+
+def _main(argv) -> int:
+    args = _arguments(build_parser(), argv)
+    if isinstance(args, int):
+        return args
+    args.program = argv is None   # the velpoly program itself, not cli.main([...]) from Python
     for stream in (sys.stdout, sys.stderr):  # a title in any script prints on any terminal
         try:
             stream.reconfigure(errors="backslashreplace")
@@ -712,7 +754,8 @@ def _explain(e: VelpolyError, args) -> None:
         if e.where == "angle":   # the API's argument: the hint about the option applies
             e.hint = ""
         e.where = "--angle"
-    if file and e.where and "(line " not in e.where and e.file == file:
+    if file and e.where and "(line " not in e.where and e.file == file and os.path.isfile(file):
+        # the file read again for the entry's line: a regular file only (a FIFO read again waits for ever)
         from .loader import locate
         try:
             line = locate(Path(file).read_text(encoding="utf-8"), e.where)

@@ -22,7 +22,7 @@ from .reference import Quantity, compare, evaluate, parse_key
 from .rigid import point_acceleration, point_velocity
 from .tables import ZERO, Table, coordinates, fmt, magnitude_angle, magnitude_direction, zero_floor
 
-__all__ = ["Graphical", "Comparison", "comparison", "HEADER", "Value", "polygon_values", "kind_scales", "key_floor"]
+__all__ = ["Graphical", "Comparison", "comparison", "HEADER", "Value", "polygon_values", "kind_scales", "kind_floor", "key_floor"]
 
 
 # -- graphical values ----------------------------------------------------------------------------
@@ -136,7 +136,15 @@ def key_floor(m, key: str, scales: dict) -> float:
         q = Quantity(key.split("_", 1)[0], links=(key.split("_", 1)[1],))
     else:
         q = _key_kind(m, key)
-    return ZERO if q.kind == "theta" else zero_floor([_scale_of(q, scales)])
+    return kind_floor(scales, q.kind)
+
+
+def kind_floor(scales: dict, kind: str) -> float:
+    """Below what a value of ``kind`` (``omega``, ``alpha``, ``V``, ``A``, ``P``, a reference's ``VP``, ``AP``,
+    ``R``; ``theta`` a link angle) prints as 0: a billionth of the largest value of its kind in the mechanism
+    (``scales``, :func:`kind_scales`), at most ZERO (:func:`velpoly.tables.zero_floor`); a link angle's, ZERO.
+    Every table of a Solution reads this, ``velpoly solve``'s and the drawn sheets' alike."""
+    return ZERO if kind == "theta" else zero_floor([_scale_of(kind, scales)])
 
 
 def _graphical_shown(row, q: Quantity, g):
@@ -167,8 +175,8 @@ def kind_scales(sol) -> dict:
             "P": size}
 
 
-def _scale_of(q: Quantity, scales: dict) -> float:
-    kind = {"VP": "V", "AP": "A", "R": "P", "theta": "P"}.get(q.kind, q.kind)
+def _scale_of(kind: str, scales: dict) -> float:
+    kind = {"VP": "V", "AP": "A", "R": "P", "theta": "P"}.get(kind, kind)
     return scales.get(kind, 1.0)
 
 
@@ -237,7 +245,7 @@ def comparison(sol) -> Comparison:
             ref = f"[{note_no[r.note]}]"
         rows.append((r.key, _show(r.printed, kind, 0.0), _show(gv, kind, floor), _show(r.computed, kind, floor),
                      _book_deviation(r),
-                     _difference(gv, r.computed, _scale_of(q, scales), polar=q.kind != "P"), ref))
+                     _difference(gv, r.computed, _scale_of(q.kind, scales), polar=q.kind != "P"), ref))
         values.append((r.key, r.printed, gv, r.computed))
     title = "Book, graphical and analytic values" + (f" ({m.reference.source})" if m.reference.source else "")
     table = Table(title, HEADER, tuple(rows))
@@ -251,8 +259,8 @@ def _results(sol, g: Graphical, scales: dict) -> Comparison:
     rows, values = [], []
 
     def add(key, graphical, analytic):
-        scale = scales[key.split("_", 1)[0]]
-        floor = zero_floor([scale])   # a column's rounding noise prints 0, a slow mechanism's values as they are
+        kind = key.split("_", 1)[0]
+        scale, floor = scales[kind], kind_floor(scales, kind)   # rounding noise prints 0, a slow mechanism's values as they are
         rows.append((key, "-", _show(graphical, "", floor), _show(analytic, "", floor), "-",
                      _difference(graphical, analytic, scale), ""))
         values.append((key, None, graphical, analytic))

@@ -26,6 +26,7 @@ from __future__ import annotations
 
 import contextlib
 import os
+import shutil
 import stat
 import tempfile
 from pathlib import Path
@@ -175,10 +176,7 @@ def atomic_path(target):
     except OSError as e:
         raise cannot_write(target, e) from None
     if _special(target, st):
-        try:
-            yield target
-        except OSError as e:
-            raise cannot_write(target, e) from None
+        yield from _through(target)
         return
     if target.is_symlink():   # replace the file the link names, not the link
         target = Path(os.path.realpath(target))
@@ -207,6 +205,28 @@ def atomic_path(target):
         with contextlib.suppress(OSError):
             os.unlink(tmp)
         raise
+
+
+def _through(target: Path):
+    """:func:`atomic_path` for a FIFO, a device or a terminal: written straight through, never replaced, from
+    a temporary file complete before the first byte goes out. A writer that seeks (a multi-page PDF: the
+    ``--steps`` sheets', an animation's) cannot seek in a FIFO or a pipe, and a command that fails sends the
+    reader nothing partial."""
+    try:
+        fd, tmp = tempfile.mkstemp(prefix="velpoly-", suffix=target.suffix + ".part")
+    except OSError as e:
+        raise cannot_write(target, e) from None
+    os.close(fd)
+    try:
+        yield Path(tmp)
+        raise_if_interrupted()
+        with open(tmp, "rb") as src, open(target, "wb") as out:
+            shutil.copyfileobj(src, out)
+    except OSError as e:
+        raise cannot_write(target, e) from None
+    finally:
+        with contextlib.suppress(OSError):
+            os.unlink(tmp)
 
 
 @contextlib.contextmanager

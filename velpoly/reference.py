@@ -364,7 +364,9 @@ def _row(key, printed, value, note):
                 pm, pa = -pm, pa + 180.0
             return Row(key, (pm, pa % 360.0), (mag, ang % 360.0), _rel(pm, mag),
                        _angle_diff(pa, ang) if mag > 0 else None, note)
-        return Row(key, float(printed), mag, _rel(float(printed), mag), None, note)
+        # a bare magnitude: a negative one reverses the vector (as [magnitude, direction]'s), whose magnitude
+        # it still is (a book's V_B = -53.1, against the direction it assumed)
+        return Row(key, float(printed), mag, _rel(abs(float(printed)), mag), None, note)
     value = float(value)
     if key.startswith("theta"):
         return Row(key, float(printed), value, None, _angle_diff(float(printed), value), note)

@@ -15,10 +15,10 @@ import math
 
 import numpy as np
 
-from .compare import key_floor, kind_scales, polygon_values
+from .compare import key_floor, kind_floor, kind_scales, polygon_values
 from .driver import driver_label
 from .names import direction, key_text, place, relative
-from .tables import Table, angle, coordinates, fmt, magnitude_angle, zero_floor, magnitude_direction, polar, render_table   # re-exported: the tables' primitives
+from .tables import Table, angle, coordinates, fmt, magnitude_angle, zero_floor, magnitude_direction, polar, render_table, tex_text   # re-exported: the tables' primitives
 from .reference import at_file_pose, compare, file_pose_angle
 
 __all__ = ["Table", "render_table", "solution_tables", "solution_report", "fmt", "polar", "magnitude_direction", "poles_tables", "polygon_tables",
@@ -26,9 +26,18 @@ __all__ = ["Table", "render_table", "solution_tables", "solution_report", "fmt",
            "cycle_columns", "cycle_csv", "moving_keys", "summary_table", "summary_text"]
 
 
+def _floors(sol, *kinds) -> list[float]:
+    """Below what a value of each kind prints as 0 (:func:`velpoly.compare.kind_floor`, as the drawn tables):
+    a billionth of the largest of its kind in the mechanism (alpha at least omega^2, an acceleration at least
+    speed^2 / size), at most 1e-9. A column's own largest value would not do: a parallelogram's alphas at a
+    constant omega are all rounding noise (2.2e-14), and printed as values."""
+    scales = kind_scales(sol)
+    return [kind_floor(scales, k) for k in kinds]
+
+
 def _links(sol) -> Table:
     rows = []
-    zw, za = zero_floor(sol.omega.values()), zero_floor(sol.alpha.values())   # a column's rounding noise prints 0
+    zw, za = _floors(sol, "omega", "alpha")   # rounding noise prints 0, a slow mechanism's values as they are
     for k in sol.mechanism.links:
         rows.append((k.name + (" (frame)" if k.frame else ""), angle(sol.angle[k.name]),
                      fmt(sol.omega[k.name], floor=zw), fmt(sol.alpha[k.name], floor=za)))
@@ -70,7 +79,7 @@ def on_links(links) -> str:
 def _points(sol) -> Table:
     rows = []
     pinned = pinned_keys(sol.mechanism)
-    zp, zv, za = (zero_floor(d.values()) for d in (sol.position, sol.velocity, sol.acceleration))
+    zp, zv, za = _floors(sol, "P", "V", "A")
     for key, p in sol.position.items():
         if key in pinned and pinned[key] is None:
             continue   # shown with the first key of its pinned group
@@ -85,7 +94,7 @@ def _joints(sol) -> list[Table]:
     m = sol.mechanism
     mo = sol.motion
     out = []
-    zv, za = zero_floor(sol.velocity.values()), zero_floor(sol.acceleration.values())   # as the points table
+    zv, za = _floors(sol, "V", "A")   # as the points table
     if m.sliders:
         out.append(Table("Sliders", ("block on guide", "point", "slip velocity", "slip acceleration", "Coriolis"),
                          tuple((f"{s.block} on {s.guide}", s.point, fmt(r["slip_velocity"][0], floor=zv),
@@ -232,8 +241,7 @@ def polygon_tables(sol) -> list[Table]:
         h = hd[poly.kind]
         rname, pname = ("omega", "V") if vel else ("alpha", "A")
         rates, points = polygon_values(sol, poly)
-        zr = zero_floor(v.analytic for v in rates)   # each column's rounding noise prints 0, as in the tables above
-        zp = zero_floor(v.analytic for v in points)
+        zr, zp = _floors(sol, rname, pname)   # as in the tables above
         rows = []
         for v in rates:
             lo, hi = h["omega" if vel else "alpha"][v.key]
@@ -298,9 +306,11 @@ def solution_html(sol) -> str:
 
 def solution_report(sol, style: str = "text") -> str:
     """The whole readable report of ``velpoly solve``."""
-    out = "\n".join(_head(sol)) + "\n\n" + "\n".join(render_table(t, style) for t in solution_tables(sol))
+    def line(text):   # a LaTeX report's lines are text typeset as written, each a paragraph
+        return tex_text(text) + r"\par" if style == "latex" else text
+    out = "\n".join(map(line, _head(sol))) + "\n\n" + "\n".join(render_table(t, style) for t in solution_tables(sol))
     for w in sol.warnings:
-        out += f"\nwarning: {w}\n"
+        out += "\n" + line(f"warning: {w}") + "\n"
     return out
 
 

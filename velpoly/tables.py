@@ -19,7 +19,8 @@ from .names import polar as _angle_text
 
 ZERO = 1e-9   # below this a value of order one prints as 0: rounding noise (fmt)
 
-__all__ = ["Table", "fmt", "zero_floor", "angle", "polar", "magnitude_angle", "coordinates", "magnitude_direction", "render_table"]
+__all__ = ["Table", "fmt", "zero_floor", "angle", "polar", "magnitude_angle", "coordinates", "magnitude_direction", "render_table",
+           "tex_text"]
 
 
 @dataclass(frozen=True)
@@ -103,6 +104,21 @@ def coordinates(p, floor: float = ZERO) -> str:
     return f"({fmt(p[0], floor=floor)}, {fmt(p[1], floor=floor)})"
 
 
+_TEX = {"\\": r"\textbackslash{}", "&": r"\&", "%": r"\%", "$": r"\$", "#": r"\#", "_": r"\_", "{": r"\{",
+        "}": r"\}", "~": r"\textasciitilde{}", "^": r"\^{}", "|": r"\textbar{}", "<": r"\textless{}",
+        ">": r"\textgreater{}", "∠": r"$\angle$", "°": r"$^\circ$"}
+
+
+def tex_text(s) -> str:
+    r"""Text as LaTeX typesets it as written, in one pass (a replacement never escapes another's output): TeX's
+    special characters escaped, ∠ and ° as math.
+
+    >>> print(tex_text("V_B: 12.5 ∠ 30.000°, rad/s^2, $c$ {r} 50%"))
+    V\_B: 12.5 $\angle$ 30.000$^\circ$, rad/s\^{}2, \$c\$ \{r\} 50\%
+    """
+    return "".join(_TEX.get(c, c) for c in str(s))
+
+
 def render_table(t: Table, style: str = "text") -> str:
     """A table as ``text`` (aligned columns), ``markdown``, ``latex`` or ``csv``."""
     if style == "csv":
@@ -119,15 +135,10 @@ def render_table(t: Table, style: str = "text") -> str:
         lines += ["| " + " | ".join(map(esc, r)) + " |" for r in t.rows]
         return "\n".join(lines) + "\n"
     if style == "latex":
-        def tex(s):
-            s = str(s)
-            for a, b in (("\\", r"\textbackslash{}"), ("&", r"\&"), ("%", r"\%"), ("_", r"\_"), ("#", r"\#"),
-                         ("∠", r"$\angle$"), ("°", r"$^\circ$"), ("^", r"\^{}")):
-                s = s.replace(a, b)
-            return s
         cols = "l" * len(t.header)
-        lines = [r"\begin{tabular}{" + cols + "}", r"\hline", " & ".join(map(tex, t.header)) + r" \\", r"\hline"]
-        lines += [" & ".join(map(tex, r)) + r" \\" for r in t.rows]
+        lines = [r"\noindent\textbf{" + tex_text(t.title) + r"}\par", r"\begin{tabular}{" + cols + "}", r"\hline",
+                 " & ".join(map(tex_text, t.header)) + r" \\", r"\hline"]
+        lines += [" & ".join(map(tex_text, r)) + r" \\" for r in t.rows]
         lines += [r"\hline", r"\end{tabular}"]
         return "\n".join(lines) + "\n"
     widths = [max(len(str(x)) for x in col) for col in zip(t.header, *t.rows)]

@@ -4,6 +4,7 @@ from __future__ import annotations
 
 import os
 import re
+import stat
 import tomllib
 from pathlib import Path
 from typing import Mapping
@@ -19,6 +20,7 @@ from .toml_positions import deep_entry, unclosed
 __all__ = ["load", "loads", "MAX_DEPTH"]
 
 MAX_DEPTH = 32   # levels of tables and lists: a mechanism file nests 4 or 5 at most
+MAX_BYTES = 16 * 2 ** 20   # a mechanism file is a few kB: a larger one (or a device without end) is none
 
 
 def load(source, *, name: str | None = None) -> Mechanism:
@@ -52,9 +54,20 @@ def load(source, *, name: str | None = None) -> Mechanism:
 
 
 def _read_file(path: Path, source, file: str) -> str:
-    """The file's text (without a byte-order mark); an InputError if it cannot be read as UTF-8 text."""
+    """The file's text (without a byte-order mark); an InputError if it cannot be read as UTF-8 text, or if it
+    is larger than MAX_BYTES (read no further: ``velpoly solve /dev/zero`` read without end until the system
+    killed it)."""
     try:
-        text = path.read_text(encoding="utf-8")
+        st = path.stat()
+        if stat.S_ISREG(st.st_mode) and st.st_size <= MAX_BYTES:
+            text = path.read_text(encoding="utf-8")
+        else:   # a FIFO, a device, a large file: read no more than the bound
+            with open(path, "rb") as f:
+                data = f.read(MAX_BYTES + 1)
+            if len(data) > MAX_BYTES:
+                raise InputError(f"larger than {MAX_BYTES // 2 ** 20} MB: not a mechanism file", file=file,
+                                 hint="a mechanism file is TOML text of a few kB: check the path")
+            text = data.decode("utf-8").replace("\r\n", "\n").replace("\r", "\n")   # newlines as read_text's
     except FileNotFoundError:
         if isinstance(source, str) and _looks_like_toml(source):
             raise InputError("no such file: this is TOML text, not a file's name", file=file,

@@ -635,12 +635,25 @@ class _Drawing:
                     + (0.1 if g % 90 == 0 else 0))
 
         g = max((-90.0, 0.0, 180.0, 90.0, -45.0, -135.0, 45.0, 135.0), key=score)
-        u, n, base, tri, _ = shape(g)
+        u, n, base, tri, whole = shape(g)
         # over the link bodies: a pivot inside a plate or a cam disc keeps its ground in sight
-        self.patch(tri, "ground", 2.9, self.st.paper, lw=self.st.link_lw)
+        z, exempt = self.ground_layer(p, links, whole)
+        self.patch(tri, "ground", z, self.st.paper, lw=self.st.link_lw)
         self.pl.add_obstacle(tri)
-        self.hatch(base + n * HATCH * pc, base - n * HATCH * pc, u, zorder=2.9, exempt=links)
+        self.hatch(base + n * HATCH * pc, base - n * HATCH * pc, u, zorder=z, exempt=exempt)
         return g
+
+    def ground_layer(self, p, links, ground) -> tuple[float, set]:
+        """A pivot's ground's zorder and the links its hatching may cross, so that every frame pivot shows its
+        ground. It lies over the link bodies (2.9), and over the driver's too (3.3, drawn over the links it
+        drives) where the driver's body would hide it: a quarter or more of the ground (pedestal and hatching)
+        inside it, as a cam's or a gear's disc about its own pivot. Its hatching keeps off other links' bodies,
+        but for those the pivot lies in (a pinion's pivot inside its internal gear's disc), which it cannot
+        keep off."""
+        drv = None if self.m.driver.is_slider else self.m.driver.link
+        body = self.geoms.get(drv) if drv in links and drv not in self.slotted else None
+        z = 3.35 if body is not None and body.intersection(ground).area >= 0.25 * ground.area else 2.9
+        return z, set(links) | {lk for lk, g in self.geoms.items() if g.contains(Point(*p))}
 
     # -- sliders, slots, contacts --------------------------------------------------------
     def _path_segment(self, p, d, half):

@@ -22,8 +22,9 @@ import numpy as np
 
 from ..names import NAME, driver_index, key_text, link_of, polar, quantity_math, unit, vector_direction
 from ..names import direction as fmt_direction
-from ..compare import Value, polygon_values
+from ..compare import Value, key_floor, kind_floor, kind_scales, polygon_values
 from ..report import Table, fmt
+from ..tables import ZERO
 from .canvas import Artists, equation_tex, get_ax, literal, renderer_of
 from .style import get_style
 from .textcache import kept_layout
@@ -34,10 +35,11 @@ __all__ = ["results_table", "draw_results_table", "given_table", "cuts_the_book"
 _SUPERSCRIPT = str.maketrans("-0123456789", "⁻⁰¹²³⁴⁵⁶⁷⁸⁹")
 
 
-def _fmt(x, digits=5) -> str:
+def _fmt(x, digits=5, floor=ZERO) -> str:
     """A number as a table prints it: ``digits`` significant digits, a minus sign (not a hyphen), no
-    computer exponent: 1e+05 -> 100000, 1.3655e+05 -> 136550, 2.5e-09 -> 2.5×10⁻⁹."""
-    s = fmt(x, digits)
+    computer exponent: 1e+05 -> 100000, 1.3655e+05 -> 136550, 2.5e-09 -> 2.5×10⁻⁹; 0 below ``floor``
+    (:func:`velpoly.compare.kind_floor`: a billionth of the largest value of its kind, as ``velpoly solve``)."""
+    s = fmt(x, digits, floor)
     if "e" in s:
         mant, _, e = s.partition("e")
         e = int(e)
@@ -50,14 +52,12 @@ def _fmt(x, digits=5) -> str:
     return s.replace("-", "−")
 
 
-def _vec(v, digits=5) -> str:
+def _vec(v, floor=ZERO, digits=5) -> str:
     v = np.asarray(v, float)
     if not np.all(np.isfinite(v)):
         return "–"
-    mag = float(np.hypot(*v))
-    if mag == 0:
-        return "0"
-    return polar(_fmt(mag, digits), vector_direction(v))
+    mag = _fmt(float(np.hypot(*v)), digits, floor)
+    return "0" if mag == "0" else polar(mag, vector_direction(v))
 
 
 def _q(symbol: str, index: str, unit: str = "") -> str:
@@ -148,8 +148,8 @@ def _math(cell: str) -> str:
     return (body[:1] + bar + body[1:-1] + bar2 + body[-1:]) + literal(rest)
 
 
-def _num(x, digits=5) -> str:
-    return "–" if x is None else _fmt(x, digits)
+def _num(x, floor=ZERO, digits=5) -> str:
+    return "–" if x is None else _fmt(x, digits, floor)
 
 
 NOTED = "†"   # marks a deviation that the file's [reference] note explains (a misprint, a rounded value)
@@ -180,11 +180,11 @@ def _printed(row) -> str:
     if row is None:
         return ""
     v = row.printed
-    if isinstance(v, tuple):
+    if isinstance(v, tuple):   # the book's value as printed, however small (velpoly.compare's book column)
         if row.key.startswith("P"):
-            return f"({_fmt(v[0], 5)}, {_fmt(v[1], 5)})"
-        return polar(_fmt(v[0], 5), v[1])
-    return _num(v)
+            return f"({_fmt(v[0], 5, 0.0)}, {_fmt(v[1], 5, 0.0)})"
+        return polar(_fmt(v[0], 5, 0.0), v[1])
+    return _num(v, 0.0)
 
 
 class _Rows:
@@ -208,6 +208,12 @@ class _Rows:
             from ..polygons import hand_drafting
             self.hd = hand_drafting(sol)
         self.pinned = pinned_keys(self.m)   # a point of links pinned together: one row "V_B (on 2 and 3)"
+        self.scales = kind_scales(sol)
+
+    def floor(self, kind: str) -> float:
+        """Below what a value of ``kind`` prints as 0, as in ``velpoly solve``'s tables
+        (:func:`velpoly.compare.kind_floor`)."""
+        return kind_floor(self.scales, kind)
 
     def add(self, row, r) -> None:
         self.rows.append(row + (_printed(r), _dev(r)))
@@ -226,7 +232,8 @@ class _Rows:
         lo, hi = self.hd[level][table][key]
         if lo == hi:
             return "exact"
-        return f"{_num(lo, 4)} … {_num(hi, 4)}"
+        floor = self.floor({"speed": "V", "magnitude": "A"}.get(table, table))
+        return f"{_num(lo, floor, 4)} … {_num(hi, floor, 4)}"
 
     def spelt(self, key) -> list[str]:
         """The ways a reference names the point key: B, B@3 as B3, and a pinned pair by either link."""
@@ -257,30 +264,33 @@ def _rate_rows(t: _Rows, level: str, poly) -> None:
     # each rate graphical beside analytic (velpoly.compare); the poles sheet's omegas without a polygon
     values = (polygon_values(sol, poly)[0] if poly is not None else
               [Value(k.name, None, rate[k.name]) for k in t.m.moving_links])
+    floor = t.floor(name)
     for v in values:
         lk, g = v.key, v.graphical
         r = t.ref_for(f"{name}_{lk}")
-        if abs(v.analytic) <= 1e-12 and (g is None or abs(g) <= 1e-12) and r is None:
+        if _num(v.analytic, floor) == "0" and (g is None or _num(g, floor) == "0") and r is None:
             continue   # a translating link (a block on a fixed guide): nothing to show
-        ic = (_num(t.ic["omega"][lk]) if t.ic else "") if level == "velocity" else ""
-        t.add((_q(sym, lk, unit_), "" if g is None else _num(g), t.drafted(level, name, lk), _num(v.analytic), ic), r)
+        ic = (_num(t.ic["omega"][lk], floor) if t.ic else "") if level == "velocity" else ""
+        t.add((_q(sym, lk, unit_), "" if g is None else _num(g, floor), t.drafted(level, name, lk),
+               _num(v.analytic, floor), ic), r)
 
 
 def _point_rows(t: _Rows, level: str, poly) -> None:
     """V (A) of each point the polygon images, read off it, beside the analytic value."""
     vel = level == "velocity"
+    floor = t.floor("V" if vel else "A")
     for pv in polygon_values(t.sol, poly)[1]:
         key, v = pv.key, pv.analytic
         if v is None or not np.all(np.isfinite(v)) or float(np.hypot(*v)) == 0 or not t.shown(key):
             continue
         if vel:
             r = t.ref_for(*(k for name in t.spelt(key) for k in (f"V_{name}", f"|V_{name}|")))
-            ic = _vec(t.ic["velocity"][key]) if t.ic and key in t.ic["velocity"] else ""
+            ic = _vec(t.ic["velocity"][key], floor) if t.ic and key in t.ic["velocity"] else ""
         else:
             r = t.ref_for(*(f"A_{name}" for name in t.spelt(key)))
             ic = ""
-        t.add((t.point_label("V" if vel else "A", key), _vec(pv.graphical),
-               t.drafted(level, "speed" if vel else "magnitude", key), _vec(v), ic), r)
+        t.add((t.point_label("V" if vel else "A", key), _vec(pv.graphical, floor),
+               t.drafted(level, "speed" if vel else "magnitude", key), _vec(v, floor), ic), r)
 
 
 def _pole_rows(t: _Rows, poleset) -> None:
@@ -289,7 +299,8 @@ def _pole_rows(t: _Rows, poleset) -> None:
     for p in sorted((p for p in poleset.poles.values() if p.order > 0), key=lambda p: p.order):
         pos, direction = relative_pole(t.sol, *p.links)
         r = t.ref_for(f"P_{p.links[0]}{p.links[1]}", f"P{p.links[0]}{p.links[1]}")
-        t.add((_pole(p.links) + f"  ({p.order})", _where(p.position, p.direction), "", _where(pos, direction), ""), r)
+        t.add((_pole(p.links) + f"  ({p.order})", _where(p.position, p.direction, t.floor("P")), "",
+               _where(pos, direction, t.floor("P")), ""), r)
 
 
 def _other_rows(t: _Rows) -> None:
@@ -299,10 +310,10 @@ def _other_rows(t: _Rows) -> None:
     for key, r in t.refs.items():
         if key in t.used or not key.startswith(related):
             continue
-        comp = r.computed
+        comp, floor = r.computed, key_floor(t.m, key, t.scales)
         shown = "at infinity" if comp is None else (
-            polar(_fmt(comp[0], 5), comp[1]) if isinstance(comp, tuple) and not key.startswith("P")
-            else (f"({_fmt(comp[0], 5)}, {_fmt(comp[1], 5)})" if isinstance(comp, tuple) else _num(comp)))
+            polar(_fmt(comp[0], 5, floor), comp[1]) if isinstance(comp, tuple) and not key.startswith("P")
+            else (_where(comp, None, floor) if isinstance(comp, tuple) else _num(comp, floor)))
         t.add((_key(key, t.m), "", "", shown, ""), r)
 
 
@@ -373,7 +384,7 @@ def _link_lengths(sol) -> list[tuple[str, str]]:
 
     def at(p, link):
         return np.asarray(pos.get(f"{p}@{link}", pos.get(p, m.position(p))), float)
-    rows = []
+    rows, floor = [], kind_floor(kind_scales(sol), "P")
     for link in m.moving_links:
         ps = [p for p in dict.fromkeys(link.points) if (p, link.name) not in sliding]
         if len(ps) <= 4:
@@ -382,7 +393,7 @@ def _link_lengths(sol) -> list[tuple[str, str]]:
             pairs = list(zip(ps, ps[1:] + ps[:1]))
         for a, b in pairs:
             d = float(np.hypot(*(at(b, link.name) - at(a, link.name))))
-            rows.append((f"{a}{b} (link {link.name})", f"{_fmt(d, 5)} {m.units}".rstrip()))
+            rows.append((f"{a}{b} (link {link.name})", f"{_fmt(d, 5, floor)} {m.units}".rstrip()))
     return rows
 
 
@@ -400,28 +411,28 @@ def given_table(sol) -> Table:
     rows = []
     if drv.is_slider:
         index = driver_index(m)   # the slip V_A₃/A₄ along a moving guide's path, V_A along the frame's
-        rows.append((_q("V", index), f"{_fmt(abs(drv.speed), 5)} {unit(m.units, 1)}"))
-        rows.append((_q("A", index), f"{_fmt(drv.accel, 5)} {unit(m.units, 2)}"))
+        rows.append((_q("V", index), f"{_fmt(abs(drv.speed), 5, 0.0)} {unit(m.units, 1)}"))
+        rows.append((_q("A", index), f"{_fmt(drv.accel, 5, 0.0)} {unit(m.units, 2)}"))
     else:
         lk = drv.link
         if sol.driver_angle is not None:
             rows.append((_q(r"\theta", lk), f"{_fmt(sol.driver_angle, 5)}°"))
 
         def sense(x):   # as the space diagram writes it: a magnitude and its sense
-            return _fmt(abs(x), 5) + ("" if x == 0 else (" ccw" if x > 0 else " cw"))
+            return _fmt(abs(x), 5, 0.0) + ("" if x == 0 else (" ccw" if x > 0 else " cw"))
         rows.append((_q(r"\omega", lk, "rad/s"), sense(drv.omega)))
         rows.append((_q(r"\alpha", lk, "rad/s²"), sense(drv.alpha)))
     for p in m.frame.points:
         x, y = np.asarray(sol.position.get(f"{p}@{m.frame.name}", sol.position.get(p, m.position(p))), float)
-        rows.append((f"{p} (frame)", f"({_fmt(x, 5)}, {_fmt(y, 5)})" + (f" {m.units}" if m.units else "")))
+        rows.append((f"{p} (frame)", _where((x, y), None, kind_floor(kind_scales(sol), "P")) + (f" {m.units}" if m.units else "")))
     rows += _link_lengths(sol)
     return Table("Given data", ("quantity", "value"), tuple(rows))
 
 
-def _where(pos, direction) -> str:
+def _where(pos, direction, floor=ZERO) -> str:
     if pos is None:
         return "undefined" if direction is None else f"∞ at {fmt_direction(direction)}°"
-    return f"({_fmt(pos[0], 5)}, {_fmt(pos[1], 5)})"
+    return f"({_fmt(pos[0], 5, floor)}, {_fmt(pos[1], 5, floor)})"
 
 
 _WIDTHS: dict = {}   # measured widths of the table's texts (points), by font, size and text: they never change
