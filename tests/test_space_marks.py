@@ -205,3 +205,21 @@ def test_point_labels_off_other_links(kind, variant, seed, style):
     sol = zoo.specimen(np.random.default_rng(seed), kind, variant).drawn
     ax, art = _draw(sol, style)
     assert point_faults(sol, ax, art) == []
+
+
+# the crank-shaper class (six-bar quick-return crank: crank 2 pinned at A to block 3 in the slotted lever 4, drawn as a
+# plate O4 B A): the short crank's number beside it, nearer it than the lever's plate or the rod. On main b313165 the
+# driver's values took the places beside the crank first and number 2 stood nearer the lever or the rod (and the
+# example crank_shaper's poles sheet in slides put it on the lever's plate by the lever's 4); now, where a number reads
+# as another link's, the numbers' places found with the driver's arrows alone are kept first and the values keep off
+# them (displacement._Drawing.marks)
+SHAPER_CASES = [(5, "textbook"), (11, "slides"), (24, "textbook")]
+
+
+@pytest.mark.parametrize("seed, style", SHAPER_CASES)
+def test_crank_number_by_its_crank(seed, style):
+    sol = zoo.specimen(np.random.default_rng(seed), "six-bar", "quick-return crank").drawn
+    assert len(sol.mechanism.link("4").points) == 3   # the lever a plate, the crank's pin A in it
+    ax, art = _draw(sol, style)
+    assert number_faults(sol, ax, art) == []
+    assert driver_faults(sol, ax, art, style) == []

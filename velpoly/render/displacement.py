@@ -413,6 +413,7 @@ class _Drawing:
         self.guide_bars: dict = {}       # moving guide -> its slotted bar (in a plate: the part a block's number
         #                                  keeps off; the rest of the plate it may stand on, beside its block)
         self.reserved: list = []         # the point labels' boxes in a clear field (:meth:`marks`)
+        self.plan: int | None = None     # the driver's layout chosen (:meth:`turning_driver`), drawn again the same
         self.bare = not self.pl.soft     # nothing drawn in the panel before (a poles sheet's Kennedy lines are)
 
     # -- pieces ------------------------------------------------------------------------
@@ -954,13 +955,37 @@ class _Drawing:
 
     def marks(self, ground_dir, geoms):
         """The driver's arrows and values, the link numbers, then the point labels: the labels come last, so
-        their places in a clear field are found first (:attr:`reserved`), and the driver's values keep off them."""
+        their places in a clear field are found first (:attr:`reserved`), and the driver's values keep off them.
+        Where a link number then reads as another link's (:meth:`owned`: the values took the places by its short
+        crank), the places the numbers find with the driver's arrows alone drawn are found first too, and the values
+        keep off those that read as their links' (a value has more room by its arrow than a number by its link)."""
         labelled = self.opts.label_points is None or self.opts.label_points
         if labelled and self.bare:   # (on a poles sheet the poles' labels, placed after, need that room too)
             with self.pl.trial():
                 self.reserved = self.point_labels(record=False)
-        self.driver(ground_dir)          # before the link numbers, which then keep clear of its arrow
-        self.link_numbers(geoms)
+        drawn = {role: list(v) for role, v in self.art.items()}
+        with self.pl.trial():
+            self.driver(ground_dir)      # before the link numbers, which then keep clear of its arrow
+            astray = _astray(self.link_numbers(geoms))
+            self.pl.keep = not astray
+        if not astray:
+            return self.point_labels() if labelled else None
+        self.art.clear()
+        self.art.update(drawn)
+        points = self.reserved
+        with self.pl.trial():
+            self.driver(ground_dir, values=False)
+            first = self.link_numbers(geoms, record=False)
+        with self.pl.trial():            # kept where fewer numbers read as another link's
+            self.reserved = points + [b for b, ok in first.values() if ok]
+            self.driver(ground_dir)
+            self.reserved = points
+            better = self.pl.keep = len(_astray(self.link_numbers(geoms))) < len(astray)
+        if not better:
+            self.art.clear()
+            self.art.update(drawn)
+            self.driver(ground_dir)
+            self.link_numbers(geoms)
         if labelled:
             self.point_labels()
 
@@ -1076,12 +1101,14 @@ class _Drawing:
         t.remove()
         return max(bb.width, bb.height) / 2 / self.ax.figure.dpi * 72 * self.pp
 
-    def link_numbers(self, geoms):
+    def link_numbers(self, geoms, record: bool = True) -> dict:
         """Every moving link's number beside or on its own link: a bar's beside its middle, a plate's inside it, a
         block's beside it; each nearer its own link than any other, with nothing between (:meth:`owned`), where
-        any such place is free; else where it was placed before that rule."""
+        any such place is free; else where it was placed before that rule. Returns link -> (its number's box with
+        its margin and leader, whether it reads as its link's there) (``record``: kept as the drawing's numbers)."""
+        out = {}
         if self.opts.link_numbers == "none":
-            return
+            return out
         sol, m = self.sol, self.m
         centre = np.mean(np.array(list(sol.position.values())), axis=0)
         bodies = {**self.block_geom, **geoms}
@@ -1121,7 +1148,13 @@ class _Drawing:
                     t = self._number_beside(lk, bodies, mine, pad, kw, nearest=True)
                 if t is None:
                     t = self._number_last(lk, pts, g, (anchor, mine), prefer, n, pad, kw, test, owned, bodies)
-            self.art.add("link_numbers", t)
+            own = self.pl.of(t)   # (the box it keeps, its margin too: a value in it would send it elsewhere)
+            b = self._number_box(t) if own is None else own.box.union(self._number_box(t))
+            out[lk] = (b if own is None or own.leader_geom is None else b.union(own.leader_geom),
+                       own is None or test(self._number_box(t)))   # its circle, as drawn
+            if record:
+                self.art.add("link_numbers", t)
+        return out
 
     def _number_last(self, lk, pts, g, anchors, prefer, n, pad: float, kw, test, owned: bool, bodies):
         """Link ``lk``'s number where no place off the lines reads as its own: where the first rule's place does not
@@ -1313,21 +1346,22 @@ class _Drawing:
             kept = t if self.pl.keep else None
         return kept
 
-    def driver(self, ground_dir):
+    def driver(self, ground_dir, values: bool = True):
         """The driver's motion: omega (and alpha, when not zero) as curved arrows about its pivot in their
-        senses, each with its value; a slider driver's speed and acceleration as straight arrows."""
+        senses, each with its value; a slider driver's speed and acceleration as straight arrows (``values``
+        False: the arrows alone, not kept as the drawing's)."""
         m = self.m
         if m.driver.is_slider:
-            self.slider_driver()
+            self.slider_driver(values)
             return
         frame = m.frame.name
         pivot = next((pin.point for pin in m.pins if set(pin.links) == {m.driver.link, frame}), None)
         if pivot is None:
             return
         p = np.asarray(self.sol.position.get(pivot, self.sol.place(m.driver.link, pivot)), float)
-        self.turning_driver(pivot, p, ground_dir)
+        self.turning_driver(pivot, p, ground_dir, values)
 
-    def slider_driver(self):
+    def slider_driver(self, values: bool = True):
         """A slider driver's speed beside its block as an arrow along its path in its sense, and its acceleration
         (when not zero) as a double-headed arrow in its sense next to it along the path, each with its value:
         beside the block on the side of the path away from its hatched guide, else farther along the path or
@@ -1359,9 +1393,13 @@ class _Drawing:
         spots = []
         for (a, b, _, side), gid, label_gid, symbol, power in arrows:
             value = drv.speed if power == 1 else drv.accel
-            self.art.add("driver", *self.straight_arrow(a, b, gid, double=power == 2))
+            drawn = self.straight_arrow(a, b, gid, double=power == 2)
+            if values:
+                self.art.add("driver", *drawn)
             away = n if side is base else -n
             spots.append(((a, b), f"{symbol} = {abs(value):.4g} {unit_label(m.units, power)}", label_gid, away))
+        if not values:
+            return
         for (a, b), text, label_gid, away in spots:   # the values once both arrows are drawn: clear of both
             t = self.value((a + b) / 2, text, prefer=math.degrees(math.atan2(away[1], away[0])),
                            fontsize=st.small_size * 1.15, arrow=LineString([tuple(a), tuple(b)]), zorder=7,
@@ -1505,9 +1543,9 @@ class _Drawing:
             plans += [(w, a) for a in rest + [beyond]]
         return plans
 
-    def _draw_driver(self, p, plan, texts, label_kw) -> tuple[list, list]:
-        """omega's arc (alpha's, double-headed) at the places of ``plan``, then their values beside them:
-        (the artists, the labels)."""
+    def _draw_driver(self, p, plan, texts, label_kw, values: bool = True) -> tuple[list, list]:
+        """omega's arc (alpha's, double-headed) at the places of ``plan``, then (with ``values``) their values
+        beside them: (the artists, the labels)."""
         drv = self.m.driver
         arts, labels = [], []
         for place, value, gid, label_gid, text in zip(plan, (drv.omega, drv.alpha), ("driver", "driver-alpha"),
@@ -1515,8 +1553,8 @@ class _Drawing:
             if place is not None:
                 xy = self._arc_points(p, place.rad, place.mid, place.span, 1.0 if value >= 0 else -1.0)
                 arts += self.curved_arrow(xy, gid, double=gid == "driver-alpha")
-        for place, value, label_gid, text in zip(plan, (drv.omega, drv.alpha), ("driver-label", "driver-label-alpha"),
-                                                 texts):
+        for place, value, label_gid, text in zip(plan if values else (), (drv.omega, drv.alpha),
+                                                 ("driver-label", "driver-label-alpha"), texts):
             if place is not None:
                 arc = LineString(self._arc_points(p, place.rad, place.mid, place.span, 1.0 if value >= 0 else -1.0))
                 labels.append(self.value(p + place.rad * _unit(place.mid), text, prefer=place.mid, gid=label_gid,
@@ -1678,7 +1716,7 @@ class _Drawing:
         self.pl.add_obstacle(poly)
         return hd
 
-    def turning_driver(self, pivot, p, ground_dir):
+    def turning_driver(self, pivot, p, ground_dir, values: bool = True):
         """omega's arc in a free gap about the pivot (the widest, unless another reads better), alpha's
         (double-headed) in another free gap or beyond omega's in the same, each in its sense, each labelled
         with its value beside it: of every such layout, the one whose arcs cross nothing (at the radius of
@@ -1700,11 +1738,18 @@ class _Drawing:
         if pin is not None and pin[0] == "plan" and pin[1] < len(plans):   # its values at their pins, another may win)
             k = pin[1]
         else:
-            k = self._best_plan(p, plans, family, texts, label_kw)
+            k = self.plan if self.plan is not None else self._best_plan(p, plans, family, texts, label_kw)
+        self.plan = k
         self.pl.placed["driver-plan"] = ("plan", k)
         best = plans[k]
-        arts, labels = self._draw_driver(p, best, texts, label_kw)
-        self.art.add("driver", *arts, *labels)
+        arts, labels = self._draw_driver(p, best, texts, label_kw, values)
+        if values:
+            self.art.add("driver", *arts, *labels)
+
+
+def _astray(numbers: dict) -> list:
+    """The links whose numbers read as another link's, of :meth:`_Drawing.link_numbers`' answer."""
+    return [lk for lk, (_, ok) in numbers.items() if not ok]
 
 
 def _grid_in(a0: float, a1: float, step: float, v0: float, v1: float, r: float) -> np.ndarray:
