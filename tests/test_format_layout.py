@@ -86,13 +86,46 @@ def test_svg_png_pdf_same_layout(seed, sheet, style, monkeypatch):
             record.clear()
             if fmt == "png":   # as velpoly draw writes each format
                 save_png(fig, io.BytesIO(), st.dpi)
-            elif sheet == "poles":   # a page of a multi-page PDF (--steps, a table page): PdfPages' own canvas
+            elif fmt == "pdf" and sheet == "poles":   # a page of a multi-page PDF (--steps, a table page)
                 with PdfPages(io.BytesIO()) as pdf:
                     pdf.savefig(fig)
-            else:
-                fig.savefig(io.BytesIO(), format=fmt, dpi=72)
+            elif fmt == "pdf":
+                fig.savefig(io.BytesIO(), format=fmt, dpi=72, metadata={"CreationDate": None})
+            else:   # the same bytes twice
+                svgs = []
+                for _ in range(2):
+                    svgs.append(io.BytesIO())
+                    fig.savefig(svgs[-1], format=fmt, dpi=72, metadata={"Date": None})
+                assert svgs[0].getvalue() == svgs[1].getvalue()
+                del record[len(record) // 2:]
             drawn[fmt] = list(record)
             assert all(np.array_equal(a, b) for a, b in zip(leaders, _leaders(fig))), fmt
     assert len(drawn["png"]) > 10
     for fmt in ("svg", "pdf"):
         assert _same(drawn["png"], drawn[fmt]) == [], fmt
+
+
+def test_a_writer_measures_as_the_png():
+    """A vector writer's text measures are the Agg measure at the PNG's dpi brought to points (plain and math,
+    two sizes); an Agg renderer at that dpi (the PNG's own) is drawn with as it is."""
+    from matplotlib.backends.backend_svg import RendererSVG
+    from matplotlib.font_manager import FontProperties
+    from velpoly.render.textcache import measurer
+    from velpoly.render.typeset import Measured, measured
+    st = get_style("textbook")
+    with rc_context(st):
+        svg = RendererSVG(100, 100, io.StringIO())
+        writer = measured(svg, st.dpi)
+        assert isinstance(writer, Measured) and measured(measurer(st.dpi), st.dpi) is measurer(st.dpi)
+        own = []   # the SVG writer's own measures, where they are not the PNG's
+        for size in (7.7, 14.0):
+            prop = FontProperties(size=size, style="italic")
+            for s, math in (("Step 2: along the path of B", False), ("$V_{B}$", True), ("3", False)):
+                png = measurer(st.dpi).get_text_width_height_descent(s, prop, math)
+                assert writer.get_text_width_height_descent(s, prop, math) == tuple(v * (72 / st.dpi) for v in png)
+                if svg.get_text_width_height_descent(s, prop, math) != writer.get_text_width_height_descent(
+                        s, prop, math):
+                    own.append(s)
+            heights = measurer(st.dpi)._get_font_height_metrics(prop)
+            assert writer._get_font_height_metrics(prop) == tuple(v * (72 / st.dpi) for v in heights)
+        assert "Step 2: along the path of B" in own   # what the SVG measured itself before (1.4 pt wider)
