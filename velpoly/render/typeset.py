@@ -10,9 +10,10 @@ it. Each writer measures otherwise: Agg with FreeType's hinted glyphs at the PNG
 with the unhinted outlines, so the same text drawn was up to a point or two wider in one format than in
 another (a table's title 193.1 pt wide in the PNG, 197.6 pt in the SVG; a link number's circle not the same).
 
-A sheet's figure (:func:`sheet_figure`) is drawn by every writer through :class:`Measured`: the writer's own
-renderer, its text measures the Agg measure at the sheet's :attr:`text_dpi` (the PNG's dpi of the style: what
-the PNG, and so the gallery and the README, has always shown), scaled to the writer's pixels. Its texts, their
+A sheet's figure (:func:`sheet_figure`) is drawn by every writer with its text measures replaced
+(:func:`measured`): the writer's own renderer, its text measures the Agg measure at the sheet's ``text_dpi``
+(the PNG's dpi of the style: what the PNG, and so the gallery and the README, has always shown), scaled to
+the writer's pixels. Its texts, their
 frames and its legends then stand in the SVG and the PDF where they stand in the PNG, at the same size; the
 writer only draws the glyphs (tests/test_format_layout.py compares every text drawn in the three formats).
 The PNG itself is drawn by Agg at that dpi, whose measure is that one already: it is drawn as before, the same
@@ -22,41 +23,32 @@ from __future__ import annotations
 
 from .textcache import measurer, new_canvas
 
-__all__ = ["sheet_figure", "Measured", "measured"]
+__all__ = ["sheet_figure", "TextMeasure", "Measured", "measured"]
 
 _FIGURE: list = []   # the figure class, made once (matplotlib is imported only when a sheet is drawn)
 
 
-class Measured:
-    """A writer's renderer whose text measures are the Agg measure at ``dpi`` in the writer's pixels (module doc);
-    everything else (drawing, its state, attributes set on it) is the writer's.
+class TextMeasure:
+    """The Agg measure at ``dpi`` in a writer's pixels (module doc): a text's width, height and descent are
+    ``measurer(dpi)``'s times ``k``, the writer's pixels per pixel at ``dpi`` (``k = points_to_pixels(72) / dpi``:
+    a vector writer's pixel is a point); a font's ascent, descent and line gap likewise. A TeX text is measured
+    by the writer (``own``: its own measure)."""
 
-    A text's width, height and descent are ``measurer(dpi)``'s times ``k``, the writer's pixels per pixel at
-    ``dpi`` (``k = renderer.points_to_pixels(72) / dpi``: a vector writer's pixel is a point); a font's ascent,
-    descent and line gap likewise. A TeX text is measured by the writer."""
-
-    def __init__(self, renderer, dpi: float):
-        object.__setattr__(self, "_writer", renderer)
-        object.__setattr__(self, "_dpi", dpi)
-
-    def __getattr__(self, name):
-        return getattr(self._writer, name)
-
-    def __setattr__(self, name, value):   # the writer's state (matplotlib sets its rasterizing depth)
-        setattr(self._writer, name, value)
+    def __init__(self, writer, dpi: float, own):
+        self.writer, self.dpi, self.own = writer, dpi, own
 
     def _scale(self) -> float:
-        return self._writer.points_to_pixels(72.0) / self._dpi
+        return self.writer.points_to_pixels(72.0) / self.dpi
 
     def get_text_width_height_descent(self, s, prop, ismath):
         if ismath == "TeX":
-            return self._writer.get_text_width_height_descent(s, prop, ismath)
+            return self.own(s, prop, ismath)
         k = self._scale()
-        w, h, d = measurer(self._dpi).get_text_width_height_descent(s, prop, ismath)
+        w, h, d = measurer(self.dpi).get_text_width_height_descent(s, prop, ismath)
         return w * k, h * k, d * k
 
     def _get_font_height_metrics(self, prop):
-        metrics = getattr(measurer(self._dpi), "_get_font_height_metrics", None)
+        metrics = getattr(measurer(self.dpi), "_get_font_height_metrics", None)
         got = metrics(prop) if metrics is not None else (None, None, None)
         if None in got:   # matplotlib then measures "lp" (get_text_width_height_descent above)
             return None, None, None
@@ -64,11 +56,37 @@ class Measured:
         return tuple(v * k for v in got)
 
 
+class Measured:
+    """A renderer whose text measures are :class:`TextMeasure`'s at ``dpi``; everything else (drawing, its state,
+    attributes set on it) is the renderer's: an Agg renderer at another dpi (a sheet drawn without rendering at
+    72 dpi, or saved at another resolution), which its canvas keeps to measure the layout with as it is."""
+
+    def __init__(self, renderer, dpi: float):
+        measure = TextMeasure(renderer, dpi, renderer.get_text_width_height_descent)
+        object.__setattr__(self, "_writer", renderer)
+        object.__setattr__(self, "get_text_width_height_descent", measure.get_text_width_height_descent)
+        object.__setattr__(self, "_get_font_height_metrics", measure._get_font_height_metrics)
+
+    def __getattr__(self, name):
+        return getattr(self._writer, name)
+
+    def __setattr__(self, name, value):   # the renderer's state (matplotlib sets its rasterizing depth)
+        setattr(self._writer, name, value)
+
+
 def measured(renderer, dpi: float | None):
-    """``renderer`` whose texts are measured as at ``dpi`` (:class:`Measured`): itself where it is an Agg
-    renderer at ``dpi`` (its measure is that one) or ``dpi`` is None."""
+    """``renderer`` with its texts measured as at ``dpi`` (:class:`TextMeasure`): itself where it is an Agg
+    renderer at ``dpi`` (its measure is that one) or ``dpi`` is None; a vector writer's (matplotlib's
+    ``MixedModeRenderer``, made for the one file it writes) given the measure as its own (no proxy between
+    it and the thousands of paths it draws); any other renderer through :class:`Measured`."""
     from matplotlib.backends.backend_agg import RendererAgg
+    from matplotlib.backends.backend_mixed import MixedModeRenderer
     if dpi is None or (isinstance(renderer, RendererAgg) and renderer.dpi == dpi):
+        return renderer
+    if type(renderer) is MixedModeRenderer:
+        measure = TextMeasure(renderer, dpi, renderer._renderer.get_text_width_height_descent)
+        renderer.get_text_width_height_descent = measure.get_text_width_height_descent
+        renderer._get_font_height_metrics = measure._get_font_height_metrics
         return renderer
     return Measured(renderer, dpi)
 
