@@ -44,6 +44,7 @@ from .scalebar import scale_text
 from .style import get_style, rc_context
 from ..reference import at_file_pose
 from .textcache import add_axes, new_canvas, share_rectangle_transforms
+from .typeset import sheet_figure
 from .table import cuts_the_book, draw_results_table, given_table, measure_results_table
 
 __all__ = ["SHEETS", "fit_width", "wrap_caption", "Constructions", "constructions", "render_sheet", "render", "Rendered",
@@ -786,7 +787,6 @@ def render(sol, sheet: str = "full", style="textbook", *, cons: Constructions | 
            frame: Frame | None = None, pins: dict | None = None) -> Rendered:
     """One sheet (one frame of it) drawn, and whether it has a table page (:class:`Rendered`); the arguments
     as :func:`render_sheet`'s."""
-    from matplotlib.figure import Figure
     _check_sheet(sheet)
     st = get_style(style)
     m = sol.mechanism
@@ -794,8 +794,7 @@ def render(sol, sheet: str = "full", style="textbook", *, cons: Constructions | 
     cons = cons if cons is not None else constructions(sol, sheet)
     _check_user_scales(sol, opts, cons)
     frame = frame or Frame()
-    fig = Figure(figsize=st.figsize, dpi=72)   # text is measured at the dpi vector output is written at
-    new_canvas(fig)
+    fig = sheet_figure(st.figsize, st.dpi)   # laid out at 72 dpi; its texts set as its PNG sets them, in every format
     title = _page(fig, st, m, sol)
     two = bool(equivalent_linkage_note(m)) and sheet != "poles"
     if frame.caption and sheet == "poles":
@@ -903,11 +902,9 @@ def table_page(sol, sheet: str = "full", style="textbook", *, cons: Construction
     """The sheet's results table on a page of its own, under the page's title, every row the book gives and
     its footnotes (the page a sheet adds where its drawings and its table cannot share one page with them:
     :func:`render`'s ``table_page``). Call inside the style's rc_context."""
-    from matplotlib.figure import Figure
     st = get_style(style)
     cons = cons if cons is not None else constructions(sol, sheet)
-    fig = Figure(figsize=st.figsize, dpi=72)
-    new_canvas(fig)
+    fig = sheet_figure(st.figsize, st.dpi)
     title = _page(fig, st, sol.mechanism, sol)
     W, H = _page_cm(st)
     top = _top(fig, st, title, "", False) + _caption_cm(st, 1) - EDGE

@@ -23,7 +23,9 @@ for the whole process, what each of these requests depends on and what came back
 
 The SVG a sheet is written to gets the same from :func:`svg_renderer_class` (matplotlib's SVG writer sets
 each text as paths: it measures the text and lays out its glyphs at a fixed 100 pt and scales them, and writes
-each glyph's outline once a file; all three are kept per process, keyed alike).
+each glyph's outline once a file; all three are kept per process, keyed alike). A sheet's texts are measured,
+in every format, by the Agg renderer at its PNG's dpi (:func:`measurer`; :mod:`velpoly.render.typeset`): its
+SVG's writer only draws them.
 
 Each is a pure function of its key, so a value found is the value FreeType would give: the pixels, SVG
 and PDF output are the same bytes (tests/test_textcache.py checks the three against matplotlib's own
@@ -42,7 +44,7 @@ import os
 import threading
 from collections import OrderedDict
 
-__all__ = ["canvas_class", "svg_renderer_class", "new_canvas", "add_axes", "share_rectangle_transforms",
+__all__ = ["canvas_class", "svg_renderer_class", "new_canvas", "measurer", "add_axes", "share_rectangle_transforms",
            "window_extent", "kept_layout", "clear", "stats", "LIMITS"]
 
 LIMITS = {"metrics": 20000, "height": 1000, "layout": 10000, "glyph": 20000, "box": 10000,
@@ -55,13 +57,15 @@ _RC = ("font.family", "font.style", "font.variant", "font.weight", "font.stretch
        "font.serif", "font.sans-serif", "font.cursive", "font.fantasy", "font.monospace",
        "font.enable_last_resort", "text.kerning_factor", "text.hinting")
 _CLASS = []   # the canvas class, made once
+_MEASURERS: dict = {}   # dpi -> an Agg renderer of the canvas's class that measures text (measurer)
 
 
 def clear() -> None:
-    """Empty every cache (and its counts)."""
+    """Empty every cache (and its counts), and forget the measurers (:func:`measurer`)."""
     for name, c in _CACHES.items():
         c.clear()
         _HITS[name][:] = [0, 0]
+    _MEASURERS.clear()
 
 
 def stats() -> dict:
@@ -192,6 +196,17 @@ def canvas_class():
 def new_canvas(fig):
     """Give ``fig`` a :func:`canvas_class` canvas (as ``FigureCanvasAgg(fig)`` does) and return it."""
     return canvas_class()(fig)
+
+
+def measurer(dpi: float):
+    """An Agg renderer at ``dpi`` of the canvas's class (:func:`canvas_class`: its text measures kept), to
+    measure text with (one a dpi, for the process; it draws nothing: its canvas is one pixel)."""
+    got = _MEASURERS.get(dpi)
+    if got is None:
+        from matplotlib.figure import Figure
+        canvas = canvas_class()(Figure(figsize=(1 / dpi, 1 / dpi), dpi=dpi))
+        got = _MEASURERS[dpi] = canvas.get_renderer()
+    return got
 
 
 class _Kept:
