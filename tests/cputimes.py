@@ -6,8 +6,11 @@
 
 A test's CPU is ``os.times()``' user + system, its waited-for children's included (a subprocess, a forked
 pool's workers), over its setup, call and teardown, so a module fixture counts in the test that first
-needs it; ``end`` is the wall clock (seconds since the epoch) when it ended. Each process also records its
-CPU at the session's end (``__session__``: collection and start-up included). The summary gives each
+needs it; ``end`` is the wall clock (seconds since the epoch) when it ended. The last test's teardown,
+where pytest tears down every fixture still standing (its module's and the session's), is a row of its own
+(``__last_teardown__``: the browser's close, where Chromium's CPU is waited for, about 2 CPU s, landed on the
+last doctest, velpoly.tables.zero_floor, until issue 19 item 7). Each process
+also records its CPU at the session's end (``__session__``: collection and start-up included). The summary gives each
 worker's last test's end against the other workers' (a worker idle at the end while another still runs a
 long test wastes a core). Not loaded unless asked for with ``-p``.
 """
@@ -30,12 +33,29 @@ def _cpu() -> float:
     return t.user + t.system + t.children_user + t.children_system
 
 
+_last: dict = {}   # the CPU and wall clock where the last test's teardown began
+
+
 @pytest.hookimpl(hookwrapper=True)
 def pytest_runtest_protocol(item, nextitem):
     cpu, wall = _cpu(), time.perf_counter()
+    _last.clear()
     yield
-    _rows.append({"id": item.nodeid, "cpu": round(_cpu() - cpu, 4), "wall": round(time.perf_counter() - wall, 4),
+    now, clock = _cpu(), time.perf_counter()
+    if _last:   # the last test: its teardown (every fixture still standing) a row of its own
+        _rows.append({"id": "__last_teardown__", "cpu": round(now - _last["cpu"], 4),
+                      "wall": round(clock - _last["wall"], 4), "end": round(time.time(), 3)})
+        now, clock = _last["cpu"], _last["wall"]
+    _rows.append({"id": item.nodeid, "cpu": round(now - cpu, 4), "wall": round(clock - wall, 4),
                   "end": round(time.time(), 3)})
+
+
+@pytest.hookimpl(hookwrapper=True)
+def pytest_runtest_teardown(item, nextitem):
+    """Where the last test's teardown begins (``__last_teardown__``)."""
+    if nextitem is None:
+        _last.update(cpu=_cpu(), wall=time.perf_counter())
+    yield
 
 
 def pytest_sessionfinish(session):
