@@ -26,6 +26,19 @@ def ranges_by_dyads_only(monkeypatch) -> None:
     monkeypatch.setattr(solution, "reachable_range", ranged)
 
 
+def shapes_only(mechanism):
+    """``mechanism``'s ``[drawing]`` options with no point labels and no link numbers, for a test of the space
+    diagram's shapes alone (bodies, slot cuts, ground hatching and what it may touch, the view): those are all
+    made before the marks are placed (``displacement._Drawing.draw``: ``marks`` last), so they are the same with
+    or without the labels, and the label placer, most of a space diagram's cost, is spared (issue 19 item 7:
+    test_slot_drawing's and test_audit_ground's 45 drawings, 10.9 -> 4.1 CPU s, every body, cut, hatching,
+    exemption and view limit compared equal with and without the labels)."""
+    from dataclasses import replace
+
+    from velpoly.render.options import drawing_options
+    return replace(drawing_options(mechanism), label_points=(), link_numbers="none")
+
+
 def in_process(args):
     """``velpoly ARGS`` run in this process (``velpoly.cli.main``, what ``python -m velpoly`` runs) with its
     output captured, as a ``subprocess.CompletedProcess``: the exit code and text a user sees, without a
