@@ -26,6 +26,21 @@ def ranges_by_dyads_only(monkeypatch) -> None:
     monkeypatch.setattr(solution, "reachable_range", ranged)
 
 
+def shapes_only(mechanism):
+    """``mechanism``'s ``[drawing]`` options with no point labels and no link numbers, for a test of the space
+    diagram's shapes alone (bodies, slot cuts, ground hatching and what it may touch, the view): those are all
+    made before the marks are placed (``displacement._Drawing.draw``: ``marks`` last), so they are the same with
+    or without the labels, and the label placer, most of a space diagram's cost, is spared; a poles drawing's
+    Kennedy lines are made before any label too (``kennedy.draw_poles``). Issue 19 item 7, every body, cut,
+    hatching, exemption, zorder, Kennedy line and view limit compared equal with and without the labels:
+    test_slot_drawing's and test_audit_ground's 45 drawings 10.9 -> 4.1 CPU s, test_space_plates' 11 8.6 -> 2.7,
+    test_poles' drawn Kennedy lines (13 poles drawings) 4.5 -> 3.4."""
+    from dataclasses import replace
+
+    from velpoly.render.options import drawing_options
+    return replace(drawing_options(mechanism), label_points=(), link_numbers="none")
+
+
 def in_process(args):
     """``velpoly ARGS`` run in this process (``velpoly.cli.main``, what ``python -m velpoly`` runs) with its
     output captured, as a ``subprocess.CompletedProcess``: the exit code and text a user sees, without a

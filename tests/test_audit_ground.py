@@ -16,6 +16,7 @@ from shapely.geometry import Point, Polygon
 from velpoly.render.displacement import draw_mechanism
 
 import zoo
+from mechanisms import shapes_only
 
 matplotlib.use("Agg")
 
@@ -26,11 +27,12 @@ def shape(patch) -> Polygon:
 
 
 def grounds_shown(sol) -> list:
-    """Each frame pivot, with whether a ground pedestal stands at it that no body drawn above it covers."""
+    """Each frame pivot, with whether a ground pedestal stands at it that no body drawn above it covers (the
+    space diagram's shapes: no labels or link numbers, ``mechanisms.shapes_only``)."""
     import matplotlib.pyplot as plt
     fig, ax = plt.subplots()
     try:
-        art = draw_mechanism(sol, ax)
+        art = draw_mechanism(sol, ax, options=shapes_only(sol.mechanism))
         m, frame = sol.mechanism, sol.mechanism.frame.name
         out = []
         for point in sorted({pin.point for pin in m.pins if frame in pin.links}):

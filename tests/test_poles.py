@@ -753,11 +753,12 @@ def check_drawn_lines(sol):
     from shapely.geometry import Point
     from velpoly.render.canvas import per_cm, view_box
     from velpoly.render.kennedy import draw_poles
+    from mechanisms import shapes_only
     fig = Figure(figsize=(8, 6))
     FigureCanvasAgg(fig)
     ax = fig.add_axes((0.02, 0.02, 0.96, 0.96))
     ps = locate_poles(sol)
-    art = draw_poles(sol, ax, poleset=ps)
+    art = draw_poles(sol, ax, poleset=ps, options=shapes_only(sol.mechanism))   # no point labels, no link numbers
     view, pc, size = view_box(ax), per_cm(ax), sol.mechanism.size
     drawn = {ln.get_gid(): ln for ln in art.get("kennedy_lines", [])}
     bodies = [a for role in ("links", "sliders", "ground", "guides") for a in art.get(role, [])]

@@ -35,9 +35,10 @@ CASES = [(seed, a, *CONFIGS[k]) for seed, a in enumerate((20.0, 110.0, 200.0, 29
 
 
 def _drawn(sol):
+    """The space diagram's shapes (no labels or link numbers: ``mechanisms.shapes_only``) and the tolerance."""
     fig, ax = plt.subplots(figsize=(7, 7))
     try:
-        art = draw_mechanism(sol, ax)
+        art = draw_mechanism(sol, ax, options=M.shapes_only(sol.mechanism))
         tol = 1e-6 * sol.mechanism.size
         return art, tol
     finally:

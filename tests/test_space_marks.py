@@ -48,12 +48,12 @@ CASES = [("four-bar", "double-crank", 0, "textbook"), ("four-bar", "double-crank
          ("inverted slider-crank", "offset both slider", 3, "slides")]
 
 
-def _draw(sol, style):
-    """The space diagram alone in a 4 x 3 in panel: (axes, artists)."""
+def _draw(sol, style, options=None):
+    """The space diagram alone in a 4 x 3 in panel: (axes, artists) (``options``: draw_mechanism's)."""
     ax = Figure(figsize=(4, 3), dpi=72).add_axes((0.02, 0.02, 0.96, 0.96))
     FigureCanvasAgg(ax.figure)
     with rc_context(get_style(style)):
-        return ax, draw_mechanism(sol, ax, style=get_style(style))
+        return ax, draw_mechanism(sol, ax, style=get_style(style), options=options)
 
 
 def _bodies(art) -> dict:

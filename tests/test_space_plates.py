@@ -22,6 +22,7 @@ from shapely.geometry import Point
 from shapely.ops import unary_union
 
 import zoo
+from mechanisms import shapes_only
 from test_space_marks import _draw   # the space diagram alone in a 4 x 3 in panel
 from velpoly.render.canvas import per_cm
 from velpoly.render.style import get_style
@@ -135,13 +136,13 @@ def notch_faults(sol, ax, art, style) -> list:
 def test_links_of_three_joints_are_plates(kind, variant, seed, style):
     sol = zoo.specimen(np.random.default_rng(seed), kind, variant).drawn
     assert any(len(joints(sol.mechanism, k.name)) >= 3 for k in sol.mechanism.moving_links)
-    ax, art = _draw(sol, style)
+    ax, art = _draw(sol, style, shapes_only(sol.mechanism))   # its shapes: no labels, no link numbers
     assert plate_faults(sol, ax, art, style) == []
 
 
 @pytest.mark.parametrize("kind, variant, seed, style", NOTCHED)
 def test_plates_notched_clear_of_other_links(kind, variant, seed, style):
     sol = zoo.specimen(np.random.default_rng(seed), kind, variant).drawn
-    ax, art = _draw(sol, style)
+    ax, art = _draw(sol, style, shapes_only(sol.mechanism))   # its shapes: no labels, no link numbers
     assert plate_faults(sol, ax, art, style) == []
     assert notch_faults(sol, ax, art, style) == []
