@@ -283,6 +283,8 @@ def test_examples_lists_and_prints_the_built_in_files(capsys):
     code, out, err = run(capsys, "examples", "fourbar")
     assert code == 2 and out == "" and "no built-in example 'fourbar'" in err
     assert "did you mean ex3_6_fourbar or " in err
+    code, out, err = run(capsys, "examples", "ex3_4")   # (test_wheel's case: the wheel ships the listing)
+    assert code == 2 and out == "" and "no built-in example 'ex3_4'" in err and "ex3_4_slotted_lever" in err
 
 
 def test_a_gallery_of_the_built_in_examples_elsewhere_stands_alone(tmp_path, capsys):

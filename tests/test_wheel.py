@@ -106,8 +106,9 @@ def test_examples_lists_every_gallery_file_and_prints_one(installed):
     assert "ex3_6_fourbar  " in r.stdout and "Example 3.6: four-bar" in r.stdout
     r = _run(installed, "examples", "ex3_4_slotted_lever")
     assert r.returncode == 0 and r.stdout == (EXAMPLES / "ex3_4_slotted_lever.toml").read_text(encoding="utf-8")
-    r = _run(installed, "examples", "ex3_4")
-    assert r.returncode == 2 and "no built-in example 'ex3_4'" in r.stderr and "ex3_4_slotted_lever" in r.stderr
+    # a name not there (`examples ex3_4`: exit 2 naming ex3_4_slotted_lever, from the listing shown above) is
+    # test_gallery's test_examples_lists_and_prints_the_built_in_files, in that process (a third program here
+    # until the suite had to fit 2 minutes: 0.3 CPU s)
 
 
 def test_gallery_from_the_wheel(installed):
