@@ -19,6 +19,7 @@ from .model import Mechanism
 from .motion import Motion, evaluate_motion, wrap_deg_float
 from .pose import reassemble
 from .driver import driver_reference_angle, reachable_range   # re-exported: solve places the driver by them
+from .driver import inward_words, reachable_words
 from .rigid import point_acceleration, point_velocity
 from .arguments import check_angle, check_mechanism
 
@@ -179,9 +180,16 @@ def _choose(ref: float, lo: float, hi: float, hint: str) -> str:
     a, b = max(lo, -179.99), min(hi, 179.99)
     if (a, b) == (lo, hi):
         return hint
-    return (f"choose an angle from {ref + a:g} to {ref + b:g} deg: --angle turns the driver the shorter way "
+    return (f"choose an angle from {inward_words(ref, a, b)} deg: --angle turns the driver the shorter way "
             f"round from the reference pose ({ref:g} deg), so the rest of the range, beyond 180 deg from it, is "
             "reached only by velpoly sweep (or draw the mechanism nearer to that angle)")
+
+
+def _angle(target: float) -> str:
+    """The refused driver angle as given: ``{:g}`` where that is the number, else all its digits (220 is
+    not 219.9999999)."""
+    short = f"{target:g}"
+    return short if float(short) == target else repr(float(target))
 
 
 def _carried(kin, ref: float, target: float, delta: float) -> tuple[np.ndarray, float]:
@@ -198,16 +206,16 @@ def _carried(kin, ref: float, target: float, delta: float) -> tuple[np.ndarray, 
         lo, hi = reachable_range(kin)
         sl = m.slots[r.leaves[0]]
         raise AssemblyError(
-            f"cannot assemble at driver angle {target:g} deg: pin {sl.pin} leaves the slot of "
+            f"cannot assemble at driver angle {_angle(target)} deg: pin {sl.pin} leaves the slot of "
             f"{sl.slot} at its end {r.leaves[1]} at {wrap_deg_float(ref + math.degrees(r.leaves[2])):g} "
-            f"deg; the pin is in the slot from {ref + lo:g} to {ref + hi:g} deg",
+            f"deg; the pin is in the slot from {reachable_words(kin, ref, delta)} deg",
             where="driver.angle", file=m.source, links=(sl.link, sl.slot),
             hint=_choose(ref, lo, hi, "choose an angle in that range (the slot's ends bound the motion)"))
     if len(r.deltas) == 0:
         lo, hi = reachable_range(kin)
         raise AssemblyError(
-            f"cannot assemble at driver angle {target:g} deg: a toggle lies on the way from the "
-            f"reference pose ({ref:g} deg); reachable: {ref + lo:g} to {ref + hi:g} deg",
+            f"cannot assemble at driver angle {_angle(target)} deg: a toggle lies on the way from the "
+            f"reference pose ({ref:g} deg); reachable: {reachable_words(kin, ref, delta)} deg",
             where="driver.angle", file=m.source, links=tuple(kin.system.index),
             hint=_choose(ref, lo, hi, "choose an angle in the reachable range"))
     return r.q, delta
