@@ -9,7 +9,8 @@ Keys of ``values`` are read the way books print them:
 ``V_B3/B4``    V_B3 - V_B4, coincident points of links 3 and 4
 ``omega_3``    angular velocity of link 3 (``alpha_3``; ``theta_3`` its angle)
 ``R_BA``       position of B relative to A
-``P_13``       position of the pole of links 1 and 3, ``[x, y]``
+``P_13``       position of the pole of links 1 and 3, ``[x, y]`` (``P_lever,cylinder`` where
+               a link's name is a word: the figures' P_{lever,cylinder})
 ``V_P24``      velocity of the pole P_24
 ``A^n_BA``     normal component of A_BA (B and A on one link): -omega^2 R_BA
 ``A^t_BA``     tangential component of A_BA: alpha x R_BA
@@ -80,13 +81,32 @@ def _point_refs(m, s: str, count: int):
     return None
 
 
+def _pole_splits(s: str) -> list[tuple[str, str]]:
+    """The ways ``s`` (what follows ``P_``) names two links: at a comma where it has one, as the
+    figures print a pole of named links (``P_lever,cylinder``: P_{lever,cylinder}), else at every
+    place (``P_13``)."""
+    s = s.lstrip("_")
+    if "," in s:
+        return [(s[:i], s[i + 1:]) for i, c in enumerate(s) if c == ","]
+    return [(s[:i], s[i:]) for i in range(1, len(s))]
+
+
 def _two_links(m, s: str):
     links = m.link_names
-    s = s.lstrip("_")
-    for i in range(1, len(s)):
-        if s[:i] in links and s[i:] in links:
-            return (s[:i], s[i:])
-    return None
+    return next(((a, b) for a, b in _pole_splits(s) if a in links and b in links and a != b), None)
+
+
+def _pole_trouble(m, s: str) -> str:
+    """Why ``P_s`` names no pole here (for the error message): the link it names that the file has
+    not, or how a pole's key is written."""
+    links = m.link_names
+    shown = ", ".join(links)
+    for a, b in _pole_splits(s):
+        if a in links and b in links:   # one link twice
+            return f"a pole is of two different links, got link {a} twice"
+        if (a in links) != (b in links):
+            return f"no link {b if a in links else a!r} (links: {shown}): P_{s} is the pole of links {a} and {b}"
+    return f"a pole is P_ij of two links i and j (P_13), or P_i,j where a link is a word (links: {shown})"
 
 
 COMPONENTS = {"n": "normal", "t": "tangential", "c": "Coriolis", "s": "sliding"}
@@ -102,6 +122,8 @@ def _component(m, part: str, body: str) -> Quantity | None:
         if not refs:
             return None
         (b, lb), (a, la) = refs
+        if b == a:   # a point relative to itself has no components
+            return None
         named = {lk for lk in (lb, la) if lk}
         shared = [lk for lk in m.link_names if lk in m.carriers.get(b, ()) and lk in m.carriers.get(a, ())]
         if len(named) > 1 or (named and named.pop() not in shared) or not shared:
@@ -146,6 +168,8 @@ def parse_key(m, key: str) -> Quantity | None:
         if r:
             return Quantity(kind, refs=(r[0],))
     r = _point_refs(m, body, 2)
+    if r and r[0] == r[1]:   # V_AA: a point relative to itself, no quantity a book prints
+        return None
     return Quantity(kind, refs=tuple(r)) if r else None
 
 
@@ -153,8 +177,7 @@ def validate_reference(m, ctx=None) -> None:
     """Raise InputError for a ``values`` key that cannot be read (FORMAT.md section 1)."""
     for key in m.reference.values:
         if parse_key(m, key) is None:
-            mo = re.fullmatch(r"A\^([ntcs])_(.+)", key)
-            raise InputError(f"unknown quantity {key!r}" + (f": {_component_trouble(m, *mo.groups())}" if mo else ""),
+            raise InputError(f"unknown quantity {key!r}" + _trouble(m, key),
                              where=f"reference.values.{key}", file=m.source,
                              hint="keys in textbook notation: V_B, A_B, V_BA, V_B3/B4, omega_3, alpha_3, "
                                   "theta_3, R_BA, P_13, V_P24, A^n_BA, A^t_BA, A^c_B3/B4, A^s_B3/B4")
@@ -215,6 +238,21 @@ def note_for(ref, key: str) -> str:
     return ""
 
 
+def _trouble(m, key: str) -> str:
+    """``: why`` a ``values`` key reads as no quantity here, where that can be said ("" otherwise)."""
+    mo = re.fullmatch(r"A\^([ntcs])_(.+)", key)
+    if mo:
+        return ": " + _component_trouble(m, *mo.groups())
+    points = re.fullmatch(r"([VAR])_([^/]+)", key)
+    refs = points and (_point_refs(m, points.group(2), 1) or _point_refs(m, points.group(2), 2))
+    if refs and len(refs) == 2 and refs[0] == refs[1]:
+        return f": {refs[0][0]} relative to itself ({points.group(1)}_BA is of two points B and A)"
+    pole = re.fullmatch(r"(?:[VA]_?P_?|P_?)(.+)", key)
+    if pole and not refs:   # no point (V_P24 may be the velocity of a point P24): a pole's key
+        return ": " + _pole_trouble(m, pole.group(1))
+    return ""
+
+
 def _component_trouble(m, part: str, body: str) -> str:
     """Why ``A^part_body`` reads as no component here (for the error message)."""
     what = COMPONENTS[part]
@@ -222,6 +260,8 @@ def _component_trouble(m, part: str, body: str) -> str:
         refs = _point_refs(m, body, 2) if "/" not in body else None
         if not refs:
             return f"the {what} component is A^{part}_BA of two points B and A on one link"
+        if refs[0][0] == refs[1][0]:
+            return f"{refs[0][0]} relative to itself: the {what} component is A^{part}_BA of two points B and A"
         return (f"{refs[0][0]!r} and {refs[1][0]!r} are not on one link: the {what} component of A_BA needs "
                 f"both points on one link")
     return (f"the {what} component is A^{part}_B3/B4, the point B of two links named by their numbers "
