@@ -74,7 +74,7 @@ def _solve_parser(command) -> None:
     s = command("solve", "analytic positions, velocities, accelerations, poles, and the book's values beside them",
                 "velpoly solve fourbar.toml --angle 40")
     s.add_argument("file", help="the mechanism file (TOML, FORMAT.md section 1)")
-    s.add_argument("--angle", type=float, metavar="DEG", help=ANGLE_HELP)
+    s.add_argument("--angle", type=_degrees, metavar="DEG", help=ANGLE_HELP)
     s.add_argument("--json", action="store_true", help="print the JSON results (FORMAT.md section 2) instead of tables")
     s.add_argument("--format", choices=("text", "markdown", "latex", "csv"), default="text",
                    help="table style of the readable output (default: text)")
@@ -93,7 +93,7 @@ def _draw_parser(command) -> None:
                    "[drawing] sheet, else full)")
     d.add_argument("--steps", action="store_true", help="one construction step a frame (multi-page PDF "
                    "or numbered SVG/PNG files), for slides")
-    d.add_argument("--angle", type=float, metavar="DEG", help=ANGLE_HELP)
+    d.add_argument("--angle", type=_degrees, metavar="DEG", help=ANGLE_HELP)
     d.add_argument("--style", choices=STYLES, default="textbook", help="the look (listed above; default: textbook)")
 
 
@@ -165,6 +165,18 @@ def _html_parser(command) -> None:
     h.add_argument("-o", "--output", metavar="OUT", help="the page (default: FILE's name with .html)")
     h.add_argument("--step", type=float, default=1.0, metavar="DEG", help="driver step between the poses, in "
                    "degrees (default 1; a slider driver's stroke in as many poses)")
+
+
+def _degrees(text: str):
+    """``--angle``'s number: a float, or, where the number is finite but beyond any float (``1e400``), its
+    exact value (a Fraction), so that the angle's check says it is too large, as the API does for
+    ``solve(m, angle=10**400)``, not that it is not finite."""
+    x = float(text)
+    if math.isinf(x) and text.strip().lstrip("+-").lower() not in ("inf", "infinity"):
+        import decimal
+        import fractions
+        return fractions.Fraction(decimal.Decimal(text.strip().replace("_", "")))
+    return x
 
 
 def _sub_parser(parent):

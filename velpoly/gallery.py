@@ -396,10 +396,18 @@ def _gallery_files(source: Path, names=None) -> list[Path]:
         stems = {p.stem: p for p in files}
         for n in names:
             if _stem(n) not in stems:
-                raise InputError(f"no example {n!r} in {source}", where="gallery",
-                                 hint="`velpoly examples` lists the built-in ones: name them without .toml")
+                raise InputError(f"no example {n!r} in {source}", where="gallery", hint=_names_hint(source, files))
         files = [p for p in files if p.stem in {_stem(n) for n in names}]
     return files
+
+
+def _names_hint(source: Path, files: list[Path]) -> str:
+    """Where the names ``velpoly gallery NAME`` takes are: the built-in examples (``velpoly examples``
+    lists them), or a ``--source`` folder's own files, listed (a few, then how many more)."""
+    if source.resolve() == EXAMPLES:
+        return "`velpoly examples` lists the built-in ones: name them without .toml"
+    shown = ", ".join(p.stem for p in files[:8]) + (f" and {len(files) - 8} more" if len(files) > 8 else "")
+    return f"the examples in {source} (name them without .toml): {shown}"
 
 
 def _example(path: Path, out: Path, style: str, copy: bool, draw, keep: bool = False) -> tuple:
