@@ -23,7 +23,7 @@ from .errors import InputError, VelpolyError
 from .fileio import atomic_write_bytes, atomic_write_text, committed_together, raise_if_interrupted
 from .compare import comparison
 from .report import Table, fmt, render_table
-from .tables import angle
+from .tables import angle, md_text
 
 __all__ = ["example_path", "example_files", "example_titles", "EXAMPLES", "comparison_text", "top_comments", "example_markdown",
            "build_gallery", "GalleryResult", "find_gallery", "build_demo", "gallery_folders",
@@ -103,7 +103,7 @@ def comparison_text(sol, style: str = "text") -> str:
               "direction (deg); graphical vs analytic relative to the largest value of its kind (omega, "
               "alpha, speed, acceleration, mechanism size).")
     md = style == "markdown"
-    out = [f"# {m.title}" if md else m.title, "", head, "", legend, ""]
+    out = [f"# {md_text(m.title)}" if md else m.title, "", md_text(head) if md else head, "", legend, ""]
     out.append(render_table(c.table, style))
     for n, key, note in c.notes:
         out.append(f"{n}. {_md(key) if md else key}: {_md(note) if md else note}")
@@ -165,12 +165,9 @@ def top_comments(path) -> list[tuple[str, str]]:
     return out
 
 
-_MD_SPECIAL = re.compile(r"([\\`*_\[\]<>|#])")
-
-
 def _md(text: str) -> str:
-    """Text safe in Markdown prose and table cells."""
-    return _MD_SPECIAL.sub(r"\\\1", str(text))
+    """Text safe in Markdown prose and table cells, every underscore escaped (the README's rule)."""
+    return md_text(text, words=False)
 
 
 def _anchor(title: str, used: set) -> str:
