@@ -570,6 +570,7 @@ def sheet_data(m, step: float = 1.0, cycle=None) -> tuple[dict, str]:
     """The page's data: (static part as a dict, the poses as JSON text of the templates' encoding).
     ``cycle``: what :func:`cycle_solutions` gives, if already at hand."""
     from .sweeps import solution_at
+    from .compare import key_floor, kind_scales
     from .reference import compare, file_pose_angle
     from .solution import driver_reference_angle, solve
     w, kin, limited, sols = cycle if cycle is not None else cycle_solutions(m, step)
@@ -598,14 +599,17 @@ def sheet_data(m, step: float = 1.0, cycle=None) -> tuple[dict, str]:
     static = _static(m, sol0, w, space)
     static_poles = _static(m, sol0, w, pole_view)
     # the [reference] table at the file's pose
-    ref_rows = []
+    ref_rows, scales = [], {}
     try:
-        rows = compare(solve(m)) if m.reference is not None else []
+        rows = []
+        if m.reference is not None:
+            file_pose = solve(m)
+            rows, scales = compare(file_pose), kind_scales(file_pose)
     except VelpolyError:
         rows = []
-    for r in rows:
+    for r in rows:   # z: below it the computed value is rounding noise and prints 0, as in velpoly solve's table
         ref_rows.append({"key": r.key, "printed": r.printed, "value": r.computed, "dev": r.deviation,
-                         "angle": r.angle_error, "note": r.note})
+                         "angle": r.angle_error, "note": r.note, "z": key_floor(m, r.key, scales)})
     data = {
         "format": 1, "title": m.title, "units": m.units, "source": m.source or "",
         "frame": m.frame.name, "links": [lk.name for lk in m.links], "moving": [lk.name for lk in m.moving_links],
