@@ -236,6 +236,10 @@ def cmd_draw(args) -> int:
     from .render import draw_to_file
     from .render.sheet import default_sheet
     sheet = args.sheet or default_sheet(sol.mechanism)
+    from .solution import polygon_at_rest
+    still = polygon_at_rest(sol, sheet)
+    if still is not None:
+        raise still
     written = draw_to_file(sol, out, sheet=sheet, style=args.style, steps=args.steps)
     for path in written:
         print(path)

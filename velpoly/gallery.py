@@ -412,9 +412,13 @@ def _example(path: Path, out: Path, style: str, copy: bool, draw, keep: bool = F
     (in a worker) nothing is written: the files are ``(path, bytes)`` pairs for the caller to write."""
     from . import load, solve
     from .render.options import drawing_options
+    from .solution import polygon_at_rest
     src = path
     m = load(path)
     sol = solve(m)
+    still = polygon_at_rest(sol, drawing_options(m).sheet)
+    if still is not None:   # before anything is written
+        raise still
     files = []
     if copy:
         text, target = path.read_text(encoding="utf-8"), out / path.name

@@ -23,7 +23,7 @@ from .driver import inward_words, reachable_words
 from .rigid import point_acceleration, point_velocity
 from .arguments import check_angle, check_mechanism
 
-__all__ = ["Solution", "solve", "driver_reference_angle", "reachable_range"]
+__all__ = ["Solution", "solve", "driver_reference_angle", "reachable_range", "polygon_at_rest"]
 
 
 @dataclass(frozen=True)
@@ -261,3 +261,25 @@ def solve(m: Mechanism, angle: float | None = None) -> Solution:
         warnings.append(f"near-singular pose: condition number {cond[0]:.3g} (results lose accuracy)")
     motion = evaluate_motion(m, kin.system.index, q, qd, qdd)
     return Solution(m, kin, q[0], qd[0], qdd[0], float(cond[0]), motion, angle_now, tuple(warnings))
+
+
+def polygon_at_rest(sol: Solution, sheet: str) -> InputError | None:
+    """The input error of a sheet whose polygon would be one point: every velocity zero (the driver at rest,
+    omega = 0, and no prescribed slip) for a sheet with the velocity polygon (``velocity``, ``full``), every
+    acceleration zero as well for one with the acceleration polygon; None where the polygons have a size.
+    A mechanism starting from rest (omega = 0, alpha given) has its acceleration sheet."""
+    m, drv = sol.mechanism, sol.mechanism.driver
+    still_v = not any(np.any(v != 0) for v in sol.velocity.values()) and not any(sol.omega.values())
+    still_a = still_v and sol.has_accelerations and not any(np.any(a != 0) for a in sol.acceleration.values())
+    rate, accel = ("driver.speed", "driver.accel") if drv.is_slider else ("driver.omega", "driver.alpha")
+    if still_a and sheet in ("velocity", "acceleration", "full"):
+        return InputError("the mechanism is at rest: every velocity and acceleration is zero, and its polygons "
+                          "are single points", where=rate, file=m.source,
+                          hint=f"give {rate.split('.')[1]} (or {accel.split('.')[1]}); the poles and the "
+                               "displacement sheet need neither")
+    if still_v and sheet in ("velocity", "full"):
+        return InputError("the mechanism is at rest: every velocity is zero, and the velocity polygon is a "
+                          "single point", where=rate, file=m.source,
+                          hint=f"draw --sheet acceleration (starting from rest: {accel.split('.')[1]} only), "
+                               f"or give {rate.split('.')[1]}")
+    return None
