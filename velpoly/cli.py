@@ -13,6 +13,7 @@ import argparse
 import json
 import math
 import os
+import re
 import signal
 import sys
 import warnings
@@ -700,6 +701,27 @@ def _arguments(parser, argv):
         sys.stdout = stdout
 
 
+_GLYPH = re.compile(r"Glyph (\d+) .*missing from font")
+
+
+def _glyph_warning(where: str, show):
+    """``warnings.showwarning`` that says once per character, in one line, that the fonts lack a glyph for a
+    character of the file's names or title (matplotlib's warning, with its source line, for every text drawn
+    with it); any other warning as ``show`` does."""
+    said = set()
+
+    def showwarning(message, category, filename, lineno, file=None, line=None):
+        got = _GLYPH.search(str(message))
+        if got is None:
+            return show(message, category, filename, lineno, file, line)
+        code = int(got.group(1))
+        if code not in said:
+            said.add(code)
+            print(one_line(f"warning: {where}: the fonts have no glyph for {chr(code)!r} (U+{code:04X}): "
+                           "it is drawn as a box"), file=sys.stderr)
+    return showwarning
+
+
 def _main(argv) -> int:
     args = _arguments(build_parser(), argv)
     if isinstance(args, int):
@@ -716,6 +738,7 @@ def _main(argv) -> int:
             with warnings.catch_warnings():
                 if not args.debug:  # numpy's overflow chatter is not for users: errors say what is wrong
                     warnings.simplefilter("ignore", RuntimeWarning)
+                    warnings.showwarning = _glyph_warning(getattr(args, "file", "") or "velpoly", warnings.showwarning)
                 _check_outputs(args)
                 status = COMMANDS[args.command](args)
                 raise_if_interrupted()   # a Ctrl-C swallowed inside a callback still stops the run
