@@ -22,7 +22,7 @@ from .reference import Quantity, compare, evaluate, parse_key
 from .rigid import point_acceleration, point_velocity
 from .tables import ZERO, Table, coordinates, fmt, magnitude_angle, magnitude_direction, zero_floor
 
-__all__ = ["Graphical", "Comparison", "comparison", "HEADER", "Value", "polygon_values", "kind_scales", "kind_floor", "key_floor"]
+__all__ = ["Graphical", "Comparison", "comparison", "HEADER", "Value", "polygon_values", "kind_scales", "kind_floor", "key_floor", "scale_of"]
 
 
 # -- graphical values ----------------------------------------------------------------------------
@@ -144,7 +144,7 @@ def kind_floor(scales: dict, kind: str) -> float:
     ``R``; ``theta`` a link angle) prints as 0: a billionth of the largest value of its kind in the mechanism
     (``scales``, :func:`kind_scales`), at most ZERO (:func:`velpoly.tables.zero_floor`); a link angle's, ZERO.
     Every table of a Solution reads this, ``velpoly solve``'s and the drawn sheets' alike."""
-    return ZERO if kind == "theta" else zero_floor([_scale_of(kind, scales)])
+    return ZERO if kind == "theta" else zero_floor([scale_of(kind, scales)])
 
 
 def _graphical_shown(row, q: Quantity, g):
@@ -175,7 +175,9 @@ def kind_scales(sol) -> dict:
             "P": size}
 
 
-def _scale_of(kind: str, scales: dict) -> float:
+def scale_of(kind: str, scales: dict) -> float:
+    """The size of a quantity of ``kind`` (a [reference] key's: ``VP`` a velocity, ``R`` a position ...) in
+    ``scales`` (:func:`kind_scales`)."""
     kind = {"VP": "V", "AP": "A", "R": "P", "theta": "P"}.get(kind, kind)
     return scales.get(kind, 1.0)
 
@@ -245,7 +247,7 @@ def comparison(sol) -> Comparison:
             ref = f"[{note_no[r.note]}]"
         rows.append((r.key, _show(r.printed, kind, 0.0), _show(gv, kind, floor), _show(r.computed, kind, floor),
                      _book_deviation(r),
-                     _difference(gv, r.computed, _scale_of(q.kind, scales), polar=q.kind != "P"), ref))
+                     _difference(gv, r.computed, scale_of(q.kind, scales), polar=q.kind != "P"), ref))
         values.append((r.key, r.printed, gv, r.computed))
     title = "Book, graphical and analytic values" + (f" ({m.reference.source})" if m.reference.source else "")
     table = Table(title, HEADER, tuple(rows))

@@ -387,13 +387,16 @@ def _angle_diff(a, b):
     return abs((a - b + 180.0) % 360.0 - 180.0)
 
 
-def _rel(printed, computed):
+def _rel(printed, computed, scale: float):
+    """|computed - printed| relative to the printed value; where that is 0, relative to ``scale``, the largest
+    value of its kind in the mechanism (a pole printed at the origin, omega_3 = 0: no printed size to be
+    relative to)."""
     if printed == 0:
-        return abs(computed)
+        return abs(computed) / scale
     return abs(computed - printed) / abs(printed)
 
 
-def _row(key, printed, value, note):
+def _row(key, printed, value, note, scale: float = 1.0):
     if value is None:   # a pole at infinity: the printed vector stays a (magnitude, direction) or (x, y) pair
         return Row(key, tuple(printed) if isinstance(printed, list) else printed, None, None, None, note)
     if isinstance(value, np.ndarray):
@@ -402,15 +405,15 @@ def _row(key, printed, value, note):
             pm, pa = float(printed[0]), float(printed[1])
             if pm < 0:
                 pm, pa = -pm, pa + 180.0
-            return Row(key, (pm, pa % 360.0), (mag, ang % 360.0), _rel(pm, mag),
+            return Row(key, (pm, pa % 360.0), (mag, ang % 360.0), _rel(pm, mag, scale),
                        _angle_diff(pa, ang) if mag > 0 else None, note)
         # a bare magnitude: a negative one reverses the vector (as [magnitude, direction]'s), whose magnitude
         # it still is (a book's V_B = -53.1, against the direction it assumed)
-        return Row(key, float(printed), mag, _rel(abs(float(printed)), mag), None, note)
+        return Row(key, float(printed), mag, _rel(abs(float(printed)), mag, scale), None, note)
     value = float(value)
     if key.startswith("theta"):
         return Row(key, float(printed), value, None, _angle_diff(float(printed), value), note)
-    return Row(key, float(printed), value, _rel(float(printed), value), None, note)
+    return Row(key, float(printed), value, _rel(float(printed), value, scale), None, note)
 
 
 def file_pose_angle(m) -> float | None:
@@ -434,32 +437,35 @@ def _printed(v):
 
 def compare(sol) -> list[Row]:
     """Every ``[reference]`` value beside the analytic one, in the file's order."""
+    from .compare import kind_scales, scale_of   # the sizes its graphical values are relative to, too
     m = sol.mechanism
     ref = m.reference
+    scales = kind_scales(sol)
     rows = []
     for lk, v in ref.omega.items():
-        rows.append(_row(f"omega_{lk}", v, sol.omega[lk], note_for(ref, f"omega_{lk}")))
+        rows.append(_row(f"omega_{lk}", v, sol.omega[lk], note_for(ref, f"omega_{lk}"), scales["omega"]))
     for lk, v in ref.alpha.items():
-        rows.append(_row(f"alpha_{lk}", v, sol.alpha[lk], note_for(ref, f"alpha_{lk}")))
+        rows.append(_row(f"alpha_{lk}", v, sol.alpha[lk], note_for(ref, f"alpha_{lk}"), scales["alpha"]))
     for p, v in ref.speed.items():
         rows.append(_row(f"|V_{p}|", v, evaluate(sol, parse_key(m, f"V_{p}") or Quantity("V", ((p, None),))),
-                         note_for(ref, f"|V_{p}|")))
+                         note_for(ref, f"|V_{p}|"), scales["V"]))
     for p, v in ref.velocity.items():   # [magnitude, direction], or a bare magnitude
         rows.append(_row(f"V_{p}", _printed(v), evaluate(sol, parse_key(m, f"V_{p}") or Quantity("V", ((p, None),))),
-                         note_for(ref, f"V_{p}")))
+                         note_for(ref, f"V_{p}"), scales["V"]))
     for p, v in ref.acceleration.items():
         rows.append(_row(f"A_{p}", _printed(v), evaluate(sol, parse_key(m, f"A_{p}") or Quantity("A", ((p, None),))),
-                         note_for(ref, f"A_{p}")))
+                         note_for(ref, f"A_{p}"), scales["A"]))
     for key, v in ref.values.items():
         q = parse_key(m, key)
         value = evaluate(sol, q)
         if q.kind == "P" and isinstance(v, (list, tuple)) and value is not None:
-            # a pole's position is printed as [x, y]
+            # a pole's position is printed as [x, y]: its distance from it, relative to the printed
+            # position's distance from the origin (the mechanism's size for a pole printed there)
             d = float(np.hypot(value[0] - v[0], value[1] - v[1]))
             rows.append(Row(key, (float(v[0]), float(v[1])), (float(value[0]), float(value[1])),
-                            d / max(float(np.hypot(*v)), 1e-300), None, note_for(ref, key)))
+                            d / (float(np.hypot(*v)) or scales["P"]), None, note_for(ref, key)))
             continue
-        rows.append(_row(key, _printed(v), value, note_for(ref, key)))
+        rows.append(_row(key, _printed(v), value, note_for(ref, key), scale_of(q.kind, scales)))
     return rows
 
 
