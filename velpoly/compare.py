@@ -18,7 +18,7 @@ from dataclasses import dataclass
 import numpy as np
 
 from .errors import InputError
-from .reference import Quantity, compare, evaluate, parse_key
+from .reference import Quantity, compare, evaluate, kind_scales, parse_key, scale_of   # re-exported
 from .rigid import point_acceleration, point_velocity
 from .tables import ZERO, Table, coordinates, fmt, magnitude_angle, magnitude_direction, zero_floor
 
@@ -158,28 +158,6 @@ def _graphical_shown(row, q: Quantity, g):
             return magnitude_direction(g)
         return float(np.hypot(*g))
     return float(g)
-
-
-def kind_scales(sol) -> dict:
-    """The size of each kind of quantity in the mechanism, to which a graphical value's error is
-    relative (as FORMAT.md's graphical.max_error): the largest |omega|, speed, |alpha| (at least
-    omega_max^2) and acceleration (at least v_max^2 / size), and the mechanism's size for positions."""
-    def top(values):
-        v = [abs(float(x)) for x in values if x is not None and math.isfinite(float(x))]
-        return max(v, default=0.0)
-    size = sol.mechanism.size
-    omega = top(sol.omega.values()) or 1.0
-    speed = top(np.hypot(*v) for v in sol.velocity.values()) or size * omega
-    return {"omega": omega, "alpha": max(top(sol.alpha.values()), omega ** 2),
-            "V": speed, "A": max(top(np.hypot(*a) for a in sol.acceleration.values()), speed ** 2 / size),
-            "P": size}
-
-
-def scale_of(kind: str, scales: dict) -> float:
-    """The size of a quantity of ``kind`` (a [reference] key's: ``VP`` a velocity, ``R`` a position ...) in
-    ``scales`` (:func:`kind_scales`)."""
-    kind = {"VP": "V", "AP": "A", "R": "P", "theta": "P"}.get(kind, kind)
-    return scales.get(kind, 1.0)
 
 
 def _cartesian(v, polar: bool) -> np.ndarray:

@@ -35,7 +35,7 @@ from .errors import InputError
 from .rigid import coriolis as coriolis_term, normal_acceleration, rate_cross
 
 __all__ = ["Quantity", "parse_key", "validate_reference", "compare", "Row", "relative_pole", "value_keys",
-           "note_for", "COMPONENTS"]
+           "note_for", "COMPONENTS", "kind_scales", "scale_of"]
 
 
 @dataclass(frozen=True)
@@ -416,6 +416,28 @@ def _row(key, printed, value, note, scale: float = 1.0):
     return Row(key, float(printed), value, _rel(float(printed), value, scale), None, note)
 
 
+def kind_scales(sol) -> dict:
+    """The size of each kind of quantity in the mechanism, to which a graphical value's error is
+    relative (as FORMAT.md's graphical.max_error): the largest |omega|, speed, |alpha| (at least
+    omega_max^2) and acceleration (at least v_max^2 / size), and the mechanism's size for positions."""
+    def top(values):
+        v = [abs(float(x)) for x in values if x is not None and math.isfinite(float(x))]
+        return max(v, default=0.0)
+    size = sol.mechanism.size
+    omega = top(sol.omega.values()) or 1.0
+    speed = top(np.hypot(*v) for v in sol.velocity.values()) or size * omega
+    return {"omega": omega, "alpha": max(top(sol.alpha.values()), omega ** 2),
+            "V": speed, "A": max(top(np.hypot(*a) for a in sol.acceleration.values()), speed ** 2 / size),
+            "P": size}
+
+
+def scale_of(kind: str, scales: dict) -> float:
+    """The size of a quantity of ``kind`` (a [reference] key's: ``VP`` a velocity, ``R`` a position ...) in
+    ``scales`` (:func:`kind_scales`)."""
+    kind = {"VP": "V", "AP": "A", "R": "P", "theta": "P"}.get(kind, kind)
+    return scales.get(kind, 1.0)
+
+
 def file_pose_angle(m) -> float | None:
     """The driver angle (deg) of the pose the file describes, to which its printed values belong:
     ``driver.angle`` if the file gives one, else the reference pose's; None for a slider driver."""
@@ -437,7 +459,6 @@ def _printed(v):
 
 def compare(sol) -> list[Row]:
     """Every ``[reference]`` value beside the analytic one, in the file's order."""
-    from .compare import kind_scales, scale_of   # the sizes its graphical values are relative to, too
     m = sol.mechanism
     ref = m.reference
     scales = kind_scales(sol)

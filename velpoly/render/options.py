@@ -77,6 +77,21 @@ def _boolean(m, key: str, v) -> bool:
     return v
 
 
+def _label_points(m, v) -> tuple[str, ...] | None:
+    """``label_points``: a list of the file's points, or true (every point, as without it) or false (none)."""
+    if isinstance(v, bool):
+        return None if v else ()
+    odd = v if not isinstance(v, list) else next((p for p in v if not isinstance(p, str)), None)
+    if odd is not None:
+        raise _err(m, "label_points", f"expected a list of point names, true or false, got {_typed(odd)}"
+                   + (" in the list" if odd is not v else ""), hint='e.g. label_points = ["A", "B"]')
+    for p in v:
+        if p not in m.points:
+            raise _err(m, "label_points", f"unknown point {_typed(p)}",
+                       hint="points: " + ", ".join(m.point_order or m.points))
+    return tuple(v)
+
+
 def drawing_options(m) -> DrawingOptions:
     """Check ``m.drawing`` and return it as :class:`DrawingOptions`.
 
@@ -97,19 +112,8 @@ def drawing_options(m) -> DrawingOptions:
     for key in ("scale", "velocity_scale", "acceleration_scale"):
         if key in d:
             out[key] = _positive(m, key, d[key])
-    if "label_points" in d and isinstance(d["label_points"], bool):   # every point (as without it), or none
-        out["label_points"] = None if d["label_points"] else ()
-    elif "label_points" in d:
-        v = d["label_points"]
-        odd = v if not isinstance(v, list) else next((p for p in v if not isinstance(p, str)), None)
-        if odd is not None:
-            raise _err(m, "label_points", f"expected a list of point names, true or false, got {_typed(odd)}"
-                       + (" in the list" if odd is not v else ""), hint='e.g. label_points = ["A", "B"]')
-        for p in v:
-            if p not in m.points:
-                raise _err(m, "label_points", f"unknown point {_typed(p)}",
-                           hint="points: " + ", ".join(m.point_order or m.points))
-        out["label_points"] = tuple(v)
+    if "label_points" in d:
+        out["label_points"] = _label_points(m, d["label_points"])
     if "link_colours" in d:
         v = d["link_colours"]
         if not isinstance(v, Mapping):
