@@ -47,6 +47,13 @@ def reachable_range(kin: Kinematics, limit: float = 360.0, step: float = 1.0,
     return lo, hi
 
 
+class _Range(tuple):
+    """``(lo, hi)`` as :func:`reachable_range` gives it, with ``ends``: each end as (reached, bound), for
+    :func:`reachable_ends` (one walk computes both)."""
+
+    ends: tuple
+
+
 def reachable_ends(kin: Kinematics, limit: float = 360.0, step: float = 1.0,
                    resolution: float = 0.01) -> tuple[tuple[float, float], tuple[float, float]]:
     """Each end of :func:`reachable_range` as (reached, bound): the last displacement reached and
@@ -56,16 +63,16 @@ def reachable_ends(kin: Kinematics, limit: float = 360.0, step: float = 1.0,
     m, args = kin.system.mechanism, (tuple(kin.rows), limit, step, resolution)
     for known, known_args, found in reversed(_RANGES):
         if known_args == args and same_mechanism(known, m):
-            return found
+            return found.ends
     found = _reachable_range(kin, limit, step, resolution)
     _RANGES.append((m, args, found))
     del _RANGES[:-16]
-    return found
+    return found.ends
 
 
-def _reachable_range(kin: Kinematics, limit: float, step: float, resolution: float) -> tuple:
-    """:func:`reachable_ends`, computed. The second continuation of a direction follows the
-    first's knots (kept in a :class:`velpoly.pose.Knots`): the same steps, not made again."""
+def _reachable_range(kin: Kinematics, limit: float, step: float, resolution: float) -> _Range:
+    """:func:`reachable_range`, computed, with its :func:`reachable_ends`. The second continuation of a
+    direction follows the first's knots (kept in a :class:`velpoly.pose.Knots`): the same steps, not made again."""
     out = []
     for sign in (1.0, -1.0):
         coarse = np.arange(step, limit + step / 2, step)
@@ -83,7 +90,9 @@ def _reachable_range(kin: Kinematics, limit: float, step: float, resolution: flo
             last = float(np.degrees(abs(r.deltas[-1]))) if len(r.deltas) else 0.0
         reached = round(last / resolution) * resolution
         out.append((sign * reached, sign * min(reached + resolution, limit)))
-    return out[1], out[0]
+    found = _Range((out[1][0], out[0][0]))
+    found.ends = (out[1], out[0])
+    return found
 
 
 def reachable_words(kin: Kinematics, ref: float, refused: float | None = None) -> str:

@@ -9,14 +9,12 @@ from ..model import Driver, Mechanism, Pin, Slider
 from .context import Ctx, check_keys, read_name, read_number, show
 from .units import ALPHA_HINT, OMEGA_HINT, parse_alpha, parse_omega
 
-__all__ = ["read_driver", "check_range", "MAX_SPEED", "MAX_ACCEL", "MIN_SPEED", "MIN_ACCEL"]
+__all__ = ["read_driver", "check_range", "MAX_SPEED", "MAX_ACCEL"]
 
 # Floating point holds about 1e+-308: the kinematics squares speeds and multiplies rates by lengths,
 # so the speeds and accelerations a file may ask for are bounded well inside that range.
 MAX_SPEED = 1e100               # the driver's speeds: |omega| x size, |speed|
 MAX_ACCEL = 1e200               # and accelerations: (omega^2 + |alpha|) x size, |accel|
-MIN_SPEED = 1e-50               # unless zero (at rest): a polygon's scale, its square and the figures'
-MIN_ACCEL = 1e-100              # units per cm stay far inside the range too (1e-90 rad/s drew nothing)
 
 
 def read_driver(ctx: Ctx, d: dict, frame: str, pins: list[Pin], sliders: list[Slider]) -> Driver:
@@ -95,12 +93,9 @@ def check_range(ctx: Ctx, m: Mechanism) -> None:
                    f"{d.alpha:g} rad/s^2" if abs(d.alpha) > d.omega * d.omega else f"{d.omega:g} rad/s"))
     unit = m.units or "length units"
     for where, value, limit, shown in checks:
-        what, per = ("speeds", "/s") if limit == MAX_SPEED else ("accelerations", "/s^2")
-        least = MIN_SPEED if limit == MAX_SPEED else MIN_ACCEL
-        if not value <= limit or 0 < value < least:
+        if not value <= limit:
+            what, per = ("speeds", "/s") if limit == MAX_SPEED else ("accelerations", "/s^2")
             reach = f"{value:.3g}" if math.isfinite(value) else "beyond 1e+308"
-            size = f"too large: {what} of {reach} {unit}{per} (at most {limit:g})" if value > limit else \
-                f"too small: {what} of {reach} {unit}{per} (at least {least:g}, or 0 at rest)"
-            raise ctx.err(where, f"{shown} is {size}",
+            raise ctx.err(where, f"{shown} is too large: {what} of {reach} {unit}{per} (at most {limit:g})",
                           hint="check the driver's value and its unit (omega in rad/s or rpm), and give the "
                                "lengths in units that keep the numbers within range")
