@@ -13,6 +13,7 @@ import argparse
 import json
 import math
 import os
+import re
 import signal
 import sys
 import warnings
@@ -74,7 +75,7 @@ def _solve_parser(command) -> None:
     s = command("solve", "analytic positions, velocities, accelerations, poles, and the book's values beside them",
                 "velpoly solve fourbar.toml --angle 40")
     s.add_argument("file", help="the mechanism file (TOML, FORMAT.md section 1)")
-    s.add_argument("--angle", type=float, metavar="DEG", help=ANGLE_HELP)
+    s.add_argument("--angle", type=_degrees, metavar="DEG", help=ANGLE_HELP)
     s.add_argument("--json", action="store_true", help="print the JSON results (FORMAT.md section 2) instead of tables")
     s.add_argument("--format", choices=("text", "markdown", "latex", "csv"), default="text",
                    help="table style of the readable output (default: text)")
@@ -93,7 +94,7 @@ def _draw_parser(command) -> None:
                    "[drawing] sheet, else full)")
     d.add_argument("--steps", action="store_true", help="one construction step a frame (multi-page PDF "
                    "or numbered SVG/PNG files), for slides")
-    d.add_argument("--angle", type=float, metavar="DEG", help=ANGLE_HELP)
+    d.add_argument("--angle", type=_degrees, metavar="DEG", help=ANGLE_HELP)
     d.add_argument("--style", choices=STYLES, default="textbook", help="the look (listed above; default: textbook)")
 
 
@@ -167,6 +168,18 @@ def _html_parser(command) -> None:
                    "degrees (default 1; a slider driver's stroke in as many poses)")
 
 
+def _degrees(text: str):
+    """``--angle``'s number: a float, or, where the number is finite but beyond any float (``1e400``), its
+    exact value (a Fraction), so that the angle's check says it is too large, as the API does for
+    ``solve(m, angle=10**400)``, not that it is not finite."""
+    x = float(text)
+    if math.isinf(x) and text.strip().lstrip("+-").lower() not in ("inf", "infinity"):
+        import decimal
+        import fractions
+        return fractions.Fraction(decimal.Decimal(text.strip().replace("_", "")))
+    return x
+
+
 def _sub_parser(parent):
     class SubParser(argparse.ArgumentParser):
         def __init__(self, *a, **kw):
@@ -224,6 +237,10 @@ def cmd_draw(args) -> int:
     from .render import draw_to_file
     from .render.sheet import default_sheet
     sheet = args.sheet or default_sheet(sol.mechanism)
+    from .solution import polygon_at_rest
+    still = polygon_at_rest(sol, sheet)
+    if still is not None:
+        raise still
     written = draw_to_file(sol, out, sheet=sheet, style=args.style, steps=args.steps)
     for path in written:
         print(path)
@@ -684,6 +701,27 @@ def _arguments(parser, argv):
         sys.stdout = stdout
 
 
+_GLYPH = re.compile(r"Glyph (\d+) .*missing from font")
+
+
+def _glyph_warning(where: str, show):
+    """``warnings.showwarning`` that says once per character, in one line, that the fonts lack a glyph for a
+    character of the file's names or title (matplotlib's warning, with its source line, for every text drawn
+    with it); any other warning as ``show`` does."""
+    said = set()
+
+    def showwarning(message, category, filename, lineno, file=None, line=None):
+        got = _GLYPH.search(str(message))
+        if got is None:
+            return show(message, category, filename, lineno, file, line)
+        code = int(got.group(1))
+        if code not in said:
+            said.add(code)
+            print(one_line(f"warning: {where}: the fonts have no glyph for {chr(code)!r} (U+{code:04X}): "
+                           "it is drawn as a box"), file=sys.stderr)
+    return showwarning
+
+
 def _main(argv) -> int:
     args = _arguments(build_parser(), argv)
     if isinstance(args, int):
@@ -700,6 +738,7 @@ def _main(argv) -> int:
             with warnings.catch_warnings():
                 if not args.debug:  # numpy's overflow chatter is not for users: errors say what is wrong
                     warnings.simplefilter("ignore", RuntimeWarning)
+                    warnings.showwarning = _glyph_warning(getattr(args, "file", "") or "velpoly", warnings.showwarning)
                 _check_outputs(args)
                 status = COMMANDS[args.command](args)
                 raise_if_interrupted()   # a Ctrl-C swallowed inside a callback still stops the run

@@ -18,11 +18,11 @@ from dataclasses import dataclass
 import numpy as np
 
 from .errors import InputError
-from .reference import Quantity, compare, evaluate, parse_key
+from .reference import Quantity, compare, evaluate, kind_scales, parse_key, scale_of   # re-exported
 from .rigid import point_acceleration, point_velocity
 from .tables import ZERO, Table, coordinates, fmt, magnitude_angle, magnitude_direction, zero_floor
 
-__all__ = ["Graphical", "Comparison", "comparison", "HEADER", "Value", "polygon_values", "kind_scales", "kind_floor", "key_floor"]
+__all__ = ["Graphical", "Comparison", "comparison", "HEADER", "Value", "polygon_values", "kind_scales", "kind_floor", "key_floor", "scale_of"]
 
 
 # -- graphical values ----------------------------------------------------------------------------
@@ -144,7 +144,7 @@ def kind_floor(scales: dict, kind: str) -> float:
     ``R``; ``theta`` a link angle) prints as 0: a billionth of the largest value of its kind in the mechanism
     (``scales``, :func:`kind_scales`), at most ZERO (:func:`velpoly.tables.zero_floor`); a link angle's, ZERO.
     Every table of a Solution reads this, ``velpoly solve``'s and the drawn sheets' alike."""
-    return ZERO if kind == "theta" else zero_floor([_scale_of(kind, scales)])
+    return ZERO if kind == "theta" else zero_floor([scale_of(kind, scales)])
 
 
 def _graphical_shown(row, q: Quantity, g):
@@ -158,26 +158,6 @@ def _graphical_shown(row, q: Quantity, g):
             return magnitude_direction(g)
         return float(np.hypot(*g))
     return float(g)
-
-
-def kind_scales(sol) -> dict:
-    """The size of each kind of quantity in the mechanism, to which a graphical value's error is
-    relative (as FORMAT.md's graphical.max_error): the largest |omega|, speed, |alpha| (at least
-    omega_max^2) and acceleration (at least v_max^2 / size), and the mechanism's size for positions."""
-    def top(values):
-        v = [abs(float(x)) for x in values if x is not None and math.isfinite(float(x))]
-        return max(v, default=0.0)
-    size = sol.mechanism.size
-    omega = top(sol.omega.values()) or 1.0
-    speed = top(np.hypot(*v) for v in sol.velocity.values()) or size * omega
-    return {"omega": omega, "alpha": max(top(sol.alpha.values()), omega ** 2),
-            "V": speed, "A": max(top(np.hypot(*a) for a in sol.acceleration.values()), speed ** 2 / size),
-            "P": size}
-
-
-def _scale_of(kind: str, scales: dict) -> float:
-    kind = {"VP": "V", "AP": "A", "R": "P", "theta": "P"}.get(kind, kind)
-    return scales.get(kind, 1.0)
 
 
 def _cartesian(v, polar: bool) -> np.ndarray:
@@ -245,7 +225,7 @@ def comparison(sol) -> Comparison:
             ref = f"[{note_no[r.note]}]"
         rows.append((r.key, _show(r.printed, kind, 0.0), _show(gv, kind, floor), _show(r.computed, kind, floor),
                      _book_deviation(r),
-                     _difference(gv, r.computed, _scale_of(q.kind, scales), polar=q.kind != "P"), ref))
+                     _difference(gv, r.computed, scale_of(q.kind, scales), polar=q.kind != "P"), ref))
         values.append((r.key, r.printed, gv, r.computed))
     title = "Book, graphical and analytic values" + (f" ({m.reference.source})" if m.reference.source else "")
     table = Table(title, HEADER, tuple(rows))

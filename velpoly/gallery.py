@@ -23,7 +23,7 @@ from .errors import InputError, VelpolyError
 from .fileio import atomic_write_bytes, atomic_write_text, committed_together, raise_if_interrupted
 from .compare import comparison
 from .report import Table, fmt, render_table
-from .tables import angle
+from .tables import angle, md_text
 
 __all__ = ["example_path", "example_files", "example_titles", "EXAMPLES", "comparison_text", "top_comments", "example_markdown",
            "build_gallery", "GalleryResult", "find_gallery", "build_demo", "gallery_folders",
@@ -103,7 +103,7 @@ def comparison_text(sol, style: str = "text") -> str:
               "direction (deg); graphical vs analytic relative to the largest value of its kind (omega, "
               "alpha, speed, acceleration, mechanism size).")
     md = style == "markdown"
-    out = [f"# {m.title}" if md else m.title, "", head, "", legend, ""]
+    out = [f"# {md_text(m.title)}" if md else m.title, "", md_text(head) if md else head, "", legend, ""]
     out.append(render_table(c.table, style))
     for n, key, note in c.notes:
         out.append(f"{n}. {_md(key) if md else key}: {_md(note) if md else note}")
@@ -165,12 +165,9 @@ def top_comments(path) -> list[tuple[str, str]]:
     return out
 
 
-_MD_SPECIAL = re.compile(r"([\\`*_\[\]<>|#])")
-
-
 def _md(text: str) -> str:
-    """Text safe in Markdown prose and table cells."""
-    return _MD_SPECIAL.sub(r"\\\1", str(text))
+    """Text safe in Markdown prose and table cells, every underscore escaped (the README's rule)."""
+    return md_text(text, words=False)
 
 
 def _anchor(title: str, used: set) -> str:
@@ -396,10 +393,18 @@ def _gallery_files(source: Path, names=None) -> list[Path]:
         stems = {p.stem: p for p in files}
         for n in names:
             if _stem(n) not in stems:
-                raise InputError(f"no example {n!r} in {source}", where="gallery",
-                                 hint="`velpoly examples` lists the built-in ones: name them without .toml")
+                raise InputError(f"no example {n!r} in {source}", where="gallery", hint=_names_hint(source, files))
         files = [p for p in files if p.stem in {_stem(n) for n in names}]
     return files
+
+
+def _names_hint(source: Path, files: list[Path]) -> str:
+    """Where the names ``velpoly gallery NAME`` takes are: the built-in examples (``velpoly examples``
+    lists them), or a ``--source`` folder's own files, listed (a few, then how many more)."""
+    if source.resolve() == EXAMPLES:
+        return "`velpoly examples` lists the built-in ones: name them without .toml"
+    shown = ", ".join(p.stem for p in files[:8]) + (f" and {len(files) - 8} more" if len(files) > 8 else "")
+    return f"the examples in {source} (name them without .toml): {shown}"
 
 
 def _example(path: Path, out: Path, style: str, copy: bool, draw, keep: bool = False) -> tuple:
@@ -407,9 +412,13 @@ def _example(path: Path, out: Path, style: str, copy: bool, draw, keep: bool = F
     (in a worker) nothing is written: the files are ``(path, bytes)`` pairs for the caller to write."""
     from . import load, solve
     from .render.options import drawing_options
+    from .solution import polygon_at_rest
     src = path
     m = load(path)
     sol = solve(m)
+    still = polygon_at_rest(sol, drawing_options(m).sheet)
+    if still is not None:   # before anything is written
+        raise still
     files = []
     if copy:
         text, target = path.read_text(encoding="utf-8"), out / path.name

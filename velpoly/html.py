@@ -570,8 +570,8 @@ def sheet_data(m, step: float = 1.0, cycle=None) -> tuple[dict, str]:
     """The page's data: (static part as a dict, the poses as JSON text of the templates' encoding).
     ``cycle``: what :func:`cycle_solutions` gives, if already at hand."""
     from .sweeps import solution_at
-    from .reference import compare, file_pose_angle
-    from .solution import driver_reference_angle, solve
+    from .reference import file_pose_angle
+    from .solution import driver_reference_angle
     w, kin, limited, sols = cycle if cycle is not None else cycle_solutions(m, step)
     if not len(w.angles):
         raise InputError("no pose of the driver's cycle can be assembled", where="driver", file=m.source)
@@ -598,14 +598,7 @@ def sheet_data(m, step: float = 1.0, cycle=None) -> tuple[dict, str]:
     static = _static(m, sol0, w, space)
     static_poles = _static(m, sol0, w, pole_view)
     # the [reference] table at the file's pose
-    ref_rows = []
-    try:
-        rows = compare(solve(m)) if m.reference is not None else []
-    except VelpolyError:
-        rows = []
-    for r in rows:
-        ref_rows.append({"key": r.key, "printed": r.printed, "value": r.computed, "dev": r.deviation,
-                         "angle": r.angle_error, "note": r.note})
+    ref_rows = _reference_rows(m)
     data = {
         "format": 1, "title": m.title, "units": m.units, "source": m.source or "",
         "frame": m.frame.name, "links": [lk.name for lk in m.links], "moving": [lk.name for lk in m.moving_links],
@@ -623,6 +616,21 @@ def sheet_data(m, step: float = 1.0, cycle=None) -> tuple[dict, str]:
         "reference": {"source": m.reference.source if m.reference else "", "rows": ref_rows},
     }
     return data, enc.json()
+
+
+def _reference_rows(m) -> list[dict]:
+    """The ``[reference]`` table at the file's pose, as the page shows it; ``z``: below it a computed value is
+    rounding noise and prints 0, as in velpoly solve's table (compare.key_floor)."""
+    from .compare import key_floor, kind_scales
+    from .reference import compare
+    from .solution import solve
+    try:
+        file_pose = solve(m) if m.reference is not None else None
+        rows, scales = (compare(file_pose), kind_scales(file_pose)) if file_pose is not None else ([], {})
+    except VelpolyError:
+        return []
+    return [{"key": r.key, "printed": r.printed, "value": r.computed, "dev": r.deviation, "angle": r.angle_error,
+             "note": r.note, "z": key_floor(m, r.key, scales)} for r in rows]
 
 
 # -- the page ----------------------------------------------------------------------------------------

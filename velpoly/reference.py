@@ -9,7 +9,8 @@ Keys of ``values`` are read the way books print them:
 ``V_B3/B4``    V_B3 - V_B4, coincident points of links 3 and 4
 ``omega_3``    angular velocity of link 3 (``alpha_3``; ``theta_3`` its angle)
 ``R_BA``       position of B relative to A
-``P_13``       position of the pole of links 1 and 3, ``[x, y]``
+``P_13``       position of the pole of links 1 and 3, ``[x, y]`` (``P_lever,cylinder`` where
+               a link's name is a word: the figures' P_{lever,cylinder})
 ``V_P24``      velocity of the pole P_24
 ``A^n_BA``     normal component of A_BA (B and A on one link): -omega^2 R_BA
 ``A^t_BA``     tangential component of A_BA: alpha x R_BA
@@ -34,7 +35,7 @@ from .errors import InputError
 from .rigid import coriolis as coriolis_term, normal_acceleration, rate_cross
 
 __all__ = ["Quantity", "parse_key", "validate_reference", "compare", "Row", "relative_pole", "value_keys",
-           "note_for", "COMPONENTS"]
+           "note_for", "COMPONENTS", "kind_scales", "scale_of"]
 
 
 @dataclass(frozen=True)
@@ -80,13 +81,32 @@ def _point_refs(m, s: str, count: int):
     return None
 
 
+def _pole_splits(s: str) -> list[tuple[str, str]]:
+    """The ways ``s`` (what follows ``P_``) names two links: at a comma where it has one, as the
+    figures print a pole of named links (``P_lever,cylinder``: P_{lever,cylinder}), else at every
+    place (``P_13``)."""
+    s = s.lstrip("_")
+    if "," in s:
+        return [(s[:i], s[i + 1:]) for i, c in enumerate(s) if c == ","]
+    return [(s[:i], s[i:]) for i in range(1, len(s))]
+
+
 def _two_links(m, s: str):
     links = m.link_names
-    s = s.lstrip("_")
-    for i in range(1, len(s)):
-        if s[:i] in links and s[i:] in links:
-            return (s[:i], s[i:])
-    return None
+    return next(((a, b) for a, b in _pole_splits(s) if a in links and b in links and a != b), None)
+
+
+def _pole_trouble(m, s: str) -> str:
+    """Why ``P_s`` names no pole here (for the error message): the link it names that the file has
+    not, or how a pole's key is written."""
+    links = m.link_names
+    shown = ", ".join(links)
+    for a, b in _pole_splits(s):
+        if a in links and b in links:   # one link twice
+            return f"a pole is of two different links, got link {a} twice"
+        if (a in links) != (b in links):
+            return f"no link {b if a in links else a!r} (links: {shown}): P_{s} is the pole of links {a} and {b}"
+    return f"a pole is P_ij of two links i and j (P_13), or P_i,j where a link is a word (links: {shown})"
 
 
 COMPONENTS = {"n": "normal", "t": "tangential", "c": "Coriolis", "s": "sliding"}
@@ -102,6 +122,8 @@ def _component(m, part: str, body: str) -> Quantity | None:
         if not refs:
             return None
         (b, lb), (a, la) = refs
+        if b == a:   # a point relative to itself has no components
+            return None
         named = {lk for lk in (lb, la) if lk}
         shared = [lk for lk in m.link_names if lk in m.carriers.get(b, ()) and lk in m.carriers.get(a, ())]
         if len(named) > 1 or (named and named.pop() not in shared) or not shared:
@@ -146,6 +168,8 @@ def parse_key(m, key: str) -> Quantity | None:
         if r:
             return Quantity(kind, refs=(r[0],))
     r = _point_refs(m, body, 2)
+    if r and r[0] == r[1]:   # V_AA: a point relative to itself, no quantity a book prints
+        return None
     return Quantity(kind, refs=tuple(r)) if r else None
 
 
@@ -153,8 +177,7 @@ def validate_reference(m, ctx=None) -> None:
     """Raise InputError for a ``values`` key that cannot be read (FORMAT.md section 1)."""
     for key in m.reference.values:
         if parse_key(m, key) is None:
-            mo = re.fullmatch(r"A\^([ntcs])_(.+)", key)
-            raise InputError(f"unknown quantity {key!r}" + (f": {_component_trouble(m, *mo.groups())}" if mo else ""),
+            raise InputError(f"unknown quantity {key!r}" + _trouble(m, key),
                              where=f"reference.values.{key}", file=m.source,
                              hint="keys in textbook notation: V_B, A_B, V_BA, V_B3/B4, omega_3, alpha_3, "
                                   "theta_3, R_BA, P_13, V_P24, A^n_BA, A^t_BA, A^c_B3/B4, A^s_B3/B4")
@@ -215,6 +238,21 @@ def note_for(ref, key: str) -> str:
     return ""
 
 
+def _trouble(m, key: str) -> str:
+    """``: why`` a ``values`` key reads as no quantity here, where that can be said ("" otherwise)."""
+    mo = re.fullmatch(r"A\^([ntcs])_(.+)", key)
+    if mo:
+        return ": " + _component_trouble(m, *mo.groups())
+    points = re.fullmatch(r"([VAR])_([^/]+)", key)
+    refs = points and (_point_refs(m, points.group(2), 1) or _point_refs(m, points.group(2), 2))
+    if refs and len(refs) == 2 and refs[0] == refs[1]:
+        return f": {refs[0][0]} relative to itself ({points.group(1)}_BA is of two points B and A)"
+    pole = re.fullmatch(r"(?:[VA]_?P_?|P_?)(.+)", key)
+    if pole and not refs:   # no point (V_P24 may be the velocity of a point P24): a pole's key
+        return ": " + _pole_trouble(m, pole.group(1))
+    return ""
+
+
 def _component_trouble(m, part: str, body: str) -> str:
     """Why ``A^part_body`` reads as no component here (for the error message)."""
     what = COMPONENTS[part]
@@ -222,6 +260,8 @@ def _component_trouble(m, part: str, body: str) -> str:
         refs = _point_refs(m, body, 2) if "/" not in body else None
         if not refs:
             return f"the {what} component is A^{part}_BA of two points B and A on one link"
+        if refs[0][0] == refs[1][0]:
+            return f"{refs[0][0]} relative to itself: the {what} component is A^{part}_BA of two points B and A"
         return (f"{refs[0][0]!r} and {refs[1][0]!r} are not on one link: the {what} component of A_BA needs "
                 f"both points on one link")
     return (f"the {what} component is A^{part}_B3/B4, the point B of two links named by their numbers "
@@ -347,13 +387,16 @@ def _angle_diff(a, b):
     return abs((a - b + 180.0) % 360.0 - 180.0)
 
 
-def _rel(printed, computed):
+def _rel(printed, computed, scale: float):
+    """|computed - printed| relative to the printed value; where that is 0, relative to ``scale``, the largest
+    value of its kind in the mechanism (a pole printed at the origin, omega_3 = 0: no printed size to be
+    relative to)."""
     if printed == 0:
-        return abs(computed)
+        return abs(computed) / scale
     return abs(computed - printed) / abs(printed)
 
 
-def _row(key, printed, value, note):
+def _row(key, printed, value, note, scale: float = 1.0):
     if value is None:   # a pole at infinity: the printed vector stays a (magnitude, direction) or (x, y) pair
         return Row(key, tuple(printed) if isinstance(printed, list) else printed, None, None, None, note)
     if isinstance(value, np.ndarray):
@@ -362,15 +405,37 @@ def _row(key, printed, value, note):
             pm, pa = float(printed[0]), float(printed[1])
             if pm < 0:
                 pm, pa = -pm, pa + 180.0
-            return Row(key, (pm, pa % 360.0), (mag, ang % 360.0), _rel(pm, mag),
+            return Row(key, (pm, pa % 360.0), (mag, ang % 360.0), _rel(pm, mag, scale),
                        _angle_diff(pa, ang) if mag > 0 else None, note)
         # a bare magnitude: a negative one reverses the vector (as [magnitude, direction]'s), whose magnitude
         # it still is (a book's V_B = -53.1, against the direction it assumed)
-        return Row(key, float(printed), mag, _rel(abs(float(printed)), mag), None, note)
+        return Row(key, float(printed), mag, _rel(abs(float(printed)), mag, scale), None, note)
     value = float(value)
     if key.startswith("theta"):
         return Row(key, float(printed), value, None, _angle_diff(float(printed), value), note)
-    return Row(key, float(printed), value, _rel(float(printed), value), None, note)
+    return Row(key, float(printed), value, _rel(float(printed), value, scale), None, note)
+
+
+def kind_scales(sol) -> dict:
+    """The size of each kind of quantity in the mechanism, to which a graphical value's error is
+    relative (as FORMAT.md's graphical.max_error): the largest |omega|, speed, |alpha| (at least
+    omega_max^2) and acceleration (at least v_max^2 / size), and the mechanism's size for positions."""
+    def top(values):
+        v = [abs(float(x)) for x in values if x is not None and math.isfinite(float(x))]
+        return max(v, default=0.0)
+    size = sol.mechanism.size
+    omega = top(sol.omega.values()) or 1.0
+    speed = top(np.hypot(*v) for v in sol.velocity.values()) or size * omega
+    return {"omega": omega, "alpha": max(top(sol.alpha.values()), omega ** 2),
+            "V": speed, "A": max(top(np.hypot(*a) for a in sol.acceleration.values()), speed ** 2 / size),
+            "P": size}
+
+
+def scale_of(kind: str, scales: dict) -> float:
+    """The size of a quantity of ``kind`` (a [reference] key's: ``VP`` a velocity, ``R`` a position ...) in
+    ``scales`` (:func:`kind_scales`)."""
+    kind = {"VP": "V", "AP": "A", "R": "P", "theta": "P"}.get(kind, kind)
+    return scales.get(kind, 1.0)
 
 
 def file_pose_angle(m) -> float | None:
@@ -396,30 +461,32 @@ def compare(sol) -> list[Row]:
     """Every ``[reference]`` value beside the analytic one, in the file's order."""
     m = sol.mechanism
     ref = m.reference
+    scales = kind_scales(sol)
     rows = []
     for lk, v in ref.omega.items():
-        rows.append(_row(f"omega_{lk}", v, sol.omega[lk], note_for(ref, f"omega_{lk}")))
+        rows.append(_row(f"omega_{lk}", v, sol.omega[lk], note_for(ref, f"omega_{lk}"), scales["omega"]))
     for lk, v in ref.alpha.items():
-        rows.append(_row(f"alpha_{lk}", v, sol.alpha[lk], note_for(ref, f"alpha_{lk}")))
+        rows.append(_row(f"alpha_{lk}", v, sol.alpha[lk], note_for(ref, f"alpha_{lk}"), scales["alpha"]))
     for p, v in ref.speed.items():
         rows.append(_row(f"|V_{p}|", v, evaluate(sol, parse_key(m, f"V_{p}") or Quantity("V", ((p, None),))),
-                         note_for(ref, f"|V_{p}|")))
+                         note_for(ref, f"|V_{p}|"), scales["V"]))
     for p, v in ref.velocity.items():   # [magnitude, direction], or a bare magnitude
         rows.append(_row(f"V_{p}", _printed(v), evaluate(sol, parse_key(m, f"V_{p}") or Quantity("V", ((p, None),))),
-                         note_for(ref, f"V_{p}")))
+                         note_for(ref, f"V_{p}"), scales["V"]))
     for p, v in ref.acceleration.items():
         rows.append(_row(f"A_{p}", _printed(v), evaluate(sol, parse_key(m, f"A_{p}") or Quantity("A", ((p, None),))),
-                         note_for(ref, f"A_{p}")))
+                         note_for(ref, f"A_{p}"), scales["A"]))
     for key, v in ref.values.items():
         q = parse_key(m, key)
         value = evaluate(sol, q)
         if q.kind == "P" and isinstance(v, (list, tuple)) and value is not None:
-            # a pole's position is printed as [x, y]
+            # a pole's position is printed as [x, y]: its distance from it, relative to the printed
+            # position's distance from the origin (the mechanism's size for a pole printed there)
             d = float(np.hypot(value[0] - v[0], value[1] - v[1]))
             rows.append(Row(key, (float(v[0]), float(v[1])), (float(value[0]), float(value[1])),
-                            d / max(float(np.hypot(*v)), 1e-300), None, note_for(ref, key)))
+                            d / (float(np.hypot(*v)) or scales["P"]), None, note_for(ref, key)))
             continue
-        rows.append(_row(key, _printed(v), value, note_for(ref, key)))
+        rows.append(_row(key, _printed(v), value, note_for(ref, key), scale_of(q.kind, scales)))
     return rows
 
 

@@ -18,7 +18,7 @@ import numpy as np
 from .compare import key_floor, kind_floor, kind_scales, polygon_values
 from .driver import driver_label
 from .names import direction, key_text, place, relative
-from .tables import Table, angle, coordinates, fmt, magnitude_angle, zero_floor, magnitude_direction, polar, render_table, tex_text   # re-exported: the tables' primitives
+from .tables import Table, angle, coordinates, fmt, magnitude_angle, zero_floor, magnitude_direction, polar, render_table, tex_text, md_text   # re-exported: the tables' primitives
 from .reference import at_file_pose, compare, file_pose_angle
 
 __all__ = ["Table", "render_table", "solution_tables", "solution_report", "fmt", "polar", "magnitude_direction", "poles_tables", "polygon_tables",
@@ -306,8 +306,8 @@ def solution_html(sol) -> str:
 
 def solution_report(sol, style: str = "text") -> str:
     """The whole readable report of ``velpoly solve``."""
-    def line(text):   # a LaTeX report's lines are text typeset as written, each a paragraph
-        return tex_text(text) + r"\par" if style == "latex" else text
+    def line(text):   # a LaTeX report's lines are text typeset as written, each a paragraph; Markdown's as written
+        return tex_text(text) + r"\par" if style == "latex" else md_text(text) if style == "markdown" else text
     out = "\n".join(map(line, _head(sol))) + "\n\n" + "\n".join(render_table(t, style) for t in solution_tables(sol))
     for w in sol.warnings:
         out += "\n" + line(f"warning: {w}") + "\n"

@@ -19,10 +19,11 @@ from .model import Mechanism
 from .motion import Motion, evaluate_motion, wrap_deg_float
 from .pose import reassemble
 from .driver import driver_reference_angle, reachable_range   # re-exported: solve places the driver by them
+from .driver import inward_words, reachable_words
 from .rigid import point_acceleration, point_velocity
 from .arguments import check_angle, check_mechanism
 
-__all__ = ["Solution", "solve", "driver_reference_angle", "reachable_range"]
+__all__ = ["Solution", "solve", "driver_reference_angle", "reachable_range", "polygon_at_rest"]
 
 
 @dataclass(frozen=True)
@@ -179,9 +180,16 @@ def _choose(ref: float, lo: float, hi: float, hint: str) -> str:
     a, b = max(lo, -179.99), min(hi, 179.99)
     if (a, b) == (lo, hi):
         return hint
-    return (f"choose an angle from {ref + a:g} to {ref + b:g} deg: --angle turns the driver the shorter way "
+    return (f"choose an angle from {inward_words(ref, a, b)} deg: --angle turns the driver the shorter way "
             f"round from the reference pose ({ref:g} deg), so the rest of the range, beyond 180 deg from it, is "
             "reached only by velpoly sweep (or draw the mechanism nearer to that angle)")
+
+
+def _angle(target: float) -> str:
+    """The refused driver angle as given: ``{:g}`` where that is the number, else all its digits (220 is
+    not 219.9999999)."""
+    short = f"{target:g}"
+    return short if float(short) == target else repr(float(target))
 
 
 def _carried(kin, ref: float, target: float, delta: float) -> tuple[np.ndarray, float]:
@@ -198,16 +206,16 @@ def _carried(kin, ref: float, target: float, delta: float) -> tuple[np.ndarray, 
         lo, hi = reachable_range(kin)
         sl = m.slots[r.leaves[0]]
         raise AssemblyError(
-            f"cannot assemble at driver angle {target:g} deg: pin {sl.pin} leaves the slot of "
+            f"cannot assemble at driver angle {_angle(target)} deg: pin {sl.pin} leaves the slot of "
             f"{sl.slot} at its end {r.leaves[1]} at {wrap_deg_float(ref + math.degrees(r.leaves[2])):g} "
-            f"deg; the pin is in the slot from {ref + lo:g} to {ref + hi:g} deg",
+            f"deg; the pin is in the slot from {reachable_words(kin, ref, delta)} deg",
             where="driver.angle", file=m.source, links=(sl.link, sl.slot),
             hint=_choose(ref, lo, hi, "choose an angle in that range (the slot's ends bound the motion)"))
     if len(r.deltas) == 0:
         lo, hi = reachable_range(kin)
         raise AssemblyError(
-            f"cannot assemble at driver angle {target:g} deg: a toggle lies on the way from the "
-            f"reference pose ({ref:g} deg); reachable: {ref + lo:g} to {ref + hi:g} deg",
+            f"cannot assemble at driver angle {_angle(target)} deg: a toggle lies on the way from the "
+            f"reference pose ({ref:g} deg); reachable: {reachable_words(kin, ref, delta)} deg",
             where="driver.angle", file=m.source, links=tuple(kin.system.index),
             hint=_choose(ref, lo, hi, "choose an angle in the reachable range"))
     return r.q, delta
@@ -253,3 +261,25 @@ def solve(m: Mechanism, angle: float | None = None) -> Solution:
         warnings.append(f"near-singular pose: condition number {cond[0]:.3g} (results lose accuracy)")
     motion = evaluate_motion(m, kin.system.index, q, qd, qdd)
     return Solution(m, kin, q[0], qd[0], qdd[0], float(cond[0]), motion, angle_now, tuple(warnings))
+
+
+def polygon_at_rest(sol: Solution, sheet: str) -> InputError | None:
+    """The input error of a sheet whose polygon would be one point: every velocity zero (the driver at rest,
+    omega = 0, and no prescribed slip) for a sheet with the velocity polygon (``velocity``, ``full``), every
+    acceleration zero as well for one with the acceleration polygon; None where the polygons have a size.
+    A mechanism starting from rest (omega = 0, alpha given) has its acceleration sheet."""
+    m, drv = sol.mechanism, sol.mechanism.driver
+    still_v = not any(np.any(v != 0) for v in sol.velocity.values()) and not any(sol.omega.values())
+    still_a = still_v and sol.has_accelerations and not any(np.any(a != 0) for a in sol.acceleration.values())
+    rate, accel = ("driver.speed", "driver.accel") if drv.is_slider else ("driver.omega", "driver.alpha")
+    if still_a and sheet in ("velocity", "acceleration", "full"):
+        return InputError("the mechanism is at rest: every velocity and acceleration is zero, and its polygons "
+                          "are single points", where=rate, file=m.source,
+                          hint=f"give {rate.split('.')[1]} (or {accel.split('.')[1]}); the poles and the "
+                               "displacement sheet need neither")
+    if still_v and sheet in ("velocity", "full"):
+        return InputError("the mechanism is at rest: every velocity is zero, and the velocity polygon is a "
+                          "single point", where=rate, file=m.source,
+                          hint=f"draw --sheet acceleration (starting from rest: {accel.split('.')[1]} only), "
+                               f"or give {rate.split('.')[1]}")
+    return None

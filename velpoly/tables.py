@@ -11,6 +11,7 @@ from __future__ import annotations
 import csv
 import io
 import math
+import re
 from dataclasses import dataclass
 
 import numpy as np
@@ -19,7 +20,7 @@ from .names import polar as _angle_text
 
 ZERO = 1e-9   # below this a value of order one prints as 0: rounding noise (fmt)
 
-__all__ = ["Table", "fmt", "zero_floor", "angle", "polar", "magnitude_angle", "coordinates", "magnitude_direction", "render_table",
+__all__ = ["Table", "fmt", "zero_floor", "angle", "polar", "magnitude_angle", "coordinates", "magnitude_direction", "render_table", "md_text",
            "tex_text"]
 
 
@@ -119,6 +120,24 @@ def tex_text(s) -> str:
     return "".join(_TEX.get(c, c) for c in str(s))
 
 
+_MD_SPECIAL = re.compile(r"([\\`*_\[\]<>|#])")
+_MD_INNER = re.compile(r"([\\`*\[\]<>|#]|(?<![^\W_])_|_(?![^\W_]))")   # ... an underscore not within a word
+
+
+def md_text(s, words: bool = True) -> str:
+    r"""Text as Markdown shows it as written, in prose or a table cell: every character that would start
+    emphasis, code, a link, an HTML tag, a heading or a cell escaped with a backslash. With ``words``, an
+    underscore between two letters or digits is left as it is (CommonMark and GitHub take it literally:
+    omega_2, P_13, a_b_c); without, every underscore is escaped (the gallery's README).
+
+    >>> print(md_text("a_b_c _x_ *y* `z` [l](u) <b> |"))
+    a_b_c \_x\_ \*y\* \`z\` \[l\](u) \<b\> \|
+    >>> print(md_text("omega_2", words=False))
+    omega\_2
+    """
+    return (_MD_INNER if words else _MD_SPECIAL).sub(r"\\\1", str(s))
+
+
 def render_table(t: Table, style: str = "text") -> str:
     """A table as ``text`` (aligned columns), ``markdown``, ``latex`` or ``csv``."""
     if style == "csv":
@@ -128,11 +147,9 @@ def render_table(t: Table, style: str = "text") -> str:
         w.writerows(t.rows)
         return buf.getvalue()
     if style == "markdown":
-        def esc(s):
-            return str(s).replace("|", "\\|")
-        lines = [f"**{t.title}**", "", "| " + " | ".join(map(esc, t.header)) + " |",
+        lines = [f"**{md_text(t.title)}**", "", "| " + " | ".join(map(md_text, t.header)) + " |",
                  "|" + "|".join("---" for _ in t.header) + "|"]
-        lines += ["| " + " | ".join(map(esc, r)) + " |" for r in t.rows]
+        lines += ["| " + " | ".join(map(md_text, r)) + " |" for r in t.rows]
         return "\n".join(lines) + "\n"
     if style == "latex":
         cols = "l" * len(t.header)

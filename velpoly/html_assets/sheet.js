@@ -74,18 +74,18 @@
       return "<sub>" + (digits ? digits.replace(/[\u2080-\u2089]/g, function (c) { return String(SUBDIGITS.indexOf(c)); }) : word) + "</sub>";
     });
   }
-  function fmt(x, d) {
+  function fmt(x, d, z) {   // z: below it the value is rounding noise and prints 0 (noise())
     if (x === null || x === undefined || !isFinite(x)) return "\u2013";
-    if (x === 0) return "0";
+    if (x === 0 || Math.abs(x) < z) return "0";
     var a = Math.abs(x), s;
     if (a >= 1e7 || a < 1e-4) s = x.toExponential((d || 5) - 1).replace(/\.?0+e/, "e");
     else s = String(Number(x.toPrecision(d || 5)));   // plain digits, no trailing zeros
-    return s.replace("-", "\u2212");
+    return s.replace(/-/g, "\u2212");
   }
-  function polar(v) {
+  function polar(v, z) {
     if (!v) return "\u2013";
     var mag = Math.hypot(v[0], v[1]);
-    if (mag === 0) return "0";
+    if (mag === 0 || mag < z) return "0";
     // a direction in [0, 360), rounded and then folded, as velpoly.names.direction prints it
     var ang = Number((Math.atan2(v[1], v[0]) * 180 / Math.PI).toFixed(2));
     ang = ((ang % 360) + 360) % 360;
@@ -622,28 +622,38 @@
     var r = d / (scale || 1);
     return r < 1e-12 ? "&lt; 10<sup>\u221212</sup>" : r.toExponential(1).replace("-", "\u2212");
   }
-  function results(P) {
-    var rows = [], lk, key, j, wmax = 0, amax = 0, vmax = 0, aamax = 0;
+  // The size of each kind (omega, alpha, speed, acceleration) at a pose, as compare.kind_scales: the
+  // largest |omega|, |alpha| (at least omega^2), speed and acceleration (at least speed^2 / size). A
+  // graphical value's deviation is relative to its kind's; below a billionth of it (at most 1e-9) a
+  // value is rounding noise and prints 0 (compare.kind_floor), as in velpoly solve's tables.
+  function kindScales(P) {
+    var wmax = 0, amax = 0, vmax = 0, aamax = 0, lk, key;
     for (lk in P.w) wmax = Math.max(wmax, Math.abs(P.w[lk] || 0));
     if (P.al) for (lk in P.al) amax = Math.max(amax, Math.abs(P.al[lk] || 0));
     for (key in P.V) if (P.V[key]) vmax = Math.max(vmax, Math.hypot(P.V[key][0], P.V[key][1]));
     if (P.A) for (key in P.A) if (P.A[key]) aamax = Math.max(aamax, Math.hypot(P.A[key][0], P.A[key][1]));
-    function row(q, unit, g, a, scale, vec) {
-      rows.push("<tr><td>" + q + (unit ? " (" + esc(unit) + ")" : "") + "</td><td>" + (vec ? polar(g) : fmt(g)) + "</td><td>" +
-        (vec ? polar(a) : fmt(a)) + "</td><td>" + dev(g, a, scale) + "</td></tr>");
+    var om = wmax || 1, sp = vmax || S.size * om;
+    return [om, Math.max(amax, om * om), sp, Math.max(aamax, sp * sp / S.size)];
+  }
+  function results(P) {
+    var rows = [], lk, key, j, k = kindScales(P);
+    var z = k.map(function (x) { return Math.min(1e-9, 1e-9 * x) || 1e-9; });
+    function row(q, unit, g, a, scale, vec, zk) {
+      rows.push("<tr><td>" + q + (unit ? " (" + esc(unit) + ")" : "") + "</td><td>" + (vec ? polar(g, zk) : fmt(g, 0, zk)) +
+        "</td><td>" + (vec ? polar(a, zk) : fmt(a, 0, zk)) + "</td><td>" + dev(g, a, scale) + "</td></tr>");
     }
     for (j = 0; j < S.moving.length; j++) {
       lk = S.moving[j];
-      row("<i>\u03c9</i>" + sub(lk), "rad/s", P.vp ? P.vp.r[lk] : null, P.w[lk], wmax, false);
+      row("<i>\u03c9</i>" + sub(lk), "rad/s", P.vp ? P.vp.r[lk] : null, P.w[lk], k[0], false, z[0]);
     }
     if (P.al) for (j = 0; j < S.moving.length; j++) {
       lk = S.moving[j];
-      row("<i>\u03b1</i>" + sub(lk), "rad/s\u00b2", P.ap ? P.ap.r[lk] : null, P.al[lk], amax, false);
+      row("<i>\u03b1</i>" + sub(lk), "rad/s\u00b2", P.ap ? P.ap.r[lk] : null, P.al[lk], k[1], false, z[1]);
     }
     for (key in P.V) if (P.V[key] && Math.hypot(P.V[key][0], P.V[key][1]) > 0)
-      row("<i>V</i>" + subKey(key), unitsOf(1), P.vp ? P.vp.img[key] : null, P.V[key], vmax, true);
+      row("<i>V</i>" + subKey(key), unitsOf(1), P.vp ? P.vp.img[key] : null, P.V[key], k[2], true, z[2]);
     if (P.A) for (key in P.A) if (P.A[key] && Math.hypot(P.A[key][0], P.A[key][1]) > 0)
-      row("<i>A</i>" + subKey(key), unitsOf(2), P.ap ? P.ap.img[key] : null, P.A[key], aamax, true);
+      row("<i>A</i>" + subKey(key), unitsOf(2), P.ap ? P.ap.img[key] : null, P.A[key], k[3], true, z[3]);
     return '<table id="results-table"><caption>Results at ' + angleText(state.i) +
       ": graphical construction against the analytic solve</caption><thead><tr><th>quantity</th><th>graphical</th><th>analytic</th><th>deviation</th></tr></thead><tbody>" +
       rows.join("") + "</tbody></table>";
@@ -652,10 +662,14 @@
     var R = S.reference;
     if (!R || !R.rows.length) return "";
     var rows = R.rows.map(function (r) {
-      function show(x) { return Array.isArray(x) ? (x.length === 2 && /^(V|A|R|\|)/.test(r.key) ? fmt(x[0]) + " \u2220 " + fmt(x[1]) + "\u00b0" : "(" + x.map(fmt).join(", ") + ")") : fmt(x); }
+      function show(x, z) {   // z: the computed value's floor (printed values as given)
+        if (!Array.isArray(x)) return fmt(x, 0, z);
+        if (x.length === 2 && /^(V|A|R|\|)/.test(r.key)) return fmt(x[0], 0, z) + " \u2220 " + fmt(x[1]) + "\u00b0";
+        return "(" + x.map(function (c) { return fmt(c, 0, z); }).join(", ") + ")";
+      }
       var d = r.dev !== null && r.dev !== undefined ? (r.dev * 100 < 0.001 ? "&lt; 0.001 %" : fmt(r.dev * 100, 3) + " %") :
         (r.angle !== null && r.angle !== undefined ? fmt(r.angle, 3) + "\u00b0" : "\u2013");
-      return "<tr><td>" + eqHtml(r.key) + "</td><td>" + show(r.printed) + "</td><td>" + show(r.value) + "</td><td>" + d + '</td><td class="note">' + esc(r.note || "") + "</td></tr>";
+      return "<tr><td>" + eqHtml(r.key) + "</td><td>" + show(r.printed) + "</td><td>" + show(r.value, r.z) + "</td><td>" + d + '</td><td class="note">' + esc(r.note || "") + "</td></tr>";
     });
     return "<table><caption>Book values at the drawn pose (" + angleText(S.start) + ")" + (R.source ? ": " + esc(R.source) : "") +
       "</caption><thead><tr><th>quantity</th><th>book</th><th>analytic</th><th>deviation</th><th>note</th></tr></thead><tbody>" + rows.join("") + "</tbody></table>";
