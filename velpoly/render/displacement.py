@@ -48,6 +48,7 @@ LABEL_NEAR = 2.0        # cm: a point's label off the other links at most this f
 #                         leader reads worse than a label beside its point over a plate or an outline)
 NUMBER_BESIDE = 0.4     # cm: else (no such place found off the lines) a number's circle at most this far from its link
 BESIDE_STEP = 0.08      # cm: the grid of places searched there
+ON_BAR = (0.5, 0.42, 0.58, 0.34, 0.66)   # a number on its own bar: these fractions of the way along it tried
 LABEL_ROOM = 0.3        # cm: such a number's circle at least this far from every labelled point (room for its label)
 NUMBER_NEAR = 1.0       # cm: a link number at most this far from its own link (beside it, not out at a leader's end)
 GROUND_CLEAR = 0.15     # cm: a driver's value is nudged this far from hatched ground it crowds, where that is free
@@ -413,6 +414,8 @@ class _Drawing:
         self.guide_bars: dict = {}       # moving guide -> its slotted bar (in a plate: the part a block's number
         #                                  keeps off; the rest of the plate it may stand on, beside its block)
         self.reserved: list = []         # the point labels' boxes in a clear field (:meth:`marks`)
+        self.outlines: dict = {}         # link -> its outline's and slots' soft obstacles (a number on its own bar
+#                                          may cross them and those of the links beneath it: the bar hides them)
         self.plan: int | None = None     # the driver's layout chosen (:meth:`turning_driver`), drawn again the same
         self.bare = not self.pl.soft     # nothing drawn in the panel before (a poles sheet's Kennedy lines are)
 
@@ -726,6 +729,7 @@ class _Drawing:
                           p - d * L / 2 + n * H / 2])
         fill = link_fill(self.m, self.opts, st, s.block)
         self.patch(block, "sliders", 3.2, fill, gid=f"block-{s.block}")
+        self.outlines.setdefault(s.block, []).append(block)
         self.pl.add_obstacle(block, hard=False)
         self.block_geom[s.block] = block
 
@@ -942,16 +946,23 @@ class _Drawing:
                 zorder = self.zorders[lk] = 3.3 if lk == drv and lk not in self.slotted else 2 + 0.01 * z
                 self.body(lk, geoms[lk], zorder)
                 # its outline, not its area: a label may sit inside a plate or a wheel, clear of its edges
-                self.pl.add_obstacle(geoms[lk].boundary.buffer(0.6 * self.pp), hard=False)
+                self.outline(lk, geoms[lk])
         for lk, g in self.slots:
             z = 2.5 if lk is None else 2 + 0.01 * order.index(lk) + 0.005
             self.patch(g, "links", z, st.paper, lw=st.thin_lw * 1.5)
-            self.pl.add_obstacle(g.boundary.buffer(0.6 * self.pp), hard=False)
+            self.outline(lk, g)
         # pins and points
         self.points(ground_dir)
         self.marks(ground_dir, geoms)
         self.art.add("scale_bar", *scale_bar(self.ax, st, m.units, 0))
         return self.art
+
+    def outline(self, lk, g):
+        """A body's or slot's outline, a soft obstacle (a label may sit inside a plate, clear of its edges), kept as
+        link ``lk``'s (:attr:`outlines`)."""
+        line = g.boundary.buffer(0.6 * self.pp)
+        self.outlines.setdefault(lk, []).append(line)
+        self.pl.add_obstacle(line, hard=False)
 
     def marks(self, ground_dir, geoms):
         """The driver's arrows and values, the link numbers, then the point labels: the labels come last, so
@@ -1129,7 +1140,7 @@ class _Drawing:
                 prefer = away_from(anchor, [centre], default=90.0)
             kw = self.number_style(lk)
             pad = 3.5 if "bbox" in kw else 1.0
-            t = None
+            t = on_bar = None
             if len(pts) == 2:   # a leader from a point of the bar no other link covers (its middle, if free)
                 mine = next((a + (b - a) * f for f in (0.5, 0.38, 0.62, 0.27, 0.73, 0.16, 0.84)
                              if not self._covered(lk, a + (b - a) * f)), anchor)
@@ -1146,12 +1157,14 @@ class _Drawing:
                 t = self._link_number(lk, pts, g, mine, prefer, n if len(pts) >= 2 else None, pad, kw, clear, True)
                 if t is None:
                     t = self._number_beside(lk, bodies, mine, pad, kw, nearest=True)
+                if t is None and len(pts) == 2:
+                    t = on_bar = self._number_on_bar(lk, pts, kw)
                 if t is None:
                     t = self._number_last(lk, pts, g, (anchor, mine), prefer, n, pad, kw, test, owned, bodies)
             own = self.pl.of(t)   # (the box it keeps, its margin too: a value in it would send it elsewhere)
             b = self._number_box(t) if own is None else own.box.union(self._number_box(t))
             out[lk] = (b if own is None or own.leader_geom is None else b.union(own.leader_geom),
-                       own is None or test(self._number_box(t)))   # its circle, as drawn
+                       own is None or t is on_bar or test(self._number_box(t)))   # its circle, as drawn
             if record:
                 self.art.add("link_numbers", t)
         return out
@@ -1174,6 +1187,29 @@ class _Drawing:
             return t
         t = self._number_beside(lk, bodies, mine, pad, kw, nearest=False)
         return t if t is not None else last()
+
+    def _number_on_bar(self, lk, pts, kw):
+        """Link ``lk``'s circled number on its own bar, where no free place beside the bar reads as its own: the
+        circle's centre on the bar's centre line at its middle (else farther along, :data:`ON_BAR`), the bar seen
+        on both sides of it (at least half a bar width of it between the circle and each pin's ring), over no link
+        or block drawn above the bar, on no line but the outlines of the bar and of the links beneath it (the bar
+        and the circle hide them there), clear of every mark and label and off the point labels' places (:attr:`reserved`). A circled number on its own bar reads as that bar's, as books
+        draw it. None where the numbers are not circled, the bar is too short or no such place is free."""
+        if "bbox" not in kw:
+            return None
+        a, b = (np.asarray(p, float) for p in pts)
+        r, length = self.number_radius(lk, kw), float(np.hypot(*(b - a)))
+        end = r + (self.st.pin_radius + self.st.bar_width / 2) * self.pc   # from a pin to the circle's centre
+        z = self.zorders.get(lk, 0.0)
+        bodies = (*self.geoms.items(), *self.block_geom.items())
+        above = [g for k, g in bodies if k != lk and self.zorders.get(k, 0.0) > z]
+        hidden = {id(g) for k, lines in self.outlines.items() if k == lk or self.zorders.get(k, 9.0) < z for g in lines}
+        avoid = above + [g for g in self.pl.soft if id(g) not in hidden]
+        centres = [c for f in ON_BAR for c in [a + (b - a) * f] if min(f, 1 - f) * length >= end
+                   for ring in [Point(*c).buffer(r, quad_segs=8)]
+                   if self.pl.free(ring) and self._unreserved(ring) and not any(g.intersects(ring) for g in avoid)]
+        return self.pl.place_at(centres, literal(lk), gid=f"link-number-{lk}", pad=3.5, avoid=avoid,
+                                anchor=(a + b) / 2, **kw) if centres else None
 
     def _number_beside(self, lk, bodies, anchor, pad: float, kw, nearest: bool):
         """Link ``lk``'s number, with its circle on no line, at the free place nearest its body within
