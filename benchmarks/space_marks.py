@@ -79,10 +79,8 @@ def measure(sol, sheet, style):
             lk = gid[len("link-number-"):] if gid.startswith("link-number-") else None
             own = bodies.get(lk) if lk else None
             # on a line: a soft obstacle under it (a number on its own bar is on its own link, not on a line)
-            if on_own_bar(ax, art, gid, b):
-                out["on_own_bar"].append(gid)
-            elif pl.soft_hits(b):
-                out["on_line"].append(gid)
+            if pl.soft_hits(b):
+                out["on_own_bar" if on_own_bar(ax, art, gid, b) else "on_line"].append(gid)
             if any(b.intersects(boxes[id(q.text)]) for q in texts if q is not p):
                 out["overlap"].append(gid)
             if gid.startswith("driver-label") and p.text.get_fontsize() < st.small_size - 1e-9:

@@ -390,8 +390,12 @@ class _ArcPlace(NamedTuple):
 class _Drawing:
     """The state of one displacement diagram being drawn."""
 
-    def __init__(self, sol, ax, st, opts):
+    def __init__(self, sol, ax, st, opts, under_cranks: bool = False):
         self.sol, self.m, self.ax, self.st, self.opts = sol, sol.mechanism, ax, st, opts
+        self.under_cranks = under_cranks   # a plate notched about a crank's pivot with the crank over it drawn so
+        #                                    (:meth:`reads`), not as bars (:meth:`cranks_over`)
+        self.astray: list = []            # the links whose numbers, as drawn, read as another link's, and the points
+        #                                   whose labels stand over a link not theirs or on an outline
         self.pc, self.pp = per_cm(ax), per_point(ax)
         self.pl = placer(ax)
         self.art = Artists(ax)
@@ -473,7 +477,7 @@ class _Drawing:
         g = bitten_plate(hull, foreign_bars(self.sol, lk, own), pts, self.st.bar_width * self.pc, keep,
                          unary_union(under) if under else None, (PEDESTAL * self.pc, (HATCH + GROUND_GAP) * self.pc),
                          room)
-        if g is not None and self.cranks_over(lk, hull, g):
+        if g is not None and not self.under_cranks and self.cranks_over(lk, hull, g):
             g = None   # a crank about its pivot in the notch, lying over the plate: its number (and arcs) need room
         return (g, True) if g is not None else (bars(), False)
 
@@ -1078,6 +1082,8 @@ class _Drawing:
                 out.append(b if own is None or own.leader_geom is None else b.union(own.leader_geom))
                 if not record:
                     continue
+                if not self.off_links(links)(self.pl.of(t).box if own is not None else b):
+                    self.astray.append(name)   # (where no place that reads as its point's was free)
                 self.art.add("labels", t)
                 for k, q in keys:
                     if len(spots) == 1 or k == key:
@@ -1167,7 +1173,26 @@ class _Drawing:
                        own is None or t is on_bar or test(self._number_box(t)))   # its circle, as drawn
             if record:
                 self.art.add("link_numbers", t)
+        if record:
+            self.astray = _astray(out)   # (the point labels, placed after, add theirs)
         return out
+
+    def reads(self) -> bool:
+        """Whether the marks read as drawn: every link number as its own link's (:meth:`owned`), every point label
+        as its point's (:meth:`off_links`) and the driver's arrows across no other link or block (a slider driver's:
+        but those pinned at its point, and its guide's plate off the slotted bar). A plate beneath a crank
+        (:attr:`under_cranks`) is kept only where they do."""
+        from matplotlib.lines import Line2D
+        drv = self.m.driver
+        own = set(self.m.carriers.get(drv.slider, ())) if drv.is_slider else {drv.link}
+        bodies = {**self.geoms, **self.block_geom}
+        if drv.is_slider:
+            bodies.update({s.guide: self.guide_bars[s.guide] for s in self.m.sliders
+                           if s.point == drv.slider and s.guide in self.guide_bars})
+        others = [g for k, g in bodies.items() if k not in own]
+        arrows = [LineString(np.column_stack(a.get_data())) for a in self.art.get("driver", [])
+                  if isinstance(a, Line2D) and len(a.get_xdata()) >= 2]
+        return not self.astray and not any(a.intersects(g) for a in arrows for g in others)
 
     def _number_last(self, lk, pts, g, anchors, prefer, n, pad: float, kw, test, owned: bool, bodies):
         """Link ``lk``'s number where no place off the lines reads as its own: where the first rule's place does not
@@ -1835,7 +1860,30 @@ def draw_mechanism(sol, ax=None, *, style="textbook", options=None, scale: float
     if view_scale(ax) is None:
         fit_view(ax, mechanism_bounds(sol), scale=scale if scale is not None else opts.scale, margin=0.1)
         ax.set_axis_off()
+    if under_crank(sol, st.bar_width * per_cm(ax)):   # a plate beneath a crank, where its marks read so, else bars
+        plated = _Drawing(sol, ax, st, opts, under_cranks=True)
+        with placer(ax).trial() as pl:
+            art = plated.draw()
+            kept = pl.keep = plated.reads()
+        if kept:
+            return art
     return _Drawing(sol, ax, st, opts).draw()
+
+
+def under_crank(sol, bar_width: float) -> bool:
+    """Whether a moving link's plate (the hull of its joints) would cover a frame pivot of a link it does not carry,
+    within a bar width: a slotted lever or an inverted slider-crank's guide about its crank, whose plate may lie
+    beneath the crank (:meth:`_Drawing.reads`) or be drawn as bars (:meth:`_Drawing.cranks_over`)."""
+    m = sol.mechanism
+    for link in m.moving_links:
+        own = joints(m, link.name)
+        pts = [tuple(sol.place(m.carriers[p][0], p)) for p in own if m.carriers.get(p)]
+        if len(own) < 3 or len(pts) < 3:
+            continue
+        hull = MultiPoint(pts).convex_hull.buffer(bar_width)
+        if any(pivot and hull.contains(Point(*f)) for f, _, pivot in foreign_bars(sol, link.name, on_body(m, link.name))):
+            return True
+    return False
 
 
 def mark_auxiliary(sol, ax, polygon, *, style="textbook") -> Artists:
