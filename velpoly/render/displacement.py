@@ -394,6 +394,7 @@ class _Drawing:
         self.sol, self.m, self.ax, self.st, self.opts = sol, sol.mechanism, ax, st, opts
         self.under_cranks = under_cranks   # a plate notched about a crank's pivot with the crank over it drawn so
         #                                    (:meth:`reads`), not as bars (:meth:`cranks_over`)
+        self.beneath_cranks: set = set()  # the links so drawn
         self.astray: list = []            # the links whose numbers, as drawn, read as another link's, and the points
         #                                   whose labels stand over a link not theirs or on an outline
         self.pc, self.pp = per_cm(ax), per_point(ax)
@@ -467,7 +468,9 @@ class _Drawing:
         """``hull`` notched clear of the other links' points (:func:`bitten_plate`) and True, else ``bars()`` (a
         bell-crank's) and False. Its joints are its points but those in its slots and on its slotted bars (which
         ``keep`` holds). The notch about the driver's pivot leaves room for its arcs (:data:`DRIVER_ROOM`); a
-        plate notched about a pivot whose crank would lie over it (:meth:`cranks_over`) is not notched."""
+        plate notched about a pivot whose crank would lie over it (:meth:`cranks_over`) is not notched, but where
+        :attr:`under_cranks` is set and each such crank is long enough to carry its number (:meth:`bar_room`:
+        over the plate, a number beside it reads as the plate's), it is, and noted in :attr:`beneath_cranks`."""
         m = self.m
         moving = {s.pin for s in m.slots if s.slot == lk} | {s.point for s in m.sliders if s.guide == lk}
         pts = [tuple(map(float, self.sol.place(lk, p))) for p in m.link(lk).points if p not in moving]
@@ -477,25 +480,39 @@ class _Drawing:
         g = bitten_plate(hull, foreign_bars(self.sol, lk, own), pts, self.st.bar_width * self.pc, keep,
                          unary_union(under) if under else None, (PEDESTAL * self.pc, (HATCH + GROUND_GAP) * self.pc),
                          room)
-        if g is not None and not self.under_cranks and self.cranks_over(lk, hull, g):
+        cranks = [] if g is None else self.cranks_over(lk, hull, g)
+        if cranks and self.under_cranks and all(self.bar_room(k) for k in cranks):
+            self.beneath_cranks.add(lk)
+        elif cranks:
             g = None   # a crank about its pivot in the notch, lying over the plate: its number (and arcs) need room
         return (g, True) if g is not None else (bars(), False)
 
-    def cranks_over(self, lk, hull, plate) -> bool:
-        """Whether a link pivoted on the frame near ``hull`` (within a bar width: in a notch of ``plate``) lies over
-        ``plate`` by more than :data:`CRANK_OVER` of its body (a slotted lever about its crank)."""
-        m, w = self.m, self.st.bar_width * self.pc
+    def cranks_over(self, lk, hull, plate) -> list:
+        """The links pivoted on the frame near ``hull`` (within a bar width: in a notch of ``plate``) that lie over
+        ``plate`` by more than :data:`CRANK_OVER` of their body (a slotted lever about its crank)."""
+        m, w, out = self.m, self.st.bar_width * self.pc, []
         for p, links in self.pins_at.items():
             if m.frame.name not in links or lk in links:
                 continue
             q = next(k for k in sorted(links) if k != m.frame.name)
             if hull.distance(Point(*self.sol.place(q, p))) >= w:
                 continue
-            for k in links - {m.frame.name}:
+            for k in sorted(links - {m.frame.name}):
                 body = self.bodies.get(k)
                 if body is not None and plate.intersection(body).area > CRANK_OVER * body.area:
-                    return True
-        return False
+                    out.append(k)
+        return out
+
+    def bar_room(self, lk) -> float:
+        """How far from each pin of link ``lk``, a bar, the centre of its circled number on the bar may come (the
+        circle's radius, a pin's, half a bar width: the bar seen between them), where the bar is at least twice
+        that long; else 0 (numbers not circled, a link not a bar, a bar too short to carry its number)."""
+        kw, pts = self.number_style(lk), self.m.link(lk).points
+        if "bbox" not in kw or len(pts) != 2:
+            return 0.0
+        end = self.number_radius(lk, kw) + (self.st.pin_radius + self.st.bar_width / 2) * self.pc
+        a, b = (np.asarray(self.sol.place(lk, p), float) for p in pts)
+        return end if float(np.hypot(*(b - a))) >= 2 * end else 0.0
 
     def link_shape(self, lk, under, notch: bool = True):
         """A moving link's body and how it is drawn: (the hull plate, "plate"), (a plate notched clear of another
@@ -1218,13 +1235,14 @@ class _Drawing:
         circle's centre on the bar's centre line at its middle (else farther along, :data:`ON_BAR`), the bar seen
         on both sides of it (at least half a bar width of it between the circle and each pin's ring), over no link
         or block drawn above the bar, on no line but the outlines of the bar and of the links beneath it (the bar
-        and the circle hide them there), clear of every mark and label and off the point labels' places (:attr:`reserved`). A circled number on its own bar reads as that bar's, as books
-        draw it. None where the numbers are not circled, the bar is too short or no such place is free."""
-        if "bbox" not in kw:
+        and the circle hide them there), clear of every mark and label and off the point labels' places
+        (:attr:`reserved`). A circled number on its own bar reads as that bar's, as books draw it. None where the
+        numbers are not circled, the bar is too short (:meth:`bar_room`) or no such place is free."""
+        end = self.bar_room(lk)   # from a pin to the circle's centre
+        if not end:
             return None
         a, b = (np.asarray(p, float) for p in pts)
         r, length = self.number_radius(lk, kw), float(np.hypot(*(b - a)))
-        end = r + (self.st.pin_radius + self.st.bar_width / 2) * self.pc   # from a pin to the circle's centre
         z = self.zorders.get(lk, 0.0)
         bodies = (*self.geoms.items(), *self.block_geom.items())
         above = [g for k, g in bodies if k != lk and self.zorders.get(k, 0.0) > z]
@@ -1863,8 +1881,8 @@ def draw_mechanism(sol, ax=None, *, style="textbook", options=None, scale: float
     if under_crank(sol, st.bar_width * per_cm(ax)):   # a plate beneath a crank, where its marks read so, else bars
         plated = _Drawing(sol, ax, st, opts, under_cranks=True)
         with placer(ax).trial() as pl:
-            art = plated.draw()
-            kept = pl.keep = plated.reads()
+            art = plated.draw()   # (no plate beneath a crank: drawn as it would be without)
+            kept = pl.keep = not plated.beneath_cranks or plated.reads()
         if kept:
             return art
     return _Drawing(sol, ax, st, opts).draw()
