@@ -1246,7 +1246,8 @@ class _Drawing:
         z = self.zorders.get(lk, 0.0)
         bodies = (*self.geoms.items(), *self.block_geom.items())
         above = [g for k, g in bodies if k != lk and self.zorders.get(k, 0.0) > z]
-        hidden = {id(g) for k, lines in self.outlines.items() if k == lk or self.zorders.get(k, 9.0) < z for g in lines}
+        hidden = {id(g) for k, lines in self.outlines.items() if k == lk or self.zorders.get(k, 9.0) < z
+                  for g in lines}
         avoid = above + [g for g in self.pl.soft if id(g) not in hidden]
         centres = [c for f in ON_BAR for c in [a + (b - a) * f] if min(f, 1 - f) * length >= end
                    for ring in [Point(*c).buffer(r, quad_segs=8)]
@@ -1899,7 +1900,8 @@ def under_crank(sol, bar_width: float) -> bool:
         if len(own) < 3 or len(pts) < 3:
             continue
         hull = MultiPoint(pts).convex_hull.buffer(bar_width)
-        if any(pivot and hull.contains(Point(*f)) for f, _, pivot in foreign_bars(sol, link.name, on_body(m, link.name))):
+        foreign = foreign_bars(sol, link.name, on_body(m, link.name))
+        if any(pivot and hull.contains(Point(*f)) for f, _, pivot in foreign):
             return True
     return False
 
