@@ -1,6 +1,6 @@
 """Measure the space diagram's driver arrows/values and link numbers over zoo(2026, 60), full and poles sheets,
 both styles. Usage: PYTHONPATH=<tree> python3 benchmarks/space_marks.py [--zoo SEED,COUNT] [i or i:sheet:style ...]
-(prints per-case findings and totals, and the length of each driver value's leader in cm of paper, 0 where it
+(prints per-case findings and totals (a link number on its own bar is counted as on_own_bar, not on_line), and the length of each driver value's leader in cm of paper, 0 where it
 stands beside its arrow; --zoo measures another zoo, e.g. --zoo 7,40, the default 2026,60)."""
 import sys, os, json
 sys.path.insert(0, os.path.join(os.environ["PYTHONPATH"], "tests"))
@@ -9,6 +9,7 @@ from shapely.geometry import Polygon, LineString, Point, box
 from shapely.ops import nearest_points, unary_union
 import velpoly
 from zoo import zoo
+from test_space_marks import on_own_bar
 from velpoly.render import sheet as S
 from velpoly.render import displacement as D
 from velpoly.render.labels import placer
@@ -38,7 +39,7 @@ def measure(sol, sheet, style):
         pl = placer(ax)
         r = pl.renderer
         axbb = ax.bbox
-        out = {"out": [], "on_line": [], "overlap": [], "far_number": [], "leader_cross": [], "small": [], "arrow_cross": [],
+        out = {"out": [], "on_line": [], "on_own_bar": [], "overlap": [], "far_number": [], "leader_cross": [], "small": [], "arrow_cross": [],
                "point_on_link": [], "point_on_line": [], "value_leader": []}
         bodies = dict(art.bodies)
         for a in art.get("sliders", []):
@@ -77,10 +78,9 @@ def measure(sol, sheet, style):
                 b = box(min(x0, x1), min(y0, y1), max(x0, x1), max(y0, y1))
             lk = gid[len("link-number-"):] if gid.startswith("link-number-") else None
             own = bodies.get(lk) if lk else None
-            # on a line: a soft obstacle under it that is not its own link's outline when it sits inside it
-            hits = pl.soft_hits(b)
-            if hits:
-                out["on_line"].append(gid)
+            # on a line: a soft obstacle under it (a number on its own bar is on its own link, not on a line)
+            if pl.soft_hits(b):
+                out["on_own_bar" if on_own_bar(ax, art, gid, b) else "on_line"].append(gid)
             if any(b.intersects(boxes[id(q.text)]) for q in texts if q is not p):
                 out["overlap"].append(gid)
             if gid.startswith("driver-label") and p.text.get_fontsize() < st.small_size - 1e-9:

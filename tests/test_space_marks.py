@@ -22,7 +22,7 @@ from shapely.geometry import LineString, Polygon, box
 from shapely.ops import unary_union
 
 import zoo
-from velpoly.render.canvas import per_cm
+from velpoly.render.canvas import per_cm, per_point
 from velpoly.render.displacement import VALUE_NEAR, draw_mechanism
 from velpoly.render.labels import placer
 from velpoly.render.style import get_style, rc_context
@@ -121,16 +121,38 @@ def driver_faults(sol, ax, art, style) -> list:
 
 def line_faults(ax, art) -> list:
     """The link numbers (their circles) and driver values that lie on a line: a link's or block's outline, a
-    slot's, a path or guide line (the placer's soft obstacles)."""
+    slot's, a path or guide line (the placer's soft obstacles). A number on its own bar (:func:`on_own_bar`) is on
+    its own link, not on a line."""
     r, pl = ax.figure.canvas.get_renderer(), placer(ax)
     out = []
     for t in [*art.get("link_numbers", []), *(a for a in art.get("driver", []) if hasattr(a, "get_fontsize"))]:
         ring = t.get_bbox_patch()
         if ring is not None:
             t.update_bbox_position_size(r)
-        if pl.soft_hits(_data_box(ax, (ring or t).get_window_extent(r))):
+        b = _data_box(ax, (ring or t).get_window_extent(r))
+        if pl.soft_hits(b) and not on_own_bar(ax, art, t.get_gid(), b):
             out.append(t.get_gid())
     return out
+
+
+def on_own_bar(ax, art, gid, b) -> bool:
+    """Whether a link number's circle (in its box ``b``, data coordinates) stands on its own bar: its centre on the
+    bar, no link or block drawn over the bar meeting it, and no line (the placer's soft obstacles) across it outside
+    the bar and the links and blocks drawn beneath it (their outlines there the bar and the circle hide)."""
+    if not gid.startswith("link-number-"):
+        return False
+    lk = gid[len("link-number-"):]
+    z = {p.get_gid().split("-", 1)[1]: p.get_zorder() for p in [*art.get("links", []), *art.get("sliders", [])]
+         if (p.get_gid() or "").startswith(("link-", "block-"))}
+    bodies = _bodies(art)
+    own = bodies.get(lk)
+    if own is None or lk not in z or not own.contains(b.centroid):
+        return False
+    circle = b.centroid.buffer((b.bounds[2] - b.bounds[0]) / 2)
+    if any(g.intersects(circle) for k, g in bodies.items() if k != lk and z.get(k, 0.0) > z[lk]):
+        return False
+    beneath = unary_union([g for k, g in bodies.items() if k == lk or z.get(k, 9.0) < z[lk]])
+    return not placer(ax).soft_hits(circle.difference(beneath.buffer(1.5 * per_point(ax))))
 
 
 ARROWS = {"driver-label": ("driver-arc", "driver-arrow"), "driver-label-alpha": ("driver-alpha",),

@@ -48,6 +48,7 @@ LABEL_NEAR = 2.0        # cm: a point's label off the other links at most this f
 #                         leader reads worse than a label beside its point over a plate or an outline)
 NUMBER_BESIDE = 0.4     # cm: else (no such place found off the lines) a number's circle at most this far from its link
 BESIDE_STEP = 0.08      # cm: the grid of places searched there
+ON_BAR = (0.5, 0.42, 0.58, 0.34, 0.66)   # a number on its own bar: these fractions of the way along it tried
 LABEL_ROOM = 0.3        # cm: such a number's circle at least this far from every labelled point (room for its label)
 NUMBER_NEAR = 1.0       # cm: a link number at most this far from its own link (beside it, not out at a leader's end)
 GROUND_CLEAR = 0.15     # cm: a driver's value is nudged this far from hatched ground it crowds, where that is free
@@ -389,8 +390,13 @@ class _ArcPlace(NamedTuple):
 class _Drawing:
     """The state of one displacement diagram being drawn."""
 
-    def __init__(self, sol, ax, st, opts):
+    def __init__(self, sol, ax, st, opts, under_cranks: bool = False):
         self.sol, self.m, self.ax, self.st, self.opts = sol, sol.mechanism, ax, st, opts
+        self.under_cranks = under_cranks   # a plate notched about a crank's pivot with the crank over it drawn so
+        #                                    (:meth:`reads`), not as bars (:meth:`cranks_over`)
+        self.beneath_cranks: set = set()  # the links so drawn
+        self.astray: list = []            # the links whose numbers, as drawn, read as another link's, and the points
+        #                                   whose labels stand over a link not theirs or on an outline
         self.pc, self.pp = per_cm(ax), per_point(ax)
         self.pl = placer(ax)
         self.art = Artists(ax)
@@ -413,6 +419,8 @@ class _Drawing:
         self.guide_bars: dict = {}       # moving guide -> its slotted bar (in a plate: the part a block's number
         #                                  keeps off; the rest of the plate it may stand on, beside its block)
         self.reserved: list = []         # the point labels' boxes in a clear field (:meth:`marks`)
+        self.outlines: dict = {}         # link -> its outline's and slots' soft obstacles (a number on its own bar
+#                                          may cross them and those of the links beneath it: the bar hides them)
         self.plan: int | None = None     # the driver's layout chosen (:meth:`turning_driver`), drawn again the same
         self.bare = not self.pl.soft     # nothing drawn in the panel before (a poles sheet's Kennedy lines are)
 
@@ -460,7 +468,9 @@ class _Drawing:
         """``hull`` notched clear of the other links' points (:func:`bitten_plate`) and True, else ``bars()`` (a
         bell-crank's) and False. Its joints are its points but those in its slots and on its slotted bars (which
         ``keep`` holds). The notch about the driver's pivot leaves room for its arcs (:data:`DRIVER_ROOM`); a
-        plate notched about a pivot whose crank would lie over it (:meth:`cranks_over`) is not notched."""
+        plate notched about a pivot whose crank would lie over it (:meth:`cranks_over`) is not notched, but where
+        :attr:`under_cranks` is set and each such crank is long enough to carry its number (:meth:`bar_room`:
+        over the plate, a number beside it reads as the plate's), it is, and noted in :attr:`beneath_cranks`."""
         m = self.m
         moving = {s.pin for s in m.slots if s.slot == lk} | {s.point for s in m.sliders if s.guide == lk}
         pts = [tuple(map(float, self.sol.place(lk, p))) for p in m.link(lk).points if p not in moving]
@@ -470,25 +480,39 @@ class _Drawing:
         g = bitten_plate(hull, foreign_bars(self.sol, lk, own), pts, self.st.bar_width * self.pc, keep,
                          unary_union(under) if under else None, (PEDESTAL * self.pc, (HATCH + GROUND_GAP) * self.pc),
                          room)
-        if g is not None and self.cranks_over(lk, hull, g):
+        cranks = [] if g is None else self.cranks_over(lk, hull, g)
+        if cranks and self.under_cranks and all(self.bar_room(k) for k in cranks):
+            self.beneath_cranks.add(lk)
+        elif cranks:
             g = None   # a crank about its pivot in the notch, lying over the plate: its number (and arcs) need room
         return (g, True) if g is not None else (bars(), False)
 
-    def cranks_over(self, lk, hull, plate) -> bool:
-        """Whether a link pivoted on the frame near ``hull`` (within a bar width: in a notch of ``plate``) lies over
-        ``plate`` by more than :data:`CRANK_OVER` of its body (a slotted lever about its crank)."""
-        m, w = self.m, self.st.bar_width * self.pc
+    def cranks_over(self, lk, hull, plate) -> list:
+        """The links pivoted on the frame near ``hull`` (within a bar width: in a notch of ``plate``) that lie over
+        ``plate`` by more than :data:`CRANK_OVER` of their body (a slotted lever about its crank)."""
+        m, w, out = self.m, self.st.bar_width * self.pc, []
         for p, links in self.pins_at.items():
             if m.frame.name not in links or lk in links:
                 continue
             q = next(k for k in sorted(links) if k != m.frame.name)
             if hull.distance(Point(*self.sol.place(q, p))) >= w:
                 continue
-            for k in links - {m.frame.name}:
+            for k in sorted(links - {m.frame.name}):
                 body = self.bodies.get(k)
                 if body is not None and plate.intersection(body).area > CRANK_OVER * body.area:
-                    return True
-        return False
+                    out.append(k)
+        return out
+
+    def bar_room(self, lk) -> float:
+        """How far from each pin of link ``lk``, a bar, the centre of its circled number on the bar may come (the
+        circle's radius, a pin's, half a bar width: the bar seen between them), where the bar is at least twice
+        that long; else 0 (numbers not circled, a link not a bar, a bar too short to carry its number)."""
+        kw, pts = self.number_style(lk), self.m.link(lk).points
+        if "bbox" not in kw or len(pts) != 2:
+            return 0.0
+        end = self.number_radius(lk, kw) + (self.st.pin_radius + self.st.bar_width / 2) * self.pc
+        a, b = (np.asarray(self.sol.place(lk, p), float) for p in pts)
+        return end if float(np.hypot(*(b - a))) >= 2 * end else 0.0
 
     def link_shape(self, lk, under, notch: bool = True):
         """A moving link's body and how it is drawn: (the hull plate, "plate"), (a plate notched clear of another
@@ -726,6 +750,7 @@ class _Drawing:
                           p - d * L / 2 + n * H / 2])
         fill = link_fill(self.m, self.opts, st, s.block)
         self.patch(block, "sliders", 3.2, fill, gid=f"block-{s.block}")
+        self.outlines.setdefault(s.block, []).append(block)
         self.pl.add_obstacle(block, hard=False)
         self.block_geom[s.block] = block
 
@@ -942,16 +967,23 @@ class _Drawing:
                 zorder = self.zorders[lk] = 3.3 if lk == drv and lk not in self.slotted else 2 + 0.01 * z
                 self.body(lk, geoms[lk], zorder)
                 # its outline, not its area: a label may sit inside a plate or a wheel, clear of its edges
-                self.pl.add_obstacle(geoms[lk].boundary.buffer(0.6 * self.pp), hard=False)
+                self.outline(lk, geoms[lk])
         for lk, g in self.slots:
             z = 2.5 if lk is None else 2 + 0.01 * order.index(lk) + 0.005
             self.patch(g, "links", z, st.paper, lw=st.thin_lw * 1.5)
-            self.pl.add_obstacle(g.boundary.buffer(0.6 * self.pp), hard=False)
+            self.outline(lk, g)
         # pins and points
         self.points(ground_dir)
         self.marks(ground_dir, geoms)
         self.art.add("scale_bar", *scale_bar(self.ax, st, m.units, 0))
         return self.art
+
+    def outline(self, lk, g):
+        """A body's or slot's outline, a soft obstacle (a label may sit inside a plate, clear of its edges), kept as
+        link ``lk``'s (:attr:`outlines`)."""
+        line = g.boundary.buffer(0.6 * self.pp)
+        self.outlines.setdefault(lk, []).append(line)
+        self.pl.add_obstacle(line, hard=False)
 
     def marks(self, ground_dir, geoms):
         """The driver's arrows and values, the link numbers, then the point labels: the labels come last, so
@@ -1067,6 +1099,8 @@ class _Drawing:
                 out.append(b if own is None or own.leader_geom is None else b.union(own.leader_geom))
                 if not record:
                     continue
+                if not self.off_links(links)(self.pl.of(t).box if own is not None else b):
+                    self.astray.append(name)   # (where no place that reads as its point's was free)
                 self.art.add("labels", t)
                 for k, q in keys:
                     if len(spots) == 1 or k == key:
@@ -1129,7 +1163,7 @@ class _Drawing:
                 prefer = away_from(anchor, [centre], default=90.0)
             kw = self.number_style(lk)
             pad = 3.5 if "bbox" in kw else 1.0
-            t = None
+            t = on_bar = None
             if len(pts) == 2:   # a leader from a point of the bar no other link covers (its middle, if free)
                 mine = next((a + (b - a) * f for f in (0.5, 0.38, 0.62, 0.27, 0.73, 0.16, 0.84)
                              if not self._covered(lk, a + (b - a) * f)), anchor)
@@ -1146,15 +1180,36 @@ class _Drawing:
                 t = self._link_number(lk, pts, g, mine, prefer, n if len(pts) >= 2 else None, pad, kw, clear, True)
                 if t is None:
                     t = self._number_beside(lk, bodies, mine, pad, kw, nearest=True)
+                if t is None and len(pts) == 2:
+                    t = on_bar = self._number_on_bar(lk, pts, kw)
                 if t is None:
                     t = self._number_last(lk, pts, g, (anchor, mine), prefer, n, pad, kw, test, owned, bodies)
             own = self.pl.of(t)   # (the box it keeps, its margin too: a value in it would send it elsewhere)
             b = self._number_box(t) if own is None else own.box.union(self._number_box(t))
             out[lk] = (b if own is None or own.leader_geom is None else b.union(own.leader_geom),
-                       own is None or test(self._number_box(t)))   # its circle, as drawn
+                       own is None or t is on_bar or test(self._number_box(t)))   # its circle, as drawn
             if record:
                 self.art.add("link_numbers", t)
+        if record:
+            self.astray = _astray(out)   # (the point labels, placed after, add theirs)
         return out
+
+    def reads(self) -> bool:
+        """Whether the marks read as drawn: every link number as its own link's (:meth:`owned`), every point label
+        as its point's (:meth:`off_links`) and the driver's arrows across no other link or block (a slider driver's:
+        but those pinned at its point, and its guide's plate off the slotted bar). A plate beneath a crank
+        (:attr:`under_cranks`) is kept only where they do."""
+        from matplotlib.lines import Line2D
+        drv = self.m.driver
+        own = set(self.m.carriers.get(drv.slider, ())) if drv.is_slider else {drv.link}
+        bodies = {**self.geoms, **self.block_geom}
+        if drv.is_slider:
+            bodies.update({s.guide: self.guide_bars[s.guide] for s in self.m.sliders
+                           if s.point == drv.slider and s.guide in self.guide_bars})
+        others = [g for k, g in bodies.items() if k not in own]
+        arrows = [LineString(np.column_stack(a.get_data())) for a in self.art.get("driver", [])
+                  if isinstance(a, Line2D) and len(a.get_xdata()) >= 2]
+        return not self.astray and not any(a.intersects(g) for a in arrows for g in others)
 
     def _number_last(self, lk, pts, g, anchors, prefer, n, pad: float, kw, test, owned: bool, bodies):
         """Link ``lk``'s number where no place off the lines reads as its own: where the first rule's place does not
@@ -1174,6 +1229,31 @@ class _Drawing:
             return t
         t = self._number_beside(lk, bodies, mine, pad, kw, nearest=False)
         return t if t is not None else last()
+
+    def _number_on_bar(self, lk, pts, kw):
+        """Link ``lk``'s circled number on its own bar, where no free place beside the bar reads as its own: the
+        circle's centre on the bar's centre line at its middle (else farther along, :data:`ON_BAR`), the bar seen
+        on both sides of it (at least half a bar width of it between the circle and each pin's ring), over no link
+        or block drawn above the bar, on no line but the outlines of the bar and of the links beneath it (the bar
+        and the circle hide them there), clear of every mark and label and off the point labels' places
+        (:attr:`reserved`). A circled number on its own bar reads as that bar's, as books draw it. None where the
+        numbers are not circled, the bar is too short (:meth:`bar_room`) or no such place is free."""
+        end = self.bar_room(lk)   # from a pin to the circle's centre
+        if not end:
+            return None
+        a, b = (np.asarray(p, float) for p in pts)
+        r, length = self.number_radius(lk, kw), float(np.hypot(*(b - a)))
+        z = self.zorders.get(lk, 0.0)
+        bodies = (*self.geoms.items(), *self.block_geom.items())
+        above = [g for k, g in bodies if k != lk and self.zorders.get(k, 0.0) > z]
+        hidden = {id(g) for k, lines in self.outlines.items() if k == lk or self.zorders.get(k, 9.0) < z
+                  for g in lines}
+        avoid = above + [g for g in self.pl.soft if id(g) not in hidden]
+        centres = [c for f in ON_BAR for c in [a + (b - a) * f] if min(f, 1 - f) * length >= end
+                   for ring in [Point(*c).buffer(r, quad_segs=8)]
+                   if self.pl.free(ring) and self._unreserved(ring) and not any(g.intersects(ring) for g in avoid)]
+        return self.pl.place_at(centres, literal(lk), gid=f"link-number-{lk}", pad=3.5, avoid=avoid,
+                                anchor=(a + b) / 2, **kw) if centres else None
 
     def _number_beside(self, lk, bodies, anchor, pad: float, kw, nearest: bool):
         """Link ``lk``'s number, with its circle on no line, at the free place nearest its body within
@@ -1799,7 +1879,31 @@ def draw_mechanism(sol, ax=None, *, style="textbook", options=None, scale: float
     if view_scale(ax) is None:
         fit_view(ax, mechanism_bounds(sol), scale=scale if scale is not None else opts.scale, margin=0.1)
         ax.set_axis_off()
+    if under_crank(sol, st.bar_width * per_cm(ax)):   # a plate beneath a crank, where its marks read so, else bars
+        plated = _Drawing(sol, ax, st, opts, under_cranks=True)
+        with placer(ax).trial() as pl:
+            art = plated.draw()   # (no plate beneath a crank: drawn as it would be without)
+            kept = pl.keep = not plated.beneath_cranks or plated.reads()
+        if kept:
+            return art
     return _Drawing(sol, ax, st, opts).draw()
+
+
+def under_crank(sol, bar_width: float) -> bool:
+    """Whether a moving link's plate (the hull of its joints) would cover a frame pivot of a link it does not carry,
+    within a bar width: a slotted lever or an inverted slider-crank's guide about its crank, whose plate may lie
+    beneath the crank (:meth:`_Drawing.reads`) or be drawn as bars (:meth:`_Drawing.cranks_over`)."""
+    m = sol.mechanism
+    for link in m.moving_links:
+        own = joints(m, link.name)
+        pts = [tuple(sol.place(m.carriers[p][0], p)) for p in own if m.carriers.get(p)]
+        if len(own) < 3 or len(pts) < 3:
+            continue
+        hull = MultiPoint(pts).convex_hull.buffer(bar_width)
+        foreign = foreign_bars(sol, link.name, on_body(m, link.name))
+        if any(pivot and hull.contains(Point(*f)) for f, _, pivot in foreign):
+            return True
+    return False
 
 
 def mark_auxiliary(sol, ax, polygon, *, style="textbook") -> Artists:
