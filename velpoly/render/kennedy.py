@@ -159,6 +159,12 @@ def draw_poles(sol, ax=None, *, style="textbook", options=None, poleset=None, up
     if view_scale(ax) is None:
         fit_view(ax, poles_bounds(sol, ps, reach), scale=opts.scale, margin=0.1)
         ax.set_axis_off()
+    return _least_tangled(sol, ax, st, opts, ps, upto, mechanism, reach)
+
+
+def _least_tangled(sol, ax, st, opts, ps, upto, mechanism: bool, reach) -> Artists:
+    """:func:`draw_poles`' drawing, its labels placed in the listed order, else (a pole label's leader crossing,
+    :func:`_crossed`) in the first of the other orders that leaves none, else the least tangled (:func:`_tangle`)."""
     pl = placer(ax)
     shown = shown_poles(ps, upto)
     again = mechanism and not (pl.pins or pl.labels or pl.hard or pl.soft)   # (a step frame's: pinned labels)
