@@ -142,6 +142,15 @@ def draw_poles(sol, ax=None, *, style="textbook", options=None, poleset=None, up
         maps each pole's key ("1-3") to its label (with the points' labels).
         Every pole's label is nearer its own ring than any other ring where a
         free place allows, and no leader crosses another.
+
+    The labels are placed one at a time, each taking the best place the ones
+    before it left (a crowd's last come last). Where a pole label's leader
+    still crosses another leader or label after every untangling step, the
+    drawing is made again with the poles labelled in the reverse order, then
+    the most crowded first (:func:`_crowded_first`); each kept over the best
+    before it where it has fewer such crossings and no more labels nearer
+    another ring, on a line or struck through (:func:`_tangle`), and one with
+    none ends the search. A step frame's labels stand at their pins: drawn once.
     """
     ax = get_ax(ax)
     st = get_style(style)
@@ -150,10 +159,49 @@ def draw_poles(sol, ax=None, *, style="textbook", options=None, poleset=None, up
     if view_scale(ax) is None:
         fit_view(ax, poles_bounds(sol, ps, reach), scale=opts.scale, margin=0.1)
         ax.set_axis_off()
+    return _least_tangled(sol, ax, st, opts, ps, upto, mechanism, reach)
+
+
+def _least_tangled(sol, ax, st, opts, ps, upto, mechanism: bool, reach) -> Artists:
+    """:func:`draw_poles`' drawing, its labels placed in the listed order, else (a pole label's leader crossing,
+    :func:`_crossed`) in the first of the other orders that leaves none, else the least tangled (:func:`_tangle`)."""
+    pl = placer(ax)
+    shown = shown_poles(ps, upto)
+    again = mechanism and not (pl.pins or pl.labels or pl.hard or pl.soft)   # (a step frame's: pinned labels)
+    before = {id(a) for a in ax.get_children()}
+    art = _poles_drawn(sol, ax, st, opts, ps, shown, upto, mechanism, reach)
+    if not again or not _crossed(art):
+        return art
+    orders = [shown, shown[::-1], _crowded_first(shown, per_cm(ax))]
+    best, k = (_tangle(art), 0), 0
+    for k in range(1, len(orders)):
+        _undraw(ax, before)
+        art = _poles_drawn(sol, ax, st, opts, ps, orders[k], upto, mechanism, reach)
+        tangle = _tangle(art)
+        if tangle[0] < best[0][0] and all(a <= b for a, b in zip(tangle[1:], best[0][1:])):
+            best = (tangle, k)
+        if best[0][0] == 0:
+            break
+    if best[1] != k:   # the last drawn is not the one kept: the kept one's drawn again
+        _undraw(ax, before)
+        art = _poles_drawn(sol, ax, st, opts, ps, orders[best[1]], upto, mechanism, reach)
+    return art
+
+
+def _crowded_first(shown: list, near: float) -> list:
+    """The poles ``shown``, those with the most other poles within ``near`` first (else as listed)."""
+    at = [p.position for p in shown if p.position is not None]
+
+    def crowd(p) -> int:
+        return 0 if p.position is None else sum(float(np.hypot(*(q - p.position))) < near for q in at)
+    return sorted(shown, key=lambda p: -crowd(p))
+
+
+def _poles_drawn(sol, ax, st, opts, ps, shown, upto, mechanism: bool, reach) -> Artists:
+    """:func:`draw_poles`' drawing with the poles ``shown`` labelled in that order (its view fitted)."""
     art = Artists(ax)
     art.labels = {}
     pl = placer(ax)
-    shown = shown_poles(ps, upto)
     current = max((p.order for p in shown), default=0) if upto is not None else None
     # the Kennedy lines, known before the mechanism's labels are placed so that these keep clear of them
     klines, pole_lines = _kennedy_lines(ps, shown, current, view_box(ax), per_cm(ax))
@@ -173,6 +221,33 @@ def draw_poles(sol, ax=None, *, style="textbook", options=None, poleset=None, up
     _draw_pole_marks(sol, ax, shown, st, art)
     _apart(pl, art, _label_poles(sol, ax, ps, shown, pole_lines, st, art, reach))
     return art
+
+
+def _undraw(ax, before: set) -> None:
+    """Every artist added to ``ax`` since ``before`` (their ids) taken off, and its placer with them."""
+    for a in ax.get_children():
+        if id(a) not in before:
+            a.remove()
+    del ax._velpoly_placer   # (an empty one, as it was: placer(ax) makes it anew)
+
+
+def _crossed(art) -> int:
+    """How many crossings a pole label's leader makes in a poles drawing (``art``: its Artists): across another
+    leader or another label's box."""
+    pl = placer(art.ax)
+    poles = {id(t) for t in art.labels.values()}
+    return sum(1 for i, j, _ in pl._crossings() if id(pl.labels[i].text) in poles or id(pl.labels[j].text) in poles)
+
+
+def _tangle(art) -> tuple:
+    """How tangled a poles drawing's labels are, each count fewer the better: (:func:`_crossed`; pole labels
+    nearer another ring than their own; pole labels on a drawn line; leaders across a label)."""
+    pl = placer(art.ax)
+    rings = list(art.rings.values())
+    nearer = sum(not _nearer_own(g, rings)(pl.of(art.labels[k]).box) for k, g in art.rings.items()
+                 if k in art.labels and len(rings) > 1)
+    lines = _drawn_lines(art.ax)
+    return _crossed(art), nearer, sum(_on_lines(pl, t, lines) for t in art.labels.values()), pl.tally()[0]
 
 
 def _apart(pl, art, how: dict) -> None:
