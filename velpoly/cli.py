@@ -456,7 +456,8 @@ def cmd_demo(args) -> int:
 
 def cmd_gallery(args) -> int:
     """One failing example is reported with its error line and does not stop the others; the exit
-    status is 1 if any failed."""
+    status is then the failures' (GalleryResult.exit_code: 2 or 3 where each is its input's, 1 where any
+    is an internal error)."""
     from .gallery import build_gallery, check_gallery_folder, gallery_folders
     source, out, option = gallery_folders(args.output, args.source)
     check_gallery_folder(out, option)
@@ -473,8 +474,7 @@ def cmd_gallery(args) -> int:
         n = len(result.built) + len(result.failed)
         print(f"gallery: {len(result.failed)} of {n} examples failed (listed above and at the end of "
               f"{out / 'README.md'})", file=sys.stderr)
-        return 1
-    return 0
+    return result.exit_code
 
 
 def cmd_examples(args) -> int:
