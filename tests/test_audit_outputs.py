@@ -65,7 +65,7 @@ def test_a_sweep_whose_last_output_is_refused_writes_none(tmp_path, capsys, seed
     (tmp_path / "g.gif").mkdir()           # the GIF cannot be written: a folder stands there
     assert main(["sweep", str(src), "--step", "30", "--csv", str(tmp_path / "c.csv"), "-o",
                  str(tmp_path / "p.png"), "--gif", str(tmp_path / "g.gif")]) == 2
-    assert "g.gif: is a folder" in capsys.readouterr().err
+    assert "g.gif: --gif: is a folder" in capsys.readouterr().err
     assert (tmp_path / "c.csv").read_text() == old["c.csv"]
     assert listing(tmp_path) == ["c.csv", "g.gif", "m.toml"]
 

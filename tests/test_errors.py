@@ -331,7 +331,7 @@ def test_mobility_two(capsys, tmp_path):
     ('omega = "10 rad/s"', 'omega = "10 rad/s sideways"', "driver.omega (line 19)", "cannot read"),
     ('omega = "10 rad/s"', 'omega = "fast"', "driver.omega (line 19)", "cannot read"),
     ('omega = "10 rad/s"', 'omega = ""', "driver.omega (line 19)", "cannot read"),
-    ('omega = "10 rad/s"', 'omega = "1e999 rpm"', "driver.omega (line 19)", "cannot read"),
+    ('omega = "10 rad/s"', 'omega = "1e999 rpm"', "driver.omega (line 19)", "is too large: beyond any floating-point number"),
     ('alpha = 0', 'alpha = "5 rpm"', "driver.alpha (line 20)", 'cannot read "5 rpm" as an angular acceleration'),
     ('omega = "10 rad/s"\n', '', "driver (line 17)", "missing 'omega'"),
     ('alpha = 0', 'speed = 3', "driver.speed (line 20)", "'speed' belongs to a slider driver"),

@@ -178,9 +178,10 @@ def test_one_failing_example_does_not_stop_the_others(tmp_path, capsys):
 
 
 @needs_render
-def test_gallery_command_builds_figures_and_exits_1_on_a_failure(tmp_path, capsys, monkeypatch):
+def test_gallery_command_builds_figures_and_exits_2_on_a_bad_file(tmp_path, capsys, monkeypatch):
     """One example drawn (by a stand-in: the command's real drawing is test_wheel's gallery, through the
-    installed program; the pool's drawing of several is the next test's) and one that fails."""
+    installed program; the pool's drawing of several is the next test's) and one that fails: not TOML, the
+    input's status 2 (the other statuses: test_audit3_gallery)."""
     import velpoly.gallery as gallery
     monkeypatch.setattr(gallery, "_draw_to_file", lambda: fake_draw([]))   # (it may draw in a forked worker)
     src = tmp_path / "src"
@@ -189,7 +190,7 @@ def test_gallery_command_builds_figures_and_exits_1_on_a_failure(tmp_path, capsy
     (src / "zz_bad.toml").write_text("this is not toml = = \n")
     out = tmp_path / "site"
     code, stdout, err = run(capsys, "gallery", "--source", src, "-o", out)
-    assert code == 1
+    assert code == 2
     assert "error: zz_bad.toml" in err and "1 of 2 examples failed" in err
     assert (out / "figures" / "ex3_6_fourbar.png").read_bytes() == b"x"   # the stand-in's
     assert [p.name for p in (out / "figures").iterdir()] == ["ex3_6_fourbar.png"]

@@ -103,7 +103,7 @@ def _sweep_parser(command) -> None:
     w = command("sweep", "a whole driver cycle: plots and a table",
                 "velpoly sweep fourbar.toml --step 5 -o cycle.svg --csv cycle.csv")
     w.add_argument("file", help="the mechanism file (TOML)")
-    w.add_argument("--step", type=float, default=1.0, metavar="DEG", help="driver step in degrees (default 1)")
+    w.add_argument("--step", type=_step_degrees, default=1.0, metavar="DEG", help="driver step in degrees (default 1)")
     w.add_argument("-o", "--output", metavar="OUT", help="plot file (SVG, PNG or PDF)")
     w.add_argument("--csv", help="CSV file of every quantity over the cycle")
     w.add_argument("--points", help="comma-separated points whose speeds to plot (default: all)")
@@ -131,7 +131,7 @@ def _animate_parser(command) -> None:
                    ".html (velpoly html)")
     a.add_argument("--sheet", choices=[s for s in SHEETS if s != "displacement"], default="velocity", help="the panels beside the mechanism "
                    "(default: velocity)")
-    a.add_argument("--step", type=float, default=2.0, metavar="DEG", help="driver step between frames in "
+    a.add_argument("--step", type=_step_degrees, default=2.0, metavar="DEG", help="driver step between frames in "
                    "degrees (default 2)")
     a.add_argument("--size", default="1920x1080", metavar="WxH", help="frame size in pixels (default 1920x1080)")
     a.add_argument("--fps", type=float, default=15.0, metavar="N", help="frames a second (default 15)")
@@ -164,7 +164,7 @@ def _html_parser(command) -> None:
                 "construction step by step", "velpoly html ex36.toml -o ex36.html")
     h.add_argument("file", help="the mechanism file (TOML)")
     h.add_argument("-o", "--output", metavar="OUT", help="the page (default: FILE's name with .html)")
-    h.add_argument("--step", type=float, default=1.0, metavar="DEG", help="driver step between the poses, in "
+    h.add_argument("--step", type=_step_degrees, default=1.0, metavar="DEG", help="driver step between the poses, in "
                    "degrees (default 1; a slider driver's stroke in as many poses)")
 
 
@@ -174,10 +174,45 @@ def _degrees(text: str):
     ``solve(m, angle=10**400)``, not that it is not finite."""
     x = float(text)
     if math.isinf(x) and text.strip().lstrip("+-").lower() not in ("inf", "infinity"):
-        import decimal
-        import fractions
-        return fractions.Fraction(decimal.Decimal(text.strip().replace("_", "")))
+        return _exact(text)
     return x
+
+
+def _exact(text: str):
+    """The exact value (a Fraction) of a number ``float`` reads, whatever its size."""
+    import decimal
+    import fractions
+    return fractions.Fraction(decimal.Decimal(text.strip().replace("_", "")))
+
+
+def _step_degrees(text: str):
+    """``--step``'s number: a float, or, where the number is finite and not zero but beyond any float
+    (``1e400``, ``1e-400``), its exact value (a Fraction), which :func:`_check_step` refuses as too large or
+    too small, not as "inf" or "0"."""
+    x = float(text)
+    if (math.isinf(x) or x == 0) and text.strip().lstrip("+-").lower() not in ("inf", "infinity"):
+        exact = _exact(text)
+        return exact if exact != 0 else x
+    return x
+
+
+def _check_step(args) -> None:
+    """A ``--step`` beyond any float (:func:`_step_degrees`): an input error saying it is too large or too
+    small for the command's range (the command checks every other step)."""
+    step = getattr(args, "step", None)
+    if step is None or isinstance(step, float):
+        return
+    import decimal
+    shown = format((step.numerator / decimal.Decimal(step.denominator)).normalize(), ".6g").replace("E", "e")
+    least, most = {"animate": (0.05, 90.0), "html": (HTML_MIN_STEP, 180.0)}.get(args.command, (MIN_STEP, 180.0))
+    if step < 0:
+        raise InputError(f"the step must be a number of degrees above 0, got {shown}", where="--step",
+                         hint="e.g. --step 1 or --step 5")
+    if step < least:
+        raise InputError(f"the step {shown} deg is too small (at least {least:g} deg)", where="--step",
+                         hint="e.g. --step 1 or --step 5")
+    raise InputError(f"the step {shown} deg is too large (at most {most:g} deg)", where="--step",
+                     hint="e.g. --step 1 or --step 5")
 
 
 def _sub_parser(parent):
@@ -265,9 +300,6 @@ def cmd_sweep(args) -> int:
     gif_out = _suffixed(getattr(args, "gif", None), (".gif",), "--gif")
     csv_out = Path(args.csv) if getattr(args, "csv", None) else None
     style = getattr(args, "style", "textbook") or "textbook"
-    for out in (plot_out, csv_out, gif_out):   # a folder or the input is refused before any work
-        if out is not None:
-            check_output(out)
     sw, kin = _sweep_cycle(args.file, getattr(args, "step", 1.0), gif_out is not None)
     from .sweeps import stop_note
     m = sw.mechanism
@@ -336,7 +368,7 @@ def _sweep_cycle(file: str, step, long: bool):
     sw = run_cycle(m, step, kin)
     bar.advance()
     bar.close()
-    check_cycle(sw, kin)
+    check_cycle(sw, kin, step)
     return sw, kin
 
 
@@ -456,7 +488,8 @@ def cmd_demo(args) -> int:
 
 def cmd_gallery(args) -> int:
     """One failing example is reported with its error line and does not stop the others; the exit
-    status is 1 if any failed."""
+    status is then the failures' (GalleryResult.exit_code: 2 or 3 where each is its input's, 1 where any
+    is an internal error)."""
     from .gallery import build_gallery, check_gallery_folder, gallery_folders
     source, out, option = gallery_folders(args.output, args.source)
     check_gallery_folder(out, option)
@@ -473,8 +506,7 @@ def cmd_gallery(args) -> int:
         n = len(result.built) + len(result.failed)
         print(f"gallery: {len(result.failed)} of {n} examples failed (listed above and at the end of "
               f"{out / 'README.md'})", file=sys.stderr)
-        return 1
-    return 0
+    return result.exit_code
 
 
 def cmd_examples(args) -> int:
@@ -606,7 +638,13 @@ def _check_outputs(args) -> None:
         return
     protect_input(file)
     for attr, option in OUTPUT_OPTIONS:
-        check_not_input(getattr(args, attr, None), file, option)
+        out = getattr(args, attr, None)
+        check_not_input(out, file, option)
+        if out == "-":   # FORMAT.md names no option's "-" standard output: a file named "-" would surprise
+            raise InputError("'-' is not standard output here: the option names a file to write", where=option,
+                             hint=f"give {option} a file name (./- for a file named '-')")
+        if out:
+            check_output(out, option)   # a folder is refused before any work, naming the option
     _distinct_outputs(args)
 
 
@@ -740,6 +778,7 @@ def _main(argv) -> int:
                     warnings.simplefilter("ignore", RuntimeWarning)
                     warnings.showwarning = _glyph_warning(getattr(args, "file", "") or "velpoly", warnings.showwarning)
                 _check_outputs(args)
+                _check_step(args)
                 status = COMMANDS[args.command](args)
                 raise_if_interrupted()   # a Ctrl-C swallowed inside a callback still stops the run
                 sys.stdout.flush()

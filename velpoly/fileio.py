@@ -140,17 +140,19 @@ def _check_folder(target: Path, folder: Path) -> None:
                          hint="give an output path whose folders are folders")
 
 
-def check_output(target) -> None:
+def check_output(target, option: str = "") -> None:
     """Refuse an output path before any work, as :func:`atomic_path` would when writing it: an input
-    file of this run (:func:`protect_input`), a folder, or a path below a file."""
+    file of this run (:func:`protect_input`), a folder, or a path below a file; the errors name ``option``,
+    the command-line option that gave it, if any."""
     target = Path(target)
     ident = _identity(target)
     if ident is not None and ident in _INPUTS:
         raise InputError(f"the output {str(target)!r} is the input file: an output never replaces its input",
-                         file=_INPUTS[ident], hint="give the output another file name (-o OUT)")
+                         where=option, file=_INPUTS[ident],
+                         hint=f"give the output another file name ({option or '-o'} OUT)")
     if target.is_dir():
-        raise InputError("is a folder: cannot write a file there", file=str(target),
-                         hint="give the output file's name")
+        raise InputError("is a folder: cannot write a file there", where=option, file=str(target),
+                         hint=f"give {option} the output file's name" if option else "give the output file's name")
     if not target.exists():
         _check_folder(target, target.parent if str(target.parent) else Path("."))
 

@@ -249,11 +249,22 @@ def _gallery_source(out: Path) -> Path:
 
 @dataclass(frozen=True)
 class GalleryResult:
-    """What a gallery build did: the files written, and ``failed`` as (file, error line) pairs."""
+    """What a gallery build did: the files written, and ``failed`` as (file, error line) pairs;
+    ``statuses``, each failure's exit status (FORMAT.md section 3: 2 its input is wrong, 3 it cannot be
+    assembled, 1 an internal error)."""
 
     written: tuple
     built: tuple
     failed: tuple
+    statuses: tuple = ()
+
+    @property
+    def exit_code(self) -> int:
+        """0 when every example was built; else the worst of the failures' statuses (3 over 2) where each
+        is its input's, and 1 (an internal error) where any is not."""
+        if not self.failed:
+            return 0
+        return 1 if not self.statuses or 1 in self.statuses else max(self.statuses)
 
 
 def _error_line(e: BaseException, path: Path) -> str:
@@ -261,6 +272,12 @@ def _error_line(e: BaseException, path: Path) -> str:
     if isinstance(e, VelpolyError):
         return ": ".join(p for p in (path.name, e.where, e.what) if p)
     return f"{path.name}: internal error: {type(e).__name__}: {e}"
+
+
+def _failure(e: BaseException, path: Path) -> tuple[str, int]:
+    """An example's failure: its error line and exit status (its error's, 2 or 3; 1 for an internal
+    error)."""
+    return _error_line(e, path), (e.exit_code if isinstance(e, VelpolyError) else 1)
 
 
 def build_gallery(source=None, out=None, style: str = "textbook", draw=None, log=None,
@@ -328,12 +345,13 @@ def _build(files, here: bool, jobs, out: Path, style: str, copy: bool, draw, log
             shutil.rmtree(pool.scratch, ignore_errors=True)   # what a stopped worker left half removed
     readme = _readme(sections, failed, source, out, extra)
     written.append(atomic_write_text(out / "README.md", readme))
-    return GalleryResult(tuple(written), tuple(built), tuple(failed))
+    return GalleryResult(tuple(written), tuple(built), tuple((p, line) for p, line, _ in failed),
+                         tuple(status for _, _, status in failed))
 
 
 def _build_examples(files, pool, out: Path, style: str, copy: bool, draw, log) -> tuple[list, list, list, list]:
     """Every example of ``files`` built, in order: (figures written, final files built, failed as
-    (file, error line), README sections as (title, text)). With a ``pool`` each is drawn in a worker
+    (file, error line, exit status), README sections as (title, text)). With a ``pool`` each is drawn in a worker
     and its figures written here; else ``draw`` draws it here. A failing example is logged and the
     others are built."""
     written, built, failed, sections = [], [], [], []
@@ -345,12 +363,13 @@ def _build_examples(files, pool, out: Path, style: str, copy: bool, draw, log) -
     for path, result in zip(files, results):
         try:
             with committed_together():   # a failing example's files are dropped, the others' kept
-                done, line = _example_result(path, result, out, style, copy, draw)
+                done, failure = _example_result(path, result, out, style, copy, draw)
         except Exception as e:  # one example's failure must not stop the others
             raise_if_interrupted()   # unless it is Ctrl-C's aftermath: then nothing more is built
-            done, line = None, _error_line(e, path)
-        if line is not None:
-            failed.append((path, line))
+            done, failure = None, _failure(e, path)
+        if failure is not None:
+            line, status = failure
+            failed.append((path, line, status))
             if log:
                 log(line)
             continue
@@ -371,13 +390,13 @@ def _size(path: Path) -> int:
 
 def _example_result(path: Path, result, out: Path, style: str, copy: bool, draw) -> tuple:
     """One example built: ((title, text, figures written, final file), None), or (None, the error
-    line its worker sent). ``result`` is its worker's future (its figures are written here, in
+    line and exit status its worker sent). ``result`` is its worker's future (its figures are written here, in
     order); None: ``draw`` draws it in this process."""
     if result is None:
         return _example(path, out, style, copy, draw), None
-    done, line = result.result()
-    if line is not None:
-        return None, line
+    done, failure = result.result()
+    if failure is not None:
+        return None, failure
     title, text, figs, final = done
     return (title, text, [atomic_write_bytes(f, data) for f, data in figs], final), None
 
@@ -453,12 +472,12 @@ def _in_memory(draw, what, target: Path, **kw) -> list:
 
 
 def _example_in_worker(path: Path, out: Path, style: str, copy: bool) -> tuple:
-    """A worker's part of :func:`_example`: ``(result, None)``, or ``(None, error line)``."""
+    """A worker's part of :func:`_example`: ``(result, None)``, or ``(None, (error line, exit status))``."""
     with _busy():
         try:
             return _example(path, out, style, copy, _draw_to_file(), keep=True), None
         except Exception as e:   # a VelpolyError need not survive pickling: its line does
-            return None, _error_line(e, path)
+            return None, _failure(e, path)
 
 
 def _animation_in_worker(path: Path, out: Path):
@@ -645,7 +664,7 @@ def _readme(sections, failed, source: Path, out: Path, extra: str = "") -> str:
         lines += [text]
     if failed:
         lines += ["## Not built", "", "These files failed; the error each gave:", ""]
-        lines += [f"- {_md(line)}" for _, line in failed]
+        lines += [f"- {_md(failure[1])}" for failure in failed]
         lines.append("")
     return "\n".join(lines).rstrip("\n") + "\n"
 

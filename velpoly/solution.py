@@ -23,7 +23,8 @@ from .driver import inward_words, reachable_words
 from .rigid import point_acceleration, point_velocity
 from .arguments import check_angle, check_mechanism
 
-__all__ = ["Solution", "solve", "driver_reference_angle", "reachable_range", "polygon_at_rest"]
+__all__ = ["Solution", "solve", "driver_reference_angle", "reachable_range", "polygon_at_rest", "polygon_out_of_range",
+           "DRAWN_RANGE"]
 
 
 @dataclass(frozen=True)
@@ -282,4 +283,38 @@ def polygon_at_rest(sol: Solution, sheet: str) -> InputError | None:
                           "single point", where=rate, file=m.source,
                           hint=f"draw --sheet acceleration (starting from rest: {accel.split('.')[1]} only), "
                                f"or give {rate.split('.')[1]}")
+    return polygon_out_of_range(sol, sheet)
+
+
+DRAWN_RANGE = (1e-150, 1e150)   # a polygon's largest vector, its units: the drawing's geometry (shapely's areas,
+#                                 distances squared) holds within it; beyond, squares overflow or vanish
+
+
+def _largest(vectors) -> float:
+    return max((float(np.max(np.abs(v))) for v in vectors if v is not None), default=0.0)
+
+
+def polygon_out_of_range(sol: Solution, sheet: str) -> InputError | None:
+    """The input error of a sheet whose polygon is too small or too large to draw: its largest vector (a
+    velocity, or an acceleration for a sheet with the acceleration polygon) outside ``DRAWN_RANGE``; None
+    otherwise (a polygon of zero vectors is :func:`polygon_at_rest`'s). The file's numbers are solved at any
+    scale (``velpoly solve``); a drawing's geometry is not."""
+    m, drv = sol.mechanism, sol.mechanism.driver
+    lo, hi = DRAWN_RANGE
+    polygons = [("velocity", "speeds", "/s", sol.velocity.values())] if sheet in ("velocity", "full") else []
+    if sheet in ("acceleration", "full") and sol.has_accelerations:
+        polygons.append(("acceleration", "accelerations", "/s^2", sol.acceleration.values()))
+    for kind, what, per, vectors in polygons:
+        size = _largest(vectors)
+        if size == 0.0 or lo <= size <= hi:
+            continue
+        if drv.is_slider:
+            where = "driver.speed" if kind == "velocity" or abs(drv.accel) == 0 else "driver.accel"
+        else:
+            where = "driver.alpha" if kind == "acceleration" and abs(drv.alpha) > drv.omega ** 2 else "driver.omega"
+        unit = m.units or "length units"
+        return InputError(f"the {kind} polygon cannot be drawn: its {what} reach {size:.3g} {unit}{per} "
+                          f"(a drawing needs {lo:g} to {hi:g})", where=where, file=m.source,
+                          hint="solve gives the numbers at any scale; to draw, give the driver's rate and the "
+                               "lengths in units that keep them within range")
     return None

@@ -22,7 +22,7 @@ from .model import Mechanism
 from .motion import Motion, evaluate_motion, wrap_deg
 from . import pose
 from .pose import plan_for, reassemble, walked_reach
-from .driver import driver_reference_angle, reachable_text
+from .driver import driver_reference_angle, reachable_range, reachable_text
 from .solution import Solution
 
 __all__ = ["Sweep", "sweep", "memory_estimate", "check_memory", "MEMORY_BUDGET", "check_step", "cycle_poses",
@@ -354,9 +354,10 @@ def solution_at(sw: Sweep, kin: Kinematics, i: int):
     return Solution(sw.mechanism, kin, q[0], qd[0], qdd[0], float(sw.condition[i]), mo, angle)
 
 
-def check_cycle(sw: Sweep, kin: Kinematics) -> None:
+def check_cycle(sw: Sweep, kin: Kinematics, step: float | None = None) -> None:
     """A PoseError naming the links unless the cycle reached two poses or more: the pin that leaves
-    its slot at once, or the links that come into line (a toggle at the reference pose)."""
+    its slot at once, or the links that come into line (a toggle at the reference pose, or one nearer
+    ahead of it than the ``step``: the hint then names the step that reaches it)."""
     m = sw.mechanism
     if len(sw.angles) >= 2:
         return
@@ -370,8 +371,23 @@ def check_cycle(sw: Sweep, kin: Kinematics) -> None:
     raise PoseError(f"cannot sweep: {len(sw.angles)} pose(s) reachable from the reference pose"
                     + (f" ({sw.stopped})" if sw.stopped else "") + (f"; {reach}" if reach else ""),
                     where="driver", file=m.source,
-                    links=links, hint="links " + ", ".join(links) + " come into line: draw the mechanism "
-                    "in a pose away from the toggle")
+                    links=links, hint="links " + ", ".join(links) + " come into line: " + _finer_step(m, kin, step))
+
+
+def _finer_step(m: Mechanism, kin: Kinematics, step: float | None) -> str:
+    """The way to a sweep of a crank whose cycle stopped after its first pose: a ``--step`` under the
+    reach ahead of the drawn pose (the cycle runs from it in omega's sense), rounded down to 0.01 deg,
+    where the step overshot a toggle it could have come nearer; else a pose away from the toggle."""
+    away = "draw the mechanism in a pose away from the toggle"
+    if step is None or m.driver.is_slider:
+        return away
+    lo, hi = reachable_range(kin)
+    ahead = math.floor(100.0 * (-lo if m.driver.omega < 0 else hi)) / 100.0
+    if not 0.0 < ahead < step:
+        return away
+    sense, end = ("clockwise", -ahead) if m.driver.omega < 0 else ("counter-clockwise", ahead)
+    return (f"give a --step under {ahead:g} deg (the cycle runs {sense} from the drawn pose to the toggle near "
+            f"{driver_reference_angle(m) + end:g} deg), or {away}")
 
 
 def stop_note(sw: Sweep, kin: Kinematics) -> str:

@@ -7,7 +7,7 @@ from typing import Any, Callable
 
 from ..model import Driver, Mechanism, Pin, Slider
 from .context import Ctx, check_keys, read_name, read_number, show
-from .units import ALPHA_HINT, OMEGA_HINT, parse_alpha, parse_omega
+from .units import ALPHA_HINT, OMEGA_HINT, RateTooLarge, parse_alpha, parse_omega
 
 __all__ = ["read_driver", "check_range", "MAX_SPEED", "MAX_ACCEL"]
 
@@ -71,6 +71,9 @@ def _rate(ctx: Ctx, where: str, v: Any, parse: Callable[[Any], float], what: str
     """A driver's omega or alpha: a number, or a rate with its unit and sense in words (units.py)."""
     try:
         x = parse(v)
+    except RateTooLarge:
+        raise ctx.err(where, f"{show(v)} is too large: beyond any floating-point number",
+                      hint="check the driver's value and its unit (omega in rad/s or rpm)") from None
     except ValueError:
         raise ctx.err(where, f"cannot read {show(v)} as {what}", hint=hint) from None
     if not math.isfinite(x):

@@ -9,7 +9,7 @@ import math
 import re
 from typing import Any, Mapping
 
-__all__ = ["parse_omega", "parse_alpha", "SENSES", "OMEGA_HINT", "ALPHA_HINT"]
+__all__ = ["parse_omega", "parse_alpha", "SENSES", "OMEGA_HINT", "ALPHA_HINT", "RateTooLarge"]
 
 _OMEGA_UNITS = {
     "rad/s": 1.0, "rpm": 2 * math.pi / 60, "r/min": 2 * math.pi / 60, "rev/min": 2 * math.pi / 60,
@@ -30,8 +30,14 @@ OMEGA_HINT = ('a number in rad/s, or "NUMBER UNIT [SENSE]" with UNIT rad/s, rpm,
 ALPHA_HINT = 'a number in rad/s^2, or "NUMBER rad/s^2 [SENSE]" (SENSE cw, ccw, clockwise or anticlockwise)'
 
 
+class RateTooLarge(ValueError):
+    """A rate written as a finite number whose value is beyond any float (``"1e400 rpm"``)."""
+
+
 def _parse_rate(v: Any, units: Mapping[str, float]) -> float:
-    """A number as it is, or ``"NUMBER UNIT [SENSE]"`` with UNIT one of ``units`` (to rad/s or rad/s^2)."""
+    """A number as it is, or ``"NUMBER UNIT [SENSE]"`` with UNIT one of ``units`` (to rad/s or rad/s^2);
+    ValueError if it is neither, :class:`RateTooLarge` (a ValueError) if its value is beyond any float
+    (``"1e400 rpm"``)."""
     if isinstance(v, bool):
         raise ValueError(v)
     if isinstance(v, (int, float)):
@@ -46,8 +52,8 @@ def _parse_rate(v: Any, units: Mapping[str, float]) -> float:
     if unit not in units:
         raise ValueError(v)
     x = float(value) * units[unit]
-    if not math.isfinite(x):
-        raise ValueError(v)
+    if not math.isfinite(x):   # the pattern's number is finite: it is beyond any float
+        raise RateTooLarge(v)
     if sense:
         x *= SENSES[sense.lower()]
     return x + 0.0   # no negative zero

@@ -90,7 +90,7 @@ def share_row(spans, width: float, height: float, gap: float, scales=None, margi
     grown = True
     while grown:
         grown = False
-        order = sorted(range(n), key=lambda i: spans[i][0] * spans[i][1] / out[i] ** 2)
+        order = sorted(range(n), key=lambda i: (spans[i][0] / out[i]) * (spans[i][1] / out[i]))
         for i in order:
             if scales[i] is not None:
                 continue
@@ -127,7 +127,7 @@ def _first(ratios, fixed, room: float, inner_h: float) -> list[float]:
 
 def drawn_areas(spans, row: Row) -> list[float]:
     """Each drawing's box's area on paper (cm²) in a row."""
-    return [w * h / s ** 2 for (w, h), s in zip(_spans(spans), row.scales)]
+    return [(w / s) * (h / s) for (w, h), s in zip(_spans(spans), row.scales)]
 
 
 def drawn_size(spans, row: Row) -> float:
