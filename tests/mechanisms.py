@@ -23,7 +23,12 @@ def ranges_by_dyads_only(monkeypatch) -> None:
         lo, hi = real(kin)
         assert lo <= 0.0 <= hi, (lo, hi)
         return lo, hi
+    real_words = solution.reachable_words
+
+    def words(kin, ref, refused=None):   # the message's range (driver.reachable_ends) the same way
+        return real_words(kin, ref, refused) if pose.plan_for(kin.system.positions) is not None else "0 to 0"
     monkeypatch.setattr(solution, "reachable_range", ranged)
+    monkeypatch.setattr(solution, "reachable_words", words)
 
 
 def shapes_only(mechanism):

@@ -221,6 +221,7 @@ def test_the_continuation_agrees_where_no_dyad_plan_serves(monkeypatch):
     monkeypatch.setattr(sweeps, "plan_for", lambda system: None)
     # the range in the message is tested above; by continuation it takes four more continuations
     monkeypatch.setattr(solution, "reachable_range", lambda kin: (0.0, 0.0))
+    monkeypatch.setattr(solution, "reachable_words", lambda kin, ref, refused=None: "0 to 0")   # its words too
     angles = ANGLES[::3]          # every 45 deg: 0 and 180 among them
     seen = {"yes": 0, "no": 0}
     kinds = ("double-rocker", "non-grashof", "change-point", "parallelogram", "parallelogram-crossed",
@@ -290,6 +291,7 @@ def test_a_slider_crank_whose_rod_can_stand_square_to_the_path_stops_there(monke
         monkeypatch.setattr(pose, "plan_for", lambda system: None)
         monkeypatch.setattr(sweeps, "plan_for", lambda system: None)
         monkeypatch.setattr(solution, "reachable_range", lambda kin: (0.0, 0.0))
+        monkeypatch.setattr(solution, "reachable_words", lambda kin, ref, refused=None: "0 to 0")   # its words too
     r, e = 3.0, 2.0
     m = velpoly.load(slider_crank(r=r, l=r + e, e=e, theta=20.0, alpha=0.0))
     for ok in (60.0, 120.0, -89.0, -30.0, -170.0):

@@ -36,6 +36,7 @@ def _empty(monkeypatch):
     monkeypatch.setattr(polygons, "_PLANS", {})
     from velpoly import solution
     monkeypatch.setattr(solution, "reachable_range", lambda kin: (0.0, 0.0))   # as test_plan_cache
+    monkeypatch.setattr(solution, "reachable_words", lambda kin, ref, refused=None: "0 to 0")   # its words too
 
 
 def _alike(m, angles):

@@ -72,6 +72,7 @@ def _no_reachable_range(monkeypatch):
     the same); here it is (0, 0) on both paths alike."""
     from velpoly import solution
     monkeypatch.setattr(solution, "reachable_range", lambda kin: (0.0, 0.0))
+    monkeypatch.setattr(solution, "reachable_words", lambda kin, ref, refused=None: "0 to 0")   # its words too
 
 
 @pytest.fixture

@@ -110,6 +110,7 @@ def test_the_sweep_stops_where_the_pin_reaches_an_end_and_solve_agrees(seed, mon
     # the range the error names ("the pin is in the slot from ...") takes four continuations a
     # mechanism: test_command_line_messages checks it; here the end where the pin leaves is checked
     monkeypatch.setattr(solution, "reachable_range", lambda kin: (0.0, 0.0))
+    monkeypatch.setattr(solution, "reachable_words", lambda kin, ref, refused=None: "0 to 0")   # its words too
     stops = 0
     for kind, a, e, psi, theta, r_lo, r_hi, sense, swap in generated(seed):
         m = velpoly.load(drive(a, e, psi, theta, r_lo, r_hi, omega=3.0 * sense, swap=swap))

@@ -78,6 +78,7 @@ def decision(m, angle: float) -> str:
 def test_an_angle_at_a_change_point_is_refused_by_the_dyads_and_by_continuation(monkeypatch, seed=3):
     # the range in the message is not asked here (test_change_points): by continuation it takes four more
     monkeypatch.setattr(solution, "reachable_range", lambda kin: (0.0, 0.0))
+    monkeypatch.setattr(solution, "reachable_words", lambda kin, ref, refused=None: "0 to 0")   # its words too
     dyad_plan = pose.plan_for
     seen = {"yes": 0, "no": 0}
     for kind, (a, b, c, d), ref, m in cases(seed):
