@@ -857,14 +857,14 @@ class Animator:
         top = y0 + h
         fig.text(x0, top, "ccw positive" if vel or acc else "", fontsize=self.pt(15), color="0.35", va="top",
                  fontstyle="italic")
-        self.table = {}
+        self.table, self.table_floor = {}, {}
         self.table_rows = shown
+        kind = _largest_of_kind(rows)
         for i, (name, vals, unit) in enumerate(shown):
             y = top - (i + 1.4) * line / H
             fig.text(x0, y, name, fontsize=size, va="baseline", ha="left")
-            finite = np.asarray(vals, float)[np.isfinite(vals)]
-            big = float(np.abs(finite).max()) if len(finite) else 1.0
-            dec = 1 if unit == "°" else max(0, min(6, 3 - int(math.floor(math.log10(big))) if big > 0 else 3))
+            dec = 1 if unit == "°" else _decimals(_largest(vals), kind[unit])
+            self.table_floor[name] = 1e-9 * kind[unit]
             t = fig.text(x0 + 0.64 * w, y, "", fontsize=size, va="baseline", ha="right")
             t._velpoly_chars = True
             self.table[name] = (self._move(t), np.asarray(vals, float), dec)
@@ -901,7 +901,7 @@ class Animator:
             self._update_poles(k)
         for name, (t, vals, dec) in self.table.items():
             v = vals[k]
-            t.set_text("–" if not math.isfinite(v) else f"{v:.{dec}f}".replace("-", "−"))
+            t.set_text(_value_text(v, dec, self.table_floor[name]))
 
     def _barred(self) -> set:
         """The links drawn as bars (a bell-crank's arms, joined) in every frame: those whose plate (the hull of
@@ -1664,3 +1664,43 @@ def gallery_animations(source, figures, log=None, names=None, run=None) -> tuple
     for family, stem, out in rows:
         lines += [f"### {family}", "", f"![{family}: {stem}](figures/{out.name})", ""]
     return written, "\n".join(lines)
+
+
+# a table whose values of one kind (unit) reach at most a largest in this band prints them in fixed point (three
+# significant digits of each column's largest); beyond it (a driver at 1e90 or 1e-90 rad/s) as a sheet's table
+# prints them, 1.0583×10⁸⁷, not 91 digits or 0.000000
+FIXED_BAND = (1e-4, 1e8)
+
+
+def _largest(vals) -> float:
+    finite = np.abs(np.asarray(vals, float))
+    finite = finite[np.isfinite(finite)]
+    return float(finite.max()) if len(finite) else 1.0
+
+
+def _largest_of_kind(rows) -> dict:
+    """The largest value of each kind (unit) among the table's ``rows`` (name, values, unit)."""
+    kind: dict = {}
+    for _, vals, unit in rows:
+        kind[unit] = max(kind.get(unit, 0.0), _largest(vals))
+    return kind
+
+
+def _decimals(big: float, kind: float) -> int | None:
+    """The decimals a column whose largest value is ``big`` prints with: 3 significant digits of it, at most 6;
+    None where the largest of its kind, ``kind``, lies beyond :data:`FIXED_BAND` (each value then as
+    :func:`velpoly.render.table.number` prints it)."""
+    if kind > 0 and not FIXED_BAND[0] <= kind < FIXED_BAND[1]:
+        return None
+    return max(0, min(6, 3 - int(math.floor(math.log10(big))) if big > 0 else 3))
+
+
+def _value_text(v: float, dec: int | None, floor: float) -> str:
+    """One value as a frame prints it: a dash where it is not finite; with ``dec`` decimals; else as a sheet's
+    table, 0 below ``floor`` (a billionth of the largest of its kind, as :func:`velpoly.compare.kind_floor`)."""
+    if not math.isfinite(v):
+        return "–"
+    if dec is not None:
+        return f"{v:.{dec}f}".replace("-", "−")
+    from .table import number
+    return "0" if abs(v) < floor else number(v, 5, floor=floor)

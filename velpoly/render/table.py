@@ -52,6 +52,9 @@ def _fmt(x, digits=5, floor=ZERO) -> str:
     return s.replace("-", "−")
 
 
+number = _fmt   # public: the animation's table prints a number beyond its fixed-point room as a sheet's does
+
+
 def _vec(v, floor=ZERO, digits=5) -> str:
     v = np.asarray(v, float)
     if not np.all(np.isfinite(v)):
