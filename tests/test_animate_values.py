@@ -52,5 +52,18 @@ def test_every_value_of_a_frame_is_printed_as_a_number_of_its_size(omega):
                 want = 0.0 if abs(v) < 1e-9 * big else v
                 assert read(text) == pytest.approx(want, rel=1e-4, abs=1e-9 * big), (name, text, v)
                 columns += 1
+    from matplotlib.text import Text   # every text of the frame, the scale bars' numbers too: no computer exponent
+    shown = [t.get_text() for t in anim.fig.findobj(Text)]
+    assert not [t for t in shown if re.search(r"\de[+-]?\d", t)], shown
     beyond = not FIXED_BAND[0] <= abs(omega) * 1.0 < FIXED_BAND[1]
     assert (columns > 0) == beyond, (omega, columns)
+
+
+def test_a_scale_is_printed_as_the_tables_print_numbers():
+    """Round scales from 1e-120 to 1e120 (1, 2, 2.5 and 5 of each power): the same number, never an exponent."""
+    from velpoly.render.scalebar import scale_number
+    for power in range(-120, 121):
+        for lead in (1.0, 2.0, 2.5, 5.0):
+            x = lead * 10.0 ** power
+            text = scale_number(x)
+            assert "e" not in text and read(text) == pytest.approx(x, rel=1e-12), (x, text)

@@ -15,7 +15,7 @@ from ..names import unit
 from .canvas import literal, nice_length, per_cm, per_point, view_box
 from .labels import placer
 
-__all__ = ["scale_bar", "unit_label", "scale_text"]
+__all__ = ["scale_bar", "unit_label", "scale_text", "scale_number"]
 
 def unit_label(units: str, power: int) -> str:
     """The unit of a length (power 0), a velocity (1) or an acceleration (2)."""
@@ -24,7 +24,14 @@ def unit_label(units: str, power: int) -> str:
 
 def scale_text(value: float, units: str, power: int) -> str:
     """``1 cm = 0.05 m`` for the caption of a panel."""
-    return f"1 cm = {value:g} {unit_label(units, power)}".rstrip()
+    return f"1 cm = {scale_number(value)} {unit_label(units, power)}".rstrip()
+
+
+def scale_number(x: float) -> str:
+    """A scale's or a bar's round number as the tables print numbers (:func:`velpoly.render.table.number`): no
+    computer exponent, 20000 and 0.0025 as written, 2×10⁻⁹⁰ for a drawing of a driver at 1e-90 rad/s (was 2e-90)."""
+    from .table import number
+    return number(x, 6, floor=0.0)
 
 
 BAR_GAP = 1.0   # cm of paper at least between the scale bars of two panels (they must not read as one bar)
@@ -45,7 +52,7 @@ def scale_bar(ax, style, units: str, power: int, *, target_cm: float = 2.5, gid:
     unit = unit_label(units, power)
     kw = dict(fontsize=style.small_size, va="bottom", zorder=6)
     x0, y0 = view_box(ax).bounds[:2]
-    t1 = ax.text(x0, y0, f"{length:g} {unit}".rstrip(), ha="center", **kw)
+    t1 = ax.text(x0, y0, f"{scale_number(length)} {unit}".rstrip(), ha="center", **kw)
     t0 = ax.text(x0, y0, "0", ha="center", gid=f"{gid}-0", **kw)
     w0, w1 = placer(ax).text_size(t0, 0.0)[0], placer(ax).text_size(t1, 0.0)[0]
     # the end label over the bar's end, or beside the bar where "0" and it would run into each other
