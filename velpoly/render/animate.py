@@ -50,6 +50,7 @@ from pathlib import Path
 import numpy as np
 
 from ..errors import InputError, PoseError
+from ..tables import zero_floor
 from .canvas import literal
 
 __all__ = ["FramePlan", "mp4_writer", "plan_frames", "Animator", "write_animation", "FORMATS", "SHEETS", "SURGE",
@@ -864,7 +865,7 @@ class Animator:
             y = top - (i + 1.4) * line / H
             fig.text(x0, y, name, fontsize=size, va="baseline", ha="left")
             dec = 1 if unit == "°" else _decimals(_largest(vals), kind[unit])
-            self.table_floor[name] = 1e-9 * kind[unit]
+            self.table_floor[name] = zero_floor([kind[unit]])   # the tables' rule (compare.kind_floor)
             t = fig.text(x0 + 0.64 * w, y, "", fontsize=size, va="baseline", ha="right")
             t._velpoly_chars = True
             self.table[name] = (self._move(t), np.asarray(vals, float), dec)
@@ -1697,7 +1698,7 @@ def _decimals(big: float, kind: float) -> int | None:
 
 def _value_text(v: float, dec: int | None, floor: float) -> str:
     """One value as a frame prints it: a dash where it is not finite; with ``dec`` decimals; else as a sheet's
-    table, 0 below ``floor`` (a billionth of the largest of its kind, as :func:`velpoly.compare.kind_floor`)."""
+    table, 0 below ``floor`` (:func:`velpoly.tables.zero_floor` of the largest of its kind, as the tables)."""
     if not math.isfinite(v):
         return "–"
     if dec is not None:
