@@ -17,7 +17,7 @@ import numpy as np
 from .errors import ArgumentTypeError, ArgumentValueError
 from .model import Mechanism
 
-__all__ = ["check_mechanism", "check_angle", "check_angles", "MAX_ANGLE"]
+__all__ = ["check_mechanism", "check_angle", "check_angles", "rational_g", "MAX_ANGLE"]
 
 MAX_ANGLE = 1e6   # degrees: beyond, an angle's rounding error nears 1e-10 deg and a sweep's walk grows huge
 
@@ -63,7 +63,7 @@ def check_angle(angle, name: str = "angle") -> float | None:
     try:
         x = float(angle)
     except OverflowError:   # an int or a fraction beyond any float (10**400): too large, to 6 digits
-        x, shown = math.inf, _rational_g(angle)
+        x, shown = math.inf, rational_g(angle)
     except (ValueError, TypeError):
         x = math.nan
     if not math.isfinite(x) and shown is None:
@@ -76,7 +76,7 @@ def check_angle(angle, name: str = "angle") -> float | None:
     return x
 
 
-def _rational_g(v) -> str:
+def rational_g(v) -> str:
     """A rational number too large for a float, as ``%g`` would write it ("1e+400", "-3.33333e+399")."""
     try:
         d = (decimal.Decimal(v.numerator) / decimal.Decimal(v.denominator)).normalize()

@@ -161,11 +161,11 @@ def driver_label(m: Mechanism) -> tuple[str, str]:
 
 
 def reachable_text(m: Mechanism, kin: Kinematics) -> str:
-    """``reachable on this branch: LO to HI deg`` for a crank driver (absolute driver angles, to
-    0.01 degree, each toggle approached from the reference pose: the last poses a sweep reaches);
+    """``reachable on this branch: LO to HI deg`` for a crank driver (a sweep's note): the range to 0.01 deg as a
+    refused ``--angle`` prints it, each end rounded inward (:func:`inward_words`: every angle printed is reached,
+    as the sweep's outputs are; the refusal's :func:`reachable_words` rounds outward, at most 0.01 deg beyond);
     empty for a slider driver, whose stroke is the cycle."""
     if m.driver.is_slider:
         return ""
     lo, hi = reachable_range(kin)
-    ref = driver_reference_angle(m)
-    return f"reachable on this branch: {ref + lo:g} to {ref + hi:g} deg"
+    return f"reachable on this branch: {inward_words(driver_reference_angle(m), lo, hi)} deg"

@@ -11,9 +11,14 @@ from typing import Any
 
 import numpy as np
 
+from ..arguments import rational_g
 from ..errors import InputError, control_character
 from ..model import Construction, Link
 from .toml_positions import locate
+
+
+TOO_LARGE_HINT = ("a float holds numbers up to about 1.8e308: check the number, and give the lengths in units "
+                  "that keep the numbers within range")
 
 
 class Ctx:
@@ -81,8 +86,41 @@ class Ctx:
         return link in self.listed[point]
 
 
+class Beyond(float):
+    """A TOML float written finite whose value lies beyond any float (``1e400``): the infinity tomllib reads,
+    keeping the ``text`` the file writes (:func:`toml_float`), so that a message says it is too large."""
+
+    text: str
+
+
+def toml_float(text: str) -> float:
+    """A TOML float's value (tomllib's ``parse_float``): ``float(text)``, but a :class:`Beyond` where the text
+    is a finite number too large for a float (``1e400``; ``inf`` is infinity as written)."""
+    x = float(text)
+    if math.isinf(x) and "inf" not in text:
+        x = Beyond(x)
+        x.text = text
+    return x
+
+
+def too_large(v: Any) -> str | None:
+    """``v`` as written where it is a number written finite but beyond any float: a TOML float
+    (:class:`Beyond`) or an integer (``10**400``, TOML's or a dict's: ``float`` refuses it); else None."""
+    if isinstance(v, Beyond):
+        return v.text
+    if isinstance(v, int) and not isinstance(v, bool):
+        try:
+            float(v)
+        except OverflowError:
+            return rational_g(v)
+    return None
+
+
 def show(v: Any) -> str:
-    """A value as the user wrote it, on one short line: "40", true, a table, a list."""
+    """A value as the user wrote it, on one short line: "40", true, a table, a list; a number beyond any float
+    as written (``1e400``), or to six digits (``1e+400`` for 10**400)."""
+    if too_large(v):
+        return too_large(v)
     if isinstance(v, bool):
         return "true" if v else "false"
     if isinstance(v, str):
@@ -108,6 +146,8 @@ def read_number(ctx: Ctx, where: str, v: Any, positive: bool = False, allow_zero
                       hint="write numbers without quotes")
     if not isinstance(v, (int, float)):
         raise ctx.err(where, f"expected a number, got {show(v)}", hint="write a single number here")
+    if too_large(v):
+        raise ctx.err(where, f"{show(v)} is too large: beyond any floating-point number", hint=TOO_LARGE_HINT)
     x = float(v)
     if not math.isfinite(x):
         raise ctx.err(where, f"expected a finite number, got {show(x)}", hint="nan and inf are not allowed")

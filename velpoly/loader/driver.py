@@ -6,7 +6,7 @@ import math
 from typing import Any, Callable
 
 from ..model import Driver, Mechanism, Pin, Slider
-from .context import Ctx, check_keys, read_name, read_number, show
+from .context import Ctx, check_keys, read_name, read_number, show, too_large
 from .units import ALPHA_HINT, OMEGA_HINT, RateTooLarge, parse_alpha, parse_omega
 
 __all__ = ["read_driver", "check_range", "MAX_SPEED", "MAX_ACCEL"]
@@ -70,6 +70,8 @@ def _crank_driver(ctx: Ctx, d: dict, frame: str, pins: list[Pin]) -> Driver:
 def _rate(ctx: Ctx, where: str, v: Any, parse: Callable[[Any], float], what: str, hint: str) -> float:
     """A driver's omega or alpha: a number, or a rate with its unit and sense in words (units.py)."""
     try:
+        if too_large(v):   # a number beyond any float (1e400, 10**400), as "1e400 rpm" is
+            raise RateTooLarge(v)
         x = parse(v)
     except RateTooLarge:
         raise ctx.err(where, f"{show(v)} is too large: beyond any floating-point number",

@@ -14,7 +14,7 @@ import numpy as np
 from ..errors import ArgumentTypeError, InputError, VelpolyError
 from ..model import Mechanism
 from .build import build
-from .context import Ctx
+from .context import Ctx, toml_float
 from .toml_positions import deep_entry, unclosed
 
 __all__ = ["load", "loads", "MAX_DEPTH"]
@@ -167,7 +167,7 @@ def _parse_toml(text: str, file: str) -> dict:
         raise InputError("the file is empty", file=file,
                          hint="a mechanism file has [points], [links] and [driver] tables (see the README)")
     try:
-        return _plain(tomllib.loads(text), file)
+        return _plain(tomllib.loads(text, parse_float=toml_float), file)
     except RecursionError:   # tomllib reads nested brackets recursively
         entry, line = deep_entry(text, MAX_DEPTH)
         raise InputError(f"nested more than {MAX_DEPTH} levels deep", file=file,

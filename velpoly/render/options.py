@@ -29,7 +29,7 @@ from types import MappingProxyType
 from typing import Mapping
 
 from ..errors import InputError
-from ..loader.context import show
+from ..loader.context import TOO_LARGE_HINT, show, too_large
 
 __all__ = ["DrawingOptions", "drawing_options", "KEYS", "SHEETS"]
 
@@ -65,6 +65,8 @@ def _err(m, key: str, what: str, hint: str = "") -> InputError:
 
 
 def _positive(m, key: str, v) -> float:
+    if too_large(v):
+        raise _err(m, key, f"{show(v)} is too large: beyond any floating-point number", hint=TOO_LARGE_HINT)
     if isinstance(v, bool) or not isinstance(v, (int, float)) or not math.isfinite(v) or v <= 0:
         raise _err(m, key, f"expected a positive number, got {_typed(v)}",
                    hint=f"{key} is in units per cm of paper, e.g. {key} = 0.05")

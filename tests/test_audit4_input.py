@@ -1,0 +1,110 @@
+"""Outside checks of a file's numbers and of the ranges velpoly names (FORMAT.md section 3: exit 2 "with one line
+``error: FILE: WHERE: WHAT`` and a hint, never a traceback"; section 5, Driver: a toggle on the way is exit 3 "with the
+reachable range"). Found by the audit, on generated mechanisms:
+
+- a number written finite but beyond any float, ``omega = 1e400`` (tomllib reads it as inf), said "must be finite,
+  got inf" (``expected a finite number, got inf`` for a point or a length): now "1e400 is too large: beyond any
+  floating-point number", as ``"1e400 rpm"`` already was (loader.context.toml_float keeps the text it writes);
+- such a number written as a TOML integer (10**400, or in a dict given to ``velpoly.load``) escaped as a raw
+  OverflowError: ``velpoly solve`` exited 1, "internal error", for any entry (a point, a length, omega, a scale);
+- ``velpoly sweep``'s note printed the reachable range's inner ends to six digits (``-176.202 to -84.5619``) where
+  the refusal of ``--angle`` prints the range rounded outward (``-176.22 to -84.55``): one range, now printed one
+  way (driver.reachable_words), for a toggle and for a pin that leaves its slot.
+"""
+from __future__ import annotations
+
+import copy
+import re
+
+import numpy as np
+import pytest
+
+import velpoly
+from velpoly.kinematics import prepare
+from velpoly.sweeps import stop_note
+
+from mechanisms import in_process
+from test_fuzz import to_toml
+from test_slot_ends import drive, generated
+from zoo import zoo
+
+
+def numbers(d, path=()):
+    """The path of every number in a mechanism's dict."""
+    if isinstance(d, dict):
+        for k, v in d.items():
+            yield from numbers(v, path + (k,))
+    elif isinstance(d, list):
+        for i, v in enumerate(d):
+            yield from numbers(v, path + (i,))
+    elif isinstance(d, (int, float)) and not isinstance(d, bool) and path != ("format",):
+        yield path
+
+
+def put(d, path, v):
+    for k in path[:-1]:
+        d = d[k]
+    d[path[-1]] = v
+
+
+def test_a_number_beyond_any_float_is_too_large_wherever_it_is_written(tmp_path):
+    checked = 0
+    specimens = zoo(2026, 60)
+    for sp in (specimens[i] for i in (0, 10, 40, 45, 50)):   # points, curved paths, slots, contacts, the drivers
+        mech = copy.deepcopy(sp.mech)
+        mech["drawing"] = {"scale": 0.5}
+        mech["reference"] = {"values": {"V_" + next(iter(mech["points"])): [1.5, 30.0]}}
+        for path in numbers(mech):
+            for written, shown in (("1e400", "1e400"), ("-1.5e999", "-1.5e999"), (str(10 ** 400), "1e+400")):
+                d = copy.deepcopy(mech)
+                put(d, path, 7.25)
+                text = to_toml(d).replace("7.25", written, 1)
+                with pytest.raises(velpoly.VelpolyError) as e:
+                    velpoly.loads(text)
+                assert f"{shown} is too large: beyond any floating-point number" in str(e.value), (path, str(e.value))
+                assert "inf" not in str(e.value).splitlines()[0], str(e.value)
+                checked += 1
+            if checked % 7 == 0:   # a dict's integer, as TOML's
+                d = copy.deepcopy(mech)
+                put(d, path, -(10 ** 400))
+                with pytest.raises(velpoly.VelpolyError, match=r"-1e\+400 is too large"):
+                    velpoly.load(d)
+    assert checked > 200
+    f = tmp_path / "big.toml"   # the command: one line naming the file and the entry, exit 2
+    d = copy.deepcopy(zoo(2026, 1)[0].mech)
+    d["driver"]["omega"] = 7.25
+    f.write_text(to_toml(d).replace("7.25", str(10 ** 400)))
+    r = in_process(["solve", f])
+    assert r.returncode == 2 and r.stderr.startswith(f"error: {f}: driver.omega (line "), r.stderr
+    assert "1e+400 is too large" in r.stderr.splitlines()[0], r.stderr
+
+
+def refused_range(m, beyond: float) -> str:
+    """The range the refusal of ``--angle`` names (``reachable: LO to HI`` or ``the pin is in the slot from``)."""
+    with pytest.raises(velpoly.PoseError) as e:
+        velpoly.solve(m, angle=beyond)
+    return re.search(r"(?:reachable: |in the slot from )(\S+ to \S+) deg", str(e.value))[1]
+
+
+def test_a_sweeps_note_prints_the_range_as_the_refusal_does():
+    rockers = [sp for sp in zoo(20261128, 5) if "rocker" in sp.kind and "crank" not in sp.kind][:2]
+    slotted = [g for g in generated(3) if g[0] == "oscillating"][:1]
+    cases = [velpoly.load(sp.mech) for sp in rockers]
+    cases += [velpoly.load(drive(a, e, psi, theta, lo, hi, omega=3.0 * sense, swap=swap))
+              for _, a, e, psi, theta, lo, hi, sense, swap in slotted]
+    assert len(cases) == 3
+    for m in cases:
+        kin = prepare(m)
+        ref = velpoly.solve(m).driver_angle
+        sw = velpoly.sweep(m, ref + np.sign(m.driver.omega) * np.arange(0.0, 360.0, 5.0))
+        note = stop_note(sw, kin)
+        printed = re.search(r"(?:reachable on this branch: |in its slot from )(\S+ to \S+) deg", note)[1]
+        ends = [float(x) for x in printed.split(" to ")]
+        far = ref + 179.0 * (1.0 if ends[1] - ref < 179.0 else -1.0)   # beyond the range, the shorter way round
+        bounds = [float(x) for x in refused_range(m, far).split(" to ")]
+        # to 0.01 deg as the refusal prints it: inward (every angle printed is reached) within its outward bounds
+        assert all(re.fullmatch(r"-?\d+(\.\d\d?)?", x) for x in printed.split(" to ")), note
+        assert bounds[0] <= ends[0] <= bounds[0] + 0.0301 and bounds[1] - 0.0301 <= ends[1] <= bounds[1], (note, bounds)
+        for end in ends:
+            if abs(end - ref) < 180.0:   # --angle turns the shorter way round
+                velpoly.solve(m, angle=end)
