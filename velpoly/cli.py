@@ -202,8 +202,8 @@ def _check_step(args) -> None:
     step = getattr(args, "step", None)
     if step is None or isinstance(step, float):
         return
-    import decimal
-    shown = format((step.numerator / decimal.Decimal(step.denominator)).normalize(), ".6g").replace("E", "e")
+    from .arguments import rational_g
+    shown = rational_g(step)
     least, most = {"animate": (0.05, 90.0), "html": (HTML_MIN_STEP, 180.0)}.get(args.command, (MIN_STEP, 180.0))
     if step < 0:
         raise InputError(f"the step must be a number of degrees above 0, got {shown}", where="--step",
