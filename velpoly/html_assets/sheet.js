@@ -74,13 +74,21 @@
       return "<sub>" + (digits ? digits.replace(/[\u2080-\u2089]/g, function (c) { return String(SUBDIGITS.indexOf(c)); }) : word) + "</sub>";
     });
   }
+  // A number as the sheets' tables print it (velpoly.render.table.number): d significant digits (5), plain
+  // digits from 1e-5 to 1e8 (after rounding), else a power of ten in superscript digits, 1.0477×10⁸⁹, never
+  // a computer exponent (1.0477e+89); a minus sign, not a hyphen.
   function fmt(x, d, z) {   // z: below it the value is rounding noise and prints 0 (noise())
     if (x === null || x === undefined || !isFinite(x)) return "\u2013";
     if (x === 0 || Math.abs(x) < z) return "0";
-    var a = Math.abs(x), s;
-    if (a >= 1e7 || a < 1e-4) s = x.toExponential((d || 5) - 1).replace(/\.?0+e/, "e");
-    else s = String(Number(x.toPrecision(d || 5)));   // plain digits, no trailing zeros
+    var sci = x.toExponential((d || 5) - 1), e = Number(sci.split("e")[1]);
+    var s = e < -5 || e >= 8 ? tens(sci) : String(Number(x.toPrecision(d || 5)));   // plain digits, no trailing zeros
     return s.replace(/-/g, "\u2212");
+  }
+  var SUPDIGITS = "\u2070\u00b9\u00b2\u00b3\u2074\u2075\u2076\u2077\u2078\u2079";
+  function tens(sci) {   // "1.0500e-9" -> 1.05×10⁻⁹
+    var parts = sci.split("e"), e = Number(parts[1]);
+    return parts[0].replace(/\.?0+$/, "") + "\u00d710" + (e < 0 ? "\u207b" : "") +
+      String(Math.abs(e)).replace(/[0-9]/g, function (c) { return SUPDIGITS[Number(c)]; });
   }
   function polar(v, z) {
     if (!v) return "\u2013";
@@ -620,7 +628,7 @@
     if (g === null || g === undefined || a === null || a === undefined) return "\u2013";
     var d = Array.isArray(g) ? Math.hypot(g[0] - a[0], g[1] - a[1]) : Math.abs(g - a);
     var r = d / (scale || 1);
-    return r < 1e-12 ? "&lt; 10<sup>\u221212</sup>" : r.toExponential(1).replace("-", "\u2212");
+    return r < 1e-12 ? "&lt; 10<sup>\u221212</sup>" : tens(r.toExponential(1));
   }
   // The size of each kind (omega, alpha, speed, acceleration) at a pose, as compare.kind_scales: the
   // largest |omega|, |alpha| (at least omega^2), speed and acceleration (at least speed^2 / size). A

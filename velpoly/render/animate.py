@@ -147,11 +147,11 @@ def _grid(lo: float, hi: float, step: float) -> np.ndarray:
 def plan_frames(m, step: float = 2.0) -> FramePlan:
     """The frames of ``m``'s animation (see the module's docstring); raises PoseError when fewer than two
     poses can be reached."""
-    from ..driver import driver_label
+    from ..driver import driver_label, driver_reference_angle, reachable_range
     from ..sweeps import cycle_angles, run_cycle
     from ..kinematics import prepare
-    from ..driver import driver_reference_angle, reachable_range
     from ..sweeps import sweep
+    from .table import position_text
     step = _check_step(step)
     kin = prepare(m)
     drv = m.driver
@@ -177,7 +177,7 @@ def plan_frames(m, step: float = 2.0) -> FramePlan:
         lo, hi = float(full.angles[0]), float(full.angles[-1])
         span = (lo, hi)
         unit = f" {m.units}" if m.units else ""
-        what = f"slider {drv.slider} runs between {lo:.4g}{unit} and {hi:.4g}{unit} and back"
+        what = f"slider {drv.slider} runs between {position_text(m, lo)}{unit} and {position_text(m, hi)}{unit} and back"
     if not span[1] > span[0]:
         raise PoseError("cannot animate: the driver cannot move on this branch without crossing a toggle",
                         where="driver", file=m.source, links=(),

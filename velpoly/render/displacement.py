@@ -32,6 +32,7 @@ from .labels import placer
 from .options import drawing_options
 from .scalebar import scale_bar, unit_label
 from .style import get_style, link_fill
+from .table import number_math
 
 __all__ = ["draw_mechanism", "away_from", "neighbours", "mechanism_bounds", "shape_patch", "link_bodies", "mark_auxiliary",
            "equivalent_linkage_note", "plate_outline", "plate_fill", "plain_links", "PLATE_FILL",
@@ -1477,7 +1478,7 @@ class _Drawing:
             if values:
                 self.art.add("driver", *drawn)
             away = n if side is base else -n
-            spots.append(((a, b), f"{symbol} = {abs(value):.4g} {unit_label(m.units, power)}", label_gid, away))
+            spots.append(((a, b), f"{symbol} = {number_math(abs(value), 4, 0.0)} {unit_label(m.units, power)}", label_gid, away))
         if not values:
             return
         for (a, b), text, label_gid, away in spots:   # the values once both arrows are drawn: clear of both
@@ -1804,8 +1805,8 @@ class _Drawing:
         on no line, close to their arcs."""
         drv, st = self.m.driver, self.st
         lk = link_math(drv.link)   # velpoly.names: a word upright, as written
-        texts = (rf"$\omega_{{{lk}}}$ = {abs(drv.omega):.4g} rad/s {'ccw' if drv.omega >= 0 else 'cw'}",
-                 rf"$\alpha_{{{lk}}}$ = {abs(drv.alpha):.4g} rad/s² {'ccw' if drv.alpha > 0 else 'cw'}")
+        texts = (rf"$\omega_{{{lk}}}$ = {number_math(abs(drv.omega), 4, 0.0)} rad/s {'ccw' if drv.omega >= 0 else 'cw'}",
+                 rf"$\alpha_{{{lk}}}$ = {number_math(abs(drv.alpha), 4, 0.0)} rad/s² {'ccw' if drv.alpha > 0 else 'cw'}")
         label_kw = dict(fontsize=st.small_size * 1.15, zorder=7)
         gaps = self._driver_gaps(pivot, p, ground_dir)
         plans, family = self._driver_plans(gaps, ARC_RADIUS * self.pc), []

@@ -8,12 +8,14 @@ from __future__ import annotations
 
 import dataclasses
 import math
+import re
 import textwrap
 from pathlib import Path
 
 import matplotlib
 import numpy as np
 from matplotlib.figure import Figure
+from matplotlib.ticker import ScalarFormatter
 
 from ..centrodes import Centrodes, break_at_infinity
 from ..driver import driver_label
@@ -25,9 +27,10 @@ from ..reference import file_pose_angle
 from ..report import moving_keys
 from ..sweeps import Sweep
 from .canvas import literal
+from .table import number, position_text, tens
 
-__all__ = ["cycle_figure", "plot_cycle", "write_gif", "merge_series", "drawn_pose", "GIF_FRAMES", "GIF_FRAME_MS",
-           "GIF_SIZE", "COINCIDE"]
+__all__ = ["cycle_figure", "plot_cycle", "write_gif", "merge_series", "drawn_pose", "TablesPower",
+           "GIF_FRAMES", "GIF_FRAME_MS", "GIF_SIZE", "COINCIDE"]
 
 GIF_FRAMES = 45            # at most this many frames in the animation (8 deg apart on a turn)
 GIF_FRAME_MS = 120         # per frame: a 45-frame turn lasts under 6 s
@@ -142,6 +145,20 @@ def cycle_figure(sw: Sweep, points=None, cen: Centrodes | None = None, style: st
     return fig
 
 
+class TablesPower(ScalarFormatter):
+    """matplotlib's tick labels; the axis's power of ten and offset (its offset text) as the tables print numbers
+    (:func:`velpoly.render.table.number`, ``tens``): ``×10⁹⁰`` and ``+1000``, where matplotlib prints ``1e90`` and
+    ``+1e3`` (a cycle of a driver at 1e90 rad/s). The ticks read value = tick × 10^power + offset, as matplotlib's."""
+
+    def get_offset(self) -> str:
+        # matplotlib's text: the power first ("1e90", "1e−6"), then the signed offset ("+1e3"), each as "%e" writes it
+        return _EXPONENT.sub(lambda e: "×" + tens(int(e[2].replace("−", "-"))) if e.start() == 0 else
+                             number(float(e[0].replace("−", "-")), 10, 0.0).lstrip("−"), super().get_offset())
+
+
+_EXPONENT = re.compile(r"([0-9.]+)e([−-]?[0-9]+)")
+
+
 def _panels(sw: Sweep, points=None) -> list:
     """The four panels over the cycle, row by row: (title, y label, [(curve label, values)])."""
     m = sw.mechanism
@@ -170,7 +187,10 @@ def _plot_panel(ax, sw: Sweep, title: str, ylabel: str, series, style: str, draw
                 label=", ".join(zero) + (" are" if len(zero) > 1 else " is") + " zero throughout (not drawn)")
     if drawn is not None:   # where the sheets are drawn (the file's pose)
         ax.axvline(drawn, color="0.45", linestyle=(0, (4, 2)), linewidth=0.9, zorder=1.5, gid="drawn-pose",
-                   label=literal(f"drawn pose, {xname} = {drawn:.4g} {xunit}") if legend_drawn else None)
+                   label=literal(f"drawn pose, {xname} = {position_text(sw.mechanism, drawn)} {xunit}")
+                   if legend_drawn else None)
+    for axis in (ax.xaxis, ax.yaxis):
+        axis.set_major_formatter(TablesPower())
     ax.set_title(title)
     ax.set_xlabel(literal(f"{xname} ({xunit})"))
     ax.set_ylabel(ylabel)
@@ -345,7 +365,8 @@ def write_gif(sw: Sweep, out, kin: Kinematics | None = None, style: str = "textb
     n = len(sw.angles)
     frames = np.unique(np.linspace(0, n - 1, min(n, max_frames)).round().astype(int))
     xname, xunit = driver_label(m)
-    caption = f"{xname} from {sw.angles[frames[0]]:.4g} to {sw.angles[frames[-1]]:.4g} {xunit}" + \
+    first, last = (position_text(m, sw.angles[k]) for k in (frames[0], frames[-1]))
+    caption = f"{xname} from {first} to {last} {xunit}" + \
         (f" [{sw.stopped}]" if sw.stopped else "")
     if sw.kinematics is None:
         sw = dataclasses.replace(sw, kinematics=kin or prepare(m))

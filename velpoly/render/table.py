@@ -29,7 +29,7 @@ from .canvas import Artists, equation_tex, get_ax, literal, renderer_of
 from .style import get_style
 from .textcache import kept_layout
 
-__all__ = ["results_table", "draw_results_table", "given_table", "cuts_the_book"]
+__all__ = ["results_table", "draw_results_table", "given_table", "cuts_the_book", "number", "number_math", "position_text", "tens"]
 
 
 _SUPERSCRIPT = str.maketrans("-0123456789", "⁻⁰¹²³⁴⁵⁶⁷⁸⁹")
@@ -48,11 +48,39 @@ def _fmt(x, digits=5, floor=ZERO) -> str:
             if "." in s:
                 s = s.rstrip("0").rstrip(".")
         else:
-            s = f"{mant}×10" + str(e).translate(_SUPERSCRIPT)
+            s = f"{mant}×{tens(e)}"
     return s.replace("-", "−")
 
 
 number = _fmt   # public: the animation's table prints a number beyond its fixed-point room as a sheet's does
+
+
+def tens(power: int) -> str:
+    """Ten to an integer power as the tables print it: ``10⁻⁹⁰``."""
+    return "10" + str(power).translate(_SUPERSCRIPT)
+
+
+_PLAIN = str.maketrans("⁻⁰¹²³⁴⁵⁶⁷⁸⁹", "-0123456789")
+
+
+def number_math(x, digits=5, floor=ZERO) -> str:
+    r""":func:`number` for a text that mathtext typesets (one holding ``$\omega_{2}$``, whose fonts lack the
+    superscript digits): its power of ten as math, ``$1{\times}10^{-90}$`` for 1×10⁻⁹⁰; any other number as
+    :func:`number` prints it.
+
+    >>> number_math(1e-90, 4, 0.0), number_math(6.2832, 4, 0.0)
+    ('$1{\\times}10^{-90}$', '6.283')
+    """
+    s = number(x, digits, floor)
+    mant, times, power = s.partition("×10")
+    return rf"${mant.replace('−', '-')}{{\times}}10^{{{power.translate(_PLAIN)}}}$" if times else s
+
+
+def position_text(m, x: float) -> str:
+    """The driver's position as a figure prints it: a crank's angle (degrees, within a few turns) to four
+    significant digits; a slider's displacement, a length at the mechanism's scale (1e-100 to 1e100), as the tables
+    print numbers (:func:`number`: 1.5×10⁻⁹⁰ mm, not 1.5e-90)."""
+    return number(x, 4, 0.0) if m.driver.is_slider else f"{x:.4g}"
 
 
 def _vec(v, floor=ZERO, digits=5) -> str:
