@@ -7,6 +7,9 @@ reachable range"). Found by the audit, on generated mechanisms:
   floating-point number", as ``"1e400 rpm"`` already was (loader.context.toml_float keeps the text it writes);
 - such a number written as a TOML integer (10**400, or in a dict given to ``velpoly.load``) escaped as a raw
   OverflowError: ``velpoly solve`` exited 1, "internal error", for any entry (a point, a length, omega, a scale);
+- the API (FORMAT.md section 4: a wrong argument raises a VelpolyError that is also a TypeError or ValueError, naming
+  it): ``velpoly.sweep(m, [10**400, 0])`` said "the angles must be finite numbers" (``solve(m, angle=10**400)``
+  says "too large"), and ``velpoly.load(d, name=5)`` raised a raw TypeError from deep in the loader;
 - ``velpoly sweep``'s note printed the reachable range's inner ends to six digits (``-176.202 to -84.5619``) where
   the refusal of ``--angle`` prints the range rounded outward (``-176.22 to -84.55``): one range, now printed one
   way (driver.reachable_words), for a toggle and for a pin that leaves its slot.
@@ -14,6 +17,7 @@ reachable range"). Found by the audit, on generated mechanisms:
 from __future__ import annotations
 
 import copy
+import fractions
 import re
 
 import numpy as np
@@ -108,3 +112,17 @@ def test_a_sweeps_note_prints_the_range_as_the_refusal_does():
         for end in ends:
             if abs(end - ref) < 180.0:   # --angle turns the shorter way round
                 velpoly.solve(m, angle=end)
+
+
+def test_the_apis_wrong_arguments_are_named():
+    for sp in zoo(2026, 60)[::20]:
+        m = velpoly.load(sp.mech)
+        for angles, shown in (([10 ** 400, 0.0], "1e+400"), ([0, -(10 ** 401)], "-1e+401"),
+                              ([fractions.Fraction(10 ** 400, 3), 1], "3.33333e+399")):
+            with pytest.raises(velpoly.ArgumentValueError, match=rf"a value of {re.escape(shown)} \S+ is too large"):
+                velpoly.sweep(m, angles)
+        for name in (5, b"m.toml", ["m"]):
+            for call in (lambda: velpoly.load(sp.mech, name=name), lambda: velpoly.loads(to_toml(sp.mech), name=name)):
+                with pytest.raises(velpoly.ArgumentTypeError) as e:
+                    call()
+                assert isinstance(e.value, TypeError) and e.value.where == "name", str(e.value)

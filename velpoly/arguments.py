@@ -108,7 +108,9 @@ def check_angles(angles, name: str = "angles", limit: float = MAX_ANGLE, unit: s
         if a.ndim == 1 and all(isinstance(x, numbers.Real) and not isinstance(x, (bool, np.bool_)) for x in flat):
             try:
                 a = np.array([float(x) for x in flat])
-            except (OverflowError, ValueError):
+            except OverflowError:   # an int or a fraction beyond any float (10**400): too large, as check_angle says
+                raise _too_large(rational_g(max(flat, key=abs)), unit, limit, name, hint) from None
+            except ValueError:
                 raise ArgumentValueError("the angles must be finite numbers", where=name, hint=hint) from None
         else:
             bad = [x for x in flat if not isinstance(x, numbers.Real) or isinstance(x, (bool, np.bool_))]
@@ -125,6 +127,10 @@ def check_angles(angles, name: str = "angles", limit: float = MAX_ANGLE, unit: s
     if not np.all(np.isfinite(a)):
         raise ArgumentValueError("the angles must be finite numbers", where=name, hint=hint)
     if len(a) and np.abs(a).max() > limit:
-        raise ArgumentValueError(f"a value of {np.abs(a).max():g} {unit} is too large (at most {limit:g} {unit} either way)",
-                                 where=name, hint=hint)
+        raise _too_large(f"{np.abs(a).max():g}", unit, limit, name, hint)
     return a
+
+
+def _too_large(shown: str, unit: str, limit: float, name: str, hint: str) -> ArgumentValueError:
+    return ArgumentValueError(f"a value of {shown} {unit} is too large (at most {limit:g} {unit} either way)",
+                              where=name, hint=hint)

@@ -33,6 +33,7 @@ def load(source, *, name: str | None = None) -> Mechanism:
     read, never written. Raises :class:`~velpoly.errors.InputError` (a
     :class:`VelpolyError`) naming the file, the entry and what is wrong.
     """
+    _check_name(name)
     text = None
     if isinstance(source, Mapping):
         file = name or "<dict>"
@@ -92,6 +93,7 @@ def loads(text: str, *, name: str | None = None) -> Mechanism:
     ``name`` is what errors call it (default ``<text>``). Raises
     :class:`~velpoly.errors.InputError` naming the entry and what is wrong.
     """
+    _check_name(name)
     if isinstance(text, (bytes, bytearray)):
         try:
             text = bytes(text).decode("utf-8")
@@ -105,6 +107,13 @@ def loads(text: str, *, name: str | None = None) -> Mechanism:
     if text.startswith("\ufeff"):
         text = text[1:]
     return _load_data(_parse_toml(text, file), file, text, name)
+
+
+def _check_name(name) -> None:
+    """``name`` (what errors call the source) must be None or a string: an ArgumentTypeError naming it."""
+    if name is not None and not isinstance(name, str):
+        raise ArgumentTypeError(f"expected a string, got {_a(type(name).__name__)}", where="name",
+                                hint='name is what errors call the source, e.g. name="fourbar.toml"')
 
 
 def _a(noun: str) -> str:
