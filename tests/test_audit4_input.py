@@ -10,6 +10,10 @@ reachable range"). Found by the audit, on generated mechanisms:
 - the API (FORMAT.md section 4: a wrong argument raises a VelpolyError that is also a TypeError or ValueError, naming
   it): ``velpoly.sweep(m, [10**400, 0])`` said "the angles must be finite numbers" (``solve(m, angle=10**400)``
   says "too large"), and ``velpoly.load(d, name=5)`` raised a raw TypeError from deep in the loader;
+- ``velpoly animate``, ``html`` and ``sweep --gif`` of a mechanism at rest (omega = 0) drew its polygons as dots beside
+  a scale bar of a made-up size (``2×10⁻¹² mm/s``), and at omega = 1e-160 the acceleration polygon (1e-320 mm/s²) as a
+  dot at 0.02 mm/s², where ``velpoly draw`` refuses both (exit 2 naming driver.omega): now refused alike, before
+  anything is written (their frames, drawn without shapely, keep every size above the drawn range's floor);
 - ``velpoly sweep``'s note printed the reachable range's inner ends to six digits (``-176.202 to -84.5619``) where
   the refusal of ``--angle`` prints the range rounded outward (``-176.22 to -84.55``): one range, now printed one
   way (driver.reachable_words), for a toggle and for a pin that leaves its slot.
@@ -126,3 +130,24 @@ def test_the_apis_wrong_arguments_are_named():
                 with pytest.raises(velpoly.ArgumentTypeError) as e:
                     call()
                 assert isinstance(e.value, TypeError) and e.value.where == "name", str(e.value)
+
+
+def test_a_cycles_figures_of_polygons_at_rest_or_too_small_are_refused_as_draw_refuses(tmp_path):
+    specimens = zoo(2026, 60)
+    crank, slider = specimens[0], next(sp for sp in specimens if "slider" in sp.mech["driver"])
+    for sp, rate in ((crank, 0.0), (crank, 1e-160), (slider, 0.0)):
+        d = copy.deepcopy(sp.mech)
+        key = "omega" if "omega" in d["driver"] else "speed"
+        d["driver"].update({key: rate, "alpha" if key == "omega" else "accel": 0.0})
+        f = tmp_path / "m.toml"
+        f.write_text(to_toml(d))
+        for args in (["animate", f, "-o", tmp_path / "a.gif", "--step", "60", "--size", "320x180"],
+                     ["html", f, "-o", tmp_path / "a.html", "--step", "60"],
+                     ["sweep", f, "--step", "60", "--gif", tmp_path / "s.gif", "--csv", tmp_path / "s.csv"]):
+            r = in_process(args)
+            assert r.returncode == 2 and r.stderr.startswith(f"error: {f}: driver.{key} (line "), (args, r.stderr)
+            assert sorted(p.name for p in tmp_path.iterdir()) == ["m.toml"], args   # nothing written
+    d = copy.deepcopy(crank.mech)   # a polygon of any size above the floor is drawn (1e179 mm/s^2 here)
+    d["driver"].update({"omega": 1e90, "alpha": 0.0})
+    f.write_text(to_toml(d))
+    assert in_process(["html", f, "-o", tmp_path / "a.html", "--step", "60"]).returncode == 0

@@ -303,6 +303,8 @@ def cmd_sweep(args) -> int:
     sw, kin = _sweep_cycle(args.file, getattr(args, "step", 1.0), gif_out is not None)
     from .sweeps import stop_note
     m = sw.mechanism
+    if gif_out:   # the GIF draws the velocity polygon: refused before anything is written
+        _polygons_drawable(m, "velocity")
     note = stop_note(sw, kin)
     warnings = [f"warning: {m.source}: {note}"] if note else []
     points = _sweep_points(sw, getattr(args, "points", None))
@@ -452,6 +454,7 @@ def cmd_animate(args) -> int:
     if suffix == ".mp4":
         mp4_writer()             # the missing extra is said before any work
     m = load(Path(args.file), name=args.file)
+    _polygons_drawable(m, args.sheet)
     plan = plan_frames(m, args.step)
     anim = Animator(plan, args.sheet, args.style, size)
     tty = bool(getattr(sys.stderr, "isatty", lambda: False)())
@@ -465,6 +468,23 @@ def cmd_animate(args) -> int:
     write_animation(anim, out, args.fps, progress)
     print(out)
     return 0
+
+
+def _polygons_drawable(m, sheet: str) -> None:
+    """Refuse, as ``velpoly draw --sheet SHEET`` does (exit 2 naming the driver's rate), a figure of the cycle whose
+    polygons would be single points (a mechanism at rest) or too small to draw (solution.polygon_at_rest, at the
+    file's pose; the frames hold any size above that: 1e179 mm/s² draws): animate, html and sweep --gif drew them
+    as dots beside a scale bar of a made-up size (2×10⁻¹² mm/s), or a polygon of 1e-320 as a dot at 0.02 mm/s². A
+    pose that cannot be solved is left to the command's own cycle to report."""
+    from . import solve
+    from .solution import DRAWN_RANGE, polygon_at_rest
+    try:
+        sol = solve(m)
+    except VelpolyError:
+        return
+    refused = polygon_at_rest(sol, sheet, (DRAWN_RANGE[0], math.inf))   # frames drawn without shapely: no upper bound
+    if refused is not None:
+        raise refused
 
 
 def _animate_html(args, out: Path) -> int:
@@ -543,6 +563,7 @@ def cmd_html(args) -> int:
     from . import load
     from .html import write_page
     m = load(Path(args.file), name=args.file)
+    _polygons_drawable(m, "acceleration")   # the page draws both polygons (the velocity one of a start from rest)
     print(write_page(m, out, step=args.step))
     return 0
 

@@ -264,11 +264,12 @@ def solve(m: Mechanism, angle: float | None = None) -> Solution:
     return Solution(m, kin, q[0], qd[0], qdd[0], float(cond[0]), motion, angle_now, tuple(warnings))
 
 
-def polygon_at_rest(sol: Solution, sheet: str) -> InputError | None:
+def polygon_at_rest(sol: Solution, sheet: str, drawn: tuple[float, float] | None = None) -> InputError | None:
     """The input error of a sheet whose polygon would be one point: every velocity zero (the driver at rest,
     omega = 0, and no prescribed slip) for a sheet with the velocity polygon (``velocity``, ``full``), every
     acceleration zero as well for one with the acceleration polygon; None where the polygons have a size.
-    A mechanism starting from rest (omega = 0, alpha given) has its acceleration sheet."""
+    A mechanism starting from rest (omega = 0, alpha given) has its acceleration sheet. ``drawn``: the range of
+    :func:`polygon_out_of_range` (default ``DRAWN_RANGE``)."""
     m, drv = sol.mechanism, sol.mechanism.driver
     still_v = not any(np.any(v != 0) for v in sol.velocity.values()) and not any(sol.omega.values())
     still_a = still_v and sol.has_accelerations and not any(np.any(a != 0) for a in sol.acceleration.values())
@@ -283,7 +284,7 @@ def polygon_at_rest(sol: Solution, sheet: str) -> InputError | None:
                           "single point", where=rate, file=m.source,
                           hint=f"draw --sheet acceleration (starting from rest: {accel.split('.')[1]} only), "
                                f"or give {rate.split('.')[1]}")
-    return polygon_out_of_range(sol, sheet)
+    return polygon_out_of_range(sol, sheet, drawn)
 
 
 DRAWN_RANGE = (1e-150, 1e150)   # a polygon's largest vector, its units: the drawing's geometry (shapely's areas,
@@ -294,13 +295,15 @@ def _largest(vectors) -> float:
     return max((float(np.max(np.abs(v))) for v in vectors if v is not None), default=0.0)
 
 
-def polygon_out_of_range(sol: Solution, sheet: str) -> InputError | None:
+def polygon_out_of_range(sol: Solution, sheet: str, drawn: tuple[float, float] | None = None) -> InputError | None:
     """The input error of a sheet whose polygon is too small or too large to draw: its largest vector (a
-    velocity, or an acceleration for a sheet with the acceleration polygon) outside ``DRAWN_RANGE``; None
-    otherwise (a polygon of zero vectors is :func:`polygon_at_rest`'s). The file's numbers are solved at any
-    scale (``velpoly solve``); a drawing's geometry is not."""
+    velocity, or an acceleration for a sheet with the acceleration polygon) outside ``drawn`` (default
+    ``DRAWN_RANGE``; a cycle's frames, drawn without shapely, hold any size above it); None otherwise (a polygon
+    of zero vectors is :func:`polygon_at_rest`'s). The file's numbers are solved at any scale (``velpoly
+    solve``); a drawing's geometry is not."""
     m, drv = sol.mechanism, sol.mechanism.driver
-    lo, hi = DRAWN_RANGE
+    lo, hi = drawn or DRAWN_RANGE
+    need = f"{lo:g} to {hi:g}" if math.isfinite(hi) else f"at least {lo:g}"
     polygons = [("velocity", "speeds", "/s", sol.velocity.values())] if sheet in ("velocity", "full") else []
     if sheet in ("acceleration", "full") and sol.has_accelerations:
         polygons.append(("acceleration", "accelerations", "/s^2", sol.acceleration.values()))
@@ -314,7 +317,7 @@ def polygon_out_of_range(sol: Solution, sheet: str) -> InputError | None:
             where = "driver.alpha" if kind == "acceleration" and abs(drv.alpha) > drv.omega ** 2 else "driver.omega"
         unit = m.units or "length units"
         return InputError(f"the {kind} polygon cannot be drawn: its {what} reach {size:.3g} {unit}{per} "
-                          f"(a drawing needs {lo:g} to {hi:g})", where=where, file=m.source,
+                          f"(a drawing needs {need})", where=where, file=m.source,
                           hint="solve gives the numbers at any scale; to draw, give the driver's rate and the "
                                "lengths in units that keep them within range")
     return None
