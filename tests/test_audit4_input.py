@@ -14,6 +14,9 @@ reachable range"). Found by the audit, on generated mechanisms:
   a scale bar of a made-up size (``2×10⁻¹² mm/s``), and at omega = 1e-160 the acceleration polygon (1e-320 mm/s²) as a
   dot at 0.02 mm/s², where ``velpoly draw`` refuses both (exit 2 naming driver.omega): now refused alike, before
   anything is written (their frames, drawn without shapely, keep every size above the drawn range's floor);
+- a book's printed ``omega_3 = 6.702 rad/s cw`` in ``[reference]`` was refused with "write numbers without quotes",
+  which drops its sense: the reference's omega and alpha (and ``values``' ``omega_3``, ``alpha_3``) are now read as
+  the driver's are, with their units and senses in words (FORMAT.md section 1, Driver);
 - ``velpoly sweep``'s note printed the reachable range's inner ends to six digits (``-176.202 to -84.5619``) where
   the refusal of ``--angle`` prints the range rounded outward (``-176.22 to -84.55``): one range, now printed one
   way (driver.reachable_words), for a toggle and for a pin that leaves its slot.
@@ -29,6 +32,7 @@ import pytest
 
 import velpoly
 from velpoly.kinematics import prepare
+from velpoly.reference import compare
 from velpoly.sweeps import stop_note
 
 from mechanisms import in_process
@@ -151,3 +155,32 @@ def test_a_cycles_figures_of_polygons_at_rest_or_too_small_are_refused_as_draw_r
     d["driver"].update({"omega": 1e90, "alpha": 0.0})
     f.write_text(to_toml(d))
     assert in_process(["html", f, "-o", tmp_path / "a.html", "--step", "60"]).returncode == 0
+
+
+def test_a_books_rates_are_read_with_their_units_and_senses_in_words():
+    compared = 0
+    for sp in zoo(2026, 60)[:30:3]:
+        d = copy.deepcopy(sp.mech)
+        if "link" not in d["driver"]:
+            continue
+        sol = velpoly.solve(velpoly.load(d))
+        moving = [k for k, w in sol.omega.items() if abs(w) > 1e-9]
+        senses = ("cw", "Clockwise", "CCW", "anticlockwise")
+        d["reference"] = {
+            "omega": {k: f"{abs(sol.omega[k]):.9g} rad/s {senses[i % 2] if sol.omega[k] < 0 else senses[2 + i % 2]}"
+                      for i, k in enumerate(moving)},
+            "values": {f"omega_{k}": f"{-sol.omega[k] * 30 / np.pi:.9g} rpm cw" for k in moving},   # cw: minus
+        }
+        if sol.alpha and any(abs(a) > 1e-9 for a in sol.alpha.values()):
+            k = max(sol.alpha, key=lambda n: abs(sol.alpha[n]))
+            d["reference"]["alpha"] = {k: f"{abs(sol.alpha[k]):.9g} rad/s^2 {'cw' if sol.alpha[k] < 0 else 'ccw'}"}
+        rows = compare(velpoly.solve(velpoly.load(d)))
+        assert len(rows) >= 2 * len(moving), rows
+        for r in rows:
+            assert r.deviation is not None and r.deviation < 1e-7, (sp.kind, r)
+            compared += 1
+    assert compared > 20
+    bad = copy.deepcopy(zoo(2026, 1)[0].mech)
+    bad["reference"] = {"omega": {"3": "6.7 rad/sec cw"}}
+    with pytest.raises(velpoly.InputError, match=r"reference\.omega\.3.*cannot read \"6\.7 rad/sec cw\" as an angular velocity"):
+        velpoly.load(bad)

@@ -9,7 +9,7 @@ from ..model import Driver, Mechanism, Pin, Slider
 from .context import Ctx, check_keys, read_name, read_number, show, too_large
 from .units import ALPHA_HINT, OMEGA_HINT, RateTooLarge, parse_alpha, parse_omega
 
-__all__ = ["read_driver", "check_range", "MAX_SPEED", "MAX_ACCEL"]
+__all__ = ["read_driver", "read_rate", "check_range", "MAX_SPEED", "MAX_ACCEL"]
 
 # Floating point holds about 1e+-308: the kinematics squares speeds and multiplies rates by lengths,
 # so the speeds and accelerations a file may ask for are bounded well inside that range.
@@ -61,14 +61,15 @@ def _crank_driver(ctx: Ctx, d: dict, frame: str, pins: list[Pin]) -> Driver:
             raise ctx.err(f"driver.{k}", f"'{k}' belongs to a slider driver", hint="a crank has omega and alpha")
     if "omega" not in d:
         raise ctx.err("driver", "missing 'omega'", hint='e.g. omega = "60 rpm" or omega = 10 (rad/s)')
-    omega = _rate(ctx, "driver.omega", d["omega"], parse_omega, "an angular velocity", OMEGA_HINT)
-    alpha = _rate(ctx, "driver.alpha", d.get("alpha", 0.0), parse_alpha, "an angular acceleration", ALPHA_HINT)
+    omega = read_rate(ctx, "driver.omega", d["omega"], parse_omega, "an angular velocity", OMEGA_HINT)
+    alpha = read_rate(ctx, "driver.alpha", d.get("alpha", 0.0), parse_alpha, "an angular acceleration", ALPHA_HINT)
     angle = read_number(ctx, "driver.angle", d["angle"]) if "angle" in d else None
     return Driver(link=link, omega=omega, alpha=alpha, angle=angle)
 
 
-def _rate(ctx: Ctx, where: str, v: Any, parse: Callable[[Any], float], what: str, hint: str) -> float:
-    """A driver's omega or alpha: a number, or a rate with its unit and sense in words (units.py)."""
+def read_rate(ctx: Ctx, where: str, v: Any, parse: Callable[[Any], float], what: str, hint: str) -> float:
+    """An omega or alpha (the driver's, or a book's printed one): a number, or a rate with its unit and sense in
+    words (units.py: ``"6.702 rad/s cw"``)."""
     try:
         if too_large(v):   # a number beyond any float (1e400, 10**400), as "1e400 rpm" is
             raise RateTooLarge(v)

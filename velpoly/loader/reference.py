@@ -5,6 +5,8 @@ from __future__ import annotations
 from ..errors import InputError
 from ..model import Mechanism, Reference, frozen_map
 from .context import Ctx, check_keys, key_repr, read_number, show
+from .driver import read_rate
+from .units import ALPHA_HINT, OMEGA_HINT, parse_alpha, parse_omega
 
 __all__ = ["read_reference", "check_reference"]
 
@@ -25,11 +27,26 @@ def read_reference(ctx: Ctx, r: dict) -> Reference:
             raise ctx.err(f"reference.{key}", f"expected a table, got {show(t)}",
                           hint=f'{key} = {{ "3" = 6.702 }}' if key in ("omega", "alpha") else
                           f"{key} = {{ KEY = VALUE, ... }}")
+        t = {k: _rated(ctx, key, k, v) for k, v in t.items()}
         for k, v in t.items():
             _value(ctx, key, k, v)
         # vectors become tuples: the model shares no list with the caller's dict (it is immutable)
         out[key] = frozen_map({str(k): tuple(v) if isinstance(v, list) else v for k, v in t.items()})
     return Reference(source=src, **out)
+
+
+_RATES = {"omega": (parse_omega, "an angular velocity", OMEGA_HINT),
+          "alpha": (parse_alpha, "an angular acceleration", ALPHA_HINT)}
+
+
+def _rated(ctx: Ctx, key: str, k, v):
+    """A printed omega or alpha (``omega``, ``alpha``, a ``values`` key ``omega_3``) written as books print it,
+    ``"6.702 rad/s cw"``: its number, read as the driver's rate is (its units, its sense in words); any other
+    value as it is."""
+    kind = key if key in _RATES else (str(k).split("_")[0] if key == "values" else None)
+    if isinstance(v, str) and kind in _RATES:
+        return read_rate(ctx, f"reference.{key}.{k}", v, *_RATES[kind])
+    return v
 
 
 def _value(ctx: Ctx, key: str, k, v) -> None:
