@@ -13,7 +13,8 @@ reachable range"). Found by the audit, on generated mechanisms:
 - ``velpoly animate``, ``html`` and ``sweep --gif`` of a mechanism at rest (omega = 0) drew its polygons as dots beside
   a scale bar of a made-up size (``2×10⁻¹² mm/s``), and at omega = 1e-160 the acceleration polygon (1e-320 mm/s²) as a
   dot at 0.02 mm/s², where ``velpoly draw`` refuses both (exit 2 naming driver.omega): now refused alike, before
-  anything is written (their frames, drawn without shapely, keep every size above the drawn range's floor);
+  anything is written (their frames, drawn without shapely, keep every size whose numbers keep a float's precision,
+  solution.FRAMES_RANGE: 1e-181 and 1e179 mm/s² still draw);
 - a book's printed ``omega_3 = 6.702 rad/s cw`` in ``[reference]`` was refused with "write numbers without quotes",
   which drops its sense: the reference's omega and alpha (and ``values``' ``omega_3``, ``alpha_3``) are now read as
   the driver's are, with their units and senses in words (FORMAT.md section 1, Driver);
@@ -145,16 +146,19 @@ def test_a_cycles_figures_of_polygons_at_rest_or_too_small_are_refused_as_draw_r
         d["driver"].update({key: rate, "alpha" if key == "omega" else "accel": 0.0})
         f = tmp_path / "m.toml"
         f.write_text(to_toml(d))
-        for args in (["animate", f, "-o", tmp_path / "a.gif", "--step", "60", "--size", "320x180"],
-                     ["html", f, "-o", tmp_path / "a.html", "--step", "60"],
-                     ["sweep", f, "--step", "60", "--gif", tmp_path / "s.gif", "--csv", tmp_path / "s.csv"]):
+        commands = [["animate", f, "-o", tmp_path / "a.gif", "--step", "60", "--size", "320x180", "--sheet", "full"],
+                    ["html", f, "-o", tmp_path / "a.html", "--step", "60"]]
+        if rate == 0.0:   # at 1e-160 the velocity polygon (1e-161 mm/s) draws: only the accelerations (1e-321) do not
+            commands.append(["sweep", f, "--step", "60", "--gif", tmp_path / "s.gif", "--csv", tmp_path / "s.csv"])
+        for args in commands:
             r = in_process(args)
             assert r.returncode == 2 and r.stderr.startswith(f"error: {f}: driver.{key} (line "), (args, r.stderr)
             assert sorted(p.name for p in tmp_path.iterdir()) == ["m.toml"], args   # nothing written
-    d = copy.deepcopy(crank.mech)   # a polygon of any size above the floor is drawn (1e179 mm/s^2 here)
-    d["driver"].update({"omega": 1e90, "alpha": 0.0})
-    f.write_text(to_toml(d))
-    assert in_process(["html", f, "-o", tmp_path / "a.html", "--step", "60"]).returncode == 0
+    for rate in (1e90, 1e-90):   # a polygon of any size above the floor is drawn (1e179, 1e-181 mm/s^2 here)
+        d = copy.deepcopy(crank.mech)
+        d["driver"].update({"omega": rate, "alpha": 0.0})
+        f.write_text(to_toml(d))
+        assert in_process(["html", f, "-o", tmp_path / "a.html", "--step", "60"]).returncode == 0
 
 
 def test_a_books_rates_are_read_with_their_units_and_senses_in_words():

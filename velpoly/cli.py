@@ -472,17 +472,18 @@ def cmd_animate(args) -> int:
 
 def _polygons_drawable(m, sheet: str) -> None:
     """Refuse, as ``velpoly draw --sheet SHEET`` does (exit 2 naming the driver's rate), a figure of the cycle whose
-    polygons would be single points (a mechanism at rest) or too small to draw (solution.polygon_at_rest, at the
-    file's pose; the frames hold any size above that: 1e179 mm/s² draws): animate, html and sweep --gif drew them
-    as dots beside a scale bar of a made-up size (2×10⁻¹² mm/s), or a polygon of 1e-320 as a dot at 0.02 mm/s². A
-    pose that cannot be solved is left to the command's own cycle to report."""
+    polygons would be single points (a mechanism at rest) or of numbers that lost their precision (below
+    solution.FRAMES_RANGE, about 1e-292: the frames, drawn without shapely, hold any size above it, 1e-181 and
+    1e179 mm/s² draw), at the file's pose: animate, html and sweep --gif drew them as dots beside a scale bar of a
+    made-up size (2×10⁻¹² mm/s), or a polygon of 1e-320 as a dot at 0.02 mm/s². A pose that cannot be solved is
+    left to the command's own cycle to report."""
     from . import solve
-    from .solution import DRAWN_RANGE, polygon_at_rest
+    from .solution import FRAMES_RANGE, polygon_at_rest
     try:
         sol = solve(m)
     except VelpolyError:
         return
-    refused = polygon_at_rest(sol, sheet, (DRAWN_RANGE[0], math.inf))   # frames drawn without shapely: no upper bound
+    refused = polygon_at_rest(sol, sheet, FRAMES_RANGE)
     if refused is not None:
         raise refused
 

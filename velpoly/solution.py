@@ -9,6 +9,7 @@ are built from it on first use and checked against it.
 from __future__ import annotations
 
 import math
+import sys
 from dataclasses import dataclass, field
 
 import numpy as np
@@ -24,7 +25,7 @@ from .rigid import point_acceleration, point_velocity
 from .arguments import check_angle, check_mechanism
 
 __all__ = ["Solution", "solve", "driver_reference_angle", "reachable_range", "polygon_at_rest", "polygon_out_of_range",
-           "DRAWN_RANGE"]
+           "DRAWN_RANGE", "FRAMES_RANGE"]
 
 
 @dataclass(frozen=True)
@@ -289,6 +290,8 @@ def polygon_at_rest(sol: Solution, sheet: str, drawn: tuple[float, float] | None
 
 DRAWN_RANGE = (1e-150, 1e150)   # a polygon's largest vector, its units: the drawing's geometry (shapely's areas,
 #                                 distances squared) holds within it; beyond, squares overflow or vanish
+FRAMES_RANGE = (sys.float_info.min / sys.float_info.epsilon, math.inf)   # a cycle's frames (animate, html, sweep
+#   --gif), drawn without shapely, hold any polygon whose numbers keep a float's full precision (about 1e-292 and up)
 
 
 def _largest(vectors) -> float:
@@ -298,12 +301,12 @@ def _largest(vectors) -> float:
 def polygon_out_of_range(sol: Solution, sheet: str, drawn: tuple[float, float] | None = None) -> InputError | None:
     """The input error of a sheet whose polygon is too small or too large to draw: its largest vector (a
     velocity, or an acceleration for a sheet with the acceleration polygon) outside ``drawn`` (default
-    ``DRAWN_RANGE``; a cycle's frames, drawn without shapely, hold any size above it); None otherwise (a polygon
+    ``DRAWN_RANGE``; a cycle's frames: ``FRAMES_RANGE``); None otherwise (a polygon
     of zero vectors is :func:`polygon_at_rest`'s). The file's numbers are solved at any scale (``velpoly
     solve``); a drawing's geometry is not."""
     m, drv = sol.mechanism, sol.mechanism.driver
     lo, hi = drawn or DRAWN_RANGE
-    need = f"{lo:g} to {hi:g}" if math.isfinite(hi) else f"at least {lo:g}"
+    need = f"{lo:g} to {hi:g}" if math.isfinite(hi) else f"at least {lo:.0e}"
     polygons = [("velocity", "speeds", "/s", sol.velocity.values())] if sheet in ("velocity", "full") else []
     if sheet in ("acceleration", "full") and sol.has_accelerations:
         polygons.append(("acceleration", "accelerations", "/s^2", sol.acceleration.values()))
