@@ -18,6 +18,9 @@ reachable range"). Found by the audit, on generated mechanisms:
 - a book's printed ``omega_3 = 6.702 rad/s cw`` in ``[reference]`` was refused with "write numbers without quotes",
   which drops its sense: the reference's omega and alpha (and ``values``' ``omega_3``, ``alpha_3``) are now read as
   the driver's are, with their units and senses in words (FORMAT.md section 1, Driver);
+- a refused ``--angle`` of a pin in a bounded slot named where the pin leaves wrapped to (-180, 180] beside the range
+  unwrapped: "leaves the slot of wheel at its end S1 at 138.85 deg; the pin is in the slot from -221.16 to 57.91
+  deg" (138.85 is -221.15 a turn on): now as the range, -221.15;
 - ``velpoly sweep``'s note printed the reachable range's inner ends to six digits (``-176.202 to -84.5619``) where
   the refusal of ``--angle`` prints the range rounded outward (``-176.22 to -84.55``): one range, now printed one
   way (driver.reachable_words), for a toggle and for a pin that leaves its slot.
@@ -188,3 +191,23 @@ def test_a_books_rates_are_read_with_their_units_and_senses_in_words():
     bad["reference"] = {"omega": {"3": "6.7 rad/sec cw"}}
     with pytest.raises(velpoly.InputError, match=r"reference\.omega\.3.*cannot read \"6\.7 rad/sec cw\" as an angular velocity"):
         velpoly.load(bad)
+
+
+def test_where_a_pin_leaves_its_slot_lies_in_the_range_the_refusal_names():
+    checked = 0
+    levers = [g for g in generated(3) if g[0] != "geneva"][:3]   # ranges that reach beyond half a turn
+    for _, a, e, psi, theta, lo, hi, sense, swap in levers:
+        m = velpoly.load(drive(a, e, psi, theta, lo, hi, omega=3.0 * sense, swap=swap))
+        ref = velpoly.solve(m).driver_angle
+        for far in (ref + 179.0, ref - 179.0):
+            try:
+                velpoly.solve(m, angle=far)
+                continue
+            except velpoly.PoseError as e:
+                text = str(e)
+            leaves, first, last = (float(x) for x in re.search(
+                r"at its end S[12] at (\S+) deg; the pin is in the slot from (\S+) to (\S+) deg", text).groups())
+            assert first - 0.01 <= leaves <= last + 0.01, text
+            assert abs(leaves - (first if far < ref else last)) <= 0.01, text   # the end on the refused side
+            checked += 1
+    assert checked >= 4

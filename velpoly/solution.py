@@ -209,7 +209,7 @@ def _carried(kin, ref: float, target: float, delta: float) -> tuple[np.ndarray, 
         sl = m.slots[r.leaves[0]]
         raise AssemblyError(
             f"cannot assemble at driver angle {_angle(target)} deg: pin {sl.pin} leaves the slot of "
-            f"{sl.slot} at its end {r.leaves[1]} at {wrap_deg_float(ref + math.degrees(r.leaves[2])):g} "
+            f"{sl.slot} at its end {r.leaves[1]} at {ref + math.degrees(r.leaves[2]):g} "   # as the range: unwrapped
             f"deg; the pin is in the slot from {reachable_words(kin, ref, delta)} deg",
             where="driver.angle", file=m.source, links=(sl.link, sl.slot),
             hint=_choose(ref, lo, hi, "choose an angle in that range (the slot's ends bound the motion)"))
