@@ -437,9 +437,11 @@ def test_names_that_look_like_mathtext_are_animated_as_written(tmp_path, capsys)
         assert im.n_frames == len(plan)
 
 
-@pytest.mark.parametrize("kind,variant", [("slot", "straight offset"), ("slot", "circular"),
-                                          ("inverted slider-crank", "swinging-block slider")])
-def test_a_pin_or_block_stays_in_the_track_its_moving_link_carries(kind, variant):
+# the slots turn a whole turn (0.05 CPU s to plan): seed 2611's rocked (0.5-0.6 CPU s each finding where by
+# continuation), a path the track does not depend on (its extent is over the frames, out and back or round)
+@pytest.mark.parametrize("kind,variant,seed", [("slot", "straight offset", 2601), ("slot", "circular", 2600),
+                                               ("inverted slider-crank", "swinging-block slider", 2611)])
+def test_a_pin_or_block_stays_in_the_track_its_moving_link_carries(kind, variant, seed):
     """A slot or guide cut in a moving link is drawn in every frame (it was not drawn at all: a slot's pin and a
     swinging block were seen off the link that carries them), long enough for the whole travel, and joined to its
     link: in every frame the pin (block) lies in the track's cut and in the link's body, and the link's body is
@@ -447,7 +449,7 @@ def test_a_pin_or_block_stays_in_the_track_its_moving_link_carries(kind, variant
     from matplotlib.path import Path as MPath
     from shapely.geometry import Point, Polygon as SPolygon
     from zoo import specimen
-    sp = specimen(np.random.default_rng(2611), kind, variant)
+    sp = specimen(np.random.default_rng(seed), kind, variant)
     m = sp.drawn.mechanism
     anim = Animator(plan_frames(m, 30.0), "velocity", "textbook", SMALL)
     movers = {s.slot: (s.link, s.pin) for s in m.slots} | {s.guide: (s.block, s.point) for s in m.sliders}
