@@ -192,7 +192,7 @@ def test_a_slider_driver_runs_its_stroke_out_and_back():
 
 def test_layout_and_scales_are_fixed_and_every_frame_is_in_view():
     m = velpoly.load(fourbar(coupler=(4.0, 30.0)))
-    plan = plan_frames(m, 10.0)
+    plan = plan_frames(m, 30.0)   # 12 frames (36 until the suite had to fit 2 minutes: 0.4 CPU s more)
     anim = Animator(plan, "full", "slides", SMALL)
     limits = {n: (ax.get_xlim(), ax.get_ylim(), tuple(ax.get_position().bounds)) for n, ax in anim.axes.items()}
     background = anim.background
@@ -338,11 +338,11 @@ def test_a_failure_leaves_no_file(tmp_path, monkeypatch, error, coupler_anim):
 def test_the_command_writes_a_gif(tmp_path, capsys):
     from PIL import Image
     f = write(tmp_path, fourbar())
-    code, out, err = run(capsys, "animate", f, "-o", tmp_path / "a.gif", "--step", "20", "--size", "640x360",
-                         "--sheet", "acceleration", "--style", "textbook")
-    assert code == 0 and out.strip() == str(tmp_path / "a.gif")
+    code, out, err = run(capsys, "animate", f, "-o", tmp_path / "a.gif", "--step", "40", "--size", "640x360",
+                         "--sheet", "acceleration", "--style", "textbook")   # (--step 20 until the suite had
+    assert code == 0 and out.strip() == str(tmp_path / "a.gif")              # to fit 2 minutes: 0.2 CPU s more)
     with Image.open(tmp_path / "a.gif") as im:
-        assert im.n_frames == 18 and im.size == (640, 360)
+        assert im.n_frames == 9 and im.size == (640, 360)
 
 
 def test_a_contact_given_by_its_normal_only_cannot_be_animated(tmp_path, capsys):
@@ -401,14 +401,14 @@ def test_sweep_gif_is_drawn_by_the_animate_renderer(tmp_path):
     from velpoly.render.sweep import GIF_SIZE, write_gif
     from velpoly.sweeps import run_cycle
     m = velpoly.load(fourbar(coupler=(4.0, 30.0)))
-    sw = run_cycle(m, 30.0)
+    sw = run_cycle(m, 60.0)   # 6 frames (12 until the suite had to fit 2 minutes)
     out = write_gif(sw, tmp_path / "c.gif")
     with Image.open(out) as im:
-        assert im.n_frames == 12 and im.size == GIF_SIZE
+        assert im.n_frames == 6 and im.size == GIF_SIZE
         im.seek(0)
         first = np.asarray(im.convert("RGB")).astype(int)
     from velpoly.render.animate import FramePlan
-    plan = FramePlan(m, (sw,), tuple((0, i) for i in range(12)), sw.angles, np.ones(12), None, "", 0.0)
+    plan = FramePlan(m, (sw,), tuple((0, i) for i in range(6)), sw.angles, np.ones(6), None, "", 0.0)
     anim = Animator(plan, "velocity", "textbook", GIF_SIZE)
     pins, _, _ = drawn(anim, 0)
     assert np.allclose(pins["A"], sw.position["A"][0])
@@ -437,9 +437,11 @@ def test_names_that_look_like_mathtext_are_animated_as_written(tmp_path, capsys)
         assert im.n_frames == len(plan)
 
 
-@pytest.mark.parametrize("kind,variant", [("slot", "straight offset"), ("slot", "circular"),
-                                          ("inverted slider-crank", "swinging-block slider")])
-def test_a_pin_or_block_stays_in_the_track_its_moving_link_carries(kind, variant):
+# the slots turn a whole turn (0.05 CPU s to plan): seed 2611's rocked (0.5-0.6 CPU s each finding where by
+# continuation), a path the track does not depend on (its extent is over the frames, out and back or round)
+@pytest.mark.parametrize("kind,variant,seed", [("slot", "straight offset", 2601), ("slot", "circular", 2600),
+                                               ("inverted slider-crank", "swinging-block slider", 2611)])
+def test_a_pin_or_block_stays_in_the_track_its_moving_link_carries(kind, variant, seed):
     """A slot or guide cut in a moving link is drawn in every frame (it was not drawn at all: a slot's pin and a
     swinging block were seen off the link that carries them), long enough for the whole travel, and joined to its
     link: in every frame the pin (block) lies in the track's cut and in the link's body, and the link's body is
@@ -447,7 +449,7 @@ def test_a_pin_or_block_stays_in_the_track_its_moving_link_carries(kind, variant
     from matplotlib.path import Path as MPath
     from shapely.geometry import Point, Polygon as SPolygon
     from zoo import specimen
-    sp = specimen(np.random.default_rng(2611), kind, variant)
+    sp = specimen(np.random.default_rng(seed), kind, variant)
     m = sp.drawn.mechanism
     anim = Animator(plan_frames(m, 30.0), "velocity", "textbook", SMALL)
     movers = {s.slot: (s.link, s.pin) for s in m.slots} | {s.guide: (s.block, s.point) for s in m.sliders}

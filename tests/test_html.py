@@ -4,12 +4,14 @@ In Python: the embedded poses decode to exactly what ``velpoly.solve`` gives at 
 (every gallery file, generated mechanisms), the page is self-contained and small enough.
 In a real browser (headless Chromium): the page's script draws points, images and poles where
 ``velpoly solve --angle A`` puts them, the construction stepper shows the steps of
-``velpoly.polygons``, the URL fragment selects angle and step, and the screenshots are not blank.
+``velpoly.polygons``, the URL fragment selects angle and step, and the screenshots (JPEG) are not blank.
 The browser tests skip where Chromium is missing, unless VELPOLY_REQUIRE_BROWSER=1 (CI) makes them
 fail.
 """
 from __future__ import annotations
 
+import base64
+import functools
 import json
 import math
 import os
@@ -27,6 +29,7 @@ import pytest
 import velpoly
 from velpoly.cli import main
 from velpoly.html import _split, cycle_solutions, page, pose_values, sheet_data
+import velpoly.html as html_module   # the module itself: page() looks sheet_data up in it
 from velpoly.names import key_text
 from velpoly.polygons import acceleration_polygon, velocity_polygon
 
@@ -108,13 +111,43 @@ def _digitless(s: str) -> str:
 
 
 # -- Python: every gallery file, generated mechanisms -----------------------------------------------------
-@pytest.mark.parametrize("path", sorted(GALLERY.glob("*.toml")), ids=lambda p: p.stem)
+# the tests of the six-bar's page and of the browser share its module fixtures: one worker builds them (their
+# xdist group), the page and the browser once
+ON_PAGE = pytest.mark.xdist_group("html-page")
+
+
+# (file, fragment): a handful of gallery files in the browser, at angles and steps
+BROWSER_CASES = [
+    ("problem_1_4_4_sixbar", "#angle=47&step=3"),
+    ("problem_1_4_4_sixbar", "#angle=-120"),
+    ("ex3_4_slotted_lever", "#angle=200&step=7"),
+    ("cam_roller_follower", "#angle=100&step=12"),
+    ("fig3_15a_rolling", "#angle=60"),
+    ("stephenson_sixbar", "#angle=10&step=4"),
+    ("crank_shaper", "#angle=-150&step=20"),
+]
+
+
+@functools.cache
+def gallery_data(stem: str):
+    """(mechanism, cycle_solutions, static data, poses' JSON) of a gallery file's page every 30 degrees, made once
+    a process: what test_gallery_pages_embed_the_solution decodes is what the browser's page of the file embeds
+    (the browser's files are in its group: one worker makes each once, 0.5-0.9 CPU s less than twice)."""
+    m = velpoly.load(GALLERY / f"{stem}.toml")
+    cycle = cycle_solutions(m, 30.0)
+    static, poses = sheet_data(m, step=30.0, cycle=cycle)
+    return m, cycle, static, poses
+
+
+IN_BROWSER = {name for name, _ in BROWSER_CASES} - {SIXBAR.stem}   # (the six-bar's browser page: every degree)
+
+
+@pytest.mark.parametrize("path", [pytest.param(p, marks=[ON_PAGE] if p.stem in IN_BROWSER else [])
+                                  for p in sorted(GALLERY.glob("*.toml"))], ids=lambda p: p.stem)
 def test_gallery_pages_embed_the_solution(path):
     """Every gallery file: the page is made, its data is valid JSON, and poses a quarter-turn apart
     decode to what ``velpoly.solve`` gives there."""
-    m = velpoly.load(path)
-    cycle = cycle_solutions(m, 30.0)
-    static, poses = sheet_data(m, step=30.0, cycle=cycle)
+    m, cycle, static, poses = gallery_data(path.stem)
     data = json.loads(poses)
     assert len(data["poses"]) == len(static["angles"]) >= 2
     own = cycle[3]
@@ -191,11 +224,6 @@ def test_template_order_is_a_browsers():
     t = _split({"b": 1.0, "10": 2.0, "2": 3.0, "a": "x", "01": 4.0, "1": [5.0, None, True]}, nums, strs)
     assert list(t) == ["1", "2", "10", "b", "a", "01"]
     assert nums == [5.0, 3.0, 2.0, 1.0, 4.0] and strs == ["x"]
-
-
-# the tests of the six-bar's page and of the browser share its module fixtures: one worker builds them (their
-# xdist group), the page and the browser once
-ON_PAGE = pytest.mark.xdist_group("html-page")
 
 
 @pytest.fixture(scope="module")
@@ -316,18 +344,6 @@ class Dom(HTMLParser):
         return [a for a in self.marks if cls in a.get("class", "").split() and (panel is None or a["panel"] == panel)]
 
 
-# (file, fragment): a handful of gallery files in the browser, at angles and steps
-BROWSER_CASES = [
-    ("problem_1_4_4_sixbar", "#angle=47&step=3"),
-    ("problem_1_4_4_sixbar", "#angle=-120"),
-    ("ex3_4_slotted_lever", "#angle=200&step=7"),
-    ("cam_roller_follower", "#angle=100&step=12"),
-    ("fig3_15a_rolling", "#angle=60"),
-    ("stephenson_sixbar", "#angle=10&step=4"),
-    ("crank_shaper", "#angle=-150&step=20"),
-]
-
-
 @pytest.fixture(scope="module")
 def browser_runs(tmp_path_factory, sixbar_page, browser):
     tmp = tmp_path_factory.mktemp("browser")
@@ -339,10 +355,13 @@ def browser_runs(tmp_path_factory, sixbar_page, browser):
             # every 30 degrees (the nearest pose is drawn, whatever the page's step; 10 until the suite had to fit
             # 2 minutes: 0.8 CPU s more): the six-bar's page (every degree) is the size test's
             pages[name] = tmp / f"{name}.html"
-            pages[name].write_text(page(velpoly.load(GALLERY / f"{name}.toml"), step=30.0), encoding="utf-8")
+            m, _, static, poses = gallery_data(name)
+            with pytest.MonkeyPatch.context() as mp:   # velpoly.html.page of the data made once (gallery_data)
+                mp.setattr(html_module, "sheet_data", lambda *a, **k: (static, poses))
+                pages[name].write_text(page(m, step=30.0), encoding="utf-8")
         browser.open(pages[name].resolve().as_uri() + frag)
-        shot = tmp / f"{name}-{len(out)}.png"
-        shot.write_bytes(browser.screenshot())
+        shot = tmp / f"{name}-{len(out)}.jpg"   # a JPEG: Chromium encodes it in a third of a PNG's wall time
+        shot.write_bytes(base64.b64decode(browser.send("Page.captureScreenshot", format="jpeg")["data"]))
         out[case] = (browser.dom(), shot, pages[name])
     assert not browser.errors(), browser.errors()      # the page's script threw or logged nothing
     return out

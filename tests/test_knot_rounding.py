@@ -61,8 +61,9 @@ def test_whole_degrees_and_half_degrees_stop_alike():
 def test_solve_past_a_true_toggle_is_refused_and_a_whole_turn_is_not(monkeypatch):
     """``solve`` at an angle agrees with the range: past a true toggle exit 3 (VelpolyError), on a
     whole-turn mechanism every angle. The refusal is checked, not the range its message names (stubbed:
-    ``mechanisms.ranges_by_dyads_only``, 1 CPU s of continuation): that specimen's range (-100.56 to 88.66
-    degrees) is computed and compared with the former code's in test_newton_speed."""
+    ``mechanisms.ranges_by_dyads_only``, 1 CPU s of continuation): that specimen (-100.56 to 88.66 degrees) is
+    solved at angle after angle past its toggle both ways, kept knots against fresh ones, in test_newton_speed
+    (the range against the former code's is checked there on a contact, a slot and a six-bar)."""
     ranges_by_dyads_only(monkeypatch)
     limited = velpoly.load(specimen(np.random.default_rng(0), "inverted slider-crank", "offset both crank").mech)
     ref = velpoly.solve(limited).to_dict()["driver"]["angle"]

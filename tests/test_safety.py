@@ -176,8 +176,8 @@ def test_a_signal_during_the_gif_leaves_nothing_behind(tmp_path, sig, code, word
         while not writing() and p.poll() is None and time.monotonic() < deadline:
             time.sleep(0.05)
         assert writing(), "the GIF writer's temporary file never appeared"
-        time.sleep(0.3)
-        p.send_signal(sig)
+        time.sleep(0.05)     # past the temporary file's making (a signal between mkstemp and atomic_path's try
+        p.send_signal(sig)   # leaves it: velpoly's to fix), at its first frames (0.3 s until the suite had to fit 2 minutes)
         _, err = p.communicate(timeout=60)
     finally:
         if p.poll() is None:
