@@ -13,6 +13,7 @@ import signal
 import stat
 import subprocess
 import sys
+import tempfile
 import threading
 import time
 from pathlib import Path
@@ -176,8 +177,8 @@ def test_a_signal_during_the_gif_leaves_nothing_behind(tmp_path, sig, code, word
         while not writing() and p.poll() is None and time.monotonic() < deadline:
             time.sleep(0.05)
         assert writing(), "the GIF writer's temporary file never appeared"
-        time.sleep(0.05)     # past the temporary file's making (a signal between mkstemp and atomic_path's try
-        p.send_signal(sig)   # leaves it: velpoly's to fix), at its first frames (0.3 s until the suite had to fit 2 minutes)
+        time.sleep(0.05)     # at its first frames (0.3 s until the suite had to fit 2 minutes); a signal as the
+        p.send_signal(sig)   # temporary file is made: test_a_signal_as_the_temporary_file_is_made_leaves_nothing
         _, err = p.communicate(timeout=60)
     finally:
         if p.poll() is None:
@@ -186,6 +187,38 @@ def test_a_signal_during_the_gif_leaves_nothing_behind(tmp_path, sig, code, word
     assert p.returncode == code and err.strip().splitlines()[-1] == f"error: {word}", err
     assert "Traceback" not in err and "Exception ignored" not in err
     assert list(tmp.iterdir()) == [] and list(out.iterdir()) == []
+
+
+@pytest.mark.parametrize("special", [False, True], ids=["beside-the-output", "straight-through"])
+def test_a_signal_as_the_temporary_file_is_made_leaves_nothing(tmp_path, monkeypatch, special):
+    """Ctrl-C arriving just as an output's temporary file is made (the moment the file exists, before the call
+    that made it returns) leaves no file: ``os.open`` here sends SIGINT to this process itself right after it
+    creates a ``.part`` file, and gives Python time to run the handler before it returns. With
+    ``tempfile.mkstemp``, which returns the name only after the file exists, the .part file stayed (both cases
+    fail so). A special target (/dev/null) is written through a temporary file of its own, in the temporary
+    folder."""
+    made = []
+    real = os.open
+
+    def open_(path, flags, *mode, **kw):
+        fd = real(path, flags, *mode, **kw)
+        if str(path).endswith(".part"):
+            made.append(str(path))
+            os.kill(os.getpid(), signal.SIGINT)
+            for _ in range(10_000):   # the handler runs here
+                pass
+        return fd
+
+    monkeypatch.setattr(tempfile, "tempdir", str(tmp_path))
+    monkeypatch.setattr(os, "open", open_)
+    old = signal.signal(signal.SIGINT, signal.default_int_handler)
+    try:
+        with pytest.raises(KeyboardInterrupt):
+            atomic_write_text("/dev/null" if special else tmp_path / "out" / "a.txt", "x")
+    finally:
+        signal.signal(signal.SIGINT, old)
+    assert len(made) == 1 and not os.path.exists(made[0])
+    assert [p.name for p in tmp_path.rglob("*") if p.is_file()] == []
 
 
 @pytest.fixture

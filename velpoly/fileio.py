@@ -27,6 +27,7 @@ from __future__ import annotations
 import contextlib
 import os
 import shutil
+import secrets
 import stat
 import tempfile
 from pathlib import Path
@@ -184,13 +185,16 @@ def atomic_path(target):
         target = Path(os.path.realpath(target))
     folder = target.parent if str(target.parent) else Path(".")
     _check_folder(target, folder)
+    tmp = None
     try:
-        folder.mkdir(parents=True, exist_ok=True)
-        fd, tmp = tempfile.mkstemp(prefix=f".{target.stem}.", suffix=target.suffix + ".part", dir=folder)
-    except OSError as e:
-        raise cannot_write(target, e) from None
-    os.close(fd)
-    try:
+        try:
+            folder.mkdir(parents=True, exist_ok=True)
+            for tmp in _candidates(folder, f".{target.stem}.", target.suffix + ".part"):
+                if _made(tmp):
+                    break
+                tmp = None   # another's file: never removed here
+        except OSError as e:
+            raise cannot_write(target, e) from None
         try:
             yield Path(tmp)
             raise_if_interrupted()
@@ -204,9 +208,29 @@ def atomic_path(target):
         except OSError as e:
             raise cannot_write(target, e) from None
     except BaseException:
-        with contextlib.suppress(OSError):
-            os.unlink(tmp)
+        if tmp is not None:
+            with contextlib.suppress(OSError):
+                os.unlink(tmp)
         raise
+
+
+def _candidates(folder: Path, prefix: str, suffix: str):
+    """Names for a new temporary file in ``folder``, each bound by the caller (``for tmp in ...``) BEFORE
+    :func:`_made` creates the file: an interruption (Ctrl-C, SIGTERM) at any moment then finds the caller's
+    cleanup knowing the file it must remove. (``tempfile.mkstemp`` creates the file and only then returns its
+    name: a signal in between left a ``.part`` behind.) Raises FileExistsError after 100 names all taken."""
+    for _ in range(100):
+        yield str(folder / f"{prefix}{secrets.token_hex(4)}{suffix}")
+    raise FileExistsError(f"no free temporary name {prefix}*{suffix} in {str(folder)!r}")
+
+
+def _made(tmp: str) -> bool:
+    """Create the empty private file ``tmp`` (mode 0o600) if no file has that name; False if one has."""
+    try:
+        os.close(os.open(tmp, os.O_WRONLY | os.O_CREAT | os.O_EXCL, 0o600))
+    except FileExistsError:
+        return False
+    return True
 
 
 def _through(target: Path):
@@ -214,12 +238,15 @@ def _through(target: Path):
     a temporary file complete before the first byte goes out. A writer that seeks (a multi-page PDF: the
     ``--steps`` sheets', an animation's) cannot seek in a FIFO or a pipe, and a command that fails sends the
     reader nothing partial."""
+    tmp = None
     try:
-        fd, tmp = tempfile.mkstemp(prefix="velpoly-", suffix=target.suffix + ".part")
-    except OSError as e:
-        raise cannot_write(target, e) from None
-    os.close(fd)
-    try:
+        try:
+            for tmp in _candidates(Path(tempfile.gettempdir()), "velpoly-", target.suffix + ".part"):
+                if _made(tmp):
+                    break
+                tmp = None   # another's file: never removed here
+        except OSError as e:
+            raise cannot_write(target, e) from None
         yield Path(tmp)
         raise_if_interrupted()
         with open(tmp, "rb") as src, open(target, "wb") as out:
@@ -227,8 +254,9 @@ def _through(target: Path):
     except OSError as e:
         raise cannot_write(target, e) from None
     finally:
-        with contextlib.suppress(OSError):
-            os.unlink(tmp)
+        if tmp is not None:
+            with contextlib.suppress(OSError):
+                os.unlink(tmp)
 
 
 @contextlib.contextmanager
