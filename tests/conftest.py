@@ -4,10 +4,15 @@ import os
 import sys
 from pathlib import Path
 
-import matplotlib
 import pytest
 
-matplotlib.use("Agg")  # headless: never open a window from the tests
+# Headless: never open a window from the tests. Told through matplotlib's environment variable, which it reads
+# when the tests first import it (in each xdist worker; subprocesses inherit it), rather than by importing it
+# here: the xdist controller, which runs no test, imported matplotlib and numpy (0.7 CPU s) before it started
+# the workers.
+os.environ["MPLBACKEND"] = "Agg"
+if "matplotlib" in sys.modules:   # imported already (by a plugin): its backend is chosen at its import
+    sys.modules["matplotlib"].use("Agg")
 
 sys.path.insert(0, os.path.dirname(__file__))
 
