@@ -44,6 +44,18 @@ def pytest_collection(session):
                 sys.modules.pop(path.stem, None)
 
 
+# Files of many quick tests (none over 0.2 s on main 7d0e9a2; 3.1 s in all), collected last. xdist's loadgroup
+# hands out its groups first, then the other tests one by one in the collection's order, so these are what both
+# workers end on: neither stands idle while the other finishes a test of seconds dealt out just before (on
+# 7d0e9a2 gw1 stood 2.4 s idle at the end, while gw0 ran test_toggle_targets' 2.7 s).
+LAST = ("test_kinematics.py", "test_textbook_input.py", "test_errors.py")
+
+
+def pytest_collection_modifyitems(items):
+    """Move the tests of ``LAST``'s files to the end of the collection, each part in its own order."""
+    items.sort(key=lambda item: item.path.name in LAST)
+
+
 def pytest_sessionfinish(session):
     """Collect the garbage, then freeze what is left: pytest's unraisable-exception check, which runs after
     this, makes five full collections that would otherwise walk every shared page and specimen again, at the

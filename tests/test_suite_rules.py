@@ -147,3 +147,13 @@ def test_conftest_chooses_the_headless_backend_without_importing_matplotlib():
                                         "MPLBACKEND": "TkAgg"})
     assert r.returncode == 0, r.stderr
     assert r.stdout.strip() == "Agg []", r.stdout
+
+
+def test_the_files_of_quick_tests_are_collected_last(request):
+    """conftest.LAST names test files that exist, and their tests come after every other test collected (xdist
+    hands the single tests out in that order: the workers end on quick ones together)."""
+    import conftest
+    names = [item.path.name for item in request.session.items]
+    assert conftest.LAST and all((ROOT / "tests" / name).is_file() for name in conftest.LAST), conftest.LAST
+    last = [name in conftest.LAST for name in names]
+    assert last == sorted(last), "a test of another file is collected after one of conftest.LAST's"
