@@ -41,8 +41,7 @@ def test_doctests_are_collected(request):
 
 
 _FINALISERS = '''
-import gc, sys, types
-sys.modules["matplotlib"] = types.SimpleNamespace(use=lambda backend: None)   # conftest's only import that costs
+import gc, sys
 import conftest
 seen = []
 sys.unraisablehook = lambda u: seen.append(str(u.exc_value))
@@ -131,3 +130,30 @@ def test_hypothesis_text_is_drawn_from_every_character_utf_8_encodes_named_by_ca
     assert not bare, bare
     assert unwrap_strategies(texts.CHARS).intervals.intervals == ((0, 0xD7FF), (0xE000, 0x10FFFF))
     assert all(chr(c).encode("utf-8") for c in (0, 0xD7FF, 0xE000, 0x10FFFF))
+
+
+def test_conftest_chooses_the_headless_backend_without_importing_matplotlib():
+    """tests/conftest.py makes matplotlib draw headless (Agg) through ``MPLBACKEND``, read at matplotlib's import,
+    and imports neither matplotlib nor numpy itself: the xdist controller loads it before it starts the workers
+    and runs no test (importing them there cost 0.7 CPU s before the first worker started)."""
+    import subprocess
+    import sys
+
+    import matplotlib
+    assert matplotlib.get_backend().lower() == "agg"   # this process's, chosen through the variable
+    r = subprocess.run([sys.executable, "-c", "import os, sys, conftest; print(os.environ['MPLBACKEND'], "
+                        "sorted({'matplotlib', 'numpy'} & set(sys.modules)))"], capture_output=True, text=True,
+                       timeout=60, env={"PYTHONPATH": str(ROOT / "tests"), "PATH": "/usr/bin:/bin",
+                                        "MPLBACKEND": "TkAgg"})
+    assert r.returncode == 0, r.stderr
+    assert r.stdout.strip() == "Agg []", r.stdout
+
+
+def test_the_files_of_quick_tests_are_collected_last(request):
+    """conftest.LAST names test files that exist, and their tests come after every other test collected (xdist
+    hands the single tests out in that order: the workers end on quick ones together)."""
+    import conftest
+    names = [item.path.name for item in request.session.items]
+    assert conftest.LAST and all((ROOT / "tests" / name).is_file() for name in conftest.LAST), conftest.LAST
+    last = [name in conftest.LAST for name in names]
+    assert last == sorted(last), "a test of another file is collected after one of conftest.LAST's"
