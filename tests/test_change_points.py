@@ -26,7 +26,7 @@ import pytest
 
 import velpoly
 from velpoly import pose, solution, sweeps
-from tests.mechanisms import fourbar
+from mechanisms import fourbar
 
 ANGLES = np.arange(24) * 15.0
 CLASSES = ("crank-rocker", "double-crank", "double-rocker", "rocker-crank", "non-grashof",
@@ -267,7 +267,7 @@ def test_a_double_rocker_stays_on_its_own_arc():
 @pytest.mark.parametrize("which", ["fourbar", "slider-crank", "offset slider-crank", "six-bar"])
 def test_the_closure_rate_is_the_closure_derivative(which):
     """The walk's closure slope (what the dip search follows) against central differences."""
-    from tests.mechanisms import SIXBAR_1_4_4, slider_crank
+    from mechanisms import SIXBAR_1_4_4, slider_crank
     src = {"fourbar": fourbar(), "slider-crank": slider_crank(), "offset slider-crank": slider_crank(e=-2, path=30),
            "six-bar": SIXBAR_1_4_4}[which]
     m = velpoly.load(src)
@@ -286,7 +286,7 @@ def test_a_slider_crank_whose_rod_can_stand_square_to_the_path_stops_there(monke
     """Offset e + crank r = rod l: at theta = -90 deg the rod stands square to the path with the
     crank pin at its farthest from it (the RRP dyad's closure touches zero), and the block could go
     on either way: that is the end of the motion, in both directions round."""
-    from tests.mechanisms import slider_crank
+    from mechanisms import slider_crank
     if continuation:
         monkeypatch.setattr(pose, "plan_for", lambda system: None)
         monkeypatch.setattr(sweeps, "plan_for", lambda system: None)

@@ -26,7 +26,7 @@ from __future__ import annotations
 import numpy as np
 import velpoly
 from velpoly import pose, solution, sweeps
-from tests.mechanisms import fourbar
+from mechanisms import fourbar
 from test_change_points import closure_margin, dims, expected
 from test_slot_ends import drive, rho
 
