@@ -27,7 +27,7 @@ from shapely.geometry import LineString, Point
 from .canvas import box, per_point, renderer_of, view_box
 from .textcache import window_extent
 
-__all__ = ["LabelPlacer", "Placed", "placer", "segment", "half_extent", "ALONG_APART"]
+__all__ = ["LabelPlacer", "Moment", "Placed", "placer", "segment", "half_extent", "ALONG_APART"]
 
 # ring radii, in points of gap between the anchor and the box
 RINGS = (2.5, 5.0, 9.0, 14.0, 21.0, 30.0, 42.0, 58.0)
@@ -54,6 +54,25 @@ class Placed:
     again: Callable | None = None
     anchor: Any = None
     apart: Any = None
+
+
+@dataclass(frozen=True, eq=False)
+class Moment:
+    """A placer and its axes as they stood (:meth:`LabelPlacer.moment`), to come back to (:meth:`LabelPlacer.back_to`):
+    the axes' ``artists`` in their drawing order, each Text's place and type size (``texts``: ``(text, (x, y),
+    size)``; the placer moves and resizes the labels it placed), each leader's points (``leaders``: ``(line, x,
+    y)``), the placer's lists (``labels``, ``hard``, ``soft``, ``overlapping``, ``along``) and where each label
+    went (``placed``)."""
+
+    artists: list
+    texts: list
+    leaders: list
+    labels: list
+    hard: list
+    soft: list
+    overlapping: list
+    along: list
+    placed: dict
 
 
 class LabelPlacer:
@@ -157,6 +176,44 @@ class LabelPlacer:
                     if id(a) not in before:
                         a.remove()
             self.keep = False
+
+    def moment(self) -> Moment:
+        """What this placer and its axes hold now (:class:`Moment`): a drawing that places its labels in several
+        orders comes back to it for each (:meth:`back_to`) instead of drawing everything again."""
+        from matplotlib.text import Text
+        artists = list(self.ax._children)   # (the axes' own list: its order is the drawing order of equal zorders)
+        return Moment(artists, [(a, a.get_position(), a.get_fontsize()) for a in artists if isinstance(a, Text)],
+                      [(p.leader, *p.leader.get_data()) for p in self.labels if p.leader is not None],
+                      list(self.labels), list(self._hard), list(self.soft), list(self.overlapping), list(self.along),
+                      dict(self.placed))
+
+    def back_to(self, m: Moment) -> None:
+        """This placer and its axes as they were at the moment ``m`` (:meth:`moment`): every artist added since
+        taken off, every one taken off since put back (in its place in the drawing order), each Text at its place
+        and size then and each leader through its points then, the placer's lists as they were."""
+        fig, now = self.ax.get_figure(root=False), {id(a) for a in self.ax._children}
+        keep = {id(a) for a in m.artists}
+        for a in [a for a in self.ax._children if id(a) not in keep]:
+            a.remove()
+        for a in m.artists:
+            if id(a) not in now:   # taken off (Artist.remove): attached again as Axes.add_* attaches it
+                a.set_figure(fig)
+                a.axes = self.ax
+        self.ax._children[:] = m.artists
+        for t, at, size in m.texts:
+            if t.get_position() != at:
+                t.set_position(at)
+            if t.get_fontsize() != size:
+                t.set_fontsize(size)
+        for line, x, y in m.leaders:
+            xs, ys = line.get_data()
+            if xs is not x or ys is not y:
+                line.set_data(x, y)
+        for lst, was in ((self.labels, m.labels), (self._hard, m.hard), (self.soft, m.soft),
+                         (self.overlapping, m.overlapping), (self.along, m.along)):
+            lst[:] = was
+        self.placed.clear()
+        self.placed.update(m.placed)
 
     # -- measuring ---------------------------------------------------------------------
     def box_of(self, text, pad: float = 1.0, pp: float | None = None):
