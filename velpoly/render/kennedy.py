@@ -787,7 +787,7 @@ def _place_free(pl, anchor, text, *, fontsize: float, **kw):
     for reach, f in tries:
         t = pl.place(anchor, text, fontsize=fontsize * f, reach=reach, last_resort=False, **kw)
         if t is not None:
-            return t if pl.at_pin(t) or not _on_lines(pl, t) else _off_drawn_lines(pl, t, anchor, text, fontsize, tries, reach, f, kw)
+            return t if pl.at_pin(t) or not _on_lines(pl, t) else _off_drawn_lines(pl, t, anchor, text, fontsize, tries, kw)
     return _least_covering(pl, anchor, text, fontsize, kw)
 
 
@@ -795,16 +795,19 @@ def _least_covering(pl, anchor, text, fontsize: float, kw):
     """A crowd's last resort (no free place at any size or reach): where it covers least, at the size (its own,
     else :data:`SMALLER`) whose place there meets the fewest hard obstacles (Kennedy lines, marks, leaders): the
     place covering least at its own size may lie on a Kennedy line where a smaller box's lies on none (Example
-    3.4's P26 on slides). A step frame's label stands at its pin (:meth:`LabelPlacer.place` tries it first)."""
-    best = None
-    for f in (1.0,) + SMALLER:
+    3.4's P26 on slides). A step frame's label stands at its pin (:meth:`LabelPlacer.place` tries it first).
+    The size chosen, where it is the last tried (one that meets none, or the smallest), is kept as tried: placed
+    again at the same moment it would go to the same place."""
+    best, sizes = None, (1.0,) + SMALLER
+    for n, f in enumerate(sizes):
         with pl.trial():
             t = pl.place(anchor, text, fontsize=fontsize * f, reach=True, **kw)
             hits = 0 if pl.at_pin(t) else _hard_hits(pl, pl.of(t))
+            kept = pl.keep = hits == 0 or (n == len(sizes) - 1 and (best is None or hits < best[0]))
+        if kept:
+            return t
         if best is None or hits < best[0]:
             best = (hits, f)
-        if hits == 0:
-            break
     return pl.place(anchor, text, fontsize=fontsize * best[1], reach=True, **kw)
 
 
@@ -817,18 +820,24 @@ def _hard_hits(pl, own) -> int:
 
 
 def _drawn_lines(ax) -> list:
-    """Every line drawn on ``ax`` (Line2D, in data coordinates, each run between gaps), leaders excepted."""
+    """Every line drawn on ``ax`` (Line2D, in data coordinates, each run between gaps), leaders excepted. Kept
+    on the axes while the same lines stand with the same points: a pole's label asks at every place it tries."""
+    shown = [(ln, ln.get_xydata()) for ln in ax.lines
+             if not (ln.get_gid() or "").endswith("-leader") and ln.get_visible()]
+    got = getattr(ax, "_velpoly_lines", None)   # (the lines with their points, the runs made of them)
+    if got is not None and len(got[0]) == len(shown) and all(
+            a is c and x is y for (a, x), (c, y) in zip(got[0], shown)):
+        return list(got[1])
     out = []
-    for ln in ax.lines:
-        if (ln.get_gid() or "").endswith("-leader") or not ln.get_visible():
-            continue
-        xy = np.asarray(ln.get_xydata(), float)
+    for _, xy in shown:
+        xy = np.asarray(xy, float)
         ok = np.all(np.isfinite(xy), axis=1)
         for run in np.split(xy, np.flatnonzero(~ok)):
             run = run[np.all(np.isfinite(run), axis=1)]
             if len(run) >= 2:
                 out.append(LineString(run))
-    return out
+    ax._velpoly_lines = (shown, out)
+    return list(out)
 
 
 def _on_lines(pl, t, lines=None) -> bool:
@@ -837,12 +846,13 @@ def _on_lines(pl, t, lines=None) -> bool:
     return any(g.intersects(b) for g in (_drawn_lines(pl.ax) if lines is None else lines))
 
 
-def _off_drawn_lines(pl, t, anchor, text, fontsize: float, tries, reach0: bool, f0: float, kw):
+def _off_drawn_lines(pl, t, anchor, text, fontsize: float, tries, kw):
     """A pole's label whose free place lies on a drawn line (a slider's path: a soft obstacle, which the
     search weighs against a leader across a Kennedy line) placed again where its box meets no drawn line: the
     same tries (nearer, farther, smaller), each box tested (``accept``) off the lines; where none is free, where
-    it was."""
+    it was (put back as it stood: placed again it would go there)."""
     lines = _drawn_lines(pl.ax)
+    was, placed = pl.moment(), t
     pl.remove(t)
     accept = kw.pop("accept", None)
 
@@ -854,7 +864,8 @@ def _off_drawn_lines(pl, t, anchor, text, fontsize: float, tries, reach0: bool, 
             pl.keep = t is not None and not _on_lines(pl, t, lines)
         if t is not None and pl.of(t) is not None:
             return t
-    return pl.place(anchor, text, fontsize=fontsize * f0, reach=reach0, accept=accept, **kw)
+    pl.back_to(was)
+    return placed
 
 
 INFINITY_SHIFTS = (0.0,) + tuple(x for k in range(1, 16) for x in (0.4 * k, -0.4 * k))   # cm, across its way

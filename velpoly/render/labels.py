@@ -793,17 +793,19 @@ class LabelPlacer:
     def _crossings(self, labels=None) -> list:
         """(i, j) of every leader of label i that crosses the leader or the box of label j (see :func:`_tally`)."""
         labels = self.labels if labels is None else labels
-        lines = [_drawn(p.leader) for p in labels]
-        out = []
-        for i, ln in enumerate(lines):
-            if ln is None:
-                continue
-            for j, q in enumerate(labels):
-                if j != i and q.box.intersects(ln):
-                    out.append((i, j, "box"))
-                elif j > i and lines[j] is not None and lines[j].intersects(ln):
-                    out.append((i, j, "leader"))
-        return out
+        lines = np.array([_drawn(p.leader) for p in labels], dtype=object)
+        has = np.flatnonzero([p.leader is not None for p in labels])   # (the labels with a leader)
+        if not has.size:
+            return []
+        # every leader against every box and every later leader at once (GEOS's predicate, as one at a time), in
+        # the order the pairs were listed one at a time: by leader, then by label; a box met before a leader
+        n = len(labels)
+        on_box = shapely.intersects(lines[has][:, None], np.array([q.box for q in labels], dtype=object)[None, :])
+        on_box[np.arange(has.size), has] = False
+        later = np.zeros((has.size, n), bool)
+        later[:, has] = shapely.intersects(lines[has][:, None], lines[has][None, :]) & (has[None, :] > has[:, None])
+        kinds = np.where(on_box, 1, np.where(later, 2, 0))   # (a box met first)
+        return [(int(has[a]), int(j), "box" if kinds[a, j] == 1 else "leader") for a, j in np.argwhere(kinds)]
 
     def _swap(self, i: int, j: int, before: tuple, accept: dict) -> bool:
         """Exchange the places of labels i and j where :meth:`untangle` says it helps; whether it did."""
