@@ -18,6 +18,7 @@ in the order of their discovery.
 from __future__ import annotations
 
 import math
+from dataclasses import dataclass, replace
 
 import numpy as np
 from shapely.geometry import LineString, Point
@@ -25,7 +26,7 @@ from shapely.geometry import LineString, Point
 from .canvas import (Artists, arrow, border_point, fit_view, get_ax, math_literal, per_cm, per_point, view_box,
                      view_scale)
 from .displacement import SMALLER, draw_mechanism, mechanism_bounds, shape_patch
-from .labels import placer, segment
+from .labels import Moment, placer, segment
 from .options import drawing_options
 from .style import get_style
 
@@ -146,7 +147,7 @@ def draw_poles(sol, ax=None, *, style="textbook", options=None, poleset=None, up
     The labels are placed one at a time, each taking the best place the ones
     before it left (a crowd's last come last). Where a pole label's leader
     still crosses another leader or label after every untangling step, the
-    drawing is made again with the poles labelled in the reverse order, then
+    labels are placed again with the poles labelled in the reverse order, then
     the most crowded first (:func:`_crowded_first`); each kept over the best
     before it where it has fewer such crossings and no more labels nearer
     another ring, on a line or struck through (:func:`_tangle`), and one with
@@ -164,27 +165,33 @@ def draw_poles(sol, ax=None, *, style="textbook", options=None, poleset=None, up
 
 def _least_tangled(sol, ax, st, opts, ps, upto, mechanism: bool, reach) -> Artists:
     """:func:`draw_poles`' drawing, its labels placed in the listed order, else (a pole label's leader crossing,
-    :func:`_crossed`) in the first of the other orders that leaves none, else the least tangled (:func:`_tangle`)."""
+    :func:`_crossed`) in the first of the other orders that leaves none, else the least tangled (:func:`_tangle`).
+
+    What the labels' order does not change is drawn once: the mechanism, the Kennedy lines, the poles' marks. For
+    each other order the drawing comes back to where it stood before the poles' labels (:class:`_Drawn`; what the
+    mechanism's labels moved for them put back) with the things drawn pole by pole (the Kennedy lines, the marks
+    and the obstacles they are) in that order, as a drawing made anew in that order has them (:func:`_in_order`),
+    and only the labels are placed again; the order kept is put back as it was placed."""
     pl = placer(ax)
     shown = shown_poles(ps, upto)
     again = mechanism and not (pl.pins or pl.labels or pl.hard or pl.soft)   # (a step frame's: pinned labels)
-    before = {id(a) for a in ax.get_children()}
-    art = _poles_drawn(sol, ax, st, opts, ps, shown, upto, mechanism, reach)
+    art, pole_lines, own = _poles_drawn(sol, ax, st, opts, ps, shown, upto, mechanism)
+    base = _Drawn.of(art) if again else None
+    _poles_labelled(sol, ax, ps, shown, pole_lines, st, art, reach)
     if not again or not _crossed(art):
         return art
     orders = [shown, shown[::-1], _crowded_first(shown, per_cm(ax))]
-    best, k = (_tangle(art), 0), 0
+    best, k = (_tangle(art), 0, _Drawn.of(art)), 0
     for k in range(1, len(orders)):
-        _undraw(ax, before)
-        art = _poles_drawn(sol, ax, st, opts, ps, orders[k], upto, mechanism, reach)
+        base.in_order(own, orders[k]).restore(art)
+        _poles_labelled(sol, ax, ps, orders[k], pole_lines, st, art, reach)
         tangle = _tangle(art)
         if tangle[0] < best[0][0] and all(a <= b for a, b in zip(tangle[1:], best[0][1:])):
-            best = (tangle, k)
+            best = (tangle, k, _Drawn.of(art))
         if best[0][0] == 0:
             break
-    if best[1] != k:   # the last drawn is not the one kept: the kept one's drawn again
-        _undraw(ax, before)
-        art = _poles_drawn(sol, ax, st, opts, ps, orders[best[1]], upto, mechanism, reach)
+    if best[1] != k:   # the last placed is not the one kept: the kept one's put back
+        best[2].restore(art)
     return art
 
 
@@ -197,38 +204,96 @@ def _crowded_first(shown: list, near: float) -> list:
     return sorted(shown, key=lambda p: -crowd(p))
 
 
-def _poles_drawn(sol, ax, st, opts, ps, shown, upto, mechanism: bool, reach) -> Artists:
-    """:func:`draw_poles`' drawing with the poles ``shown`` labelled in that order (its view fitted)."""
+def _poles_drawn(sol, ax, st, opts, ps, shown, upto, mechanism: bool) -> tuple:
+    """:func:`draw_poles`' drawing but the poles' labels (its view fitted), the poles taken in the order ``shown``.
+    Returns its Artists, each pole's Kennedy lines as drawn (key -> [xy, ...]) and what each pole added to the axes
+    and the placer, in runs of a kind (:func:`_in_order`): id -> (the thing, its kind, its pole's key)."""
     art = Artists(ax)
     art.labels = {}
     pl = placer(ax)
     current = max((p.order for p in shown), default=0) if upto is not None else None
     # the Kennedy lines, known before the mechanism's labels are placed so that these keep clear of them
     klines, pole_lines = _kennedy_lines(ps, shown, current, view_box(ax), per_cm(ax))
-    for xy, _, _ in klines:   # no label on one (hard); a leader crosses as few as it can (soft)
-        pl.add_obstacle(segment(xy[0], xy[-1]), hard=True)
-        pl.add_obstacle(segment(xy[0], xy[-1]), hard=False)
+    own = {}
+    for xy, _, _, key in klines:   # no label on one (hard); a leader crosses as few as it can (soft)
+        for hard in (True, False):
+            g = segment(xy[0], xy[-1])
+            pl.add_obstacle(g, hard=hard)
+            own[id(g)] = (g, 0, key)
     if mechanism:
         # the poles' marks first, so that the mechanism's labels keep clear of them
         for p in shown:
             if p.position is not None and view_box(ax).contains(Point(*p.position)):
-                pl.add_obstacle(Point(*p.position).buffer(0.085 * per_cm(ax)))
+                g = Point(*p.position).buffer(0.085 * per_cm(ax))
+                pl.add_obstacle(g)
+                own[id(g)] = (g, 1, p.key)
         mech = draw_mechanism(sol, ax, style=st, options=opts)
         art.update_from(mech)
         art.labels = {}
         art.point_labels = mech.labels
     _draw_kennedy_lines(ax, klines, st, art)
+    drawn = art.get("kennedy_lines", [])
+    own.update((id(a), (a, 0, key)) for a, (_, _, _, key) in zip(drawn[len(drawn) - len(klines):], klines))
     _draw_pole_marks(sol, ax, shown, st, art)
-    _apart(pl, art, _label_poles(sol, ax, ps, shown, pole_lines, st, art, reach))
-    return art
+    marks = art.get("poles", [])
+    own.update((id(a), (a, 2, marks[n - n % 2].get_gid()[len("pole-"):])) for n, a in enumerate(marks))
+    own.update((id(g), (g, 3, key)) for key, g in art.rings.items())
+    return art, pole_lines, own
 
 
-def _undraw(ax, before: set) -> None:
-    """Every artist added to ``ax`` since ``before`` (their ids) taken off, and its placer with them."""
-    for a in ax.get_children():
-        if id(a) not in before:
-            a.remove()
-    del ax._velpoly_placer   # (an empty one, as it was: placer(ax) makes it anew)
+def _poles_labelled(sol, ax, ps, shown, pole_lines, st, art, reach) -> None:
+    """The poles ``shown`` labelled in that order on their drawing (:func:`_poles_drawn`'s ``art``), then their
+    leaders taken apart (:func:`_apart`)."""
+    _apart(placer(ax), art, _label_poles(sol, ax, ps, shown, pole_lines, st, art, reach))
+
+
+def _in_order(seq: list, own: dict, rank: dict) -> list:
+    """``seq`` (a poles drawing's artists, a role's or obstacles) as the drawing made with its poles in the order
+    ``rank`` (pole key -> its place) has it: each run of things the poles added (``own``: id -> (the thing, its kind,
+    its pole's key); a drawing adds each kind pole by pole, a kind after another) sorted by kind, then by pole; a
+    pole's own things of a kind in the order it added them."""
+    out, run = [], []
+    end = object()
+    for a in [*seq, end]:
+        got = own.get(id(a))
+        if got is not None and got[0] is a:
+            run.append(got)
+            continue
+        out += [g[0] for g in sorted(run, key=lambda g: (g[1], rank[g[2]]))]
+        run = []
+        if a is not end:
+            out.append(a)
+    return out
+
+
+@dataclass(frozen=True)
+class _Drawn:
+    """A poles drawing as it stood: its placer and axes (:class:`~velpoly.render.labels.Moment`), its Artists'
+    ``roles``, pole ``labels`` and ``rings``."""
+
+    moment: Moment
+    roles: dict
+    labels: dict
+    rings: dict
+
+    @classmethod
+    def of(cls, art) -> _Drawn:
+        return cls(placer(art.ax).moment(), {k: list(v) for k, v in art.items()}, dict(art.labels), dict(art.rings))
+
+    def restore(self, art) -> None:
+        """``art``'s drawing as it stood (its placer, axes and Artists)."""
+        placer(art.ax).back_to(self.moment)
+        art.clear()
+        art.update({k: list(v) for k, v in self.roles.items()})
+        art.labels, art.rings = dict(self.labels), dict(self.rings)
+
+    def in_order(self, own: dict, order: list) -> _Drawn:
+        """This drawing as made with the poles taken in ``order`` (:func:`_in_order`; ``own``: :func:`_poles_drawn`'s)."""
+        rank = {p.key: n for n, p in enumerate(order)}
+        m = self.moment
+        lists = {f: _in_order(getattr(m, f), own, rank) for f in ("artists", "hard", "soft")}
+        return _Drawn(replace(m, **lists), {k: _in_order(v, own, rank) for k, v in self.roles.items()}, self.labels,
+                      {k: self.rings[k] for k in sorted(self.rings, key=rank.__getitem__)})
 
 
 def _crossed(art) -> int:
@@ -609,7 +674,7 @@ def _again_free(pl, p):
 
 
 def _kennedy_lines(ps, shown, current, vb, pc):
-    """The Kennedy lines of the poles found: ``([(xy, heavy, gid)], {pole key: [xy, ...]})``, each clipped to
+    """The Kennedy lines of the poles found: ``([(xy, heavy, gid, pole key)], {pole key: [xy, ...]})``, each clipped to
     the view ``vb``: through the poles that define it (a constraint line: through its points: the contact
     point, the pin, a circular slot's centre), and on past the pole found (a pole at infinity: across)."""
     klines, pole_lines = [], {}
@@ -635,7 +700,7 @@ def _kennedy_lines(ps, shown, current, vb, pc):
             seg = LineString([tuple(base + d * lo), tuple(base + d * hi)]).intersection(vb)
             if seg.is_empty or seg.geom_type != "LineString":
                 continue
-            klines.append((np.asarray(seg.coords), heavy, f"kennedy-line-{p.key}-{ln.label}"))
+            klines.append((np.asarray(seg.coords), heavy, f"kennedy-line-{p.key}-{ln.label}", p.key))
             if p.position is not None:
                 pole_lines.setdefault(p.key, []).append(np.asarray(seg.coords))
     return klines, pole_lines
@@ -645,7 +710,7 @@ def _draw_kennedy_lines(ax, klines, st, art) -> None:
     """Over the links, blocks and ground (a Kennedy line runs straight through every body: the collinearity
     is the proof), under the pins, points and poles' marks; the current step's heavier."""
     from matplotlib.lines import Line2D
-    for xy, heavy, gid in klines:
+    for xy, heavy, gid, _ in klines:
         line = Line2D(xy[:, 0], xy[:, 1], lw=st.thin_lw * (2.0 if heavy else 1.0),
                       color=st.ink if not st.coloured else "#7f7f7f", linestyle=(0, (7, 2, 1.5, 2)),
                       zorder=KENNEDY_Z, gid=gid)
@@ -722,7 +787,7 @@ def _place_free(pl, anchor, text, *, fontsize: float, **kw):
     for reach, f in tries:
         t = pl.place(anchor, text, fontsize=fontsize * f, reach=reach, last_resort=False, **kw)
         if t is not None:
-            return t if pl.at_pin(t) or not _on_lines(pl, t) else _off_drawn_lines(pl, t, anchor, text, fontsize, tries, reach, f, kw)
+            return t if pl.at_pin(t) or not _on_lines(pl, t) else _off_drawn_lines(pl, t, anchor, text, fontsize, tries, kw)
     return _least_covering(pl, anchor, text, fontsize, kw)
 
 
@@ -730,16 +795,19 @@ def _least_covering(pl, anchor, text, fontsize: float, kw):
     """A crowd's last resort (no free place at any size or reach): where it covers least, at the size (its own,
     else :data:`SMALLER`) whose place there meets the fewest hard obstacles (Kennedy lines, marks, leaders): the
     place covering least at its own size may lie on a Kennedy line where a smaller box's lies on none (Example
-    3.4's P26 on slides). A step frame's label stands at its pin (:meth:`LabelPlacer.place` tries it first)."""
-    best = None
-    for f in (1.0,) + SMALLER:
+    3.4's P26 on slides). A step frame's label stands at its pin (:meth:`LabelPlacer.place` tries it first).
+    The size chosen, where it is the last tried (one that meets none, or the smallest), is kept as tried: placed
+    again at the same moment it would go to the same place."""
+    best, sizes = None, (1.0,) + SMALLER
+    for n, f in enumerate(sizes):
         with pl.trial():
             t = pl.place(anchor, text, fontsize=fontsize * f, reach=True, **kw)
             hits = 0 if pl.at_pin(t) else _hard_hits(pl, pl.of(t))
+            kept = pl.keep = hits == 0 or (n == len(sizes) - 1 and (best is None or hits < best[0]))
+        if kept:
+            return t
         if best is None or hits < best[0]:
             best = (hits, f)
-        if hits == 0:
-            break
     return pl.place(anchor, text, fontsize=fontsize * best[1], reach=True, **kw)
 
 
@@ -752,18 +820,24 @@ def _hard_hits(pl, own) -> int:
 
 
 def _drawn_lines(ax) -> list:
-    """Every line drawn on ``ax`` (Line2D, in data coordinates, each run between gaps), leaders excepted."""
+    """Every line drawn on ``ax`` (Line2D, in data coordinates, each run between gaps), leaders excepted. Kept
+    on the axes while the same lines stand with the same points: a pole's label asks at every place it tries."""
+    shown = [(ln, ln.get_xydata()) for ln in ax.lines
+             if not (ln.get_gid() or "").endswith("-leader") and ln.get_visible()]
+    got = getattr(ax, "_velpoly_lines", None)   # (the lines with their points, the runs made of them)
+    if got is not None and len(got[0]) == len(shown) and all(
+            a is c and x is y for (a, x), (c, y) in zip(got[0], shown)):
+        return list(got[1])
     out = []
-    for ln in ax.lines:
-        if (ln.get_gid() or "").endswith("-leader") or not ln.get_visible():
-            continue
-        xy = np.asarray(ln.get_xydata(), float)
+    for _, xy in shown:
+        xy = np.asarray(xy, float)
         ok = np.all(np.isfinite(xy), axis=1)
         for run in np.split(xy, np.flatnonzero(~ok)):
             run = run[np.all(np.isfinite(run), axis=1)]
             if len(run) >= 2:
                 out.append(LineString(run))
-    return out
+    ax._velpoly_lines = (shown, out)
+    return list(out)
 
 
 def _on_lines(pl, t, lines=None) -> bool:
@@ -772,12 +846,13 @@ def _on_lines(pl, t, lines=None) -> bool:
     return any(g.intersects(b) for g in (_drawn_lines(pl.ax) if lines is None else lines))
 
 
-def _off_drawn_lines(pl, t, anchor, text, fontsize: float, tries, reach0: bool, f0: float, kw):
+def _off_drawn_lines(pl, t, anchor, text, fontsize: float, tries, kw):
     """A pole's label whose free place lies on a drawn line (a slider's path: a soft obstacle, which the
     search weighs against a leader across a Kennedy line) placed again where its box meets no drawn line: the
     same tries (nearer, farther, smaller), each box tested (``accept``) off the lines; where none is free, where
-    it was."""
+    it was (put back as it stood: placed again it would go there)."""
     lines = _drawn_lines(pl.ax)
+    was, placed = pl.moment(), t
     pl.remove(t)
     accept = kw.pop("accept", None)
 
@@ -789,7 +864,8 @@ def _off_drawn_lines(pl, t, anchor, text, fontsize: float, tries, reach0: bool, 
             pl.keep = t is not None and not _on_lines(pl, t, lines)
         if t is not None and pl.of(t) is not None:
             return t
-    return pl.place(anchor, text, fontsize=fontsize * f0, reach=reach0, accept=accept, **kw)
+    pl.back_to(was)
+    return placed
 
 
 INFINITY_SHIFTS = (0.0,) + tuple(x for k in range(1, 16) for x in (0.4 * k, -0.4 * k))   # cm, across its way

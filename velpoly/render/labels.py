@@ -27,7 +27,7 @@ from shapely.geometry import LineString, Point
 from .canvas import box, per_point, renderer_of, view_box
 from .textcache import window_extent
 
-__all__ = ["LabelPlacer", "Placed", "placer", "segment", "half_extent", "ALONG_APART"]
+__all__ = ["LabelPlacer", "Moment", "Placed", "placer", "segment", "half_extent", "ALONG_APART"]
 
 # ring radii, in points of gap between the anchor and the box
 RINGS = (2.5, 5.0, 9.0, 14.0, 21.0, 30.0, 42.0, 58.0)
@@ -54,6 +54,25 @@ class Placed:
     again: Callable | None = None
     anchor: Any = None
     apart: Any = None
+
+
+@dataclass(frozen=True, eq=False)
+class Moment:
+    """A placer and its axes as they stood (:meth:`LabelPlacer.moment`), to come back to (:meth:`LabelPlacer.back_to`):
+    the axes' ``artists`` in their drawing order, each Text's place and type size (``texts``: ``(text, (x, y),
+    size)``; the placer moves and resizes the labels it placed), each leader's points (``leaders``: ``(line, x,
+    y)``), the placer's lists (``labels``, ``hard``, ``soft``, ``overlapping``, ``along``) and where each label
+    went (``placed``)."""
+
+    artists: list
+    texts: list
+    leaders: list
+    labels: list
+    hard: list
+    soft: list
+    overlapping: list
+    along: list
+    placed: dict
 
 
 class LabelPlacer:
@@ -157,6 +176,44 @@ class LabelPlacer:
                     if id(a) not in before:
                         a.remove()
             self.keep = False
+
+    def moment(self) -> Moment:
+        """What this placer and its axes hold now (:class:`Moment`): a drawing that places its labels in several
+        orders comes back to it for each (:meth:`back_to`) instead of drawing everything again."""
+        from matplotlib.text import Text
+        artists = list(self.ax._children)   # (the axes' own list: its order is the drawing order of equal zorders)
+        return Moment(artists, [(a, a.get_position(), a.get_fontsize()) for a in artists if isinstance(a, Text)],
+                      [(p.leader, *p.leader.get_data()) for p in self.labels if p.leader is not None],
+                      list(self.labels), list(self._hard), list(self.soft), list(self.overlapping), list(self.along),
+                      dict(self.placed))
+
+    def back_to(self, m: Moment) -> None:
+        """This placer and its axes as they were at the moment ``m`` (:meth:`moment`): every artist added since
+        taken off, every one taken off since put back (in its place in the drawing order), each Text at its place
+        and size then and each leader through its points then, the placer's lists as they were."""
+        fig, now = self.ax.get_figure(root=False), {id(a) for a in self.ax._children}
+        keep = {id(a) for a in m.artists}
+        for a in [a for a in self.ax._children if id(a) not in keep]:
+            a.remove()
+        for a in m.artists:
+            if id(a) not in now:   # taken off (Artist.remove): attached again as Axes.add_* attaches it
+                a.set_figure(fig)
+                a.axes = self.ax
+        self.ax._children[:] = m.artists
+        for t, at, size in m.texts:
+            if t.get_position() != at:
+                t.set_position(at)
+            if t.get_fontsize() != size:
+                t.set_fontsize(size)
+        for line, x, y in m.leaders:
+            xs, ys = line.get_data()
+            if xs is not x or ys is not y:
+                line.set_data(x, y)
+        for lst, was in ((self.labels, m.labels), (self._hard, m.hard), (self.soft, m.soft),
+                         (self.overlapping, m.overlapping), (self.along, m.along)):
+            lst[:] = was
+        self.placed.clear()
+        self.placed.update(m.placed)
 
     # -- measuring ---------------------------------------------------------------------
     def box_of(self, text, pad: float = 1.0, pp: float | None = None):
@@ -736,17 +793,19 @@ class LabelPlacer:
     def _crossings(self, labels=None) -> list:
         """(i, j) of every leader of label i that crosses the leader or the box of label j (see :func:`_tally`)."""
         labels = self.labels if labels is None else labels
-        lines = [_drawn(p.leader) for p in labels]
-        out = []
-        for i, ln in enumerate(lines):
-            if ln is None:
-                continue
-            for j, q in enumerate(labels):
-                if j != i and q.box.intersects(ln):
-                    out.append((i, j, "box"))
-                elif j > i and lines[j] is not None and lines[j].intersects(ln):
-                    out.append((i, j, "leader"))
-        return out
+        lines = np.array([_drawn(p.leader) for p in labels], dtype=object)
+        has = np.flatnonzero([p.leader is not None for p in labels])   # (the labels with a leader)
+        if not has.size:
+            return []
+        # every leader against every box and every later leader at once (GEOS's predicate, as one at a time), in
+        # the order the pairs were listed one at a time: by leader, then by label; a box met before a leader
+        n = len(labels)
+        on_box = shapely.intersects(lines[has][:, None], np.array([q.box for q in labels], dtype=object)[None, :])
+        on_box[np.arange(has.size), has] = False
+        later = np.zeros((has.size, n), bool)
+        later[:, has] = shapely.intersects(lines[has][:, None], lines[has][None, :]) & (has[None, :] > has[:, None])
+        kinds = np.where(on_box, 1, np.where(later, 2, 0))   # (a box met first)
+        return [(int(has[a]), int(j), "box" if kinds[a, j] == 1 else "leader") for a, j in np.argwhere(kinds)]
 
     def _swap(self, i: int, j: int, before: tuple, accept: dict) -> bool:
         """Exchange the places of labels i and j where :meth:`untangle` says it helps; whether it did."""
