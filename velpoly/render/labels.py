@@ -27,7 +27,7 @@ from shapely.geometry import LineString, Point
 from .canvas import box, per_point, renderer_of, view_box
 from .textcache import window_extent
 
-__all__ = ["LabelPlacer", "Placed", "placer", "segment", "half_extent", "ALONG_APART"]
+__all__ = ["LabelPlacer", "Placed", "Aside", "placer", "segment", "half_extent", "ALONG_APART"]
 
 # ring radii, in points of gap between the anchor and the box
 RINGS = (2.5, 5.0, 9.0, 14.0, 21.0, 30.0, 42.0, 58.0)
@@ -54,6 +54,18 @@ class Placed:
     again: Callable | None = None
     anchor: Any = None
     apart: Any = None
+
+
+@dataclass(frozen=True, eq=False)
+class Aside:
+    """What a trial that was not kept added (:meth:`LabelPlacer.trial`): the ``sizes`` of the placer's lists when it
+    began, what each list gained (``added``), where each label went (``placed``, as the trial left it) and the
+    ``artists`` it added to the axes, in their order."""
+
+    sizes: tuple
+    added: tuple
+    placed: dict
+    artists: tuple
 
 
 class LabelPlacer:
@@ -138,10 +150,12 @@ class LabelPlacer:
         text.remove()
 
     @contextmanager
-    def trial(self):
+    def trial(self, aside: list | None = None):
         """Draw and place tentatively: on leaving, every label, obstacle, leader and artist added to the axes
-        inside is gone again (to score a layout before choosing it), unless ``keep`` was set inside."""
-        sizes = [(lst, len(lst)) for lst in (self.labels, self._hard, self.soft, self.overlapping, self.along)]
+        inside is gone again (to score a layout before choosing it), unless ``keep`` was set inside. With
+        ``aside`` (a list), what a trial not kept added is appended to it as an :class:`Aside`, which
+        :meth:`put_back` puts back as it was (a layout chosen after others were tried is not drawn again)."""
+        sizes = [(lst, len(lst)) for lst in self._lists()]
         placed = dict(self.placed)
         before = {id(a) for a in self.ax.get_children()}
         self.keep = False   # set inside to keep what was placed
@@ -149,14 +163,36 @@ class LabelPlacer:
             yield self
         finally:
             if not self.keep:
+                added = [a for a in self.ax.get_children() if id(a) not in before]
+                if aside is not None:
+                    aside.append(Aside(tuple(n for _, n in sizes), tuple(tuple(lst[n:]) for lst, n in sizes),
+                                       dict(self.placed), tuple(added)))
                 for lst, n in sizes:
                     del lst[n:]
                 self.placed.clear()
                 self.placed.update(placed)
-                for a in self.ax.get_children():
-                    if id(a) not in before:
-                        a.remove()
+                for a in added:
+                    a.remove()
             self.keep = False
+
+    def _lists(self) -> tuple:
+        """The lists a trial adds to: the labels, the obstacles, the labels placed overlapping, the texts along
+        lines."""
+        return self.labels, self._hard, self.soft, self.overlapping, self.along
+
+    def put_back(self, aside: Aside) -> None:
+        """Put back what a trial not kept placed and drew (:meth:`trial`'s ``aside``): its labels, obstacles and
+        where each label went, and its artists, added to the axes again in their order, as the trial left them;
+        the placer must be as it was when that trial began (its lists as long)."""
+        lists = self._lists()
+        if tuple(map(len, lists)) != aside.sizes:
+            raise ValueError("put_back: the placer is not as it was when the trial began")
+        for lst, more in zip(lists, aside.added):
+            lst.extend(more)
+        self.placed.clear()
+        self.placed.update(aside.placed)
+        for a in aside.artists:
+            self.ax.add_artist(a)
 
     # -- measuring ---------------------------------------------------------------------
     def box_of(self, text, pad: float = 1.0, pp: float | None = None):
