@@ -424,6 +424,8 @@ class _Drawing:
 #                                          may cross them and those of the links beneath it: the bar hides them)
         self.plan: int | None = None     # the driver's layout chosen (:meth:`turning_driver`), drawn again the same
         self.bare = not self.pl.soft     # nothing drawn in the panel before (a poles sheet's Kennedy lines are)
+        self.styles: dict = {}           # link -> its number's Text keywords (:meth:`number_style`)
+        self.radii: dict = {}            # (link, type size) -> its number's circle's radius (:meth:`number_radius`)
 
     # -- pieces ------------------------------------------------------------------------
     def patch(self, geom, role, zorder, facecolor, lw=None, gid=None, **kw):
@@ -991,35 +993,40 @@ class _Drawing:
         their places in a clear field are found first (:attr:`reserved`), and the driver's values keep off them.
         Where a link number then reads as another link's (:meth:`owned`: the values took the places by its short
         crank), the places the numbers find with the driver's arrows alone drawn are found first too, and the values
-        keep off those that read as their links' (a value has more room by its arrow than a number by its link)."""
+        keep off those that read as their links' (a value has more room by its arrow than a number by its link);
+        where that is no better, the first pass is put back as it was drawn (kept aside: the same artists, not drawn
+        again). A plate beneath a crank whose marks already do not read (:meth:`refused`) goes no further."""
         labelled = self.opts.label_points is None or self.opts.label_points
         if labelled and self.bare:   # (on a poles sheet the poles' labels, placed after, need that room too)
             with self.pl.trial():
                 self.reserved = self.point_labels(record=False)
-        drawn = {role: list(v) for role, v in self.art.items()}
-        with self.pl.trial():
+        drawn, aside = _roles(self.art), []
+        with self.pl.trial(aside):
             self.driver(ground_dir)      # before the link numbers, which then keep clear of its arrow
+            if self.refused():           # (its arrows across another link: whatever the numbers)
+                return None
             astray = _astray(self.link_numbers(geoms))
             self.pl.keep = not astray
         if not astray:
             return self.point_labels() if labelled else None
+        first = (_roles(self.art), self.astray)   # the first pass, kept aside (put back, not drawn again, below)
         self.art.clear()
         self.art.update(drawn)
         points = self.reserved
         with self.pl.trial():
             self.driver(ground_dir, values=False)
-            first = self.link_numbers(geoms, record=False)
+            alone = self.link_numbers(geoms, record=False)
         with self.pl.trial():            # kept where fewer numbers read as another link's
-            self.reserved = points + [b for b, ok in first.values() if ok]
+            self.reserved = points + [b for b, ok in alone.values() if ok]
             self.driver(ground_dir)
             self.reserved = points
             better = self.pl.keep = len(_astray(self.link_numbers(geoms))) < len(astray)
-        if not better:
+        if not better:   # the first pass as it was drawn
             self.art.clear()
-            self.art.update(drawn)
-            self.driver(ground_dir)
-            self.link_numbers(geoms)
-        if labelled:
+            self.art.update(first[0])
+            self.astray = first[1]
+            self.pl.back_to(aside[0])
+        if labelled and not self.refused():
             self.point_labels()
 
     def points(self, ground_dir):
@@ -1111,7 +1118,14 @@ class _Drawing:
     def number_style(self, lk) -> dict:
         """The Text keywords of a link's number: circled (by default); on slides, the circle no larger in
         radius than NUMBER_RADIUS bar widths (the type set smaller to fit), so that it is no bigger than
-        the link it names."""
+        the link it names. Found once per link for the drawing (each pass of :meth:`marks` asks again): a copy."""
+        if lk not in self.styles:
+            self.styles[lk] = self._number_style(lk)
+        kw = dict(self.styles[lk])
+        return kw if "bbox" not in kw else {**kw, "bbox": dict(kw["bbox"])}
+
+    def _number_style(self, lk) -> dict:
+        """:meth:`number_style`'s keywords, found (on slides, the type size by measuring the circle)."""
         st = self.st
         kw = dict(fontsize=st.small_size * 1.1, zorder=7)
         if self.opts.link_numbers != "circled":
@@ -1128,13 +1142,17 @@ class _Drawing:
         return kw
 
     def number_radius(self, lk, kw) -> float:
-        """The radius (data units) of a link number's circle drawn with ``kw``."""
-        t = self.ax.text(0, 0, literal(lk), ha="center", va="center", **kw)
-        r = self.pl.renderer
-        t.update_bbox_position_size(r)
-        bb = t.get_bbox_patch().get_window_extent(r)
-        t.remove()
-        return max(bb.width, bb.height) / 2 / self.ax.figure.dpi * 72 * self.pp
+        """The radius (data units) of a link number's circle drawn with ``kw`` (:meth:`number_style`'s, at its type
+        size or one tried there: measured once for the drawing)."""
+        key = (lk, kw["fontsize"])
+        if key not in self.radii:
+            t = self.ax.text(0, 0, literal(lk), ha="center", va="center", **kw)
+            r = self.pl.renderer
+            t.update_bbox_position_size(r)
+            bb = t.get_bbox_patch().get_window_extent(r)
+            t.remove()
+            self.radii[key] = max(bb.width, bb.height) / 2 / self.ax.figure.dpi * 72 * self.pp
+        return self.radii[key]
 
     def link_numbers(self, geoms, record: bool = True) -> dict:
         """Every moving link's number beside or on its own link: a bar's beside its middle, a plate's inside it, a
@@ -1185,10 +1203,10 @@ class _Drawing:
                     t = on_bar = self._number_on_bar(lk, pts, kw)
                 if t is None:
                     t = self._number_last(lk, pts, g, (anchor, mine), prefer, n, pad, kw, test, owned, bodies)
-            own = self.pl.of(t)   # (the box it keeps, its margin too: a value in it would send it elsewhere)
-            b = self._number_box(t) if own is None else own.box.union(self._number_box(t))
+            own, ring = self.pl.of(t), self._number_box(t)   # (the box it keeps, its margin too: a value in it
+            b = ring if own is None else own.box.union(ring)   # would send it elsewhere)
             out[lk] = (b if own is None or own.leader_geom is None else b.union(own.leader_geom),
-                       own is None or t is on_bar or test(self._number_box(t)))   # its circle, as drawn
+                       own is None or t is on_bar or test(ring))   # its circle, as drawn
             if record:
                 self.art.add("link_numbers", t)
         if record:
@@ -1197,9 +1215,20 @@ class _Drawing:
 
     def reads(self) -> bool:
         """Whether the marks read as drawn: every link number as its own link's (:meth:`owned`), every point label
-        as its point's (:meth:`off_links`) and the driver's arrows across no other link or block (a slider driver's:
-        but those pinned at its point, and its guide's plate off the slotted bar). A plate beneath a crank
-        (:attr:`under_cranks`) is kept only where they do."""
+        as its point's (:meth:`off_links`) and the driver's arrows across no other link or block
+        (:meth:`arrows_clear`). A plate beneath a crank (:attr:`under_cranks`) is kept only where they do."""
+        return not self.astray and self.arrows_clear()
+
+    def refused(self) -> bool:
+        """Whether a plate drawn beneath a crank (:attr:`beneath_cranks`) is refused already, as far as the marks
+        are drawn (:meth:`reads`: the driver's arrows across another link, or a number or label astray, which
+        nothing placed later mends): the drawing is thrown away (:func:`draw_mechanism`), so its marks go no
+        further."""
+        return bool(self.beneath_cranks) and not self.reads()
+
+    def arrows_clear(self) -> bool:
+        """Whether the driver's arrows cross no other link or block (a slider driver's: but those pinned at its
+        point, and its guide's plate off the slotted bar)."""
         from matplotlib.lines import Line2D
         drv = self.m.driver
         own = set(self.m.carriers.get(drv.slider, ())) if drv.is_slider else {drv.link}
@@ -1210,7 +1239,7 @@ class _Drawing:
         others = [g for k, g in bodies.items() if k not in own]
         arrows = [LineString(np.column_stack(a.get_data())) for a in self.art.get("driver", [])
                   if isinstance(a, Line2D) and len(a.get_xdata()) >= 2]
-        return not self.astray and not any(a.intersects(g) for a in arrows for g in others)
+        return not any(a.intersects(g) for a in arrows for g in others)
 
     def _number_last(self, lk, pts, g, anchors, prefer, n, pad: float, kw, test, owned: bool, bodies):
         """Link ``lk``'s number where no place off the lines reads as its own: where the first rule's place does not
@@ -1223,13 +1252,16 @@ class _Drawing:
             t = None if owned else self._link_number(lk, pts, g, mine, prefer, n if len(pts) >= 2 else None, pad,
                                                      kw, test)
             return t if t is not None else self._first_number(lk, pts, g, anchor, prefer, n, pad, kw)
-        with self.pl.trial():
+        aside = []
+        with self.pl.trial(aside):
             t = last()
             self.pl.keep = not self.pl.soft_hits(self._number_box(t))
         if self.pl.of(t):
             return t
-        t = self._number_beside(lk, bodies, mine, pad, kw, nearest=False)
-        return t if t is not None else last()
+        beside = self._number_beside(lk, bodies, mine, pad, kw, nearest=False)
+        if beside is None:   # (that placed nothing) the trial's place after all: put back, not placed again
+            self.pl.back_to(aside[0])
+        return t if beside is None else beside
 
     def _number_on_bar(self, lk, pts, kw):
         """Link ``lk``'s circled number on its own bar, where no free place beside the bar reads as its own: the
@@ -1733,25 +1765,28 @@ class _Drawing:
         return (sum(1 for arc in arcs if not view.contains(arc.buffer(0.5 * self.st.head_length * self.pp))),
                 sum(1 for arc in arcs for g in others if g.intersects(arc)))
 
-    def _plan_score(self, p, plan, texts, label_kw) -> tuple:
-        """How a plan's values read, lower is better (its arcs crossing nothing comes first:
+    def _plan_score(self, p, k, plan, texts, label_kw) -> tuple:
+        """How plan ``k``'s values read, lower is better (its arcs crossing nothing comes first:
         :meth:`_plan_crossings`): its values lie on no line (soft obstacle) and are placed, close to their arcs;
-        then the wider gaps."""
-        with self.pl.trial():
+        then the wider gaps. Returns (the score, the plan as drawn to score it: its artists, its values and the
+        trial's :class:`~velpoly.render.labels.Moment`, which :meth:`turning_driver` comes back to if it wins)."""
+        aside = []
+        with self.pl.trial(aside):
+            self.pl.placed["driver-plan"] = ("plan", k)   # (as the plan chosen is drawn)
             n_bad = len(self.pl.overlapping)
-            _, labels = self._draw_driver(p, plan, texts, label_kw)
+            arts, labels = self._draw_driver(p, plan, texts, label_kw)
             boxes = [self.pl.box_of(t, pad=0.0) for t in labels]
             lost = len(self.pl.overlapping) - n_bad
             on_lines = sum(self.pl.soft_hits(b) for b in boxes)
             far = sum(round(float(b.distance(Point(*(p + place.rad * _unit(place.mid))))) / self.pp / 6.0)
                       for b, place in zip(boxes, [q for q in plan if q is not None]))
-        return (lost, on_lines, far) + tuple(q.rank for q in plan if q is not None)
+        return (lost, on_lines, far) + tuple(q.rank for q in plan if q is not None), (arts, labels, aside[0])
 
-    def _best_plan(self, p, plans, family, texts, label_kw) -> int:
-        """The index of the plan to draw: of those whose arcs cross fewest (:meth:`_plan_crossings`), the one whose
-        values are all placed and on no line, in the first family (the widest gap's arc, then each radius's free
-        runs: :data:`ARC_RADII`) that has one; then closest to their arcs, in the widest gaps
-        (:meth:`_plan_score`). A later family is scored only where no earlier one has such a plan."""
+    def _best_plan(self, p, plans, family, texts, label_kw) -> tuple:
+        """The index of the plan to draw, and that plan as drawn to score it (:meth:`_plan_score`): of those whose
+        arcs cross fewest (:meth:`_plan_crossings`), the one whose values are all placed and on no line, in the first
+        family (the widest gap's arc, then each radius's free runs: :data:`ARC_RADII`) that has one; then closest to
+        their arcs, in the widest gaps. A later family is scored only where no earlier one has such a plan."""
         crossings = [self._plan_crossings(p, plan) for plan in plans]
         least = min(crossings)
         best = None
@@ -1759,13 +1794,13 @@ class _Drawing:
             for i in range(len(plans)):
                 if family[i] != fam or crossings[i] != least:
                     continue
-                score = self._plan_score(p, plans[i], texts, label_kw)
+                score, drawn = self._plan_score(p, i, plans[i], texts, label_kw)
                 key = score[:2] + (fam,) + score[2:]
                 if best is None or key < best[0]:
-                    best = (key, i)
+                    best = (key, i, drawn)
             if best is not None and best[0][:2] == (0, 0):
                 break
-        return best[1]
+        return best[1:]
 
     def curved_arrow(self, xy, gid, double=False) -> list:
         """An arrow along the points ``xy`` (its head at the last; a second head behind it when ``double``)."""
@@ -1816,16 +1851,27 @@ class _Drawing:
             plans += more
             family += [i] * len(more)
         pin = self.pl.pins.get("driver-plan")   # a step frame: the finished construction's layout (scored here, with
-        if pin is not None and pin[0] == "plan" and pin[1] < len(plans):   # its values at their pins, another may win)
+        drawn = None                             # its values at their pins, another may win)
+        if pin is not None and pin[0] == "plan" and pin[1] < len(plans):
             k = pin[1]
+        elif self.plan is not None:
+            k = self.plan
         else:
-            k = self.plan if self.plan is not None else self._best_plan(p, plans, family, texts, label_kw)
+            k, drawn = self._best_plan(p, plans, family, texts, label_kw)
         self.plan = k
-        self.pl.placed["driver-plan"] = ("plan", k)
-        best = plans[k]
-        arts, labels = self._draw_driver(p, best, texts, label_kw, values)
+        if drawn is not None and values:   # the plan as it was drawn to score it: put back, not drawn again
+            arts, labels, aside = drawn
+            self.pl.back_to(aside)
+        else:
+            self.pl.placed["driver-plan"] = ("plan", k)
+            arts, labels = self._draw_driver(p, plans[k], texts, label_kw, values)
         if values:
             self.art.add("driver", *arts, *labels)
+
+
+def _roles(art) -> dict:
+    """A copy of an :class:`~velpoly.render.canvas.Artists`' lists of artists by role, to restore it from."""
+    return {role: list(v) for role, v in art.items()}
 
 
 def _astray(numbers: dict) -> list:

@@ -157,10 +157,12 @@ class LabelPlacer:
         text.remove()
 
     @contextmanager
-    def trial(self):
+    def trial(self, aside: list | None = None):
         """Draw and place tentatively: on leaving, every label, obstacle, leader and artist added to the axes
-        inside is gone again (to score a layout before choosing it), unless ``keep`` was set inside."""
-        sizes = [(lst, len(lst)) for lst in (self.labels, self._hard, self.soft, self.overlapping, self.along)]
+        inside is gone again (to score a layout before choosing it), unless ``keep`` was set inside. With
+        ``aside`` (a list), the trial's drawing as it stood at its end is appended to it as a :class:`Moment`, which
+        :meth:`back_to` restores (a layout chosen after others were tried is not drawn again)."""
+        sizes = [(lst, len(lst)) for lst in self._lists()]
         placed = dict(self.placed)
         before = {id(a) for a in self.ax.get_children()}
         self.keep = False   # set inside to keep what was placed
@@ -168,13 +170,15 @@ class LabelPlacer:
             yield self
         finally:
             if not self.keep:
+                if aside is not None:
+                    aside.append(self.moment())
+                added = [a for a in self.ax.get_children() if id(a) not in before]
                 for lst, n in sizes:
                     del lst[n:]
                 self.placed.clear()
                 self.placed.update(placed)
-                for a in self.ax.get_children():
-                    if id(a) not in before:
-                        a.remove()
+                for a in added:
+                    a.remove()
             self.keep = False
 
     def moment(self) -> Moment:
@@ -214,6 +218,11 @@ class LabelPlacer:
             lst[:] = was
         self.placed.clear()
         self.placed.update(m.placed)
+
+    def _lists(self) -> tuple:
+        """The lists a trial adds to: the labels, the obstacles, the labels placed overlapping, the texts along
+        lines."""
+        return self.labels, self._hard, self.soft, self.overlapping, self.along
 
     # -- measuring ---------------------------------------------------------------------
     def box_of(self, text, pad: float = 1.0, pp: float | None = None):
