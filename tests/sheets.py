@@ -8,13 +8,19 @@ returns the same Figure afterwards. The figures are shared: a test only reads th
 figure draws its own with ``sheet.render_sheet``). Measure them inside ``rc_context(get_style(style))``
 (``styled(style)``), as they were drawn.
 
+``bare_page`` is a page with its space diagram unlabelled, for the tests that read no mark of it, and
+``unlabelled_mechanism()`` draws any sheet so (for a test that reads a sheet's table, captions or panels' places:
+the label placer is most of a space diagram's cost).
+
 With xdist, a page is drawn once per worker that asks for it; the tests of one style are kept on one
 worker by their ``on(style)`` mark (``xdist_group``, honoured by ``--dist loadgroup`` in pyproject's
 addopts): the two styles' pages are drawn side by side on the two workers, each page exactly once.
 """
 from __future__ import annotations
 
+import contextlib
 import functools
+from dataclasses import replace
 
 import pytest
 
@@ -81,3 +87,50 @@ def rendered(stem: str, sheet_name: str, style: str):
 def page(stem: str, sheet_name: str, style: str):
     """The Figure of one sheet of the example ``stem`` in ``style``, drawn once per process. Read only."""
     return rendered(stem, sheet_name, style).figure
+
+
+@functools.cache
+def bare_page(stem: str, sheet_name: str, style: str):
+    """The Figure of one sheet of the example ``stem`` in ``style`` with its space diagram unlabelled
+    (:func:`unlabelled_mechanism`), drawn through once per process, for a test that reads its poles, their
+    arrows and labels' words, its Kennedy lines or its layout, and no point label, link number or place of a
+    label, on a page no other test reads whole (the textbook poles pages of Example 3.4, Problem 1.4.4 and the
+    crank shaper, read by test_render's pole tests alone: 1.1, 0.35 and 0.55 CPU s whole, 0.5, 0.25 and 0.3
+    bare; their pole arrows, Kennedy lines, labels' words, panels, table and captions compared equal). Read only."""
+    from velpoly.render import sheet
+    from velpoly.render.style import get_style
+    with styled(style), unlabelled_mechanism():
+        fig = sheet.render(solved(stem), sheet_name, get_style(style), cons=constructions(stem, sheet_name)).figure
+        fig.draw_without_rendering()
+    return fig
+
+
+@contextlib.contextmanager
+def unlabelled_mechanism():
+    """Sheets drawn inside draw their space diagram (the mechanism panel, and the mechanism under a poles
+    panel's poles) without point labels and link numbers (``mechanisms.shapes_only``'s options, the sheet's own
+    otherwise), for a test that reads a sheet's table, captions, step caption or panels' places and no mark of
+    the mechanism. The label placer is most of a space diagram's cost (a sheet 2 to 3 times cheaper); nothing
+    else depends on those marks: the sheet is planned (its panels' places and scales, its table) before any
+    panel is drawn, the space diagram's and the poles drawing's views are set before their marks are placed,
+    and the polygons and the Kennedy circle are drawn on axes of their own. Compared equal with and without
+    the labels on the 13 generated sheets of test_table_blocks and test_table_page (issue 19, the sheet
+    tests): every axes' place, the space diagrams' views, every text (with its box) and line of the table,
+    polygon and Kennedy circle panels, every caption, whether the sheet has a table page."""
+    from velpoly.render import sheet
+    from velpoly.render.options import drawing_options
+    real_mechanism, real_poles = sheet.draw_mechanism, sheet.draw_poles
+
+    def bare(sol, options):
+        return replace(options or drawing_options(sol.mechanism), label_points=(), link_numbers="none")
+
+    def mechanism(sol, ax=None, *, options=None, **kw):
+        return real_mechanism(sol, ax, options=bare(sol, options), **kw)
+
+    def poles(sol, ax=None, *, options=None, **kw):
+        return real_poles(sol, ax, options=bare(sol, options), **kw)
+    sheet.draw_mechanism, sheet.draw_poles = mechanism, poles
+    try:
+        yield
+    finally:
+        sheet.draw_mechanism, sheet.draw_poles = real_mechanism, real_poles

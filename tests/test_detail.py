@@ -189,7 +189,7 @@ def test_step_frames_keep_the_finished_detail():
         frame = next(p for p in ax.patches if p.get_gid() == "detail-frame")
         cap = next(t for t in ax.texts if t.get_gid() == "detail-caption")
         return tuple(np.round(frame.get_bbox().bounds, 9)), cap.get_text(), ax.get_xlim(), ax.get_ylim()
-    with rc_context(st):
+    with rc_context(st), sheets.unlabelled_mechanism():   # the velocity polygon's detail read
         last = sheet.render_sheet(sol, "velocity", st, cons=cons, frame=fr[-1])
         first = sheet.render_sheet(sol, "velocity", st, cons=cons, frame=fr[0], pins=last._velpoly_pins)
     assert detail(first) == detail(last)

@@ -251,7 +251,7 @@ def test_steps_keep_the_answers_to_the_last_frame():
     cons = sheet.constructions(sol, "poles")
     frames = sheet.frames("poles", cons, True)
     assert [f.table for f in frames] == [False] * (len(frames) - 1) + [True]
-    with rc_context(st):
+    with rc_context(st), sheets.unlabelled_mechanism():   # the table and the Kennedy circle read
         last = sheet.render_sheet(sol, "poles", st, cons=cons, frame=frames[-1])
         figs = [sheet.render_sheet(sol, "poles", st, cons=cons, frame=f, pins=last._velpoly_pins)
                 for f in frames[:-1]] + [last]
@@ -272,7 +272,7 @@ def test_steps_keep_the_answers_to_the_last_frame():
     sol6 = velpoly.solve(velpoly.load(example("ex3_6_fourbar")))
     cons6 = sheet.constructions(sol6, "velocity")
     fr = sheet.frames("velocity", cons6, True)
-    with rc_context(st):
+    with rc_context(st), sheets.unlabelled_mechanism():
         first = sheet.render_sheet(sol6, "velocity", st, cons=cons6, frame=fr[0])
     assert not any(t.get_gid() == "results-table" for ax in first.axes for t in ax.texts)
 
@@ -317,7 +317,7 @@ def test_generated_sheets_show_every_book_row():
         refs = sum(1 for r in t.rows if r[t.header.index("reference")])
         assert refs >= 6, f"{sp.kind}: {refs} rows with a book's value"
         st = get_style(style)
-        with rc_context(st):
+        with rc_context(st), sheets.unlabelled_mechanism():   # the table and the panels' boxes read
             fig = sheet.render_sheet(sol, "full", st, cons=cons)
         table = next(ax for ax in fig.axes if ax.get_label() == "table")
         more = [int(x.get_text().split()[1]) for x in table.texts if "more rows" in x.get_text()]

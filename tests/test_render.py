@@ -444,20 +444,22 @@ def test_poles_are_drawn_where_they_are(sixbar):
     _no_overlaps(ax, art["labels"] + art["link_numbers"] + [a for a in art["far"] if hasattr(a, "get_text")])
 
 
-@pytest.mark.parametrize("stem,key", [("problem_1_4_4_sixbar", "0-4"), ("ex3_4_slotted_lever", "4-5"),
-                                      ("watt_sixbar", "1-3")])
+@pytest.mark.parametrize("stem,key,whole", [("problem_1_4_4_sixbar", "0-4", False),
+                                            ("ex3_4_slotted_lever", "4-5", False), ("watt_sixbar", "1-3", True)])
 @sheets.on("textbook")
-def test_far_pole_arrow_stands_on_its_kennedy_line_at_the_border(stem, key):
+def test_far_pole_arrow_stands_on_its_kennedy_line_at_the_border(stem, key, whole):
     """A finite pole too far to show is an arrow at the panel's border, on a Kennedy line that located it
     where that line leaves the view, pointing along it towards the pole: a reader follows it to the pole
-    (it used to stand beside the mechanism, on no line: P_04 of Problem 1.4.4 by the slider)."""
+    (it used to stand beside the mechanism, on no line: P_04 of Problem 1.4.4 by the slider). The poles page
+    with its space diagram unlabelled (``sheets.bare_page``: the arrows, Kennedy lines and labels' words read),
+    the Watt six-bar's whole (``whole``: test_mechanism_labels_keep_off_the_kennedy_lines reads its labels)."""
     pytest.importorskip("velpoly.poles")
     from shapely.geometry import LineString, Point
     from velpoly.render.canvas import view_box
     sol = sheets.solved(stem)
     pole = sheets.constructions(stem, "poles").poles.poles[key]
     assert pole.position is not None
-    fig = sheets.page(stem, "poles", "textbook")      # drawn once per worker, shared (tests/sheets.py)
+    fig = (sheets.page if whole else sheets.bare_page)(stem, "poles", "textbook")   # once per worker, shared
     ax = next(a for a in fig.axes if any((ln.get_gid() or "").startswith("kennedy-line-") for ln in a.lines))
     view = view_box(ax)
     assert not view.contains(Point(*pole.position))
@@ -621,27 +623,31 @@ def test_steps_write_numbered_files_and_pdf_pages(sixbar, tmp_path):
     assert frames[1].caption.startswith("Step 2: ") and r"$V_{CB}$" in frames[1].caption
     small = sheets.solved("ex3_5_slider_crank")
     cons = sheet.constructions(small, "full")
-    files = sheet.draw_to_file(small, tmp_path / "v.svg", "velocity", steps=True, cons=cons)
+    with sheets.unlabelled_mechanism():   # the files, their captions and pages read, not the space diagram's marks
+        files = sheet.draw_to_file(small, tmp_path / "v.svg", "velocity", steps=True, cons=cons)
+        pdf = sheet.draw_to_file(small, tmp_path / "a.pdf", "acceleration", steps=True, cons=cons)[0]
     n = len(cons.velocity.steps)
     assert n >= 3 and [p.name for p in files] == [f"v-{i:02d}.svg" for i in range(1, n + 1)]
     assert all(p.exists() for p in files)
     assert all('id="step-caption"' in p.read_text() for p in files)
-    pdf = sheet.draw_to_file(small, tmp_path / "a.pdf", "acceleration", steps=True, cons=cons)[0]
     assert pdf.read_bytes().count(b"/Type /Page\n") + pdf.read_bytes().count(b"/Type /Page ") >= \
         len(cons.acceleration.steps)
 
 
-@pytest.mark.parametrize("stem,largest,style", [pytest.param(*p, marks=sheets.on(p[2])) for p in (
-    ("ex3_6_fourbar", 10.0, "textbook"), ("crank_shaper", 80.0, "textbook"), ("ex3_7_instant_centres", 10.0, "slides"))])
-def test_poles_sheet_layouts_draw_the_mechanism_large(stem, largest, style):
+@pytest.mark.parametrize("stem,largest,style,whole", [pytest.param(*p, marks=sheets.on(p[2])) for p in (
+    ("ex3_6_fourbar", 10.0, "textbook", True), ("crank_shaper", 80.0, "textbook", False),
+    ("ex3_7_instant_centres", 10.0, "slides", True))])
+def test_poles_sheet_layouts_draw_the_mechanism_large(stem, largest, style, whole):
     """The poles sheet picks the layout drawing the mechanism largest; the panels never overlap and stay on
     the page, and the table keeps its full type size (ex3_6's far P_24 used to shrink the mechanism to
     1 cm = 15 mm). Example 3.7's poles sheet in slides, the gallery's own page (1 cm = 10 mm; 8 in textbook,
-    drawn for this test alone until issue 19 item 7)."""
+    drawn for this test alone until issue 19 item 7). The gallery's pages whole (``whole``, test_render_gallery
+    reads them), the crank shaper's, read here alone, with its space diagram unlabelled (``sheets.bare_page``:
+    the layout read)."""
     pytest.importorskip("velpoly.poles")
     from shapely.geometry import box as sbox
     st = sheet.get_style(style)
-    fig = sheets.page(stem, "poles", style)      # drawn once per worker, shared (tests/sheets.py)
+    fig = (sheets.page if whole else sheets.bare_page)(stem, "poles", style)   # once per worker, shared
     axes = {ax.get_label(): ax for ax in fig.axes}
     assert view_scale(axes["poles"]) <= largest
     rects = {k: sbox(*ax.get_position().bounds[:2], *(np.add(ax.get_position().bounds[:2],
@@ -820,17 +826,23 @@ def test_legend_lists_only_the_kinds_drawn(sixbar):
 @pytest.fixture(scope="module")
 def slide_frames(sixbar):
     """The six-bar's first and last --steps frames in slides, of the full and the poles sheets (the first drawn
-    as --steps draws it, with the last frame's pins), shared by the frame tests. Read only."""
+    as --steps draws it, with the last frame's pins), shared by the frame tests; the poles sheet's with its
+    space diagram unlabelled (``sheets.unlabelled_mechanism``: only its page's texts and panels' places are
+    read). Read only."""
     m, sol = sixbar
     cons = _cons(sol)
     st = sheet.get_style("slides")
-    out = {}
     with rc_context(st):
-        for name in ("full", "poles"):
-            fr = sheet.frames(name, cons, True)
-            last = sheet.render_sheet(sol, name, st, cons=cons, frame=fr[-1])
-            out[name] = (sheet.render_sheet(sol, name, st, cons=cons, frame=fr[0], pins=last._velpoly_pins), last)
-    return out
+        full = _first_and_last(sol, "full", st, cons)
+        with sheets.unlabelled_mechanism():
+            return {"full": full, "poles": _first_and_last(sol, "poles", st, cons)}
+
+
+def _first_and_last(sol, name, st, cons):
+    """The first and the last --steps frames of the sheet ``name`` (the first with the last's pins)."""
+    fr = sheet.frames(name, cons, True)
+    last = sheet.render_sheet(sol, name, st, cons=cons, frame=fr[-1])
+    return sheet.render_sheet(sol, name, st, cons=cons, frame=fr[0], pins=last._velpoly_pins), last
 
 
 @pytest.mark.xdist_group("render-slide-frames")   # one worker draws slide_frames
@@ -857,7 +869,7 @@ def test_long_step_caption_in_two_lines():
     cons = sheet.constructions(sol, "full")
     fr = sheet.frames("full", cons, True)
     short, long = min(fr, key=lambda f: len(f.caption)), max(fr, key=lambda f: len(f.caption))
-    with rc_context(st):
+    with rc_context(st), sheets.unlabelled_mechanism():   # the page's texts and the panels' places read
         figs = [sheet.render_sheet(sol, "full", st, cons=cons, frame=f) for f in (short, long)]
     caps = [next(t for t in fig.texts if t.get_gid() == "step-caption") for fig in figs]
     assert "\n" not in caps[0].get_text() and caps[0].get_fontsize() == pytest.approx(st.font_size * 1.1)
@@ -884,7 +896,8 @@ def test_long_captions_fit_their_columns():
     from velpoly.render.sheet import fit_width
     st = sheet.get_style("slides")
     with rc_context(st):
-        fig = sheet.render_sheet(sol, "full", st, cons=_cons(sol))
+        with sheets.unlabelled_mechanism():   # the page's texts and the panels' places read
+            fig = sheet.render_sheet(sol, "full", st, cons=_cons(sol))
         cap = next(t for t in fig.texts if t.get_gid() == "caption-acceleration")
         cap.set_text("Acceleration polygon   (1 cm = 20000 mm/s²)")
         cap.set_fontsize(st.font_size)
@@ -948,13 +961,13 @@ def test_frames_put_everything_where_the_finished_construction_has_it(slide_fram
 def test_poles_at_infinity_are_labelled_arrows_beyond_the_mechanism():
     """Each pole at infinity is an arrow pointing its way, beyond the mechanism (at the border of the
     drawing), labelled 'P_ij ∞'; a finite pole out of reach is labelled with its position, minus signs
-    and all (ex3_4: P_16, P_17, P_67 at infinity, P_45 far away). Its poles page (tests/sheets.py, shared
-    with the far-pole test): read only."""
+    and all (ex3_4: P_16, P_17, P_67 at infinity, P_45 far away). Its poles page with its space diagram
+    unlabelled (``sheets.bare_page``, shared with the far-pole test): read only."""
     pytest.importorskip("velpoly.poles")
     from velpoly.render.displacement import mechanism_bounds
     sol = sheets.solved("ex3_4_slotted_lever")
     ps = sheets.constructions("ex3_4_slotted_lever", "poles").poles
-    fig = sheets.page("ex3_4_slotted_lever", "poles", "textbook")
+    fig = sheets.bare_page("ex3_4_slotted_lever", "poles", "textbook")
     ax = next(a for a in fig.axes if any((ln.get_gid() or "").startswith("kennedy-line-") for ln in a.lines))
     x0, y0, x1, y1 = mechanism_bounds(sol)
     inside = box(x0, y0, x1, y1)

@@ -44,7 +44,8 @@ def _width(lay, chunks) -> float:
 
 
 def _drawn(sol, name, style, cons, monkeypatch):
-    """The sheet ``name`` of ``sol`` in ``style``: (figure, the measured layout of the table it draws)."""
+    """The sheet ``name`` of ``sol`` in ``style``: (figure, the measured layout of the table it draws); its space
+    diagram without its marks (``sheets.unlabelled_mechanism``: the table and the panels' places are read)."""
     drawn = []
     real = sheet._draw_table
 
@@ -54,7 +55,7 @@ def _drawn(sol, name, style, cons, monkeypatch):
         return art
     monkeypatch.setattr(sheet, "_draw_table", spy)
     st = get_style(style)
-    with rc_context(st):
+    with rc_context(st), sheets.unlabelled_mechanism():   # the table and the panels' places read, not the marks
         fig = sheet.render_sheet(sol, name, st, cons=cons)
         fig.draw_without_rendering()
     monkeypatch.undo()

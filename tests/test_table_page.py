@@ -92,11 +92,12 @@ def _book(which: int):
 @functools.cache
 def _drawn(which: int, style: str, name: str):
     """(solution, constructions, ``sheet.render``'s result) of a book specimen's sheet, drawn once a process for
-    both tests that read it (their xdist group keeps them on one worker). Read only."""
+    both tests that read it (their xdist group keeps them on one worker); its space diagram without its marks
+    (``sheets.unlabelled_mechanism``: both read the table and the panels' places). Read only."""
     sol = _book(which)
     cons = sheet.constructions(sol, name)
     st = get_style(style)
-    with rc_context(st):
+    with rc_context(st), sheets.unlabelled_mechanism():
         return sol, cons, sheet.render(sol, name, st, cons=cons)
 
 
@@ -159,10 +160,11 @@ def test_the_table_page_is_written(tmp_path):
     OUT-table.svg with the footnotes the sheet could not hold."""
     sol = sheets.solved("ex3_8_instant_centres_cw")
     cons = sheets.constructions("ex3_8_instant_centres_cw", "poles")
-    written = sheet.draw_to_file(sol, tmp_path / "ic.svg", "poles", "slides", cons=cons)
+    with sheets.unlabelled_mechanism():   # the files and their tables read, not the space diagram's marks
+        written = sheet.draw_to_file(sol, tmp_path / "ic.svg", "poles", "slides", cons=cons)
+        pdf = sheet.draw_to_file(sol, tmp_path / "ic.pdf", "poles", "slides", cons=cons)
     assert [p.name for p in written] == ["ic.svg", "ic-table.svg"]
     assert "footnote-4" in written[1].read_text() and "footnote-4" not in written[0].read_text()
-    pdf = sheet.draw_to_file(sol, tmp_path / "ic.pdf", "poles", "slides", cons=cons)
     assert pdf == [tmp_path / "ic.pdf"]
     assert pdf[0].read_bytes().count(b"/Type /Page\n") + pdf[0].read_bytes().count(b"/Type /Page ") == 2
 
