@@ -116,8 +116,8 @@ def _poles_drawing(sol, st):
 # cluster of seven that found no free place within the far rings (32a440d gave it a longer leader: labels.REACH_RINGS),
 # was cut by issue 19 item 7: with REACH_RINGS emptied by hand its drawing has no text on a line or leader all the
 # same (the placer's later passes find it a place), so it no longer failed on its defect, and it was the suite's
-# costliest drawing (7 to 12 CPU s); with REACH_RINGS emptied test_fig17_leaders' crowded six-bars 3 and 14 have
-# crossing leaders (2 and 3) and fail
+# costliest drawing (7 to 12 CPU s); with REACH_RINGS emptied test_fig17_leaders' crowded six-bars 3 and 14 had
+# crossing leaders (2 and 3) then, and on 7d0e9a2 no dense drawing fails with it emptied (the later passes clear them)
 CROWDS = (7, 23)
 
 
