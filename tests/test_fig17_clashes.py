@@ -19,9 +19,8 @@ from matplotlib.backends.backend_agg import FigureCanvasAgg
 from matplotlib.figure import Figure
 from shapely.geometry import LineString, Point, box
 
-import velpoly
+import sheets
 import zoo
-from paths import example
 from velpoly.poles import locate_poles
 from velpoly.render.canvas import fit_view, renderer_of
 from velpoly.render.kennedy import draw_kennedy_circle
@@ -99,7 +98,7 @@ def generated():
 def test_gallery_chord_numbers_clear(stem, style, side, scale):
     """The gallery's crowded circles, as their poles sheets draw them: every found chord numbered, no number on
     another chord, text or leader."""
-    sol = velpoly.solve(velpoly.load(example(stem)))
+    sol = sheets.solved(stem)   # solved once a process (Example 3.4 for both styles; the gallery's tests too)
     ax, art = circle(sol, style, side, scale)
     found = [p for p in locate_poles(sol).poles.values() if p.order > 0]
     assert len(art["numbers"]) == len(found) >= 8
