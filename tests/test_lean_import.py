@@ -35,3 +35,35 @@ def test_program_draws_the_same_bytes_as_python(tmp_path):
     assert proc.returncode == 0, proc.stderr
     assert main(["draw", str(EXAMPLE), "--sheet", "poles", "-o", str(full)]) == 0
     assert lean.read_bytes() == full.read_bytes()
+
+
+class _Leaned(BaseException):
+    """Raised by the stand-in for the lean import: the command has asked for it, and stops there."""
+
+
+def test_every_command_that_draws_imports_matplotlib_lean_as_the_program(tmp_path, monkeypatch):
+    """Each command line of the program that draws with matplotlib asks for the lean import before it
+    draws (``sweep``'s plot and GIF, ``animate`` and ``demo`` imported it in full: 0.4 CPU s more a run).
+    In this process, as the program (``main()``, its arguments from sys.argv); the stand-in stops the
+    command where it asks, so nothing is drawn."""
+    import velpoly.render.lean as lean
+
+    def stand_in(freeze=False):
+        raise _Leaned(freeze)
+    monkeypatch.setattr(lean, "import_matplotlib", stand_in)
+    monkeypatch.chdir(tmp_path)
+    f = str(EXAMPLE)
+    lines = [["draw", f, "-o", "s.svg"], ["sweep", f, "--step", "60", "-o", "c.svg"],
+             ["sweep", f, "--step", "60", "--gif", "c.gif"], ["animate", f, "--step", "60", "-o", "a.gif"],
+             ["demo", "-o", "d"], ["gallery", "-o", "g", "crank_slider"]]
+    asked = []
+    for line in lines:
+        monkeypatch.setattr(sys, "argv", ["velpoly", *line])
+        try:
+            main()
+        except _Leaned as e:
+            asked.append((line[0], e.args))
+        else:
+            asked.append((line[0], "drawn in full"))
+    assert asked == [(line[0], (True,)) for line in lines]
+    assert list(tmp_path.iterdir()) == []

@@ -321,6 +321,7 @@ def cmd_sweep(args) -> int:
             from .report import cycle_csv
             written.append(atomic_write_text(csv_out, cycle_csv(sw, cen)))
         if plot_out or gif_out:
+            _lean_matplotlib(args)
             from .render.sweep import plot_cycle, write_gif
             if plot_out:
                 written.append(plot_cycle(sw, plot_out, points, cen, style, kin))
@@ -450,6 +451,7 @@ def cmd_animate(args) -> int:
         raise InputError(f"an MP4 needs an even width and height, got {size[0]}x{size[1]}", where="--size",
                          hint="e.g. --size 1920x1080")
     from . import load
+    _lean_matplotlib(args)
     from .render.animate import Animator, plan_frames, write_animation, mp4_writer
     if suffix == ".mp4":
         mp4_writer()             # the missing extra is said before any work
@@ -498,6 +500,7 @@ def cmd_demo(args) -> int:
     out = Path(args.output or "out")
     for suffix in (".svg", ".png", "-results.txt", "-results.md"):   # a folder in the way: refused before any work
         check_output(out / f"{DEMO_OUTPUT}{suffix}")
+    _lean_matplotlib(args)
     with committed_together():   # the four files all, or none of them
         m, written = build_demo(out, args.style or "textbook")
     book = f"the book's values ({m.reference.source})" if m.reference.source else "the book's values"
