@@ -244,8 +244,10 @@ def share_rectangle_transforms(ax):
 
 
 def add_axes(fig, rect, **kw):
-    """``fig.add_axes(rect, **kw)``, its artists clipped by one kept transform (:func:`share_rectangle_transforms`)."""
-    return share_rectangle_transforms(fig.add_axes(rect, **kw))
+    """``fig.add_axes(rect, **kw)``, a :class:`~velpoly.render.panelaxes.PanelAxes` (its ticks made when first asked
+    for), its artists clipped by one kept transform (:func:`share_rectangle_transforms`)."""
+    from .panelaxes import PanelAxes
+    return share_rectangle_transforms(fig.add_axes(rect, axes_class=PanelAxes, **kw))
 
 
 _MATRICES: dict = {}   # (angle, slant, extend) -> FreeType's 16.16 matrix of a glyph, as matplotlib computes it
