@@ -81,3 +81,73 @@ def test_a_poles_printed_position_is_compared_as_a_position():
     assert rows[0].deviation < 1e-9 and rows[0].printed == pytest.approx(tuple(p))
     with pytest.raises(velpoly.VelpolyError, match=r"pole's position \[x, y\], got a number"):
         velpoly.load({**sp.mech, "reference": {"values": {f"P_{i}{j}": math.hypot(*p)}}})
+
+
+# -- 2. driver rates at the edges of floating point ---------------------------------------------------------------
+def rewritten(mech: dict, key: str, text: str) -> str:
+    """``mech``'s TOML with the driver's ``key`` written as ``text`` (a number's text, as TOML reads it)."""
+    lines = to_toml({**mech, "driver": {**mech["driver"], key: 1.0}}).splitlines()
+    at = lines.index('["driver"]')
+    k = next(i for i in range(at, len(lines)) if lines[i].startswith(f'"{key}" = '))
+    lines[k] = f'"{key}" = {text}'
+    return "\n".join(lines) + "\n"
+
+
+def slider_driven(count: int) -> list[dict]:
+    import zoo
+    rng = np.random.default_rng(5)
+    return [zoo.specimen(rng, kind, variant).mech
+            for kind, variant in (("slider-crank", "offset slider"), ("slider-crank", "curved slider"),
+                                  ("inverted slider-crank", "offset block slider"))[:count]]
+
+
+def test_a_driver_rate_written_nonzero_that_reads_as_zero_is_too_small(tmp_path):
+    """``omega = 1e-400`` was read as 0, a driver at rest, silently; and ``"1e-400 rpm"``, ``"1e-322 deg/s"``
+    alike (the unit's factor takes a denormal to 0)."""
+    mechs = [sp.mech for sp in each(2026, 4)] + slider_driven(3)
+    f = tmp_path / "m.toml"
+    checked = 0
+    for mech in mechs:
+        keys = ("speed", "accel") if "slider" in mech["driver"] else ("omega", "alpha")
+        for key in keys:
+            rates = ("1e-400", "-2.5E-999", '"1e-322 deg/s"' if key == "omega" else "-7e-330") \
+                if key != "alpha" else ("1e-400", '"1e-400 rad/s^2 cw"')
+            for text in rates:
+                f.write_text(rewritten(mech, key, text))
+                r = in_process(["solve", f])
+                assert r.returncode == 2 and f"driver.{key}" in r.stderr and "too small" in r.stderr, (text, r.stderr)
+                checked += 1
+            for zero in ("0e-400", "-0.0"):   # zero written as zero: read as zero
+                f.write_text(rewritten(mech, key, zero))
+                value = velpoly.load(f).driver
+                assert getattr(value, key) == 0 and "0e" not in str(getattr(value, key))
+    assert checked == 4 * 5 + 3 * 6
+
+
+def test_the_apis_real_numbers_are_read_and_its_masked_angles_refused():
+    """``angle=Decimal("30")`` was refused though a Decimal is a real number; ``np.longdouble("1e400")`` said
+    "must be finite" (it is finite: too large); a masked array's masked values were swept."""
+    import decimal
+    import fractions
+    for sp in each(2026, 2):
+        m, a = sp.drawn.mechanism, sp.drawn.driver_angle
+        if a is None:
+            continue
+        want = velpoly.solve(m, angle=a + 1.0).to_dict()
+        for written in (decimal.Decimal(repr(a + 1.0)), np.longdouble(a + 1.0), fractions.Fraction(a + 1.0)):
+            assert velpoly.solve(m, angle=written).to_dict() == want, written
+        for beyond in (np.longdouble("1e400"), decimal.Decimal("-1e400")):
+            with pytest.raises(velpoly.VelpolyError, match="too large") as e:
+                velpoly.solve(m, angle=beyond)
+            assert isinstance(e.value, ValueError) and e.value.where == "angle" and "1e+400" in str(e.value)
+        angles = a + np.arange(0.0, 4.0)
+        w = velpoly.sweep(m, [decimal.Decimal(repr(float(x))) for x in angles])
+        assert np.array_equal(w.angles, velpoly.sweep(m, angles).angles)
+        with pytest.raises(velpoly.VelpolyError, match="too large"):
+            velpoly.sweep(m, np.array([a, np.longdouble("1e400")], dtype=np.longdouble))
+        masked = np.ma.masked_array(np.r_[angles, 1e9], mask=[0, 0, 0, 0, 1])
+        with pytest.raises(ValueError, match="masked") as e:
+            velpoly.sweep(m, masked)
+        assert e.value.where == "angles"
+        w = velpoly.sweep(m, np.ma.masked_array(angles))   # nothing masked: its values
+        assert np.array_equal(w.angles, angles)
