@@ -151,3 +151,25 @@ def test_the_apis_real_numbers_are_read_and_its_masked_angles_refused():
         assert e.value.where == "angles"
         w = velpoly.sweep(m, np.ma.masked_array(angles))   # nothing masked: its values
         assert np.array_equal(w.angles, angles)
+
+
+# -- 3. messages that mislead ------------------------------------------------------------------------------------
+def test_a_cycle_of_a_driver_at_rest_is_refused_with_the_hint_to_give_it_a_rate(tmp_path):
+    """animate, html and sweep --gif of a driver at rest (omega = 0, alpha given: a start from rest) suggested
+    ``draw --sheet acceleration``, which draws one instant, not the cycle asked for: what helps is a rate."""
+    crank = next(each(2026, 1)).mech
+    mechs = [crank] + slider_driven(1)
+    f = tmp_path / "m.toml"
+    for mech, accel in ((m, a) for m in mechs for a in (0.0, 3.0)):
+        rate = "speed" if "slider" in mech["driver"] else "omega"
+        f.write_text(to_toml({**mech, "driver": {**mech["driver"], rate: 0.0,
+                                                 "accel" if rate == "speed" else "alpha": accel}}))
+        commands = [["animate", f, "-o", tmp_path / "a.gif", "--sheet", "velocity"],
+                    ["sweep", f, "--gif", tmp_path / "s.gif"]] + ([] if accel else [["html", f, "-o", tmp_path / "a.html"]])
+        for args in commands:
+            r = in_process(args)
+            assert r.returncode == 2 and f"driver.{rate}" in r.stderr, (args, r.stderr)
+            assert f"give the driver a rate ({rate})" in r.stderr and "--sheet" not in r.stderr, (args, r.stderr)
+        if accel:   # one instant's sheets: the start from rest has its acceleration sheet
+            r = in_process(["draw", f, "-o", tmp_path / "a.svg", "--sheet", "velocity"])
+            assert r.returncode == 2 and "draw --sheet acceleration" in r.stderr, r.stderr
