@@ -750,9 +750,6 @@ class Animator:
         box = self.boxes[kind]
         scale = self._fit(ax, box, margin=0.07)
         setattr(self, f"{kind}_scale", scale)
-        limits = (*ax.get_xlim(), *ax.get_ylim())
-        self.reduction = getattr(self, "reduction", {})
-        self.reduction[kind] = [reduction(_polygon_points(p), limits) for p in polys]   # divisors of the scale
         pc, pp = per_cm(ax), per_point(ax)
         st = self.st
         self._scale_bar(ax, 1 if kind == "velocity" else 2)      # in the lower left corner, in every frame
@@ -789,14 +786,10 @@ class Animator:
             t = ax.annotate(tex(lab), (0, 0), xytext=(0, 0), textcoords="offset points", ha="center",
                             va="center", fontsize=self.pt(24), fontstyle="italic", zorder=7)
             labels[key] = self._move(t, ax)
-        # a frame whose polygon the panel cannot hold at the scale (a toggle's surge) says, beside the scale bar, at
-        # what part of the scale it is drawn
-        note = ax.text(0.99, 0.01, "", transform=ax.transAxes, ha="right", va="bottom", fontsize=self.pt(18),
-                       color="0.3", fontstyle="italic", zorder=8)
         self._poly_art = getattr(self, "_poly_art", {})
         self._poly_art[kind] = {"shades": shades, "arrows": arrows, "labels": labels, "ax": ax,
                                 "head": st.head_length * 1.6 * pp, "lw": self.pt(3.0), "pp": pp,
-                                "note": self._move(note, ax)}
+                                "note": self._reduced(ax, kind)}
         if kind == "acceleration" and len([k for k in kinds if k != "absolute"]) >= 1:
             from .style import KIND_LABELS
             handles = []
@@ -806,6 +799,17 @@ class Animator:
                 handles.append(Line2D([], [], lw=self.pt(3.0) * f, linestyle=ls, color=st.ink if colour is None else colour))
             ax.legend(handles, [KIND_LABELS[k] for k in shown], loc="upper right", fontsize=self.pt(16),
                       handlelength=3.0, borderaxespad=0.0, frameon=False)
+
+    def _reduced(self, ax, kind: str):
+        """Each frame's divisor of the panel's scale (``self.reduction[kind]``, :func:`reduction`: a frame whose
+        polygon the panel cannot hold at the scale, a toggle's surge, is drawn at 1/n of it) and the note, beside
+        the scale bar, that says so in such a frame (returned)."""
+        limits = (*ax.get_xlim(), *ax.get_ylim())
+        self.reduction = getattr(self, "reduction", {})
+        self.reduction[kind] = [reduction(_polygon_points(p), limits) for p in self.polys[kind]]
+        note = ax.text(0.99, 0.01, "", transform=ax.transAxes, ha="right", va="bottom", fontsize=self.pt(18),
+                       color="0.3", fontstyle="italic", zorder=8)
+        return self._move(note, ax)
 
     def _arrow(self, kind: str, key, vkind: str):
         """The pooled arrow ``key`` of the polygon panel ``kind`` (made on first use)."""
