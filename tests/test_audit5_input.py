@@ -121,6 +121,12 @@ def test_a_driver_rate_written_nonzero_that_reads_as_zero_is_too_small(tmp_path)
                 value = velpoly.load(f).driver
                 assert getattr(value, key) == 0 and "0e" not in str(getattr(value, key))
     assert checked == 4 * 5 + 3 * 6
+    # a radius alike (it is positive as written): too small, not "must be positive, got 0"
+    import re
+    text = re.sub(r'("circles" = \[\["\w+", )[^\]]+\]', r"\g<1>1e-400]", to_toml(mechs[0]), count=1)
+    f.write_text(text)
+    r = in_process(["solve", f])
+    assert r.returncode == 2 and ".circles" in r.stderr and "1e-400 is too small" in r.stderr, r.stderr
 
 
 def test_the_apis_real_numbers_are_read_and_its_masked_angles_refused():

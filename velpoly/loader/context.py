@@ -174,6 +174,9 @@ def read_number(ctx: Ctx, where: str, v: Any, positive: bool = False, allow_zero
     x = float(v)
     if not math.isfinite(x):
         raise ctx.err(where, f"expected a finite number, got {show(x)}", hint="nan and inf are not allowed")
+    if positive and x == 0 and not allow_zero and too_small(v):   # (it is positive as written)
+        raise ctx.err(where, f"{show(v)} is too small: below any floating-point number (it would read as 0)",
+                      hint="give the lengths in units that keep the numbers within range")
     if positive and (x < 0 or (x == 0 and not allow_zero)):
         raise ctx.err(where, f"must be positive, got {show(v)}",
                       hint="lengths and radii are positive; give the direction with an angle")
