@@ -485,7 +485,7 @@ def _polygons_drawable(m, sheet: str) -> None:
         sol = solve(m)
     except VelpolyError:
         return
-    refused = polygon_at_rest(sol, sheet, FRAMES_RANGE)
+    refused = polygon_at_rest(sol, sheet, FRAMES_RANGE, cycle=True)
     if refused is not None:
         raise refused
 

@@ -182,13 +182,10 @@ def validate_reference(m, ctx=None) -> None:
                              hint="keys in textbook notation: V_B, A_B, V_BA, V_B3/B4, omega_3, alpha_3, "
                                   "theta_3, R_BA, P_13, V_P24, A^n_BA, A^t_BA, A^c_B3/B4, A^s_B3/B4")
     ref = m.reference
-    for key, v in ref.values.items():   # an angular rate or a link angle is one number, not [magnitude, direction]
-        q = parse_key(m, key)
-        if q.kind in ("omega", "alpha", "theta") and not q.part and isinstance(v, (list, tuple)):
-            raise InputError(f"expected a number, got a list: {key} is a scalar, not a vector",
-                             where=f"reference.values.{key}", file=m.source,
-                             hint=f"{key} = 6.702 (signed: counter-clockwise positive)" if q.kind != "theta"
-                             else f"{key} = 18.584 (degrees)")
+    for key, v in ref.values.items():
+        trouble = _shape_trouble(parse_key(m, key), key, v)
+        if trouble:
+            raise InputError(trouble[0], where=f"reference.values.{key}", file=m.source, hint=trouble[1])
     known = value_keys(ref)
     for key in list(ref.note):
         if key in known:
@@ -204,6 +201,27 @@ def validate_reference(m, ctx=None) -> None:
                          file=m.source, hint="key a note like the value it explains: "
                          + (", ".join(sorted(known)[:12]) + ("..." if len(known) > 12 else "") if known
                             else "there are no printed values to explain"))
+
+
+def _shape_trouble(q: Quantity, key: str, v) -> tuple[str, str] | None:
+    """(what, hint) where the printed value ``v`` of ``key`` has not the shape its kind takes (FORMAT.md
+    section 1), else None: an angular rate or a link angle is one number; a pole's position is ``[x, y]``;
+    every other quantity is a vector, ``[magnitude, direction]`` or a bare magnitude."""
+    listed = isinstance(v, (list, tuple))
+    if q.kind in ("omega", "alpha", "theta") and not q.part:
+        if listed:
+            return (f"expected a number, got a list: {key} is a scalar, not a vector",
+                    f"{key} = 6.702 (signed: counter-clockwise positive)" if q.kind != "theta"
+                    else f"{key} = 18.584 (degrees)")
+    elif q.kind == "P":
+        if not listed or len(v) != 2:
+            got = f"a list of {len(v)}" if listed else "a number"
+            return (f"expected a pole's position [x, y], got {got}",
+                    f"{key} = [0.214, -0.087] (its x and y in frame coordinates)")
+    elif listed and len(v) != 2:
+        return (f"expected a magnitude or [magnitude, direction], got a list of {len(v)}",
+                "a vector is [magnitude, direction in degrees], e.g. [435.2, 21.7]")
+    return None
 
 
 def value_keys(ref) -> list[str]:

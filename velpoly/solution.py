@@ -207,10 +207,12 @@ def _carried(kin, ref: float, target: float, delta: float) -> tuple[np.ndarray, 
     if len(r.deltas) == 0 and r.leaves is not None:
         lo, hi = reachable_range(kin)
         sl = m.slots[r.leaves[0]]
+        words = reachable_words(kin, ref, delta)
+        # where it leaves (ref + r.leaves[2], unwrapped) is the range's end on the refused side: printed as the range is
+        leaves = words.split(" to ")[1 if delta > 0 else 0]
         raise AssemblyError(
             f"cannot assemble at driver angle {_angle(target)} deg: pin {sl.pin} leaves the slot of "
-            f"{sl.slot} at its end {r.leaves[1]} at {ref + math.degrees(r.leaves[2]):g} "   # as the range: unwrapped
-            f"deg; the pin is in the slot from {reachable_words(kin, ref, delta)} deg",
+            f"{sl.slot} at its end {r.leaves[1]} at {leaves} deg; the pin is in the slot from {words} deg",
             where="driver.angle", file=m.source, links=(sl.link, sl.slot),
             hint=_choose(ref, lo, hi, "choose an angle in that range (the slot's ends bound the motion)"))
     if len(r.deltas) == 0:
@@ -265,26 +267,30 @@ def solve(m: Mechanism, angle: float | None = None) -> Solution:
     return Solution(m, kin, q[0], qd[0], qdd[0], float(cond[0]), motion, angle_now, tuple(warnings))
 
 
-def polygon_at_rest(sol: Solution, sheet: str, drawn: tuple[float, float] | None = None) -> InputError | None:
+def polygon_at_rest(sol: Solution, sheet: str, drawn: tuple[float, float] | None = None,
+                    cycle: bool = False) -> InputError | None:
     """The input error of a sheet whose polygon would be one point: every velocity zero (the driver at rest,
     omega = 0, and no prescribed slip) for a sheet with the velocity polygon (``velocity``, ``full``), every
     acceleration zero as well for one with the acceleration polygon; None where the polygons have a size.
     A mechanism starting from rest (omega = 0, alpha given) has its acceleration sheet. ``drawn``: the range of
-    :func:`polygon_out_of_range` (default ``DRAWN_RANGE``)."""
+    :func:`polygon_out_of_range` (default ``DRAWN_RANGE``). ``cycle``: for a figure of the cycle (animate, html,
+    sweep --gif), whose hint is the driver's rate alone (a driver at rest has no motion to show)."""
     m, drv = sol.mechanism, sol.mechanism.driver
     still_v = not any(np.any(v != 0) for v in sol.velocity.values()) and not any(sol.omega.values())
     still_a = still_v and sol.has_accelerations and not any(np.any(a != 0) for a in sol.acceleration.values())
     rate, accel = ("driver.speed", "driver.accel") if drv.is_slider else ("driver.omega", "driver.alpha")
+    rate_, accel_ = rate.split(".")[1], accel.split(".")[1]
+    moving = f"give the driver a rate ({rate_}): at rest it has no motion to show" if cycle else None
     if still_a and sheet in ("velocity", "acceleration", "full"):
         return InputError("the mechanism is at rest: every velocity and acceleration is zero, and its polygons "
                           "are single points", where=rate, file=m.source,
-                          hint=f"give {rate.split('.')[1]} (or {accel.split('.')[1]}); the poles and the "
-                               "displacement sheet need neither")
+                          hint=moving or f"give {rate_} (or {accel_}); the poles and the displacement sheet need "
+                                         "neither")
     if still_v and sheet in ("velocity", "full"):
         return InputError("the mechanism is at rest: every velocity is zero, and the velocity polygon is a "
                           "single point", where=rate, file=m.source,
-                          hint=f"draw --sheet acceleration (starting from rest: {accel.split('.')[1]} only), "
-                               f"or give {rate.split('.')[1]}")
+                          hint=moving or f"draw --sheet acceleration (starting from rest: {accel_} only), "
+                                         f"or give {rate_}")
     return polygon_out_of_range(sol, sheet, drawn)
 
 

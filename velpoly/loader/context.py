@@ -93,14 +93,37 @@ class Beyond(float):
     text: str
 
 
+class Beneath(float):
+    """A TOML float written nonzero whose value lies below any float (``1e-400``): the zero tomllib reads,
+    keeping the ``text`` the file writes (:func:`toml_float`), so that a message says it is too small."""
+
+    text: str
+
+
 def toml_float(text: str) -> float:
     """A TOML float's value (tomllib's ``parse_float``): ``float(text)``, but a :class:`Beyond` where the text
-    is a finite number too large for a float (``1e400``; ``inf`` is infinity as written)."""
+    is a finite number too large for a float (``1e400``; ``inf`` is infinity as written), a :class:`Beneath`
+    where it is a nonzero number too small for one (``1e-400``: it reads as 0)."""
     x = float(text)
     if math.isinf(x) and "inf" not in text:
         x = Beyond(x)
         x.text = text
+    elif x == 0 and written_nonzero(text):
+        x = Beneath(x)
+        x.text = text
     return x
+
+
+def written_nonzero(number: str) -> bool:
+    """Whether a number's text (``1e-400``, ``0.0``, ``-0e5``) writes a value other than zero: a nonzero digit
+    before its exponent."""
+    return any(c in "123456789" for c in number.lower().split("e")[0])
+
+
+def too_small(v: Any) -> str | None:
+    """``v`` as written where it is a TOML float written nonzero but below any float (:class:`Beneath`), else
+    None."""
+    return v.text if isinstance(v, Beneath) else None
 
 
 def too_large(v: Any) -> str | None:
@@ -119,8 +142,8 @@ def too_large(v: Any) -> str | None:
 def show(v: Any) -> str:
     """A value as the user wrote it, on one short line: "40", true, a table, a list; a number beyond any float
     as written (``1e400``), or to six digits (``1e+400`` for 10**400)."""
-    if too_large(v):
-        return too_large(v)
+    if too_large(v) or too_small(v):
+        return too_large(v) or too_small(v)
     if isinstance(v, bool):
         return "true" if v else "false"
     if isinstance(v, str):
@@ -151,6 +174,9 @@ def read_number(ctx: Ctx, where: str, v: Any, positive: bool = False, allow_zero
     x = float(v)
     if not math.isfinite(x):
         raise ctx.err(where, f"expected a finite number, got {show(x)}", hint="nan and inf are not allowed")
+    if positive and x == 0 and not allow_zero and too_small(v):   # (it is positive as written)
+        raise ctx.err(where, f"{show(v)} is too small: below any floating-point number (it would read as 0)",
+                      hint="give the lengths in units that keep the numbers within range")
     if positive and (x < 0 or (x == 0 and not allow_zero)):
         raise ctx.err(where, f"must be positive, got {show(v)}",
                       hint="lengths and radii are positive; give the direction with an angle")

@@ -6,8 +6,8 @@ import math
 from typing import Any, Callable
 
 from ..model import Driver, Mechanism, Pin, Slider
-from .context import Ctx, check_keys, read_name, read_number, show, too_large
-from .units import ALPHA_HINT, OMEGA_HINT, RateTooLarge, parse_alpha, parse_omega
+from .context import Ctx, check_keys, read_name, read_number, show, too_large, too_small
+from .units import ALPHA_HINT, OMEGA_HINT, RateTooLarge, RateTooSmall, parse_alpha, parse_omega
 
 __all__ = ["read_driver", "read_rate", "check_range", "MAX_SPEED", "MAX_ACCEL"]
 
@@ -40,6 +40,9 @@ def _slider_driver(ctx: Ctx, d: dict, sliders: list[Slider]) -> Driver:
                           hint="a slider driver has speed and accel (along its path)")
     if "speed" not in d:
         raise ctx.err("driver", "a slider driver needs 'speed'", hint="speed = v, in length units per second")
+    for k in ("speed", "accel"):
+        if too_small(d.get(k)):
+            raise _too_small(ctx, f"driver.{k}", d[k])
     return Driver(slider=p, speed=read_number(ctx, "driver.speed", d["speed"]),
                   accel=read_number(ctx, "driver.accel", d.get("accel", 0.0)))
 
@@ -73,15 +76,25 @@ def read_rate(ctx: Ctx, where: str, v: Any, parse: Callable[[Any], float], what:
     try:
         if too_large(v):   # a number beyond any float (1e400, 10**400), as "1e400 rpm" is
             raise RateTooLarge(v)
+        if too_small(v):   # a nonzero number below any float (1e-400), as "1e-400 rpm" is
+            raise RateTooSmall(v)
         x = parse(v)
     except RateTooLarge:
         raise ctx.err(where, f"{show(v)} is too large: beyond any floating-point number",
                       hint="check the driver's value and its unit (omega in rad/s or rpm)") from None
+    except RateTooSmall:
+        raise _too_small(ctx, where, v) from None
     except ValueError:
         raise ctx.err(where, f"cannot read {show(v)} as {what}", hint=hint) from None
     if not math.isfinite(x):
         raise ctx.err(where, f"must be finite, got {show(x)}", hint=hint)
     return x
+
+
+def _too_small(ctx: Ctx, where: str, v: Any):
+    """A rate written nonzero whose value is below any float: read, it would be 0, a driver at rest."""
+    return ctx.err(where, f"{show(v)} is too small: below any floating-point number (it would read as 0)",
+                   hint="check the driver's value and its unit; write 0 where 0 is meant")
 
 
 def check_range(ctx: Ctx, m: Mechanism) -> None:

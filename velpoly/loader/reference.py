@@ -57,19 +57,33 @@ def _value(ctx: Ctx, key: str, k, v) -> None:
         if str(k) not in lnames:
             raise ctx.err(w, f"unknown link {key_repr(k)}", hint="links: " + ", ".join(lnames))
         read_number(ctx, w, v)
-    elif key == "speed":
-        read_number(ctx, w, v)
-    elif key in ("velocity", "acceleration", "values"):   # [magnitude, direction] or a bare magnitude
+    elif key == "speed":   # a magnitude: a sign means nothing here (a vector's reversal is [magnitude, direction])
+        if read_number(ctx, w, v) < 0:
+            raise ctx.err(w, f"a speed is a magnitude, not negative: got {show(v)}",
+                          hint=f"speed = {{ {k} = {show(-v)} }}; a vector with its sense: "
+                               f"velocity = {{ {k} = [magnitude, direction] }}")
+    elif key in ("velocity", "acceleration"):   # [magnitude, direction] or a bare magnitude
         if isinstance(v, list):
-            if len(v) != 2:
-                raise ctx.err(w, f"expected a magnitude or [magnitude, direction], got a list of {len(v)}",
-                              hint="a vector is [magnitude, direction in degrees], e.g. [435.2, 21.7]")
-            read_number(ctx, w, v[0]), read_number(ctx, w, v[1])
-        else:
-            read_number(ctx, w, v)
+            vector_shape(ctx, w, v)
+        read_numbers(ctx, w, v)
+    elif key == "values":   # numbers, or a list of them: which shape a key takes is checked by its kind
+        read_numbers(ctx, w, v)
     elif not isinstance(v, str):
         raise ctx.err(w, f"expected a string saying what is wrong with the printed value, got {show(v)}",
                       hint='note = { V_B = "misprint: ..." }')
+
+
+def read_numbers(ctx: Ctx, where: str, v) -> None:
+    """A number, or a list of numbers (each checked)."""
+    for x in (v if isinstance(v, list) else [v]):
+        read_number(ctx, where, x)
+
+
+def vector_shape(ctx: Ctx, where: str, v: list) -> None:
+    """A printed vector written as a list is ``[magnitude, direction]``."""
+    if len(v) != 2:
+        raise ctx.err(where, f"expected a magnitude or [magnitude, direction], got a list of {len(v)}",
+                      hint="a vector is [magnitude, direction in degrees], e.g. [435.2, 21.7]")
 
 
 def check_reference(ctx: Ctx, m: Mechanism) -> None:

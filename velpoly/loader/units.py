@@ -9,7 +9,10 @@ import math
 import re
 from typing import Any, Mapping
 
-__all__ = ["parse_omega", "parse_alpha", "SENSES", "OMEGA_HINT", "ALPHA_HINT", "RateTooLarge"]
+from .context import written_nonzero
+
+__all__ = ["parse_omega", "parse_alpha", "SENSES", "OMEGA_HINT", "ALPHA_HINT", "RateTooLarge",
+           "RateTooSmall"]
 
 _OMEGA_UNITS = {
     "rad/s": 1.0, "rpm": 2 * math.pi / 60, "r/min": 2 * math.pi / 60, "rev/min": 2 * math.pi / 60,
@@ -34,10 +37,14 @@ class RateTooLarge(ValueError):
     """A rate written as a finite number whose value is beyond any float (``"1e400 rpm"``)."""
 
 
+class RateTooSmall(ValueError):
+    """A rate written as a nonzero number whose value is below any float (``"1e-400 rpm"``: it would read as 0)."""
+
+
 def _parse_rate(v: Any, units: Mapping[str, float]) -> float:
     """A number as it is, or ``"NUMBER UNIT [SENSE]"`` with UNIT one of ``units`` (to rad/s or rad/s^2);
     ValueError if it is neither, :class:`RateTooLarge` (a ValueError) if its value is beyond any float
-    (``"1e400 rpm"``)."""
+    (``"1e400 rpm"``), :class:`RateTooSmall` if it is written nonzero but below any float (``"1e-400 rpm"``)."""
     if isinstance(v, bool):
         raise ValueError(v)
     if isinstance(v, (int, float)):
@@ -54,6 +61,8 @@ def _parse_rate(v: Any, units: Mapping[str, float]) -> float:
     x = float(value) * units[unit]
     if not math.isfinite(x):   # the pattern's number is finite: it is beyond any float
         raise RateTooLarge(v)
+    if x == 0 and written_nonzero(value):   # the pattern's number is nonzero: it is below any float
+        raise RateTooSmall(v)
     if sense:
         x *= SENSES[sense.lower()]
     return x + 0.0   # no negative zero

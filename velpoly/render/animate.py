@@ -21,8 +21,9 @@ the caption says the range: "rocks between -40.2° and 61.3°".
 that the panel is filled at its largest frame, with one exception: where the
 frames come close to a toggle (a rocking crank, a slider's stroke, a sweep
 stopped at a toggle), the frames within the toggle's surge, whose largest
-vector is more than ``SURGE`` times the median frame's, run off the panel
-rather than shrink every other frame's polygon to a dot) and the scale bars.
+vector is more than ``SURGE`` times the median frame's, are left out of it
+rather than shrink every other frame's polygon to a dot: such a frame is drawn
+at 1/2, 1/5, 1/10 ... of the scale, saying so, :func:`reduction`) and the scale bars.
 
 **Fast.** The poses come from the vectorised sweep (:func:`velpoly.sweep`),
 the polygons of each pose from :mod:`velpoly.polygons` (under a millisecond
@@ -59,7 +60,7 @@ __all__ = ["FramePlan", "mp4_writer", "plan_frames", "Animator", "write_animatio
 SHEETS = ("velocity", "acceleration", "poles", "full")
 FORMATS = (".gif", ".png", ".mp4", ".pdf")
 DEFAULT_SIZE = (1920, 1080)
-SURGE = 4.0           # frames whose largest vector exceeds this times the median frame's may run off a panel
+SURGE = 4.0           # frames whose largest vector exceeds this times the median frame's: left out of the scale
 MIN_SIZE = (320, 180)
 MAX_SIZE = (7680, 4320)
 
@@ -280,6 +281,27 @@ def _surge_box(per_frame: list) -> tuple:
     keep = reach <= SURGE * np.median(reach) + 1e-300
     pts = [p for p, k in zip(per_frame, keep) if k]
     return _box(np.vstack(pts + [np.zeros((1, 2))]))
+
+
+def reduction(points, limits: tuple) -> int:
+    """The divisor n of the panel's scale at which a frame's polygon (its ``points``: images and vector ends, the
+    origin O_v at (0, 0)) is drawn, at 1/n of it: 1 where it lies within the panel's ``limits`` (x0, x1, y0, y1,
+    about the origin), else the least of 2, 5, 10, 20, 50 ... that brings it within 93 % of them (the 7 % margin of
+    the panel's fit): near a toggle the speeds surge without bound, and such a frame is left out of the scale
+    (:func:`_surge_box`)."""
+    p = np.asarray(points, float).reshape(-1, 2)
+    p = p[np.isfinite(p).all(axis=1)]
+    x0, x1, y0, y1 = limits
+    if not len(p) or (np.all((x0 <= p[:, 0]) & (p[:, 0] <= x1)) and np.all((y0 <= p[:, 1]) & (p[:, 1] <= y1))):
+        return 1
+    with np.errstate(divide="ignore", invalid="ignore"):   # the largest factor that keeps each coordinate within
+        room = np.concatenate([np.where(p[:, 0] > 0, x1 / p[:, 0], np.where(p[:, 0] < 0, x0 / p[:, 0], np.inf)),
+                               np.where(p[:, 1] > 0, y1 / p[:, 1], np.where(p[:, 1] < 0, y0 / p[:, 1], np.inf))])
+    most = 0.93 * float(room.min())
+    n = 1
+    while most > 0 and 1.0 / n > most:
+        n = n * 5 // 2 if str(n)[0] == "2" else n * 2   # 2, 5, 10, 20, 50 ...
+    return n
 
 
 def _polygon_points(poly) -> np.ndarray:
@@ -766,7 +788,8 @@ class Animator:
             labels[key] = self._move(t, ax)
         self._poly_art = getattr(self, "_poly_art", {})
         self._poly_art[kind] = {"shades": shades, "arrows": arrows, "labels": labels, "ax": ax,
-                                "head": st.head_length * 1.6 * pp, "lw": self.pt(3.0), "pp": pp}
+                                "head": st.head_length * 1.6 * pp, "lw": self.pt(3.0), "pp": pp,
+                                "note": self._reduced(ax, kind)}
         if kind == "acceleration" and len([k for k in kinds if k != "absolute"]) >= 1:
             from .style import KIND_LABELS
             handles = []
@@ -776,6 +799,17 @@ class Animator:
                 handles.append(Line2D([], [], lw=self.pt(3.0) * f, linestyle=ls, color=st.ink if colour is None else colour))
             ax.legend(handles, [KIND_LABELS[k] for k in shown], loc="upper right", fontsize=self.pt(16),
                       handlelength=3.0, borderaxespad=0.0, frameon=False)
+
+    def _reduced(self, ax, kind: str):
+        """Each frame's divisor of the panel's scale (``self.reduction[kind]``, :func:`reduction`: a frame whose
+        polygon the panel cannot hold at the scale, a toggle's surge, is drawn at 1/n of it) and the note, beside
+        the scale bar, that says so in such a frame (returned)."""
+        limits = (*ax.get_xlim(), *ax.get_ylim())
+        self.reduction = getattr(self, "reduction", {})
+        self.reduction[kind] = [reduction(_polygon_points(p), limits) for p in self.polys[kind]]
+        note = ax.text(0.99, 0.01, "", transform=ax.transAxes, ha="right", va="bottom", fontsize=self.pt(18),
+                       color="0.3", fontstyle="italic", zorder=8)
+        return self._move(note, ax)
 
     def _arrow(self, kind: str, key, vkind: str):
         """The pooled arrow ``key`` of the polygon panel ``kind`` (made on first use)."""
@@ -897,7 +931,7 @@ class Animator:
             xy = break_at_infinity(cen.carried(sw, sw.kinematics, i), sw.omega[cen.link])
             self._centrode.set_data(xy[:, 0], xy[:, 1])
         for kind in self.polys:
-            self._update_polygon(kind, self.polys[kind][k])
+            self._update_polygon(kind, self.polys[kind][k], self.reduction[kind][k])
         if self.poles is not None:
             self._update_poles(k)
         for name, (t, vals, dec) in self.table.items():
@@ -1148,11 +1182,15 @@ class Animator:
         r = self.pt(gap_px) + half_extent(wh[0], wh[1], u)
         return (float(u[0] * r), float(u[1] * r))
 
-    def _update_polygon(self, kind: str, poly) -> None:
+    def _update_polygon(self, kind: str, poly, divisor: int = 1) -> None:
+        """The polygon panel ``kind`` at the frame of ``poly``, drawn at 1/``divisor`` of the panel's scale (1 but
+        where the panel cannot hold it: :func:`reduction`), which its note then says."""
         from shapely.geometry import MultiPoint
         from .polygon import ALONG, APART, Beside
         art = self._poly_art[kind]
-        images = {k: np.asarray(v, float) for k, v in poly.images.items()}
+        art["note"].set_text("" if divisor == 1 else f"drawn at 1/{divisor} scale")
+        reduced = 1.0 / divisor
+        images = {k: reduced * np.asarray(v, float) for k, v in poly.images.items()}
         for lk, patch in art["shades"].items():
             pts = [tuple(images[q]) for q in poly.link_images[lk]]
             hull = MultiPoint(pts).convex_hull
@@ -1168,7 +1206,8 @@ class Animator:
             for v in stp.vectors:
                 if v.kind == "absolute":
                     continue
-                vectors.append((v.kind, np.asarray(v.tail, float), np.asarray(v.head, float), v.kind + "-" + v.label))
+                vectors.append((v.kind, reduced * np.asarray(v.tail, float), reduced * np.asarray(v.head, float),
+                                v.kind + "-" + v.label))
         seen, drawn = set(), []
         centre = np.array([np.zeros(2)] + list(images.values())).mean(axis=0)
         beside = Beside(APART * art["head"], ALONG * art["pp"])   # vectors on one line drawn apart, as on a sheet
@@ -1191,6 +1230,9 @@ class Animator:
         self.images[kind] = images
         pts = self._seg_points(art["ax"], drawn)
         taken = [self._origin_box.get(kind)] if self._origin_box.get(kind) is not None else []
+        if divisor != 1:   # the labels keep clear of the note
+            bb = art["note"].get_window_extent(self.fig.canvas.get_renderer())
+            taken.append((bb.x0, bb.y0, bb.x1, bb.y1))
         for key, t in art["labels"].items():
             p = images[key]
             away = p - centre
