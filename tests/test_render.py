@@ -198,13 +198,16 @@ def test_driver_arrow_turns_with_omega(sixbar):
 
 
 def test_scale_bar_matches_the_scale(sixbar):
+    """The space diagram's scale bar at the panel's scale (the diagram drawn without its marks:
+    ``mechanisms.shapes_only``, the bar and the view read)."""
+    from mechanisms import shapes_only
     m, sol = sixbar
     for scale in (None, 0.04, 0.125):
         ax = _axes()
         s = canvas.fit_view(ax, (-0.4, 0.0, 0.3, 0.45), scale=scale)
         if scale is not None:
             assert s == scale
-        art = draw_mechanism(sol, ax)
+        art = draw_mechanism(sol, ax, options=shapes_only(m))
         assert view_scale(ax) == s
         assert per_cm(ax) == pytest.approx(s, rel=1e-12)
         x0, x1 = ax.get_xlim()
