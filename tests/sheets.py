@@ -25,7 +25,7 @@ from dataclasses import replace
 import pytest
 
 import velpoly
-from paths import example
+from paths import GALLERY_FILES, example
 
 STYLES = ("textbook", "slides")
 
@@ -81,13 +81,44 @@ def rendered(stem: str, sheet_name: str, style: str):
 @functools.cache
 def _rendered(stem: str, sheet_name: str, style: str, bare: bool):
     """The sheet drawn as ``velpoly draw`` draws it (``bare``: its space diagram unlabelled), then drawn through
-    (every text laid out, as a file would be: a third of an SVG's cost)."""
+    (every text laid out, as a file would be: a third of an SVG's cost); a page of ``own_pages`` drawn through
+    by Agg at its own 72 dpi instead, its ink kept (``ink``)."""
     from velpoly.render import sheet
     from velpoly.render.style import get_style
     with styled(style), (unlabelled_mechanism() if bare else contextlib.nullcontext()):
         done = sheet.render(solved(stem), sheet_name, get_style(style), cons=constructions(stem, sheet_name))
-        done.figure.draw_without_rendering()
+        if not bare and (stem, sheet_name) in own_pages(style):
+            done.figure.canvas.draw()
+            _INK[stem, sheet_name, style] = inked(done.figure)
+        else:
+            done.figure.draw_without_rendering()
     return done
+
+
+_INK: dict = {}   # (stem, sheet, style) -> the ink of a page of own_pages, as its first drawing left it
+
+
+@functools.cache
+def own_pages(style: str) -> tuple:
+    """(stem, sheet) of the gallery files' own sheets drawn in ``style``, every other file in each (the style
+    test_render_gallery draws them in): the pages test_page_fill measures the ink of. These are drawn through
+    by Agg rather than without rendering (the one draw lays out every text as the other does: every text's
+    place, size and box, every line, patch, view, legend and placed label compared equal on the 19 pages, issue
+    19 item 7), so that their ink is that draw's, not a second one's (about 0.05 CPU s a page)."""
+    return tuple((p.stem, own_sheet(p.stem)) for i, p in enumerate(GALLERY_FILES) if STYLES[i % 2] == style)
+
+
+def inked(fig):
+    """Where the Agg canvas of ``fig``, as last drawn, has ink: a boolean array of its pixels (rows from the
+    top), any channel below 235 of 255."""
+    import numpy as np
+    return (np.asarray(fig.canvas.buffer_rgba())[:, :, :3] < 235).any(axis=2)
+
+
+def ink(stem: str, sheet_name: str, style: str):
+    """``inked`` of a page of ``own_pages(style)`` as it was drawn (once per process, with the page). Read only."""
+    rendered(stem, sheet_name, style)
+    return _INK[stem, sheet_name, style]
 
 
 def page(stem: str, sheet_name: str, style: str):
