@@ -8,7 +8,7 @@ returns the same Figure afterwards. The figures are shared: a test only reads th
 figure draws its own with ``sheet.render_sheet``). Measure them inside ``rc_context(get_style(style))``
 (``styled(style)``), as they were drawn.
 
-``bare_page`` is a page with its space diagram unlabelled, for the tests that read no mark of it, and
+``bare_page`` (``bare_rendered``) is a page with its space diagram unlabelled, for the tests that read no mark of it, and
 ``unlabelled_mechanism()`` draws any sheet so (for a test that reads a sheet's table, captions or panels' places:
 the label placer is most of a space diagram's cost).
 
@@ -25,7 +25,7 @@ from dataclasses import replace
 import pytest
 
 import velpoly
-from paths import example
+from paths import GALLERY_FILES, example
 
 STYLES = ("textbook", "slides")
 
@@ -72,16 +72,53 @@ def styled(style: str):
     return rc_context(get_style(style))
 
 
-@functools.cache
 def rendered(stem: str, sheet_name: str, style: str):
     """One sheet of the example ``stem`` in ``style`` as ``velpoly.render.sheet.render`` returns it (its figure,
     whether it has a table page), drawn once per process. Read only."""
+    return _rendered(stem, sheet_name, style, False)
+
+
+@functools.cache
+def _rendered(stem: str, sheet_name: str, style: str, bare: bool):
+    """The sheet drawn as ``velpoly draw`` draws it (``bare``: its space diagram unlabelled), then drawn through
+    (every text laid out, as a file would be: a third of an SVG's cost); a page of ``own_pages`` drawn through
+    by Agg at its own 72 dpi instead, its ink kept (``ink``)."""
     from velpoly.render import sheet
     from velpoly.render.style import get_style
-    with styled(style):
+    with styled(style), (unlabelled_mechanism() if bare else contextlib.nullcontext()):
         done = sheet.render(solved(stem), sheet_name, get_style(style), cons=constructions(stem, sheet_name))
-        done.figure.draw_without_rendering()   # drawn through as a file would be (every text laid out), a third of an SVG's cost
+        if not bare and (stem, sheet_name) in own_pages(style):
+            done.figure.canvas.draw()
+            _INK[stem, sheet_name, style] = inked(done.figure)
+        else:
+            done.figure.draw_without_rendering()
     return done
+
+
+_INK: dict = {}   # (stem, sheet, style) -> the ink of a page of own_pages, as its first drawing left it
+
+
+@functools.cache
+def own_pages(style: str) -> tuple:
+    """(stem, sheet) of the gallery files' own sheets drawn in ``style``, every other file in each (the style
+    test_render_gallery draws them in): the pages test_page_fill measures the ink of. These are drawn through
+    by Agg rather than without rendering (the one draw lays out every text as the other does: every text's
+    place, size and box, every line, patch, view, legend and placed label compared equal on the 19 pages, issue
+    19 item 7), so that their ink is that draw's, not a second one's (about 0.05 CPU s a page)."""
+    return tuple((p.stem, own_sheet(p.stem)) for i, p in enumerate(GALLERY_FILES) if STYLES[i % 2] == style)
+
+
+def inked(fig):
+    """Where the Agg canvas of ``fig``, as last drawn, has ink: a boolean array of its pixels (rows from the
+    top), any channel below 235 of 255."""
+    import numpy as np
+    return (np.asarray(fig.canvas.buffer_rgba())[:, :, :3] < 235).any(axis=2)
+
+
+def ink(stem: str, sheet_name: str, style: str):
+    """``inked`` of a page of ``own_pages(style)`` as it was drawn (once per process, with the page). Read only."""
+    rendered(stem, sheet_name, style)
+    return _INK[stem, sheet_name, style]
 
 
 def page(stem: str, sheet_name: str, style: str):
@@ -89,7 +126,13 @@ def page(stem: str, sheet_name: str, style: str):
     return rendered(stem, sheet_name, style).figure
 
 
-@functools.cache
+def bare_rendered(stem: str, sheet_name: str, style: str):
+    """``rendered`` with the space diagram unlabelled (:func:`unlabelled_mechanism`), for a test that reads the
+    sheet's table, or whether it has a table page, on a page no other test reads whole (Example 3.8's poles
+    slide, read by test_table_page alone). Read only."""
+    return _rendered(stem, sheet_name, style, True)
+
+
 def bare_page(stem: str, sheet_name: str, style: str):
     """The Figure of one sheet of the example ``stem`` in ``style`` with its space diagram unlabelled
     (:func:`unlabelled_mechanism`), drawn through once per process, for a test that reads its poles, their
@@ -97,12 +140,7 @@ def bare_page(stem: str, sheet_name: str, style: str):
     label, on a page no other test reads whole (the textbook poles pages of Example 3.4, Problem 1.4.4 and the
     crank shaper, read by test_render's pole tests alone: 1.1, 0.35 and 0.55 CPU s whole, 0.5, 0.25 and 0.3
     bare; their pole arrows, Kennedy lines, labels' words, panels, table and captions compared equal). Read only."""
-    from velpoly.render import sheet
-    from velpoly.render.style import get_style
-    with styled(style), unlabelled_mechanism():
-        fig = sheet.render(solved(stem), sheet_name, get_style(style), cons=constructions(stem, sheet_name)).figure
-        fig.draw_without_rendering()
-    return fig
+    return bare_rendered(stem, sheet_name, style).figure
 
 
 @contextlib.contextmanager

@@ -11,9 +11,13 @@ points of the page) for each of the three formats and the records are compared: 
 boxes, to a billionth of a point (the boxes are in each writer's pixels, 72 or the PNG's dpi a inch, and
 brought to points). The leaders (data coordinates, laid out before any writer) are compared too.
 
-The specimens are the first of the generated zoo of three seeds (tests/zoo.py), their full and poles sheets,
-in both styles: the layout once and three saves of each (the poles sheets' PDF a page of a multi-page file).
-On main b313165 each of the four fails (56 to 116 texts drawn otherwise in the SVG than in the PNG)."""
+The specimens are the first of the generated zoo of two seeds (tests/zoo.py), a full sheet in textbook (PNG at
+200 dpi) and a poles sheet in slides (120 dpi): the layout once and three saves of each (the poles sheet's PDF a
+page of a multi-page file). On main b313165 each fails (56 to 116 texts drawn otherwise in the SVG than in the
+PNG). Seed 11's full slide and poles textbook page, two more until issue 19 item 7, were cut: every break by
+hand of velpoly.render.typeset that failed one of the four failed all four (no measure given to the writers,
+the font's heights unscaled, a vector writer's widths its own), and the two kept draw both sheets, both
+styles' dpi and both ways of writing a PDF."""
 from __future__ import annotations
 
 import io
@@ -29,7 +33,7 @@ from velpoly.render.pngfile import save_png  # noqa: E402
 from velpoly.render.sheet import render  # noqa: E402
 from velpoly.render.style import get_style, rc_context  # noqa: E402
 
-CASES = [(2026, "full", "textbook"), (7, "poles", "slides"), (11, "full", "slides"), (11, "poles", "textbook")]
+CASES = [(2026, "full", "textbook"), (7, "poles", "slides")]
 CLOSE = 1e-9   # points: the same box, to the rounding of a float brought from a writer's pixels to points
 
 

@@ -6,10 +6,10 @@ algorithm before it, bit for bit.
 scratch (``reassemble`` given a fresh ``Knots`` steps every knot itself, as the code before it did;
 given none, it keeps them by mechanism equality from one call to the next). Every reassembly the new code makes is compared with the reference's, in order: the same driver
 positions and poses (exact equality of floats), the same stop and the same slot end; and the
-ranges are equal. The mechanisms are generated (seeded zoo specimens of every continuation kind:
-a contact, a slot and a six-bar, each past a toggle both ways; an inverted slider-crank solved at
-angle after angle, both ways and past its toggle). (The rolling-contact example's range as the former
-code gave it is test_cycle's, on the range its gallery sweep computes.)
+ranges are equal. The mechanisms are generated (seeded zoo specimens reached by continuation: a slot
+and a six-bar, each past a toggle both ways; an inverted slider-crank solved at angle after angle, both
+ways and past its toggle). (A contact's range as the former code gave it is test_cycle's: the rolling-contact
+example's, on the range its gallery sweep computes.)
 """
 from __future__ import annotations
 
@@ -87,9 +87,12 @@ def _same_reassembly(a, b):
 # for rounding, refused by _smooth (test_knot_rounding). Each takes one path through Knots (counted: new
 # knot steps, kept ones taken, toggle retries, 1-3 of them kept; none leaves a slot): the inverted
 # slider-crank (offset both crank, seed 0), a fourth here until the suite had to fit 2 minutes (1.1 CPU s),
-# is test_knots_kept_from_call_to_call_give_the_fresh_poses's, kept knots against fresh past its toggle both ways
-SPECIMENS = [("contact", "wheel slipping on ground", 3), ("slot", "straight offset", 0),
-             ("six-bar", "stephenson III by its binary", 2)]
+# is test_knots_kept_from_call_to_call_give_the_fresh_poses's, kept knots against fresh past its toggle both ways.
+# A contact (wheel slipping on ground, seed 3; 1.1 CPU s) was cut by issue 19 item 7: every break by hand of
+# Knots and _reachable_range that failed it failed the two kept (a retried step kept without its target, the
+# fine walk not from the last knot reached, the second walk on fresh knots), and the contact's kept-knots range
+# against the former code's is test_cycle's (Fig. 3.15a's EXACT, which the fine walk's break fails too)
+SPECIMENS = [("slot", "straight offset", 0), ("six-bar", "stephenson III by its binary", 2)]
 
 
 @pytest.mark.parametrize("kind, variant, seed", SPECIMENS)

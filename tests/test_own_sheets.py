@@ -238,7 +238,7 @@ def test_rows_with_book_values_come_first_and_notes_are_footnotes(specimens):
     """Every specimen's table: the book's rows first, one mark a note. Drawn (the sheet, its footnotes, the rows
     shown) for every second specimen (a four-bar, an inverted slider-crank, a slot, a slider-driven
     slider-crank; all eight until the suite had to fit 2 minutes: the marks and notes are the table's, checked
-    on all)."""
+    on all), its space diagram unlabelled (``sheets.unlabelled_mechanism``: the table read)."""
     from velpoly.render.table import NOTED, draw_results_table, results_table
     with rc_context(get_style("textbook")):
         for i, sp in enumerate(specimens):
@@ -254,7 +254,8 @@ def test_rows_with_book_values_come_first_and_notes_are_footnotes(specimens):
             assert sorted(marks) == sorted(n[0] for n in t.notes) and len(set(marks)) == 2   # one mark each
             if i % 2:
                 continue
-            fig = sheet.render_sheet(sol, "full", "textbook", cons=cons)
+            with sheets.unlabelled_mechanism():   # the table read, not the space diagram's marks
+                fig = sheet.render_sheet(sol, "full", "textbook", cons=cons)
             tab = next(ax for ax in fig.axes if ax.get_label() == "table")
             cells = [x.get_text() for x in tab.texts if x.get_gid() is None]
             notes = {x.get_gid(): x for x in tab.texts if (x.get_gid() or "").startswith("footnote-")}

@@ -21,7 +21,7 @@ from shapely.geometry import LineString, box
 
 import velpoly
 import sheets
-from paths import GALLERY_FILES, example
+from paths import example
 from velpoly.render import sheet
 from velpoly.render.labels import placer
 from velpoly.render.layout import MARGIN, arrange, cover, drawn_areas, share_row, smaller_scale
@@ -45,13 +45,17 @@ BLANK_MOST = {"textbook": 0.51, "slides": 0.375}
 
 
 def blank_fraction(fig) -> float:
-    """The share of the page's 1-cm cells without a pixel of ink (any channel below 235 of 255), the page
-    rasterised at its own dpi (72): a draw at the dpi its texts were laid out at reuses their layout (a draw at
-    30 dpi, as until issue 19 item 7, laid every text out again and cost half as much more) and leaves every
-    artist where it was (a shared page stays as tests/sheets.py drew it)."""
+    """The share of the page's 1-cm cells without a pixel of ink (``sheets.inked``: any channel below 235 of
+    255), the page rasterised at its own dpi (72): a draw at the dpi its texts were laid out at reuses their
+    layout (a draw at 30 dpi, as until issue 19 item 7, laid every text out again and cost half as much more)
+    and leaves every artist where it was (a shared page stays as tests/sheets.py drew it)."""
     fig.canvas.draw()
-    ink = (np.asarray(fig.canvas.buffer_rgba())[:, :, :3] < 235).any(axis=2)
-    cell = fig.dpi / 2.54
+    return blank_share(sheets.inked(fig), fig.dpi)
+
+
+def blank_share(ink, dpi: float) -> float:
+    """The share of 1-cm cells of a page's ``ink`` (its pixels, at ``dpi``) without a pixel of ink."""
+    cell = dpi / 2.54
     ny, nx = int(ink.shape[0] / cell), int(ink.shape[1] / cell)
     blank = [not ink[int(i * cell):int((i + 1) * cell), int(j * cell):int((j + 1) * cell)].any()
              for i in range(ny) for j in range(nx)]
@@ -152,21 +156,19 @@ def test_gallery_sheets_use_the_page(style):
     style (10 textbook, 9 slides: not over all 19 in each), under its bound; scale bars apart; the table's
     rule under its title; no label on a line."""
     fractions = {style: []}
-    for i, path in enumerate(GALLERY_FILES):
-        if STYLES[i % 2] != style:
-            continue
-        fig = sheets.page(path.stem, sheets.own_sheet(path.stem), style)     # drawn once per worker, shared (tests/sheets.py)
+    for stem, name in sheets.own_pages(style):
+        fig = sheets.page(stem, name, style)     # drawn once per worker, shared (tests/sheets.py)
         with sheets.styled(style):
-            fractions[style].append(blank_fraction(fig))
+            fractions[style].append(blank_share(sheets.ink(stem, name, style), fig.dpi))   # the ink of its drawing
             cm = fig.dpi / 2.54
             for (a, ga), (b, gb) in itertools.combinations(bar_groups(fig).items(), 2):
-                assert ga.distance(gb) >= BAR_GAP * cm * 0.99, f"{path.stem}/{style}: the bars of {a} and {b} touch"
+                assert ga.distance(gb) >= BAR_GAP * cm * 0.99, f"{stem}/{style}: the bars of {a} and {b} touch"
             table = next(ax for ax in fig.axes if ax.get_label() == "table")
             title = next(t for t in table.texts if t.get_gid() == "results-table")
             rule = max((ln for ln in table.lines), key=lambda ln: ln.get_ydata()[0])
             top = table.transAxes.transform((0, rule.get_ydata()[0]))[1]
-            assert top < _window(fig, title).bounds[1], f"{path.stem}/{style}: the rule strikes the title"
-            assert not labels_on_lines(fig), f"{path.stem}/{style}: {labels_on_lines(fig)}"
+            assert top < _window(fig, title).bounds[1], f"{stem}/{style}: the rule strikes the title"
+            assert not labels_on_lines(fig), f"{stem}/{style}: {labels_on_lines(fig)}"
     for style, got in fractions.items():
         assert np.mean(got) < BLANK_MOST[style], f"{style}: {np.round(got, 3)}"
 

@@ -198,13 +198,16 @@ def test_driver_arrow_turns_with_omega(sixbar):
 
 
 def test_scale_bar_matches_the_scale(sixbar):
+    """The space diagram's scale bar at the panel's scale (the diagram drawn without its marks:
+    ``mechanisms.shapes_only``, the bar and the view read)."""
+    from mechanisms import shapes_only
     m, sol = sixbar
     for scale in (None, 0.04, 0.125):
         ax = _axes()
         s = canvas.fit_view(ax, (-0.4, 0.0, 0.3, 0.45), scale=scale)
         if scale is not None:
             assert s == scale
-        art = draw_mechanism(sol, ax)
+        art = draw_mechanism(sol, ax, options=shapes_only(m))
         assert view_scale(ax) == s
         assert per_cm(ax) == pytest.approx(s, rel=1e-12)
         x0, x1 = ax.get_xlim()
@@ -1024,7 +1027,8 @@ def test_current_step_lines_are_heavier_with_dashes_as_long(sixbar):
 def test_page_title_is_typeset_like_an_equation(tmp_path):
     """A title's ``omega_2`` and ``deg`` read as a book prints them, not as file text."""
     sol = velpoly.solve(velpoly.load(EXAMPLES / "ex3_5_slider_crank.toml"))
-    fig = sheet.render_sheet(sol, "velocity")
+    with sheets.unlabelled_mechanism():   # the title read, not the space diagram's marks
+        fig = sheet.render_sheet(sol, "velocity")
     title = next(t for t in fig.texts if t.get_gid() == "sheet-title").get_text()
     assert r"$\omega_{2}$ = 10 rad/s ccw" in title and "omega_2" not in title
 
