@@ -50,6 +50,7 @@ LABEL_NEAR = 2.0        # cm: a point's label off the other links at most this f
 NUMBER_BESIDE = 0.4     # cm: else (no such place found off the lines) a number's circle at most this far from its link
 BESIDE_STEP = 0.08      # cm: the grid of places searched there
 ON_BAR = (0.5, 0.42, 0.58, 0.34, 0.66)   # a number on its own bar: these fractions of the way along it tried
+ON_BAR_CLEAR = 0.25     # bar widths: such a number's circle at least this far from each pin's ring (the bar seen)
 LABEL_ROOM = 0.3        # cm: such a number's circle at least this far from every labelled point (room for its label)
 NUMBER_NEAR = 1.0       # cm: a link number at most this far from its own link (beside it, not out at a leader's end)
 GROUND_CLEAR = 0.15     # cm: a driver's value is nudged this far from hatched ground it crowds, where that is free
@@ -506,16 +507,23 @@ class _Drawing:
                     out.append(k)
         return out
 
-    def bar_room(self, lk) -> float:
-        """How far from each pin of link ``lk``, a bar, the centre of its circled number on the bar may come (the
-        circle's radius, a pin's, half a bar width: the bar seen between them), where the bar is at least twice
-        that long; else 0 (numbers not circled, a link not a bar, a bar too short to carry its number)."""
+    def bar_room(self, lk) -> list:
+        """The sizes at which link ``lk``'s circled number fits on its bar, a bar at least twice ``end`` long:
+        [(the fraction of its size, its Text keywords, ``end``)], where ``end`` is how far from each pin the circle's centre may come (the
+        circle's radius, a pin's, :data:`ON_BAR_CLEAR` bar widths: the bar seen between them); at its size first,
+        then smaller (:data:`SMALLER`: books set a short crank's number smaller on it). [] where the numbers are not
+        circled, the link is not a bar or the bar is too short even so."""
         kw, pts = self.number_style(lk), self.m.link(lk).points
         if "bbox" not in kw or len(pts) != 2:
-            return 0.0
-        end = self.number_radius(lk, kw) + (self.st.pin_radius + self.st.bar_width / 2) * self.pc
+            return []
         a, b = (np.asarray(self.sol.place(lk, p), float) for p in pts)
-        return end if float(np.hypot(*(b - a))) >= 2 * end else 0.0
+        length, out = float(np.hypot(*(b - a))), []
+        for f in (1.0, *SMALLER):
+            sized = {**kw, "fontsize": kw["fontsize"] * f}
+            end = self.number_radius(lk, sized) + (self.st.pin_radius + ON_BAR_CLEAR * self.st.bar_width) * self.pc
+            if length >= 2 * end:
+                out.append((f, sized, end))
+        return out
 
     def link_shape(self, lk, under, notch: bool = True):
         """A moving link's body and how it is drawn: (the hull plate, "plate"), (a plate notched clear of another
@@ -1200,7 +1208,7 @@ class _Drawing:
                 if t is None:
                     t = self._number_beside(lk, bodies, mine, pad, kw, nearest=True)
                 if t is None and len(pts) == 2:
-                    t = on_bar = self._number_on_bar(lk, pts, kw)
+                    t = on_bar = self._number_on_bar(lk, pts)
                 if t is None:
                     t = self._number_last(lk, pts, g, (anchor, mine), prefer, n, pad, kw, test, owned, bodies)
             own, ring = self.pl.of(t), self._number_box(t)   # (the box it keeps, its margin too: a value in it
@@ -1263,30 +1271,40 @@ class _Drawing:
             self.pl.back_to(aside[0])
         return t if beside is None else beside
 
-    def _number_on_bar(self, lk, pts, kw):
+    def _number_on_bar(self, lk, pts):
         """Link ``lk``'s circled number on its own bar, where no free place beside the bar reads as its own: the
         circle's centre on the bar's centre line at its middle (else farther along, :data:`ON_BAR`), the bar seen
-        on both sides of it (at least half a bar width of it between the circle and each pin's ring), over no link
-        or block drawn above the bar, on no line but the outlines of the bar and of the links beneath it (the bar
-        and the circle hide them there), clear of every mark and label and off the point labels' places
-        (:attr:`reserved`). A circled number on its own bar reads as that bar's, as books draw it. None where the
-        numbers are not circled, the bar is too short (:meth:`bar_room`) or no such place is free."""
-        end = self.bar_room(lk)   # from a pin to the circle's centre
-        if not end:
+        on both sides of it (at least :data:`ON_BAR_CLEAR` bar widths of it between the circle and each pin's
+        ring), over no link or block drawn above the bar, on no line but the outlines of the bar and of the links
+        beneath it (the bar and the circle hide them there), clear of every mark and label and off the point
+        labels' places (:attr:`reserved`); at its size, else smaller where only that fits (:meth:`bar_room`). A
+        circled number on its own bar reads as that bar's, as books draw it. None where the numbers are not
+        circled, the bar is too short or no such place is free."""
+        sizes = self.bar_room(lk)
+        if not sizes:
             return None
         a, b = (np.asarray(p, float) for p in pts)
-        r, length = self.number_radius(lk, kw), float(np.hypot(*(b - a)))
-        z = self.zorders.get(lk, 0.0)
+        length, z = float(np.hypot(*(b - a))), self.zorders.get(lk, 0.0)
         bodies = (*self.geoms.items(), *self.block_geom.items())
         above = [g for k, g in bodies if k != lk and self.zorders.get(k, 0.0) > z]
         hidden = {id(g) for k, lines in self.outlines.items() if k == lk or self.zorders.get(k, 9.0) < z
                   for g in lines}
         avoid = above + [g for g in self.pl.soft if id(g) not in hidden]
-        centres = [c for f in ON_BAR for c in [a + (b - a) * f] if min(f, 1 - f) * length >= end
-                   for ring in [Point(*c).buffer(r, quad_segs=8)]
-                   if self.pl.free(ring) and self._unreserved(ring) and not any(g.intersects(ring) for g in avoid)]
-        return self.pl.place_at(centres, literal(lk), gid=f"link-number-{lk}", pad=3.5, avoid=avoid,
-                                anchor=(a + b) / 2, **kw) if centres else None
+        for f, kw, end in sizes:   # (end: from a pin to the circle's centre)
+            r = self.number_radius(lk, kw)
+            centres = [c for x in ON_BAR for c in [a + (b - a) * x] if min(x, 1 - x) * length >= end
+                       for ring in [Point(*c).buffer(r, quad_segs=8)]
+                       if self.pl.free(ring) and self._unreserved(ring) and not any(g.intersects(ring) for g in avoid)]
+            if centres and f == 1.0:
+                t = self.pl.place_at(centres, literal(lk), gid=f"link-number-{lk}", pad=3.5, avoid=avoid,
+                                     anchor=(a + b) / 2, **kw)
+                if t is not None:
+                    return t
+            elif centres:   # set smaller: its box the circle (a margin of 3.5 points about its type reaches the pins)
+                t = self.ax.text(*centres[0], literal(lk), ha="center", va="center", gid=f"link-number-{lk}", **kw)
+                self.pl.add_box(t, Point(*centres[0]).buffer(r, quad_segs=8), anchor=(a + b) / 2)
+                return t
+        return None
 
     def _number_beside(self, lk, bodies, anchor, pad: float, kw, nearest: bool):
         """Link ``lk``'s number, with its circle on no line, at the free place nearest its body within
