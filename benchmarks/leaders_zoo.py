@@ -3,7 +3,8 @@
 Draws the poles sheet of every specimen of ``zoo(SEED, COUNT)`` (tests/zoo.py) in both styles, as
 ``velpoly draw --sheet poles`` does (without writing a file), and counts on each sheet's poles panel:
 
-- ``crossed``: pairs of leaders that cross (a pole label's leader and any other leader);
+- ``crossed``: pairs of leaders that cross (a pole label's leader and any other leader), ``pairs``: their gids (the
+  totals printed by the other label's kind: a pole's, a point's, a link number or the driver's value);
 - ``through``: a pole label's leader across another text's box (its outline as laid out, no margin);
 - ``nearer``: pole labels whose box is nearer another pole's ring than its own; ``bare_nearer``: of those, the
   ones with no leader to their own (which nothing tells from the other ring's);
@@ -55,11 +56,13 @@ def panel_counts(ax, poles_at: dict) -> dict:
         if view[0] <= x <= view[2] and view[1] <= y <= view[3]:
             rings[key] = Point(x, y).buffer(0.085 / 2.54 * 72.0)
     out = dict.fromkeys(KEYS, 0)
+    out["pairs"] = []
     reach = []
     pole_gids = {t.get_gid() for t in poles}
     for a, b in itertools.combinations(sorted(leaders), 2):
         if (a in pole_gids or b in pole_gids) and leaders[a].intersects(leaders[b]):
             out["crossed"] += 1
+            out["pairs"].append((a, b))
     for t in poles:
         gid = t.get_gid()
         b = boxes[id(t)]
@@ -93,6 +96,7 @@ def sheet_counts(sol, style: str) -> dict:
         got = [panel_counts(ax, at) for ax in fig.axes if any((t.get_gid() or "").startswith("label-pole-")
                                                             for t in ax.texts)]
     out = {k: sum(g[k] for g in got) for k in KEYS if k != "reach"}
+    out["pairs"] = [p for g in got for p in g["pairs"]]
     out["reach"] = float(np.mean([g["reach"] for g in got if g["leaders"]])) if any(g["leaders"] for g in got) else 0.0
     return out
 
@@ -135,6 +139,9 @@ def main() -> None:
     print(f"{len(rows)} sheets, {time.process_time() - t0:.0f} CPU s")
     print("  ".join(f"{k} {v}" for k, v in total.items()))
     print("sheets with a crossing:", sum(1 for r in rows if r["crossed"] or r["through"]))
+    kinds = [" and ".join(sorted(g.split("-")[1] if g.startswith("label-") else g.rstrip("-0123456789") for g in p))
+             for r in rows for p in r["pairs"]]
+    print("crossed with:", ", ".join(f"{k} {kinds.count(k)}" for k in sorted(set(kinds))))
     for r in sorted(rows, key=lambda r: -(2 * r["crossed"] + 2 * r["through"] + r["nearer"] + r["on_kennedy"]))[:a.worst]:
         print("  ", r)
     if a.json:
