@@ -123,3 +123,36 @@ def test_a_build_in_worker_processes_stopped_half_way_writes_nothing(tmp_path, m
     with pytest.raises(KeyboardInterrupt):
         build_gallery(src, out, jobs=2)
     assert len(seen) == 3 and _snapshot(out) == before
+
+
+def _deaf_to_sigterm():
+    import signal
+    signal.signal(signal.SIGTERM, signal.SIG_IGN)
+
+
+def _wait_long(seconds):
+    import time
+    time.sleep(seconds)
+    return seconds
+
+
+def test_a_worker_that_does_not_leave_on_sigterm_is_killed():
+    """A worker still there after its SIGTERM (as one is that waits for the task queue's lock a sibling left
+    taken when it left idle: the pool's shutdown then waited for ever, seen as a hung Ctrl-C test) is killed
+    after the grace, so that the pool's shutdown returns."""
+    import multiprocessing
+    from concurrent.futures import ProcessPoolExecutor
+    pool = ProcessPoolExecutor(2, mp_context=multiprocessing.get_context("fork"), initializer=_deaf_to_sigterm)
+    futures = [pool.submit(_wait_long, 60) for _ in range(2)]
+    procs = list(pool._processes.values())
+    try:
+        while not all(f.running() for f in futures):
+            pass
+        gallery._stop_workers(pool, grace=0.2)
+        for proc in procs:
+            proc.join(10)   # a bound, not a timing: a live worker sleeps 60 s
+        assert [p.is_alive() for p in procs] == [False, False]
+    finally:
+        for proc in procs:
+            proc.kill()
+        pool.shutdown(wait=True, cancel_futures=True)

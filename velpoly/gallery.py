@@ -574,12 +574,28 @@ class _busy:
         _WORKER["busy"] = False
 
 
-def _stop_workers(pool) -> None:
+def _stop_workers(pool, grace: float = 3.0) -> None:
     """The command is interrupted: each worker stops what it draws (SIGTERM) and the tasks queued are
-    dropped; nothing they drew is written."""
-    for proc in list((getattr(pool, "_processes", None) or {}).values()):
+    dropped; nothing they drew is written. A worker still there after ``grace`` seconds is killed: an idle
+    worker leaves on SIGTERM at once, and one that left while it held the pool's task queue (waiting for its
+    next task) leaves its lock taken, so that a sibling back from an abandoned drawing waits on it for ever
+    (and the pool's shutdown with it); workers write nothing, so a kill loses nothing."""
+    import time
+    from multiprocessing.connection import wait
+    procs = list((getattr(pool, "_processes", None) or {}).values())
+    for proc in procs:
         try:
             proc.terminate()
+        except (OSError, ValueError):
+            pass
+    end = time.monotonic() + grace
+    left = procs
+    while left and time.monotonic() < end:   # a process's sentinel is ready once it has ended (not reaped here)
+        ended = set(wait([p.sentinel for p in left], timeout=max(0.0, end - time.monotonic())))
+        left = [p for p in left if p.sentinel not in ended]
+    for proc in left:
+        try:
+            proc.kill()
         except (OSError, ValueError):
             pass
 
