@@ -142,6 +142,7 @@ def test_a_worker_that_does_not_leave_on_sigterm_is_killed():
     after the grace, so that the pool's shutdown returns."""
     import multiprocessing
     from concurrent.futures import ProcessPoolExecutor
+    from multiprocessing.connection import wait
     pool = ProcessPoolExecutor(2, mp_context=multiprocessing.get_context("fork"), initializer=_deaf_to_sigterm)
     futures = [pool.submit(_wait_long, 60) for _ in range(2)]
     procs = list(pool._processes.values())
@@ -149,9 +150,9 @@ def test_a_worker_that_does_not_leave_on_sigterm_is_killed():
         while not all(f.running() for f in futures):
             pass
         gallery._stop_workers(pool, grace=0.2)
-        for proc in procs:
-            proc.join(10)   # a bound, not a timing: a live worker sleeps 60 s
-        assert [p.is_alive() for p in procs] == [False, False]
+        # each worker's end read from its sentinel (ready once the process has ended; is_alive() may say True
+        # of a process the pool's own thread reaped first); 10 s a bound, not a timing: a live worker sleeps 60 s
+        assert [bool(wait([p.sentinel], 10)) for p in procs] == [True, True]
     finally:
         for proc in procs:
             proc.kill()
