@@ -554,12 +554,13 @@ def _worker_start(scratch: str | None = None) -> None:
 
 def _worker_stop(signum, frame):
     """SIGTERM in a worker: a drawing is abandoned (its temporary folder removed on the way out),
-    an idle worker leaves at once."""
+    an idle worker leaves at once: by SystemExit, so that a lock it holds on the way out (the pool's task
+    queue's, while it waits for its next task) is released, where ``os._exit`` left it taken and a sibling
+    waiting on it for ever (:func:`_stop_workers` kills a worker still there all the same)."""
     _WORKER["stopped"] = True
     if _WORKER["busy"]:
         raise KeyboardInterrupt
-    import os
-    os._exit(0)
+    raise SystemExit(0)
 
 
 class _busy:
