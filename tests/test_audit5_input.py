@@ -1,9 +1,8 @@
 """Outside check, audit 5: input the contract gives no meaning is refused, one line naming the file and entry.
 
 1. ``[reference]`` values of a shape their kind does not take (FORMAT.md section 1): a ``speed`` is a magnitude
-   (``speed = { B = -602 }`` was compared as 602: "a negative magnitude reverses" is a vector's, and a speed has
-   no direction to reverse); a pole's position is ``[x, y]`` (``P_24 = 5`` was compared as the pole's distance
-   from the origin). Every kind of ``values`` key, written in every shape, over generated mechanisms: the
+   (not ``[magnitude, direction]``; a negative one is the reversed vector's, test_audit7_input); a pole's
+   position is ``[x, y]`` (``P_24 = 5`` was compared as the pole's distance from the origin). Every kind of ``values`` key, written in every shape, over generated mechanisms: the
    shapes FORMAT.md gives it are read, every other is exit 2 naming the entry.
 """
 from __future__ import annotations
@@ -59,13 +58,13 @@ def test_a_printed_value_takes_only_the_shapes_its_kind_has(tmp_path):
         speed = float(np.hypot(*sp.drawn.velocity[point]))
         assert compare(velpoly.solve(velpoly.load({**sp.mech, "reference": {"speed": {point: speed}}})))[0].deviation \
             < 1e-9
-        with pytest.raises(velpoly.VelpolyError, match="a speed is a magnitude") as e:
-            velpoly.load({**sp.mech, "reference": {"speed": {point: -speed}}})
+        with pytest.raises(velpoly.VelpolyError, match="expected a number, got a list") as e:
+            velpoly.load({**sp.mech, "reference": {"speed": {point: [speed, 0.0]}}})
         assert e.value.where == f"reference.speed.{point}"
     assert checked > 250
     # as the command line says it: one line naming the file and entry, exit 2
     f = tmp_path / "m.toml"
-    f.write_text(to_toml({**sp.mech, "reference": {"speed": {point: -speed}}}))
+    f.write_text(to_toml({**sp.mech, "reference": {"speed": {point: [speed, 0.0]}}}))
     r = in_process(["solve", f])
     assert r.returncode == 2 and r.stderr.startswith(f"error: {f}: reference.") and len(r.stderr.splitlines()) == 2
 

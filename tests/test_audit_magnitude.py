@@ -1,8 +1,7 @@
 """Outside check, FORMAT.md section 1, Reference values: a vector is ``[magnitude, direction]`` (a negative magnitude
 reverses it) or a bare magnitude. A negative bare magnitude is the vector reversed, whose magnitude it still is: a
 book's ``V_B = -53.1094`` (against the direction the book assumed) beside an analytic speed of 53.1094 deviates by
-nothing. (A ``speed`` is a magnitude with no vector to reverse: a negative one is an input error,
-test_audit5_input.)
+nothing. (A ``speed`` alike: one rule for every printed magnitude, test_audit7_input.)
 
 Found by the audit: such a value was compared as a signed number with the (positive) magnitude, and every one,
 printed exactly, showed a deviation of 200 % in ``velpoly solve``'s table, the sheets' and the gallery's.

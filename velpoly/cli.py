@@ -172,10 +172,19 @@ def _degrees(text: str):
     """``--angle``'s number: a float, or, where the number is finite but beyond any float (``1e400``), its
     exact value (a Fraction), so that the angle's check says it is too large, as the API does for
     ``solve(m, angle=10**400)``, not that it is not finite."""
-    x = float(text)
+    x = _number(text)
     if math.isinf(x) and text.strip().lstrip("+-").lower() not in ("inf", "infinity"):
         return _exact(text)
     return x
+
+
+def _number(text: str) -> float:
+    """A number of degrees as written on the command line (``float``'s reading); argparse's error, one line
+    naming the option, where it is none (``--angle abc``)."""
+    try:
+        return float(text)
+    except ValueError:
+        raise argparse.ArgumentTypeError(f"expected a number of degrees, got {text!r}") from None
 
 
 def _exact(text: str):
@@ -189,7 +198,7 @@ def _step_degrees(text: str):
     """``--step``'s number: a float, or, where the number is finite and not zero but beyond any float
     (``1e400``, ``1e-400``), its exact value (a Fraction), which :func:`_check_step` refuses as too large or
     too small, not as "inf" or "0"."""
-    x = float(text)
+    x = _number(text)
     if (math.isinf(x) or x == 0) and text.strip().lstrip("+-").lower() not in ("inf", "infinity"):
         exact = _exact(text)
         return exact if exact != 0 else x
@@ -264,8 +273,7 @@ def cmd_draw(args) -> int:
     if not args.output:   # the default name can be the input's own (a file named mech.svg)
         check_not_input(out, args.file, "-o", default=True)
     if out.suffix.lower() not in FIGURE_SUFFIXES:
-        raise InputError(f"unknown figure type {out.suffix or '(none)'!r}", where="-o", file=str(out),
-                         hint="end the output's name with .svg, .png or .pdf")
+        raise unknown_type(out, "figure", "-o", "end the output's name with .svg, .png or .pdf")
     _, sol = _load_and_solve(args)
     _warn(sol)
     _lean_matplotlib(args)
@@ -341,14 +349,25 @@ def cmd_sweep(args) -> int:
     return 0
 
 
+def unknown_type(out: Path, kind: str, option: str, hint: str) -> InputError:
+    """The error of an output ``out`` (given by ``option``) whose suffix chooses no ``kind`` of output: its suffix
+    named; or, where it has none, the output named, and said to be a special file where it is one (``/dev/null``:
+    written straight through, FORMAT.md section 3, but with no suffix to choose what to write)."""
+    if out.suffix:
+        return InputError(f"unknown {kind} type {out.suffix!r}", where=option, file=str(out), hint=hint)
+    from .fileio import is_special
+    what = "a special file" if is_special(out) else "a name"
+    return InputError(f"no {kind} type: {str(out)!r} is {what} with no suffix to choose one", where=option,
+                      file=str(out), hint=hint)
+
+
 def _suffixed(path: str | None, allowed, option: str) -> Path | None:
     """``path`` as a Path if its suffix is one of ``allowed``; an InputError naming ``option`` if not."""
     if not path:
         return None
     p = Path(path)
     if p.suffix.lower() not in allowed:
-        raise InputError(f"unknown file type {p.suffix or '(none)'!r}", where=option, file=str(p),
-                         hint="end the name with " + " or ".join(allowed))
+        raise unknown_type(p, "file", option, "end the name with " + " or ".join(allowed))
     return p
 
 
@@ -441,8 +460,8 @@ def cmd_animate(args) -> int:
         return _animate_html(args, out)
     from .render.animate import FORMATS, parse_size
     if suffix not in FORMATS:
-        raise InputError(f"unknown animation type {out.suffix or '(none)'!r}", where="-o", file=str(out),
-                         hint="end the output's name with .gif, .png (animated PNG), .mp4, .pdf or .html")
+        raise unknown_type(out, "animation", "-o",
+                           "end the output's name with .gif, .png (animated PNG), .mp4, .pdf or .html")
     if out.resolve() == Path(args.file).resolve():
         raise InputError("the output would replace the input file", where="-o", file=str(out),
                          hint="give the animation another name")
@@ -551,15 +570,9 @@ HTML_MIN_STEP = 0.1   # degrees: 3600 poses a turn, a page of 15 to 20 MB
 def cmd_html(args) -> int:
     out = Path(args.output) if args.output else Path(Path(args.file).stem + ".html")
     if out.suffix.lower() not in (".html", ".htm"):
-        raise InputError(f"unknown page type {out.suffix or '(none)'!r}", where="-o", file=str(out),
-                         hint="end the output's name with .html")
-    try:
-        same = out.exists() and os.path.samefile(out, args.file)
-    except OSError:
-        same = False
-    if same:   # outputs never replace their input (FORMAT.md section 3)
-        raise InputError("the output is the input file", where="-o", file=args.file,
-                         hint="write the page to another file, e.g. -o sheet.html")
+        raise unknown_type(out, "page", "-o", "end the output's name with .html")
+    # outputs never replace their input (FORMAT.md section 3); the default name can be the input's own
+    check_not_input(out, args.file, "-o", default=not args.output)
     if 0 < args.step < HTML_MIN_STEP:   # other bad steps are refused by the cycle itself
         raise InputError(f"the step {args.step:g} deg is too fine for a page: {360 / args.step:.3g} poses a turn",
                          where="--step", hint=f"use a step of at least {HTML_MIN_STEP:g} deg (the default, 1, "

@@ -134,6 +134,16 @@ def _special(target: Path, st) -> bool:
     return os.path.abspath(target).startswith(("/dev/", "/proc/"))
 
 
+def is_special(target) -> bool:
+    """Whether ``target`` is a special file (a FIFO, a device, a terminal; a path under /dev or /proc), written
+    straight through, never replaced."""
+    try:
+        st = os.stat(target)
+    except OSError:
+        st = None
+    return _special(Path(target), st)
+
+
 def _check_folder(target: Path, folder: Path) -> None:
     blocker = next((p for p in (folder, *folder.parents) if p.exists()), None)
     if blocker is not None and not blocker.is_dir():   # a file where the output's folder should be

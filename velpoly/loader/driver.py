@@ -9,12 +9,14 @@ from ..model import Driver, Mechanism, Pin, Slider
 from .context import Ctx, check_keys, read_name, read_number, show, too_large, too_small
 from .units import ALPHA_HINT, OMEGA_HINT, RateTooLarge, RateTooSmall, parse_alpha, parse_omega
 
-__all__ = ["read_driver", "read_rate", "check_range", "MAX_SPEED", "MAX_ACCEL"]
+__all__ = ["read_driver", "read_rate", "check_range", "MAX_SPEED", "MAX_ACCEL", "MIN_SPEED", "MIN_ACCEL"]
 
 # Floating point holds about 1e+-308: the kinematics squares speeds and multiplies rates by lengths,
 # so the speeds and accelerations a file may ask for are bounded well inside that range.
 MAX_SPEED = 1e100               # the driver's speeds: |omega| x size, |speed|
 MAX_ACCEL = 1e200               # and accelerations: (omega^2 + |alpha|) x size, |accel|
+MIN_SPEED = 1e-100              # and, unless zero, at least: speeds |omega| x size, |speed|
+MIN_ACCEL = 1e-200              # and each acceleration term: omega^2 x size, |alpha| x size, |accel|
 
 
 def read_driver(ctx: Ctx, d: dict, frame: str, pins: list[Pin], sliders: list[Slider]) -> Driver:
@@ -111,10 +113,34 @@ def check_range(ctx: Ctx, m: Mechanism) -> None:
                   ("driver.alpha" if abs(d.alpha) > d.omega * d.omega else "driver.omega", accel, MAX_ACCEL,
                    f"{d.alpha:g} rad/s^2" if abs(d.alpha) > d.omega * d.omega else f"{d.omega:g} rad/s"))
     unit = m.units or "length units"
+    _check_floor(ctx, m)
     for where, value, limit, shown in checks:
         if not value <= limit:
             what, per = ("speeds", "/s") if limit == MAX_SPEED else ("accelerations", "/s^2")
             reach = f"{value:.3g}" if math.isfinite(value) else "beyond 1e+308"
             raise ctx.err(where, f"{shown} is too large: {what} of {reach} {unit}{per} (at most {limit:g})",
                           hint="check the driver's value and its unit (omega in rad/s or rpm), and give the "
+                               "lengths in units that keep the numbers within range")
+
+
+def _check_floor(ctx: Ctx, m: Mechanism) -> None:
+    """A driver rate written nonzero whose speeds |omega| x size (|speed|) would fall below MIN_SPEED, or
+    whose acceleration terms omega^2 x size, |alpha| x size (|accel|) below MIN_ACCEL: an input error, as a
+    rate below any float is (``omega = 1e-200``: omega^2 underflows to 0, the normal accelerations with it,
+    and the polygons' scales fail)."""
+    size, d = m.size, m.driver
+    if d.is_slider:
+        terms = (("driver.speed", d.speed, abs(d.speed), MIN_SPEED, "", "speeds"),
+                 ("driver.accel", d.accel, abs(d.accel), MIN_ACCEL, "", "accelerations"))
+    else:
+        terms = (("driver.omega", d.omega, abs(d.omega) * size, MIN_SPEED, " rad/s", "speeds"),
+                 ("driver.omega", d.omega, d.omega * d.omega * size, MIN_ACCEL, " rad/s", "accelerations"),
+                 ("driver.alpha", d.alpha, abs(d.alpha) * size, MIN_ACCEL, " rad/s^2", "accelerations"))
+    for where, rate, value, floor, unit, what in terms:
+        shown = f"{rate:g}{unit}"
+        if rate != 0 and not value >= floor:
+            per = "/s" if what == "speeds" else "/s^2"
+            raise ctx.err(where, f"{shown} is too small: {what} of {value:.3g} {m.units or 'length units'}{per} "
+                                 f"(at least {floor:g}, or 0)",
+                          hint="check the driver's value and its unit; write 0 where 0 is meant, and give the "
                                "lengths in units that keep the numbers within range")

@@ -57,11 +57,8 @@ def _value(ctx: Ctx, key: str, k, v) -> None:
         if str(k) not in lnames:
             raise ctx.err(w, f"unknown link {key_repr(k)}", hint="links: " + ", ".join(lnames))
         read_number(ctx, w, v)
-    elif key == "speed":   # a magnitude: a sign means nothing here (a vector's reversal is [magnitude, direction])
-        if read_number(ctx, w, v) < 0:
-            raise ctx.err(w, f"a speed is a magnitude, not negative: got {show(v)}",
-                          hint=f"speed = {{ {k} = {show(-v)} }}; a vector with its sense: "
-                               f"velocity = {{ {k} = [magnitude, direction] }}")
+    elif key == "speed":   # a magnitude, as a bare one in velocity: a negative one is the reversed vector's
+        read_number(ctx, w, v)
     elif key in ("velocity", "acceleration"):   # [magnitude, direction] or a bare magnitude
         if isinstance(v, list):
             vector_shape(ctx, w, v)
