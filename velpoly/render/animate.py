@@ -60,6 +60,8 @@ __all__ = ["FramePlan", "mp4_writer", "plan_frames", "Animator", "write_animatio
 SHEETS = ("velocity", "acceleration", "poles", "full")
 FORMATS = (".gif", ".png", ".mp4", ".pdf")
 DEFAULT_SIZE = (1920, 1080)
+LEGEND_GAP = 12.0     # px (of a 1080 px frame) between the acceleration legend and the polygon's highest point
+LEGEND_ROOM = 0.5     # the polygon keeps at least this share of its panel's height, whatever the legend's
 SURGE = 4.0           # frames whose largest vector exceeds this times the median frame's: left out of the scale
 MIN_SIZE = (320, 180)
 MAX_SIZE = (7680, 4320)
@@ -423,6 +425,7 @@ class Animator:
             self.texts: list = []            # (axes or None, Text) moving texts, pasted as sprites
             self._sprites: dict = {}
             self.points, self.images, self.values = {}, {}, {}
+            self.band = {}                   # panel name -> the band (data units) kept free at its top (the legend's)
             self._build()
             self.canvas = self.fig.canvas
             self.canvas.draw()
@@ -533,19 +536,25 @@ class Animator:
             x += w + gap
         return out
 
-    def _fit(self, ax, box, margin: float) -> float:
+    def _fit(self, ax, box, margin: float, top: float = 0.0) -> float:
         """Equal-aspect limits showing ``box`` as large as the panel allows (an exact scale, not a round
-        one: the scale bar shows a round length); return the scale (units per cm)."""
+        one: the scale bar shows a round length), below a band ``top`` cm high kept free at the panel's top
+        (the legend's); return the scale (units per cm)."""
         from .canvas import fit_view
         pos = ax.get_position()
         wcm = pos.width * 16.0 * 2.54
         hcm = pos.height * self.size[1] / self.dpi * 2.54
         x0, y0, x1, y1 = box
         usable = 1.0 - 2 * margin
-        need = max((x1 - x0) / (wcm * usable), (y1 - y0) / (hcm * usable))
+        room = max(hcm * usable - top, LEGEND_ROOM * hcm * usable)   # a small animation's legend: half at most
+        need = max((x1 - x0) / (wcm * usable), (y1 - y0) / room)
         if not (math.isfinite(need) and need > 0):
-            need = None
-        return fit_view(ax, box, scale=need, margin=margin)
+            self.band[ax.get_label()] = 0.0
+            return fit_view(ax, box, scale=None, margin=margin)
+        # the box grown upward by the band, centred: the band lies between the box and the panel's top
+        band = min(top, hcm * usable - (y1 - y0) / need) * need
+        self.band[ax.get_label()] = band   # (data units)
+        return fit_view(ax, (x0, y0, x1, y1 + band), scale=need, margin=margin)
 
     def _caption(self) -> str:
         caption = literal(self.plan.caption)   # it names the driver (a user's name, drawn as written)
@@ -741,14 +750,32 @@ class Animator:
 
     # -- a polygon panel ---------------------------------------------------------------------------
     def _polygon(self, ax, kind: str) -> None:
-        from matplotlib.lines import Line2D
         from matplotlib.patches import Circle
         from .canvas import fit_view, per_cm, per_point, tex
         from .labels import placer
         from shapely.geometry import MultiPoint
         polys = self.polys[kind]
         box = self.boxes[kind]
-        scale = self._fit(ax, box, margin=0.07)
+        # every vector kind drawn in any frame: the legend (acceleration components) is still
+        kinds = []
+        for poly in polys:
+            for stp in poly.steps:
+                for v in stp.vectors:
+                    if v.kind not in kinds:
+                        kinds.append(v.kind)
+        band = 0.0   # the legend's height (cm) and a gap: the polygon is fitted below it in every frame
+        for columns in ((1, 2, 3) if kind == "acceleration" else ()):   # as few as leave the polygon its room
+            legend = self._legend(ax, kinds, columns)
+            if legend is None:
+                break
+            bb = legend.get_window_extent(self.fig.canvas.get_renderer())
+            band = (bb.height / self.dpi + self.pt(LEGEND_GAP) / 72.0) * 2.54
+            self._legend_box = (bb.x0, bb.y0, bb.x1, bb.y1)
+            pos = ax.get_position()
+            if band <= (1 - LEGEND_ROOM) * 0.86 * pos.height * self.size[1] / self.dpi * 2.54 or \
+                    bb.width * (columns + 1) / columns > pos.width * self.size[0]:
+                break
+        scale = self._fit(ax, box, margin=0.07, top=band)
         setattr(self, f"{kind}_scale", scale)
         pc, pp = per_cm(ax), per_point(ax)
         st = self.st
@@ -771,13 +798,6 @@ class Animator:
                 ax.add_patch(patch)
                 shades[lk] = self._move(patch, ax)
         arrows, labels = {}, {}
-        # every vector kind drawn in any frame: the legend (acceleration components) is still
-        kinds = []
-        for poly in polys:
-            for stp in poly.steps:
-                for v in stp.vectors:
-                    if v.kind not in kinds:
-                        kinds.append(v.kind)
         self.images[kind] = {}
         for key, lab in polys[0].labels.items():
             if all(float(np.hypot(*p.images[key])) == 0.0 for p in polys[:1]) and \
@@ -789,22 +809,31 @@ class Animator:
         self._poly_art = getattr(self, "_poly_art", {})
         self._poly_art[kind] = {"shades": shades, "arrows": arrows, "labels": labels, "ax": ax,
                                 "head": st.head_length * 1.6 * pp, "lw": self.pt(3.0), "pp": pp,
-                                "note": self._reduced(ax, kind)}
-        if kind == "acceleration" and len([k for k in kinds if k != "absolute"]) >= 1:
-            from .style import KIND_LABELS
-            handles = []
-            shown = [k for k in st.kind_styles if k in kinds or k == "absolute"]
-            for k in shown:
-                ls, colour, f = st.kind_styles[k]
-                handles.append(Line2D([], [], lw=self.pt(3.0) * f, linestyle=ls, color=st.ink if colour is None else colour))
-            ax.legend(handles, [KIND_LABELS[k] for k in shown], loc="upper right", fontsize=self.pt(16),
-                      handlelength=3.0, borderaxespad=0.0, frameon=False)
+                                "note": self._reduced(ax, kind, self.band[kind])}
 
-    def _reduced(self, ax, kind: str):
+    def _legend(self, ax, kinds: list, columns: int = 1):
+        """The acceleration panel's legend of the vector kinds drawn (``kinds``) in ``columns``, in its upper
+        right corner (still: the polygon is fitted below it, :meth:`_fit`); None where only absolute vectors
+        are drawn."""
+        from matplotlib.lines import Line2D
+        from .style import KIND_LABELS
+        st = self.st
+        if not [k for k in kinds if k != "absolute"]:
+            return None
+        shown = [k for k in st.kind_styles if k in kinds or k == "absolute"]
+        handles = []
+        for k in shown:
+            ls, colour, f = st.kind_styles[k]
+            handles.append(Line2D([], [], lw=self.pt(3.0) * f, linestyle=ls, color=st.ink if colour is None else colour))
+        return ax.legend(handles, [KIND_LABELS[k] for k in shown], loc="upper right", fontsize=self.pt(16),
+                         handlelength=3.0, borderaxespad=0.0, frameon=False, ncols=columns)
+
+    def _reduced(self, ax, kind: str, band: float = 0.0):
         """Each frame's divisor of the panel's scale (``self.reduction[kind]``, :func:`reduction`: a frame whose
-        polygon the panel cannot hold at the scale, a toggle's surge, is drawn at 1/n of it) and the note, beside
-        the scale bar, that says so in such a frame (returned)."""
-        limits = (*ax.get_xlim(), *ax.get_ylim())
+        polygon the panel cannot hold at the scale, a toggle's surge, is drawn at 1/n of it, below the top
+        ``band`` (data units) the legend keeps) and the note, beside the scale bar, that says so in such a frame
+        (returned)."""
+        limits = (*ax.get_xlim(), ax.get_ylim()[0], ax.get_ylim()[1] - band)
         self.reduction = getattr(self, "reduction", {})
         self.reduction[kind] = [reduction(_polygon_points(p), limits) for p in self.polys[kind]]
         note = ax.text(0.99, 0.01, "", transform=ax.transAxes, ha="right", va="bottom", fontsize=self.pt(18),
@@ -1129,7 +1158,8 @@ class Animator:
         """The offset (points) of ``text`` beside ``anchor``: of twelve directions (``prefer`` first, then
         alternately either side), the one whose box keeps farthest from the segments drawn (links, or the
         polygon's vectors) and the labels already placed (``taken``: boxes in pixels, appended to), up to a
-        clearance of 6 pixels, where nearer ``prefer`` wins."""
+        clearance of 6 pixels, where nearer ``prefer`` wins; where none is clear (labels of coincident or
+        crowded points), the same twelve a label's size farther out are tried too."""
         a = ax.transData.transform(np.asarray(anchor, float))
         self._offset(text, prefer, gap_px)            # measures the text once
         k = self.dpi / 72.0
@@ -1139,7 +1169,8 @@ class Animator:
         with np.errstate(divide="ignore"):
             half = np.minimum(np.where(np.abs(u[:, 0]) > 1e-12, (w / 2) / np.abs(u[:, 0]), np.inf),
                               np.where(np.abs(u[:, 1]) > 1e-12, (h / 2) / np.abs(u[:, 1]), np.inf))
-        off = u * (self.pt(gap_px) * k + half)[:, None]
+        near = self.pt(gap_px) * k + half
+        off = np.concatenate([u * near[:, None], u * (near + 2 * half)[:, None]])   # the second ring: a label out
         c = a[None, :] + off
         clear = np.full(len(c), 6.0)
         if len(pts):
@@ -1153,7 +1184,7 @@ class Animator:
             d = np.hypot(gx, gy) - np.where((gx == 0) & (gy == 0), 6.0, 0.0)
             clear = np.minimum(clear, d.min(axis=1))
         good = np.flatnonzero(clear >= 6.0)
-        i = int(good[0]) if len(good) else int(np.argmax(clear))
+        i = int(good[0]) if len(good) else int(np.argmax(clear))   # the first ring first: it comes first
         cx, cy = c[i]
         taken.append((cx - w / 2, cy - h / 2, cx + w / 2, cy + h / 2))
         return (float(off[i, 0] / k), float(off[i, 1] / k))
@@ -1230,6 +1261,8 @@ class Animator:
         self.images[kind] = images
         pts = self._seg_points(art["ax"], drawn)
         taken = [self._origin_box.get(kind)] if self._origin_box.get(kind) is not None else []
+        if kind == "acceleration" and getattr(self, "_legend_box", None) is not None:   # and of the legend
+            taken.append(self._legend_box)
         if divisor != 1:   # the labels keep clear of the note
             bb = art["note"].get_window_extent(self.fig.canvas.get_renderer())
             taken.append((bb.x0, bb.y0, bb.x1, bb.y1))
