@@ -763,18 +763,7 @@ class Animator:
                 for v in stp.vectors:
                     if v.kind not in kinds:
                         kinds.append(v.kind)
-        band = 0.0   # the legend's height (cm) and a gap: the polygon is fitted below it in every frame
-        for columns in ((1, 2, 3) if kind == "acceleration" else ()):   # as few as leave the polygon its room
-            legend = self._legend(ax, kinds, columns)
-            if legend is None:
-                break
-            bb = legend.get_window_extent(self.fig.canvas.get_renderer())
-            band = (bb.height / self.dpi + self.pt(LEGEND_GAP) / 72.0) * 2.54
-            self._legend_box = (bb.x0, bb.y0, bb.x1, bb.y1)
-            pos = ax.get_position()
-            if band <= (1 - LEGEND_ROOM) * 0.86 * pos.height * self.size[1] / self.dpi * 2.54 or \
-                    bb.width * (columns + 1) / columns > pos.width * self.size[0]:
-                break
+        band = self._legend_band(ax, kinds) if kind == "acceleration" else 0.0
         scale = self._fit(ax, box, margin=0.07, top=band)
         setattr(self, f"{kind}_scale", scale)
         pc, pp = per_cm(ax), per_point(ax)
@@ -810,6 +799,24 @@ class Animator:
         self._poly_art[kind] = {"shades": shades, "arrows": arrows, "labels": labels, "ax": ax,
                                 "head": st.head_length * 1.6 * pp, "lw": self.pt(3.0), "pp": pp,
                                 "note": self._reduced(ax, kind, self.band[kind])}
+
+    def _legend_band(self, ax, kinds: list) -> float:
+        """The height (cm) of the band the acceleration legend (:meth:`_legend`) takes at the panel's top, and a
+        gap: the polygon is fitted below it in every frame. In as few columns as leave the polygon LEGEND_ROOM of
+        the panel, where the panel is wide enough; 0 without a legend."""
+        band = 0.0
+        pos = ax.get_position()
+        for columns in (1, 2, 3):
+            legend = self._legend(ax, kinds, columns)
+            if legend is None:
+                break
+            bb = legend.get_window_extent(self.fig.canvas.get_renderer())
+            band = (bb.height / self.dpi + self.pt(LEGEND_GAP) / 72.0) * 2.54
+            self._legend_box = (bb.x0, bb.y0, bb.x1, bb.y1)
+            if band <= (1 - LEGEND_ROOM) * 0.86 * pos.height * self.size[1] / self.dpi * 2.54 or \
+                    bb.width * (columns + 1) / columns > pos.width * self.size[0]:
+                break
+        return band
 
     def _legend(self, ax, kinds: list, columns: int = 1):
         """The acceleration panel's legend of the vector kinds drawn (``kinds``) in ``columns``, in its upper
