@@ -474,3 +474,10 @@ def rename_links(mech: dict, names=WORDS) -> dict:
         m["drawing"]["link_colours"] = {new[str(k)]: v for k, v in colours.items()}
     m.pop("reference", None)
     return m
+
+
+def drop_tiny(x: float) -> float:
+    """A generated angular acceleration as a driver may have it: 0 for one so small (1e-311, a denormal) that the
+    accelerations it gives fall under the floor a file may ask for (1e-200, velpoly.loader.driver.MIN_ACCEL: an
+    input error, test_audit7_input)."""
+    return x if abs(x) >= 1e-150 else 0.0
