@@ -12,13 +12,16 @@ crank's number on its crank, drawn over the crank, the crank over the lever.
 A link of three or more joints whose plate would be notched about the pivot of a crank that lies over it (a slotted
 lever, an inverted slider-crank's guide about its crank) is that notched plate, beneath the crank, where the marks
 then read (displacement._Drawing.reads): one polygon, drawn beneath the crank, with every number nearer its own link,
-the driver's arrows across no other link and every point label off the links not its point's.
+the driver's arrows across no other link (alpha's arc its own arrow in its sense, clear of the plate: beside omega's
+in the notch where beyond it the arc crossed the plate) and every point label off the links not its point's.
 """
 from __future__ import annotations
 
 import numpy as np
+from shapely.geometry import LineString
 
 import zoo
+from test_space_diagram import check_driver
 from test_space_marks import _data_box, _draw, driver_faults, line_faults, number_faults, on_own_bar, point_faults
 
 # (seed, style): on main 6d815d8 each had the crank's number 2 nearer the lever or the rod than its crank (with a
@@ -42,8 +45,11 @@ def test_crank_number_on_its_crank():
         assert z["link-2"] > z["link-4"] and t.get_zorder() > z["link-2"]   # the crank over the lever, 2 on it
 
 
-# (kind, variant, seed): on main 6d815d8 each lever or guide 4 was drawn as bars (displacement._Drawing.cranks_over)
-PLATED = [("inverted slider-crank", "curved crank", 1), ("six-bar", "quick-return crank", 3)]
+# (kind, variant, seed): on main 6d815d8 each lever or guide 4 was drawn as bars (displacement._Drawing.cranks_over);
+# on main 7c7c973 the last two too: alpha's arc, beyond omega's, crossed the plate about the crank's pivot (now
+# beside omega's at the same radius in the notch: displacement._Drawing._side_plans)
+PLATED = [("inverted slider-crank", "curved crank", 1), ("six-bar", "quick-return crank", 3),
+          ("inverted slider-crank", "curved crank", 0), ("inverted slider-crank", "offset both crank", 5)]
 
 
 def test_plate_beneath_its_crank():
@@ -59,3 +65,7 @@ def test_plate_beneath_its_crank():
         assert number_faults(sol, ax, art) == [], (variant, seed)
         assert driver_faults(sol, ax, art, "textbook") == [], (variant, seed)
         assert point_faults(sol, ax, art) == [], (variant, seed)
+        check_driver(sol, art)   # omega's arc and alpha's, each its own arrow in its sense (alpha's two heads)
+        if sol.mechanism.driver.alpha:   # alpha's arc clear of the plate (and of every link but the crank)
+            (arc,) = [a for a in art["driver"] if a.get_gid() == "driver-alpha-arc"]
+            assert not LineString(np.column_stack(arc.get_data())).intersects(plate), (variant, seed)

@@ -3,7 +3,7 @@
 At the data level, on seeded zoo mechanisms of every kind and on the gallery's files: the driver's
 alpha is its own curved arrow turning in alpha's sense (none when alpha = 0), omega's in omega's; a
 slider driver's acceleration is an arrow along its path in the sense of its acceleration (none when
-zero); the driver crank lies over every link and block it touches; a link of three or more points drawn
+zero), next to its speed's arrow (clear of it, within BESIDE of it) and by its block; the driver crank lies over every link and block it touches; a link of three or more points drawn
 as a plate is one light-filled Polygon patch with its corners at its points; on slides a link number's
 circle is no larger in radius than a link's width.
 """
@@ -18,7 +18,7 @@ from matplotlib.backends.backend_agg import FigureCanvasAgg
 from matplotlib.colors import to_rgb
 from matplotlib.figure import Figure
 from matplotlib.patches import Polygon as MPolygon
-from shapely.geometry import MultiPoint, Point
+from shapely.geometry import LineString, MultiPoint, Point
 
 import sheets
 import zoo
@@ -49,6 +49,17 @@ def _gid(art, role, gid):
     return [a for a in art.get(role, []) if a.get_gid() == gid]
 
 
+BESIDE = 2.5     # cm: a slider driver's acceleration arrow at most this far from its speed's (next to it)
+BY_BLOCK = 3.5   # cm: and from the block's point (beside the block, along its path)
+
+
+def _shaft(art, gid):
+    """A straight driver arrow's whole length (tail to tip, shapely), from its shaft's tail and its head's tip."""
+    (shaft,) = _gid(art, "driver", gid + "-shaft")
+    (head,) = _gid(art, "driver", gid)
+    return LineString([tuple(np.column_stack(shaft.get_data())[0]), tuple(head.get_xy()[0])])
+
+
 def _sweep(xy, p) -> np.ndarray:
     """The steps of the angle (rad) of the points ``xy`` about ``p``."""
     return np.diff(np.unwrap(np.arctan2(xy[:, 1] - p[1], xy[:, 0] - p[0])))
@@ -71,6 +82,12 @@ def check_driver(sol, art):
             d = (tip - base) / np.hypot(*(tip - base))
             assert abs(abs(float(d @ path)) - 1) < 1e-9                          # along the path
             assert np.sign(float(d @ path)) == np.sign(value)                    # in its sense
+        if drv.accel:   # the acceleration's arrow beside the speed's (next to it, clear of it) and by the block
+            speed, accel = (_shaft(art, gid) for gid in ("driver-arrow", "driver-accel-arrow"))
+            block = np.asarray(sol.place(s.block, s.point), float)
+            cm = 1.0 / per_cm(art.ax)
+            assert 0 < speed.distance(accel) * cm <= BESIDE, speed.distance(accel) * cm
+            assert accel.distance(Point(*block)) * cm <= BY_BLOCK, accel.distance(Point(*block)) * cm
         return
     pivot = next(pin.point for pin in m.pins if set(pin.links) == {drv.link, m.frame.name})
     p = np.asarray(sol.position.get(pivot, sol.place(drv.link, pivot)), float)

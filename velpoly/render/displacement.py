@@ -65,6 +65,7 @@ DRIVER_ROOM = 0.65     # cm: a plate notched about the driver's pivot keeps this
 CRANK_OVER = 0.25      # a plate notched about a pivot whose link would lie over it by more than this fraction of
 #                        that link is not notched (bars): the link's number and arcs need the room about it
 GROUND_GAP = 0.2       # cm: a plate notched about a frame pivot keeps this far from its ground's line ends
+SIDE_GAP = 12.0        # deg: alpha's arc beside omega's in one free run (where every other layout crosses a link)
 RUN_SPAN = 45.0        # deg: the least span of an arc in such a run (a shorter arc reads as a tick, not a turn)
 
 
@@ -1644,6 +1645,29 @@ class _Drawing:
             plans += [(w, a) for a in rest + [b._replace(rank=len(rest)) for b in beyond]]
         return plans
 
+    def _side_plans(self, runs, rad) -> list:
+        """The (omega's place, alpha's place) side by side in one free run (:meth:`_free_runs`) at the same radius,
+        :data:`SIDE_GAP` apart, either first, each at least :data:`RUN_SPAN` and long enough for its heads (the run
+        shared in proportion to what each needs, alpha's two heads more than omega's one): with a
+        plate beneath the crank (:attr:`beneath_cranks`), where every other layout's arcs cross a link
+        (:meth:`_best_plan`'s ``fallback``: alpha's arc beyond omega's crossed the plate, whose notch about the
+        pivot holds one radius of arcs, and the plate was refused for bars)."""
+        hl, out = self.st.head_length * self.pp, []
+        if not self.m.driver.alpha:
+            return out
+        need = [max(RUN_SPAN, math.degrees(k * hl / rad)) for k in (1.8, 2.8)]   # omega's, alpha's least spans
+        for w, start in sorted(runs, reverse=True):
+            room = w - SIDE_GAP
+            if room < sum(need):
+                continue
+            spans = [min(110.0, room * q / sum(need)) for q in need]   # the room shared in proportion
+            for a, b in ((0, 1), (1, 0)):   # omega's arc first round the run, then alpha's first
+                first = start + spans[a] / 2
+                places = {a: _ArcPlace(len(out), first, spans[a], rad, (w, start)),
+                          b: _ArcPlace(len(out), start + w - spans[b] / 2, spans[b], rad, (w, start))}
+                out.append((places[0], places[1]))
+        return out
+
     def _arc_points(self, p, rad, mid, span, sense) -> np.ndarray:
         a0, a1 = mid - sense * span / 2, mid + sense * span / 2
         t = np.radians(np.linspace(a0, a1, 60))
@@ -1800,13 +1824,20 @@ class _Drawing:
                       for b, place in zip(boxes, [q for q in plan if q is not None]))
         return (lost, on_lines, far) + tuple(q.rank for q in plan if q is not None), (arts, labels, aside[0])
 
-    def _best_plan(self, p, plans, family, texts, label_kw) -> tuple:
+    def _best_plan(self, p, plans, family, texts, label_kw, fallback: int | None = None) -> tuple:
         """The index of the plan to draw, and that plan as drawn to score it (:meth:`_plan_score`): of those whose
         arcs cross fewest (:meth:`_plan_crossings`), the one whose values are all placed and on no line, in the first
         family (the widest gap's arc, then each radius's free runs: :data:`ARC_RADII`) that has one; then closest to
-        their arcs, in the widest gaps. A later family is scored only where no earlier one has such a plan."""
-        crossings = [self._plan_crossings(p, plan) for plan in plans]
+        their arcs, in the widest gaps. A later family is scored only where no earlier one has such a plan. The
+        plans from index ``fallback`` on (:meth:`_side_plans`) count only where they cross fewer than every one before."""
+        n = len(plans) if fallback is None else fallback
+        crossings = [self._plan_crossings(p, plan) for plan in plans[:n]]
         least = min(crossings)
+        if n < len(plans) and least != (0, 0):
+            more = [self._plan_crossings(p, plan) for plan in plans[n:]]
+            if min(more) < least:
+                crossings, least = crossings + more, min(more)
+        crossings += [(math.inf,)] * (len(plans) - len(crossings))   # (not counted: never the least)
         best = None
         for fam in sorted(set(family)):
             for i in range(len(plans)):
@@ -1862,12 +1893,17 @@ class _Drawing:
                  rf"$\alpha_{{{lk}}}$ = {number_math(abs(drv.alpha), 4, 0.0)} rad/s² {'ccw' if drv.alpha > 0 else 'cw'}")
         label_kw = dict(fontsize=st.small_size * 1.15, zorder=7)
         gaps = self._driver_gaps(pivot, p, ground_dir)
-        plans, family = self._driver_plans(gaps, ARC_RADIUS * self.pc), []
+        plans, family, side = self._driver_plans(gaps, ARC_RADIUS * self.pc), [], []
         family += [0] * len(plans)
         for i, r in enumerate(ARC_RADII, 1):
-            more = self._run_plans(self._free_runs(p, r * self.pc, ground_dir.get(pivot)), r * self.pc)
+            runs = self._free_runs(p, r * self.pc, ground_dir.get(pivot))
+            more = self._run_plans(runs, r * self.pc)
             plans += more
             family += [i] * len(more)
+            side += [(i, q) for q in self._side_plans(runs, r * self.pc)] if self.beneath_cranks else []
+        first_side = len(plans)   # (the side plans last, so that a plan's index is the same each time it is drawn)
+        plans += [q for _, q in side]
+        family += [fam for fam, _ in side]
         pin = self.pl.pins.get("driver-plan")   # a step frame: the finished construction's layout (scored here, with
         drawn = None                             # its values at their pins, another may win)
         if pin is not None and pin[0] == "plan" and pin[1] < len(plans):
@@ -1875,7 +1911,7 @@ class _Drawing:
         elif self.plan is not None:
             k = self.plan
         else:
-            k, drawn = self._best_plan(p, plans, family, texts, label_kw)
+            k, drawn = self._best_plan(p, plans, family, texts, label_kw, first_side)
         self.plan = k
         if drawn is not None and values:   # the plan as it was drawn to score it: put back, not drawn again
             arts, labels, aside = drawn
