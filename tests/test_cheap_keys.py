@@ -61,7 +61,8 @@ def test_a_texts_size_is_its_boxs():
     for i in range(24):
         s = ["B", "$V_{B}$", "12.5 mm", r"$\omega_{3}$", "O₂"][i % 5]
         rot = float(rng.choice([0.0, 0.0, 30.0, 90.0, 271.5]))
-        t = ax.text(float(rng.uniform(-3, 7)), float(rng.uniform(2, 9)), s, rotation=rot, fontsize=float(rng.uniform(6, 12)))
+        t = ax.text(float(rng.uniform(-3, 7)), float(rng.uniform(2, 9)), s, rotation=rot,
+                    fontsize=float(rng.uniform(6, 12)))
         pad, pp = float(rng.choice([0.0, 1.0, 3.5])), (None if i % 2 else float(rng.uniform(0.01, 0.2)))
         t.set_rotation(0)
         x0, y0, x1, y1 = pl.box_of(t, pad, pp).bounds   # what text_size measured: the box of the unrotated text

@@ -242,7 +242,8 @@ class LabelPlacer:
     def text_size(self, text, pad: float = 1.0, pp: float | None = None) -> tuple[float, float]:
         """The width and height of the Text's unrotated :meth:`box_of` (data units). The box's bounds are the least
         and greatest of the corners it is made of, so they are taken from :meth:`_bounds_of` without the box where
-        all four are finite; a text already unrotated is measured as it is (turning it to 0 and back changes nothing)."""
+        all four are finite; a text already unrotated is measured as it is (turning it to 0 and back changes
+        nothing)."""
         rot = text.get_rotation()
         if rot != 0:
             text.set_rotation(0)
