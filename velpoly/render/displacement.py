@@ -28,7 +28,7 @@ from ..rigid import direction as _unit, perp as _perp
 from ..names import driver_index, key_text, link_math, quantity_math, upper_name
 from .canvas import (Artists, add_patch, arrow, border_point, box, fit_view, get_ax, literal, math_literal, per_cm,
                      per_point, tex, view_box, view_scale)
-from .labels import placer
+from .labels import all_farther, meets_any, placer
 from .options import drawing_options
 from .scalebar import scale_bar, unit_label
 from .style import get_style, link_fill
@@ -1321,14 +1321,15 @@ class _Drawing:
         step, view = BESIDE_STEP * pc, view_box(self.ax)
         xs, ys = np.meshgrid(_grid_in(x0, x1, step, *view.bounds[::2], r), _grid_in(y0, y1, step, *view.bounds[1::2], r))
         cx, cy = xs.ravel(), ys.ravel()
-        rings = shapely.box(cx - r, cy - r, cx + r, cy + r)
+        corners = np.column_stack([cx - r, cy - r, cx + r, cy + r])
+        rings = shapely.box(*corners.T)
         ok = shapely.contains(view, rings) & (shapely.distance(rings, own) <= NUMBER_BESIDE * pc)
         taken = np.array(self.pl.boxes + self.pl.hard + self.pl.soft + self.reserved, dtype=object)
         if taken.size:
-            ok[ok] = ~shapely.intersects(taken[None, :], rings[ok][:, None]).any(axis=1)
+            ok[ok] = ~meets_any(taken, rings[ok])
         if self.opts.label_points is None or self.opts.label_points:   # the points' labels, placed last, go there
-            points = shapely.points(np.array([keys[0][1] for keys in _groups(self.sol).values()], float))
-            ok[ok] = (shapely.distance(points[None, :], rings[ok][:, None]) > LABEL_ROOM * pc).all(axis=1)
+            xy = np.array([keys[0][1] for keys in _groups(self.sol).values()], float).reshape(-1, 2)
+            ok[ok] = all_farther(shapely.points(xy), xy, rings[ok], corners[ok], LABEL_ROOM * pc)
         idx = np.flatnonzero(ok)
         if not len(idx):
             return None

@@ -27,7 +27,8 @@ from shapely.geometry import LineString, Point
 from .canvas import box, per_point, renderer_of, view_box
 from .textcache import window_extent
 
-__all__ = ["LabelPlacer", "Moment", "Placed", "placer", "segment", "half_extent", "ALONG_APART"]
+__all__ = ["LabelPlacer", "Moment", "Placed", "placer", "segment", "half_extent", "ALONG_APART", "meets_any",
+           "all_farther"]
 
 # ring radii, in points of gap between the anchor and the box
 RINGS = (2.5, 5.0, 9.0, 14.0, 21.0, 30.0, 42.0, 58.0)
@@ -228,19 +229,31 @@ class LabelPlacer:
     def box_of(self, text, pad: float = 1.0, pp: float | None = None):
         """The Text's box in data coordinates, grown by ``pad`` points (a rotated text: its outline; ``pp``: the
         axes' :func:`per_point`, where known)."""
+        return box(*self._bounds_of(text, pad, pp))
+
+    def _bounds_of(self, text, pad: float, pp: float | None) -> tuple:
+        """The corners ``(x0, y0, x1, y1)`` of :meth:`box_of`'s box (the very floats it is made of)."""
         bb = window_extent(text, self.renderer)
         inv = self.ax.transData.inverted()
         (x0, y0), (x1, y1) = inv.transform([[bb.x0, bb.y0], [bb.x1, bb.y1]])
         p = pad * (per_point(self.ax) if pp is None else pp)
-        return box(min(x0, x1) - p, min(y0, y1) - p, max(x0, x1) + p, max(y0, y1) + p)
+        return min(x0, x1) - p, min(y0, y1) - p, max(x0, x1) + p, max(y0, y1) + p
 
     def text_size(self, text, pad: float = 1.0, pp: float | None = None) -> tuple[float, float]:
+        """The width and height of the Text's unrotated :meth:`box_of` (data units). The box's bounds are the least
+        and greatest of the corners it is made of, so they are taken from :meth:`_bounds_of` without the box where
+        all four are finite; a text already unrotated is measured as it is (turning it to 0 and back changes
+        nothing)."""
         rot = text.get_rotation()
-        text.set_rotation(0)
-        b = self.box_of(text, pad, pp)
-        text.set_rotation(rot)
-        x0, y0, x1, y1 = b.bounds
-        return x1 - x0, y1 - y0
+        if rot != 0:
+            text.set_rotation(0)
+        bounds = self._bounds_of(text, pad, pp)
+        if rot != 0:
+            text.set_rotation(rot)
+        if not all(map(math.isfinite, bounds)):
+            bounds = box(*bounds).bounds   # (a NaN corner: the box canvas.box makes)
+        x0, y0, x1, y1 = bounds
+        return max(x0, x1) - min(x0, x1), max(y0, y1) - min(y0, y1)   # (a box's bounds: its least and greatest)
 
     def free(self, geom, soft: bool = False) -> bool:
         """Whether ``geom`` meets no placed label and no hard (or, with ``soft``, any) obstacle."""
@@ -1237,6 +1250,38 @@ def _toward(b, p):
     from shapely.ops import nearest_points
     q = nearest_points(b.exterior, Point(p))[0]
     return np.array([q.x, q.y])
+
+
+def meets_any(obstacles, geoms) -> np.ndarray:
+    """``shapely.intersects(obstacles[None, :], geoms[:, None]).any(axis=1)``: whether each of ``geoms`` meets any of
+    ``obstacles``, GEOS asked only of the pairs whose envelopes meet (:class:`_Row`: the very answers)."""
+    return _Row(obstacles).any(np.asarray(geoms, dtype=object).reshape(-1))
+
+
+def all_farther(points, xy: np.ndarray, boxes, bounds: np.ndarray, limit: float) -> np.ndarray:
+    """``(shapely.distance(points[None, :], boxes[:, None]) > limit).all(axis=1)``: whether every point (shapely
+    ``points``, their coordinates ``xy``) lies farther than ``limit`` from each box (``boxes``, axis-parallel
+    rectangles, their corners ``bounds``: ``(n, 4)``), GEOS asked only of the pairs that may be within ``limit``.
+
+    A point's distance from a rectangle (its inside included) is ``|(dx, dy)|``, dx and dy how far the point lies
+    outside the rectangle's x and y ranges; GEOS computes the same from the rectangle's edges, to within a few
+    units in the last place of the coordinates. A pair that is by this measure farther than ``limit`` by more than
+    a billionth of the coordinates' size is farther by GEOS's too; every other pair (and any that is not finite)
+    is asked of GEOS: the answers are GEOS's, pair for pair."""
+    n, m = len(bounds), len(xy)
+    if not n or not m:
+        return np.ones(n, bool)
+    px, py = xy[:, 0][None, :], xy[:, 1][None, :]
+    dx = np.maximum(np.maximum(bounds[:, 0, None] - px, px - bounds[:, 2, None]), 0.0)
+    dy = np.maximum(np.maximum(bounds[:, 1, None] - py, py - bounds[:, 3, None]), 0.0)
+    with np.errstate(invalid="ignore"):   # (a NaN corner: its pairs are asked of GEOS)
+        size = max(float(np.nanmax(np.abs(bounds), initial=0.0)), float(np.nanmax(np.abs(xy), initial=0.0)),
+                   abs(limit))
+        far = np.hypot(dx, dy) > limit + 1e-9 * size
+    i, j = np.nonzero(~far)
+    if len(i):
+        far[i, j] = shapely.distance(points[j], boxes[i]) > limit
+    return far.all(axis=1)
 
 
 def placer(ax) -> LabelPlacer:

@@ -166,13 +166,15 @@ def share_mathtext() -> bool:
         return False
     import collections
     import functools
+
+    from .textcache import rc_reader
     store: collections.OrderedDict = collections.OrderedDict()
     keys = sorted(k for k in matplotlib.rcParams if k.startswith("mathtext.")) + ["text.hinting_factor"]
 
     @functools.wraps(cached)
     def parse(self, s, dpi, prop, antialiased, load_glyph_flags):
-        rc = matplotlib.rcParams
-        key = (self._output_type, s, dpi, prop, antialiased, load_glyph_flags, tuple(str(rc[k]) for k in keys))
+        settings = tuple(map(str, map(rc_reader(), keys)))
+        key = (self._output_type, s, dpi, prop, antialiased, load_glyph_flags, settings)
         got = store.get(key)
         if got is None:
             with _unmemoised(s):

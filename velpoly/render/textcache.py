@@ -39,13 +39,14 @@ expects (another version), :func:`canvas_class` gives matplotlib's own canvas an
 from __future__ import annotations
 
 import codecs
+import functools
 import math
 import os
 import threading
 from collections import OrderedDict
 
 __all__ = ["canvas_class", "svg_renderer_class", "new_canvas", "measurer", "add_axes", "share_rectangle_transforms",
-           "window_extent", "kept_layout", "clear", "stats", "LIMITS"]
+           "window_extent", "kept_layout", "clear", "stats", "LIMITS", "rc_reader"]
 
 LIMITS = {"metrics": 20000, "height": 1000, "layout": 10000, "glyph": 20000, "box": 10000,
           "svg metrics": 20000, "svg glyphs": 10000, "outline": 5000}   # entries kept per cache (a glyph bitmap
@@ -96,11 +97,23 @@ def _put(name: str, key, value):
 
 def _font_key(prop, dpi: float) -> tuple:
     """What chooses and sizes a plain text's font: the properties, the settings in force, the dpi."""
-    import matplotlib
-    rc = matplotlib.rcParams
+    get = rc_reader()
     return (tuple(prop.get_family()), prop.get_style(), prop.get_variant(), prop.get_weight(),
             prop.get_stretch(), prop.get_size_in_points(), str(prop.get_file()), prop.get_math_fontfamily(),
-            tuple(tuple(v) if isinstance(v, list) else v for v in (rc[k] for k in _RC)), dpi)
+            tuple([tuple(v) if isinstance(v, list) else v for v in map(get, _RC)]), dpi)
+
+
+def rc_reader():
+    """A function that reads a matplotlib setting by its name, the value ``rcParams[name]`` gives: the stored value
+    as ``rcParams._get`` reads it (``dict.__getitem__`` of the settings, without ``__getitem__``'s check for the
+    ``backend`` entry, which no key here is, and without a Python call: a fifth of the time), where the settings
+    are such a dict. The keys of text measures and parses read a dozen settings each, thousands of times a
+    sheet."""
+    import matplotlib
+    rc = matplotlib.rcParams
+    if isinstance(rc, dict) and hasattr(rc, "_get"):
+        return functools.partial(dict.__getitem__, rc)
+    return rc.__getitem__
 
 
 _MATH_RC: list = []   # the mathtext settings (their names, read once): a math text's layout depends on them
@@ -124,10 +137,9 @@ def window_extent(text, renderer):
             or not hasattr(text, "_get_layout") or not hasattr(text, "_get_multialignment")):
         return text.get_window_extent(renderer)
     import matplotlib
-    rc = matplotlib.rcParams
     if not _MATH_RC:
-        _MATH_RC.extend(sorted(k for k in rc if k.startswith("mathtext.")) + ["text.hinting_factor"])
-    key = (text.get_text(), _font_key(text.get_fontproperties(), fig.dpi), tuple(str(rc[k]) for k in _MATH_RC),
+        _MATH_RC.extend(sorted(k for k in matplotlib.rcParams if k.startswith("mathtext.")) + ["text.hinting_factor"])
+    key = (text.get_text(), _font_key(text.get_fontproperties(), fig.dpi), tuple(map(str, map(rc_reader(), _MATH_RC))),
            text.get_parse_math(), text.get_rotation(), text.get_rotation_mode(), text.get_horizontalalignment(),
            text.get_verticalalignment(), text._get_multialignment(), text.get_linespacing(), type(renderer),
            getattr(renderer, "dpi", None))
