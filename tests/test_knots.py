@@ -4,7 +4,7 @@ what :func:`velpoly.pose._step` gives for the same inputs, whatever the order th
 ``Knots.step(system, rows, q, jac, k, target, sign)`` is ``_step`` from knot k (driver position ``d[k]``, the
 caller's pose ``q``) to ``target``; ``Knots.retry`` is ``_step`` from a given pose. Four ways of keeping them
 wrong that test_newton_speed's ranges, which each ask for the steps in one order, do not show (issue 19 item 7,
-each break made by hand in velpoly/pose.py and failing here):
+each break made by hand in velpoly/pose.py and failing here; 0.43 CPU s in all):
 
 (a) ``step`` answering with the kept knot k + 1 when the target is another;
 (b) the failed steps from knots past k kept when the knots past k are made again (a failure from the former
@@ -91,7 +91,7 @@ OPS = st.lists(st.one_of(
 FAILS = st.sets(st.tuples(st.integers(0, 1), POSITIONS, POSITIONS), max_size=12)
 
 
-@settings(max_examples=40, deadline=None, derandomize=True)
+@settings(max_examples=20, deadline=None, derandomize=True)
 @given(fails=FAILS, ops=OPS)
 # (a) a second walk from the drawn pose to another position
 @example(fails=set(), ops=[("walk", 0, [1.0]), ("walk", 0, [2.0])])
