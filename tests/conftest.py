@@ -62,7 +62,8 @@ def pytest_collection_finish(session):
     tests walked them again (five drawing files in one process, two pairs side by side: the oldest
     generation's collections 1.88, 2.11 -> 1.53, 1.56 CPU s, this hook 0.1 s). A finaliser that raises in
     what the collection left is still reported (this collection runs it; the first test's check reports it).
-    test_safety's ``heap_frozen`` unfreezes all at its end: the tests after it walk these objects again."""
+    Nothing unfreezes them (test_safety's ``heap_frozen`` freezes what the tests before it left, for good;
+    test_suite_rules checks that no test calls ``gc.unfreeze``)."""
     gc.collect()
     gc.freeze()
 

@@ -52,21 +52,32 @@ def solve_or_reject(d, separation=0.02):
 
 
 def local(ps, h):
-    """A world homogeneous point in the pole set's normalised coordinates, unit length."""
+    """A world homogeneous point in the pole set's normalised coordinates, unit length (a tuple: the checks below
+    run on every pole of the zoo's every solved pose, and numpy's small-array calls were most of their cost)."""
     c, L = ps.centre, ps.scale
-    v = np.array([h[0] - c[0] * h[2], h[1] - c[1] * h[2], L * h[2]])
-    return v / np.linalg.norm(v)
+    x, y, w = float(h[0]), float(h[1]), float(h[2])
+    v = (x - float(c[0]) * w, y - float(c[1]) * w, float(L) * w)
+    n = math.sqrt(v[0] * v[0] + v[1] * v[1] + v[2] * v[2])
+    return (v[0] / n, v[1] / n, v[2] / n)
 
 
 def hom(ps, position, direction):
     if position is not None:
         return local(ps, (position[0], position[1], 1.0))
     t = math.radians(direction)
-    return np.array([math.cos(t), math.sin(t), 0.0])
+    return (math.cos(t), math.sin(t), 0.0)
 
 
 def sine(u, v):
-    return float(np.linalg.norm(np.cross(u, v)))
+    """|u x v|."""
+    return math.sqrt((u[1] * v[2] - u[2] * v[1]) ** 2 + (u[2] * v[0] - u[0] * v[2]) ** 2
+                     + (u[0] * v[1] - u[1] * v[0]) ** 2)
+
+
+def det3(a, b, c):
+    """The determinant of the rows a, b, c: a . (b x c)."""
+    return (a[0] * (b[1] * c[2] - b[2] * c[1]) - a[1] * (b[0] * c[2] - b[2] * c[0])
+            + a[2] * (b[0] * c[1] - b[1] * c[0]))
 
 
 def check_poles(sol, ps=None):
@@ -79,17 +90,19 @@ def check_poles(sol, ps=None):
     assert list(ps.poles) == [f"{names[a]}-{names[b]}" for a in range(n) for b in range(a + 1, n)]
     twists = link_twists(sol)
     scale_twist = np.linalg.norm(twists, axis=1).max()
+    at = {name: i for i, name in enumerate(names)}
+    # every defined pole's homogeneous point in the normalised coordinates, made once for the checks below
+    H = {key: local(ps, p.homogeneous) for key, p in ps.poles.items() if not p.undefined}
     for key, p in ps.poles.items():
         i, j = p.links
+        rel = np.linalg.norm(twists[at[i]] - twists[at[j]])
         if p.undefined:
             assert p.how in ("undefined",)
-            rel = np.linalg.norm(twists[names.index(i)] - twists[names.index(j)])
             assert rel <= ALIKE * max(sol.condition, 1) * scale_twist
             continue
         assert (p.position is None) != (p.direction is None)
         if p.direction is not None:
             assert 0.0 <= p.direction < 180.0
-        rel = np.linalg.norm(twists[names.index(i)] - twists[names.index(j)])
         if rel <= ALIKE * max(sol.condition, 1) * scale_twist:
             # links moving alike: any point is their pole; one known by inspection stays where it is
             assert p.by_inspection, key
@@ -98,31 +111,30 @@ def check_poles(sol, ps=None):
         assert pos is not None or direction is not None, key
         # the velocity solution itself fixes the pole only to eps x cond x |T| / |T_i - T_j|, and a pole
         # copied from links moving alike (to ALIKE x cond x |T|) carries that relative twist too
-        rel = np.linalg.norm(twists[names.index(i)] - twists[names.index(j)])
         tol = TOL + ALIKE * max(sol.condition, 1) * scale_twist / rel
-        assert sine(hom(ps, p.position, p.direction), hom(ps, pos, direction)) <= tol, (key, p, pos, direction)
+        reported = hom(ps, p.position, p.direction)
+        assert sine(reported, hom(ps, pos, direction)) <= tol, (key, p, pos, direction)
         # (a pole just beyond FAR sizes is reported at infinity: its direction is then within 1/FAR)
-        assert sine(hom(ps, p.position, p.direction), local(ps, p.homogeneous)) <= 1e-12 + 2 / FAR
+        assert sine(reported, H[key]) <= 1e-12 + 2 / FAR
     assert ps.max_error <= TOL
     # Aronhold-Kennedy: P_ij, P_jk, P_ik collinear, points at infinity included
-    H = {}
-    for p in ps.poles.values():
-        if not p.undefined:
-            H[frozenset(p.links)] = local(ps, p.homogeneous)
     for a in range(n):
         for b in range(a + 1, n):
             for c in range(b + 1, n):
-                tri = [H.get(frozenset(x)) for x in ((names[a], names[b]), (names[b], names[c]),
-                                                      (names[a], names[c]))]
+                tri = [H.get(k) for k in (f"{names[a]}-{names[b]}", f"{names[b]}-{names[c]}",
+                                          f"{names[a]}-{names[c]}")]
                 if all(t is not None for t in tri):
-                    assert abs(np.linalg.det(np.array(tri))) <= TOL, (names[a], names[b], names[c])
-    check_order(ps)
+                    assert abs(det3(*tri)) <= TOL, (names[a], names[b], names[c])
+    check_order(ps, H)
     return ps
 
 
-def check_order(ps):
+def check_order(ps, H=None):
     """The order of discovery is complete: every found pole has its place and its two lines
-    through poles known before it, and lies on both lines."""
+    through poles known before it, and lies on both lines. ``H``: the defined poles' points in the
+    normalised coordinates (``local``), by key, where the caller has them."""
+    if H is None:
+        H = {key: local(ps, p.homogeneous) for key, p in ps.poles.items() if not p.undefined}
     found = [p for p in ps.poles.values() if p.order > 0]
     assert sorted(p.order for p in found) == list(range(1, len(found) + 1))
     assert list(ps.order) == [p.key for p in sorted(found, key=lambda p: p.order)]
@@ -131,7 +143,7 @@ def check_order(ps):
             assert p.how in ("pin", "slider", "circular path", "rolling", "undefined")
             continue
         assert p.how in ("kennedy", "normals", "alike", "velocity")
-        me = local(ps, p.homogeneous)
+        me = H[p.key]
         if p.how in ("kennedy", "normals"):
             for line in p.lines:
                 if "-" in line[0]:           # a Kennedy line through two poles known earlier
@@ -144,16 +156,15 @@ def check_order(ps):
                     assert set(p.links) < set(via) and len(set(via)) == 3
                     k = next(x for x in via if x not in p.links)
                     assert set(line) == {ps.pole(p.links[0], k).key, ps.pole(p.links[1], k).key}
-                    a, b = (local(ps, ps.poles[x].homogeneous) for x in line)
-                    assert abs(np.linalg.det(np.array([me, a, b]))) <= TOL
+                    a, b = (H[x] for x in line)
+                    assert abs(det3(me, a, b)) <= TOL
             for pl in p.construction:   # the drawn line passes through the pole
                 if pl.point is None:
                     assert p.at_infinity
                     continue
-                assert abs(np.linalg.norm(pl.direction) - 1) < 1e-12
+                assert abs(math.hypot(*pl.direction) - 1) < 1e-12
                 a = local(ps, (*pl.point, 1.0))
-                b = np.array([pl.direction[0], pl.direction[1], 0.0])
-                assert abs(np.linalg.det(np.array([me, a, b]))) <= TOL
+                assert abs(det3(me, a, (pl.direction[0], pl.direction[1], 0.0))) <= TOL
             assert 0.0 <= p.sine <= 1.0
             if "-" in p.lines[0][0] and "-" in p.lines[1][0]:
                 assert p.how == "kennedy"
@@ -161,7 +172,7 @@ def check_order(ps):
             (same, source), = p.lines
             assert ps.poles[same].undefined or ps.poles[same].by_inspection
             assert ps.poles[source].order < p.order
-            assert sine(me, local(ps, ps.poles[source].homogeneous)) <= 1e-15
+            assert sine(me, H[source]) <= 1e-15
 
 
 def check_ic(sol, ps=None):

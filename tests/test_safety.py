@@ -226,10 +226,12 @@ def heap_frozen():
     """The objects the worker holds before the test (the shared pages, specimens and sweeps of the tests before it)
     frozen for the test (:func:`gc.freeze`), so that its ``gc.collect()`` walks only what the test makes: the
     swallowed-interrupt tests below took 1.2-2.2 CPU s each in the suite, walking the heap the others left, 0.1
-    alone. What they check (an interrupt raised in a ``__del__`` of an object made in the test) is the same."""
+    alone. What they check (an interrupt raised in a ``__del__`` of an object made in the test) is the same.
+    They stay frozen after it, as what the collection left does (tests/conftest.py): ``gc.unfreeze`` here put
+    the worker's whole heap back, conftest's frozen 150 000 objects with it, for every later full collection
+    to walk again (test_suite_rules checks that no test unfreezes)."""
     gc.freeze()
     yield
-    gc.unfreeze()
 
 
 class _InterruptOnCollect:
