@@ -40,10 +40,18 @@ How the poles are found, the way a textbook draws them (seed 000, sections
 
 Two links moving alike at the instant (same omega and the same velocity
 field: a block that momentarily does not slide) have an undefined pole
-(``how='undefined'``, position and direction ``None``) unless it is known
-by inspection: a pin is always its pole (any point is then a pole of the
-two; inspection's never depends on other links or on omega). Every other
-link k sees them alike, ``P_jk = P_ik`` (``how='alike'``). A pole farther
+(``how='undefined'``, position and direction ``None``; FORMAT.md section 5).
+"Alike" means zero to the velocity solution's precision, not small: the
+relative twist is at most what the solve's componentwise error bound allows
+it to be in error by (:func:`_alike_pairs`, from
+:func:`velpoly.kinematics.velocity_error_bound`), so a link far down a chain
+of stages, turning at 1e-13 of the crank's speed but known to a relative
+1e-10, keeps its poles. A pin (a rolling contact) is still the pole of two
+links moving alike: the joint itself makes their velocities agree at its
+point (any point is then a pole of the two). A block's inspection pole is read
+from the direction it slides in, which a block at rest on its guide (at a dead
+centre) does not have: its pole is undefined. Every other link k sees two
+links moving alike alike, ``P_jk = P_ik`` (``how='alike'``). A pole farther
 than 1e9 mechanism sizes is at infinity, with its ``direction`` in [0, 180).
 
 Up to 24 links the construction runs on plain floats, storing each line
@@ -77,22 +85,22 @@ import numpy as np
 
 from .frozen import quick_init
 from .geometry import from_polar, ideal, join
+from .kinematics import velocity_error_bound
 from .motion import point_keys
 from .rigid import point_velocity
 
 __all__ = ["Pole", "PoleLine", "PoleSet", "KennedyCircle", "Chord", "locate_poles", "kennedy_circle",
            "instant_centre_velocities", "pole_caption", "link_twists", "pole_key", "pole_label", "poles_section",
-           "FAR", "ALIKE"]
+           "FAR"]
 
 FAR = 1e9        # a pole farther than FAR mechanism sizes is at infinity (FORMAT.md section 5)
-ALIKE = 1e-14    # relative twist below ALIKE x condition x the largest twist (the velocity solution's
-                 # own precision): the links move alike, their pole is undefined
 _POOR = 1e-2     # a pair of lines meeting at a smaller sine waits a round for better lines
 _BLUNT = 1e-6    # lines meeting at a smaller sine do not fix a pole (they nearly coincide)
 _CLOSE = 0.05    # a line through two poles closer than this (in mechanism sizes) is discounted
 _DEGENERATE = 1e-12
 
 _UNKNOWN, _KNOWN, _UNDEFINED = 0, 1, 2
+_JOINT_POLES = ("pin", "rolling")   # inspection poles kept where the two links move alike
 
 
 # -- the data contract (docs/internals.md) ------------------------------------------------------
@@ -387,11 +395,63 @@ def _norm_rows(x) -> np.ndarray:
     return np.sqrt(x[:, 0] * x[:, 0] + x[:, 1] * x[:, 1] + x[:, 2] * x[:, 2])
 
 
-def _alike_limit(twists, condition: float) -> float:
-    """Links whose relative twist is at most this move alike: ALIKE x condition x the largest twist
-    (zero to the velocity solution's precision); -1 when nothing moves (then all move alike)."""
-    tw = max(map(_norm3, twists), default=0.0)
-    return ALIKE * max(condition, 1.0) * tw if tw > 0 else -1.0
+def _twist_errors(sol, centre, scale):
+    """What each link's twist (:func:`link_twists`) can be in error by, and the linear maps that give it.
+
+    A link k's twist is T_k = M_k (v_x, v_y, omega) of its velocity coordinates (v at the body
+    origin O_k; c the centre, s the scale)::
+
+        T_k = (-(v_y + omega (c_x - O_x)) / s, (v_x - omega (c_y - O_y)) / s, omega),
+
+    so with the solve's componentwise bound (:func:`velpoly.kinematics.velocity_error_bound`,
+    ``(A^-1, g)``) W_k = M_k A^-1 (rows of link k) maps the equations' errors to the twist's:
+    |T_k - T_k exact| <= |W_k| g. Returns ``(W, g, e)``: W of shape (links, 3, coordinates) (the
+    frame's zero), and e_k = || |W_k| g ||, a link's error (all infinite where the solve gives no
+    bound).
+    """
+    kin = sol.kinematics
+    inv, g = velocity_error_bound(kin, sol.q, sol.qd)
+    links = sol.mechanism.links
+    w = np.zeros((len(links), 3, len(g)))
+    c0, c1 = float(centre[0]), float(centre[1])
+    for row, lk in enumerate(links):
+        k = kin.system.index.get(lk.name)
+        if k is None:
+            continue
+        vx, vy, om = inv[3 * k], inv[3 * k + 1], inv[3 * k + 2]
+        w[row, 0] = -(vy + om * (c0 - sol.q[3 * k])) / scale
+        w[row, 1] = (vx - om * (c1 - sol.q[3 * k + 1])) / scale
+        w[row, 2] = om
+    if not np.isfinite(g).all():
+        return w, g, np.full(len(links), np.inf)
+    return w, g, _norm(np.abs(w) @ g)
+
+
+def _alike_pairs(sol, twists, centre, scale) -> np.ndarray:
+    """``alike[a, b]``: links a and b move alike, their relative twist zero to the velocity solution's
+    precision (FORMAT.md section 5: then their pole is undefined).
+
+    |T_a - T_b| <= || |W_a - W_b| g ||, what the difference of the two twists can be in error by
+    (:func:`_twist_errors`): the bound of the difference itself, not the sum of the two links'
+    bounds, since a block and its guide share their equations' errors. "Zero" is not "small": a
+    link far down a chain of stages turning at 1e-13 of the crank's speed is known to a relative
+    1e-10 or better and keeps its poles, while a block at its dead centre slides at most at its
+    bound. The sum e_a + e_b screens the pairs first (the difference's bound is at most that).
+    """
+    t = np.asarray(twists, float)
+    n = len(t)
+    w, g, e = _twist_errors(sol, centre, scale)
+    rel = _norm(t[:, None, :] - t[None, :, :])
+    if not np.isfinite(e).all():
+        alike = np.ones((n, n), bool)
+    else:
+        alike = rel <= e[:, None] + e[None, :]
+        a_, b_ = np.nonzero(np.triu(alike, 1))
+        if len(a_):
+            bound = _norm(np.abs(w[a_] - w[b_]) @ g)
+            alike[a_, b_] = alike[b_, a_] = rel[a_, b_] <= bound
+    np.fill_diagonal(alike, False)
+    return alike
 
 
 @functools.lru_cache(maxsize=16)   # the same links at every pose of a mechanism
@@ -460,23 +520,11 @@ class _Kennedy(_Construction):
     :class:`_KennedyArrays` does the same without storing lines.
     """
 
-    def __init__(self, names, twists, condition=1.0):
+    def __init__(self, names, twists, alike):
         array = np.asarray(twists, float)
-        twists = array.tolist()
         n = len(names)
-        limit = _alike_limit(twists, condition)
-        alike = [[False] * n for _ in range(n)]
-        pairs = []
-        sqrt = math.sqrt
-        for a in range(n):
-            t0, t1, t2 = twists[a]
-            for b in range(a + 1, n):
-                u0, u1, u2 = twists[b]   # _norm3 of the difference, written out
-                d0, d1, d2 = t0 - u0, t1 - u1, t2 - u2
-                if limit < 0 or sqrt(d0 * d0 + d1 * d1 + d2 * d2) <= limit:
-                    alike[a][b] = alike[b][a] = True
-                    pairs.append((a, b))
-        super().__init__(names, array, alike, pairs)
+        pairs = [(int(a), int(b)) for a, b in zip(*np.nonzero(np.triu(alike, 1)))]
+        super().__init__(names, array, np.asarray(alike, bool).tolist(), pairs)
         self.pole = [[(0.0, 0.0, 0.0)] * n for _ in range(n)]
         self.state = [[_UNKNOWN] * n for _ in range(n)]
         self.known = [set() for _ in range(n)]
@@ -680,14 +728,10 @@ class _KennedyArrays(_Construction):
     (:meth:`best_pairs`).
     """
 
-    def __init__(self, names, twists, condition=1.0):
+    def __init__(self, names, twists, alike):
         twists = np.asarray(twists, float)
         n = len(names)
-        d = twists[:, None, :] - twists[None, :, :]
-        rel = np.sqrt(d[..., 0] * d[..., 0] + d[..., 1] * d[..., 1] + d[..., 2] * d[..., 2])
-        limit = _alike_limit(twists.tolist(), condition)
-        alike = (rel <= limit) | (limit < 0)
-        np.fill_diagonal(alike, False)
+        alike = np.asarray(alike, bool)
         super().__init__(names, twists, alike, [(int(a), int(b)) for a, b in zip(*np.nonzero(np.triu(alike, 1)))])
         self.still = not twists.any()   # nothing moves: no pole but those by inspection is defined
         self.pole = np.zeros((n, n, 3))
@@ -935,14 +979,18 @@ def _construct(sol) -> tuple:
     centre, scale = _normalisation(sol)
     twists = link_twists(sol, centre, scale)
     points, cons = _inspection(sol, centre, scale)
-    kennedy = (_Kennedy if len(names) <= _SMALL else _KennedyArrays)(names, twists, sol.condition)
+    alike = _alike_pairs(sol, twists, centre, scale)
+    kennedy = (_Kennedy if len(names) <= _SMALL else _KennedyArrays)(names, twists, alike)
 
-    # by inspection: a pin is its pole whatever the other links do and however fast they move, even
-    # when the two links move alike (then P_ik = P_jk stays decided from the velocities)
+    # by inspection: a pin (a rolling contact) is its pole whatever the other links do, even when the
+    # two links move alike: the joint itself makes their velocities agree at its point. A block's
+    # pole is read from the direction it slides in (normal to its path): a block that does not slide
+    # (at a dead centre: it moves alike with its guide) has none, its pole is undefined (FORMAT.md
+    # section 5). Either way P_ik = P_jk stays decided from the velocities.
     new = []
     for i, j, h, how, note, at in points:
         a, b = sorted((idx[i], idx[j]))
-        if kennedy.state[a][b] != _KNOWN:
+        if kennedy.state[a][b] == _UNKNOWN or (how in _JOINT_POLES and kennedy.state[a][b] != _KNOWN):
             kennedy.set(a, b, h, dict(how=how, order=0, note=note))
             new.append((a, b))
             if at is not None:

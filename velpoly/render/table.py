@@ -325,12 +325,14 @@ def _point_rows(t: _Rows, level: str, poly) -> None:
 
 
 def _pole_rows(t: _Rows, poleset) -> None:
-    """The poles found (not by inspection), in order of discovery."""
+    """The poles found (not by inspection), in order of discovery, then the undefined ones (two links moving
+    alike, FORMAT.md section 5: drawn nowhere, so the table says so, "undefined" in both columns)."""
     from ..reference import relative_pole
-    for p in sorted((p for p in poleset.poles.values() if p.order > 0), key=lambda p: p.order):
-        pos, direction = relative_pole(t.sol, *p.links)
+    found = sorted((p for p in poleset.poles.values() if p.order > 0), key=lambda p: p.order)
+    for p in found + [p for p in poleset.poles.values() if p.undefined]:
+        pos, direction = (None, None) if p.undefined else relative_pole(t.sol, *p.links)
         r = t.ref_for(f"P_{p.links[0]}{p.links[1]}", f"P{p.links[0]}{p.links[1]}")
-        t.add((_pole(p.links) + f"  ({p.order})", _where(p.position, p.direction, t.floor("P")), "",
+        t.add((_pole(p.links) + (f"  ({p.order})" if p.order else ""), _where(p.position, p.direction, t.floor("P")), "",
                _where(pos, direction, t.floor("P")), ""), r)
 
 
