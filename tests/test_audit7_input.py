@@ -79,8 +79,8 @@ def test_a_bad_number_of_degrees_says_what_is_expected(args, tmp_path, capsys):
     r, err = e.value.code, capsys.readouterr().err
     last = err.splitlines()[-1]
     option, text = args[1].split("=") if "=" in args[1] else (args[1], args[2])
-    assert r == 2 and last == f"velpoly {args[0]}: error: argument {option}: expected a number of degrees, " \
-                              f"got {text!r}", err
+    assert r == 2 and last == f"velpoly {args[0]}: error: argument {option}: expected a number of degrees " \
+                              f"(plain decimal digits, as 30 or -2.5), got {text!r}", err
     assert "_degrees" not in err and "Traceback" not in err
 
 

@@ -134,7 +134,7 @@ def _animate_parser(command) -> None:
     a.add_argument("--step", type=_step_degrees, default=2.0, metavar="DEG", help="driver step between frames in "
                    "degrees (default 2)")
     a.add_argument("--size", default="1920x1080", metavar="WxH", help="frame size in pixels (default 1920x1080)")
-    a.add_argument("--fps", type=float, default=15.0, metavar="N", help="frames a second (default 15)")
+    a.add_argument("--fps", type=_frame_rate, default=15.0, metavar="N", help="frames a second (default 15)")
     a.add_argument("--style", choices=STYLES, default="slides", help="slides (colour, large type; the default) or textbook (black on white)")
 
 
@@ -178,13 +178,23 @@ def _degrees(text: str):
     return x
 
 
-def _number(text: str) -> float:
-    """A number of degrees as written on the command line (``float``'s reading); argparse's error, one line
-    naming the option, where it is none (``--angle abc``)."""
-    try:
+_PLAIN = re.compile(r"[+-]?(?:[0-9]+(?:\.[0-9]*)?|\.[0-9]+)(?:[eE][+-]?[0-9]+)?")
+_NOT_FINITE = ("inf", "infinity", "nan")   # read, so that the option's check says "not finite"
+
+
+def _number(text: str, what: str = "a number of degrees") -> float:
+    """A number as FORMAT.md writes numbers: plain decimal ASCII (``30``, ``-2.5``, ``1e3``), or an infinity or
+    NaN typed as one (``inf``, ``nan``: the option's own check then says it is not finite). ``float`` alone
+    would also read ``1_0`` as 10, `` 1`` and non-ASCII digits; argparse's error, one line naming the
+    option, for those and for what is no number (``--angle abc``)."""
+    if _PLAIN.fullmatch(text) or text.lstrip("+-").lower() in _NOT_FINITE:
         return float(text)
-    except ValueError:
-        raise argparse.ArgumentTypeError(f"expected a number of degrees, got {text!r}") from None
+    raise argparse.ArgumentTypeError(f"expected {what} (plain decimal digits, as 30 or -2.5), got {text!r}")
+
+
+def _frame_rate(text: str) -> float:
+    """``--fps``'s number, read as :func:`_number` reads it."""
+    return _number(text, "a number of frames a second")
 
 
 def _exact(text: str):

@@ -256,7 +256,7 @@ def _deg(x: float) -> str:
 def parse_size(text) -> tuple[int, int]:
     """``"1920x1080"`` -> (1920, 1080); InputError naming ``--size`` otherwise."""
     import re
-    mo = re.fullmatch(r"\s*(\d+)\s*[xX×]\s*(\d+)\s*", str(text))
+    mo = re.fullmatch(r"([0-9]+)[xX×]([0-9]+)", str(text))   # plain ASCII digits, as FORMAT.md writes numbers
     if not mo:
         raise InputError(f"expected WIDTHxHEIGHT in pixels, got {text!r}", where="--size",
                          hint="e.g. --size 1920x1080 or --size 1280x720")
