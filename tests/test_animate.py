@@ -292,13 +292,15 @@ def test_mp4_when_imageio_ffmpeg_is_there(tmp_path, coupler_anim):
     assert out.read_bytes()[4:8] == b"ftyp"
 
 
-def test_html_without_the_html_command_is_an_input_error(tmp_path, capsys):
-    import importlib.util
-    if importlib.util.find_spec("velpoly.html") is not None:
-        pytest.skip("velpoly html is there")
+def test_an_html_animation_is_velpoly_html_s_page(tmp_path, capsys):
+    """``animate -o PAGE.html`` writes the interactive page, the one ``velpoly html`` writes at that step. (Until
+    issue 19 item 7 this test checked the command's refusal where velpoly.html is absent, and skipped: it always
+    ships.)"""
     f = write(tmp_path, fourbar())
-    code, _, err = run(capsys, "animate", f, "-o", tmp_path / "a.html")
-    assert code == 2 and "velpoly html" in err and not (tmp_path / "a.html").exists()
+    assert run(capsys, "animate", f, "-o", tmp_path / "a.html", "--step", "45")[0] == 0
+    assert run(capsys, "html", f, "-o", tmp_path / "b.html", "--step", "45")[0] == 0
+    a = (tmp_path / "a.html").read_bytes()
+    assert a == (tmp_path / "b.html").read_bytes() and a.startswith(b"<!DOCTYPE html>")
 
 
 @pytest.mark.parametrize("args, where", [(["-o", "a.avi"], "-o"), (["-o", "a.gif", "--size", "12x9"], "--size"),
