@@ -116,3 +116,14 @@ def test_least_matching_is_the_least_total():
         least = min(sum(cost[i, p[i]] for i in range(n)) for p in itertools.permutations(range(m), n))
         assert len(set(at.tolist())) == n
         assert sum(cost[i, at[i]] for i in range(n)) == pytest.approx(least, rel=1e-9, abs=1e-12)
+
+
+def test_a_crowd_with_no_free_column_is_left_as_it_was():
+    """A panel whose every place is covered (an outline over it all): no column, the labels where they stood."""
+    ax, art = crowd(0)
+    pl = placer(ax)
+    pl.add_obstacle(box(-1, -1, 13, 10), hard=False)
+    at = [p.box.bounds for p in pl.labels]
+    assert not kennedy._in_columns(pl, art, SIZE)
+    assert [p.box.bounds for p in pl.labels] == at
+    plt.close(ax.figure)

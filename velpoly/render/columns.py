@@ -52,7 +52,7 @@ def in_column(pl, movers: list, accept: dict, sizes: dict) -> tuple | None:
     together = [[b for got in sides for b in got[i]] for i in range(len(movers))] if sides else []
     best = None
     for boxes in [*sides, together]:
-        if len(boxes[0]) < len(movers):
+        if not boxes or len(boxes[0]) < len(movers):   # (no side with a free place: none together)
             continue
         lines = [[pl._leader_line(p.anchor, b) for b in row] for p, row in zip(movers, boxes)]
         cost = _costs(lines, rest, pp) + _astray(movers, boxes, accept)
