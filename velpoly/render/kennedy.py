@@ -25,6 +25,7 @@ from shapely.geometry import LineString, Point
 
 from .canvas import (Artists, arrow, border_point, fit_view, get_ax, math_literal, per_cm, per_point, view_box,
                      view_scale)
+from .columns import in_column
 from .displacement import SMALLER, draw_mechanism, mechanism_bounds, shape_patch
 from .labels import Moment, placer, segment
 from .options import drawing_options
@@ -41,6 +42,7 @@ REACH = 2.5   # the view holds the finite poles within REACH mechanism sizes of 
 THIRD_MOST, THIRD_TRIES = 4, 8   # a crossing's third label lifted: the nearest so many, each with so many places
 PAIR_MOST = 80   # of each label's places that leave no crossing, the best so many are paired (_clear_pair)
 FAR_BAND = 0.15   # mechanism sizes beyond the box's corners: a crowded view's room towards a pole out of it
+COLUMN_TRIES = 12   # the most columns tried on one drawing (_in_columns)
 APART_BY = 1e-6   # of a distance (and of a ring's size): a ring whose envelope lies farther is farther (_nearer_own)
 
 
@@ -192,7 +194,63 @@ def _least_tangled(sol, ax, st, opts, ps, upto, mechanism: bool, reach) -> Artis
             break
     if best[1] != k:   # the last placed is not the one kept: the kept one's put back
         best[2].restore(art)
+    if best[0][0]:
+        _in_columns(pl, art, st.font_size * 0.9)
     return art
+
+
+def _in_columns(pl, art, size: float) -> bool:
+    """Where pole labels' leaders still cross after every order (:func:`_least_tangled`), pole labels in a
+    crossing set in columns along the free sides of the panel, at the pole labels' ``size``
+    (:func:`~velpoly.render.columns.in_column`: boundary labelling, dealt so that their leaders cross none of each
+    other): all of them, or each alone; where the column of all crosses another pole label's leader or box,
+    that label joins it and it is tried again (at most :data:`COLUMN_TRIES` columns in all). Of the columns
+    that leave fewer crossings (:meth:`LabelPlacer.tally`), no more leaders across a label and as many pole
+    labels nearer their own rings (each box in a column meets no label, leader, mark, line or outline), the one
+    leaving fewest, then moving fewest labels, then of the shortest leaders is kept; whether one was."""
+    poles = {id(t) for t in art.labels.values()}
+    rings = list(art.rings.values())
+    accept = {id(art.labels[k]): _nearer_own(g, rings) for k, g in art.rings.items() if k in art.labels}
+    before = pl.tally()
+    first = _in_crossings(pl, pl.labels, poles)
+    groups = [first] + ([[p] for p in first] if len(first) > 1 else [])
+    best, seen = None, set()
+    while groups and len(seen) < COLUMN_TRIES:
+        movers = groups.pop(0)
+        if frozenset(map(id, movers)) in seen:
+            continue
+        seen.add(frozenset(map(id, movers)))
+        got = in_column(pl, movers, accept, {id(p.text): size for p in movers})
+        if got is None:
+            continue
+        tally, moved = got
+        near = [accept.get(id(p.text), lambda b: True) for p, _, _ in moved]
+        if tally < before and tally[0] <= before[0] and \
+                sum(f(b) for f, (_, b, _) in zip(near, moved)) >= sum(f(p.box) for f, (p, _, _) in zip(near, moved)):
+            score = (tally, len(moved), sum(0.0 if line is None else line.length for _, _, line in moved))
+            best = min(best, (score, moved), key=lambda x: x[0]) if best else (score, moved)
+        elif len(movers) >= len(first):
+            new = list(pl.labels)
+            for p, b, line in moved:
+                new[pl.labels.index(p)] = pl._moved(p, b, line)
+            more = [pl.labels[new.index(q)] for q in _in_crossings(pl, new, poles)]
+            groups.append(list({id(p): p for p in movers + more}.values()))
+    if best is None:
+        return False
+    new, ks = list(pl.labels), []
+    for p, b, line in best[1]:
+        p.text.set_fontsize(size)
+        ks.append(pl.labels.index(p))
+        new[ks[-1]] = pl._moved(p, b, line)
+    pl._commit(new, ks)
+    return True
+
+
+def _in_crossings(pl, labels: list, poles: set) -> list:
+    """The placed pole labels (``poles``: ids of their Texts) of ``labels`` (a placer's list) in a crossing (a
+    leader across a leader or a box), with an anchor."""
+    ks = sorted({k for c in pl._crossings(labels) for k in c[:2]})
+    return [labels[k] for k in ks if id(labels[k].text) in poles and labels[k].anchor is not None]
 
 
 def _crowded_first(shown: list, near: float) -> list:
