@@ -41,7 +41,8 @@ def measure(sol, sheet, style):
         axbb = ax.bbox
         out = {"out": [], "on_line": [], "on_own_bar": [], "overlap": [], "far_number": [], "leader_cross": [], "small": [], "arrow_cross": [],
                "point_on_link": [], "point_on_line": [], "value_leader": []}
-        bodies = dict(art.bodies)
+        bodies = {**art.bodies, **getattr(art, "seen", {})}   # a plate beneath every link: its outline (its area is
+        #                                                      the ground the marks over it stand on)
         for a in art.get("sliders", []):
             g = a.get_gid() or ""
             if g.startswith("block-"):

@@ -57,8 +57,9 @@ def _draw(sol, style, options=None):
 
 
 def _bodies(art) -> dict:
-    """Each moving link's drawn body and each block's rectangle (shapely, data coordinates)."""
-    out = dict(art.bodies)
+    """Each moving link's drawn body and each block's rectangle (shapely, data coordinates); a plate drawn beneath
+    every link (over another link's pivot) as its outline (``art.seen``: the marks over it stand on its area)."""
+    out = {**art.bodies, **getattr(art, "seen", {})}
     for p in art.get("sliders", []):
         if (p.get_gid() or "").startswith("block-"):
             rings = [Polygon(v).buffer(0) for v in p.get_path().to_polygons() if len(v) >= 3]

@@ -65,6 +65,7 @@ DRIVER_ROOM = 0.65     # cm: a plate notched about the driver's pivot keeps this
 CRANK_OVER = 0.25      # a plate notched about a pivot whose link would lie over it by more than this fraction of
 #                        that link is not notched (bars): the link's number and arcs need the room about it
 GROUND_GAP = 0.2       # cm: a plate notched about a frame pivot keeps this far from its ground's line ends
+UNDER_LIGHT = 0.5      # a plate drawn beneath every link (over another link's frame pivot) is this much lighter
 SIDE_GAP = 12.0        # deg: alpha's arc beside omega's in one free run (where every other layout crosses a link)
 RUN_SPAN = 45.0        # deg: the least span of an arc in such a run (a shorter arc reads as a tick, not a turn)
 
@@ -362,6 +363,14 @@ def plate_fill(fill, st):
     return PLATE_FILL if fill == st.paper else fill
 
 
+def under_fill(fill, st):
+    """A plate's fill drawn beneath the other links (:attr:`_Drawing.underlays`): lighter than a plate's,
+    :data:`UNDER_LIGHT` of the way from ``fill`` to the paper (it reads as a body beneath, the links over it)."""
+    from matplotlib.colors import to_rgb
+    a, b = np.asarray(to_rgb(fill)), np.asarray(to_rgb(st.paper))
+    return tuple(float(x) for x in a + UNDER_LIGHT * (b - a))
+
+
 def stacked(text: str) -> str:
     """A value written in two lines, its name over its value (``"V_A = 1.2 m/s"`` as ``"V_A =" / "1.2 m/s"``):
     half as wide, where a crowd leaves no room for one line (a slip's name V_A₃/A₄ is wide).
@@ -398,6 +407,8 @@ class _Drawing:
         self.under_cranks = under_cranks   # a plate notched about a crank's pivot with the crank over it drawn so
         #                                    (:meth:`reads`), not as bars (:meth:`cranks_over`)
         self.beneath_cranks: set = set()  # the links so drawn
+        self.underlays: set = set()       # plates over another link's frame pivot that no notch clears (or whose
+        #                                   notch a crank over it would crowd): whole, lighter, beneath every link
         self.astray: list = []            # the links whose numbers, as drawn, read as another link's, and the points
         #                                   whose labels stand over a link not theirs or on an outline
         self.pc, self.pp = per_cm(ax), per_point(ax)
@@ -447,7 +458,7 @@ class _Drawing:
             fill = plate_fill(fill, self.st) if lk in self.filled else fill
             return self.patch(geom, "links", zorder, fill, gid=f"link-{lk}")
         from matplotlib.patches import Polygon as MPolygon
-        fill = plate_fill(fill, self.st)
+        fill = plate_fill(fill, self.st) if lk not in self.underlays else under_fill(plate_fill(fill, self.st), self.st)
         p = MPolygon(np.asarray(geom.exterior.coords)[:-1], closed=True, facecolor=fill, edgecolor=self.st.ink,
                      lw=self.st.link_lw, zorder=zorder, gid=f"link-{lk}")
         add_patch(self.ax, p)
@@ -490,7 +501,19 @@ class _Drawing:
             self.beneath_cranks.add(lk)
         elif cranks:
             g = None   # a crank about its pivot in the notch, lying over the plate: its number (and arcs) need room
+        if g is None and self.over_pivot(lk, hull):   # the whole plate beneath every link (:attr:`underlays`)
+            self.underlays.add(lk)
+            return hull, False
         return (g, True) if g is not None else (bars(), False)
+
+    def over_pivot(self, lk, hull) -> bool:
+        """Whether ``hull`` (link ``lk``'s plate) covers, within a bar width, a frame pivot of a link ``lk`` does
+        not carry (a lever about a crank's pivot: :func:`under_crank`), the driver a turning link (a slider
+        driver's arrows and values lie by its block, which such a plate would hold: its bars kept, as on main
+        9945c0a, where a value then stood 1.03 cm out at a leader's end, over :data:`VALUE_NEAR`)."""
+        w = self.st.bar_width * self.pc
+        return not self.m.driver.is_slider and any(pivot and hull.distance(Point(*f)) < w
+                   for f, _, pivot in foreign_bars(self.sol, lk, on_body(self.m, lk)))
 
     def cranks_over(self, lk, hull, plate) -> list:
         """The links pivoted on the frame near ``hull`` (within a bar width: in a notch of ``plate``) that lie over
@@ -535,6 +558,8 @@ class _Drawing:
             return plate, "plate"
         hull = None if self.extra_body.get(lk) or not notch else hull_plate(sol, lk, st.bar_width * self.pc)
         g, notched = (None, False) if hull is None else self.notched(lk, hull, (), None, under, lambda: None)
+        if lk in self.underlays:
+            return g, "under"
         if not notched:   # (else its plate would cover another link's pin, and no notch clears it: bars)
             parts = ([self.bodies[lk]] if lk in self.bodies else []) + self.extra_body.get(lk, [])
             if not parts and lk not in self.blocks:
@@ -544,7 +569,7 @@ class _Drawing:
                 g = unary_union(parts)
             if g is not None and len(joints(m, lk)) >= 3:   # a plate with a slot, a guide or a profile, or bars
                 g, notched = self.whole(lk, g, under, notch)
-        return g, "notched" if notched else None
+        return g, "notched" if notched else "under" if lk in self.underlays else None
 
     def link_shapes(self, order, drv):
         """Each link's body (link -> shapely geometry), and the order to draw them in: ``order`` with the plates
@@ -557,10 +582,10 @@ class _Drawing:
         for lk in order:
             under = [geoms[k] for k in geoms if lk == drv or lk in self.slotted or k in self.slotted or k in moved]
             g, kind = self.link_shape(lk, under)
-            if kind == "plate":
+            if kind in ("plate", "under"):
                 self.plates[lk] = g
-            elif g is not None and len(joints(m, lk)) >= 3:
-                self.filled.add(lk)
+            if kind == "under" or kind != "plate" and g is not None and len(joints(m, lk)) >= 3:
+                self.filled.add(lk)   # (a plate beneath the links: its slotted bar, if any, a block's marks keep off)
             if g is not None:
                 geoms[lk] = g
             if kind == "notched":
@@ -570,7 +595,8 @@ class _Drawing:
             geoms[lk] = self.link_shape(lk, None, notch=False)[0]
             self.notched_links.discard(lk)
             moved = [k for k in moved if k != lk]
-        first = [lk for lk in order if lk in self.slotted]
+        first = [lk for lk in order if lk in self.underlays] + [lk for lk in order if lk in self.slotted
+                                                                 and lk not in self.underlays]
         return geoms, first + moved + [lk for lk in order if lk not in first and lk not in moved]
 
     def stacked(self, lk, geoms) -> bool:
@@ -970,8 +996,10 @@ class _Drawing:
                 ground_dir[point] = self.ground_pivot(point, sorted(links - {frame}))
         self.draw_hatches()
         self.art.bodies = dict(geoms)                # link -> its drawn body (shapely), for checks
-        self.art.plates = dict(self.plates)          # link -> its plate (the hull of its points)
+        self.art.plates = {k: g for k, g in self.plates.items() if k not in self.underlays}   # link -> its plate
+        #                                                                                       (the hull of its points)
         self.art.notched = set(self.notched_links)   # the plates notched clear of another link's pins
+        self.art.underlays = set(self.underlays)     # the plates drawn whole beneath every link (over a pivot)
         self.art.slot_cuts = dict(self.slot_cuts)    # slot index -> (link, centre line, cut)
         self.art.guide_bars = {k: g for k, g in self.guide_bars.items() if k in self.filled}   # a plate's slotted bar
         for z, lk in enumerate(order):
@@ -986,9 +1014,19 @@ class _Drawing:
             self.outline(lk, g)
         # pins and points
         self.points(ground_dir)
-        self.marks(ground_dir, geoms)
+        self.seen_as_outline(geoms)
+        self.marks(ground_dir, self.geoms)
         self.art.add("scale_bar", *scale_bar(self.ax, st, m.units, 0))
         return self.art
+
+    def seen_as_outline(self, geoms):
+        """The marks' view of the bodies (:attr:`geoms`): a plate beneath every link (:attr:`underlays`) is its
+        outline, a line width wide (:attr:`Artists.seen`): over it the links, their pins, numbers and the driver's
+        arcs are drawn as on the paper, and a mark reads as the link nearest it, the plate's where by its edge; a
+        mark across that edge reads as crossing the plate."""
+        seen = {lk: geoms[lk].boundary.buffer(0.6 * self.pp) for lk in sorted(self.underlays)}
+        self.geoms = {**geoms, **seen}
+        self.art.seen = seen
 
     def outline(self, lk, g):
         """A body's or slot's outline, a soft obstacle (a label may sit inside a plate, clear of its edges), kept as
