@@ -268,10 +268,16 @@ def link_twists(sol, centre=None, scale=None) -> np.ndarray:
         if k is None:
             out.append((0.0, 0.0, 0.0))
             continue
-        w = qd[3 * k + 2]
-        vx, vy = point_velocity((qd[3 * k], qd[3 * k + 1]), w, (c0 - q[3 * k], c1 - q[3 * k + 1]))
-        out.append((-vy / scale, vx / scale, w))
+        out.append(_twist((qd[3 * k], qd[3 * k + 1]), qd[3 * k + 2], (q[3 * k], q[3 * k + 1]), (c0, c1), scale))
     return np.array(out).reshape(len(out), 3)
+
+
+def _twist(v_o, omega, origin, centre, scale) -> tuple:
+    """A link's twist (-v_y, v_x, omega), v = (V_O + omega k x (centre - O)) / scale the velocity of its body
+    point at ``centre``: linear in (V_O, omega), so the same map takes the rows of the velocity solve's inverse
+    (floats, or arrays over the equations: :func:`_twist_errors`)."""
+    vx, vy = point_velocity(v_o, omega, (centre[0] - origin[0], centre[1] - origin[1]))
+    return (-vy / scale, vx / scale, omega)
 
 
 def _unit(h) -> np.ndarray:
@@ -418,10 +424,8 @@ def _twist_errors(sol, centre, scale):
         k = kin.system.index.get(lk.name)
         if k is None:
             continue
-        vx, vy, om = inv[3 * k], inv[3 * k + 1], inv[3 * k + 2]
-        w[row, 0] = -(vy + om * (c0 - sol.q[3 * k])) / scale
-        w[row, 1] = (vx - om * (c1 - sol.q[3 * k + 1])) / scale
-        w[row, 2] = om
+        w[row] = _twist((inv[3 * k], inv[3 * k + 1]), inv[3 * k + 2], (sol.q[3 * k], sol.q[3 * k + 1]), (c0, c1),
+                        scale)
     if not np.isfinite(g).all():
         return w, g, np.full(len(links), np.inf)
     return w, g, _norm(np.abs(w) @ g)
